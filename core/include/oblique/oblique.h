@@ -1,0 +1,252 @@
+// The oblique near-plane modification (Lengyel): replace the near plane of a projection matrix M
+// by a camera-space clip plane C, keep the four side planes, and tilt the far plane as little as
+// possible by making it pass through Q, the view-volume corner farthest on C's positive side.
+#pragma once
+
+#include <Eigen/LU>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string_view>
+
+#include "oblique/depth_convention.h"
+#include "oblique/plane.h"
+#include "oblique/projection.h"
+#include "oblique/status.h"
+
+namespace oblique {
+
+/// How the far corner Q is found.
+enum class Method {
+  automatic,    ///< closed_form when the matrix has the standard perspective shape, else general
+  closed_form,  ///< Q from the matrix entries, no solve; standard perspective shape only
+  general,      ///< C' = M^-T C and Q = M^-1 Q' by one LU factorisation; any invertible M
+};
+
+inline constexpr Method all_methods[] = {Method::automatic, Method::closed_form, Method::general};
+
+constexpr std::string_view method_name(Method m) noexcept {
+  switch (m) {
+    case Method::automatic: return "auto";
+    case Method::closed_form: return "closed_form";
+    case Method::general: return "general";
+  }
+  return "unknown";
+}
+
+constexpr std::optional<Method> parse_method(std::string_view name) noexcept {
+  for (Method m : all_methods) {
+    if (method_name(m) == name) return m;
+  }
+  return std::nullopt;
+}
+
+/// The general method refuses a matrix whose equilibrated reciprocal condition number is at or
+/// below this: its solve for Q could not be trusted to even two significant digits.
+template <class T>
+constexpr T singular_rcond_threshold() noexcept {
+  return T(16) * std::numeric_limits<T>::epsilon();
+}
+
+template <class T>
+struct ObliqueResult {
+  Status status = Status::ok;
+  /// A more specific reason than status_message(status); empty when there is none.
+  std::string_view detail;
+  /// M' when ok; otherwise the input matrix, unchanged.
+  Matrix4<T> projection;
+  /// Q = M^-1 Q' in camera space (a direction, w = 0, for infinite projections); set when the
+  /// computation got that far (ok, plane_misses_view_volume, out_of_range), else zero.
+  Vector4<T> far_corner = Vector4<T>::Zero();
+  /// The method that ran: closed_form or general (automatic resolved), or what was asked for
+  /// if the request was refused before one ran.
+  Method method = Method::automatic;
+
+  bool ok() const noexcept { return status == Status::ok; }
+  std::string_view message() const noexcept {
+    return detail.empty() ? status_message(status) : detail;
+  }
+};
+
+namespace detail {
+
+template <class T>
+T sign(T x) noexcept {
+  return x > T(0) ? T(1) : (x < T(0) ? T(-1) : T(0));
+}
+
+template <class T>
+ObliqueResult<T> refuse(const Matrix4<T>& m, Method method, Status status,
+                        std::string_view why = {}) {
+  ObliqueResult<T> r;
+  r.status = status;
+  r.detail = why;
+  r.projection = m;
+  r.method = method;
+  return r;
+}
+
+/// The clip-space corner Q' (paper Eq. 7, every convention): x, y = sgn(C'_x), sgn(C'_y) and z on
+/// the depth face C' leans toward (the far face whenever the camera is behind C in a perspective
+/// projection). A zero sign gives the middle of the edge, which is an equally far point.
+template <class T>
+Vector4<T> clip_corner(T sign_x, T sign_y, T sign_z, Convention convention) {
+  const DepthRange range = clip_depth_range(convention);
+  const T z = sign_z > T(0)   ? T(range.z_high)
+              : sign_z < T(0) ? T(range.z_low)
+                              : T(range.z_low + range.z_high) / T(2);
+  return Vector4<T>(sign_x, sign_y, z, T(1));
+}
+
+/// Given Q with M_4 . Q = 1, builds M' with M'_3 chosen so that the near plane is a C, a > 0,
+/// and the far plane contains Q (paper Eqs. 9, 10 and 20, for every convention):
+///   near' = s M'_3 + t M_4 = a C,   far' . Q = 0,   so   a = (z_high - z_low) / (C . Q).
+template <class T>
+ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vector4<T>& q,
+                        Convention convention, Method method) {
+  ObliqueResult<T> r = refuse(m, method, Status::ok);
+  r.far_corner = q;
+  if (!all_finite(q)) {
+    r.status = Status::out_of_range;
+    r.detail = "the far corner Q = M^-1 Q' is beyond the range of the scalar type";
+    return r;
+  }
+  // C scaled by a power of two so that C . Q neither overflows nor underflows; a C is unchanged.
+  const int e = magnitude_exponent(plane);
+  const Vector4<T> c_hat = scaled_by_power_of_two(plane, -e);
+  const T d = c_hat.dot(q);
+  if (!std::isfinite(d)) {
+    r.status = Status::out_of_range;
+    r.detail = "C . Q is beyond the range of the scalar type";
+    return r;
+  }
+  if (!(d > T(0))) {
+    r.status = Status::plane_misses_view_volume;
+    return r;
+  }
+  const DepthRange range = clip_depth_range(convention);
+  const T a_hat = T(range.z_high - range.z_low) / d;  // a * 2^e
+  const T a = std::ldexp(a_hat, -e);
+  // a * C_i rounds once; fall back to a_hat * c_hat_i (the same value) when a itself is not normal.
+  const Vector4<T> ac = (std::isfinite(a) && std::abs(a) >= std::numeric_limits<T>::min())
+                            ? Vector4<T>(a * plane)
+                            : Vector4<T>(a_hat * c_hat);
+  const RowCombination near_combination = near_rows(convention);
+  const Vector4<T> m4 = m.row(3).transpose();
+  const Vector4<T> row3 = T(near_combination.m3) * (ac - T(near_combination.m4) * m4);
+  if (!all_finite(row3)) {
+    r.status = Status::out_of_range;
+    r.detail =
+        "the oblique matrix exceeds the range of the scalar type: C passes within rounding "
+        "distance of the far corner Q";
+    return r;
+  }
+  r.projection.row(2) = row3.transpose();
+  return r;
+}
+
+/// Closed form for the standard perspective shape (see has_perspective_shape()):
+/// M^T C' = C gives C'_x = C_x / A, C'_y = C_y / D, C'_z = C_w / H (only their signs are needed),
+/// and M Q = Q' gives Q = ((Q'_x - B/K) / A, (Q'_y - E/K) / D, 1 / K, (Q'_z - G/K) / H)
+/// (the paper's Eq. 15 and Listing 5.1 for gl, K = -1, A > 0, D > 0).
+template <class T>
+ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention) {
+  const T A = m(0, 0), B = m(0, 2), D = m(1, 1), E = m(1, 2), G = m(2, 2), H = m(2, 3),
+          K = m(3, 2);
+  if (A == T(0) || D == T(0) || H == T(0)) {
+    return refuse(m, Method::closed_form, Status::singular_projection,
+                  "the projection is singular: M11, M22 or M34 is zero");
+  }
+  if (!(plane.w() < T(0))) {
+    return refuse(m, Method::closed_form, Status::camera_not_behind_plane);
+  }
+  const Vector4<T> corner = clip_corner(sign(plane.x()) * sign(A), sign(plane.y()) * sign(D),
+                                        sign(plane.w()) * sign(H), convention);
+  const Vector4<T> q((corner.x() - B / K) / A, (corner.y() - E / K) / D, T(1) / K,
+                     (corner.z() - G / K) / H);
+  return finish(m, plane, q, convention, Method::closed_form);
+}
+
+/// General method for any invertible M. M is equilibrated by powers of two (exactly) to
+/// Mt = R M S, factorised once, and used for both solves:
+///   C' = M^-T C   has the signs of   Mt^-T (S C),
+///   Q  = M^-1 Q'  =  S Mt^-1 (R Q').
+template <class T>
+ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention) {
+  Matrix4<T> mt = m;
+  Vector4<T> row_scale, col_scale;  // the diagonals of R and S, powers of two
+  for (int i = 0; i < 4; ++i) {
+    if (mt.row(i).isZero()) {
+      return refuse(m, Method::general, Status::singular_projection,
+                    "the projection is singular: a row is zero");
+    }
+    const int e = magnitude_exponent(mt.row(i));
+    row_scale(i) = std::ldexp(T(1), -e);
+    mt.row(i) = scaled_by_power_of_two(mt.row(i), -e);
+  }
+  for (int j = 0; j < 4; ++j) {
+    if (mt.col(j).isZero()) {
+      return refuse(m, Method::general, Status::singular_projection,
+                    "the projection is singular: a column is zero");
+    }
+    const int e = magnitude_exponent(mt.col(j));
+    col_scale(j) = std::ldexp(T(1), -e);
+    mt.col(j) = scaled_by_power_of_two(mt.col(j), -e);
+  }
+  const Eigen::PartialPivLU<Matrix4<T>> lu(mt);
+  if (!(lu.rcond() > singular_rcond_threshold<T>())) {
+    return refuse(m, Method::general, Status::singular_projection,
+                  "the projection is singular or numerically singular (reciprocal condition "
+                  "number after equilibration at most 16 epsilon)");
+  }
+  if (!(plane.w() < T(0))) {
+    return refuse(m, Method::general, Status::camera_not_behind_plane);
+  }
+  const Vector4<T> c_hat = scaled_by_power_of_two(plane, -magnitude_exponent(plane));
+  const Vector4<T> c_clip = lu.transpose().solve(col_scale.cwiseProduct(c_hat));
+  if (!all_finite(c_clip)) {
+    return refuse(m, Method::general, Status::out_of_range,
+                  "C' = M^-T C is beyond the range of the scalar type");
+  }
+  const Vector4<T> corner =
+      clip_corner(sign(c_clip.x()), sign(c_clip.y()), sign(c_clip.z()), convention);
+  const Vector4<T> q = col_scale.cwiseProduct(lu.solve(row_scale.cwiseProduct(corner)));
+  return finish(m, plane, q, convention, Method::general);
+}
+
+}  // namespace detail
+
+/// Makes the near plane of `projection` the camera-space plane `plane` (kept side positive),
+/// in the given depth convention (paper Eq. 20 generalised):
+///   M'_1 = M_1, M'_2 = M_2, M'_4 = M_4, near(M') = a C, far(M') . Q = 0,
+/// with Q = M^-1 Q' the corner of the original view volume farthest on C's positive side.
+/// Preconditions are checked, in this order, and reported as statuses: finite input
+/// (invalid_input), an invertible matrix (singular_projection), C_w < 0 (camera_not_behind_plane),
+/// C . Q > 0 (plane_misses_view_volume), a representable answer (out_of_range).
+template <class T>
+ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane,
+                       Convention convention, Method method = Method::automatic) {
+  if (!all_finite(projection)) {
+    return detail::refuse(projection, method, Status::invalid_input,
+                          "the projection matrix has a NaN or infinite entry");
+  }
+  if (!all_finite(plane)) {
+    return detail::refuse(projection, method, Status::invalid_input,
+                          "the clip plane has a NaN or infinite component");
+  }
+  const bool perspective_shape = has_perspective_shape(projection);
+  if (method == Method::automatic) {
+    method = perspective_shape ? Method::closed_form : Method::general;
+  }
+  if (method == Method::closed_form) {
+    if (!perspective_shape) {
+      return detail::refuse(projection, method, Status::invalid_input,
+                            "closed_form needs the standard perspective shape (zeros outside "
+                            "M11, M13, M22, M23, M33, M34, M43; M43 != 0); use auto or general");
+    }
+    return detail::closed_form(projection, plane, convention);
+  }
+  return detail::general(projection, plane, convention);
+}
+
+}  // namespace oblique

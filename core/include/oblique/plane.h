@@ -1,0 +1,52 @@
+// Planes and matrices on Eigen types. Column-vector convention: clip = M * p.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+
+namespace oblique {
+
+template <class T>
+using Matrix4 = Eigen::Matrix<T, 4, 4>;
+
+/// A homogeneous point (w = 1), direction (w = 0), or plane <N, -N.P>; a plane keeps the points
+/// p with plane.dot(p) >= 0 (paper Eq. 1).
+template <class T>
+using Vector4 = Eigen::Matrix<T, 4, 1>;
+
+/// The plane through `point` whose positive (kept) side is the one `normal` points to.
+template <class T>
+Vector4<T> plane_from_normal_and_point(const Eigen::Matrix<T, 3, 1>& normal,
+                                       const Eigen::Matrix<T, 3, 1>& point) {
+  Vector4<T> plane;
+  plane << normal, -normal.dot(point);
+  return plane;
+}
+
+/// True when every entry is finite (no NaN, no infinity).
+template <class Derived>
+bool all_finite(const Eigen::MatrixBase<Derived>& m) {
+  return m.allFinite();
+}
+
+/// The exponent e with max |v_i| = m * 2^e, m in [1/2, 1); 0 for a zero vector.
+template <class Derived>
+int magnitude_exponent(const Eigen::MatrixBase<Derived>& v) {
+  using T = typename Derived::Scalar;
+  const T largest = v.cwiseAbs().maxCoeff();
+  if (!(largest > T(0))) return 0;
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  return exponent;
+}
+
+/// v * 2^k entry by entry: exact unless an entry leaves the normal range, so it removes overflow
+/// and underflow from what follows without changing its rounding.
+template <class Derived>
+typename Derived::PlainObject scaled_by_power_of_two(const Eigen::MatrixBase<Derived>& v, int k) {
+  typename Derived::PlainObject out = v;
+  for (Eigen::Index i = 0; i < out.size(); ++i) out.data()[i] = std::ldexp(out.data()[i], k);
+  return out;
+}
+
+}  // namespace oblique

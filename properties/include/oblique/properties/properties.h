@@ -1,0 +1,309 @@
+// The five properties every oblique projection must have (the project's definitions), evaluated
+// in exact rational arithmetic against the bounds in tolerance.h.
+#pragma once
+
+#include <array>
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "oblique/depth_convention.h"
+#include "oblique/plane.h"
+#include "oblique/properties/exact.h"
+#include "oblique/properties/tolerance.h"
+#include "oblique/status.h"
+
+namespace oblique::properties {
+
+enum class Property {
+  near_is_clip_plane,        ///< 1. near(M') = lambda C with lambda > 0
+  side_rows_unchanged,       ///< 2. rows 1, 2, 4 of M' are those of M, bit for bit
+  far_plane_through_corner,  ///< 3. far(M') . Q = 0, Q the corner farthest on C's positive side
+  no_clipping,               ///< 4. far(M') . p >= 0 for every p of the view volume with C . p >= 0
+  infinite_edge_parallel,    ///< 5. infinite M: Q is a direction and far(M') is parallel to it
+};
+
+inline constexpr Property all_properties[] = {
+    Property::near_is_clip_plane, Property::side_rows_unchanged,
+    Property::far_plane_through_corner, Property::no_clipping, Property::infinite_edge_parallel};
+
+constexpr std::string_view property_name(Property p) noexcept {
+  switch (p) {
+    case Property::near_is_clip_plane: return "near_is_clip_plane";
+    case Property::side_rows_unchanged: return "side_rows_unchanged";
+    case Property::far_plane_through_corner: return "far_plane_through_corner";
+    case Property::no_clipping: return "no_clipping";
+    case Property::infinite_edge_parallel: return "infinite_edge_parallel";
+  }
+  return "unknown";
+}
+
+/// One property's verdict on one result. `ratio` is |residual| / bound: it holds at ratio <= 1.
+struct Verdict {
+  Property property = Property::near_is_clip_plane;
+  bool applies = true;
+  bool holds = true;
+  double ratio = 0;
+  std::string relation;  ///< what was compared, in words
+  std::string lhs;       ///< the residual side, %.17g
+  std::string rhs;       ///< the bound side, %.17g
+};
+
+struct Verdicts {
+  std::vector<Verdict> items;
+
+  bool all_hold() const {
+    for (const Verdict& v : items) {
+      if (v.applies && !v.holds) return false;
+    }
+    return true;
+  }
+  const Verdict* first_failure() const {
+    for (const Verdict& v : items) {
+      if (v.applies && !v.holds) return &v;
+    }
+    return nullptr;
+  }
+  const Verdict& operator[](Property p) const { return items.at(static_cast<std::size_t>(p)); }
+};
+
+inline std::string format_g17(double x) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+inline std::string format_g17(const exact::Rational& x) { return format_g17(x.get_d()); }
+
+/// Everything exact about one input (M, C, convention): the inverse, the clip-space plane C',
+/// the eight corners of the view volume, the far corner Q and the conditioning of C . Q.
+template <class T>
+class Problem {
+ public:
+  Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention)
+      : m_(m), convention_(convention) {
+    finite_ = all_finite(m) && all_finite(c);
+    if (!finite_) return;
+    mx_ = exact::to_rational(m);
+    cx_ = exact::to_rational(c);
+    auto inverse = exact::inverse(mx_);
+    invertible_ = inverse.has_value();
+    if (!invertible_) return;
+    inverse_ = *inverse;
+    c_clip_ = exact::mul(exact::transpose(inverse_), cx_);  // C' = M^-T C
+    const DepthRange range = clip_depth_range(convention);
+    int index = 0;
+    for (int x : {-1, 1}) {
+      for (int y : {-1, 1}) {
+        for (int z : {range.z_low, range.z_high}) {
+          clip_corners_[index] = {x, y, z, 1};
+          corners_[index] = exact::mul(inverse_, clip_corners_[index]);
+          corner_dots_[index] = exact::dot(cx_, corners_[index]);
+          ++index;
+        }
+      }
+    }
+    // The far corner by the sign rule (a zero sign gives the middle of the edge: equally far).
+    const int sz = exact::sign(c_clip_[2]);
+    const exact::Rational z_mid = exact::Rational(range.z_low + range.z_high) / 2;
+    q_clip_ = {exact::sign(c_clip_[0]), exact::sign(c_clip_[1]),
+               sz > 0 ? exact::Rational(range.z_high)
+                      : (sz < 0 ? exact::Rational(range.z_low) : z_mid),
+               1};
+    q_ = exact::mul(inverse_, q_clip_);
+    d_ = exact::dot(cx_, q_);
+    // Infinite: the far face (z_high, or z_low for reversed Z) maps to the plane at infinity.
+    const int far_z = convention == Convention::reversed_z ? range.z_low : range.z_high;
+    infinite_ = true;
+    for (int i = 0; i < 8; ++i) {
+      if (clip_corners_[i][2] == far_z && corners_[i][3] != 0) infinite_ = false;
+    }
+    const exact::Mat abs_m = exact::abs(mx_), abs_inv = exact::abs(inverse_);
+    const exact::Vec abs_c = exact::abs(cx_), abs_q = exact::abs(q_);
+    kappa_numerator_ = exact::dot(abs_c, abs_q) +
+                       exact::dot(abs_c, exact::mul(abs_inv, exact::mul(abs_m, abs_q))) +
+                       exact::dot(exact::abs(c_clip_), exact::mul(abs_m, exact::mul(abs_inv, exact::abs(q_clip_))));
+    camera_behind_ = cx_[3] < 0;
+  }
+
+  bool finite() const { return finite_; }
+  bool invertible() const { return invertible_; }
+  bool infinite() const { return invertible_ && infinite_; }
+  Convention convention() const { return convention_; }
+  const Matrix4<T>& matrix() const { return m_; }
+  const exact::Vec& far_corner() const { return q_; }
+  const exact::Rational& corner_dot() const { return d_; }  ///< C . Q, the largest C . corner
+
+  /// kappa, the condition number of C . Q (tolerance.h); meaningful when C . Q > 0.
+  exact::Rational kappa() const { return d_ > 0 ? exact::Rational(kappa_numerator_ / d_) : 0; }
+
+  /// The status an exact implementation returns (ok, or the first precondition that fails).
+  Status exact_status() const {
+    if (!finite_) return Status::invalid_input;
+    if (!invertible_) return Status::singular_projection;
+    if (!camera_behind_) return Status::camera_not_behind_plane;
+    if (!(d_ > 0)) return Status::plane_misses_view_volume;
+    return Status::ok;
+  }
+
+  /// Judges a result M' of this input. Precondition: exact_status() == Status::ok.
+  Verdicts check(const Matrix4<T>& result) const {
+    Verdicts out;
+    const exact::Mat r = exact::to_rational(result);
+    const RowCombination nr = near_rows(convention_), fr = far_rows(convention_);
+    const exact::Vec& m4 = mx_[3];
+    const exact::Vec near = exact::combine(nr.m3, r[2], nr.m4, r[3]);
+    const exact::Vec far = exact::combine(fr.m3, r[2], fr.m4, r[3]);
+    const int p = tolerance::precision_bits<T>();
+    const exact::Rational entry_gamma = tolerance::gamma(tolerance::kEntryRoundings, p);
+    const exact::Rational scale_gamma = tolerance::gamma(tolerance::kScaleRoundings, p);
+    const exact::Rational t_near = exact::abs(exact::Rational(nr.m4));
+
+    // 1. near' = lambda C: lambda measured on the largest |C_k|, every entry within its rounding.
+    int k = 0;
+    for (int i = 1; i < 4; ++i) {
+      if (exact::abs(cx_[i]) > exact::abs(cx_[k])) k = i;
+    }
+    const exact::Rational lambda = near[k] / cx_[k];
+    exact::Vec entry_bound;  // what rounding may move one entry of M'_3 (and so of near', far')
+    for (int i = 0; i < 4; ++i) {
+      entry_bound[i] = entry_gamma * (exact::abs(lambda * cx_[i]) + t_near * exact::abs(m4[i]));
+    }
+    {
+      Verdict v;
+      v.property = Property::near_is_clip_plane;
+      v.relation = "max_i |near'_i - lambda C_i| / bound_i <= 1 with lambda = near'_k / C_k > 0";
+      exact::Rational worst = 0;
+      bool within = lambda > 0;
+      for (int i = 0; i < 4; ++i) {
+        const exact::Rational residual = exact::abs(near[i] - lambda * cx_[i]);
+        // lambda carries entry k's rounding into every other entry, in proportion to |C_i / C_k|.
+        const exact::Rational bound =
+            2 * entry_bound[i] + entry_bound[k] * exact::abs(cx_[i] / cx_[k]);
+        if (residual > bound) within = false;
+        if (bound > 0) {
+          worst = std::max(worst, exact::Rational(residual / bound));
+        } else if (residual > 0) {
+          worst = 1e300;
+        }
+      }
+      v.holds = within;
+      v.ratio = lambda > 0 ? worst.get_d() : std::max(worst.get_d(), 1e300);
+      v.lhs = "lambda = " + format_g17(lambda) + ", worst residual/bound = " + format_g17(worst);
+      v.rhs = "1";
+      out.items.push_back(v);
+    }
+    // 2. Rows 1, 2, 4 bit for bit.
+    {
+      Verdict v;
+      v.property = Property::side_rows_unchanged;
+      v.relation = "rows 1, 2, 4 of M' are those of M, bit for bit";
+      for (int row : {0, 1, 3}) {
+        for (int j = 0; j < 4; ++j) {
+          const T before = m_(row, j), after = result(row, j);
+          // Equal values with equal signs are equal bits (inputs are finite).
+          if (!(before == after && std::signbit(before) == std::signbit(after))) {
+            if (v.holds) {
+              v.lhs = "M'(" + std::to_string(row + 1) + "," + std::to_string(j + 1) +
+                      ") = " + format_g17(static_cast<double>(after));
+              v.rhs = "M(" + std::to_string(row + 1) + "," + std::to_string(j + 1) +
+                      ") = " + format_g17(static_cast<double>(before));
+            }
+            v.holds = false;
+          }
+        }
+      }
+      v.ratio = v.holds ? 0 : 1e300;
+      out.items.push_back(v);
+    }
+    // What rounding may do to far' . p at a point p with M_4 . p = 1: the error of a (relative
+    // scale_gamma * kappa, reaching far' . p through a C . p <= a C . Q = k) plus the entries'.
+    const exact::Rational k_range = clip_depth_range(convention_).z_high - clip_depth_range(convention_).z_low;
+    const exact::Rational scale_term = k_range * scale_gamma * kappa();
+    auto point_bound = [&](const exact::Vec& point, bool through_scale) {
+      exact::Rational b = through_scale ? scale_term : exact::Rational(0);
+      for (int i = 0; i < 4; ++i) b += 2 * entry_bound[i] * exact::abs(point[i]);
+      return b;
+    };
+    // 3. and 5. far' . Q = 0.
+    const exact::Rational far_q = exact::dot(far, q_);
+    const exact::Rational far_q_bound = point_bound(q_, true);
+    const double far_q_ratio = far_q_bound > 0 ? exact::Rational(exact::abs(far_q) / far_q_bound).get_d()
+                                               : (far_q == 0 ? 0.0 : 1e300);
+    {
+      Verdict v;
+      v.property = Property::far_plane_through_corner;
+      v.relation = "|far' . Q| <= bound";
+      v.holds = exact::abs(far_q) <= far_q_bound;
+      v.ratio = far_q_ratio;
+      v.lhs = format_g17(far_q);
+      v.rhs = format_g17(far_q_bound);
+      out.items.push_back(v);
+    }
+    // 4. far' . p >= -bound at every vertex p of the view volume on C's positive side: the
+    // corners with C . p >= 0 and the points where C crosses an edge of the volume.
+    {
+      Verdict v;
+      v.property = Property::no_clipping;
+      v.relation = "far' . p >= -bound at every vertex p of the view volume with C . p >= 0";
+      double worst = 0;
+      auto visit = [&](const exact::Vec& point, bool through_scale, const char* what) {
+        const exact::Rational value = exact::dot(far, point);
+        if (value >= 0) return;
+        const exact::Rational bound = point_bound(point, through_scale);
+        const double ratio = bound > 0 ? exact::Rational(-value / bound).get_d() : 1e300;
+        if (-value > bound) {
+          if (v.holds || ratio > worst) {
+            v.lhs = std::string("far' . p = ") + format_g17(value) + " at " + what;
+            v.rhs = "-" + format_g17(bound);
+          }
+          v.holds = false;
+        }
+        worst = std::max(worst, ratio);
+      };
+      for (int i = 0; i < 8; ++i) {
+        if (corner_dots_[i] >= 0) visit(corners_[i], true, "a corner");
+        for (int j = i + 1; j < 8; ++j) {
+          int differing = 0;
+          for (int axis = 0; axis < 3; ++axis) differing += clip_corners_[i][axis] != clip_corners_[j][axis];
+          if (differing != 1 || sgn(corner_dots_[i]) * sgn(corner_dots_[j]) >= 0) continue;
+          // The point of edge ij on C, normalised so that M_4 . p = 1.
+          const exact::Rational alpha = corner_dots_[j] / (corner_dots_[j] - corner_dots_[i]);
+          visit(exact::combine(alpha, corners_[i], 1 - alpha, corners_[j]), false,
+                "an edge crossing of C");
+        }
+      }
+      v.ratio = worst;
+      if (v.holds) {
+        v.lhs = "no vertex below its bound";
+        v.rhs = "0";
+      }
+      out.items.push_back(v);
+    }
+    {
+      Verdict v;
+      v.property = Property::infinite_edge_parallel;
+      v.applies = infinite();
+      v.relation = "Q_w = 0 and |far' . Q| <= bound (far' parallel to the frustum edge Q)";
+      v.holds = !v.applies || (q_[3] == 0 && exact::abs(far_q) <= far_q_bound);
+      v.ratio = v.applies ? far_q_ratio : 0;
+      v.lhs = "Q_w = " + format_g17(q_[3]) + ", far' . Q = " + format_g17(far_q);
+      v.rhs = format_g17(far_q_bound);
+      out.items.push_back(v);
+    }
+    return out;
+  }
+
+ private:
+  Matrix4<T> m_;
+  Convention convention_;
+  bool finite_ = false, invertible_ = false, infinite_ = false, camera_behind_ = false;
+  exact::Mat mx_{}, inverse_{};
+  exact::Vec cx_{}, c_clip_{}, q_clip_{}, q_{};
+  std::array<exact::Vec, 8> clip_corners_{}, corners_{};
+  std::array<exact::Rational, 8> corner_dots_{};
+  exact::Rational d_ = 0, kappa_numerator_ = 0;
+};
+
+}  // namespace oblique::properties

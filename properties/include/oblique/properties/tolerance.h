@@ -1,0 +1,46 @@
+// Every tolerance the project uses, in one place, as exact rationals derived from error bounds.
+//
+// u = 2^-p is the unit roundoff of the scalar type (p = 24, 53, 64 significand bits), and
+// gamma(n) = n u / (1 - n u) bounds the relative error of n successive roundings (Higham, 3.1).
+//
+// A careful implementation computes, from exact inputs M and C,
+//   Q   = M^-1 Q'   (closed form: 3 roundings per entry; LU solve: backward error gamma(3n) |L||U|),
+//   d   = C . Q     (4 more roundings),
+//   a   = k / d     (k = 2 for gl, 1 for [0, 1] depth),
+//   M'_3 = s (a C - t M_4)  (2 roundings per entry: the product and the difference).
+// So the relative error of a is at most gamma(kScaleRoundings) * kappa, where kappa, the condition
+// number of C . Q under relative perturbations of every entry of M and C, is
+//   kappa = ( |C|.|Q| + |C|^T |M^-1| |M| |Q| + |C'|^T |M| |M^-1| |Q'| ) / (C . Q)
+// (the last term covers a corner chosen from a C'_x or C'_y that rounding pushed across zero),
+// and each entry of M'_3 carries gamma(kEntryRoundings) of its own.
+#pragma once
+
+#include <limits>
+
+#include "oblique/properties/exact.h"
+
+namespace oblique::tolerance {
+
+/// Significand bits of the scalar type the implementation computes in.
+template <class T>
+constexpr int precision_bits() noexcept {
+  return std::numeric_limits<T>::digits;
+}
+
+/// Roundings that reach the scale factor a: solve for Q (3n = 12, n = 4) and the dot product (4).
+constexpr int kScaleRoundings = 16;
+
+/// Roundings in one entry of M'_3 given a: the product a C_i, the difference with M_4,
+/// and one more for an implementation that forms k C_i / d instead of (k / d) C_i.
+constexpr int kEntryRoundings = 3;
+
+/// u = 2^-p.
+inline exact::Rational unit_roundoff(int precision_bits) { return exact::power_of_two(-precision_bits); }
+
+/// gamma(n) = n u / (1 - n u).
+inline exact::Rational gamma(int n, int precision_bits) {
+  const exact::Rational nu = n * unit_roundoff(precision_bits);
+  return nu / (1 - nu);
+}
+
+}  // namespace oblique::tolerance

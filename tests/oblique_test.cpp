@@ -1,0 +1,178 @@
+#include "oblique/oblique.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "families.h"
+#include "oblique/properties/properties.h"
+
+namespace oblique {
+namespace {
+
+template <class T>
+class ObliqueTest : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double, long double>;
+TYPED_TEST_SUITE(ObliqueTest, Scalars);
+
+// The paper's Eq. 16: C = (0, 0, -1, -d) moves the near plane to d and keeps the far plane;
+// d = n gives M back. With n = 1, f = 2 every step is exact, so "back" means bit for bit.
+TYPED_TEST(ObliqueTest, standardNearPlaneGivesTheMatrixBackExactly) {
+  using T = TypeParam;
+  const Matrix4<T> m = frustum<T>(-1, 1, -1, 1, 1, 2, Convention::gl);
+  const auto result = apply<T>(m, Vector4<T>(0, 0, -1, -1), Convention::gl, Method::closed_form);
+  ASSERT_TRUE(result.ok()) << result.message();
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) EXPECT_EQ(result.projection(i, j), m(i, j)) << i << "," << j;
+  }
+}
+
+// Eq. 16 for every convention: the oblique matrix for C = (0, 0, -1, -d) is frustum(..., d, f).
+TYPED_TEST(ObliqueTest, parallelPlaneMovesTheNearPlaneAndKeepsTheFarPlane) {
+  using T = TypeParam;
+  const T n = 5, f = 80, d = 12;
+  for (Convention convention : all_conventions) {
+    const Matrix4<T> m = frustum<T>(-4, 4, -3, 3, n, f, convention);
+    for (Method method : {Method::closed_form, Method::general}) {
+      const auto result = apply<T>(m, Vector4<T>(0, 0, -1, -d), convention, method);
+      ASSERT_TRUE(result.ok()) << result.message();
+      // The frustum with near plane d has the same side planes only after rescaling rows 1, 2
+      // (they depend on n); compare the third rows, which must agree to a few roundings.
+      const Matrix4<T> expected = frustum<T>(-4 * d / n, 4 * d / n, -3 * d / n, 3 * d / n, d, f, convention);
+      const T tolerance = 16 * std::numeric_limits<T>::epsilon();
+      for (int j = 0; j < 4; ++j) {
+        EXPECT_NEAR(result.projection(2, j), expected(2, j),
+                    tolerance * std::abs(expected(2, j)) + tolerance)
+            << convention_name(convention) << " " << method_name(method) << " entry " << j;
+      }
+    }
+  }
+}
+
+TYPED_TEST(ObliqueTest, autoPicksTheClosedFormOnlyForThePerspectiveShape) {
+  using T = TypeParam;
+  for (Convention convention : all_conventions) {
+    for (const auto& family : testing::fixed_families<T>(convention)) {
+      const auto result = apply<T>(family.matrix, family.plane, convention);
+      ASSERT_TRUE(result.ok()) << family.family << ": " << result.message();
+      EXPECT_EQ(result.method, has_perspective_shape(family.matrix) ? Method::closed_form
+                                                                     : Method::general)
+          << family.family;
+    }
+  }
+  const Matrix4<T> ortho = orthographic<T>(-1, 1, -1, 1, 1, 10, Convention::gl);
+  const auto refused = apply<T>(ortho, Vector4<T>(0, 0, -1, -2), Convention::gl, Method::closed_form);
+  EXPECT_EQ(refused.status, Status::invalid_input);
+  EXPECT_NE(refused.message().find("perspective shape"), std::string_view::npos);
+}
+
+// The five properties on one fixed case of every family, convention and method.
+TYPED_TEST(ObliqueTest, everyFamilyHasTheFiveProperties) {
+  using T = TypeParam;
+  for (Convention convention : all_conventions) {
+    for (const auto& family : testing::fixed_families<T>(convention)) {
+      const properties::Problem<T> problem(family.matrix, family.plane, convention);
+      ASSERT_EQ(problem.exact_status(), Status::ok) << family.family;
+      for (Method method : all_methods) {
+        if (method == Method::closed_form && !has_perspective_shape(family.matrix)) continue;
+        const auto result = apply<T>(family.matrix, family.plane, convention, method);
+        ASSERT_TRUE(result.ok()) << family.family << ": " << result.message();
+        const properties::Verdicts verdicts = problem.check(result.projection);
+        for (const auto& v : verdicts.items) {
+          EXPECT_TRUE(!v.applies || v.holds)
+              << family.family << " " << convention_name(convention) << " "
+              << method_name(method) << ": " << properties::property_name(v.property) << " "
+              << v.lhs << " vs " << v.rhs;
+        }
+        EXPECT_EQ(verdicts[properties::Property::infinite_edge_parallel].applies,
+                  family.family == "infinite")
+            << family.family;
+      }
+    }
+  }
+}
+
+TYPED_TEST(ObliqueTest, closedFormAndGeneralAgree) {
+  using T = TypeParam;
+  for (Convention convention : all_conventions) {
+    for (const auto& family : testing::fixed_families<T>(convention)) {
+      if (!has_perspective_shape(family.matrix)) continue;
+      const auto closed = apply<T>(family.matrix, family.plane, convention, Method::closed_form);
+      const auto general = apply<T>(family.matrix, family.plane, convention, Method::general);
+      ASSERT_TRUE(closed.ok() && general.ok()) << family.family;
+      const T scale = closed.projection.row(2).cwiseAbs().maxCoeff();
+      EXPECT_LE((closed.projection - general.projection).cwiseAbs().maxCoeff(),
+                64 * std::numeric_limits<T>::epsilon() * scale)
+          << family.family << " " << convention_name(convention);
+    }
+  }
+}
+
+TYPED_TEST(ObliqueTest, nonFiniteInputIsInvalid) {
+  using T = TypeParam;
+  const Matrix4<T> m = frustum<T>(-1, 1, -1, 1, 1, 10, Convention::gl);
+  const Vector4<T> plane(0, 0, -1, -2);
+  Matrix4<T> bad = m;
+  bad(2, 3) = std::numeric_limits<T>::quiet_NaN();
+  auto result = apply<T>(bad, plane, Convention::gl);
+  EXPECT_EQ(result.status, Status::invalid_input);
+  EXPECT_NE(result.message().find("NaN or infinite entry"), std::string_view::npos);
+  result = apply<T>(m, Vector4<T>(0, std::numeric_limits<T>::infinity(), -1, -2), Convention::gl);
+  EXPECT_EQ(result.status, Status::invalid_input);
+  EXPECT_NE(result.message().find("clip plane"), std::string_view::npos);
+}
+
+TYPED_TEST(ObliqueTest, singularMatrixIsRefused) {
+  using T = TypeParam;
+  Matrix4<T> m = frustum<T>(-1, 1, -1, 1, 1, 10, Convention::gl);
+  m(2, 3) = 0;  // the perspective shape with H = 0: rows 3 and 4 are parallel
+  for (Method method : {Method::closed_form, Method::general}) {
+    const auto result = apply<T>(m, Vector4<T>(0, 0, -1, -2), Convention::gl, method);
+    EXPECT_EQ(result.status, Status::singular_projection) << method_name(method);
+    EXPECT_NE(result.message().find("singular"), std::string_view::npos);
+  }
+  Matrix4<T> rank3 = Matrix4<T>::Identity();
+  rank3.row(3) = rank3.row(0) + rank3.row(1);
+  EXPECT_EQ(apply<T>(rank3, Vector4<T>(0, 0, -1, -2), Convention::gl).status,
+            Status::singular_projection);
+}
+
+TYPED_TEST(ObliqueTest, cameraMustBeStrictlyBehindThePlane) {
+  using T = TypeParam;
+  const Matrix4<T> m = frustum<T>(-1, 1, -1, 1, 1, 10, Convention::zero_one);
+  for (T w : {T(0), T(-0.0), T(2)}) {
+    const auto result = apply<T>(m, Vector4<T>(0, 0, -1, w), Convention::zero_one);
+    EXPECT_EQ(result.status, Status::camera_not_behind_plane) << w;
+    EXPECT_NE(result.message().find("C_w >= 0"), std::string_view::npos);
+  }
+}
+
+TYPED_TEST(ObliqueTest, planeBehindTheCameraMissesTheViewVolume) {
+  using T = TypeParam;
+  for (Convention convention : all_conventions) {
+    const Matrix4<T> m = frustum<T>(-1, 1, -1, 1, 1, 10, convention);
+    // z >= 1 is behind the camera; so is z <= -20 beyond the far plane for the plane (0,0,-1,-20).
+    for (const Vector4<T>& plane : {Vector4<T>(0, 0, 1, -1), Vector4<T>(0, 0, -1, -20)}) {
+      for (Method method : {Method::closed_form, Method::general}) {
+        const auto result = apply<T>(m, plane, convention, method);
+        EXPECT_EQ(result.status, Status::plane_misses_view_volume)
+            << convention_name(convention) << " " << method_name(method);
+        EXPECT_NE(result.message().find("skipped"), std::string_view::npos);
+      }
+    }
+  }
+}
+
+// A plane through the far corner Q within the subnormal range: a = 2 / (C . Q) exceeds the type.
+TYPED_TEST(ObliqueTest, answerBeyondTheTypeIsOutOfRange) {
+  using T = TypeParam;
+  Matrix4<T> m = frustum<T>(-1, 1, -1, 1, 1, 2, Convention::gl);
+  m(0, 0) = std::ldexp(T(1), std::numeric_limits<T>::max_exponent - 1);
+  const Vector4<T> plane(1, 0, 0, -std::numeric_limits<T>::denorm_min());
+  const auto result = apply<T>(m, plane, Convention::gl);
+  EXPECT_EQ(result.status, Status::out_of_range);
+  EXPECT_NE(result.message().find("range"), std::string_view::npos);
+}
+
+}  // namespace
+}  // namespace oblique
