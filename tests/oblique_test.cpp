@@ -6,6 +6,7 @@
 
 #include "families.h"
 #include "oblique/properties/properties.h"
+#include "printers.h"
 
 namespace oblique {
 namespace {

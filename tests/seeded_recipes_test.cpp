@@ -7,6 +7,7 @@
 #include "oblique/frustum_planes.h"
 #include "oblique/oblique.h"
 #include "oblique/properties/properties.h"
+#include "printers.h"
 
 namespace oblique {
 namespace {

@@ -133,7 +133,9 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
                             : Vector4<T>(a_hat * c_hat);
   const RowCombination near_combination = near_rows(convention);
   const Vector4<T> m4 = m.row(3).transpose();
-  const Vector4<T> row3 = T(near_combination.m3) * (ac - T(near_combination.m4) * m4);
+  // s = +-1: written as a difference either way so that a zero entry stays +0.
+  const Vector4<T> t_m4 = T(near_combination.m4) * m4;
+  const Vector4<T> row3 = near_combination.m3 > 0 ? Vector4<T>(ac - t_m4) : Vector4<T>(t_m4 - ac);
   if (!all_finite(row3)) {
     r.status = Status::out_of_range;
     r.detail =
@@ -176,7 +178,7 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   Matrix4<T> mt = m;
   Vector4<T> row_scale, col_scale;  // the diagonals of R and S, powers of two
   for (int i = 0; i < 4; ++i) {
-    if (mt.row(i).isZero()) {
+    if ((mt.row(i).array() == T(0)).all()) {  // exact: isZero() is fuzzy
       return refuse(m, Method::general, Status::singular_projection,
                     "the projection is singular: a row is zero");
     }
@@ -185,7 +187,7 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
     mt.row(i) = scaled_by_power_of_two(mt.row(i), -e);
   }
   for (int j = 0; j < 4; ++j) {
-    if (mt.col(j).isZero()) {
+    if ((mt.col(j).array() == T(0)).all()) {
       return refuse(m, Method::general, Status::singular_projection,
                     "the projection is singular: a column is zero");
     }

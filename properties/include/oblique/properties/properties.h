@@ -147,6 +147,47 @@ class Problem {
     return Status::ok;
   }
 
+  /// The exact third row of M': s (a C - t M_4) with a = (z_high - z_low) / (C . Q).
+  /// Precondition: exact_status() == Status::ok.
+  exact::Vec exact_row3() const {
+    const DepthRange range = clip_depth_range(convention_);
+    const RowCombination nr = near_rows(convention_);
+    const exact::Rational a = exact::Rational(range.z_high - range.z_low) / d_;
+    return exact::combine(nr.m3 * a, cx_, -nr.m3 * nr.m4, mx_[3]);
+  }
+
+  /// How far a computed third row is from exact_row3(), against the bound a careful
+  /// implementation meets: per entry gamma(kEntryRoundings) (|a C_i| + |M4_i|) plus the
+  /// error of a, |a C_i| gamma(kScaleRoundings) kappa. `ratio` <= 1 is within.
+  struct Closeness {
+    bool within = true;
+    double ratio = 0;
+    int worst_entry = 0;
+  };
+  Closeness compare_row3(const Matrix4<T>& result) const {
+    const exact::Vec expected = exact_row3();
+    const DepthRange range = clip_depth_range(convention_);
+    const exact::Rational a = exact::Rational(range.z_high - range.z_low) / d_;
+    const int p = tolerance::precision_bits<T>();
+    const exact::Rational entry_gamma = tolerance::gamma(tolerance::kEntryRoundings, p);
+    const exact::Rational scale_error = tolerance::gamma(tolerance::kScaleRoundings, p) * kappa();
+    Closeness out;
+    exact::Rational worst = -1;
+    for (int i = 0; i < 4; ++i) {
+      const exact::Rational error = exact::abs(exact::to_rational(result(2, i)) - expected[i]);
+      const exact::Rational ac = exact::abs(a * cx_[i]);
+      const exact::Rational bound = entry_gamma * (ac + exact::abs(mx_[3][i])) + ac * scale_error;
+      const exact::Rational ratio = bound > 0 ? exact::Rational(error / bound) : exact::Rational(error > 0 ? 1e300 : 0);
+      if (error > bound) out.within = false;
+      if (ratio > worst) {
+        worst = ratio;
+        out.worst_entry = i;
+      }
+    }
+    out.ratio = worst.get_d();
+    return out;
+  }
+
   /// Judges a result M' of this input. Precondition: exact_status() == Status::ok.
   Verdicts check(const Matrix4<T>& result) const {
     Verdicts out;

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds the release preset and runs every test (unit, properties, fuzz replay).
+# Extra arguments go to ctest, e.g.: bash scripts/test.sh -L properties
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+cmake --preset release
+cmake --build --preset release
+ctest --preset release "$@"
