@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -53,10 +54,36 @@ const char* kind_name(Value::Kind kind) {
   return "a value";
 }
 
+/// The texts of the JSON numbers in `line`, in order. Valid only for text the JSON parser accepts:
+/// outside strings, a number is the only token that starts with '-' or a digit.
+std::vector<std::string> number_texts(std::string_view line) {
+  std::vector<std::string> out;
+  bool in_string = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (in_string) {
+      if (ch == '\\') ++i;
+      else if (ch == '"') in_string = false;
+    } else if (ch == '"') {
+      in_string = true;
+    } else if (ch == '-' || (ch >= '0' && ch <= '9')) {
+      std::size_t end = i + 1;
+      while (end < line.size() && std::strchr("0123456789.eE+-", line[end]) != nullptr) ++end;
+      out.emplace_back(line.substr(i, end - i));
+      i = end - 1;
+    }
+  }
+  return out;
+}
+
 /// Builds a Value tree from nlohmann's SAX events; refuses nesting deeper than a request needs.
+/// Numbers take their text from number_texts(): SAX gives the text of floats only, and reports
+/// the integer -0 as 0.
 class TreeBuilder final : public nlohmann::json_sax<json> {
  public:
   static constexpr std::size_t kMaxDepth = 8;
+
+  explicit TreeBuilder(std::string_view line) : numbers_(number_texts(line)) {}
 
   Value root;
   std::string error;
@@ -68,9 +95,9 @@ class TreeBuilder final : public nlohmann::json_sax<json> {
     v.text = b ? "true" : "false";
     return add(std::move(v));
   }
-  bool number_integer(number_integer_t i) override { return add_number(std::to_string(i)); }
-  bool number_unsigned(number_unsigned_t u) override { return add_number(std::to_string(u)); }
-  bool number_float(number_float_t, const string_t& s) override { return add_number(s); }
+  bool number_integer(number_integer_t) override { return add_number(); }
+  bool number_unsigned(number_unsigned_t) override { return add_number(); }
+  bool number_float(number_float_t, const string_t&) override { return add_number(); }
   bool string(string_t& s) override {
     Value v;
     v.kind = Value::Kind::string;
@@ -94,10 +121,14 @@ class TreeBuilder final : public nlohmann::json_sax<json> {
   }
 
  private:
-  bool add_number(std::string text) {
+  bool add_number() {
+    if (next_number_ >= numbers_.size()) {  // cannot happen for text the parser accepted
+      error = "internal error: number tokens out of step";
+      return false;
+    }
     Value v;
     v.kind = Value::Kind::number;
-    v.text = std::move(text);
+    v.text = numbers_[next_number_++];
     return add(std::move(v));
   }
   Value* place(Value v) {
@@ -134,6 +165,8 @@ class TreeBuilder final : public nlohmann::json_sax<json> {
 
   std::vector<Value*> stack_;
   std::string pending_key_;
+  std::vector<std::string> numbers_;
+  std::size_t next_number_ = 0;
 };
 
 bool is_hex_float(std::string_view s) {
@@ -280,15 +313,25 @@ template std::string format_number<float>(float);
 template std::string format_number<double>(double);
 template std::string format_number<long double>(long double);
 
+namespace {
+
+/// Parses one line into a Value tree, or says why it is not JSON.
+std::optional<Value> parse_tree(std::string_view line, std::string& error) {
+  TreeBuilder builder(line);
+  if (!json::sax_parse(line.begin(), line.end(), &builder, json::input_format_t::json, true, false)) {
+    error = builder.error.empty() ? "not valid JSON" : builder.error;
+    return std::nullopt;
+  }
+  return std::move(builder.root);
+}
+
+}  // namespace
+
 ParsedLine parse_request(std::string_view line) {
   ParsedLine out;
-  TreeBuilder builder;
-  const bool parsed = json::sax_parse(line.begin(), line.end(), &builder, json::input_format_t::json, true, false);
-  if (!parsed) {
-    out.error = builder.error.empty() ? "not valid JSON" : builder.error;
-    return out;
-  }
-  const Value& root = builder.root;
+  const std::optional<Value> tree = parse_tree(line, out.error);
+  if (!tree) return out;
+  const Value& root = *tree;
   if (root.kind != Value::Kind::object) {
     out.error = std::string("a request must be a JSON object, not ") + kind_name(root.kind);
     return out;
@@ -320,6 +363,41 @@ ParsedLine parse_request(std::string_view line) {
   if (!has_projection) out.error = "missing field \"projection\"";
   else if (!has_plane) out.error = "missing field \"plane\"";
   else out.request = std::move(request);
+  return out;
+}
+
+ParsedAnswer parse_answer(std::string_view line) {
+  ParsedAnswer out;
+  const std::optional<Value> tree = parse_tree(line, out.error);
+  if (!tree) return out;
+  if (tree->kind != Value::Kind::object) {
+    out.error = std::string("an answer must be a JSON object, not ") + kind_name(tree->kind);
+    return out;
+  }
+  bool has_status = false;
+  for (const auto& [key, value] : tree->members) {
+    if (key == "status") {
+      if (value.kind != Value::Kind::string) {
+        out.error = std::string("\"status\" must be a string, not ") + kind_name(value.kind);
+        return out;
+      }
+      out.status = value.text;
+      has_status = true;
+    } else if (key == "projection") {
+      std::array<std::string, 16> numbers;
+      if (!read_numbers(value, "projection", numbers, out.error)) return out;
+      out.projection = std::move(numbers);
+    } else if (key == "message") {
+      if (value.kind == Value::Kind::string) out.message = value.text;
+    }
+  }
+  if (!has_status) {
+    out.error = "missing field \"status\"";
+  } else if (out.status == "ok" && !out.projection) {
+    out.error = "an ok answer needs \"projection\"";
+  } else {
+    out.valid = true;
+  }
   return out;
 }
 

@@ -36,6 +36,18 @@ struct ParsedLine {
 
 ParsedLine parse_request(std::string_view line);
 
+/// An answer line as read back (by tests, and by `oblique verify` from other implementations).
+/// Unknown fields are ignored; `valid` is false (with `error`) when the line is not an answer.
+struct ParsedAnswer {
+  bool valid = false;
+  std::string status;
+  std::optional<std::array<std::string, 16>> projection;  ///< number tokens, for parse_number()
+  std::string message;
+  std::string error;
+};
+
+ParsedAnswer parse_answer(std::string_view line);
+
 /// The value of a number token in type T, correctly rounded from its text: a JSON number,
 /// or "nan", "inf", "-inf", or a hex float. Empty (with `error` set) for anything else, and for a
 /// finite literal that overflows T.

@@ -1,0 +1,155 @@
+// End to end: `oblique apply` answers generated requests of every family and convention,
+// stiff ones included, with the exact status, rows 1, 2, 4 bit-exact and row 3 within the
+// conditioning bound of the exact answer. Also its exit statuses.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "oblique/oblique.h"
+#include "oblique/properties/properties.h"
+#include "printers.h"
+#include "protocol.h"
+
+namespace oblique {
+namespace {
+
+struct Case {
+  std::string family;
+  Convention convention;
+  Matrix4<double> m;
+  Vector4<double> c;
+};
+
+/// Requests the unit tests never saw: random parameters, stiff ranges, random planes through a
+/// random point of the view volume.
+std::vector<Case> generated_cases(unsigned seed, int count) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(0, 1);
+  auto log_uniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, unit(random)); };
+  std::vector<Case> out;
+  const char* families[] = {"perspective", "off_axis", "infinite", "orthographic",
+                            "y_flipped", "jittered", "rotated", "general"};
+  for (int i = 0; i < count; ++i) {
+    Case k;
+    k.family = families[i % 8];
+    k.convention = all_conventions[(i / 8) % 3];
+    const double n = log_uniform(1e-6, 10), f = n * log_uniform(1.5, 1e12);
+    const double top = n * log_uniform(0.05, 3), right = top * log_uniform(0.5, 3);
+    const double shift = unit(random) - 0.5;
+    if (k.family == "perspective" || k.family == "y_flipped" || k.family == "jittered" ||
+        k.family == "rotated" || k.family == "general") {
+      k.m = frustum<double>(-right, right, -top, top, n, f, k.convention);
+    } else if (k.family == "off_axis") {
+      k.m = frustum<double>(-right + shift * right, right + shift * right, -top, top * 0.5, n, f, k.convention);
+    } else if (k.family == "infinite") {
+      k.m = infinite_frustum<double>(-right, right, -top, top, n, k.convention);
+    } else {
+      k.m = orthographic<double>(-right, right, -top, top, n, f, k.convention);
+    }
+    if (k.family == "y_flipped") k.m.row(1) *= -1;
+    if (k.family == "jittered") k.m.row(0) += (shift / 960) * k.m.row(3);
+    if (k.family == "rotated" || k.family == "general") {
+      Matrix4<double> r = Matrix4<double>::Identity();
+      r.topLeftCorner<3, 3>() =
+          Eigen::Quaterniond::UnitRandom().toRotationMatrix();  // uses std::rand: seed below
+      if (k.family == "general") {
+        r.topLeftCorner<3, 3>() *= Eigen::Vector3d(1 + unit(random), 1 + unit(random), 1).asDiagonal();
+        r(0, 1) += unit(random) - 0.5;
+      }
+      k.m = k.m * r;
+    }
+    // A point inside the view volume, a random normal through it, the camera behind it.
+    const DepthRange range = clip_depth_range(k.convention);
+    const Vector4<double> clip(2 * unit(random) - 1, 2 * unit(random) - 1,
+                               range.z_low + (range.z_high - range.z_low) * unit(random), 1);
+    Vector4<double> p = k.m.partialPivLu().solve(clip);
+    p /= p.w();
+    const Eigen::Vector3d normal = Eigen::Vector3d::Random().normalized();
+    k.c << normal, -normal.dot(p.head<3>());
+    if (k.c.w() > 0) k.c = -k.c;
+    out.push_back(k);
+  }
+  return out;
+}
+
+std::string request_line(const Case& k) {
+  std::string line = "{\"projection\": [";
+  for (int i = 0; i < 16; ++i) line += (i ? ", " : "") + protocol::format_number(k.m(i / 4, i % 4));
+  line += "], \"plane\": [";
+  for (int i = 0; i < 4; ++i) line += (i ? ", " : "") + protocol::format_number(k.c(i));
+  line += "], \"convention\": \"" + std::string(convention_name(k.convention)) + "\"}";
+  return line;
+}
+
+int run_cli(const std::string& arguments, const std::string& input, std::vector<std::string>* lines) {
+  const std::string in_path = ::testing::TempDir() + "oblique_cli_in.jsonl";
+  const std::string out_path = ::testing::TempDir() + "oblique_cli_out.jsonl";
+  std::ofstream(in_path) << input;
+  const std::string command = std::string(OBLIQUE_CLI) + " " + arguments + " < " + in_path +
+                              " > " + out_path + " 2>/dev/null";
+  const int raw = std::system(command.c_str());
+  std::ifstream out(out_path);
+  for (std::string line; std::getline(out, line);) lines->push_back(line);
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
+  std::srand(7);
+  const std::vector<Case> cases = generated_cases(424242, 480);
+  std::string input;
+  for (const Case& k : cases) input += request_line(k) + "\n";
+  std::vector<std::string> lines;
+  run_cli("apply", input, &lines);
+  ASSERT_EQ(lines.size(), cases.size());
+  int ok = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Case& k = cases[i];
+    const properties::Problem<double> problem(k.m, k.c, k.convention);
+    const auto answer = protocol::parse_answer(lines[i]);
+    const std::string what = k.family + " " + std::string(convention_name(k.convention)) + ": " + lines[i];
+    ASSERT_TRUE(answer.valid) << answer.error << "\n" << what;
+    ASSERT_EQ(answer.status, status_code(problem.exact_status())) << what;
+    if (problem.exact_status() != Status::ok) continue;
+    ++ok;
+    Matrix4<double> result;
+    std::string error;
+    for (int j = 0; j < 16; ++j) {
+      result(j / 4, j % 4) = protocol::parse_number<double>((*answer.projection)[j], &error).value();
+    }
+    const auto verdicts = problem.check(result);
+    for (const auto& v : verdicts.items) {
+      EXPECT_TRUE(!v.applies || v.holds) << what << "\n" << properties::property_name(v.property)
+                                         << " " << v.lhs << " vs " << v.rhs;
+    }
+    const auto closeness = problem.compare_row3(result);
+    EXPECT_TRUE(closeness.within) << what << "\nrow 3 at " << closeness.ratio << " of its bound";
+  }
+  EXPECT_GT(ok, 300) << "too few generated cases were valid to mean anything";
+}
+
+TEST(Cli, exitStatusSaysWhetherEveryLineWasOk) {
+  const std::string good =
+      "{\"projection\": [1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0], \"plane\": [0,0,-1,-1]}\n";
+  const std::string bad = "{\"projection\": [1]}\n";
+  std::vector<std::string> lines;
+  EXPECT_EQ(run_cli("apply", good + good, &lines), 0);
+  EXPECT_EQ(lines.size(), 2u);
+  lines.clear();
+  EXPECT_EQ(run_cli("apply --precision float", good + bad + "\n" + good, &lines), 1);
+  ASSERT_EQ(lines.size(), 4u);  // one answer per line, the empty one included
+  EXPECT_NE(lines[1].find("invalid_input"), std::string::npos);
+  EXPECT_NE(lines[2].find("invalid_input"), std::string::npos);
+  EXPECT_EQ(run_cli("apply --method fast", good, &lines), 2);
+  EXPECT_EQ(run_cli("", good, &lines), 2);
+  EXPECT_EQ(run_cli("apply extra-argument", good, &lines), 2);
+}
+
+}  // namespace
+}  // namespace oblique

@@ -1,0 +1,148 @@
+#include "protocol.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "oblique/projection.h"
+#include "printers.h"
+
+namespace oblique::protocol {
+namespace {
+
+TEST(Protocol, numbersParseExactlyInEveryForm) {
+  std::string error;
+  EXPECT_EQ(parse_number<double>("\"0x1.8p+1", &error), 3.0);
+  EXPECT_EQ(parse_number<double>("\"-0x1p-1074", &error), -std::numeric_limits<double>::denorm_min());
+  EXPECT_TRUE(std::isnan(*parse_number<double>("\"nan", &error)));
+  EXPECT_EQ(parse_number<double>("\"inf", &error), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(parse_number<double>("\"-inf", &error), -std::numeric_limits<double>::infinity());
+  const auto negative_zero = parse_number<double>("-0", &error);
+  ASSERT_TRUE(negative_zero);
+  EXPECT_TRUE(std::signbit(*negative_zero));
+  EXPECT_EQ(parse_number<long double>("0.1", &error), 0.1L);
+}
+
+// Converting text -> double -> float can round twice; parsing per precision rounds once.
+// 1 + 2^-24 + tiny lies just above the midpoint of 1 and the next float, so it rounds up.
+TEST(Protocol, floatRequestsAreRoundedOnceFromTheirText) {
+  std::string error;
+  const auto value = parse_number<float>("1.00000005960464477539062500000001", &error);
+  ASSERT_TRUE(value);
+  EXPECT_EQ(*value, std::nextafter(1.0f, 2.0f));
+  EXPECT_EQ(static_cast<float>(1.00000005960464477539062500000001), 1.0f);  // the double route
+}
+
+TEST(Protocol, badNumbersAreNamed) {
+  std::string error;
+  EXPECT_FALSE(parse_number<double>("\"abc", &error));
+  EXPECT_NE(error.find("\"abc\" is not a number"), std::string::npos);
+  EXPECT_FALSE(parse_number<double>("\"0x1p", &error));
+  EXPECT_FALSE(parse_number<double>("\"1.5", &error));  // decimal strings are not in the protocol
+  EXPECT_FALSE(parse_number<float>("1e39", &error));
+  EXPECT_NE(error.find("overflows"), std::string::npos);
+}
+
+TEST(Protocol, printedNumbersReadBackToTheSameBits) {
+  std::mt19937_64 random(20261123);
+  for (int i = 0; i < 20000; ++i) {
+    std::uint64_t bits = random();
+    double d;
+    std::memcpy(&d, &bits, sizeof d);
+    if (!std::isfinite(d)) continue;
+    std::string error;
+    const auto back = parse_number<double>(format_number(d), &error);
+    ASSERT_TRUE(back) << error;
+    EXPECT_EQ(std::memcmp(&*back, &d, sizeof d), 0) << format_number(d);
+    const auto f = static_cast<float>(d);
+    if (!std::isfinite(f)) continue;
+    const auto back_f = parse_number<float>(format_number(f), &error);
+    ASSERT_TRUE(back_f);
+    EXPECT_EQ(std::memcmp(&*back_f, &f, sizeof f), 0) << format_number(f);
+  }
+}
+
+TEST(Protocol, malformedRequestsSayWhatIsWrong) {
+  const std::string matrix = "[1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0]";
+  const std::pair<std::string, std::string> cases[] = {
+      {"", "parse error at line 1, column 1"},
+      {"{\"projection\": [1,2", "parse error"},
+      {"[1, 2]", "must be a JSON object, not an array"},
+      {"{\"plane\": [0,0,-1,-1]}", "missing field \"projection\""},
+      {"{\"projection\": " + matrix + "}", "missing field \"plane\""},
+      {"{\"projection\": [1,2,3], \"plane\": [0,0,-1,-1]}", "must hold 16 numbers, not 3"},
+      {"{\"projection\": 5, \"plane\": [0,0,-1,-1]}", "must be an array of 16 numbers, not a number"},
+      {"{\"projection\": " + matrix + ", \"plane\": [0,0,-1,null]}", "\"plane\"[3] must be a number, not null"},
+      {"{\"projection\": " + matrix + ", \"plane\": [0,0,-1,-1], \"convention\": \"dx\"}", "unknown convention \"dx\""},
+      {"{\"projection\": " + matrix + ", \"plane\": [0,0,-1,-1], \"extra\": 1}", "unknown field \"extra\""},
+      {"[[[[[[[[[[[[1]]]]]]]]]]]]", "nested deeper"},
+  };
+  for (const auto& [line, expected] : cases) {
+    const ParsedLine parsed = parse_request(line);
+    EXPECT_FALSE(parsed.request) << line;
+    EXPECT_NE(parsed.error.find(expected), std::string::npos) << line << " -> " << parsed.error;
+    const Answer answer = answer_request(line, ApplyOptions{});
+    EXPECT_EQ(answer.status, Status::invalid_input);
+    EXPECT_EQ(answer.line.rfind("{\"status\": \"invalid_input\", \"message\": ", 0), 0u) << answer.line;
+  }
+}
+
+TEST(Protocol, answersCarryTheCoreResultExactly) {
+  const Matrix4<double> m = frustum<double>(-4, 4, -3, 3, 5, 80, Convention::zero_one);
+  const Vector4<double> c(0.25, -0.375, -1, -7);
+  std::string line = "{\"projection\": [";
+  for (int i = 0; i < 16; ++i) line += (i ? "," : "") + format_number(m(i / 4, i % 4));
+  line += "], \"plane\": [0.25, -0.375, -1, \"-0x1.cp+2\"], \"convention\": \"zero_one\"}";
+  const Answer answer = answer_request(line, ApplyOptions{});
+  ASSERT_EQ(answer.status, Status::ok) << answer.line;
+  const auto expected = apply(m, c, Convention::zero_one);
+  std::string want = "{\"status\": \"ok\", \"projection\": [";
+  for (int i = 0; i < 16; ++i) want += (i ? ", " : "") + format_number(expected.projection(i / 4, i % 4));
+  want += "]}";
+  EXPECT_EQ(answer.line, want);
+}
+
+TEST(Protocol, flagsAndRequestFieldsChooseConventionAndPrecision) {
+  const std::string line =
+      "{\"projection\": [1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0], \"plane\": [0,0,-1,-1]}";
+  ApplyOptions options;
+  options.precision = Precision::float32;
+  EXPECT_EQ(answer_request(line, options).line,
+            "{\"status\": \"ok\", \"projection\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -3, -4, 0, 0, -1, 0]}");
+  options.method = Method::general;
+  options.convention = Convention::zero_one;
+  EXPECT_EQ(answer_request(line, options).status, Status::ok);
+}
+
+}  // namespace
+}  // namespace oblique::protocol
+
+namespace oblique::protocol {
+namespace {
+
+TEST(Protocol, negativeZeroKeepsItsSignThroughRequestsAndAnswers) {
+  const ParsedLine parsed = parse_request(
+      "{\"projection\": [-0, 0, -0.0, 1, 0,1,0,0, 0,0,-3,-4, 0,0,-1,0], \"plane\": [-0,0,-1,-1]}");
+  ASSERT_TRUE(parsed.request) << parsed.error;
+  EXPECT_EQ(parsed.request->projection[0], "-0");
+  EXPECT_EQ(parsed.request->projection[2], "-0.0");
+  EXPECT_EQ(parsed.request->plane[0], "-0");
+  const ParsedAnswer answer = parse_answer("{\"status\": \"ok\", \"projection\": [-0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,\"-0x1p+0\"]}");
+  ASSERT_TRUE(answer.valid) << answer.error;
+  std::string error;
+  EXPECT_TRUE(std::signbit(*parse_number<double>((*answer.projection)[0], &error)));
+  EXPECT_EQ(parse_number<double>((*answer.projection)[15], &error), -1.0);
+}
+
+TEST(Protocol, answersThatAreNotAnswersAreNamed) {
+  EXPECT_FALSE(parse_answer("{\"projection\": []}").valid);
+  EXPECT_NE(parse_answer("{\"status\": \"ok\"}").error.find("needs \"projection\""), std::string::npos);
+  EXPECT_NE(parse_answer("{\"status\": 3}").error.find("must be a string"), std::string::npos);
+  EXPECT_TRUE(parse_answer("{\"status\": \"camera_not_behind_plane\", \"message\": \"x\"}").valid);
+}
+
+}  // namespace
+}  // namespace oblique::protocol
