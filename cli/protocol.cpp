@@ -62,8 +62,10 @@ std::vector<std::string> number_texts(std::string_view line) {
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char ch = line[i];
     if (in_string) {
-      if (ch == '\\') ++i;
-      else if (ch == '"') in_string = false;
+      if (ch == '\\')
+        ++i;
+      else if (ch == '"')
+        in_string = false;
     } else if (ch == '"') {
       in_string = true;
     } else if (ch == '-' || (ch >= '0' && ch <= '9')) {
@@ -113,7 +115,8 @@ class TreeBuilder final : public nlohmann::json_sax<json> {
   bool end_object() override { return close(); }
   bool start_array(std::size_t) override { return open(Value::Kind::array); }
   bool end_array() override { return close(); }
-  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& ex) override {
+  bool parse_error(std::size_t, const std::string&,
+                   const nlohmann::detail::exception& ex) override {
     error = ex.what();
     // Drop nlohmann's "[json.exception.parse_error.101] " prefix: the rest names line and column.
     if (const auto pos = error.find("] "); pos != std::string::npos) error.erase(0, pos + 2);
@@ -192,11 +195,17 @@ bool is_hex_float(std::string_view s) {
 template <class T>
 T string_to(const char* begin, char** end);
 template <>
-float string_to<float>(const char* begin, char** end) { return std::strtof(begin, end); }
+float string_to<float>(const char* begin, char** end) {
+  return std::strtof(begin, end);
+}
 template <>
-double string_to<double>(const char* begin, char** end) { return std::strtod(begin, end); }
+double string_to<double>(const char* begin, char** end) {
+  return std::strtod(begin, end);
+}
 template <>
-long double string_to<long double>(const char* begin, char** end) { return std::strtold(begin, end); }
+long double string_to<long double>(const char* begin, char** end) {
+  return std::strtold(begin, end);
+}
 
 /// A number token: a JSON number's text, or a string (marked by a leading '"' here).
 std::optional<std::string> number_token(const Value& v) {
@@ -237,7 +246,8 @@ std::string quoted(std::string_view s) {
 Answer refusal(Status status, std::string_view message) {
   Answer a;
   a.status = status;
-  a.line = "{\"status\": " + quoted(status_code(status)) + ", \"message\": " + quoted(message) + "}";
+  a.line =
+      "{\"status\": " + quoted(status_code(status)) + ", \"message\": " + quoted(message) + "}";
   return a;
 }
 
@@ -248,7 +258,8 @@ Answer run(const Request& request, const ApplyOptions& options) {
   std::string error;
   for (int i = 0; i < 16; ++i) {
     auto value = parse_number<T>(request.projection[i], &error);
-    if (!value) return refusal(Status::invalid_input, "projection[" + std::to_string(i) + "]: " + error);
+    if (!value)
+      return refusal(Status::invalid_input, "projection[" + std::to_string(i) + "]: " + error);
     m(i / 4, i % 4) = *value;
   }
   for (int i = 0; i < 4; ++i) {
@@ -281,7 +292,9 @@ std::optional<T> parse_number(const std::string& token, std::string* error) {
     if (text == "inf") return std::numeric_limits<T>::infinity();
     if (text == "-inf") return -std::numeric_limits<T>::infinity();
     if (!is_hex_float(text)) {
-      *error = "the string \"" + text + "\" is not a number (use \"nan\", \"inf\", \"-inf\" or a hex float such as \"0x1.8p+1\")";
+      *error =
+          "the string \"" + text +
+          "\" is not a number (use \"nan\", \"inf\", \"-inf\" or a hex float such as \"0x1.8p+1\")";
       return std::nullopt;
     }
   }
@@ -318,7 +331,8 @@ namespace {
 /// Parses one line into a Value tree, or says why it is not JSON.
 std::optional<Value> parse_tree(std::string_view line, std::string& error) {
   TreeBuilder builder(line);
-  if (!json::sax_parse(line.begin(), line.end(), &builder, json::input_format_t::json, true, false)) {
+  if (!json::sax_parse(line.begin(), line.end(), &builder, json::input_format_t::json, true,
+                       false)) {
     error = builder.error.empty() ? "not valid JSON" : builder.error;
     return std::nullopt;
   }
@@ -360,9 +374,12 @@ ParsedLine parse_request(std::string_view line) {
       return out;
     }
   }
-  if (!has_projection) out.error = "missing field \"projection\"";
-  else if (!has_plane) out.error = "missing field \"plane\"";
-  else out.request = std::move(request);
+  if (!has_projection)
+    out.error = "missing field \"projection\"";
+  else if (!has_plane)
+    out.error = "missing field \"plane\"";
+  else
+    out.request = std::move(request);
   return out;
 }
 
@@ -403,7 +420,8 @@ ParsedAnswer parse_answer(std::string_view line) {
 
 Answer answer_request(std::string_view line, const ApplyOptions& options) {
   ParsedLine parsed = parse_request(line);
-  if (!parsed.request) return refusal(Status::invalid_input, "not a valid request: " + parsed.error);
+  if (!parsed.request)
+    return refusal(Status::invalid_input, "not a valid request: " + parsed.error);
   switch (options.precision) {
     case Precision::float32: return run<float>(*parsed.request, options);
     case Precision::float64: return run<double>(*parsed.request, options);

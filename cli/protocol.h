@@ -1,6 +1,7 @@
 // The JSON Lines protocol of `oblique apply` (and of every implementation `oblique verify` drives):
 //   request: {"projection": [16 numbers, row-major], "plane": [4 numbers], "convention": "gl"}
-//   answer:  {"status": "ok", "projection": [16 numbers]}  or  {"status": "<code>", "message": "..."}
+//   answer:  {"status": "ok", "projection": [16 numbers]}  or  {"status": "<code>", "message":
+//   "..."}
 // A number may be a JSON number or a string: "nan", "inf", "-inf" or a hex float ("0x1.8p+1").
 #pragma once
 

@@ -35,7 +35,7 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
   auto log_uniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, unit(random)); };
   std::vector<Case> out;
   const char* families[] = {"perspective", "off_axis", "infinite", "orthographic",
-                            "y_flipped", "jittered", "rotated", "general"};
+                            "y_flipped",   "jittered", "rotated",  "general"};
   for (int i = 0; i < count; ++i) {
     Case k;
     k.family = families[i % 8];
@@ -47,7 +47,8 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
         k.family == "rotated" || k.family == "general") {
       k.m = frustum<double>(-right, right, -top, top, n, f, k.convention);
     } else if (k.family == "off_axis") {
-      k.m = frustum<double>(-right + shift * right, right + shift * right, -top, top * 0.5, n, f, k.convention);
+      k.m = frustum<double>(-right + shift * right, right + shift * right, -top, top * 0.5, n, f,
+                            k.convention);
     } else if (k.family == "infinite") {
       k.m = infinite_frustum<double>(-right, right, -top, top, n, k.convention);
     } else {
@@ -60,7 +61,8 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
       r.topLeftCorner<3, 3>() =
           Eigen::Quaterniond::UnitRandom().toRotationMatrix();  // uses std::rand: seed below
       if (k.family == "general") {
-        r.topLeftCorner<3, 3>() *= Eigen::Vector3d(1 + unit(random), 1 + unit(random), 1).asDiagonal();
+        r.topLeftCorner<3, 3>() *=
+            Eigen::Vector3d(1 + unit(random), 1 + unit(random), 1).asDiagonal();
         r(0, 1) += unit(random) - 0.5;
       }
       k.m = k.m * r;
@@ -88,12 +90,13 @@ std::string request_line(const Case& k) {
   return line;
 }
 
-int run_cli(const std::string& arguments, const std::string& input, std::vector<std::string>* lines) {
+int run_cli(const std::string& arguments, const std::string& input,
+            std::vector<std::string>* lines) {
   const std::string in_path = ::testing::TempDir() + "oblique_cli_in.jsonl";
   const std::string out_path = ::testing::TempDir() + "oblique_cli_out.jsonl";
   std::ofstream(in_path) << input;
-  const std::string command = std::string(OBLIQUE_CLI) + " " + arguments + " < " + in_path +
-                              " > " + out_path + " 2>/dev/null";
+  const std::string command = std::string(OBLIQUE_CLI) + " " + arguments + " < " + in_path + " > " +
+                              out_path + " 2>/dev/null";
   const int raw = std::system(command.c_str());
   std::ifstream out(out_path);
   for (std::string line; std::getline(out, line);) lines->push_back(line);
@@ -113,7 +116,8 @@ TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
     const Case& k = cases[i];
     const properties::Problem<double> problem(k.m, k.c, k.convention);
     const auto answer = protocol::parse_answer(lines[i]);
-    const std::string what = k.family + " " + std::string(convention_name(k.convention)) + ": " + lines[i];
+    const std::string what =
+        k.family + " " + std::string(convention_name(k.convention)) + ": " + lines[i];
     ASSERT_TRUE(answer.valid) << answer.error << "\n" << what;
     ASSERT_EQ(answer.status, status_code(problem.exact_status())) << what;
     if (problem.exact_status() != Status::ok) continue;
@@ -121,12 +125,14 @@ TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
     Matrix4<double> result;
     std::string error;
     for (int j = 0; j < 16; ++j) {
-      result(j / 4, j % 4) = protocol::parse_number<double>((*answer.projection)[j], &error).value();
+      result(j / 4, j % 4) =
+          protocol::parse_number<double>((*answer.projection)[j], &error).value();
     }
     const auto verdicts = problem.check(result);
     for (const auto& v : verdicts.items) {
-      EXPECT_TRUE(!v.applies || v.holds) << what << "\n" << properties::property_name(v.property)
-                                         << " " << v.lhs << " vs " << v.rhs;
+      EXPECT_TRUE(!v.applies || v.holds)
+          << what << "\n"
+          << properties::property_name(v.property) << " " << v.lhs << " vs " << v.rhs;
     }
     const auto closeness = problem.compare_row3(result);
     EXPECT_TRUE(closeness.within) << what << "\nrow 3 at " << closeness.ratio << " of its bound";

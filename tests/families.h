@@ -21,8 +21,11 @@ template <class T>
 std::vector<NamedProjection<T>> fixed_families(Convention convention) {
   std::vector<NamedProjection<T>> out;
   const Vector4<T> tilted(T(0.25), T(-0.375), T(-1), T(-3));  // z = -3 tilted, camera behind
-  out.push_back({"perspective", perspective<T>(T(1.0471975511965976), T(1.75), T(0.5), T(400), convention), tilted});
-  out.push_back({"off_axis", frustum<T>(T(-0.1), T(0.7), T(-0.2), T(0.3), T(1), T(100), convention), tilted});
+  out.push_back({"perspective",
+                 perspective<T>(T(1.0471975511965976), T(1.75), T(0.5), T(400), convention),
+                 tilted});
+  out.push_back(
+      {"off_axis", frustum<T>(T(-0.1), T(0.7), T(-0.2), T(0.3), T(1), T(100), convention), tilted});
   out.push_back({"infinite", infinite_perspective<T>(T(1.2), T(1.5), T(0.1), convention), tilted});
   Matrix4<T> flipped = frustum<T>(T(-1), T(1), T(-0.75), T(0.75), T(1), T(50), convention);
   flipped.row(1) *= T(-1);  // Vulkan's y-down clip space

@@ -39,7 +39,8 @@ TYPED_TEST(ObliqueTest, parallelPlaneMovesTheNearPlaneAndKeepsTheFarPlane) {
       ASSERT_TRUE(result.ok()) << result.message();
       // The frustum with near plane d has the same side planes only after rescaling rows 1, 2
       // (they depend on n); compare the third rows, which must agree to a few roundings.
-      const Matrix4<T> expected = frustum<T>(-4 * d / n, 4 * d / n, -3 * d / n, 3 * d / n, d, f, convention);
+      const Matrix4<T> expected =
+          frustum<T>(-4 * d / n, 4 * d / n, -3 * d / n, 3 * d / n, d, f, convention);
       const T tolerance = 16 * std::numeric_limits<T>::epsilon();
       for (int j = 0; j < 4; ++j) {
         EXPECT_NEAR(result.projection(2, j), expected(2, j),
@@ -56,13 +57,14 @@ TYPED_TEST(ObliqueTest, autoPicksTheClosedFormOnlyForThePerspectiveShape) {
     for (const auto& family : testing::fixed_families<T>(convention)) {
       const auto result = apply<T>(family.matrix, family.plane, convention);
       ASSERT_TRUE(result.ok()) << family.family << ": " << result.message();
-      EXPECT_EQ(result.method, has_perspective_shape(family.matrix) ? Method::closed_form
-                                                                     : Method::general)
+      EXPECT_EQ(result.method,
+                has_perspective_shape(family.matrix) ? Method::closed_form : Method::general)
           << family.family;
     }
   }
   const Matrix4<T> ortho = orthographic<T>(-1, 1, -1, 1, 1, 10, Convention::gl);
-  const auto refused = apply<T>(ortho, Vector4<T>(0, 0, -1, -2), Convention::gl, Method::closed_form);
+  const auto refused =
+      apply<T>(ortho, Vector4<T>(0, 0, -1, -2), Convention::gl, Method::closed_form);
   EXPECT_EQ(refused.status, Status::invalid_input);
   EXPECT_NE(refused.message().find("perspective shape"), std::string_view::npos);
 }
@@ -81,9 +83,8 @@ TYPED_TEST(ObliqueTest, everyFamilyHasTheFiveProperties) {
         const properties::Verdicts verdicts = problem.check(result.projection);
         for (const auto& v : verdicts.items) {
           EXPECT_TRUE(!v.applies || v.holds)
-              << family.family << " " << convention_name(convention) << " "
-              << method_name(method) << ": " << properties::property_name(v.property) << " "
-              << v.lhs << " vs " << v.rhs;
+              << family.family << " " << convention_name(convention) << " " << method_name(method)
+              << ": " << properties::property_name(v.property) << " " << v.lhs << " vs " << v.rhs;
         }
         EXPECT_EQ(verdicts[properties::Property::infinite_edge_parallel].applies,
                   family.family == "infinite")

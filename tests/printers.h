@@ -9,8 +9,14 @@
 
 namespace oblique {
 
-inline void PrintTo(Status s, std::ostream* os) { *os << status_code(s); }
-inline void PrintTo(Convention c, std::ostream* os) { *os << convention_name(c); }
-inline void PrintTo(Method m, std::ostream* os) { *os << method_name(m); }
+inline void PrintTo(Status s, std::ostream* os) {
+  *os << status_code(s);
+}
+inline void PrintTo(Convention c, std::ostream* os) {
+  *os << convention_name(c);
+}
+inline void PrintTo(Method m, std::ostream* os) {
+  *os << method_name(m);
+}
 
 }  // namespace oblique

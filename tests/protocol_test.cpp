@@ -16,7 +16,8 @@ namespace {
 TEST(Protocol, numbersParseExactlyInEveryForm) {
   std::string error;
   EXPECT_EQ(parse_number<double>("\"0x1.8p+1", &error), 3.0);
-  EXPECT_EQ(parse_number<double>("\"-0x1p-1074", &error), -std::numeric_limits<double>::denorm_min());
+  EXPECT_EQ(parse_number<double>("\"-0x1p-1074", &error),
+            -std::numeric_limits<double>::denorm_min());
   EXPECT_TRUE(std::isnan(*parse_number<double>("\"nan", &error)));
   EXPECT_EQ(parse_number<double>("\"inf", &error), std::numeric_limits<double>::infinity());
   EXPECT_EQ(parse_number<double>("\"-inf", &error), -std::numeric_limits<double>::infinity());
@@ -74,10 +75,14 @@ TEST(Protocol, malformedRequestsSayWhatIsWrong) {
       {"{\"plane\": [0,0,-1,-1]}", "missing field \"projection\""},
       {"{\"projection\": " + matrix + "}", "missing field \"plane\""},
       {"{\"projection\": [1,2,3], \"plane\": [0,0,-1,-1]}", "must hold 16 numbers, not 3"},
-      {"{\"projection\": 5, \"plane\": [0,0,-1,-1]}", "must be an array of 16 numbers, not a number"},
-      {"{\"projection\": " + matrix + ", \"plane\": [0,0,-1,null]}", "\"plane\"[3] must be a number, not null"},
-      {"{\"projection\": " + matrix + ", \"plane\": [0,0,-1,-1], \"convention\": \"dx\"}", "unknown convention \"dx\""},
-      {"{\"projection\": " + matrix + ", \"plane\": [0,0,-1,-1], \"extra\": 1}", "unknown field \"extra\""},
+      {"{\"projection\": 5, \"plane\": [0,0,-1,-1]}",
+       "must be an array of 16 numbers, not a number"},
+      {"{\"projection\": " + matrix + ", \"plane\": [0,0,-1,null]}",
+       "\"plane\"[3] must be a number, not null"},
+      {"{\"projection\": " + matrix + ", \"plane\": [0,0,-1,-1], \"convention\": \"dx\"}",
+       "unknown convention \"dx\""},
+      {"{\"projection\": " + matrix + ", \"plane\": [0,0,-1,-1], \"extra\": 1}",
+       "unknown field \"extra\""},
       {"[[[[[[[[[[[[1]]]]]]]]]]]]", "nested deeper"},
   };
   for (const auto& [line, expected] : cases) {
@@ -86,7 +91,8 @@ TEST(Protocol, malformedRequestsSayWhatIsWrong) {
     EXPECT_NE(parsed.error.find(expected), std::string::npos) << line << " -> " << parsed.error;
     const Answer answer = answer_request(line, ApplyOptions{});
     EXPECT_EQ(answer.status, Status::invalid_input);
-    EXPECT_EQ(answer.line.rfind("{\"status\": \"invalid_input\", \"message\": ", 0), 0u) << answer.line;
+    EXPECT_EQ(answer.line.rfind("{\"status\": \"invalid_input\", \"message\": ", 0), 0u)
+        << answer.line;
   }
 }
 
@@ -100,7 +106,8 @@ TEST(Protocol, answersCarryTheCoreResultExactly) {
   ASSERT_EQ(answer.status, Status::ok) << answer.line;
   const auto expected = apply(m, c, Convention::zero_one);
   std::string want = "{\"status\": \"ok\", \"projection\": [";
-  for (int i = 0; i < 16; ++i) want += (i ? ", " : "") + format_number(expected.projection(i / 4, i % 4));
+  for (int i = 0; i < 16; ++i)
+    want += (i ? ", " : "") + format_number(expected.projection(i / 4, i % 4));
   want += "]}";
   EXPECT_EQ(answer.line, want);
 }
@@ -110,8 +117,9 @@ TEST(Protocol, flagsAndRequestFieldsChooseConventionAndPrecision) {
       "{\"projection\": [1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0], \"plane\": [0,0,-1,-1]}";
   ApplyOptions options;
   options.precision = Precision::float32;
-  EXPECT_EQ(answer_request(line, options).line,
-            "{\"status\": \"ok\", \"projection\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -3, -4, 0, 0, -1, 0]}");
+  EXPECT_EQ(
+      answer_request(line, options).line,
+      "{\"status\": \"ok\", \"projection\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -3, -4, 0, 0, -1, 0]}");
   options.method = Method::general;
   options.convention = Convention::zero_one;
   EXPECT_EQ(answer_request(line, options).status, Status::ok);
@@ -130,7 +138,8 @@ TEST(Protocol, negativeZeroKeepsItsSignThroughRequestsAndAnswers) {
   EXPECT_EQ(parsed.request->projection[0], "-0");
   EXPECT_EQ(parsed.request->projection[2], "-0.0");
   EXPECT_EQ(parsed.request->plane[0], "-0");
-  const ParsedAnswer answer = parse_answer("{\"status\": \"ok\", \"projection\": [-0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,\"-0x1p+0\"]}");
+  const ParsedAnswer answer = parse_answer(
+      "{\"status\": \"ok\", \"projection\": [-0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,\"-0x1p+0\"]}");
   ASSERT_TRUE(answer.valid) << answer.error;
   std::string error;
   EXPECT_TRUE(std::signbit(*parse_number<double>((*answer.projection)[0], &error)));
@@ -139,7 +148,8 @@ TEST(Protocol, negativeZeroKeepsItsSignThroughRequestsAndAnswers) {
 
 TEST(Protocol, answersThatAreNotAnswersAreNamed) {
   EXPECT_FALSE(parse_answer("{\"projection\": []}").valid);
-  EXPECT_NE(parse_answer("{\"status\": \"ok\"}").error.find("needs \"projection\""), std::string::npos);
+  EXPECT_NE(parse_answer("{\"status\": \"ok\"}").error.find("needs \"projection\""),
+            std::string::npos);
   EXPECT_NE(parse_answer("{\"status\": 3}").error.find("must be a string"), std::string::npos);
   EXPECT_TRUE(parse_answer("{\"status\": \"camera_not_behind_plane\", \"message\": \"x\"}").valid);
 }

@@ -27,9 +27,8 @@ void expect_correct(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
   for (Method method : {Method::automatic, Method::closed_form, Method::general}) {
     if (method == Method::closed_form && !has_perspective_shape(m)) continue;
     const auto result = apply<T>(m, c, convention, method);
-    ASSERT_EQ(result.status, Status::ok)
-        << what << " " << convention_name(convention) << " " << method_name(method) << ": "
-        << result.message();
+    ASSERT_EQ(result.status, Status::ok) << what << " " << convention_name(convention) << " "
+                                         << method_name(method) << ": " << result.message();
     const auto verdicts = problem.check(result.projection);
     for (const auto& v : verdicts.items) {
       EXPECT_TRUE(!v.applies || v.holds)
@@ -60,7 +59,8 @@ TYPED_TEST(StiffCases, tinyNearPlaneAndHugeFarOverNear) {
   }
 }
 
-// |C_w| from 1e-3 down to 1e-12 (1e-30 for the wider types) of |N|: the plane almost through the eye.
+// |C_w| from 1e-3 down to 1e-12 (1e-30 for the wider types) of |N|: the plane almost through the
+// eye.
 TYPED_TEST(StiffCases, planeAlmostThroughTheEye) {
   using T = TypeParam;
   for (Convention convention : all_conventions) {
@@ -86,7 +86,8 @@ TYPED_TEST(StiffCases, planeAlmostThroughTheFarCorner) {
     // Q for the corner (+1, +1, far face), from the closed form in long double.
     const DepthRange range = clip_depth_range(convention);
     const W z_far = convention == Convention::reversed_z ? range.z_low : range.z_high;
-    const W A = m(0, 0), B = m(0, 2), D = m(1, 1), E = m(1, 2), G = m(2, 2), H = m(2, 3), K = m(3, 2);
+    const W A = m(0, 0), B = m(0, 2), D = m(1, 1), E = m(1, 2), G = m(2, 2), H = m(2, 3),
+            K = m(3, 2);
     const W qx = (1 - B / K) / A, qy = (1 - E / K) / D, qz = 1 / K, qw = (z_far - G / K) / H;
     const W nx = 0.125, ny = 0.25, nz = -1;
     const W q_norm = std::sqrt(qx * qx + qy * qy + qz * qz);

@@ -10,7 +10,8 @@ namespace oblique {
 enum class Convention {
   gl,          ///< OpenGL: -w <= z <= w, near plane at z = -w
   zero_one,    ///< Direct3D, Vulkan, Metal, WebGPU: 0 <= z <= w, near plane at z = 0
-  reversed_z,  ///< [0, 1] depth with near and far swapped: z = w at the near plane, z = 0 at the far plane
+  reversed_z,  ///< [0, 1] depth with near and far swapped: z = w at the near plane, z = 0 at the
+               ///< far plane
 };
 
 inline constexpr Convention all_conventions[] = {Convention::gl, Convention::zero_one,
@@ -52,9 +53,9 @@ constexpr RowCombination near_rows(Convention c) noexcept {
 /// The camera-space far plane, as for near_rows().
 constexpr RowCombination far_rows(Convention c) noexcept {
   switch (c) {
-    case Convention::gl: return {-1, 1};          // z <= w
-    case Convention::zero_one: return {-1, 1};    // z <= w
-    case Convention::reversed_z: return {1, 0};   // z >= 0
+    case Convention::gl: return {-1, 1};         // z <= w
+    case Convention::zero_one: return {-1, 1};   // z <= w
+    case Convention::reversed_z: return {1, 0};  // z >= 0
   }
   return {0, 0};
 }

@@ -153,8 +153,7 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
 /// (the paper's Eq. 15 and Listing 5.1 for gl, K = -1, A > 0, D > 0).
 template <class T>
 ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention) {
-  const T A = m(0, 0), B = m(0, 2), D = m(1, 1), E = m(1, 2), G = m(2, 2), H = m(2, 3),
-          K = m(3, 2);
+  const T A = m(0, 0), B = m(0, 2), D = m(1, 1), E = m(1, 2), G = m(2, 2), H = m(2, 3), K = m(3, 2);
   if (A == T(0) || D == T(0) || H == T(0)) {
     return refuse(m, Method::closed_form, Status::singular_projection,
                   "the projection is singular: M11, M22 or M34 is zero");
@@ -226,8 +225,8 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
 /// (invalid_input), an invertible matrix (singular_projection), C_w < 0 (camera_not_behind_plane),
 /// C . Q > 0 (plane_misses_view_volume), a representable answer (out_of_range).
 template <class T>
-ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane,
-                       Convention convention, Method method = Method::automatic) {
+ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Convention convention,
+                       Method method = Method::automatic) {
   if (!all_finite(projection)) {
     return detail::refuse(projection, method, Status::invalid_input,
                           "the projection matrix has a NaN or infinite entry");

@@ -8,11 +8,13 @@ namespace oblique {
 
 /// What happened to one request. Inputs that have no answer get a code, never undefined behaviour.
 enum class Status {
-  ok,                        ///< the modified projection is in the result
-  invalid_input,             ///< a NaN or infinity in the input, or a method asked for where it does not apply
-  singular_projection,       ///< the projection matrix is singular (or numerically singular for the general solve)
+  ok,             ///< the modified projection is in the result
+  invalid_input,  ///< a NaN or infinity in the input, or a method asked for where it does not apply
+  singular_projection,       ///< the projection matrix is singular (or numerically singular for the
+                             ///< general solve)
   camera_not_behind_plane,   ///< C_w >= 0: the eye is not strictly on the plane's negative side
-  plane_misses_view_volume,  ///< no point of the original view volume lies strictly on C's positive side
+  plane_misses_view_volume,  ///< no point of the original view volume lies strictly on C's positive
+                             ///< side
   out_of_range,              ///< the answer (or the far corner Q) exceeds the scalar type's range
 };
 
@@ -41,18 +43,19 @@ constexpr std::string_view status_code(Status status) noexcept {
 /// One sentence a person can act on.
 constexpr std::string_view status_message(Status status) noexcept {
   switch (status) {
-    case Status::ok:
-      return "the near plane of the projection is now the clip plane";
+    case Status::ok: return "the near plane of the projection is now the clip plane";
     case Status::invalid_input:
       return "the input is not a finite 4x4 projection and a finite plane";
     case Status::singular_projection:
       return "the projection matrix is singular, so it has no view volume to clip";
     case Status::camera_not_behind_plane:
-      return "the camera is not strictly behind the clip plane (C_w >= 0); flip the plane or skip the pass";
+      return "the camera is not strictly behind the clip plane (C_w >= 0); flip the plane or skip "
+             "the pass";
     case Status::plane_misses_view_volume:
       return "no point of the view volume lies in front of the clip plane; the pass can be skipped";
     case Status::out_of_range:
-      return "the oblique matrix exceeds the range of the scalar type (the plane passes too close to the far corner)";
+      return "the oblique matrix exceeds the range of the scalar type (the plane passes too close "
+             "to the far corner)";
   }
   return "unknown status";
 }

@@ -17,8 +17,12 @@ using Vec = std::array<Rational, 4>;
 using Mat = std::array<Vec, 4>;  // rows
 
 /// The exact value of a finite float, double or long double.
-inline Rational to_rational(double x) { return Rational(x); }
-inline Rational to_rational(float x) { return Rational(static_cast<double>(x)); }
+inline Rational to_rational(double x) {
+  return Rational(x);
+}
+inline Rational to_rational(float x) {
+  return Rational(static_cast<double>(x));
+}
 inline Rational to_rational(long double x) {
   int exponent = 0;
   const long double mantissa = std::frexp(std::fabs(x), &exponent);  // |x| = mantissa * 2^exponent
@@ -60,8 +64,12 @@ inline Rational power_of_two(long k) {
   return r;
 }
 
-inline Rational abs(const Rational& x) { return x < 0 ? Rational(-x) : x; }
-inline int sign(const Rational& x) { return sgn(x); }
+inline Rational abs(const Rational& x) {
+  return x < 0 ? Rational(-x) : x;
+}
+inline int sign(const Rational& x) {
+  return sgn(x);
+}
 
 inline Rational dot(const Vec& a, const Vec& b) {
   Rational s = 0;
@@ -92,7 +100,9 @@ inline Mat abs(const Mat& m) {
   return out;
 }
 
-inline Vec abs(const Vec& v) { return {abs(v[0]), abs(v[1]), abs(v[2]), abs(v[3])}; }
+inline Vec abs(const Vec& v) {
+  return {abs(v[0]), abs(v[1]), abs(v[2]), abs(v[3])};
+}
 
 inline Vec combine(const Rational& a, const Vec& x, const Rational& b, const Vec& y) {
   Vec out;

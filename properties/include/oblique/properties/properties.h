@@ -25,8 +25,8 @@ enum class Property {
 };
 
 inline constexpr Property all_properties[] = {
-    Property::near_is_clip_plane, Property::side_rows_unchanged,
-    Property::far_plane_through_corner, Property::no_clipping, Property::infinite_edge_parallel};
+    Property::near_is_clip_plane, Property::side_rows_unchanged, Property::far_plane_through_corner,
+    Property::no_clipping, Property::infinite_edge_parallel};
 
 constexpr std::string_view property_name(Property p) noexcept {
   switch (p) {
@@ -74,7 +74,9 @@ inline std::string format_g17(double x) {
   return buffer;
 }
 
-inline std::string format_g17(const exact::Rational& x) { return format_g17(x.get_d()); }
+inline std::string format_g17(const exact::Rational& x) {
+  return format_g17(x.get_d());
+}
 
 /// Everything exact about one input (M, C, convention): the inverse, the clip-space plane C',
 /// the eight corners of the view volume, the far corner Q and the conditioning of C . Q.
@@ -107,10 +109,10 @@ class Problem {
     // The far corner by the sign rule (a zero sign gives the middle of the edge: equally far).
     const int sz = exact::sign(c_clip_[2]);
     const exact::Rational z_mid = exact::Rational(range.z_low + range.z_high) / 2;
-    q_clip_ = {exact::sign(c_clip_[0]), exact::sign(c_clip_[1]),
-               sz > 0 ? exact::Rational(range.z_high)
-                      : (sz < 0 ? exact::Rational(range.z_low) : z_mid),
-               1};
+    q_clip_ = {
+        exact::sign(c_clip_[0]), exact::sign(c_clip_[1]),
+        sz > 0 ? exact::Rational(range.z_high) : (sz < 0 ? exact::Rational(range.z_low) : z_mid),
+        1};
     q_ = exact::mul(inverse_, q_clip_);
     d_ = exact::dot(cx_, q_);
     // Infinite: the far face (z_high, or z_low for reversed Z) maps to the plane at infinity.
@@ -123,7 +125,8 @@ class Problem {
     const exact::Vec abs_c = exact::abs(cx_), abs_q = exact::abs(q_);
     kappa_numerator_ = exact::dot(abs_c, abs_q) +
                        exact::dot(abs_c, exact::mul(abs_inv, exact::mul(abs_m, abs_q))) +
-                       exact::dot(exact::abs(c_clip_), exact::mul(abs_m, exact::mul(abs_inv, exact::abs(q_clip_))));
+                       exact::dot(exact::abs(c_clip_),
+                                  exact::mul(abs_m, exact::mul(abs_inv, exact::abs(q_clip_))));
     camera_behind_ = cx_[3] < 0;
   }
 
@@ -177,7 +180,8 @@ class Problem {
       const exact::Rational error = exact::abs(exact::to_rational(result(2, i)) - expected[i]);
       const exact::Rational ac = exact::abs(a * cx_[i]);
       const exact::Rational bound = entry_gamma * (ac + exact::abs(mx_[3][i])) + ac * scale_error;
-      const exact::Rational ratio = bound > 0 ? exact::Rational(error / bound) : exact::Rational(error > 0 ? 1e300 : 0);
+      const exact::Rational ratio =
+          bound > 0 ? exact::Rational(error / bound) : exact::Rational(error > 0 ? 1e300 : 0);
       if (error > bound) out.within = false;
       if (ratio > worst) {
         worst = ratio;
@@ -260,7 +264,8 @@ class Problem {
     }
     // What rounding may do to far' . p at a point p with M_4 . p = 1: the error of a (relative
     // scale_gamma * kappa, reaching far' . p through a C . p <= a C . Q = k) plus the entries'.
-    const exact::Rational k_range = clip_depth_range(convention_).z_high - clip_depth_range(convention_).z_low;
+    const exact::Rational k_range =
+        clip_depth_range(convention_).z_high - clip_depth_range(convention_).z_low;
     const exact::Rational scale_term = k_range * scale_gamma * kappa();
     auto point_bound = [&](const exact::Vec& point, bool through_scale) {
       exact::Rational b = through_scale ? scale_term : exact::Rational(0);
@@ -270,8 +275,9 @@ class Problem {
     // 3. and 5. far' . Q = 0.
     const exact::Rational far_q = exact::dot(far, q_);
     const exact::Rational far_q_bound = point_bound(q_, true);
-    const double far_q_ratio = far_q_bound > 0 ? exact::Rational(exact::abs(far_q) / far_q_bound).get_d()
-                                               : (far_q == 0 ? 0.0 : 1e300);
+    const double far_q_ratio = far_q_bound > 0
+                                   ? exact::Rational(exact::abs(far_q) / far_q_bound).get_d()
+                                   : (far_q == 0 ? 0.0 : 1e300);
     {
       Verdict v;
       v.property = Property::far_plane_through_corner;
@@ -307,7 +313,8 @@ class Problem {
         if (corner_dots_[i] >= 0) visit(corners_[i], true, "a corner");
         for (int j = i + 1; j < 8; ++j) {
           int differing = 0;
-          for (int axis = 0; axis < 3; ++axis) differing += clip_corners_[i][axis] != clip_corners_[j][axis];
+          for (int axis = 0; axis < 3; ++axis)
+            differing += clip_corners_[i][axis] != clip_corners_[j][axis];
           if (differing != 1 || sgn(corner_dots_[i]) * sgn(corner_dots_[j]) >= 0) continue;
           // The point of edge ij on C, normalised so that M_4 . p = 1.
           const exact::Rational alpha = corner_dots_[j] / (corner_dots_[j] - corner_dots_[i]);

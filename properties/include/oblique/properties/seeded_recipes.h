@@ -42,7 +42,8 @@ Matrix4<T> paper_eq_20(Matrix4<T> m, const Vector4<T>& c) {
   return m;
 }
 
-/// The [0, 1]-depth note's TL;DR: M_3 = (M_4 . Q) / (C . Q) C with Q = M^-1 (sgn C'_x, sgn C'_y, 1, 1).
+/// The [0, 1]-depth note's TL;DR: M_3 = (M_4 . Q) / (C . Q) C with Q = M^-1 (sgn C'_x, sgn C'_y, 1,
+/// 1).
 template <class T>
 Matrix4<T> note_zero_one(Matrix4<T> m, const Vector4<T>& c) {
   const Matrix4<T> inverse = m.inverse();

@@ -4,10 +4,9 @@
 // gamma(n) = n u / (1 - n u) bounds the relative error of n successive roundings (Higham, 3.1).
 //
 // A careful implementation computes, from exact inputs M and C,
-//   Q   = M^-1 Q'   (closed form: 3 roundings per entry; LU solve: backward error gamma(3n) |L||U|),
-//   d   = C . Q     (4 more roundings),
-//   a   = k / d     (k = 2 for gl, 1 for [0, 1] depth),
-//   M'_3 = s (a C - t M_4)  (2 roundings per entry: the product and the difference).
+//   Q   = M^-1 Q'   (closed form: 3 roundings per entry; LU solve: backward error gamma(3n)
+//   |L||U|), d   = C . Q     (4 more roundings), a   = k / d     (k = 2 for gl, 1 for [0, 1]
+//   depth), M'_3 = s (a C - t M_4)  (2 roundings per entry: the product and the difference).
 // So the relative error of a is at most gamma(kScaleRoundings) * kappa, where kappa, the condition
 // number of C . Q under relative perturbations of every entry of M and C, is
 //   kappa = ( |C|.|Q| + |C|^T |M^-1| |M| |Q| + |C'|^T |M| |M^-1| |Q'| ) / (C . Q)
@@ -35,7 +34,9 @@ constexpr int kScaleRoundings = 16;
 constexpr int kEntryRoundings = 3;
 
 /// u = 2^-p.
-inline exact::Rational unit_roundoff(int precision_bits) { return exact::power_of_two(-precision_bits); }
+inline exact::Rational unit_roundoff(int precision_bits) {
+  return exact::power_of_two(-precision_bits);
+}
 
 /// gamma(n) = n u / (1 - n u).
 inline exact::Rational gamma(int n, int precision_bits) {
