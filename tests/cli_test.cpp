@@ -92,8 +92,10 @@ std::string request_line(const Case& k) {
 
 int run_cli(const std::string& arguments, const std::string& input,
             std::vector<std::string>* lines) {
-  const std::string in_path = ::testing::TempDir() + "oblique_cli_in.jsonl";
-  const std::string out_path = ::testing::TempDir() + "oblique_cli_out.jsonl";
+  // One file pair per test: CTest runs tests in parallel.
+  const std::string stem = ::testing::TempDir() + "oblique_cli_" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const std::string in_path = stem + ".in.jsonl", out_path = stem + ".out.jsonl";
   std::ofstream(in_path) << input;
   const std::string command = std::string(OBLIQUE_CLI) + " " + arguments + " < " + in_path + " > " +
                               out_path + " 2>/dev/null";
