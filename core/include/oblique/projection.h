@@ -10,6 +10,22 @@
 
 namespace oblique {
 
+namespace detail {
+
+/// Rows 1, 2 and 4 of glFrustum, shared by finite and infinite perspective (row 3 left zero).
+template <class T>
+Matrix4<T> perspective_sides(T left, T right, T bottom, T top, T near_distance) {
+  Matrix4<T> m = Matrix4<T>::Zero();
+  m(0, 0) = T(2) * near_distance / (right - left);
+  m(0, 2) = (right + left) / (right - left);
+  m(1, 1) = T(2) * near_distance / (top - bottom);
+  m(1, 2) = (top + bottom) / (top - bottom);
+  m(3, 2) = T(-1);
+  return m;
+}
+
+}  // namespace detail
+
 /// glFrustum generalised to every convention: the side planes pass through the rectangle
 /// [left, right] x [bottom, top] at distance `near_distance`; the far plane is at `far_distance`.
 /// gl is the paper's Eq. 11. Preconditions: left != right, bottom != top,
@@ -19,12 +35,7 @@ Matrix4<T> frustum(T left, T right, T bottom, T top, T near_distance, T far_dist
                    Convention convention) {
   assert(left != right && bottom != top && near_distance > T(0) && far_distance > near_distance);
   const T n = near_distance, f = far_distance;
-  Matrix4<T> m = Matrix4<T>::Zero();
-  m(0, 0) = T(2) * n / (right - left);
-  m(0, 2) = (right + left) / (right - left);
-  m(1, 1) = T(2) * n / (top - bottom);
-  m(1, 2) = (top + bottom) / (top - bottom);
-  m(3, 2) = T(-1);
+  Matrix4<T> m = detail::perspective_sides(left, right, bottom, top, n);
   switch (convention) {
     case Convention::gl:  // z = -n -> -w, z = -f -> w
       m(2, 2) = -(f + n) / (f - n);
@@ -60,12 +71,7 @@ Matrix4<T> infinite_frustum(T left, T right, T bottom, T top, T near_distance,
                             Convention convention) {
   assert(left != right && bottom != top && near_distance > T(0));
   const T n = near_distance;
-  Matrix4<T> m = Matrix4<T>::Zero();
-  m(0, 0) = T(2) * n / (right - left);
-  m(0, 2) = (right + left) / (right - left);
-  m(1, 1) = T(2) * n / (top - bottom);
-  m(1, 2) = (top + bottom) / (top - bottom);
-  m(3, 2) = T(-1);
+  Matrix4<T> m = detail::perspective_sides(left, right, bottom, top, n);
   switch (convention) {
     case Convention::gl:
       m(2, 2) = T(-1);

@@ -30,12 +30,19 @@ Matrix4<T> listing_5_1(Matrix4<T> m, const Vector4<T>& c) {
   return m;
 }
 
+/// Q = M^-1 Q' with the paper's Eq. 7, Q' = (sgn C'_x, sgn C'_y, 1, 1), C' = M^-T C (explicit
+/// inverse).
+template <class T>
+Vector4<T> corner_by_eq_7(const Matrix4<T>& m, const Vector4<T>& c) {
+  const Matrix4<T> inverse = m.inverse();
+  const Vector4<T> c_clip = inverse.transpose() * c;
+  return inverse * Vector4<T>(sgn(c_clip.x()), sgn(c_clip.y()), T(1), T(1));
+}
+
 /// The paper's Eq. 20 with Q' from Eq. 7 (z fixed at 1) and Q = M^-1 Q' (gl).
 template <class T>
 Matrix4<T> paper_eq_20(Matrix4<T> m, const Vector4<T>& c) {
-  const Matrix4<T> inverse = m.inverse();
-  const Vector4<T> c_clip = inverse.transpose() * c;
-  const Vector4<T> q = inverse * Vector4<T>(sgn(c_clip.x()), sgn(c_clip.y()), T(1), T(1));
+  const Vector4<T> q = corner_by_eq_7(m, c);
   const Vector4<T> m4 = m.row(3).transpose();
   const T a = T(2) * m4.dot(q) / c.dot(q);
   m.row(2) = (a * c - m4).transpose();
@@ -46,9 +53,7 @@ Matrix4<T> paper_eq_20(Matrix4<T> m, const Vector4<T>& c) {
 /// 1).
 template <class T>
 Matrix4<T> note_zero_one(Matrix4<T> m, const Vector4<T>& c) {
-  const Matrix4<T> inverse = m.inverse();
-  const Vector4<T> c_clip = inverse.transpose() * c;
-  const Vector4<T> q = inverse * Vector4<T>(sgn(c_clip.x()), sgn(c_clip.y()), T(1), T(1));
+  const Vector4<T> q = corner_by_eq_7(m, c);
   const Vector4<T> m4 = m.row(3).transpose();
   m.row(2) = (m4.dot(q) / c.dot(q) * c).transpose();
   return m;
