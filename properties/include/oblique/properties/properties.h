@@ -2,8 +2,11 @@
 // in exact rational arithmetic against the bounds in tolerance.h.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +25,7 @@ enum class Property {
   far_plane_through_corner,  ///< 3. far(M') . Q = 0, Q the corner farthest on C's positive side
   no_clipping,               ///< 4. far(M') . p >= 0 for every p of the view volume with C . p >= 0
   infinite_edge_parallel,    ///< 5. infinite M: Q is a direction and far(M') is parallel to it
+  extracted_planes_match,    ///< the suite's cross-check: frustum_planes(M') sides equal M's
 };
 
 inline constexpr Property all_properties[] = {
@@ -35,11 +39,13 @@ constexpr std::string_view property_name(Property p) noexcept {
     case Property::far_plane_through_corner: return "far_plane_through_corner";
     case Property::no_clipping: return "no_clipping";
     case Property::infinite_edge_parallel: return "infinite_edge_parallel";
+    case Property::extracted_planes_match: return "extracted_planes_match";
   }
   return "unknown";
 }
 
-/// One property's verdict on one result. `ratio` is |residual| / bound: it holds at ratio <= 1.
+/// One property's verdict on one result (all_properties lists the five that check() judges).
+/// `ratio` is |residual| / bound: it holds at ratio <= 1.
 struct Verdict {
   Property property = Property::near_is_clip_plane;
   bool applies = true;
@@ -128,6 +134,11 @@ class Problem {
                        exact::dot(exact::abs(c_clip_),
                                   exact::mul(abs_m, exact::mul(abs_inv, exact::abs(q_clip_))));
     camera_behind_ = cx_[3] < 0;
+    // Skeel's condition number || |M^-1| |M| ||_inf, for the singularity gray zone.
+    const exact::Vec ones{1, 1, 1, 1};
+    const exact::Vec row_sums = exact::mul(abs_inv, exact::mul(abs_m, ones));
+    skeel_condition_ = 0;
+    for (const auto& v : row_sums) skeel_condition_ = std::max(skeel_condition_, v.get_d());
   }
 
   bool finite() const { return finite_; }
@@ -137,6 +148,18 @@ class Problem {
   const Matrix4<T>& matrix() const { return m_; }
   const exact::Vec& far_corner() const { return q_; }
   const exact::Rational& corner_dot() const { return d_; }  ///< C . Q, the largest C . corner
+
+  /// The bound on the relative error of a = k / (C . Q): with eps = gamma(16) kappa bounding the
+  /// relative error of C . Q, |a^ / a - 1| <= eps / (1 - eps). Empty when eps >= 1: C lies within
+  /// rounding of the far corner, no floating-point implementation can bound a, and properties 3
+  /// to 5 cannot be judged at the corners (acceptable_statuses() then allows every verdict).
+  std::optional<exact::Rational> scale_error() const {
+    if (!(d_ > 0)) return std::nullopt;
+    const exact::Rational eps =
+        tolerance::gamma(tolerance::kScaleRoundings, tolerance::precision_bits<T>()) * kappa();
+    if (eps >= 1) return std::nullopt;
+    return exact::Rational(eps / (1 - eps));
+  }
 
   /// kappa, the condition number of C . Q (tolerance.h); meaningful when C . Q > 0.
   exact::Rational kappa() const { return d_ > 0 ? exact::Rational(kappa_numerator_ / d_) : 0; }
@@ -149,6 +172,43 @@ class Problem {
     if (!(d_ > 0)) return Status::plane_misses_view_volume;
     return Status::ok;
   }
+
+  /// The statuses a careful implementation computing in T may give: the exact one, and its
+  /// neighbours where the input lies within rounding of a boundary:
+  ///  - C . Q within its error bound gamma(16) kappa C . Q of zero: ok, plane_misses_view_volume
+  ///    or out_of_range;
+  ///  - a matrix with Skeel condition number at least 1 / (256 eps): singular_projection too;
+  ///  - an exact answer (or Q) within 2^8 of the largest finite T: out_of_range too, and above
+  ///    it, not ok.
+  std::vector<Status> acceptable_statuses() const {
+    std::vector<Status> out{exact_status()};
+    auto add = [&out](Status s) {
+      if (std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
+    };
+    if (!finite_ || !invertible_) return out;
+    const int p = tolerance::precision_bits<T>();
+    if (skeel_condition_ * 256 * std::ldexp(1.0, 1 - p) >= 1) add(Status::singular_projection);
+    if (!camera_behind_) return out;
+    const exact::Rational d_error =
+        tolerance::gamma(tolerance::kScaleRoundings, p) * kappa_numerator_;
+    if (exact::abs(d_) <= d_error) {
+      add(Status::plane_misses_view_volume);
+      add(Status::ok);
+      add(Status::out_of_range);
+    }
+    const exact::Rational largest = exact::to_rational(std::numeric_limits<T>::max());
+    exact::Rational biggest = 0;
+    for (const auto& v : q_) biggest = std::max(biggest, exact::abs(v));
+    if (d_ > 0) {
+      for (const auto& v : exact_row3()) biggest = std::max(biggest, exact::abs(v));
+    }
+    if (biggest * 256 >= largest) add(Status::out_of_range);
+    if (d_ > 0 && biggest > largest)
+      out.erase(std::remove(out.begin(), out.end(), Status::ok), out.end());
+    return out;
+  }
+
+  double skeel_condition() const { return skeel_condition_; }
 
   /// The exact third row of M': s (a C - t M_4) with a = (z_high - z_low) / (C . Q).
   /// Precondition: exact_status() == Status::ok.
@@ -163,23 +223,41 @@ class Problem {
   /// implementation meets: per entry gamma(kEntryRoundings) (|a C_i| + |M4_i|) plus the
   /// error of a, |a C_i| gamma(kScaleRoundings) kappa. `ratio` <= 1 is within.
   struct Closeness {
+    bool judged = true;
     bool within = true;
     double ratio = 0;
     int worst_entry = 0;
   };
-  Closeness compare_row3(const Matrix4<T>& result) const {
-    const exact::Vec expected = exact_row3();
+  /// The bound on |M'_3i - exact_row3()_i| for each entry i; empty where scale_error() is.
+  std::optional<exact::Vec> row3_bounds() const {
+    const std::optional<exact::Rational> scale = scale_error();
+    if (!scale) return std::nullopt;
     const DepthRange range = clip_depth_range(convention_);
     const exact::Rational a = exact::Rational(range.z_high - range.z_low) / d_;
-    const int p = tolerance::precision_bits<T>();
-    const exact::Rational entry_gamma = tolerance::gamma(tolerance::kEntryRoundings, p);
-    const exact::Rational scale_error = tolerance::gamma(tolerance::kScaleRoundings, p) * kappa();
+    const exact::Rational entry_gamma =
+        tolerance::gamma(tolerance::kEntryRoundings, tolerance::precision_bits<T>());
+    exact::Vec bounds;
+    for (int i = 0; i < 4; ++i) {
+      const exact::Rational ac = exact::abs(a * cx_[i]);
+      bounds[i] = entry_gamma * (ac + exact::abs(mx_[3][i])) + ac * *scale;
+    }
+    return bounds;
+  }
+
+  /// Closeness to the exact answer; `judged` is false (and `within` true) where no bound exists.
+  Closeness compare_row3(const Matrix4<T>& result) const {
+    const exact::Vec expected = exact_row3();
+    const std::optional<exact::Vec> maybe_bounds = row3_bounds();
     Closeness out;
+    if (!maybe_bounds) {
+      out.judged = false;
+      return out;
+    }
+    const exact::Vec& bounds = *maybe_bounds;
     exact::Rational worst = -1;
     for (int i = 0; i < 4; ++i) {
       const exact::Rational error = exact::abs(exact::to_rational(result(2, i)) - expected[i]);
-      const exact::Rational ac = exact::abs(a * cx_[i]);
-      const exact::Rational bound = entry_gamma * (ac + exact::abs(mx_[3][i])) + ac * scale_error;
+      const exact::Rational& bound = bounds[i];
       const exact::Rational ratio =
           bound > 0 ? exact::Rational(error / bound) : exact::Rational(error > 0 ? 1e300 : 0);
       if (error > bound) out.within = false;
@@ -202,7 +280,6 @@ class Problem {
     const exact::Vec far = exact::combine(fr.m3, r[2], fr.m4, r[3]);
     const int p = tolerance::precision_bits<T>();
     const exact::Rational entry_gamma = tolerance::gamma(tolerance::kEntryRoundings, p);
-    const exact::Rational scale_gamma = tolerance::gamma(tolerance::kScaleRoundings, p);
     const exact::Rational t_near = exact::abs(exact::Rational(nr.m4));
 
     // 1. near' = lambda C: lambda measured on the largest |C_k|, every entry within its rounding.
@@ -263,10 +340,12 @@ class Problem {
       out.items.push_back(v);
     }
     // What rounding may do to far' . p at a point p with M_4 . p = 1: the error of a (relative
-    // scale_gamma * kappa, reaching far' . p through a C . p <= a C . Q = k) plus the entries'.
+    // scale_error(), reaching far' . p through a C . p <= a C . Q = k) plus the entries'.
     const exact::Rational k_range =
         clip_depth_range(convention_).z_high - clip_depth_range(convention_).z_low;
-    const exact::Rational scale_term = k_range * scale_gamma * kappa();
+    const std::optional<exact::Rational> scale = scale_error();
+    const bool corners_judged = scale.has_value();
+    const exact::Rational scale_term = corners_judged ? k_range * *scale : exact::Rational(0);
     auto point_bound = [&](const exact::Vec& point, bool through_scale) {
       exact::Rational b = through_scale ? scale_term : exact::Rational(0);
       for (int i = 0; i < 4; ++i) b += 2 * entry_bound[i] * exact::abs(point[i]);
@@ -281,7 +360,9 @@ class Problem {
     {
       Verdict v;
       v.property = Property::far_plane_through_corner;
-      v.relation = "|far' . Q| <= bound";
+      v.applies = corners_judged;
+      v.relation = corners_judged ? "|far' . Q| <= bound"
+                                  : "not judged: C is within rounding of Q (gamma(16) kappa >= 1)";
       v.holds = exact::abs(far_q) <= far_q_bound;
       v.ratio = far_q_ratio;
       v.lhs = format_g17(far_q);
@@ -310,7 +391,7 @@ class Problem {
         worst = std::max(worst, ratio);
       };
       for (int i = 0; i < 8; ++i) {
-        if (corner_dots_[i] >= 0) visit(corners_[i], true, "a corner");
+        if (corners_judged && corner_dots_[i] >= 0) visit(corners_[i], true, "a corner");
         for (int j = i + 1; j < 8; ++j) {
           int differing = 0;
           for (int axis = 0; axis < 3; ++axis)
@@ -332,7 +413,7 @@ class Problem {
     {
       Verdict v;
       v.property = Property::infinite_edge_parallel;
-      v.applies = infinite();
+      v.applies = infinite() && corners_judged;
       v.relation = "Q_w = 0 and |far' . Q| <= bound (far' parallel to the frustum edge Q)";
       v.holds = !v.applies || (q_[3] == 0 && exact::abs(far_q) <= far_q_bound);
       v.ratio = v.applies ? far_q_ratio : 0;
@@ -352,6 +433,7 @@ class Problem {
   std::array<exact::Vec, 8> clip_corners_{}, corners_{};
   std::array<exact::Rational, 8> corner_dots_{};
   exact::Rational d_ = 0, kappa_numerator_ = 0;
+  double skeel_condition_ = 0;
 };
 
 }  // namespace oblique::properties

@@ -11,7 +11,12 @@
 // number of C . Q under relative perturbations of every entry of M and C, is
 //   kappa = ( |C|.|Q| + |C|^T |M^-1| |M| |Q| + |C'|^T |M| |M^-1| |Q'| ) / (C . Q)
 // (the last term covers a corner chosen from a C'_x or C'_y that rounding pushed across zero),
-// and each entry of M'_3 carries gamma(kEntryRoundings) of its own.
+// and each entry of M'_3 carries gamma(kEntryRoundings) of its own. With eps = gamma(16) kappa
+// bounding the relative error of C . Q, a = k / (C . Q) is within eps / (1 - eps) of itself
+// relatively (not eps: the first-order bound fails as eps -> 1); at eps >= 1 the plane is within
+// rounding of the far corner, a cannot be bounded, and the properties that depend on a (3 to 5 at
+// the corners) are not judged there, while the status may be ok, plane_misses_view_volume or
+// out_of_range.
 #pragma once
 
 #include <limits>

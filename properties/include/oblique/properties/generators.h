@@ -1,0 +1,446 @@
+// RapidCheck generators of projections and planes: every family, every convention, magnitudes
+// from tiny to huge, planes biased toward the hard places, and the invalid inputs.
+//
+// Every choice is an integer pick whose zero is the simplest value (RapidCheck shrinks integers
+// toward the low end of their range), so a shrunk counterexample reads like 1, 0.5, 1e-6, not
+// like 0.7368421052631579. RapidCheck's own double generator produces no zeros, subnormals or
+// boundaries and shrinks doubles poorly; nothing here uses it.
+#pragma once
+
+#include <rapidcheck.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "oblique/frustum_planes.h"
+#include "oblique/oblique.h"
+#include "oblique/projection.h"
+
+namespace oblique::generators {
+
+enum class Family {
+  perspective,
+  off_axis,
+  infinite,
+  orthographic,
+  y_flipped,
+  jittered,
+  rotated,
+  general
+};
+inline constexpr Family all_families[] = {Family::perspective,  Family::off_axis,  Family::infinite,
+                                          Family::orthographic, Family::y_flipped, Family::jittered,
+                                          Family::rotated,      Family::general};
+
+constexpr std::string_view family_name(Family f) noexcept {
+  switch (f) {
+    case Family::perspective: return "perspective";
+    case Family::off_axis: return "off_axis";
+    case Family::infinite: return "infinite";
+    case Family::orthographic: return "orthographic";
+    case Family::y_flipped: return "y_flipped";
+    case Family::jittered: return "jittered";
+    case Family::rotated: return "rotated";
+    case Family::general: return "general";
+  }
+  return "unknown";
+}
+
+/// Where a valid plane sits: the hard places the suite must cover on every run.
+enum class Place {
+  typical,             ///< through a point inside the view volume
+  zero_in_clip_plane,  ///< C'_x or C'_y exactly zero (sgn = 0), or rounding-close for general M
+  near_eye,            ///< |C_w| tiny against |N|: the plane almost through the eye
+  near_far_corner,     ///< C . Q tiny against |C| |Q|: the plane almost through the far corner
+  along_axis,          ///< the normal almost perpendicular to the view axis
+  near_standard,       ///< almost the standard near plane of M
+  scaled,              ///< a typical plane scaled by 1e-8 .. 1e8
+};
+inline constexpr Place all_places[] = {
+    Place::typical,    Place::zero_in_clip_plane, Place::near_eye, Place::near_far_corner,
+    Place::along_axis, Place::near_standard,      Place::scaled};
+
+constexpr std::string_view place_name(Place p) noexcept {
+  switch (p) {
+    case Place::typical: return "typical";
+    case Place::zero_in_clip_plane: return "zero_in_clip_plane";
+    case Place::near_eye: return "near_eye";
+    case Place::near_far_corner: return "near_far_corner";
+    case Place::along_axis: return "along_axis";
+    case Place::near_standard: return "near_standard";
+    case Place::scaled: return "scaled";
+  }
+  return "unknown";
+}
+
+/// What is wrong with an invalid input.
+enum class Defect { camera_in_front, misses_view_volume, singular, near_singular, non_finite };
+inline constexpr Defect all_defects[] = {Defect::camera_in_front, Defect::misses_view_volume,
+                                         Defect::singular, Defect::near_singular,
+                                         Defect::non_finite};
+
+constexpr std::string_view defect_name(Defect d) noexcept {
+  switch (d) {
+    case Defect::camera_in_front: return "camera_in_front";
+    case Defect::misses_view_volume: return "misses_view_volume";
+    case Defect::singular: return "singular";
+    case Defect::near_singular: return "near_singular";
+    case Defect::non_finite: return "non_finite";
+  }
+  return "unknown";
+}
+
+template <class T>
+struct Case {
+  Family family = Family::perspective;
+  Convention convention = Convention::gl;
+  Place place = Place::typical;
+  Matrix4<T> matrix = Matrix4<T>::Identity();
+  Vector4<T> plane = Vector4<T>::Zero();
+};
+
+template <class T>
+struct InvalidCase {
+  Defect defect = Defect::camera_in_front;
+  Case<T> base;  ///< the valid case it was made from, with matrix and plane already spoiled
+};
+
+namespace detail {
+
+using Wide = long double;
+
+/// One of `choices`, uniformly whatever RapidCheck's size (which otherwise favours the first),
+/// shrinking toward the first.
+template <class E, std::size_t N>
+rc::Gen<E> category(const E (&choices)[N]) {
+  std::vector<E> all(choices, choices + N);
+  return rc::gen::map(rc::gen::resize(100, rc::gen::inRange<std::size_t>(0, N)),
+                      [all](std::size_t i) { return all[i]; });
+}  // construction arithmetic; the results are rounded to T once
+
+/// 0, -1, 1, -2, 2, ... from a pick 0, 1, 2, 3, 4, ... (shrinks toward 0).
+inline int zigzag(int pick) {
+  return pick % 2 ? -(pick + 1) / 2 : pick / 2;
+}
+
+/// 10^e exactly rounded to T (e small).
+template <class T>
+T decade(int e) {
+  return static_cast<T>(std::pow(Wide(10), Wide(e)));
+}
+
+/// An exponent in [low, high] (low <= 0 <= high) that shrinks toward 0: picks 0, 1, 2, ...
+/// give 0, -1, 1, -2, 2, ... and then the rest of the longer side.
+inline rc::Gen<int> exponent(int low, int high) {
+  std::vector<int> order;
+  for (int e = 0; e <= std::max(-low, high); ++e) {
+    if (e != 0 && -e >= low) order.push_back(-e);
+    if (e <= high) order.push_back(e);
+  }
+  return rc::gen::map(rc::gen::inRange<std::size_t>(0, order.size()),
+                      [order](std::size_t pick) { return order[pick]; });
+}
+
+/// The smallest positive power of two exponent a stiff parameter should reach for T.
+template <class T>
+int stiff_bits() {
+  return std::numeric_limits<T>::digits - 8;
+}
+
+template <class T>
+Matrix4<T> rotation_about(int ax, int ay, int az, int sixteenths_of_pi) {
+  Eigen::Matrix<Wide, 3, 1> axis{Wide(ax), Wide(ay), Wide(az)};
+  if (axis.isZero(0)) axis = Eigen::Matrix<Wide, 3, 1>(0, 1, 0);
+  const Wide angle = Wide(sixteenths_of_pi) * Wide(3.14159265358979323846264338327950288L) / 16;
+  Matrix4<Wide> r = Matrix4<Wide>::Identity();
+  r.template topLeftCorner<3, 3>() =
+      Eigen::AngleAxis<Wide>(angle, axis.normalized()).toRotationMatrix();
+  return r.template cast<T>();
+}
+
+/// True when every corner of the view volume maps to camera-space w >= 0 (a proper volume).
+template <class T>
+bool proper_volume(const Matrix4<T>& m, Convention convention) {
+  const Eigen::FullPivLU<Matrix4<Wide>> lu(m.template cast<Wide>());
+  if (!lu.isInvertible()) return false;
+  const DepthRange range = clip_depth_range(convention);
+  for (int x : {-1, 1}) {
+    for (int y : {-1, 1}) {
+      for (int z : {range.z_low, range.z_high}) {
+        const Vector4<Wide> q = lu.solve(Vector4<Wide>(Wide(x), Wide(y), Wide(z), 1));
+        if (q.w() < -1e-12L * q.cwiseAbs().maxCoeff()) return false;
+      }
+    }
+  }
+  return true;
+}
+
+/// Camera-space point for a clip-space point (x, y, z, 1), normalised to w = 1 when finite.
+template <class T>
+Vector4<Wide> unproject(const Matrix4<T>& m, const Vector4<Wide>& clip) {
+  Vector4<Wide> p = m.template cast<Wide>().fullPivLu().solve(clip);
+  if (std::abs(p.w()) > Wide(0)) p /= p.w();
+  return p;
+}
+
+template <class T>
+Vector4<T> round_plane(const Vector4<Wide>& c) {
+  return c.template cast<T>();
+}
+
+}  // namespace detail
+
+/// A projection of `family` in `convention`, its parameters from readable picks:
+/// near 1e-6 .. 10, far / near 1.5 .. ~1e12 (or infinite), symmetric to fully off-axis.
+template <class T>
+rc::Gen<Matrix4<T>> projection(Family family, Convention convention) {
+  return rc::gen::exec([=] {
+    using detail::decade;
+    const int near_exponent = *detail::exponent(-6, 1);
+    const T n = decade<T>(near_exponent) * (T(1) + T(*rc::gen::inRange(0, 8)) / T(8));
+    const int ratio_exponent = *rc::gen::inRange(0, 13);
+    const T f = n * decade<T>(ratio_exponent) * (T(2) + T(*rc::gen::inRange(0, 8)) / T(4));
+    const T top = n * (T(1) + T(*rc::gen::inRange(0, 6))) / T(2);
+    const T right = top * (T(1) + T(*rc::gen::inRange(0, 8)) / T(4));
+    switch (family) {
+      case Family::perspective: return frustum<T>(-right, right, -top, top, n, f, convention);
+      case Family::off_axis: {
+        const T sx = T(*rc::gen::inRange(1, 9)) / T(4), sy = T(*rc::gen::inRange(0, 9)) / T(4);
+        return frustum<T>(-right * (T(1) - sx), right * (T(1) + sx), -top * (T(1) - sy),
+                          top * (T(1) + sy), n, f, convention);
+      }
+      case Family::infinite: return infinite_frustum<T>(-right, right, -top, top, n, convention);
+      case Family::orthographic: {
+        // Near may be negative: a box reaching behind the eye (then C'_z can be negative).
+        const T near_o = *rc::gen::inRange(0, 4) == 3 ? -n * T(4) : n;
+        const T depth = n * decade<T>(*rc::gen::inRange(0, 7)) * T(8);
+        const T half =
+            decade<T>(*detail::exponent(-2, 3)) * (T(1) + T(*rc::gen::inRange(0, 8)) / T(8));
+        return orthographic<T>(-half * T(1.5), half, -half, half * T(0.75), near_o, near_o + depth,
+                               convention);
+      }
+      case Family::y_flipped: {
+        Matrix4<T> m = frustum<T>(-right, right, -top, top, n, f, convention);
+        m.row(1) *= T(-1);
+        return m;
+      }
+      case Family::jittered: {
+        Matrix4<T> m = frustum<T>(-right, right, -top, top, n, f, convention);
+        // A sub-pixel offset in NDC, as temporal anti-aliasing applies: M_i += j M_4.
+        m.row(0) += (T(*rc::gen::inRange(-4, 5)) / T(4096)) * m.row(3);
+        m.row(1) += (T(*rc::gen::inRange(-4, 5)) / T(4096)) * m.row(3);
+        return m;
+      }
+      case Family::rotated:
+      case Family::general: {
+        const Matrix4<T> p = frustum<T>(-right, right, -top, top, n, f, convention);
+        const Matrix4<T> r =
+            detail::rotation_about<T>(*rc::gen::inRange(0, 4), *rc::gen::inRange(0, 4),
+                                      *rc::gen::inRange(0, 4), *rc::gen::inRange(1, 32));
+        Matrix4<T> m = p * r;
+        if (family == Family::general) {
+          // A projective perturbation of every entry, scaled to each row: a matrix of no
+          // particular shape whose view volume stays proper.
+          Matrix4<T> e;
+          for (int i = 0; i < 4; ++i) {
+            for (int j = 0; j < 4; ++j) e(i, j) = T(*rc::gen::inRange(-2, 3)) / T(32);
+          }
+          Matrix4<T> perturbed = m;
+          for (int i = 0; i < 4; ++i) perturbed.row(i) += m.row(i).cwiseAbs().maxCoeff() * e.row(i);
+          if (detail::proper_volume(perturbed, convention)) m = perturbed;
+        }
+        return m;
+      }
+    }
+    return Matrix4<T>(Matrix4<T>::Identity());
+  });
+}
+
+/// A plane at `place` for the projection m. The camera is behind it (C_w < 0) by construction
+/// except where rounding or the family's geometry prevents it; properties filter those with the
+/// exact status.
+template <class T>
+rc::Gen<Vector4<T>> plane(const Matrix4<T>& m, Convention convention, Place place) {
+  return rc::gen::exec([=] {
+    using detail::Wide;
+    const DepthRange range = clip_depth_range(convention);
+    // A point inside the view volume (clip-space grid, never on a face).
+    const Vector4<Wide> clip(
+        Wide(*rc::gen::inRange(-3, 4)) / 4, Wide(*rc::gen::inRange(-3, 4)) / 4,
+        range.z_low + Wide(range.z_high - range.z_low) * Wide(1 + *rc::gen::inRange(0, 7)) / 8, 1);
+    const Vector4<Wide> p = detail::unproject(m, clip);
+    // A normal near (0, 0, -1): the picks shrink toward the standard near plane's direction.
+    Eigen::Matrix<Wide, 3, 1> normal(Wide(detail::zigzag(*rc::gen::inRange(0, 9))) / 4,
+                                     Wide(detail::zigzag(*rc::gen::inRange(0, 9))) / 4,
+                                     Wide(-1) + Wide(detail::zigzag(*rc::gen::inRange(0, 9))) / 4);
+    if (normal.isZero(0)) normal.z() = -1;
+    auto through_point = [&](const Eigen::Matrix<Wide, 3, 1>& nrm) {
+      Vector4<Wide> c;
+      c << nrm, -nrm.dot(p.template head<3>());
+      if (c.w() > 0) c = -c;
+      if (c.w() == 0) c.w() = -nrm.norm() * std::ldexp(Wide(1), -20);
+      return c;
+    };
+    switch (place) {
+      case Place::typical: return detail::round_plane<T>(through_point(normal));
+      case Place::scaled: {
+        const int e = *rc::gen::inRange(-8, 9);
+        return detail::round_plane<T>(through_point(normal) * std::pow(Wide(10), Wide(e)));
+      }
+      case Place::zero_in_clip_plane: {
+        // C' = M^-T C with C'_x and/or C'_y zero: C = M^T C'.
+        const int which = *rc::gen::inRange(0, 3);  // x, y, both
+        Vector4<Wide> c = through_point(normal);
+        const Matrix4<Wide> mw = m.template cast<Wide>();
+        Vector4<Wide> c_clip = mw.transpose().fullPivLu().solve(c);
+        if (which != 1) c_clip.x() = 0;
+        if (which != 0) c_clip.y() = 0;
+        c = mw.transpose() * c_clip;
+        if (c.w() > 0) c = -c;
+        return detail::round_plane<T>(c);
+      }
+      case Place::near_eye: {
+        // Through (almost) the eye, the kept side toward the interior point p.
+        Eigen::Matrix<Wide, 3, 1> nrm = normal;
+        if (p.w() != 0 && nrm.dot(p.template head<3>()) < 0) nrm = -nrm;
+        const int k = 8 + *rc::gen::inRange(0, detail::stiff_bits<T>() - 7);
+        Vector4<Wide> c;
+        c << nrm, -nrm.norm() * std::ldexp(Wide(1), -k);
+        return detail::round_plane<T>(c);
+      }
+      case Place::near_far_corner: {
+        // C . Q = delta |N| |Q| for the far corner Q of N's sign pattern.
+        const int k = 1 + *rc::gen::inRange(0, detail::stiff_bits<T>());
+        const Wide delta = std::ldexp(Wide(1), -k);
+        Eigen::Matrix<Wide, 3, 1> nrm = normal;
+        Vector4<Wide> c;
+        for (int attempt = 0; attempt < 2; ++attempt) {
+          c << nrm, -1;
+          const Matrix4<Wide> mw = m.template cast<Wide>();
+          const Vector4<Wide> c_clip = mw.transpose().fullPivLu().solve(c);
+          const Wide z_far = c_clip.z() >= 0 ? range.z_high : range.z_low;
+          auto sgn = [](Wide x) { return x > 0 ? Wide(1) : (x < 0 ? Wide(-1) : Wide(0)); };
+          const Vector4<Wide> q =
+              mw.fullPivLu().solve(Vector4<Wide>(sgn(c_clip.x()), sgn(c_clip.y()), z_far, 1));
+          const Wide target = delta * nrm.norm() * q.template head<3>().norm();
+          if (std::abs(q.w()) > Wide(1e-9) * q.template head<3>().norm()) {
+            c.w() = (target - nrm.dot(q.template head<3>())) / q.w();
+          } else if (q.z() != 0) {  // Q is a direction: tilt N so that N . Q = delta |N| |Q|
+            nrm.z() += (target - nrm.dot(q.template head<3>())) / q.z();
+            c << nrm, -nrm.norm();
+          }
+        }
+        return detail::round_plane<T>(c);
+      }
+      case Place::along_axis: {
+        const Wide t =
+            std::ldexp(Wide(1), -(2 + *rc::gen::inRange(0, detail::stiff_bits<T>() / 2)));
+        Eigen::Matrix<Wide, 3, 1> nrm(1, Wide(detail::zigzag(*rc::gen::inRange(0, 5))) * t, -t);
+        return detail::round_plane<T>(through_point(nrm));
+      }
+      case Place::near_standard: {
+        const Wide t = std::ldexp(Wide(1), -(2 + *rc::gen::inRange(0, detail::stiff_bits<T>())));
+        const Vector4<Wide> near = near_plane<T>(m, convention).template cast<Wide>();
+        const Vector4<Wide> wiggle(
+            detail::zigzag(*rc::gen::inRange(0, 5)), detail::zigzag(*rc::gen::inRange(0, 5)),
+            detail::zigzag(*rc::gen::inRange(0, 5)), detail::zigzag(*rc::gen::inRange(0, 5)));
+        return detail::round_plane<T>(near + t * near.cwiseAbs().maxCoeff() * wiggle);
+      }
+    }
+    return Vector4<T>(0, 0, -1, -1);
+  });
+}
+
+/// A valid-looking case of any family, convention and hard place (the picks cover all of them).
+template <class T>
+rc::Gen<Case<T>> valid_case() {
+  return rc::gen::exec([] {
+    Case<T> c;
+    c.family = *detail::category(all_families);
+    c.convention = *detail::category(all_conventions);
+    c.place = *detail::category(all_places);
+    c.matrix = *projection<T>(c.family, c.convention);
+    c.plane = *plane<T>(c.matrix, c.convention, c.place);
+    return c;
+  });
+}
+
+/// A valid-looking case of one family (for the properties that apply to one family only).
+template <class T>
+rc::Gen<Case<T>> valid_case_of(Family family) {
+  return rc::gen::exec([family] {
+    Case<T> c;
+    c.family = family;
+    c.convention = *detail::category(all_conventions);
+    c.place = *detail::category(all_places);
+    c.matrix = *projection<T>(c.family, c.convention);
+    c.plane = *plane<T>(c.matrix, c.convention, c.place);
+    return c;
+  });
+}
+
+/// An input that has no answer, or sits next to one that has none.
+template <class T>
+rc::Gen<InvalidCase<T>> invalid_case() {
+  return rc::gen::exec([] {
+    InvalidCase<T> out;
+    out.defect = *detail::category(all_defects);
+    out.base = *valid_case<T>();
+    Case<T>& c = out.base;
+    const Vector4<T> nrm(c.plane.x(), c.plane.y(), c.plane.z(), T(0));
+    switch (out.defect) {
+      case Defect::camera_in_front: {
+        const T choices[] = {T(0), T(-0.0), nrm.norm(), nrm.norm() * std::ldexp(T(1), -40)};
+        c.plane.w() = choices[*rc::gen::inRange(0, 4)];
+        break;
+      }
+      case Defect::misses_view_volume: {
+        // With the near plane (u, d), |u| = 1, the volume has u . p + d >= 0. Keep instead
+        // u . p <= -(2 |d| + 1): behind the camera, outside the near plane. For a finite volume
+        // with far plane (v, e), keep v . p + e <= -(|e| / 2 + 1): beyond the far plane.
+        // Either way C_w < 0, so the camera stays behind C.
+        const Vector4<T> far = far_plane<T>(c.matrix, c.convention);
+        const Vector4<T> near = near_plane<T>(c.matrix, c.convention);
+        const bool beyond_far =
+            *rc::gen::inRange(0, 2) == 1 && far.template head<3>().norm() > T(0);
+        if (beyond_far) {
+          const Vector4<T> f = far / far.template head<3>().norm();
+          c.plane << -f.template head<3>(), -f.w() - (std::abs(f.w()) / T(2) + T(1));
+        } else {
+          const Vector4<T> u = near / near.template head<3>().norm();
+          c.plane << -u.template head<3>(), -(T(2) * std::abs(u.w()) + T(1));
+        }
+        break;
+      }
+      case Defect::singular: {
+        const int row = *rc::gen::inRange(0, 4), factor = *rc::gen::inRange(0, 3);
+        c.matrix.row(row) = T(factor) * c.matrix.row((row + 1) % 4);
+        break;
+      }
+      case Defect::near_singular: {
+        const int k = std::numeric_limits<T>::digits - 12 + *rc::gen::inRange(0, 16);
+        c.matrix.row(2) = c.matrix.row(3) + std::ldexp(T(1), -k) * c.matrix.row(2);
+        break;
+      }
+      case Defect::non_finite: {
+        const T values[] = {std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::infinity(),
+                            -std::numeric_limits<T>::infinity()};
+        const T value = values[*rc::gen::inRange(0, 3)];
+        const int index = *rc::gen::inRange(0, 20);
+        if (index < 16) {
+          c.matrix(index / 4, index % 4) = value;
+        } else {
+          c.plane(index - 16) = value;
+        }
+        break;
+      }
+    }
+    return out;
+  });
+}
+
+}  // namespace oblique::generators

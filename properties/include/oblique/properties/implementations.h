@@ -1,0 +1,177 @@
+// The implementations the property suite can judge: the core's methods (the default), the
+// formulas printed in the source documents, and deliberately broken cores (mutants) that show
+// the suite catches the mistakes engines ship. OBLIQUE_IMPL=name selects one; see the README.
+#pragma once
+
+#include <cstdlib>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "oblique/oblique.h"
+#include "oblique/properties/seeded_recipes.h"
+
+namespace oblique::properties {
+
+template <class T>
+struct Outcome {
+  Status status = Status::ok;
+  Matrix4<T> projection;
+};
+
+template <class T>
+struct Implementation {
+  std::string name;
+  /// Whether it answers statuses (the recipes return a matrix whatever the input).
+  bool reports_statuses = true;
+  /// The inputs it is meant for; others are not given to it.
+  std::function<bool(Convention, const Matrix4<T>&)> accepts;
+  std::function<Outcome<T>(const Matrix4<T>&, const Vector4<T>&, Convention)> run;
+};
+
+namespace mutants {
+
+/// The core's pipeline with the corner's signs taken from C instead of C' (Listing 5.1's shortcut).
+template <class T>
+ObliqueResult<T> signs_from_c(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+  if (!all_finite(m) || !all_finite(c))
+    return detail::refuse(m, Method::general, Status::invalid_input);
+  if (!(c.w() < T(0))) return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
+  const Eigen::PartialPivLU<Matrix4<T>> lu(m);
+  const Vector4<T> c_clip = lu.transpose().solve(c);
+  const Vector4<T> corner = detail::clip_corner(detail::sign(c.x()), detail::sign(c.y()),
+                                                detail::sign(c_clip.z()), convention);
+  return detail::finish(m, c, Vector4<T>(lu.solve(corner)), convention, Method::general);
+}
+
+/// The far corner on the wrong depth face.
+template <class T>
+ObliqueResult<T> wrong_face(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+  if (!all_finite(m) || !all_finite(c))
+    return detail::refuse(m, Method::general, Status::invalid_input);
+  if (!(c.w() < T(0))) return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
+  const Eigen::PartialPivLU<Matrix4<T>> lu(m);
+  const Vector4<T> c_clip = lu.transpose().solve(c);
+  const Vector4<T> corner = detail::clip_corner(detail::sign(c_clip.x()), detail::sign(c_clip.y()),
+                                                -detail::sign(c_clip.z()), convention);
+  return detail::finish(m, c, Vector4<T>(lu.solve(corner)), convention, Method::general);
+}
+
+/// sgn computed as x / |x|: NaN at 0.
+template <class T>
+ObliqueResult<T> sign_by_division(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+  if (!all_finite(m) || !all_finite(c))
+    return detail::refuse(m, Method::general, Status::invalid_input);
+  if (!(c.w() < T(0))) return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
+  const Eigen::PartialPivLU<Matrix4<T>> lu(m);
+  const Vector4<T> c_clip = lu.transpose().solve(c);
+  auto sgn = [](T x) { return x / std::abs(x); };
+  const Vector4<T> corner =
+      detail::clip_corner(sgn(c_clip.x()), sgn(c_clip.y()), sgn(c_clip.z()), convention);
+  ObliqueResult<T> r =
+      detail::finish(m, c, Vector4<T>(lu.solve(corner)), convention, Method::general);
+  if (r.status == Status::out_of_range) r.status = Status::ok;  // the bug hides behind a NaN
+  return r;
+}
+
+}  // namespace mutants
+
+template <class T>
+Implementation<T> core_method(Method method) {
+  Implementation<T> impl;
+  impl.name = std::string("core_") + std::string(method_name(method));
+  impl.accepts = [method](Convention, const Matrix4<T>& m) {
+    return method != Method::closed_form || has_perspective_shape(m);
+  };
+  impl.run = [method](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+    const ObliqueResult<T> r = apply<T>(m, c, convention, method);
+    return Outcome<T>{r.status, r.projection};
+  };
+  return impl;
+}
+
+template <class T>
+Implementation<T> from_result(std::string name,
+                              ObliqueResult<T> (*fn)(const Matrix4<T>&, const Vector4<T>&,
+                                                     Convention)) {
+  Implementation<T> impl;
+  impl.name = std::move(name);
+  impl.accepts = [](Convention, const Matrix4<T>&) { return true; };
+  impl.run = [fn](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+    const ObliqueResult<T> r = fn(m, c, convention);
+    return Outcome<T>{r.status, r.projection};
+  };
+  return impl;
+}
+
+template <class T>
+Implementation<T> recipe(std::string name,
+                         std::function<bool(Convention, const Matrix4<T>&)> accepts,
+                         std::function<Matrix4<T>(const Matrix4<T>&, const Vector4<T>&)> formula) {
+  Implementation<T> impl;
+  impl.name = std::move(name);
+  impl.reports_statuses = false;
+  impl.accepts = std::move(accepts);
+  impl.run = [formula](const Matrix4<T>& m, const Vector4<T>& c, Convention) {
+    return Outcome<T>{Status::ok, formula(m, c)};
+  };
+  return impl;
+}
+
+/// Every implementation the suite knows, by name.
+template <class T>
+std::vector<Implementation<T>> known_implementations() {
+  std::vector<Implementation<T>> out;
+  for (Method m : all_methods) out.push_back(core_method<T>(m));
+  out.push_back(recipe<T>(
+      "listing_5_1",
+      [](Convention c, const Matrix4<T>& m) {
+        return c == Convention::gl && has_perspective_shape(m);
+      },
+      [](const Matrix4<T>& m, const Vector4<T>& c) { return seeded::listing_5_1(m, c); }));
+  out.push_back(recipe<T>(
+      "paper_eq_20", [](Convention c, const Matrix4<T>&) { return c == Convention::gl; },
+      [](const Matrix4<T>& m, const Vector4<T>& c) { return seeded::paper_eq_20(m, c); }));
+  out.push_back(recipe<T>(
+      "note_zero_one", [](Convention c, const Matrix4<T>&) { return c == Convention::zero_one; },
+      [](const Matrix4<T>& m, const Vector4<T>& c) { return seeded::note_zero_one(m, c); }));
+  out.push_back(recipe<T>(
+      "note_reversed", [](Convention c, const Matrix4<T>&) { return c == Convention::reversed_z; },
+      [](const Matrix4<T>& m, const Vector4<T>& c) {
+        // The flip is its own inverse (with w kept): forward = flip * M.
+        return seeded::note_reversed(Matrix4<T>(seeded::depth_flip<T>() * m), c,
+                                     seeded::note_flip_as_printed<T>());
+      }));
+  out.push_back(from_result<T>("mutant_signs_from_c", &mutants::signs_from_c<T>));
+  out.push_back(from_result<T>("mutant_wrong_face", &mutants::wrong_face<T>));
+  out.push_back(from_result<T>("mutant_sign_by_division", &mutants::sign_by_division<T>));
+  {
+    Implementation<T> impl;  // the [0, 1] factor (a = 1 / C.Q, M'_3 = a C) applied to gl matrices
+    impl.name = "mutant_zero_one_factor";
+    impl.accepts = [](Convention, const Matrix4<T>&) { return true; };
+    impl.run = [](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+      const Convention used = convention == Convention::gl ? Convention::zero_one : convention;
+      const ObliqueResult<T> r = apply<T>(m, c, used);
+      return Outcome<T>{r.status, r.projection};
+    };
+    out.push_back(impl);
+  }
+  return out;
+}
+
+/// The implementations selected by OBLIQUE_IMPL (comma-separated names; default: the core's
+/// three methods). An unknown name selects nothing, which the suite reports as an error.
+template <class T>
+std::vector<Implementation<T>> selected_implementations() {
+  const char* env = std::getenv("OBLIQUE_IMPL");
+  const std::string wanted = env && *env ? env : "core_auto,core_closed_form,core_general";
+  std::vector<Implementation<T>> out;
+  for (auto& impl : known_implementations<T>()) {
+    const std::string padded = "," + wanted + ",";
+    if (padded.find("," + impl.name + ",") != std::string::npos) out.push_back(impl);
+  }
+  return out;
+}
+
+}  // namespace oblique::properties

@@ -1,0 +1,188 @@
+// The property suite: every property of the core issue, on generated inputs of every family,
+// convention and hard place, for every selected implementation and scalar type.
+//
+// Default budget: RapidCheck's 100 cases per property. Longer: RC_PARAMS="max_success=5000".
+// Replay: RC_PARAMS="seed=S" with the test's --gtest_filter (every report prints the command).
+// Another implementation: OBLIQUE_IMPL=listing_5_1 (see implementations.h for the names).
+#include "harness.h"
+
+#include "oblique/frustum_planes.h"
+
+namespace oblique::properties::suite {
+namespace {
+
+using generators::Case;
+using generators::Family;
+
+template <class T>
+void property_holds(Property which, Coverage coverage, const rc::Gen<Case<T>>& gen) {
+  run(
+      [=] {
+        const Case<T> c = *gen;
+        const Problem<T> problem(c.matrix, c.plane, c.convention);
+        if (problem.exact_status() == Status::ok) count_case(c);
+        for_each_answer(c, problem, [&](const Implementation<T>&, const Matrix4<T>& result) {
+          const Verdicts verdicts = problem.check(result);
+          const Verdict& v = verdicts[which];
+          std::optional<Verdict> failed;
+          if (!v.applies) return failed;
+          ++tally().applied[std::string(property_name(which))];
+          if (!v.holds) failed = v;
+          return failed;
+        });
+      },
+      coverage);
+}
+
+template <class T>
+void invalid_inputs_get_their_status() {
+  run(
+      [] {
+        const generators::InvalidCase<T> ic = *generators::invalid_case<T>();
+        const Case<T>& c = ic.base;
+        const Problem<T> problem(c.matrix, c.plane, c.convention);
+        ++tally().defects[std::string(generators::defect_name(ic.defect))];
+        ++tally().conventions[std::string(convention_name(c.convention))];
+        RC_TAG(std::string(generators::defect_name(ic.defect)));
+        // An ok answer is allowed only in a gray zone, and must then have every property.
+        for_each_answer(
+            c, problem,
+            [&](const Implementation<T>&, const Matrix4<T>& result) {
+              const Verdicts verdicts = problem.check(result);
+              std::optional<Verdict> failed;
+              if (const Verdict* v = verdicts.first_failure()) failed = *v;
+              return failed;
+            },
+            /*judge_statuses=*/true);
+      },
+      Coverage::invalid);
+}
+
+template <class T>
+rc::Gen<Case<T>> perspective_shape_case() {
+  return rc::gen::exec([] {
+    const Family families[] = {Family::perspective, Family::off_axis, Family::infinite,
+                               Family::y_flipped, Family::jittered};
+    return *generators::valid_case_of<T>(families[*rc::gen::inRange(0, 5)]);
+  });
+}
+
+template <class T>
+void closed_form_and_general_agree() {
+  run(
+      [] {
+        const Case<T> c = *perspective_shape_case<T>();
+        const Problem<T> problem(c.matrix, c.plane, c.convention);
+        RC_PRE(problem.exact_status() == Status::ok);
+        count_case(c);
+        ++tally().implementations["core_closed_form vs core_general"];
+        const auto closed = apply<T>(c.matrix, c.plane, c.convention, Method::closed_form);
+        const auto general = apply<T>(c.matrix, c.plane, c.convention, Method::general);
+        if (!closed.ok() || !general.ok()) return;  // statuses are judged by the other properties
+        const std::optional<exact::Vec> maybe_bounds = problem.row3_bounds();
+        if (!maybe_bounds) return;  // within rounding of no answer: neither can be held to a bound
+        const exact::Vec& bounds = *maybe_bounds;
+        ++tally().applied["closed_form_and_general_agree"];
+        for (int i = 0; i < 4; ++i) {
+          const exact::Rational gap = exact::abs(exact::to_rational(closed.projection(2, i)) -
+                                                 exact::to_rational(general.projection(2, i)));
+          if (gap <= 2 * bounds[i]) continue;
+          Counterexample ce = make_counterexample(c.matrix, c.plane);
+          ce.property = "closed_form_and_general_agree";
+          ce.relation = "|M'_3i(closed form) - M'_3i(general)| <= 2 bound_i";
+          ce.lhs = "entry " + std::to_string(i + 1) + ": " + format_g17(gap);
+          ce.rhs = format_g17(exact::Rational(2 * bounds[i]));
+          ce.ratio = bounds[i] > 0 ? exact::Rational(gap / (2 * bounds[i])).get_d() : 1e300;
+          ce.implementation = "core_closed_form";
+          ce.family = std::string(generators::family_name(c.family));
+          ce.convention = std::string(convention_name(c.convention));
+          ce.place = std::string(generators::place_name(c.place));
+          tally().failure = ce;
+          RC_FAIL("closed form and general differ: " + ce.lhs + " > " + ce.rhs);
+        }
+      },
+      Coverage::perspective_shape);
+}
+
+template <class T>
+void extracted_planes_match() {
+  run(
+      [] {
+        const Case<T> c = *generators::valid_case<T>();
+        const Problem<T> problem(c.matrix, c.plane, c.convention);
+        if (problem.exact_status() == Status::ok) count_case(c);
+        const FrustumPlanes<T> before = frustum_planes(c.matrix, c.convention);
+        for_each_answer(c, problem, [&](const Implementation<T>&, const Matrix4<T>& result) {
+          const FrustumPlanes<T> after = frustum_planes(result, c.convention);
+          std::optional<Verdict> failed;
+          ++tally().applied["extracted_planes_match"];
+          const std::pair<const Vector4<T>*, const Vector4<T>*> sides[] = {
+              {&before.left, &after.left},
+              {&before.right, &after.right},
+              {&before.bottom, &after.bottom},
+              {&before.top, &after.top}};
+          for (const auto& [b, a] : sides) {
+            if (*a != *b) {
+              Verdict v;
+              v.property = Property::extracted_planes_match;
+              v.holds = false;
+              v.ratio = 1e300;
+              v.relation = "the side planes extracted from M' equal those of M";
+              v.lhs = format_g17(static_cast<double>((*a - *b).cwiseAbs().maxCoeff()));
+              v.rhs = "0";
+              failed = v;
+              return failed;
+            }
+          }
+          // The near plane extracted in T points the way C does.
+          if (!(after.near_plane.dot(c.plane) > T(0))) {
+            Verdict v;
+            v.property = Property::extracted_planes_match;
+            v.holds = false;
+            v.ratio = 1e300;
+            v.relation = "the near plane extracted from M' keeps C's positive side";
+            v.lhs = format_g17(static_cast<double>(after.near_plane.dot(c.plane)));
+            v.rhs = "> 0";
+            failed = v;
+          }
+          return failed;
+        });
+      },
+      Coverage::valid);
+}
+
+#define OBLIQUE_PROPERTY_SUITE(Suite, T)                                                           \
+  TEST(Suite, nearPlaneIsTheClipPlane) {                                                           \
+    property_holds<T>(Property::near_is_clip_plane, Coverage::valid, generators::valid_case<T>()); \
+  }                                                                                                \
+  TEST(Suite, sideRowsAreUnchanged) {                                                              \
+    property_holds<T>(Property::side_rows_unchanged, Coverage::valid,                              \
+                      generators::valid_case<T>());                                                \
+  }                                                                                                \
+  TEST(Suite, farPlanePassesThroughTheFarCorner) {                                                 \
+    property_holds<T>(Property::far_plane_through_corner, Coverage::valid,                         \
+                      generators::valid_case<T>());                                                \
+  }                                                                                                \
+  TEST(Suite, viewVolumeInFrontOfThePlaneIsNotClipped) {                                           \
+    property_holds<T>(Property::no_clipping, Coverage::valid, generators::valid_case<T>());        \
+  }                                                                                                \
+  TEST(Suite, infiniteFarPlaneIsParallelToTheFrustumEdge) {                                        \
+    property_holds<T>(Property::infinite_edge_parallel, Coverage::infinite_only,                   \
+                      generators::valid_case_of<T>(Family::infinite));                             \
+  }                                                                                                \
+  TEST(Suite, invalidInputsGetTheirStatus) {                                                       \
+    invalid_inputs_get_their_status<T>();                                                          \
+  }                                                                                                \
+  TEST(Suite, closedFormAndGeneralAgree) {                                                         \
+    closed_form_and_general_agree<T>();                                                            \
+  }                                                                                                \
+  TEST(Suite, extractedFrustumPlanesMatch) {                                                       \
+    extracted_planes_match<T>();                                                                   \
+  }
+
+OBLIQUE_PROPERTY_SUITE(PropertiesFloat, float)
+OBLIQUE_PROPERTY_SUITE(PropertiesDouble, double)
+OBLIQUE_PROPERTY_SUITE(PropertiesLongDouble, long double)
+
+}  // namespace
+}  // namespace oblique::properties::suite
