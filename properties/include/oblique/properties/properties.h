@@ -282,37 +282,55 @@ class Problem {
     const exact::Rational entry_gamma = tolerance::gamma(tolerance::kEntryRoundings, p);
     const exact::Rational t_near = exact::abs(exact::Rational(nr.m4));
 
-    // 1. near' = lambda C: lambda measured on the largest |C_k|, every entry within its rounding.
+    // 1. near' = lambda C for some lambda > 0, every entry within its own rounding:
+    //    |near'_i - lambda C_i| <= g (lambda |C_i| + |t M4_i|), g = gamma(kEntryRoundings).
+    //    Each entry bounds lambda to an interval; the property holds when they intersect above 0.
+    const exact::Rational& g = entry_gamma;
+    exact::Rational lambda_low = 0, lambda_high = -1;  // high < 0: no upper bound yet
+    bool feasible = true;
+    for (int i = 0; i < 4; ++i) {
+      const exact::Rational b = g * t_near * exact::abs(m4[i]);
+      if (cx_[i] == 0) {
+        if (exact::abs(near[i]) > b) feasible = false;
+        continue;
+      }
+      const exact::Rational c = exact::abs(cx_[i]);
+      const exact::Rational y = cx_[i] > 0 ? near[i] : exact::Rational(-near[i]);
+      const exact::Rational low = (y - b) / (c * (1 + g)), high = (y + b) / (c * (1 - g));
+      lambda_low = std::max(lambda_low, low);
+      lambda_high = lambda_high < 0 ? high : std::min(lambda_high, high);
+    }
+    feasible = feasible && lambda_high > 0 && lambda_low <= lambda_high;
+    // For the reports and the bounds below: a feasible lambda, or the one the largest |C_k| gives.
     int k = 0;
     for (int i = 1; i < 4; ++i) {
       if (exact::abs(cx_[i]) > exact::abs(cx_[k])) k = i;
     }
-    const exact::Rational lambda = near[k] / cx_[k];
+    const exact::Rational lambda = feasible ? exact::Rational((lambda_low + lambda_high) / 2)
+                                            : exact::Rational(near[k] / cx_[k]);
     exact::Vec entry_bound;  // what rounding may move one entry of M'_3 (and so of near', far')
     for (int i = 0; i < 4; ++i) {
-      entry_bound[i] = entry_gamma * (exact::abs(lambda * cx_[i]) + t_near * exact::abs(m4[i]));
+      entry_bound[i] = g * (exact::abs(lambda * cx_[i]) + t_near * exact::abs(m4[i]));
     }
     {
       Verdict v;
       v.property = Property::near_is_clip_plane;
-      v.relation = "max_i |near'_i - lambda C_i| / bound_i <= 1 with lambda = near'_k / C_k > 0";
+      v.relation =
+          "some lambda > 0 has |near'_i - lambda C_i| <= gamma(3) (lambda |C_i| + |t M4_i|) for "
+          "every i";
       exact::Rational worst = 0;
-      bool within = lambda > 0;
       for (int i = 0; i < 4; ++i) {
         const exact::Rational residual = exact::abs(near[i] - lambda * cx_[i]);
-        // lambda carries entry k's rounding into every other entry, in proportion to |C_i / C_k|.
-        const exact::Rational bound =
-            2 * entry_bound[i] + entry_bound[k] * exact::abs(cx_[i] / cx_[k]);
-        if (residual > bound) within = false;
-        if (bound > 0) {
-          worst = std::max(worst, exact::Rational(residual / bound));
+        if (entry_bound[i] > 0) {
+          worst = std::max(worst, exact::Rational(residual / entry_bound[i]));
         } else if (residual > 0) {
           worst = 1e300;
         }
       }
-      v.holds = within;
-      v.ratio = lambda > 0 ? worst.get_d() : std::max(worst.get_d(), 1e300);
-      v.lhs = "lambda = " + format_g17(lambda) + ", worst residual/bound = " + format_g17(worst);
+      v.holds = feasible;
+      v.ratio = feasible ? std::min(worst.get_d(), 1.0) : std::max(worst.get_d(), 1.0 + 1e-9);
+      v.lhs = "lambda = " + format_g17(lambda) + ", worst residual/bound = " + format_g17(worst) +
+              (feasible ? "" : ", no lambda > 0 fits every entry");
       v.rhs = "1";
       out.items.push_back(v);
     }
