@@ -178,3 +178,21 @@ TYPED_TEST(ObliqueTest, answerBeyondTheTypeIsOutOfRange) {
 
 }  // namespace
 }  // namespace oblique
+
+namespace oblique {
+namespace {
+
+// The checker judges any matrix, a non-finite one included, without trapping (GMP would).
+TEST(Checker, nonFiniteResultViolatesThePropertiesInsteadOfCrashing) {
+  const Matrix4<double> m = frustum<double>(-1, 1, -1, 1, 1, 10, Convention::gl);
+  const properties::Problem<double> problem(m, Vector4<double>(0.5, 0, -1, -2), Convention::gl);
+  Matrix4<double> bad = m;
+  bad(2, 2) = std::numeric_limits<double>::quiet_NaN();
+  const auto verdicts = problem.check(bad);
+  EXPECT_FALSE(verdicts[properties::Property::near_is_clip_plane].holds);
+  EXPECT_TRUE(verdicts[properties::Property::side_rows_unchanged].holds);
+  EXPECT_FALSE(problem.compare_row3(bad).within);
+}
+
+}  // namespace
+}  // namespace oblique

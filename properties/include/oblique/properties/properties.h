@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
+#include "oblique/frustum_planes.h"
 #include "oblique/plane.h"
 #include "oblique/properties/exact.h"
 #include "oblique/properties/tolerance.h"
@@ -90,7 +91,7 @@ template <class T>
 class Problem {
  public:
   Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention)
-      : m_(m), convention_(convention) {
+      : m_(m), m_plane_(c), convention_(convention) {
     finite_ = all_finite(m) && all_finite(c);
     if (!finite_) return;
     mx_ = exact::to_rational(m);
@@ -249,6 +250,11 @@ class Problem {
     const exact::Vec expected = exact_row3();
     const std::optional<exact::Vec> maybe_bounds = row3_bounds();
     Closeness out;
+    if (!all_finite(result)) {
+      out.within = false;
+      out.ratio = 1e300;
+      return out;
+    }
     if (!maybe_bounds) {
       out.judged = false;
       return out;
@@ -270,9 +276,55 @@ class Problem {
     return out;
   }
 
+  /// The suite's cross-check through frustum_planes() in T: the side planes of M' equal those of
+  /// M, and its near plane keeps C's positive side.
+  Verdict check_extracted_planes(const Matrix4<T>& result) const {
+    Verdict v;
+    v.property = Property::extracted_planes_match;
+    v.relation = "frustum_planes(M') has the side planes of M and a near plane n with n . C > 0";
+    const FrustumPlanes<T> before = frustum_planes(m_, convention_);
+    const FrustumPlanes<T> after = frustum_planes(result, convention_);
+    const Vector4<T> sides_before[] = {before.left, before.right, before.bottom, before.top};
+    const Vector4<T> sides_after[] = {after.left, after.right, after.bottom, after.top};
+    for (int i = 0; i < 4; ++i) {
+      if (!(sides_after[i] == sides_before[i])) {
+        v.holds = false;
+        v.ratio = 1e300;
+        v.lhs = "side plane " + std::to_string(i + 1) + " differs by " +
+                format_g17(
+                    static_cast<double>((sides_after[i] - sides_before[i]).cwiseAbs().maxCoeff()));
+        v.rhs = "0";
+        return v;
+      }
+    }
+    const T dot = after.near_plane.dot(m_plane_);
+    v.holds = dot > T(0);
+    v.ratio = v.holds ? 0 : 1e300;
+    v.lhs = "n . C = " + format_g17(static_cast<double>(dot));
+    v.rhs = "> 0";
+    return v;
+  }
+
   /// Judges a result M' of this input. Precondition: exact_status() == Status::ok.
   Verdicts check(const Matrix4<T>& result) const {
     Verdicts out;
+    if (!all_finite(result)) {  // a NaN or infinity in M' violates every property it touches
+      for (Property p : all_properties) {
+        Verdict v;
+        v.property = p;
+        v.applies = p != Property::infinite_edge_parallel || infinite();
+        v.holds = p == Property::side_rows_unchanged && all_finite(result.row(0)) &&
+                  all_finite(result.row(1)) && all_finite(result.row(3)) &&
+                  result.row(0) == m_.row(0) && result.row(1) == m_.row(1) &&
+                  result.row(3) == m_.row(3);
+        v.ratio = v.holds ? 0 : 1e300;
+        v.relation = "M' is finite";
+        v.lhs = "M' has a NaN or infinite entry";
+        v.rhs = "finite";
+        out.items.push_back(v);
+      }
+      return out;
+    }
     const exact::Mat r = exact::to_rational(result);
     const RowCombination nr = near_rows(convention_), fr = far_rows(convention_);
     const exact::Vec& m4 = mx_[3];
@@ -444,6 +496,7 @@ class Problem {
 
  private:
   Matrix4<T> m_;
+  Vector4<T> m_plane_;
   Convention convention_;
   bool finite_ = false, invertible_ = false, infinite_ = false, camera_behind_ = false;
   exact::Mat mx_{}, inverse_{};

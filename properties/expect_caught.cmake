@@ -1,0 +1,25 @@
+# Runs the property suite against a deliberately broken implementation and passes only when the
+# suite fails it and writes a readable counterexample report naming a violated property.
+# cmake -DBINARY=... -DIMPL=... -DREPORTS=... -P expect_caught.cmake
+file(REMOVE_RECURSE "${REPORTS}")
+set(ENV{OBLIQUE_IMPL} "${IMPL}")
+set(ENV{OBLIQUE_REPORT_DIR} "${REPORTS}")
+execute_process(COMMAND "${BINARY}" --gtest_filter=PropertiesDouble.*
+                RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE output)
+if(result EQUAL 0)
+  message(FATAL_ERROR "the property suite passed ${IMPL}: it should have caught it")
+endif()
+file(GLOB reports "${REPORTS}/*.md")
+if(NOT reports)
+  message(FATAL_ERROR "the suite failed ${IMPL} but wrote no report:\n${output}")
+endif()
+list(GET reports 0 first)
+file(READ "${first}" text)
+if(NOT text MATCHES "## Replay")
+  message(FATAL_ERROR "the report ${first} has no replay command:\n${text}")
+endif()
+if(NOT text MATCHES "# Counterexample: ([a-z_]+)")
+  message(FATAL_ERROR "the report ${first} names no property:\n${text}")
+endif()
+list(LENGTH reports count)
+message(STATUS "${IMPL}: caught, ${count} report(s), first: ${CMAKE_MATCH_1} in ${first}")
