@@ -288,8 +288,17 @@ rc::Gen<Vector4<T>> plane(const Matrix4<T>& m, Convention convention, Place plac
     switch (place) {
       case Place::typical: return detail::round_plane<T>(through_point(normal));
       case Place::scaled: {
-        const int e = *rc::gen::inRange(-8, 9);
-        return detail::round_plane<T>(through_point(normal) * std::pow(Wide(10), Wide(e)));
+        // 1e-8 .. 1e8, or to the edges of T's range: every entry subnormal, or near overflow.
+        const int pick = *rc::gen::inRange(0, 19);
+        const Vector4<Wide> c = through_point(normal);
+        if (pick < 17)
+          return detail::round_plane<T>(c * std::pow(Wide(10), Wide(detail::zigzag(pick))));
+        const int e = pick == 17 ? std::numeric_limits<T>::min_exponent - 6
+                                 : std::numeric_limits<T>::max_exponent - 4;
+        Vector4<T> out = detail::round_plane<T>(c / c.cwiseAbs().maxCoeff());
+        for (int i = 0; i < 4; ++i) out(i) = std::ldexp(out(i), e);
+        if (!(out.w() < T(0))) out.w() = -std::numeric_limits<T>::denorm_min();
+        return out;
       }
       case Place::zero_in_clip_plane: {
         // C' = M^-T C with C'_x and/or C'_y zero: C = M^T C'.

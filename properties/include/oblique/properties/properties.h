@@ -157,7 +157,8 @@ class Problem {
   std::optional<exact::Rational> scale_error() const {
     if (!(d_ > 0)) return std::nullopt;
     const exact::Rational eps =
-        tolerance::gamma(tolerance::kScaleRoundings, tolerance::precision_bits<T>()) * kappa();
+        tolerance::gamma(tolerance::kScaleRoundings, tolerance::precision_bits<T>()) * kappa() +
+        tolerance::kScaleRoundings * tolerance::underflow_unit<T>() / d_;
     if (eps >= 1) return std::nullopt;
     return exact::Rational(eps / (1 - eps));
   }
@@ -191,7 +192,8 @@ class Problem {
     if (skeel_condition_ * 256 * std::ldexp(1.0, 1 - p) >= 1) add(Status::singular_projection);
     if (!camera_behind_) return out;
     const exact::Rational d_error =
-        tolerance::gamma(tolerance::kScaleRoundings, p) * kappa_numerator_;
+        tolerance::gamma(tolerance::kScaleRoundings, p) * kappa_numerator_ +
+        tolerance::kScaleRoundings * tolerance::underflow_unit<T>();
     if (exact::abs(d_) <= d_error) {
       add(Status::plane_misses_view_volume);
       add(Status::ok);
@@ -240,7 +242,8 @@ class Problem {
     exact::Vec bounds;
     for (int i = 0; i < 4; ++i) {
       const exact::Rational ac = exact::abs(a * cx_[i]);
-      bounds[i] = entry_gamma * (ac + exact::abs(mx_[3][i])) + ac * *scale;
+      bounds[i] = entry_gamma * (ac + exact::abs(mx_[3][i])) + ac * *scale +
+                  tolerance::kEntryRoundings * tolerance::underflow_unit<T>();
     }
     return bounds;
   }
@@ -338,10 +341,11 @@ class Problem {
     //    |near'_i - lambda C_i| <= g (lambda |C_i| + |t M4_i|), g = gamma(kEntryRoundings).
     //    Each entry bounds lambda to an interval; the property holds when they intersect above 0.
     const exact::Rational& g = entry_gamma;
+    const exact::Rational underflow = tolerance::kEntryRoundings * tolerance::underflow_unit<T>();
     exact::Rational lambda_low = 0, lambda_high = -1;  // high < 0: no upper bound yet
     bool feasible = true;
     for (int i = 0; i < 4; ++i) {
-      const exact::Rational b = g * t_near * exact::abs(m4[i]);
+      const exact::Rational b = g * t_near * exact::abs(m4[i]) + underflow;
       if (cx_[i] == 0) {
         if (exact::abs(near[i]) > b) feasible = false;
         continue;
@@ -362,7 +366,7 @@ class Problem {
                                             : exact::Rational(near[k] / cx_[k]);
     exact::Vec entry_bound;  // what rounding may move one entry of M'_3 (and so of near', far')
     for (int i = 0; i < 4; ++i) {
-      entry_bound[i] = g * (exact::abs(lambda * cx_[i]) + t_near * exact::abs(m4[i]));
+      entry_bound[i] = g * (exact::abs(lambda * cx_[i]) + t_near * exact::abs(m4[i])) + underflow;
     }
     {
       Verdict v;

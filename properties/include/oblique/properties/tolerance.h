@@ -38,6 +38,14 @@ constexpr int kScaleRoundings = 16;
 /// and one more for an implementation that forms k C_i / d instead of (k / d) C_i.
 constexpr int kEntryRoundings = 3;
 
+/// eta = half the smallest subnormal of T: with gradual underflow a product or quotient that
+/// lands in the subnormal range carries an absolute error up to eta besides its relative one
+/// (fl(x op y) = (x op y)(1 + delta) + eta', |eta'| <= eta; sums and differences are exact there).
+template <class T>
+exact::Rational underflow_unit() {
+  return exact::to_rational(std::numeric_limits<T>::denorm_min()) / 2;
+}
+
 /// u = 2^-p.
 inline exact::Rational unit_roundoff(int precision_bits) {
   return exact::power_of_two(-precision_bits);
