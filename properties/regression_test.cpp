@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "oblique/properties/implementations.h"
+#include "oblique/properties/judge.h"
 #include "oblique/properties/properties.h"
 
 namespace oblique::properties {
@@ -33,21 +34,6 @@ T parse_value(const std::string& text) {
   return std::strtold(text.c_str(), nullptr);
 }
 
-/// The first property (or "status") the outcome violates, or "".
-template <class T>
-std::string first_violation(const Problem<T>& problem, const Implementation<T>& impl,
-                            const Outcome<T>& outcome) {
-  const auto acceptable = problem.acceptable_statuses();
-  const bool allowed =
-      std::find(acceptable.begin(), acceptable.end(), outcome.status) != acceptable.end();
-  if (!allowed && (impl.reports_statuses || outcome.status == Status::ok)) return "status";
-  if (outcome.status != Status::ok || problem.exact_status() != Status::ok) return "";
-  const Verdicts verdicts = problem.check(outcome.projection);
-  if (const Verdict* v = verdicts.first_failure()) return std::string(property_name(v->property));
-  if (!problem.check_extracted_planes(outcome.projection).holds) return "extracted_planes_match";
-  return "";
-}
-
 template <class T>
 void replay(const nlohmann::json& j, const std::string& name) {
   Matrix4<T> m;
@@ -61,11 +47,8 @@ void replay(const nlohmann::json& j, const std::string& name) {
     const Implementation<T> core = core_method<T>(method);
     if (!core.accepts(convention, m)) continue;
     const Outcome<T> outcome = core.run(m, c, convention);
-    EXPECT_EQ(first_violation(problem, core, outcome), "") << name << ": " << core.name;
-    if (outcome.status == Status::ok && problem.exact_status() == Status::ok) {
-      const auto closeness = problem.compare_row3(outcome.projection);
-      EXPECT_TRUE(closeness.within) << name << ": " << core.name << " row 3 at " << closeness.ratio;
-    }
+    EXPECT_EQ(first_violation(problem, core, outcome, /*check_accuracy=*/true), "")
+        << name << ": " << core.name;
   }
   const std::string recorded = j.at("implementation").get<std::string>();
   if (recorded.rfind("core_", 0) == 0) return;  // a finding about the checker: the core passes

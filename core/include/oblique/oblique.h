@@ -143,6 +143,18 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
         "distance of the far corner Q";
     return r;
   }
+  // The near plane as a consumer extracts it from the rounded matrix must still keep C's side:
+  // when a C is below the precision of M_4's entries, a C - M_4 rounds to -M_4 and it vanishes.
+  const Vector4<T> near_extracted = T(near_combination.m3) * row3 + t_m4;
+  const Vector4<T> near_hat =
+      scaled_by_power_of_two(near_extracted, -magnitude_exponent(near_extracted));
+  if (!(near_hat.dot(c_hat) > T(0))) {
+    r.status = Status::out_of_range;
+    r.detail =
+        "the oblique near plane a C is lost to rounding against M_4 (|a C| is below the precision "
+        "of M_4's entries): the plane is too far from the view volume for this scalar type";
+    return r;
+  }
   r.projection.row(2) = row3.transpose();
   return r;
 }

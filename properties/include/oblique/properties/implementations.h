@@ -75,6 +75,21 @@ ObliqueResult<T> sign_by_division(const Matrix4<T>& m, const Vector4<T>& c, Conv
   return r;
 }
 
+/// The core without its C_w < 0 check: a camera in front of the plane gets a matrix.
+template <class T>
+ObliqueResult<T> no_camera_check(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+  if (!all_finite(m) || !all_finite(c))
+    return detail::refuse(m, Method::general, Status::invalid_input);
+  const Eigen::PartialPivLU<Matrix4<T>> lu(m);
+  if (!(lu.rcond() > singular_rcond_threshold<T>())) {
+    return detail::refuse(m, Method::general, Status::singular_projection);
+  }
+  const Vector4<T> c_clip = lu.transpose().solve(c);
+  const Vector4<T> corner = detail::clip_corner(detail::sign(c_clip.x()), detail::sign(c_clip.y()),
+                                                detail::sign(c_clip.z()), convention);
+  return detail::finish(m, c, Vector4<T>(lu.solve(corner)), convention, Method::general);
+}
+
 }  // namespace mutants
 
 template <class T>
@@ -146,6 +161,7 @@ std::vector<Implementation<T>> known_implementations() {
   out.push_back(from_result<T>("mutant_signs_from_c", &mutants::signs_from_c<T>));
   out.push_back(from_result<T>("mutant_wrong_face", &mutants::wrong_face<T>));
   out.push_back(from_result<T>("mutant_sign_by_division", &mutants::sign_by_division<T>));
+  out.push_back(from_result<T>("mutant_no_camera_check", &mutants::no_camera_check<T>));
   {
     Implementation<T> impl;  // the [0, 1] factor (a = 1 / C.Q, M'_3 = a C) applied to gl matrices
     impl.name = "mutant_zero_one_factor";

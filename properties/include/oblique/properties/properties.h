@@ -91,7 +91,7 @@ template <class T>
 class Problem {
  public:
   Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention)
-      : m_(m), m_plane_(c), convention_(convention) {
+      : m_(m), convention_(convention) {
     finite_ = all_finite(m) && all_finite(c);
     if (!finite_) return;
     mx_ = exact::to_rational(m);
@@ -206,6 +206,20 @@ class Problem {
       for (const auto& v : exact_row3()) biggest = std::max(biggest, exact::abs(v));
     }
     if (biggest * 256 >= largest) add(Status::out_of_range);
+    // a C within a few roundings of M_4: the extracted near plane a C - M_4 + M_4 may vanish.
+    if (d_ > 0) {
+      const RowCombination nr = near_rows(convention_);
+      const exact::Rational a = exact::Rational(clip_depth_range(convention_).z_high -
+                                                clip_depth_range(convention_).z_low) /
+                                d_;
+      exact::Rational noise = 0;
+      for (int i = 0; i < 4; ++i) {
+        noise += (4 * tolerance::unit_roundoff(p) * exact::abs(nr.m4 * mx_[3][i]) +
+                  4 * tolerance::underflow_unit<T>()) *
+                 exact::abs(cx_[i]);
+      }
+      if (a * exact::dot(cx_, cx_) <= noise) add(Status::out_of_range);
+    }
     if (d_ > 0 && biggest > largest)
       out.erase(std::remove(out.begin(), out.end(), Status::ok), out.end());
     return out;
@@ -300,10 +314,17 @@ class Problem {
         return v;
       }
     }
-    const T dot = after.near_plane.dot(m_plane_);
-    v.holds = dot > T(0);
+    if (!all_finite(after.near_plane)) {
+      v.holds = false;
+      v.ratio = 1e300;
+      v.lhs = "the near plane has a NaN or infinite component";
+      v.rhs = "finite";
+      return v;
+    }
+    const exact::Rational dot = exact::dot(exact::to_rational(Vector4<T>(after.near_plane)), cx_);
+    v.holds = dot > 0;
     v.ratio = v.holds ? 0 : 1e300;
-    v.lhs = "n . C = " + format_g17(static_cast<double>(dot));
+    v.lhs = "n . C = " + format_g17(dot);
     v.rhs = "> 0";
     return v;
   }
@@ -500,7 +521,6 @@ class Problem {
 
  private:
   Matrix4<T> m_;
-  Vector4<T> m_plane_;
   Convention convention_;
   bool finite_ = false, invertible_ = false, infinite_ = false, camera_behind_ = false;
   exact::Mat mx_{}, inverse_{};

@@ -1,0 +1,55 @@
+// libFuzzer target: the core (or OBLIQUE_IMPL) on decoded projections and planes. Aborts, naming
+// the property, when an answer breaks the status contract, a property, or row 3's accuracy bound.
+#include <cstdio>
+#include <cstdlib>
+
+#include "fuzz_input.h"
+#include "oblique/properties/judge.h"
+#include "report.h"
+
+namespace {
+
+/// double -> T without undefined behaviour: out-of-range finite values become +-infinity.
+template <class T>
+T narrow(double x) {
+  if (std::isfinite(x) && std::abs(x) > static_cast<double>(std::numeric_limits<T>::max())) {
+    return std::signbit(x) ? -std::numeric_limits<T>::infinity()
+                           : std::numeric_limits<T>::infinity();
+  }
+  return static_cast<T>(x);
+}
+
+template <class T>
+void check(const oblique::fuzz::FuzzCase& c) {
+  using namespace oblique;
+  Matrix4<T> m;
+  Vector4<T> plane;
+  for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = narrow<T>(c.matrix(i / 4, i % 4));
+  for (int i = 0; i < 4; ++i) plane(i) = narrow<T>(c.plane(i));
+  const properties::Problem<T> problem(m, plane, c.convention);
+  static const auto implementations = properties::selected_implementations<T>();
+  for (const auto& impl : implementations) {
+    if (!impl.accepts(c.convention, m)) continue;
+    const properties::Outcome<T> outcome = impl.run(m, plane, c.convention);
+    const std::string violation =
+        properties::first_violation(problem, impl, outcome, impl.name.rfind("core_", 0) == 0);
+    if (violation.empty()) continue;
+    std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, family %s, status %s)\n",
+                 violation.c_str(), impl.name.c_str(), properties::scalar_name<T>(),
+                 std::string(convention_name(c.convention)).c_str(), fuzz::family_label(c.family),
+                 std::string(status_code(outcome.status)).c_str());
+    std::abort();
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const oblique::fuzz::FuzzCase c = oblique::fuzz::decode(data, size);
+  switch (c.scalar) {
+    case oblique::fuzz::Scalar::float32: check<float>(c); break;
+    case oblique::fuzz::Scalar::float64: check<double>(c); break;
+    case oblique::fuzz::Scalar::long_double: check<long double>(c); break;
+  }
+  return 0;
+}
