@@ -44,8 +44,28 @@ void check(const oblique::fuzz::FuzzCase& c) {
 
 }  // namespace
 
+/// With OBLIQUE_FUZZ_DESCRIBE set, prints the decoded case (for crash reports).
+void describe(const oblique::fuzz::FuzzCase& c) {
+  static const bool enabled = std::getenv("OBLIQUE_FUZZ_DESCRIBE") != nullptr;
+  if (!enabled) return;
+  const char* scalars[] = {"float", "double", "long_double"};
+  std::fprintf(stderr, "scalar %s, convention %s, method %s, family %s\n",
+               scalars[static_cast<int>(c.scalar)],
+               std::string(oblique::convention_name(c.convention)).c_str(),
+               std::string(oblique::method_name(c.method)).c_str(),
+               oblique::fuzz::family_label(c.family));
+  for (int i = 0; i < 4; ++i) {
+    std::fprintf(stderr, "M row %d: %.17g %.17g %.17g %.17g  (%a %a %a %a)\n", i + 1,
+                 c.matrix(i, 0), c.matrix(i, 1), c.matrix(i, 2), c.matrix(i, 3), c.matrix(i, 0),
+                 c.matrix(i, 1), c.matrix(i, 2), c.matrix(i, 3));
+  }
+  std::fprintf(stderr, "C: %.17g %.17g %.17g %.17g  (%a %a %a %a)\n", c.plane(0), c.plane(1),
+               c.plane(2), c.plane(3), c.plane(0), c.plane(1), c.plane(2), c.plane(3));
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const oblique::fuzz::FuzzCase c = oblique::fuzz::decode(data, size);
+  describe(c);
   switch (c.scalar) {
     case oblique::fuzz::Scalar::float32: check<float>(c); break;
     case oblique::fuzz::Scalar::float64: check<double>(c); break;

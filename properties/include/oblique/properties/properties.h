@@ -145,6 +145,13 @@ class Problem {
   bool finite() const { return finite_; }
   bool invertible() const { return invertible_; }
   bool infinite() const { return invertible_ && infinite_; }
+  /// Property 5 applies: the far face is at infinity and Q lies on it (C leans toward the far
+  /// face).
+  bool far_corner_at_infinity() const {
+    const DepthRange range = clip_depth_range(convention_);
+    const int far_z = convention_ == Convention::reversed_z ? range.z_low : range.z_high;
+    return infinite() && q_clip_[2] == far_z;
+  }
   Convention convention() const { return convention_; }
   const Matrix4<T>& matrix() const { return m_; }
   const exact::Vec& far_corner() const { return q_; }
@@ -336,7 +343,7 @@ class Problem {
       for (Property p : all_properties) {
         Verdict v;
         v.property = p;
-        v.applies = p != Property::infinite_edge_parallel || infinite();
+        v.applies = p != Property::infinite_edge_parallel || far_corner_at_infinity();
         v.holds = p == Property::side_rows_unchanged && all_finite(result.row(0)) &&
                   all_finite(result.row(1)) && all_finite(result.row(3)) &&
                   result.row(0) == m_.row(0) && result.row(1) == m_.row(1) &&
@@ -508,7 +515,7 @@ class Problem {
     {
       Verdict v;
       v.property = Property::infinite_edge_parallel;
-      v.applies = infinite() && corners_judged;
+      v.applies = far_corner_at_infinity() && corners_judged;
       v.relation = "Q_w = 0 and |far' . Q| <= bound (far' parallel to the frustum edge Q)";
       v.holds = !v.applies || (q_[3] == 0 && exact::abs(far_q) <= far_q_bound);
       v.ratio = v.applies ? far_q_ratio : 0;

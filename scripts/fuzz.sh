@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# Continuous fuzzing on one machine.
+#
+#   bash scripts/fuzz.sh [--time SECONDS] [--jobs N] [--impl NAME] [TARGET ...]
+#
+# Builds the `fuzz` preset (clang-14, libFuzzer, ASan + UBSan), then for each target (default:
+# every fuzz/fuzz_*.cpp) runs libFuzzer for SECONDS (default 600) with -fork=N (default: cores)
+# over a working copy of fuzz/corpus/TARGET, with its dictionary and -use_value_profile=1,
+# printing libFuzzer's progress lines (executions per second, coverage). Afterwards it merges
+# the new inputs into fuzz/corpus/TARGET (minimised with -merge=1), minimises each crash,
+# de-duplicates crashes by their violation message, and for each new one writes a report to
+# reports/fuzz/ and a regression input to fuzz/regressions/TARGET/ (which CTest replays).
+# --impl NAME fuzzes another implementation (OBLIQUE_IMPL, e.g. a planted mutant) instead.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+seconds=600
+jobs=$(nproc)
+impl=""
+targets=()
+while (($#)); do
+  case "$1" in
+    --time) seconds="$2"; shift 2 ;;
+    --jobs) jobs="$2"; shift 2 ;;
+    --impl) impl="$2"; shift 2 ;;
+    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
+    *) targets+=("$1"); shift ;;
+  esac
+done
+if ((${#targets[@]} == 0)); then
+  for f in fuzz/fuzz_*.cpp; do targets+=("$(basename "$f" .cpp)"); done
+fi
+
+bash scripts/setup.sh --fuzz
+cmake --preset fuzz > /dev/null
+cmake --build --preset fuzz --target "${targets[@]}" $(printf '%s_replay ' "${targets[@]}") > /dev/null
+[[ -n "$impl" ]] && export OBLIQUE_IMPL="$impl"
+
+work=build/fuzz/work
+mkdir -p "$work" reports/fuzz
+for target in "${targets[@]}"; do
+  binary="build/fuzz/fuzz/$target"
+  corpus="$work/$target/corpus"
+  crashes="$work/$target/crashes"
+  rm -rf "$work/$target" && mkdir -p "$corpus" "$crashes"
+  cp fuzz/corpus/"$target"/* "$corpus"/ 2>/dev/null || true
+  echo "== $target: ${seconds}s, $jobs jobs${impl:+, implementation $impl}"
+  before=$(ls "$corpus" | wc -l)
+  set +e
+  (cd "$crashes" && "../../../../../$binary" -fork="$jobs" -ignore_crashes=1 -max_total_time="$seconds" \
+      -use_value_profile=1 -dict="../../../../../fuzz/$target.dict" -print_final_stats=1 \
+      "../corpus") 2>&1 | tee "$work/$target/log" | grep -E --line-buffered "exec/s|cov:|crash|deadly|ERROR" | \
+      awk 'NR % 20 == 1 || /crash|deadly|ERROR/'
+  set -e
+  # Merge what was found back into the checked-in corpus, minimised.
+  merged="$work/$target/merged"
+  mkdir -p "$merged"
+  "$binary" -merge=1 "$merged" "fuzz/corpus/$target" "$corpus" > "$work/$target/merge.log" 2>&1 || true
+  rm -rf "fuzz/corpus/$target" && mv "$merged" "fuzz/corpus/$target"
+  echo "corpus: $before -> $(ls "fuzz/corpus/$target" | wc -l) inputs"
+  grep -E "exec/s" "$work/$target/log" | tail -n 1 | sed 's/^/last progress: /' || true
+  # Crashes: minimise, de-duplicate by message, report, keep as regression input.
+  declare -A seen=()
+  for crash in "$crashes"/crash-* "$crashes"/leak-* "$crashes"/timeout-*; do
+    [[ -e "$crash" ]] || continue
+    minimized="$crash.min"
+    "$binary" -minimize_crash=1 -runs=2000 -exact_artifact_path="$minimized" "$crash" > /dev/null 2>&1 || true
+    [[ -s "$minimized" ]] || minimized="$crash"
+    message=$(OBLIQUE_FUZZ_DESCRIBE=1 "build/fuzz/fuzz/${target}_replay" "$minimized" 2>&1 | \
+              grep -E "violated|ERROR|runtime error" | head -n 1 || true)
+    key=$(printf '%s' "$message" | sha1sum | cut -c1-12)
+    [[ -n "${seen[$key]:-}" ]] && continue
+    seen[$key]=1
+    name="crash-$key"
+    cp "$minimized" "fuzz/regressions/$target/$name"
+    report="reports/fuzz/$target-$name.md"
+    {
+      echo "# $target: ${message:-crash}"
+      echo
+      echo "Implementation: ${impl:-the core}. Found by \`scripts/fuzz.sh\` on $(date -u +%F)."
+      echo
+      echo "## Decoded input"
+      echo
+      echo '```'
+      OBLIQUE_FUZZ_DESCRIBE=1 "build/fuzz/fuzz/${target}_replay" "$minimized" 2>&1 | grep -v "^replay" | head -n 30 || true
+      echo '```'
+      echo
+      echo "## Replay"
+      echo
+      echo '```sh'
+      echo "${impl:+OBLIQUE_IMPL=$impl }build/release/fuzz/${target}_replay fuzz/regressions/$target/$name"
+      echo "${impl:+OBLIQUE_IMPL=$impl }build/fuzz/fuzz/$target fuzz/regressions/$target/$name"
+      echo '```'
+    } > "$report"
+    echo "new crash: $message"
+    echo "  report: $report"
+    echo "  regression input: fuzz/regressions/$target/$name"
+  done
+  unset seen
+done
