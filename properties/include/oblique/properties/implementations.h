@@ -58,36 +58,70 @@ ObliqueResult<T> wrong_face(const Matrix4<T>& m, const Vector4<T>& c, Convention
   return detail::finish(m, c, Vector4<T>(lu.solve(corner)), convention, Method::general);
 }
 
-/// sgn computed as x / |x|: NaN at 0.
+/// The core's general method with one planted fault (a copy of detail::general, kept in step).
+enum class Fault { sign_by_division, no_camera_check };
+
+template <class T>
+ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
+                         Fault fault) {
+  Matrix4<T> mt = m;
+  Vector4<T> row_scale, col_scale;  // the diagonals of R and S, powers of two
+  for (int i = 0; i < 4; ++i) {
+    if ((mt.row(i).array() == T(0)).all()) {  // exact: isZero() is fuzzy
+      return detail::refuse(m, Method::general, Status::singular_projection,
+                            "the projection is singular: a row is zero");
+    }
+    const int e = magnitude_exponent(mt.row(i));
+    row_scale(i) = std::ldexp(T(1), -e);
+    mt.row(i) = scaled_by_power_of_two(mt.row(i), -e);
+  }
+  for (int j = 0; j < 4; ++j) {
+    if ((mt.col(j).array() == T(0)).all()) {
+      return detail::refuse(m, Method::general, Status::singular_projection,
+                            "the projection is singular: a column is zero");
+    }
+    const int e = magnitude_exponent(mt.col(j));
+    col_scale(j) = std::ldexp(T(1), -e);
+    mt.col(j) = scaled_by_power_of_two(mt.col(j), -e);
+  }
+  const Eigen::PartialPivLU<Matrix4<T>> lu(mt);
+  if (!(lu.rcond() > singular_rcond_threshold<T>())) {
+    return detail::refuse(
+        m, Method::general, Status::singular_projection,
+        "the projection is singular or numerically singular (reciprocal condition "
+        "number after equilibration at most 16 epsilon)");
+  }
+  if (fault != Fault::no_camera_check && !(plane.w() < T(0))) {
+    return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
+  }
+  const Vector4<T> c_hat = scaled_by_power_of_two(plane, -magnitude_exponent(plane));
+  const Vector4<T> c_clip = lu.transpose().solve(col_scale.cwiseProduct(c_hat));
+  if (!all_finite(c_clip)) {
+    return detail::refuse(m, Method::general, Status::out_of_range,
+                          "C' = M^-T C is beyond the range of the scalar type");
+  }
+  // The planted fault: sgn(x) computed as x / |x|, which is NaN at 0.
+  auto sgn = [fault](T x) {
+    return fault == Fault::sign_by_division ? x / std::abs(x) : detail::sign(x);
+  };
+  const Vector4<T> corner =
+      detail::clip_corner(sgn(c_clip.x()), sgn(c_clip.y()), sgn(c_clip.z()), convention);
+  const Vector4<T> q = col_scale.cwiseProduct(lu.solve(row_scale.cwiseProduct(corner)));
+  return detail::finish(m, plane, q, convention, Method::general);
+}
+
 template <class T>
 ObliqueResult<T> sign_by_division(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
   if (!all_finite(m) || !all_finite(c))
     return detail::refuse(m, Method::general, Status::invalid_input);
-  if (!(c.w() < T(0))) return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
-  const Eigen::PartialPivLU<Matrix4<T>> lu(m);
-  const Vector4<T> c_clip = lu.transpose().solve(c);
-  auto sgn = [](T x) { return x / std::abs(x); };
-  const Vector4<T> corner =
-      detail::clip_corner(sgn(c_clip.x()), sgn(c_clip.y()), sgn(c_clip.z()), convention);
-  ObliqueResult<T> r =
-      detail::finish(m, c, Vector4<T>(lu.solve(corner)), convention, Method::general);
-  if (r.status == Status::out_of_range) r.status = Status::ok;  // the bug hides behind a NaN
-  return r;
+  return planted(m, c, convention, Fault::sign_by_division);
 }
 
-/// The core without its C_w < 0 check: a camera in front of the plane gets a matrix.
 template <class T>
 ObliqueResult<T> no_camera_check(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
   if (!all_finite(m) || !all_finite(c))
     return detail::refuse(m, Method::general, Status::invalid_input);
-  const Eigen::PartialPivLU<Matrix4<T>> lu(m);
-  if (!(lu.rcond() > singular_rcond_threshold<T>())) {
-    return detail::refuse(m, Method::general, Status::singular_projection);
-  }
-  const Vector4<T> c_clip = lu.transpose().solve(c);
-  const Vector4<T> corner = detail::clip_corner(detail::sign(c_clip.x()), detail::sign(c_clip.y()),
-                                                detail::sign(c_clip.z()), convention);
-  return detail::finish(m, c, Vector4<T>(lu.solve(corner)), convention, Method::general);
+  return planted(m, c, convention, Fault::no_camera_check);
 }
 
 }  // namespace mutants
