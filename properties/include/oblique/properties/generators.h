@@ -364,20 +364,6 @@ rc::Gen<Vector4<T>> plane(const Matrix4<T>& m, Convention convention, Place plac
   });
 }
 
-/// A valid-looking case of any family, convention and hard place (the picks cover all of them).
-template <class T>
-rc::Gen<Case<T>> valid_case() {
-  return rc::gen::exec([] {
-    Case<T> c;
-    c.family = *detail::category(all_families);
-    c.convention = *detail::category(all_conventions);
-    c.place = *detail::category(all_places);
-    c.matrix = *projection<T>(c.family, c.convention);
-    c.plane = *plane<T>(c.matrix, c.convention, c.place);
-    return c;
-  });
-}
-
 /// A valid-looking case of one family (for the properties that apply to one family only).
 template <class T>
 rc::Gen<Case<T>> valid_case_of(Family family) {
@@ -390,6 +376,12 @@ rc::Gen<Case<T>> valid_case_of(Family family) {
     c.plane = *plane<T>(c.matrix, c.convention, c.place);
     return c;
   });
+}
+
+/// A valid-looking case of any family, convention and hard place (the picks cover all of them).
+template <class T>
+rc::Gen<Case<T>> valid_case() {
+  return rc::gen::exec([] { return *valid_case_of<T>(*detail::category(all_families)); });
 }
 
 /// An input that has no answer, or sits next to one that has none.
