@@ -32,34 +32,13 @@ struct Implementation {
 
 namespace mutants {
 
-/// The core's pipeline with the corner's signs taken from C instead of C' (Listing 5.1's shortcut).
-template <class T>
-ObliqueResult<T> signs_from_c(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
-  if (!all_finite(m) || !all_finite(c))
-    return detail::refuse(m, Method::general, Status::invalid_input);
-  if (!(c.w() < T(0))) return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
-  const Eigen::PartialPivLU<Matrix4<T>> lu(m);
-  const Vector4<T> c_clip = lu.transpose().solve(c);
-  const Vector4<T> corner = detail::clip_corner(detail::sign(c.x()), detail::sign(c.y()),
-                                                detail::sign(c_clip.z()), convention);
-  return detail::finish(m, c, Vector4<T>(lu.solve(corner)), convention, Method::general);
-}
-
-/// The far corner on the wrong depth face.
-template <class T>
-ObliqueResult<T> wrong_face(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
-  if (!all_finite(m) || !all_finite(c))
-    return detail::refuse(m, Method::general, Status::invalid_input);
-  if (!(c.w() < T(0))) return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
-  const Eigen::PartialPivLU<Matrix4<T>> lu(m);
-  const Vector4<T> c_clip = lu.transpose().solve(c);
-  const Vector4<T> corner = detail::clip_corner(detail::sign(c_clip.x()), detail::sign(c_clip.y()),
-                                                -detail::sign(c_clip.z()), convention);
-  return detail::finish(m, c, Vector4<T>(lu.solve(corner)), convention, Method::general);
-}
-
 /// The core's general method with one planted fault (a copy of detail::general, kept in step).
-enum class Fault { sign_by_division, no_camera_check };
+enum class Fault {
+  signs_from_c,      ///< the corner's x, y signs from C instead of C' (Listing 5.1's shortcut)
+  wrong_face,        ///< the far corner on the wrong depth face
+  sign_by_division,  ///< sgn(x) computed as x / |x|, NaN at 0
+  no_camera_check,   ///< no C_w < 0 check
+};
 
 template <class T>
 ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
@@ -100,28 +79,45 @@ ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
     return detail::refuse(m, Method::general, Status::out_of_range,
                           "C' = M^-T C is beyond the range of the scalar type");
   }
-  // The planted fault: sgn(x) computed as x / |x|, which is NaN at 0.
+  // The planted fault.
   auto sgn = [fault](T x) {
     return fault == Fault::sign_by_division ? x / std::abs(x) : detail::sign(x);
   };
+  const bool from_c = fault == Fault::signs_from_c;
+  const T z_sign = fault == Fault::wrong_face ? -sgn(c_clip.z()) : sgn(c_clip.z());
   const Vector4<T> corner =
-      detail::clip_corner(sgn(c_clip.x()), sgn(c_clip.y()), sgn(c_clip.z()), convention);
+      detail::clip_corner(sgn(from_c ? plane.x() : c_clip.x()),
+                          sgn(from_c ? plane.y() : c_clip.y()), z_sign, convention);
   const Vector4<T> q = col_scale.cwiseProduct(lu.solve(row_scale.cwiseProduct(corner)));
   return detail::finish(m, plane, q, convention, Method::general);
 }
 
 template <class T>
-ObliqueResult<T> sign_by_division(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+ObliqueResult<T> with_fault(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                            Fault fault) {
   if (!all_finite(m) || !all_finite(c))
     return detail::refuse(m, Method::general, Status::invalid_input);
-  return planted(m, c, convention, Fault::sign_by_division);
+  return planted(m, c, convention, fault);
+}
+
+template <class T>
+ObliqueResult<T> signs_from_c(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+  return with_fault(m, c, convention, Fault::signs_from_c);
+}
+
+template <class T>
+ObliqueResult<T> wrong_face(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+  return with_fault(m, c, convention, Fault::wrong_face);
+}
+
+template <class T>
+ObliqueResult<T> sign_by_division(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+  return with_fault(m, c, convention, Fault::sign_by_division);
 }
 
 template <class T>
 ObliqueResult<T> no_camera_check(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
-  if (!all_finite(m) || !all_finite(c))
-    return detail::refuse(m, Method::general, Status::invalid_input);
-  return planted(m, c, convention, Fault::no_camera_check);
+  return with_fault(m, c, convention, Fault::no_camera_check);
 }
 
 }  // namespace mutants
