@@ -187,8 +187,8 @@ class Problem {
   ///  - C . Q within its error bound gamma(16) kappa C . Q of zero: ok, plane_misses_view_volume
   ///    or out_of_range;
   ///  - a matrix with Skeel condition number at least 1 / (256 eps): singular_projection too;
-  ///  - an exact answer (or Q) within 2^8 of the largest finite T: out_of_range too, and above
-  ///    it, not ok.
+  ///  - an exact answer (or Q, or an equally far corner where C' has a zero component) within
+  ///    2^8 of the largest finite T: out_of_range too, and above the largest (answer or Q), not ok.
   std::vector<Status> acceptable_statuses() const {
     std::vector<Status> out{exact_status()};
     auto add = [&out](Status s) {
@@ -212,7 +212,17 @@ class Problem {
     if (d_ > 0) {
       for (const auto& v : exact_row3()) biggest = std::max(biggest, exact::abs(v));
     }
-    if (biggest * 256 >= largest) add(Status::out_of_range);
+    // Where a component of C' is exactly zero the far corner is not unique: every point of that
+    // edge (or face) is equally far, and an implementation that takes a sign there (sgn(0) = 1,
+    // or the sign of a rounded zero) uses a corner of it. Those corners may leave the range even
+    // though the answer does not.
+    exact::Rational biggest_corner = biggest;
+    for (int i = 0; i < 8; ++i) {
+      if (is_far_corner_candidate(i)) {
+        for (const auto& v : corners_[i]) biggest_corner = std::max(biggest_corner, exact::abs(v));
+      }
+    }
+    if (biggest_corner * 256 >= largest) add(Status::out_of_range);
     // a C within a few roundings of M_4: the extracted near plane a C - M_4 + M_4 may vanish.
     if (d_ > 0) {
       const RowCombination nr = near_rows(convention_);
@@ -527,6 +537,14 @@ class Problem {
   }
 
  private:
+  /// Whether corner i is a far corner: it agrees with Q' wherever C' has a nonzero component.
+  bool is_far_corner_candidate(int i) const {
+    for (int k = 0; k < 3; ++k) {
+      if (exact::sign(c_clip_[k]) != 0 && clip_corners_[i][k] != q_clip_[k]) return false;
+    }
+    return true;
+  }
+
   Matrix4<T> m_;
   Convention convention_;
   bool finite_ = false, invertible_ = false, infinite_ = false, camera_behind_ = false;
