@@ -1,10 +1,14 @@
-// oblique: the command-line tool. `oblique apply` answers JSON Lines requests on standard input.
+// oblique: the command-line tool. `oblique apply` answers JSON Lines requests on standard input;
+// `oblique verify` checks another implementation that speaks the same protocol.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "protocol.h"
+#include "verifier.h"
 
 namespace {
 
@@ -24,6 +28,49 @@ int run_apply(const oblique::protocol::ApplyOptions& options) {
   }
   std::cout.flush();
   return all_ok ? 0 : 1;
+}
+
+/// Splits "a,b,c" (spaces ignored).
+std::vector<std::string> split_list(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream stream(list);
+  for (std::string item; std::getline(stream, item, ',');) {
+    item.erase(0, item.find_first_not_of(' '));
+    item.erase(item.find_last_not_of(' ') + 1);
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+/// Fills the conventions and families of `options` from their lists; false with a message.
+bool parse_lists(const std::string& conventions, const std::string& families,
+                 oblique::verify::VerifyOptions& options) {
+  options.conventions.clear();
+  for (const std::string& name : split_list(conventions)) {
+    if (name == "all") {
+      options.conventions.assign(std::begin(oblique::all_conventions),
+                                 std::end(oblique::all_conventions));
+    } else if (auto c = oblique::parse_convention(name)) {
+      options.conventions.push_back(*c);
+    } else {
+      std::cerr << "oblique verify: unknown convention \"" << name
+                << "\" (gl, zero_one, reversed_z or all)\n";
+      return false;
+    }
+  }
+  for (const std::string& name : split_list(families)) {
+    if (auto f = oblique::generators::parse_family(name)) {
+      options.families.push_back(*f);
+    } else {
+      std::cerr << "oblique verify: unknown family \"" << name << "\" (";
+      for (auto f : oblique::generators::all_families)
+        std::cerr << (f == oblique::generators::all_families[0] ? "" : ", ")
+                  << oblique::generators::family_name(f);
+      std::cerr << ")\n";
+      return false;
+    }
+  }
+  return !options.conventions.empty();
 }
 
 }  // namespace
@@ -50,6 +97,48 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"float", "double", "long_double"}))
       ->capture_default_str();
 
+  oblique::verify::VerifyOptions verify_options;
+  std::string verify_conventions = "gl", families, verify_precision = "double";
+  bool quiet = false;
+  CLI::App* verify = app.add_subcommand(
+      "verify",
+      "Check another implementation of the oblique modification: start COMMAND once, send it "
+      "generated requests in the protocol of `oblique apply` (one JSON line each on its standard "
+      "input; it answers one line each, flushed), judge every answer with the property suite, and "
+      "shrink the first violation to a report. Exit 0: no violation; 1: a violation (report "
+      "written); 2: usage or protocol error.");
+  verify->add_option("--impl", verify_options.command, "The implementation's command (run by sh)")
+      ->required();
+  verify
+      ->add_option("--convention", verify_conventions,
+                   "Conventions to request: gl, zero_one, reversed_z, a comma list, or all")
+      ->capture_default_str();
+  verify->add_option("--families", families,
+                     "Comma list of projection families (default: all): perspective, off_axis, "
+                     "infinite, orthographic, y_flipped, jittered, rotated, general");
+  verify->add_option("--precision", verify_precision, "Scalar type of inputs and bounds")
+      ->check(CLI::IsMember({"float", "double"}))
+      ->capture_default_str();
+  verify->add_option("--cases", verify_options.cases, "Number of generated requests")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  verify->add_option("--seed", verify_options.seed, "Random seed (default: a fresh one, printed)");
+  verify
+      ->add_option("--time-limit", verify_options.time_limit_seconds,
+                   "Stop after this many seconds, shrinking included")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  verify
+      ->add_option("--timeout", verify_options.request_timeout_seconds,
+                   "Seconds to wait for one answer before calling the implementation hung")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  verify
+      ->add_option("--report-dir", verify_options.report_dir,
+                   "Where the counterexample report goes")
+      ->capture_default_str();
+  verify->add_flag("--quiet", quiet, "No progress lines on standard error");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -62,6 +151,13 @@ int main(int argc, char** argv) {
     apply_options.method = *oblique::parse_method(method);
     apply_options.precision = *oblique::protocol::parse_precision(precision);
     return run_apply(apply_options);
+  }
+  if (verify->parsed()) {
+    if (!parse_lists(verify_conventions, families, verify_options)) return 2;
+    verify_options.precision = *oblique::protocol::parse_precision(verify_precision);
+    verify_options.progress = !quiet;
+    verify_options.self = argv[0];
+    return oblique::verify::run_verify(verify_options, std::cout, std::cerr);
   }
   return 2;
 }

@@ -126,9 +126,26 @@ std::string request_line(const Counterexample& ce) {
   return line;
 }
 
+std::string request_line_decimal(const Counterexample& ce) {
+  auto number = [](const std::string& text) {
+    if (text == "nan" || text == "-nan" || text == "inf" || text == "-inf")
+      return json_number(text);
+    return text;
+  };
+  std::string line = "{\"projection\": [";
+  for (std::size_t i = 0; i < ce.projection_decimal.size(); ++i)
+    line += (i ? ", " : "") + number(ce.projection_decimal[i]);
+  line += "], \"plane\": [";
+  for (std::size_t i = 0; i < ce.plane_decimal.size(); ++i)
+    line += (i ? ", " : "") + number(ce.plane_decimal[i]);
+  line += "], \"convention\": \"" + ce.convention + "\"}";
+  return line;
+}
+
 std::string write_report(const Counterexample& ce, const ReportContext& context) {
   std::filesystem::create_directories(context.directory);
-  std::string stem = context.test_id + "." + ce.implementation;
+  std::string stem =
+      context.stem.empty() ? context.test_id + "." + ce.implementation : context.stem;
   for (char& ch : stem) {
     if (ch == '/' || ch == ' ') ch = '_';
   }
@@ -138,13 +155,16 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
                                 " max_success=" + std::to_string(context.max_success) + "\"";
   const std::string impl_env =
       ce.implementation.rfind("core_", 0) == 0 ? "" : "OBLIQUE_IMPL=" + ce.implementation + " ";
-  const std::string replay_suite =
-      impl_env + rc_params + " " + context.binary + " --gtest_filter='" + context.test_id + "'";
+  const std::string replay_suite = !context.replay_run.empty()
+                                       ? context.replay_run
+                                       : impl_env + rc_params + " " + context.binary +
+                                             " --gtest_filter='" + context.test_id + "'";
   const std::string method = core_method_of(ce.implementation);
-  const std::string replay_case = method.empty() ? ""
-                                                 : "echo '" + request_line(ce) + "' | " +
-                                                       context.cli + " apply --method " + method +
-                                                       " --precision " + ce.scalar;
+  const std::string replay_case = !context.replay_case.empty() ? context.replay_case
+                                  : method.empty()             ? ""
+                                                   : "echo '" + request_line(ce) + "' | " +
+                                                         context.cli + " apply --method " + method +
+                                                         " --precision " + ce.scalar;
 
   std::ofstream md(md_path);
   md << "# Counterexample: " << ce.property << " (" << ce.implementation << ", " << ce.scalar
@@ -165,11 +185,20 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
      << ce.plane_hex[3] << ")`\n\n";
   if (!ce.result_decimal.empty())
     md << "## Result M'\n\n" << matrix_table(ce.result_decimal) << "\n";
-  md << "## Replay\n\nThe property run, shrinking included (seed " << context.seed
-     << "):\n\n```sh\n"
+  if (!ce.notes.empty()) {
+    md << "## Notes\n\n| | |\n|---|---|\n";
+    for (const auto& [key, value] : ce.notes) {
+      std::string cell = value;
+      for (char& ch : cell) {
+        if (ch == '\n' || ch == '|') ch = ch == '|' ? '/' : ' ';
+      }
+      md << "| " << key << " | `" << cell << "` |\n";
+    }
+    md << "\n";
+  }
+  md << "## Replay\n\nThe whole run, shrinking included (seed " << context.seed << "):\n\n```sh\n"
      << replay_suite << "\n```\n\n";
-  if (!replay_case.empty())
-    md << "This one case through the CLI:\n\n```sh\n" << replay_case << "\n```\n\n";
+  if (!replay_case.empty()) md << "This one case alone:\n\n```sh\n" << replay_case << "\n```\n\n";
   md << "Built with " << OBLIQUE_COMPILER << ", flags `" << OBLIQUE_CXX_FLAGS << "`.\n";
 
   nlohmann::json j;
@@ -194,6 +223,10 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   j["replay"] = replay_suite;
   j["replay_case"] = replay_case;
   j["request"] = request_line(ce);
+  j["request_decimal"] = request_line_decimal(ce);
+  nlohmann::json notes = nlohmann::json::object();
+  for (const auto& [key, value] : ce.notes) notes[key] = value;
+  j["notes"] = notes;
   j["compiler"] = OBLIQUE_COMPILER;
   j["flags"] = OBLIQUE_CXX_FLAGS;
   std::ofstream(json_path) << j.dump(2) << "\n";

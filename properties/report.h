@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "oblique/plane.h"
@@ -32,6 +33,9 @@ struct Counterexample {
   std::vector<std::string> plane_decimal, plane_hex;            ///< 4
   std::vector<std::string> result_decimal;                      ///< 16, or empty if refused
   std::string status_expected, status_got;
+  /// Further facts for the reader (the exact answer, what an external program printed...),
+  /// shown as a table in the Markdown and as an object in the JSON.
+  std::vector<std::pair<std::string, std::string>> notes;
 };
 
 template <class T>
@@ -45,6 +49,10 @@ struct ReportContext {
   int max_success = 100;   ///< RapidCheck's max_success for this run
   std::string binary;      ///< the test executable
   std::string cli;         ///< the oblique executable
+  // Set by tools other than the property suite (oblique verify):
+  std::string stem;         ///< the report's file name without extension (default: test id.impl)
+  std::string replay_run;   ///< the command that repeats the whole run, instead of the suite's
+  std::string replay_case;  ///< the command that replays this one case, instead of `oblique apply`
 };
 
 /// Writes NAME.md and NAME.json into the reports folder; returns the Markdown path.
@@ -52,5 +60,9 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
 
 /// The `oblique apply` request line for the case (numbers as exact hex strings).
 std::string request_line(const Counterexample& ce);
+
+/// The same request with plain JSON numbers (shortest round-trip decimals; "nan", "inf", "-inf"
+/// strings for non-finite values), which any JSON reader takes.
+std::string request_line_decimal(const Counterexample& ce);
 
 }  // namespace oblique::properties

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -48,6 +49,13 @@ constexpr std::string_view family_name(Family f) noexcept {
     case Family::general: return "general";
   }
   return "unknown";
+}
+
+inline std::optional<Family> parse_family(std::string_view name) noexcept {
+  for (Family f : all_families) {
+    if (family_name(f) == name) return f;
+  }
+  return std::nullopt;
 }
 
 /// Where a valid plane sits: the hard places the suite must cover on every run.
@@ -115,11 +123,15 @@ using Wide = long double;
 
 /// One of `choices`, uniformly whatever RapidCheck's size (which otherwise favours the first),
 /// shrinking toward the first.
+template <class E>
+rc::Gen<E> category(std::vector<E> all) {
+  const std::size_t n = all.size();
+  return rc::gen::map(rc::gen::resize(100, rc::gen::inRange<std::size_t>(0, n)),
+                      [all = std::move(all)](std::size_t i) { return all[i]; });
+}
 template <class E, std::size_t N>
 rc::Gen<E> category(const E (&choices)[N]) {
-  std::vector<E> all(choices, choices + N);
-  return rc::gen::map(rc::gen::resize(100, rc::gen::inRange<std::size_t>(0, N)),
-                      [all](std::size_t i) { return all[i]; });
+  return category(std::vector<E>(choices, choices + N));
 }  // construction arithmetic; the results are rounded to T once
 
 /// 0, -1, 1, -2, 2, ... from a pick 0, 1, 2, 3, 4, ... (shrinks toward 0).
@@ -364,13 +376,13 @@ rc::Gen<Vector4<T>> plane(const Matrix4<T>& m, Convention convention, Place plac
   });
 }
 
-/// A valid-looking case of one family (for the properties that apply to one family only).
+/// A valid-looking case of one of `families` in one of `conventions` (both non-empty).
 template <class T>
-rc::Gen<Case<T>> valid_case_of(Family family) {
-  return rc::gen::exec([family] {
+rc::Gen<Case<T>> valid_case_in(std::vector<Family> families, std::vector<Convention> conventions) {
+  return rc::gen::exec([families, conventions] {
     Case<T> c;
-    c.family = family;
-    c.convention = *detail::category(all_conventions);
+    c.family = *detail::category(families);
+    c.convention = *detail::category(conventions);
     c.place = *detail::category(all_places);
     c.matrix = *projection<T>(c.family, c.convention);
     c.plane = *plane<T>(c.matrix, c.convention, c.place);
@@ -378,19 +390,33 @@ rc::Gen<Case<T>> valid_case_of(Family family) {
   });
 }
 
+inline std::vector<Family> every_family() {
+  return {std::begin(all_families), std::end(all_families)};
+}
+inline std::vector<Convention> every_convention() {
+  return {std::begin(all_conventions), std::end(all_conventions)};
+}
+
+/// A valid-looking case of one family (for the properties that apply to one family only).
+template <class T>
+rc::Gen<Case<T>> valid_case_of(Family family) {
+  return valid_case_in<T>({family}, every_convention());
+}
+
 /// A valid-looking case of any family, convention and hard place (the picks cover all of them).
 template <class T>
 rc::Gen<Case<T>> valid_case() {
-  return rc::gen::exec([] { return *valid_case_of<T>(*detail::category(all_families)); });
+  return valid_case_in<T>(every_family(), every_convention());
 }
 
 /// An input that has no answer, or sits next to one that has none.
 template <class T>
-rc::Gen<InvalidCase<T>> invalid_case() {
-  return rc::gen::exec([] {
+rc::Gen<InvalidCase<T>> invalid_case_in(std::vector<Family> families,
+                                        std::vector<Convention> conventions) {
+  return rc::gen::exec([families, conventions] {
     InvalidCase<T> out;
     out.defect = *detail::category(all_defects);
-    out.base = *valid_case<T>();
+    out.base = *valid_case_in<T>(families, conventions);
     Case<T>& c = out.base;
     const Vector4<T> nrm(c.plane.x(), c.plane.y(), c.plane.z(), T(0));
     switch (out.defect) {
@@ -442,6 +468,12 @@ rc::Gen<InvalidCase<T>> invalid_case() {
     }
     return out;
   });
+}
+
+/// An input of any family and convention that has no answer, or sits next to one that has none.
+template <class T>
+rc::Gen<InvalidCase<T>> invalid_case() {
+  return invalid_case_in<T>(every_family(), every_convention());
 }
 
 }  // namespace oblique::generators

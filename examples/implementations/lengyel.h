@@ -1,0 +1,190 @@
+// A small, self-contained oblique-clipping implementation of the kind an engine ships, written
+// from the formulas (no Eigen, no oblique core), wrapped in the JSON Lines adapter that
+// `oblique verify` drives. The example programs beside it are this implementation, correct or
+// with one mistake that real engines make.
+//
+//   request: {"projection": [16 numbers, row-major], "plane": [4 numbers], "convention": "gl"}
+//   answer:  {"status": "ok", "projection": [16 numbers]}  or  {"status": "<code>"}
+//
+// Usage: PROGRAM [--float]   (--float computes in float instead of double)
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <string>
+
+namespace lengyel {
+
+enum class Mistake {
+  none,
+  camera_space_signs,     ///< sgn(C_x), sgn(C_y) instead of sgn(C'_x), sgn(C'_y), C' = M^-T C
+  zero_one_factor_on_gl,  ///< a = 1 / (C . Q), M'_3 = a C (the [0, 1] formula) on every matrix
+  no_camera_guard,        ///< no check that the camera is behind the plane (C_w < 0)
+  sign_by_division,       ///< sgn(x) = x / |x|, which is NaN at 0
+};
+
+template <class T>
+T sgn(T x, Mistake mistake) {
+  if (mistake == Mistake::sign_by_division) return x / std::abs(x);
+  return x > 0 ? T(1) : (x < 0 ? T(-1) : T(0));
+}
+
+/// Solves A x = b (4 x 4, row-major) by Gaussian elimination with partial pivoting; false when
+/// a pivot is zero. `transpose` solves A^T x = b.
+template <class T>
+bool solve(const T (&a)[16], bool transpose, const T (&b)[4], T (&x)[4]) {
+  T m[4][5];
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) m[i][j] = transpose ? a[4 * j + i] : a[4 * i + j];
+    m[i][4] = b[i];
+  }
+  for (int k = 0; k < 4; ++k) {
+    int p = k;
+    for (int i = k + 1; i < 4; ++i) {
+      if (std::abs(m[i][k]) > std::abs(m[p][k])) p = i;
+    }
+    if (m[p][k] == T(0)) return false;
+    for (int j = 0; j < 5; ++j) std::swap(m[k][j], m[p][j]);
+    for (int i = k + 1; i < 4; ++i) {
+      const T f = m[i][k] / m[k][k];
+      for (int j = k; j < 5; ++j) m[i][j] -= f * m[k][j];
+    }
+  }
+  for (int i = 3; i >= 0; --i) {
+    T s = m[i][4];
+    for (int j = i + 1; j < 4; ++j) s -= m[i][j] * x[j];
+    x[i] = s / m[i][i];
+  }
+  return true;
+}
+
+/// Skeel's condition number || |A^-1| |A| ||_inf from the computed inverse; +inf when singular.
+template <class T>
+T skeel_condition(const T (&a)[16]) {
+  T inverse[16];
+  for (int j = 0; j < 4; ++j) {
+    T e[4] = {0, 0, 0, 0}, column[4];
+    e[j] = 1;
+    if (!solve(a, false, e, column)) return std::numeric_limits<T>::infinity();
+    for (int i = 0; i < 4; ++i) inverse[4 * i + j] = column[i];
+  }
+  T worst = 0;
+  for (int i = 0; i < 4; ++i) {
+    T row = 0;
+    for (int k = 0; k < 4; ++k) {
+      T abs_a_row_sum = 0;
+      for (int j = 0; j < 4; ++j) abs_a_row_sum += std::abs(a[4 * k + j]);
+      row += std::abs(inverse[4 * i + k]) * abs_a_row_sum;
+    }
+    worst = std::max(worst, row);
+  }
+  return std::isfinite(worst) ? worst : std::numeric_limits<T>::infinity();
+}
+
+/// The oblique modification (Lengyel's method for any invertible M and any depth convention):
+///   C' = M^-T C,  Q' = the corner of the clip volume that maximises C' . Q',  Q = M^-1 Q',
+///   a = (z_far - z_near range) / (C . Q),  near(M') = a C,  rows 1, 2, 4 unchanged.
+/// Returns the status code; on "ok", `out` is M'.
+template <class T>
+std::string oblique(const T (&m)[16], const T (&c_in)[4], const std::string& convention,
+                    Mistake mistake, T (&out)[16]) {
+  for (T v : m) {
+    if (!std::isfinite(v)) return "invalid_input";
+  }
+  for (T v : c_in) {
+    if (!std::isfinite(v)) return "invalid_input";
+  }
+  // A matrix this close to singular has no trustworthy inverse in T.
+  if (skeel_condition(m) >= T(1) / (128 * std::numeric_limits<T>::epsilon()))
+    return "singular_projection";
+  if (mistake != Mistake::no_camera_guard && !(c_in[3] < 0)) return "camera_not_behind_plane";
+  // a C does not change when C is scaled, so scale C by a power of two (exactly) to magnitude
+  // about 1 first: a tiny or huge C would otherwise underflow or overflow C . Q.
+  T largest = 0;
+  for (T v : c_in) largest = std::max(largest, std::abs(v));
+  if (largest == 0) return "camera_not_behind_plane";
+  const int e = std::ilogb(largest);
+  T c[4];
+  for (int i = 0; i < 4; ++i) c[i] = std::ldexp(c_in[i], -e);
+  T c_clip[4], q[4];
+  if (!solve(m, true, c, c_clip)) return "singular_projection";
+  // The mistake zero_one_factor_on_gl: the [0, 1] formulas (z in [0, 1], M'_3 = a C) on gl.
+  const bool as_zero_one =
+      convention == "zero_one" || (convention == "gl" && mistake == Mistake::zero_one_factor_on_gl);
+  const T z_low = convention == "gl" && !as_zero_one ? T(-1) : T(0), z_high = 1;
+  const T sz = sgn(c_clip[2], mistake);
+  const T sx = sgn(mistake == Mistake::camera_space_signs ? c[0] : c_clip[0], mistake);
+  const T sy = sgn(mistake == Mistake::camera_space_signs ? c[1] : c_clip[1], mistake);
+  const T corner[4] = {sx, sy, sz > 0 ? z_high : (sz < 0 ? z_low : (z_low + z_high) / 2), 1};
+  if (!solve(m, false, corner, q)) return "singular_projection";
+  const T d = c[0] * q[0] + c[1] * q[1] + c[2] * q[2] + c[3] * q[3];
+  // Written as engines write it: a NaN d (from a NaN sign) passes this test.
+  if (d <= 0) return "plane_misses_view_volume";
+  const T a = (z_high - z_low) / d;
+  for (int i = 0; i < 16; ++i) out[i] = m[i];
+  // Near plane: gl M_4 + M_3 = a C; zero_one M_3 = a C; reversed_z M_4 - M_3 = a C.
+  for (int j = 0; j < 4; ++j) {
+    const T ac = a * c[j], m4 = m[12 + j];
+    out[8 + j] = convention == "reversed_z" ? m4 - ac : (as_zero_one ? ac : ac - m4);
+  }
+  if (mistake != Mistake::sign_by_division) {
+    for (T v : out) {
+      if (!std::isfinite(v)) return "out_of_range";
+    }
+  }
+  return "ok";
+}
+
+/// A request number: a JSON number, or "nan", "inf", "-inf".
+inline double number(const nlohmann::json& v) {
+  if (v.is_number()) return v.get<double>();
+  const std::string s = v.get<std::string>();
+  if (s == "inf") return std::numeric_limits<double>::infinity();
+  if (s == "-inf") return -std::numeric_limits<double>::infinity();
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+/// Round-trip text of a value; the protocol's strings for non-finite values.
+template <class T>
+std::string text(T v) {
+  if (std::isnan(v)) return "\"nan\"";
+  if (std::isinf(v)) return v > 0 ? "\"inf\"" : "\"-inf\"";
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", static_cast<double>(v));
+  return buffer;
+}
+
+template <class T>
+std::string answer(const std::string& line, Mistake mistake) {
+  const nlohmann::json request = nlohmann::json::parse(line, nullptr, false);
+  if (request.is_discarded() || !request.contains("projection") || !request.contains("plane"))
+    return "{\"status\": \"invalid_input\"}";
+  T m[16], c[4], out[16];
+  for (int i = 0; i < 16; ++i) m[i] = static_cast<T>(number(request["projection"][i]));
+  for (int i = 0; i < 4; ++i) c[i] = static_cast<T>(number(request["plane"][i]));
+  const std::string convention = request.value("convention", "gl");
+  const std::string status = oblique(m, c, convention, mistake, out);
+  if (status != "ok") return "{\"status\": \"" + status + "\"}";
+  std::string s = "{\"status\": \"ok\", \"projection\": [";
+  for (int i = 0; i < 16; ++i) s += (i ? ", " : "") + text(out[i]);
+  return s + "]}";
+}
+
+/// The adapter loop: one answer line per request line, flushed so the caller never waits.
+inline int serve(int argc, char** argv, Mistake mistake) {
+  const bool in_float = argc > 1 && std::strcmp(argv[1], "--float") == 0;
+  std::string line;
+  while (std::getline(std::cin, line)) {
+    std::cout << (in_float ? answer<float>(line, mistake) : answer<double>(line, mistake))
+              << std::endl;
+  }
+  return 0;
+}
+
+}  // namespace lengyel

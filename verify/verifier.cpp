@@ -1,0 +1,586 @@
+#include "verifier.h"
+
+#include <rapidcheck.h>
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <random>
+#include <sstream>
+
+#include "child_process.h"
+#include "oblique/properties/properties.h"
+#include "report.h"
+
+namespace oblique::verify {
+
+std::string normalise_non_finite(std::string_view line) {
+  std::string out;
+  out.reserve(line.size() + 16);
+  bool in_string = false;
+  auto starts = [&](std::size_t i, std::string_view word) {
+    return line.substr(i, word.size()) == word;
+  };
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (in_string) {
+      out += ch;
+      if (ch == '\\' && i + 1 < line.size()) {
+        out += line[++i];
+      } else if (ch == '"') {
+        in_string = false;
+      }
+      continue;
+    }
+    if (ch == '"') {
+      in_string = true;
+      out += ch;
+    } else if (starts(i, "-Infinity")) {
+      out += "\"-inf\"";
+      i += 8;
+    } else if (starts(i, "Infinity")) {
+      out += "\"inf\"";
+      i += 7;
+    } else if (starts(i, "NaN")) {
+      out += "\"nan\"";
+      i += 2;
+    } else if (starts(i, "null")) {
+      out += "\"nan\"";
+      i += 3;
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
+
+namespace {
+
+using generators::Case;
+using generators::Defect;
+using generators::Family;
+using properties::Problem;
+
+/// One generated input: a valid-looking case, or one spoiled by a defect.
+template <class T>
+struct VerifyCase {
+  Case<T> c;
+  bool has_defect = false;
+  Defect defect = Defect::camera_in_front;
+
+  std::string kind() const {
+    return has_defect ? "no answer: " + std::string(generators::defect_name(defect))
+                      : std::string(generators::place_name(c.place));
+  }
+};
+
+template <class T>
+rc::Gen<VerifyCase<T>> verify_case(std::vector<Family> families,
+                                   std::vector<Convention> conventions) {
+  return rc::gen::exec([families, conventions] {
+    VerifyCase<T> v;
+    // Four in five have an answer; the pick shrinks toward those.
+    if (*rc::gen::resize(100, rc::gen::inRange(0, 5)) < 4) {
+      v.c = *generators::valid_case_in<T>(families, conventions);
+    } else {
+      const generators::InvalidCase<T> ic = *generators::invalid_case_in<T>(families, conventions);
+      v.c = ic.base;
+      v.has_defect = true;
+      v.defect = ic.defect;
+    }
+    return v;
+  });
+}
+
+/// A number as the requests carry it (a JSON number, or "nan", "inf", "-inf"). Floats are written
+/// as the shortest double that equals them, so a reader that parses doubles and one that parses
+/// floats both get the float exactly.
+template <class T>
+std::string json_number(T x) {
+  if (std::isnan(x)) return "\"nan\"";
+  if (std::isinf(x)) return x > 0 ? "\"inf\"" : "\"-inf\"";
+  // -0 as "-0.0": many JSON readers (Python's, nlohmann's) read the integer -0 as +0.
+  if (x == 0 && std::signbit(x)) return "-0.0";
+  return protocol::format_number<double>(static_cast<double>(x));
+}
+
+template <class T>
+std::string request_text(const Case<T>& c) {
+  std::string line = "{\"projection\": [";
+  for (int i = 0; i < 16; ++i) line += (i ? ", " : "") + json_number(c.matrix(i / 4, i % 4));
+  line += "], \"plane\": [";
+  for (int i = 0; i < 4; ++i) line += (i ? ", " : "") + json_number(c.plane(i));
+  line += "], \"convention\": \"" + std::string(convention_name(c.convention)) + "\"}";
+  return line;
+}
+
+/// An answer as read back.
+template <class T>
+struct Answered {
+  Status status = Status::ok;
+  Matrix4<T> projection = Matrix4<T>::Zero();
+  std::string message;
+};
+
+/// Reads one answer line; empty with `error` when it is not an answer of the protocol.
+template <class T>
+std::optional<Answered<T>> read_answer(const std::string& line, std::string* error) {
+  const protocol::ParsedAnswer parsed = protocol::parse_answer(normalise_non_finite(line));
+  if (!parsed.valid) {
+    *error = parsed.error;
+    return std::nullopt;
+  }
+  Answered<T> a;
+  a.message = parsed.message;
+  if (parsed.status != "ok") {
+    const std::optional<Status> status = parse_status(parsed.status);
+    if (!status) {
+      *error = "unknown status \"" + parsed.status + "\"";
+      return std::nullopt;
+    }
+    a.status = *status;
+    return a;
+  }
+  for (int i = 0; i < 16; ++i) {
+    std::string why;
+    const std::string& token = (*parsed.projection)[static_cast<std::size_t>(i)];
+    std::optional<T> value = protocol::parse_number<T>(token, &why);
+    if (!value && why.find("overflows") != std::string::npos) {
+      value = token[0] == '-' ? -std::numeric_limits<T>::infinity()
+                              : std::numeric_limits<T>::infinity();  // judged, not refused
+    }
+    if (!value) {
+      *error = "projection[" + std::to_string(i) + "]: " + why;
+      return std::nullopt;
+    }
+    a.projection(i / 4, i % 4) = *value;
+  }
+  return a;
+}
+
+std::string status_list(const std::vector<Status>& statuses) {
+  std::string out;
+  for (Status s : statuses) out += (out.empty() ? "" : " or ") + std::string(status_code(s));
+  return out;
+}
+
+/// What went wrong with one answer (or with the process while it was answering).
+template <class T>
+struct Finding {
+  std::string kind;  ///< "status", a property's name, "row3_accuracy", "crash", "timeout"
+  std::string relation, lhs, rhs;
+  double ratio = 0;
+  std::string expected, got;  ///< statuses, when the kind is "status"
+  std::optional<Matrix4<T>> result;
+  std::string answer_line, process;
+};
+
+/// The properties and the status contract, as the suite applies them, with one difference:
+/// an input without an answer may get any refusal (the implementation need not name our status).
+template <class T>
+std::optional<Finding<T>> judge(const Problem<T>& problem, const Answered<T>& a) {
+  const Status exact = problem.exact_status();
+  const std::vector<Status> acceptable = problem.acceptable_statuses();
+  const bool allowed =
+      std::find(acceptable.begin(), acceptable.end(), a.status) != acceptable.end();
+  Finding<T> f;
+  if (a.status != Status::ok) {
+    if (exact != Status::ok || allowed) return std::nullopt;
+    f.kind = "status";
+    f.relation = "an input with an answer is answered (or refused only where rounding allows)";
+    f.got = f.lhs = std::string(status_code(a.status));
+    f.expected = f.rhs = status_list(acceptable);
+    f.ratio = 1e300;
+    return f;
+  }
+  f.result = a.projection;
+  if (!allowed) {
+    f.kind = "status";
+    f.relation = exact == Status::ok ? "an answer beyond the range of the type is refused"
+                                     : "an input without an answer is refused";
+    f.got = f.lhs = "ok";
+    f.expected = f.rhs = status_list(acceptable);
+    f.ratio = 1e300;
+    return f;
+  }
+  if (!all_finite(a.projection)) {
+    f.kind = "finite_result";
+    f.relation = "an ok answer is finite";
+    f.lhs = "NaN or infinity in M'";
+    f.rhs = "finite entries";
+    f.ratio = 1e300;
+    return f;
+  }
+  if (exact != Status::ok) return std::nullopt;  // ok within rounding of a boundary, and finite
+  const properties::Verdicts verdicts = problem.check(a.projection);
+  std::optional<properties::Verdict> failed;
+  if (const properties::Verdict* v = verdicts.first_failure()) failed = *v;
+  if (!failed) {
+    const properties::Verdict planes = problem.check_extracted_planes(a.projection);
+    if (!planes.holds) failed = planes;
+  }
+  if (failed) {
+    f.kind = std::string(properties::property_name(failed->property));
+    f.relation = failed->relation;
+    f.lhs = failed->lhs;
+    f.rhs = failed->rhs;
+    f.ratio = failed->ratio;
+    return f;
+  }
+  const auto closeness = problem.compare_row3(a.projection);
+  if (closeness.within) return std::nullopt;
+  const int i = closeness.worst_entry;
+  const exact::Vec expected = problem.exact_row3();
+  const exact::Vec bounds = *problem.row3_bounds();
+  f.kind = "row3_accuracy";
+  f.relation = "|M'_3i - exact M'_3i| <= bound_i (what careful " +
+               std::string(properties::scalar_name<T>()) + " arithmetic achieves)";
+  f.lhs = "entry " + std::to_string(i + 1) + ": |" + properties::decimal(a.projection(2, i)) +
+          " - " + properties::format_g17(expected[i]) + "| = " +
+          properties::format_g17(
+              exact::Rational(exact::abs(exact::to_rational(a.projection(2, i)) - expected[i])));
+  f.rhs = properties::format_g17(bounds[i]);
+  f.ratio = closeness.ratio;
+  return f;
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return out + "'";
+}
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// One run of `oblique verify` in scalar type T.
+template <class T>
+class Verifier {
+ public:
+  Verifier(const VerifyOptions& options, std::ostream& out, std::ostream& err)
+      : options_(options), out_(out), err_(err), child_(options.command) {
+    families_ = options.families.empty() ? generators::every_family() : options.families;
+    gen_ = verify_case<T>(families_, options.conventions);
+    idle_ = std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000));
+  }
+
+  int run() {
+    start_ = Clock::now();
+    deadline_ = start_ + std::chrono::milliseconds(
+                             static_cast<long>(std::max(0.0, options_.time_limit_seconds) * 1000));
+    std::string error;
+    if (!child_.start(&error)) {
+      err_ << "oblique verify: cannot start the implementation: " << error << "\n";
+      return 2;
+    }
+    rc::Random random(options_.seed);
+    long done = 0;
+    std::size_t batch = 16;
+    auto last_progress = start_;
+    while (done < options_.cases && Clock::now() < deadline_) {
+      const std::size_t n =
+          std::min<std::size_t>(batch, static_cast<std::size_t>(options_.cases - done));
+      std::vector<rc::Shrinkable<VerifyCase<T>>> cases;
+      std::vector<std::string> requests;
+      std::string text;
+      for (std::size_t k = 0; k < n; ++k) {
+        const int size = static_cast<int>((done + static_cast<long>(k)) % 101);
+        cases.push_back(gen_(random.split(), size));
+        requests.push_back(request_text(cases.back().value().c));
+        text += requests.back();
+        text += '\n';
+      }
+      std::vector<std::string> answers;
+      const auto outcome = child_.exchange(text, n, answers, idle_, deadline_);
+      for (std::size_t k = 0; k < answers.size(); ++k) {
+        const VerifyCase<T> v = cases[k].value();
+        std::string why;
+        const auto answered = read_answer<T>(answers[k], &why);
+        if (!answered) return protocol_error(requests[k], answers[k], why);
+        const Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+        if (auto finding = judge(problem, *answered)) {
+          finding->answer_line = answers[k];
+          return violation(cases[k], *finding, done + static_cast<long>(k) + 1);
+        }
+        count(v);
+      }
+      done += static_cast<long>(answers.size());
+      if (outcome != ChildProcess::Outcome::done) {
+        if (Clock::now() >= deadline_) break;  // the time limit, not the implementation
+        if (done == 0 && outcome == ChildProcess::Outcome::exited) {
+          const std::string end = child_.end_description();
+          if (end == "exited with status 126" || end == "exited with status 127") {
+            err_ << "oblique verify: cannot run the implementation (" << end
+                 << "): " << child_.stderr_tail();
+            child_.stop();
+            return 2;
+          }
+        }
+        return lost(cases, answers.size(), done);
+      }
+      batch = std::min<std::size_t>(batch * 2, 1024);
+      if (options_.progress && seconds_since(last_progress) >= 2) {
+        last_progress = Clock::now();
+        err_ << "oblique verify: " << done << " cases, "
+             << static_cast<long>(done / seconds_since(start_)) << " per second, no violation\n";
+      }
+    }
+    child_.stop();
+    return passed(done);
+  }
+
+ private:
+  void count(const VerifyCase<T>& v) {
+    ++families_seen_[std::string(generators::family_name(v.c.family))];
+    ++conventions_seen_[std::string(convention_name(v.c.convention))];
+    if (v.has_defect)
+      ++defects_seen_[std::string(generators::defect_name(v.defect))];
+    else
+      ++places_seen_[std::string(generators::place_name(v.c.place))];
+  }
+
+  static std::string summary(const std::map<std::string, long>& counts) {
+    std::string out;
+    for (const auto& [name, n] : counts)
+      out += (out.empty() ? "" : ", ") + name + " " + std::to_string(n);
+    return out.empty() ? "none" : out;
+  }
+
+  int passed(long done) {
+    const double elapsed = seconds_since(start_);
+    out_ << "oblique verify: " << done << " cases, no violation (" << properties::scalar_name<T>()
+         << ", seed " << options_.seed << ", " << std::fixed;
+    out_.precision(1);
+    out_ << elapsed << " s, " << static_cast<long>(elapsed > 0 ? done / elapsed : 0)
+         << " requests per second)\n";
+    out_.unsetf(std::ios::floatfield);
+    out_ << "  families: " << summary(families_seen_)
+         << "\n  conventions: " << summary(conventions_seen_)
+         << "\n  places (with an answer): " << summary(places_seen_)
+         << "\n  inputs without an answer: " << summary(defects_seen_) << "\n";
+    if (done < options_.cases)
+      out_ << "  stopped by the time limit (" << options_.time_limit_seconds << " s) before "
+           << options_.cases << " cases\n";
+    return 0;
+  }
+
+  int protocol_error(const std::string& request, const std::string& answer,
+                     const std::string& why) {
+    child_.stop();
+    err_ << "oblique verify: protocol error: the implementation's answer is not an answer of the "
+            "protocol ("
+         << why << ")\n  request: " << request << "\n  answer:  " << answer.substr(0, 400)
+         << (answer.size() > 400 ? "..." : "") << "\n";
+    return 2;
+  }
+
+  enum class Evaluation { pass, finding, protocol_error, out_of_time };
+
+  /// Sends one case alone (restarting the implementation when it is not running).
+  Evaluation evaluate(const VerifyCase<T>& v, Finding<T>& finding) {
+    if (Clock::now() >= deadline_) return Evaluation::out_of_time;
+    std::string error;
+    if (!child_.running() && !child_.start(&error)) return Evaluation::protocol_error;
+    const std::string request = request_text(v.c);
+    std::vector<std::string> answers;
+    const auto outcome = child_.exchange(request + "\n", 1, answers, idle_, deadline_);
+    if (outcome != ChildProcess::Outcome::done) {
+      if (Clock::now() >= deadline_) return Evaluation::out_of_time;
+      finding = lost_finding(outcome);
+      child_.stop();
+      return Evaluation::finding;
+    }
+    std::string why;
+    const auto answered = read_answer<T>(answers[0], &why);
+    if (!answered) return Evaluation::protocol_error;
+    const Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+    auto judged = judge(problem, *answered);
+    if (!judged) return Evaluation::pass;
+    finding = *judged;
+    finding.answer_line = answers[0];
+    return Evaluation::finding;
+  }
+
+  Finding<T> lost_finding(ChildProcess::Outcome outcome) {
+    Finding<T> f;
+    f.ratio = 1e300;
+    if (outcome == ChildProcess::Outcome::exited) {
+      f.kind = "crash";
+      f.relation = "the implementation answers every request and keeps running";
+      f.process = child_.end_description();
+      f.lhs = "it " + f.process + " before answering";
+      f.rhs = "an answer line";
+    } else {
+      f.kind = "timeout";
+      std::ostringstream relation;
+      relation << "an answer within " << options_.request_timeout_seconds << " s (--timeout)";
+      f.relation = relation.str();
+      f.process = "no answer line";
+      f.lhs =
+          "no answer within the timeout: it hangs on this request, or does not flush its "
+          "standard output after each answer line";
+      f.rhs = "an answer line";
+    }
+    f.answer_line = child_.stderr_tail().empty() ? "" : "(stderr) " + child_.stderr_tail();
+    return f;
+  }
+
+  /// The implementation stopped answering inside a batch: find the request that does it alone.
+  int lost(const std::vector<rc::Shrinkable<VerifyCase<T>>>& cases, std::size_t answered,
+           long done) {
+    const std::string description = child_.end_description();
+    const std::string tail = child_.stderr_tail();
+    child_.stop();
+    for (std::size_t k = answered; k < cases.size(); ++k) {
+      Finding<T> finding;
+      switch (evaluate(cases[k].value(), finding)) {
+        case Evaluation::pass: ++done; continue;
+        case Evaluation::finding: return violation(cases[k], finding, done + 1);
+        case Evaluation::protocol_error:
+        case Evaluation::out_of_time: k = cases.size(); break;
+      }
+    }
+    err_ << "oblique verify: the implementation stopped answering after " << done << " cases (it "
+         << description << "), and no single request of the batch repeats it"
+         << (tail.empty() ? "" : "\n  its standard error ended with:\n" + tail) << "\n";
+    return 1;
+  }
+
+  int violation(const rc::Shrinkable<VerifyCase<T>>& failing, Finding<T> finding, long cases_run) {
+    out_ << "oblique verify: " << finding.kind << " violated after " << cases_run
+         << " cases; shrinking";
+    out_.flush();
+    rc::Shrinkable<VerifyCase<T>> current = failing;
+    int steps = 0, tries = 0;
+    bool out_of_time = false;
+    // Timeouts cost the whole timeout per try: the case is reported as found.
+    bool progress = finding.kind != "timeout";
+    while (progress && !out_of_time) {
+      progress = false;
+      auto shrinks = current.shrinks();
+      while (auto next = shrinks.next()) {
+        Finding<T> candidate;
+        ++tries;
+        const Evaluation e = evaluate(next->value(), candidate);
+        if (e == Evaluation::out_of_time) {
+          out_of_time = true;
+          break;
+        }
+        if (e == Evaluation::finding && candidate.kind == finding.kind) {
+          current = *next;
+          finding = candidate;
+          ++steps;
+          progress = true;
+          if (steps % 10 == 0) (out_ << ".").flush();
+          break;
+        }
+      }
+    }
+    child_.stop();
+    out_ << " " << steps << " steps (" << tries << " tries)"
+         << (out_of_time ? ", stopped by the time limit" : "") << "\n";
+    return write(current.value(), finding, steps, out_of_time);
+  }
+
+  int write(const VerifyCase<T>& v, const Finding<T>& f, int steps, bool out_of_time) {
+    properties::Counterexample ce = properties::make_counterexample(v.c.matrix, v.c.plane);
+    ce.property = f.kind;
+    ce.relation = f.relation;
+    ce.lhs = f.lhs;
+    ce.rhs = f.rhs;
+    ce.ratio = f.ratio;
+    ce.implementation = options_.command;
+    ce.family = std::string(generators::family_name(v.c.family));
+    ce.convention = std::string(convention_name(v.c.convention));
+    ce.place = v.kind();
+    ce.status_expected = f.expected;
+    ce.status_got = f.got;
+    if (f.result) {
+      for (int i = 0; i < 16; ++i)
+        ce.result_decimal.push_back(properties::decimal((*f.result)(i / 4, i % 4)));
+    }
+    const Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+    ce.notes.emplace_back("implementation", options_.command);
+    ce.notes.emplace_back("exact status", std::string(status_code(problem.exact_status())));
+    if (problem.exact_status() == Status::ok) {
+      std::string row;
+      const exact::Vec exact_row = problem.exact_row3();
+      for (int i = 0; i < 4; ++i) {
+        T rounded = static_cast<T>(exact_row[i].get_d());
+        row += (i ? ", " : "") + properties::decimal(rounded);
+      }
+      ce.notes.emplace_back("exact third row (rounded)", "(" + row + ")");
+    }
+    if (!f.answer_line.empty()) ce.notes.emplace_back("answer", f.answer_line.substr(0, 2000));
+    if (!f.process.empty()) ce.notes.emplace_back("process", f.process);
+    ce.notes.emplace_back("shrinking", std::to_string(steps) + " steps" +
+                                           (out_of_time ? ", stopped by the time limit" : ""));
+
+    const std::string request = request_text(v.c);
+    properties::ReportContext context;
+    context.directory = options_.report_dir;
+    context.stem = "verify-" + f.kind;
+    context.seed = options_.seed;
+    std::string conventions;
+    for (Convention c : options_.conventions)
+      conventions += (conventions.empty() ? "" : ",") + std::string(convention_name(c));
+    std::string families;
+    for (Family fam : options_.families)
+      families += (families.empty() ? "" : ",") + std::string(generators::family_name(fam));
+    context.replay_run =
+        options_.self + " verify --impl " + shell_quote(options_.command) + " --convention " +
+        conventions + (families.empty() ? "" : " --families " + families) + " --precision " +
+        properties::scalar_name<T>() + " --cases " + std::to_string(options_.cases) + " --seed " +
+        std::to_string(options_.seed);
+    context.replay_case = "echo " + shell_quote(request) + " | " + options_.command;
+    const std::string path = properties::write_report(ce, context);
+
+    out_ << "  " << f.kind << ": " << f.relation << "\n  residual: " << f.lhs
+         << "\n  bound:    " << f.rhs << "\n  input (" << ce.family << ", " << ce.convention << ", "
+         << ce.place << "): " << request << "\n";
+    if (!f.answer_line.empty()) out_ << "  answer: " << f.answer_line.substr(0, 400) << "\n";
+    out_ << "  report: " << path << "\n  replay: " << context.replay_case << "\n";
+    return 1;
+  }
+
+  const VerifyOptions& options_;
+  std::ostream& out_;
+  std::ostream& err_;
+  ChildProcess child_;
+  std::vector<Family> families_;
+  rc::Gen<VerifyCase<T>> gen_ = verify_case<T>({Family::perspective}, {Convention::gl});
+  std::chrono::milliseconds idle_{10000};
+  Clock::time_point start_, deadline_;
+  std::map<std::string, long> families_seen_, conventions_seen_, places_seen_, defects_seen_;
+};
+
+}  // namespace
+
+int run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err) {
+  ::signal(SIGPIPE, SIG_IGN);  // a child that exits must not take us with it
+  VerifyOptions options = given;
+  if (options.command.empty()) {
+    err << "oblique verify: --impl needs a command\n";
+    return 2;
+  }
+  if (options.conventions.empty()) {
+    err << "oblique verify: no convention to check\n";
+    return 2;
+  }
+  if (options.seed == 0) options.seed = std::random_device{}() | 1u;
+  switch (options.precision) {
+    case protocol::Precision::float32: return Verifier<float>(options, out, err).run();
+    case protocol::Precision::float64: return Verifier<double>(options, out, err).run();
+    case protocol::Precision::long_double:
+      err << "oblique verify: --precision is float or double\n";
+      return 2;
+  }
+  return 2;
+}
+
+}  // namespace oblique::verify
