@@ -19,6 +19,42 @@ T narrow(double x) {
   return static_cast<T>(x);
 }
 
+bool describing() {
+  static const bool enabled = std::getenv("OBLIQUE_FUZZ_DESCRIBE") != nullptr;
+  return enabled;
+}
+
+/// With OBLIQUE_FUZZ_DESCRIBE set, prints what the checker knows of the case and the answer.
+template <class T>
+void explain(const oblique::properties::Problem<T>& problem,
+             const oblique::properties::Outcome<T>& outcome) {
+  using namespace oblique;
+  if (!describing()) return;
+  std::string acceptable;
+  for (Status s : problem.acceptable_statuses())
+    acceptable += (acceptable.empty() ? "" : ", ") + std::string(status_code(s));
+  std::fprintf(stderr, "exact status %s; acceptable: %s; Skeel condition %.3g; kappa %.3g\n",
+               std::string(status_code(problem.exact_status())).c_str(), acceptable.c_str(),
+               problem.skeel_condition(), problem.kappa().get_d());
+  if (outcome.status != Status::ok || problem.exact_status() != Status::ok) return;
+  for (int i = 0; i < 4; ++i) {
+    std::fprintf(stderr, "M' row %d: %.17Lg %.17Lg %.17Lg %.17Lg\n", i + 1,
+                 static_cast<long double>(outcome.projection(i, 0)),
+                 static_cast<long double>(outcome.projection(i, 1)),
+                 static_cast<long double>(outcome.projection(i, 2)),
+                 static_cast<long double>(outcome.projection(i, 3)));
+  }
+  const exact::Vec row = problem.exact_row3();
+  std::fprintf(stderr, "exact row 3: %.17g %.17g %.17g %.17g\n", row[0].get_d(), row[1].get_d(),
+               row[2].get_d(), row[3].get_d());
+  for (const auto& v : problem.check(outcome.projection).items) {
+    if (v.applies && !v.holds)
+      std::fprintf(stderr, "%s: %s; residual %s, bound %s\n",
+                   std::string(properties::property_name(v.property)).c_str(), v.relation.c_str(),
+                   v.lhs.c_str(), v.rhs.c_str());
+  }
+}
+
 template <class T>
 void check(const oblique::fuzz::FuzzCase& c) {
   using namespace oblique;
@@ -34,6 +70,7 @@ void check(const oblique::fuzz::FuzzCase& c) {
     const std::string violation =
         properties::first_violation(problem, impl, outcome, impl.name.rfind("core_", 0) == 0);
     if (violation.empty()) continue;
+    explain(problem, outcome);
     std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, family %s, status %s)\n",
                  violation.c_str(), impl.name.c_str(), properties::scalar_name<T>(),
                  std::string(convention_name(c.convention)).c_str(), fuzz::family_label(c.family),
@@ -46,8 +83,7 @@ void check(const oblique::fuzz::FuzzCase& c) {
 
 /// With OBLIQUE_FUZZ_DESCRIBE set, prints the decoded case (for crash reports).
 void describe(const oblique::fuzz::FuzzCase& c) {
-  static const bool enabled = std::getenv("OBLIQUE_FUZZ_DESCRIBE") != nullptr;
-  if (!enabled) return;
+  if (!describing()) return;
   const char* scalars[] = {"float", "double", "long_double"};
   std::fprintf(stderr, "scalar %s, convention %s, method %s, family %s\n",
                scalars[static_cast<int>(c.scalar)],

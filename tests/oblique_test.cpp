@@ -168,12 +168,38 @@ TYPED_TEST(ObliqueTest, planeBehindTheCameraMissesTheViewVolume) {
 // A plane through the far corner Q within the subnormal range: a = 2 / (C . Q) exceeds the type.
 TYPED_TEST(ObliqueTest, answerBeyondTheTypeIsOutOfRange) {
   using T = TypeParam;
-  Matrix4<T> m = frustum<T>(-1, 1, -1, 1, 1, 2, Convention::gl);
-  m(0, 0) = std::ldexp(T(1), std::numeric_limits<T>::max_exponent - 1);
-  const Vector4<T> plane(1, 0, 0, -std::numeric_limits<T>::denorm_min());
-  const auto result = apply<T>(m, plane, Convention::gl);
-  EXPECT_EQ(result.status, Status::out_of_range);
-  EXPECT_NE(result.message().find("range"), std::string_view::npos);
+  // A frustum scaled by 2^(emax - 4) (its far corner Q shrinks by as much) and a plane 2^-20 from
+  // Q: a = 2 / (C . Q) is about 2^(emax + 17), so a C overflows although the input is benign.
+  const Matrix4<T> m = std::ldexp(T(1), std::numeric_limits<T>::max_exponent - 4) *
+                       frustum<T>(-1, 1, -1, 1, 1, 2, Convention::gl);
+  const Vector4<T> plane(1, 0, 0, T(-2) + std::ldexp(T(1), -20));
+  ASSERT_LE(magnitude_spread(m), max_magnitude_spread<T>());
+  for (Method method : {Method::closed_form, Method::general}) {
+    const auto result = apply<T>(m, plane, Convention::gl, method);
+    EXPECT_EQ(result.status, Status::out_of_range) << method_name(method);
+    EXPECT_NE(result.message().find("exceeds the range"), std::string_view::npos)
+        << result.message();
+  }
+}
+
+TYPED_TEST(ObliqueTest, matrixSpanningTooManyBinadesIsOutOfRange) {
+  using T = TypeParam;
+  const int limit = max_magnitude_spread<T>();
+  Matrix4<T> m = frustum<T>(-1, 1, -1, 1, 1, 2, Convention::gl);  // entries 1 .. 4
+  const Vector4<T> plane(0.5, 0, -1, -1.5);
+  ASSERT_EQ(apply<T>(m, plane, Convention::gl).status, Status::ok);
+  m(0, 1) = std::ldexp(T(1), -limit + 1);  // spread limit + 1 (4 = 2^2)
+  EXPECT_EQ(magnitude_spread(m), limit + 1);
+  const auto wide_matrix = apply<T>(m, plane, Convention::gl);
+  EXPECT_EQ(wide_matrix.status, Status::out_of_range);
+  EXPECT_NE(wide_matrix.message().find("binades"), std::string_view::npos);
+  m(0, 1) = std::ldexp(T(1), -limit + 2);  // exactly at the limit: computed
+  EXPECT_NE(apply<T>(m, plane, Convention::gl).status, Status::out_of_range);
+  // A plane's spread is not limited (C_w far below |N| is the plane almost through the eye).
+  const Vector4<T> wide_plane(std::ldexp(T(1), -(limit + limit / 2)), 0, -1, -1.5);
+  EXPECT_EQ(
+      apply<T>(frustum<T>(-1, 1, -1, 1, 1, 2, Convention::gl), wide_plane, Convention::gl).status,
+      Status::ok);
 }
 
 }  // namespace

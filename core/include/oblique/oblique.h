@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "oblique/depth_convention.h"
+#include "oblique/equilibrated_solver.h"
 #include "oblique/plane.h"
 #include "oblique/projection.h"
 #include "oblique/status.h"
@@ -180,34 +181,23 @@ ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Conve
   return finish(m, plane, q, convention, Method::closed_form);
 }
 
-/// General method for any invertible M. M is equilibrated by powers of two (exactly) to
-/// Mt = R M S, factorised once, and used for both solves:
-///   C' = M^-T C   has the signs of   Mt^-T (S C),
-///   Q  = M^-1 Q'  =  S Mt^-1 (R Q').
+/// General method for any invertible M, through EquilibratedSolver (equilibration by powers of
+/// two, one LU factorisation for both solves):
+///   C' = M^-T C   has the signs of   R^-1 C',
+///   Q  = M^-1 Q'.
 template <class T>
 ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention) {
-  Matrix4<T> mt = m;
-  Vector4<T> row_scale, col_scale;  // the diagonals of R and S, powers of two
-  for (int i = 0; i < 4; ++i) {
-    if ((mt.row(i).array() == T(0)).all()) {  // exact: isZero() is fuzzy
+  const EquilibratedSolver<T> solver(m);
+  switch (solver.failure()) {
+    case EquilibratedSolver<T>::Failure::zero_row:
       return refuse(m, Method::general, Status::singular_projection,
                     "the projection is singular: a row is zero");
-    }
-    const int e = magnitude_exponent(mt.row(i));
-    row_scale(i) = std::ldexp(T(1), -e);
-    mt.row(i) = scaled_by_power_of_two(mt.row(i), -e);
-  }
-  for (int j = 0; j < 4; ++j) {
-    if ((mt.col(j).array() == T(0)).all()) {
+    case EquilibratedSolver<T>::Failure::zero_column:
       return refuse(m, Method::general, Status::singular_projection,
                     "the projection is singular: a column is zero");
-    }
-    const int e = magnitude_exponent(mt.col(j));
-    col_scale(j) = std::ldexp(T(1), -e);
-    mt.col(j) = scaled_by_power_of_two(mt.col(j), -e);
+    case EquilibratedSolver<T>::Failure::none: break;
   }
-  const Eigen::PartialPivLU<Matrix4<T>> lu(mt);
-  if (!(lu.rcond() > singular_rcond_threshold<T>())) {
+  if (!(solver.rcond() > singular_rcond_threshold<T>())) {
     return refuse(m, Method::general, Status::singular_projection,
                   "the projection is singular or numerically singular (reciprocal condition "
                   "number after equilibration at most 16 epsilon)");
@@ -216,15 +206,14 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
     return refuse(m, Method::general, Status::camera_not_behind_plane);
   }
   const Vector4<T> c_hat = scaled_by_power_of_two(plane, -magnitude_exponent(plane));
-  const Vector4<T> c_clip = lu.transpose().solve(col_scale.cwiseProduct(c_hat));
+  const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat);
   if (!all_finite(c_clip)) {
     return refuse(m, Method::general, Status::out_of_range,
                   "C' = M^-T C is beyond the range of the scalar type");
   }
   const Vector4<T> corner =
       clip_corner(sign(c_clip.x()), sign(c_clip.y()), sign(c_clip.z()), convention);
-  const Vector4<T> q = col_scale.cwiseProduct(lu.solve(row_scale.cwiseProduct(corner)));
-  return finish(m, plane, q, convention, Method::general);
+  return finish(m, plane, solver.solve(corner), convention, Method::general);
 }
 
 }  // namespace detail
@@ -235,7 +224,9 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
 /// with Q = M^-1 Q' the corner of the original view volume farthest on C's positive side.
 /// Preconditions are checked, in this order, and reported as statuses: finite input
 /// (invalid_input), an invertible matrix (singular_projection), C_w < 0 (camera_not_behind_plane),
-/// C . Q > 0 (plane_misses_view_volume), a representable answer (out_of_range).
+/// C . Q > 0 (plane_misses_view_volume), a representable answer (out_of_range). A matrix whose
+/// nonzero entries span more than max_magnitude_spread<T>() binades is refused as out_of_range
+/// right after the finiteness check.
 template <class T>
 ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Convention convention,
                        Method method = Method::automatic) {
@@ -246,6 +237,11 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
   if (!all_finite(plane)) {
     return detail::refuse(projection, method, Status::invalid_input,
                           "the clip plane has a NaN or infinite component");
+  }
+  if (magnitude_spread(projection) > max_magnitude_spread<T>()) {
+    return detail::refuse(projection, method, Status::out_of_range,
+                          "the projection's nonzero entries span more binades than twice the "
+                          "precision of the scalar type (max_magnitude_spread)");
   }
   const bool perspective_shape = has_perspective_shape(projection);
   if (method == Method::automatic) {

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace oblique {
 
@@ -38,6 +40,34 @@ int magnitude_exponent(const Eigen::MatrixBase<Derived>& v) {
   int exponent = 0;
   std::frexp(largest, &exponent);
   return exponent;
+}
+
+/// How many binades the nonzero entries of v span: ilogb(max |v_ij|) - ilogb(min nonzero |v_ij|);
+/// 0 when fewer than two entries are nonzero. Entries must be finite.
+template <class Derived>
+int magnitude_spread(const Eigen::MatrixBase<Derived>& v) {
+  using T = typename Derived::Scalar;
+  int high = std::numeric_limits<int>::min(), low = std::numeric_limits<int>::max();
+  for (Eigen::Index i = 0; i < v.rows(); ++i) {
+    for (Eigen::Index j = 0; j < v.cols(); ++j) {
+      if (v(i, j) == T(0)) continue;
+      const int e = std::ilogb(v(i, j));
+      high = std::max(high, e);
+      low = std::min(low, e);
+    }
+  }
+  return high >= low ? high - low : 0;
+}
+
+/// The widest magnitude_spread() of a projection matrix that the core computes with in T: 2p
+/// binades (p = T's precision). Beyond it the far corner's small coordinates cannot be resolved
+/// against its large ones by a 4 x 4 solve in T (fuzz_oblique found matrices with entries near
+/// DBL_MAX beside ordinary ones whose answers were silently wrong), and the core answers
+/// out_of_range instead. A plane's spread is not limited: a C_w far below |N| (the plane almost
+/// through the eye) is a stiff but ordinary case.
+template <class T>
+constexpr int max_magnitude_spread() noexcept {
+  return 2 * std::numeric_limits<T>::digits;
 }
 
 /// v * 2^k entry by entry: exact unless an entry leaves the normal range, so it removes overflow

@@ -43,28 +43,12 @@ enum class Fault {
 template <class T>
 ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
                          Fault fault) {
-  Matrix4<T> mt = m;
-  Vector4<T> row_scale, col_scale;  // the diagonals of R and S, powers of two
-  for (int i = 0; i < 4; ++i) {
-    if ((mt.row(i).array() == T(0)).all()) {  // exact: isZero() is fuzzy
-      return detail::refuse(m, Method::general, Status::singular_projection,
-                            "the projection is singular: a row is zero");
-    }
-    const int e = magnitude_exponent(mt.row(i));
-    row_scale(i) = std::ldexp(T(1), -e);
-    mt.row(i) = scaled_by_power_of_two(mt.row(i), -e);
+  const detail::EquilibratedSolver<T> solver(m);
+  if (solver.failure() != detail::EquilibratedSolver<T>::Failure::none) {
+    return detail::refuse(m, Method::general, Status::singular_projection,
+                          "the projection is singular: a row or column is zero");
   }
-  for (int j = 0; j < 4; ++j) {
-    if ((mt.col(j).array() == T(0)).all()) {
-      return detail::refuse(m, Method::general, Status::singular_projection,
-                            "the projection is singular: a column is zero");
-    }
-    const int e = magnitude_exponent(mt.col(j));
-    col_scale(j) = std::ldexp(T(1), -e);
-    mt.col(j) = scaled_by_power_of_two(mt.col(j), -e);
-  }
-  const Eigen::PartialPivLU<Matrix4<T>> lu(mt);
-  if (!(lu.rcond() > singular_rcond_threshold<T>())) {
+  if (!(solver.rcond() > singular_rcond_threshold<T>())) {
     return detail::refuse(
         m, Method::general, Status::singular_projection,
         "the projection is singular or numerically singular (reciprocal condition "
@@ -74,7 +58,7 @@ ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
     return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
   }
   const Vector4<T> c_hat = scaled_by_power_of_two(plane, -magnitude_exponent(plane));
-  const Vector4<T> c_clip = lu.transpose().solve(col_scale.cwiseProduct(c_hat));
+  const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat);
   if (!all_finite(c_clip)) {
     return detail::refuse(m, Method::general, Status::out_of_range,
                           "C' = M^-T C is beyond the range of the scalar type");
@@ -88,8 +72,7 @@ ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   const Vector4<T> corner =
       detail::clip_corner(sgn(from_c ? plane.x() : c_clip.x()),
                           sgn(from_c ? plane.y() : c_clip.y()), z_sign, convention);
-  const Vector4<T> q = col_scale.cwiseProduct(lu.solve(row_scale.cwiseProduct(corner)));
-  return detail::finish(m, plane, q, convention, Method::general);
+  return detail::finish(m, plane, solver.solve(corner), convention, Method::general);
 }
 
 template <class T>
@@ -97,6 +80,8 @@ ObliqueResult<T> with_fault(const Matrix4<T>& m, const Vector4<T>& c, Convention
                             Fault fault) {
   if (!all_finite(m) || !all_finite(c))
     return detail::refuse(m, Method::general, Status::invalid_input);
+  if (magnitude_spread(m) > max_magnitude_spread<T>())
+    return detail::refuse(m, Method::general, Status::out_of_range);
   return planted(m, c, convention, fault);
 }
 

@@ -94,6 +94,7 @@ class Problem {
       : m_(m), convention_(convention) {
     finite_ = all_finite(m) && all_finite(c);
     if (!finite_) return;
+    too_spread_ = magnitude_spread(m) > max_magnitude_spread<T>();
     mx_ = exact::to_rational(m);
     cx_ = exact::to_rational(c);
     auto inverse = exact::inverse(mx_);
@@ -188,12 +189,15 @@ class Problem {
   ///    or out_of_range;
   ///  - a matrix with Skeel condition number at least 1 / (256 eps): singular_projection too;
   ///  - an exact answer (or Q, or an equally far corner where C' has a zero component) within
-  ///    2^8 of the largest finite T: out_of_range too, and above the largest (answer or Q), not ok.
+  ///    2^8 of the largest finite T: out_of_range too, and at or above the overflow threshold
+  ///    (answer or Q), not ok;
+  ///  - M spanning more than max_magnitude_spread<T>() binades: out_of_range too.
   std::vector<Status> acceptable_statuses() const {
     std::vector<Status> out{exact_status()};
     auto add = [&out](Status s) {
       if (std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
     };
+    if (finite_ && too_spread_) add(Status::out_of_range);  // the core's documented domain
     if (!finite_ || !invertible_) return out;
     const int p = tolerance::precision_bits<T>();
     if (skeel_condition_ * 256 * std::ldexp(1.0, 1 - p) >= 1) add(Status::singular_projection);
@@ -237,7 +241,11 @@ class Problem {
       }
       if (a * exact::dot(cx_, cx_) <= noise) add(Status::out_of_range);
     }
-    if (d_ > 0 && biggest > largest)
+    // Values from the largest finite T up to half an ulp beyond it still round to it.
+    const exact::Rational overflow =
+        largest + exact::to_rational(std::ldexp(T(1), std::numeric_limits<T>::max_exponent -
+                                                          std::numeric_limits<T>::digits - 1));
+    if (d_ > 0 && biggest >= overflow)
       out.erase(std::remove(out.begin(), out.end(), Status::ok), out.end());
     return out;
   }
@@ -548,6 +556,7 @@ class Problem {
   Matrix4<T> m_;
   Convention convention_;
   bool finite_ = false, invertible_ = false, infinite_ = false, camera_behind_ = false;
+  bool too_spread_ = false;  ///< beyond max_magnitude_spread(): the core may answer out_of_range
   exact::Mat mx_{}, inverse_{};
   exact::Vec cx_{}, c_clip_{}, q_clip_{}, q_{};
   std::array<exact::Vec, 8> clip_corners_{}, corners_{};
