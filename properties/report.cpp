@@ -114,32 +114,34 @@ std::string core_method_of(const std::string& implementation) {
 
 }  // namespace
 
-std::string request_line(const Counterexample& ce) {
+namespace {
+
+/// A request line from number texts, each passed through `number` on the way.
+template <class Number>
+std::string request_from(const std::vector<std::string>& projection,
+                         const std::vector<std::string>& plane, const std::string& convention,
+                         Number number) {
   std::string line = "{\"projection\": [";
-  for (std::size_t i = 0; i < ce.projection_hex.size(); ++i) {
-    line += (i ? ", " : "") + json_number(ce.projection_hex[i]);
-  }
+  for (std::size_t i = 0; i < projection.size(); ++i)
+    line += (i ? ", " : "") + number(projection[i]);
   line += "], \"plane\": [";
-  for (std::size_t i = 0; i < ce.plane_hex.size(); ++i)
-    line += (i ? ", " : "") + json_number(ce.plane_hex[i]);
-  line += "], \"convention\": \"" + ce.convention + "\"}";
+  for (std::size_t i = 0; i < plane.size(); ++i) line += (i ? ", " : "") + number(plane[i]);
+  line += "], \"convention\": \"" + convention + "\"}";
   return line;
 }
 
+}  // namespace
+
+std::string request_line(const Counterexample& ce) {
+  return request_from(ce.projection_hex, ce.plane_hex, ce.convention, json_number);
+}
+
 std::string request_line_decimal(const Counterexample& ce) {
-  auto number = [](const std::string& text) {
-    if (text == "nan" || text == "-nan" || text == "inf" || text == "-inf")
-      return json_number(text);
-    return text;
-  };
-  std::string line = "{\"projection\": [";
-  for (std::size_t i = 0; i < ce.projection_decimal.size(); ++i)
-    line += (i ? ", " : "") + number(ce.projection_decimal[i]);
-  line += "], \"plane\": [";
-  for (std::size_t i = 0; i < ce.plane_decimal.size(); ++i)
-    line += (i ? ", " : "") + number(ce.plane_decimal[i]);
-  line += "], \"convention\": \"" + ce.convention + "\"}";
-  return line;
+  return request_from(
+      ce.projection_decimal, ce.plane_decimal, ce.convention, [](const std::string& text) {
+        const bool non_finite = text == "nan" || text == "-nan" || text == "inf" || text == "-inf";
+        return non_finite ? json_number(text) : text;
+      });
 }
 
 std::string write_report(const Counterexample& ce, const ReportContext& context) {

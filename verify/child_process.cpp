@@ -68,6 +68,8 @@ bool ChildProcess::start(std::string* error) {
   reaped_ = false;
   wait_status_ = 0;
   pending_.clear();
+  unwritten_.clear();
+  written_ = 0;
   stderr_tail_.clear();
   set_nonblocking(in_);
   set_nonblocking(out_);
@@ -85,7 +87,11 @@ ChildProcess::Outcome ChildProcess::exchange(std::string_view input, std::size_t
                                              std::vector<std::string>& lines,
                                              std::chrono::milliseconds idle,
                                              Clock::time_point deadline) {
-  std::size_t written = 0;
+  if (written_ > 0) {
+    unwritten_.erase(0, written_);
+    written_ = 0;
+  }
+  unwritten_.append(input);
   auto last_progress = Clock::now();
   char buffer[1 << 16];
   for (;;) {
@@ -111,7 +117,7 @@ ChildProcess::Outcome ChildProcess::exchange(std::string_view input, std::size_t
     fds[n++] = {out_, POLLIN, 0};
     const int err_index = err_ >= 0 ? n : -1;
     if (err_ >= 0) fds[n++] = {err_, POLLIN, 0};
-    const bool writing = written < input.size() && in_ >= 0;
+    const bool writing = written_ < unwritten_.size() && in_ >= 0;
     const int in_index = writing ? n : -1;
     if (writing) fds[n++] = {in_, POLLOUT, 0};
     const int ready = ::poll(fds, static_cast<nfds_t>(n), static_cast<int>(wait) + 1);
@@ -120,9 +126,9 @@ ChildProcess::Outcome ChildProcess::exchange(std::string_view input, std::size_t
       return Outcome::exited;
     }
     if (in_index >= 0 && (fds[in_index].revents & (POLLOUT | POLLERR | POLLHUP))) {
-      const ssize_t w = ::write(in_, input.data() + written, input.size() - written);
+      const ssize_t w = ::write(in_, unwritten_.data() + written_, unwritten_.size() - written_);
       if (w > 0) {
-        written += static_cast<std::size_t>(w);
+        written_ += static_cast<std::size_t>(w);
       } else if (w < 0 && errno != EAGAIN && errno != EINTR) {
         close_fd(in_);  // the child closed its input (EPIPE): read what it still says
       }
@@ -170,6 +176,9 @@ void ChildProcess::stop() {
   ::kill(-pid_, SIGKILL);
   close_fds();
   pid_ = -1;
+  unwritten_.clear();
+  written_ = 0;
+  pending_.clear();
 }
 
 std::string ChildProcess::end_description() {

@@ -32,8 +32,12 @@ class ChildProcess {
     timed_out,  ///< no new line within the idle timeout, or the deadline passed
   };
 
-  /// Writes `input`, then reads until `lines` holds `want` lines. Waits at most `idle` for each
-  /// new line and never past `deadline`. Lines keep no trailing newline (nor '\r').
+  /// Queues `input` for the child's standard input; it is written while exchange() waits.
+  void send(std::string_view input) { unwritten_.append(input); }
+
+  /// Writes what is queued plus `input`, and reads until `lines` holds `want` lines. Waits at
+  /// most `idle` for each new line and never past `deadline`. Lines keep no trailing newline (nor
+  /// '\r'). Queued input not yet taken by the child stays queued for the next call.
   Outcome exchange(std::string_view input, std::size_t want, std::vector<std::string>& lines,
                    std::chrono::milliseconds idle, Clock::time_point deadline);
 
@@ -55,6 +59,8 @@ class ChildProcess {
   pid_t pid_ = -1;
   int in_ = -1, out_ = -1, err_ = -1;  // our ends: child's stdin, stdout, stderr
   std::string pending_;                // a partial line read from stdout
+  std::string unwritten_;              // queued input the child has not taken yet
+  std::size_t written_ = 0;            // how much of unwritten_ it has taken
   std::string stderr_tail_;
   int wait_status_ = 0;
   bool reaped_ = false;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <map>
 #include <optional>
 #include <ostream>
@@ -279,35 +280,31 @@ class Verifier {
       return 2;
     }
     rc::Random random(options_.seed);
-    long done = 0;
+    long done = 0, generated = 0;
     std::size_t batch = 16;
     auto last_progress = start_;
-    while (done < options_.cases && Clock::now() < deadline_) {
-      const std::size_t n =
-          std::min<std::size_t>(batch, static_cast<std::size_t>(options_.cases - done));
-      std::vector<rc::Shrinkable<VerifyCase<T>>> cases;
-      std::vector<std::string> requests;
-      std::string text;
-      for (std::size_t k = 0; k < n; ++k) {
-        const int size = static_cast<int>((done + static_cast<long>(k)) % 101);
-        cases.push_back(gen_(random.split(), size));
-        requests.push_back(request_text(cases.back().value().c));
-        text += requests.back();
-        text += '\n';
-      }
+    // Batch k + 1 is generated and queued before batch k's answers are read, so the
+    // implementation works on it while batch k is judged (on two threads).
+    Batch current = next_batch(random, generated, batch);
+    while (!current.cases.empty()) {
+      batch = std::min<std::size_t>(batch * 2, 1024);
+      Batch following;
+      if (generated < options_.cases && Clock::now() < deadline_)
+        following = next_batch(random, generated, batch);
+      const std::size_t n = current.cases.size();
       std::vector<std::string> answers;
-      const auto outcome = child_.exchange(text, n, answers, idle_, deadline_);
+      const auto outcome = child_.exchange({}, n, answers, idle_, deadline_);
+      const std::vector<Judged> judged = judge_all(current, answers);
       for (std::size_t k = 0; k < answers.size(); ++k) {
-        const VerifyCase<T> v = cases[k].value();
-        std::string why;
-        const auto answered = read_answer<T>(answers[k], &why);
-        if (!answered) return protocol_error(requests[k], answers[k], why);
-        const Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
-        if (auto finding = judge(problem, *answered)) {
-          finding->answer_line = answers[k];
-          return violation(cases[k], *finding, done + static_cast<long>(k) + 1);
+        const Judged& j = judged[k];
+        if (!j.protocol_error.empty())
+          return protocol_error(current.requests[k], answers[k], j.protocol_error);
+        if (j.finding) {
+          Finding<T> finding = *j.finding;
+          finding.answer_line = answers[k];
+          return violation(current.cases[k], finding, done + static_cast<long>(k) + 1);
         }
-        count(v);
+        count(current.values[k]);
       }
       done += static_cast<long>(answers.size());
       if (outcome != ChildProcess::Outcome::done) {
@@ -321,9 +318,9 @@ class Verifier {
             return 2;
           }
         }
-        return lost(cases, answers.size(), done);
+        return lost(current.cases, answers.size(), done);
       }
-      batch = std::min<std::size_t>(batch * 2, 1024);
+      current = std::move(following);
       if (options_.progress && seconds_since(last_progress) >= 2) {
         last_progress = Clock::now();
         err_ << "oblique verify: " << done << " cases, "
@@ -335,6 +332,58 @@ class Verifier {
   }
 
  private:
+  /// Generated cases, their values and request lines, queued for the implementation.
+  struct Batch {
+    std::vector<rc::Shrinkable<VerifyCase<T>>> cases;
+    std::vector<VerifyCase<T>> values;
+    std::vector<std::string> requests;
+  };
+
+  Batch next_batch(rc::Random& random, long& generated, std::size_t size) {
+    Batch b;
+    const std::size_t n =
+        std::min<std::size_t>(size, static_cast<std::size_t>(options_.cases - generated));
+    std::string text;
+    for (std::size_t k = 0; k < n; ++k, ++generated) {
+      b.cases.push_back(gen_(random.split(), static_cast<int>(generated % 101)));
+      b.values.push_back(b.cases.back().value());
+      b.requests.push_back(request_text(b.values.back().c));
+      text += b.requests.back();
+      text += '\n';
+    }
+    child_.send(text);
+    return b;
+  }
+
+  struct Judged {
+    std::string protocol_error;
+    std::optional<Finding<T>> finding;
+  };
+
+  /// Reads and judges every answer; the second half on another thread (GMP objects are not
+  /// shared, and the values were taken out of their Shrinkables on this thread).
+  std::vector<Judged> judge_all(const Batch& b, const std::vector<std::string>& answers) const {
+    std::vector<Judged> out(answers.size());
+    auto judge_range = [&](std::size_t from, std::size_t to) {
+      for (std::size_t k = from; k < to; ++k) {
+        const auto answered = read_answer<T>(answers[k], &out[k].protocol_error);
+        if (!answered) continue;
+        const VerifyCase<T>& v = b.values[k];
+        const Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+        out[k].finding = judge(problem, *answered);
+      }
+    };
+    const std::size_t half = answers.size() / 2;
+    if (half < 8) {
+      judge_range(0, answers.size());
+      return out;
+    }
+    auto second = std::async(std::launch::async, judge_range, half, answers.size());
+    judge_range(0, half);
+    second.get();
+    return out;
+  }
+
   void count(const VerifyCase<T>& v) {
     ++families_seen_[std::string(generators::family_name(v.c.family))];
     ++conventions_seen_[std::string(convention_name(v.c.convention))];
@@ -452,6 +501,7 @@ class Verifier {
   }
 
   int violation(const rc::Shrinkable<VerifyCase<T>>& failing, Finding<T> finding, long cases_run) {
+    child_.stop();  // it may still be working on the next batch; shrinking restarts it
     out_ << "oblique verify: " << finding.kind << " violated after " << cases_run
          << " cases; shrinking";
     out_.flush();

@@ -32,7 +32,7 @@ struct Implementation {
 
 namespace mutants {
 
-/// The core's general method with one planted fault (a copy of detail::general, kept in step).
+/// The core's general method with one planted fault (its steps on the same EquilibratedSolver).
 enum class Fault {
   signs_from_c,      ///< the corner's x, y signs from C instead of C' (Listing 5.1's shortcut)
   wrong_face,        ///< the far corner on the wrong depth face
