@@ -1,12 +1,15 @@
 // oblique: the command-line tool. `oblique apply` answers JSON Lines requests on standard input;
-// `oblique verify` checks another implementation that speaks the same protocol.
+// `oblique verify` checks another implementation that speaks the same protocol; `oblique check`
+// checks the mirrors and clip planes of a scene file.
 #include <CLI/CLI.hpp>
 
+#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "check.h"
 #include "protocol.h"
 #include "verifier.h"
 
@@ -71,6 +74,24 @@ bool parse_lists(const std::string& conventions, const std::string& families,
     }
   }
   return !options.conventions.empty();
+}
+
+int run_check(const std::string& path, bool as_json) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) {
+    std::cerr << "oblique check: cannot read " << path << "\n";
+    return 2;
+  }
+  std::ostringstream text;
+  text << file.rdbuf();
+  const oblique::scene::ParsedScene parsed = oblique::scene::parse_scene(text.str());
+  if (!parsed.scene) {
+    std::cerr << "oblique check: " << path << ": " << parsed.error << "\n";
+    return 2;
+  }
+  const oblique::scene::SceneCheck check = oblique::scene::check_scene(*parsed.scene);
+  std::cout << (as_json ? oblique::scene::to_json(check) + "\n" : oblique::scene::to_text(check));
+  return check.passes() ? 0 : 1;
 }
 
 }  // namespace
@@ -139,6 +160,17 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   verify->add_flag("--quiet", quiet, "No progress lines on standard error");
 
+  std::string scene_path;
+  bool as_json = false;
+  CLI::App* check = app.add_subcommand(
+      "check",
+      "Check the mirrors and clip planes of a scene file: for each surface, render or skip (with "
+      "the reason), the pass camera's view and oblique projection, the properties that apply, "
+      "and the depth precision left. Exit 0: every rendered pass passes; 1: a property fails; 2: "
+      "the scene cannot be read.");
+  check->add_option("SCENE", scene_path, "The scene file (JSON; see the README)")->required();
+  check->add_flag("--json", as_json, "Print one JSON object instead of a table");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -152,6 +184,7 @@ int main(int argc, char** argv) {
     apply_options.precision = *oblique::protocol::parse_precision(precision);
     return run_apply(apply_options);
   }
+  if (check->parsed()) return run_check(scene_path, as_json);
   if (verify->parsed()) {
     if (!parse_lists(verify_conventions, families, verify_options)) return 2;
     verify_options.precision = *oblique::protocol::parse_precision(verify_precision);

@@ -1,11 +1,10 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs `oblique apply` on the bundled example requests.
+# Installs what is missing, builds, and runs the main job on the bundled default scene:
+# `oblique check examples/scenes/lake.json` (a camera over a lake, its reflection and refraction
+# passes). Another scene: bash scripts/demo.sh examples/scenes/wall_mirror_reversed_z.json
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake --preset release > /dev/null
 cmake --build --preset release --target oblique > /dev/null
-status=0
-./build/release/cli/oblique apply < examples/requests.jsonl || status=$?
-# Exit 1 only says some request got a non-ok status, which the example shows on purpose.
-if [[ $status -gt 1 ]]; then exit "$status"; fi
+./build/release/cli/oblique check "${1:-examples/scenes/lake.json}"

@@ -1,0 +1,257 @@
+#include "check.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "oblique/properties/properties.h"
+
+namespace oblique::scene {
+
+bool SurfaceCheck::passes() const {
+  for (const PropertyCheck& p : properties) {
+    if (!p.holds) return false;
+  }
+  return true;
+}
+
+bool SceneCheck::passes() const {
+  for (const SurfaceCheck& s : surfaces) {
+    if (!s.passes()) return false;
+  }
+  return true;
+}
+
+namespace {
+
+/// The near and far faces' clip-space depth (reversed Z: near at z = 1).
+double near_face(Convention c) {
+  return c == Convention::reversed_z ? 1 : clip_depth_range(c).z_low;
+}
+double far_face(Convention c) {
+  return c == Convention::reversed_z ? 0 : clip_depth_range(c).z_high;
+}
+
+/// The plane in the space that `to_camera` maps world points into: planes go by M^-T.
+Vector4<double> plane_in(const Matrix4<double>& to_camera, const Vector4<double>& world_plane) {
+  return to_camera.inverse().transpose() * world_plane;
+}
+
+/// Whether the main camera's view volume lies entirely on the camera's side of the plane (it
+/// does not see the surface at all). Corners at infinity count by direction.
+bool out_of_view(const Camera& camera, const Vector4<double>& world_plane, Convention convention) {
+  const Matrix4<double> inverse = (camera.projection * camera.view).inverse();
+  const DepthRange range = clip_depth_range(convention);
+  const double eye_side =
+      world_plane.dot(Vector4<double>(camera.eye.x(), camera.eye.y(), camera.eye.z(), 1));
+  for (int x : {-1, 1}) {
+    for (int y : {-1, 1}) {
+      for (int z : {range.z_low, range.z_high}) {
+        Vector4<double> corner = inverse * Vector4<double>(x, y, z, 1);
+        if (corner.w() < 0) corner = -corner;  // the same point, with w >= 0
+        const double side = world_plane.dot(corner);
+        if (side * eye_side < 0) return false;  // this corner is beyond the surface
+      }
+    }
+  }
+  return true;
+}
+
+std::string reason_for(Status status, SurfaceKind kind) {
+  switch (status) {
+    case Status::camera_not_behind_plane:
+      return kind == SurfaceKind::mirror
+                 ? "the camera is behind the surface (on the mirror's back side)"
+                 : "the camera is on the kept side of the clip plane (oblique clipping needs it "
+                   "behind)";
+    case Status::plane_misses_view_volume:
+      return "the oblique volume is empty (nothing the pass camera sees is in front of the "
+             "surface)";
+    default: return std::string(status_message(status));
+  }
+}
+
+std::vector<PropertyCheck> judge(const Matrix4<double>& projection, const Vector4<double>& plane,
+                                 Convention convention, const Matrix4<double>& result) {
+  const properties::Problem<double> problem(projection, plane, convention);
+  std::vector<PropertyCheck> out;
+  for (const properties::Verdict& v : problem.check(result).items) {
+    if (!v.applies) continue;
+    out.push_back({std::string(properties::property_name(v.property)), v.holds, v.ratio, v.lhs});
+  }
+  const properties::Verdict planes = problem.check_extracted_planes(result);
+  out.push_back({std::string(properties::property_name(planes.property)), planes.holds,
+                 planes.ratio, planes.lhs});
+  return out;
+}
+
+}  // namespace
+
+std::optional<DepthPrecision> depth_precision(const Matrix4<double>& original,
+                                              const Matrix4<double>& oblique,
+                                              const Vector4<double>& plane, Convention convention) {
+  const Matrix4<double> inverse = original.inverse();
+  Vector4<double> a = inverse * Vector4<double>(0, 0, near_face(convention), 1);
+  Vector4<double> b = inverse * Vector4<double>(0, 0, far_face(convention), 1);
+  if (a.w() < 0) a = -a;
+  if (b.w() < 0) b = -b;
+  // Points of the axis: (1 - s) a + s b for s in [0, 1] (b may be a direction, w = 0: then the
+  // segment's far end is at infinity and the same formula holds for the homogeneous points).
+  const double ca = plane.dot(a), cb = plane.dot(b);
+  if (ca < 0 && cb < 0) return std::nullopt;  // the axis never enters the kept region
+  auto depth = [&](const Vector4<double>& p) {
+    return oblique.row(2).dot(p) / oblique.row(3).dot(p);
+  };
+  const double near_value = near_face(convention);
+  double from = 0, to = 0;
+  if (ca >= 0 && cb >= 0) {
+    from = depth(a);
+    to = depth(b);
+  } else if (ca < 0) {
+    from = near_value;  // the axis enters through the oblique near plane
+    to = depth(b);
+  } else {
+    from = depth(a);
+    to = near_value;
+  }
+  const DepthRange range = clip_depth_range(convention);
+  DepthPrecision d;
+  d.far_depth = std::abs(to - near_value) >= std::abs(from - near_value) ? to : from;
+  d.fraction = std::abs(to - from) / (range.z_high - range.z_low);
+  d.bits_lost = d.fraction > 0 ? -std::log2(d.fraction) : INFINITY;
+  return d;
+}
+
+SceneCheck check_scene(const Scene& scene) {
+  SceneCheck out;
+  out.scene = scene.name;
+  out.convention = scene.convention;
+  const Camera& camera = scene.camera;
+  for (const Surface& surface : scene.surfaces) {
+    SurfaceCheck s;
+    s.name = surface.name;
+    s.kind = surface.kind;
+    const Vector4<double> world_plane = surface.plane();
+    s.view = surface.kind == SurfaceKind::mirror
+                 ? Matrix4<double>(camera.view * reflection(world_plane))
+                 : camera.view;
+    s.plane_in_camera = plane_in(s.view, world_plane);
+    const ObliqueResult<double> result =
+        apply<double>(camera.projection, s.plane_in_camera, scene.convention);
+    s.status = result.status;
+    s.method = result.method;
+    if (result.status == Status::camera_not_behind_plane) {
+      s.reason = reason_for(result.status, surface.kind);
+    } else if (out_of_view(camera, world_plane, scene.convention)) {
+      s.reason = "the surface is outside the main view volume";
+    } else if (!result.ok()) {
+      s.reason = reason_for(result.status, surface.kind);
+    } else {
+      s.render = true;
+      s.projection = result.projection;
+      s.properties =
+          judge(camera.projection, s.plane_in_camera, scene.convention, result.projection);
+      s.depth = depth_precision(camera.projection, result.projection, s.plane_in_camera,
+                                scene.convention);
+    }
+    out.surfaces.push_back(std::move(s));
+  }
+  return out;
+}
+
+namespace {
+
+std::string number(double x) {
+  if (!std::isfinite(x)) return "null";
+  char buffer[40];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, r.ptr);
+}
+
+std::string matrix_json(const Matrix4<double>& m) {
+  std::string out = "[";
+  for (int i = 0; i < 16; ++i) out += (i ? ", " : "") + number(m(i / 4, i % 4));
+  return out + "]";
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') out += '\\';
+    out += ch;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string to_json(const SceneCheck& check) {
+  std::string out = "{\"scene\": " + quoted(check.scene) +
+                    ", \"convention\": " + quoted(std::string(convention_name(check.convention))) +
+                    ", \"surfaces\": [";
+  for (std::size_t k = 0; k < check.surfaces.size(); ++k) {
+    const SurfaceCheck& s = check.surfaces[k];
+    out += k ? ", " : "";
+    out += "{\"name\": " + quoted(s.name) +
+           ", \"kind\": " + quoted(s.kind == SurfaceKind::mirror ? "mirror" : "clip") +
+           ", \"action\": " + quoted(s.render ? "render" : "skip") +
+           ", \"reason\": " + (s.render ? "null" : quoted(s.reason)) +
+           ", \"status\": " + quoted(std::string(status_code(s.status))) +
+           ", \"view\": " + matrix_json(s.view) +
+           ", \"projection\": " + (s.projection ? matrix_json(*s.projection) : "null") +
+           ", \"method\": " + (s.render ? quoted(std::string(method_name(s.method))) : "null") +
+           ", \"properties\": {";
+    for (std::size_t i = 0; i < s.properties.size(); ++i) {
+      out += (i ? ", " : "") + quoted(s.properties[i].name) + ": " +
+             (s.properties[i].holds ? "true" : "false");
+    }
+    out += "}, \"residuals\": {";
+    for (std::size_t i = 0; i < s.properties.size(); ++i)
+      out += (i ? ", " : "") + quoted(s.properties[i].name) + ": " + number(s.properties[i].ratio);
+    out += "}, \"max_depth\": " + (s.depth ? number(s.depth->far_depth) : "null") +
+           ", \"depth_fraction\": " + (s.depth ? number(s.depth->fraction) : "null") +
+           ", \"depth_bits_lost\": " + (s.depth ? number(s.depth->bits_lost) : "null") + "}";
+  }
+  return out + "]}";
+}
+
+std::string to_text(const SceneCheck& check) {
+  std::ostringstream out;
+  out << "scene " << check.scene << " (" << convention_name(check.convention) << ")\n";
+  for (const SurfaceCheck& s : check.surfaces) {
+    out << "\n" << s.name << " (" << (s.kind == SurfaceKind::mirror ? "mirror" : "clip") << "): ";
+    if (!s.render) {
+      out << "skip: " << s.reason << "\n";
+      continue;
+    }
+    out << "render, " << method_name(s.method) << " method, "
+        << (s.passes() ? "every property holds" : "A PROPERTY FAILS") << "\n";
+    out << "  view:       ";
+    for (int i = 0; i < 4; ++i) {
+      out << (i ? "              " : "") << "[";
+      for (int j = 0; j < 4; ++j) out << (j ? ", " : "") << number(s.view(i, j));
+      out << "]\n";
+    }
+    out << "  projection: ";
+    for (int i = 0; i < 4; ++i) {
+      out << (i ? "              " : "") << "[";
+      for (int j = 0; j < 4; ++j) out << (j ? ", " : "") << number((*s.projection)(i, j));
+      out << "]\n";
+    }
+    for (const PropertyCheck& p : s.properties) {
+      out << "  " << (p.holds ? "ok   " : "FAIL ") << p.name;
+      if (p.ratio > 0) out << "  (residual / bound " << number(p.ratio) << ")";
+      out << "\n";
+    }
+    if (s.depth) {
+      out << "  depth along the view axis: reaches " << number(s.depth->far_depth) << ", spans "
+          << number(s.depth->fraction) << " of the range: " << number(s.depth->bits_lost)
+          << " bits of a 24-bit buffer lost\n";
+    } else {
+      out << "  depth along the view axis: the axis does not pass through the kept region\n";
+    }
+  }
+  return out.str();
+}
+
+}  // namespace oblique::scene
