@@ -1,7 +1,9 @@
 #include "check.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "oblique/properties/properties.h"
@@ -168,6 +170,12 @@ std::string number(double x) {
   return std::string(buffer, r.ptr);
 }
 
+std::string fixed2(double x) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.2f", x);
+  return buffer;
+}
+
 std::string matrix_json(const Matrix4<double>& m) {
   std::string out = "[";
   for (int i = 0; i < 16; ++i) out += (i ? ", " : "") + number(m(i / 4, i % 4));
@@ -217,13 +225,24 @@ std::string to_json(const SceneCheck& check) {
 
 std::string to_text(const SceneCheck& check) {
   std::ostringstream out;
-  out << "scene " << check.scene << " (" << convention_name(check.convention) << ")\n";
+  out << "scene " << check.scene << " (" << convention_name(check.convention) << ")\n\n";
+  // The summary table, then the details of each rendered pass.
+  std::size_t width = 7;
+  for (const SurfaceCheck& s : check.surfaces) width = std::max(width, s.name.size());
+  auto cell = [](std::string text, std::size_t w) {
+    text.resize(std::max(w, text.size()), ' ');
+    return text;
+  };
+  out << cell("surface", width) << "  kind    action  properties  depth bits lost  reason\n";
   for (const SurfaceCheck& s : check.surfaces) {
+    out << cell(s.name, width) << "  " << cell(s.kind == SurfaceKind::mirror ? "mirror" : "clip", 6)
+        << "  " << cell(s.render ? "render" : "skip", 6) << "  "
+        << cell(s.render ? (s.passes() ? "pass" : "FAIL") : "-", 10) << "  "
+        << cell(s.depth ? fixed2(s.depth->bits_lost) : "-", 15) << "  " << s.reason << "\n";
+  }
+  for (const SurfaceCheck& s : check.surfaces) {
+    if (!s.render) continue;
     out << "\n" << s.name << " (" << (s.kind == SurfaceKind::mirror ? "mirror" : "clip") << "): ";
-    if (!s.render) {
-      out << "skip: " << s.reason << "\n";
-      continue;
-    }
     out << "render, " << method_name(s.method) << " method, "
         << (s.passes() ? "every property holds" : "A PROPERTY FAILS") << "\n";
     out << "  view:       ";
