@@ -71,7 +71,8 @@ for target in "${targets[@]}"; do
     key=$(printf '%s' "$message" | sha1sum | cut -c1-12)
     [[ -n "${seen[$key]:-}" ]] && continue
     seen[$key]=1
-    name="crash-$key"
+    # Named by content, so a new input with a known message never overwrites a kept one.
+    name="crash-$(sha1sum < "$minimized" | cut -c1-12)"
     cp "$minimized" "fuzz/regressions/$target/$name"
     report="reports/fuzz/$target-$name.md"
     {

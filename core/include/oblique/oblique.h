@@ -181,6 +181,19 @@ ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Conve
   return finish(m, plane, q, convention, Method::closed_form);
 }
 
+/// The signs of C' for the far corner, with 0 for a component within its error bound of zero:
+/// a rounded zero's sign would send Q' to a face whose corner may lie arbitrarily far out (a
+/// matrix entry of 2^-52 puts it at 2^52), and C . Q, computed there, cancels to nothing. Where
+/// the component is really that small, every point of the edge is within rounding as far, and
+/// the middle of the edge is the safe choice.
+template <class T>
+Vector4<T> trusted_signs(const Vector4<T>& c_clip, const Vector4<T>& error_bound) {
+  Vector4<T> signs;
+  for (int i = 0; i < 4; ++i)
+    signs(i) = std::abs(c_clip(i)) <= error_bound(i) ? T(0) : sign(c_clip(i));
+  return signs;
+}
+
 /// General method for any invertible M, through EquilibratedSolver (equilibration by powers of
 /// two, one LU factorisation for both solves):
 ///   C' = M^-T C   has the signs of   R^-1 C',
@@ -211,8 +224,8 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
     return refuse(m, Method::general, Status::out_of_range,
                   "C' = M^-T C is beyond the range of the scalar type");
   }
-  const Vector4<T> corner =
-      clip_corner(sign(c_clip.x()), sign(c_clip.y()), sign(c_clip.z()), convention);
+  const Vector4<T> signs = trusted_signs(c_clip, solver.transposed_error_bound(c_clip));
+  const Vector4<T> corner = clip_corner(signs.x(), signs.y(), signs.z(), convention);
   return finish(m, plane, solver.solve(corner), convention, Method::general);
 }
 

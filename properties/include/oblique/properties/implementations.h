@@ -63,15 +63,18 @@ ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
     return detail::refuse(m, Method::general, Status::out_of_range,
                           "C' = M^-T C is beyond the range of the scalar type");
   }
-  // The planted fault.
+  // The planted fault (on the core's trusted components: a rounded zero counts as zero).
+  const Vector4<T> trusted = detail::trusted_signs(c_clip, solver.transposed_error_bound(c_clip))
+                                 .cwiseAbs()
+                                 .cwiseProduct(c_clip);
   auto sgn = [fault](T x) {
     return fault == Fault::sign_by_division ? x / std::abs(x) : detail::sign(x);
   };
   const bool from_c = fault == Fault::signs_from_c;
-  const T z_sign = fault == Fault::wrong_face ? -sgn(c_clip.z()) : sgn(c_clip.z());
+  const T z_sign = fault == Fault::wrong_face ? -sgn(trusted.z()) : sgn(trusted.z());
   const Vector4<T> corner =
-      detail::clip_corner(sgn(from_c ? plane.x() : c_clip.x()),
-                          sgn(from_c ? plane.y() : c_clip.y()), z_sign, convention);
+      detail::clip_corner(sgn(from_c ? plane.x() : trusted.x()),
+                          sgn(from_c ? plane.y() : trusted.y()), z_sign, convention);
   return detail::finish(m, plane, solver.solve(corner), convention, Method::general);
 }
 
