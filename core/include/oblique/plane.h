@@ -47,16 +47,16 @@ int magnitude_exponent(const Eigen::MatrixBase<Derived>& v) {
 template <class Derived>
 int magnitude_spread(const Eigen::MatrixBase<Derived>& v) {
   using T = typename Derived::Scalar;
-  int high = std::numeric_limits<int>::min(), low = std::numeric_limits<int>::max();
+  T high = T(0), low = std::numeric_limits<T>::infinity();
   for (Eigen::Index i = 0; i < v.rows(); ++i) {
     for (Eigen::Index j = 0; j < v.cols(); ++j) {
-      if (v(i, j) == T(0)) continue;
-      const int e = std::ilogb(v(i, j));
-      high = std::max(high, e);
-      low = std::min(low, e);
+      const T a = std::abs(v(i, j));
+      if (a == T(0)) continue;
+      high = std::max(high, a);
+      low = std::min(low, a);
     }
   }
-  return high >= low ? high - low : 0;
+  return high > T(0) ? std::ilogb(high) - std::ilogb(low) : 0;
 }
 
 /// The widest magnitude_spread() of a projection matrix that the core computes with in T: 2p
