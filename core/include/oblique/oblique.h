@@ -112,9 +112,9 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
     r.detail = "the far corner Q = M^-1 Q' is beyond the range of the scalar type";
     return r;
   }
-  // C scaled by a power of two so that C . Q neither overflows nor underflows; a C is unchanged.
-  const int e = magnitude_exponent(plane);
-  const Vector4<T> c_hat = scaled_by_power_of_two(plane, -e);
+  // C scaled by 2^k so that C . Q neither overflows nor underflows; a C is unchanged.
+  const int k = plane_scale_shift(plane);
+  const Vector4<T> c_hat = scaled_by_power_of_two(plane, k);
   const T d = c_hat.dot(q);
   if (!std::isfinite(d)) {
     r.status = Status::out_of_range;
@@ -126,8 +126,8 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
     return r;
   }
   const DepthRange range = clip_depth_range(convention);
-  const T a_hat = T(range.z_high - range.z_low) / d;  // a * 2^e
-  const T a = std::ldexp(a_hat, -e);
+  const T a_hat = T(range.z_high - range.z_low) / d;  // a * 2^-k
+  const T a = std::ldexp(a_hat, k);
   // a * C_i rounds once; fall back to a_hat * c_hat_i (the same value) when a itself is not normal.
   const Vector4<T> ac = (std::isfinite(a) && std::abs(a) >= std::numeric_limits<T>::min())
                             ? Vector4<T>(a * plane)
@@ -218,7 +218,7 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   if (!(plane.w() < T(0))) {
     return refuse(m, Method::general, Status::camera_not_behind_plane);
   }
-  const Vector4<T> c_hat = scaled_by_power_of_two(plane, -magnitude_exponent(plane));
+  const Vector4<T> c_hat = scaled_by_power_of_two(plane, plane_scale_shift(plane));
   const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat);
   if (!all_finite(c_clip)) {
     return refuse(m, Method::general, Status::out_of_range,

@@ -57,7 +57,7 @@ ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   if (fault != Fault::no_camera_check && !(plane.w() < T(0))) {
     return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
   }
-  const Vector4<T> c_hat = scaled_by_power_of_two(plane, -magnitude_exponent(plane));
+  const Vector4<T> c_hat = scaled_by_power_of_two(plane, plane_scale_shift(plane));
   const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat);
   if (!all_finite(c_clip)) {
     return detail::refuse(m, Method::general, Status::out_of_range,

@@ -205,7 +205,8 @@ class Problem {
     const exact::Rational d_error =
         tolerance::gamma(tolerance::kScaleRoundings, p) * kappa_numerator_ +
         tolerance::kScaleRoundings * tolerance::underflow_unit<T>();
-    if (exact::abs(d_) <= d_error) {
+    const bool d_unresolved = exact::abs(d_) <= d_error;
+    if (d_unresolved) {
       add(Status::plane_misses_view_volume);
       add(Status::ok);
       add(Status::out_of_range);
@@ -245,7 +246,9 @@ class Problem {
     const exact::Rational overflow =
         largest + exact::to_rational(std::ldexp(T(1), std::numeric_limits<T>::max_exponent -
                                                           std::numeric_limits<T>::digits - 1));
-    if (d_ > 0 && biggest >= overflow)
+    // (Unless C . Q is within its rounding error of zero: then a computed C . Q, and the answer,
+    // may be any size.)
+    if (d_ > 0 && biggest >= overflow && !d_unresolved)
       out.erase(std::remove(out.begin(), out.end(), Status::ok), out.end());
     return out;
   }
