@@ -104,14 +104,16 @@ std::string oblique(const T (&m)[16], const T (&c_in)[4], const std::string& con
   if (skeel_condition(m) >= T(1) / (128 * std::numeric_limits<T>::epsilon()))
     return "singular_projection";
   if (mistake != Mistake::no_camera_guard && !(c_in[3] < 0)) return "camera_not_behind_plane";
-  // a C does not change when C is scaled, so scale C by a power of two (exactly) to magnitude
-  // about 1 first: a tiny or huge C would otherwise underflow or overflow C . Q.
+  // a C does not change when C is scaled, so bring a very tiny or very huge C to magnitude about
+  // 1 by a power of two first (C . Q would underflow or overflow). Only then: scaling down an
+  // ordinary C would push a subnormal component further down and lose its bits.
   T largest = 0;
   for (T v : c_in) largest = std::max(largest, std::abs(v));
   if (largest == 0) return "camera_not_behind_plane";
   const int e = std::ilogb(largest);
+  const int shift = std::abs(e) > std::numeric_limits<T>::max_exponent / 4 ? -e : 0;
   T c[4];
-  for (int i = 0; i < 4; ++i) c[i] = std::ldexp(c_in[i], -e);
+  for (int i = 0; i < 4; ++i) c[i] = std::ldexp(c_in[i], shift);
   T c_clip[4], q[4];
   if (!solve(m, true, c, c_clip)) return "singular_projection";
   // The mistake zero_one_factor_on_gl: the [0, 1] formulas (z in [0, 1], M'_3 = a C) on gl.
