@@ -16,41 +16,41 @@
 
 namespace oblique::properties {
 
+namespace {
+
+template <class V>
+std::string printed(const char* format, V x) {
+  char b[64];
+  std::snprintf(b, sizeof b, format, x);
+  return b;
+}
+
+}  // namespace
+
+// Round-trip decimal digits (max_digits10) and exact hex for each scalar type.
 template <>
 std::string decimal<float>(float x) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.9g", static_cast<double>(x));
-  return b;
+  return printed("%.9g", static_cast<double>(x));
 }
 template <>
 std::string decimal<double>(double x) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.17g", x);
-  return b;
+  return printed("%.17g", x);
 }
 template <>
 std::string decimal<long double>(long double x) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.21Lg", x);
-  return b;
+  return printed("%.21Lg", x);
 }
 template <>
 std::string hexadecimal<float>(float x) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%a", static_cast<double>(x));
-  return b;
+  return printed("%a", static_cast<double>(x));
 }
 template <>
 std::string hexadecimal<double>(double x) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%a", x);
-  return b;
+  return printed("%a", x);
 }
 template <>
 std::string hexadecimal<long double>(long double x) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%La", x);
-  return b;
+  return printed("%La", x);
 }
 template <>
 const char* scalar_name<float>() {

@@ -1,5 +1,7 @@
 #include "check.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -7,6 +9,7 @@
 #include <sstream>
 
 #include "oblique/properties/properties.h"
+#include "protocol.h"
 
 namespace oblique::scene {
 
@@ -164,10 +167,7 @@ SceneCheck check_scene(const Scene& scene) {
 namespace {
 
 std::string number(double x) {
-  if (!std::isfinite(x)) return "null";
-  char buffer[40];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);
-  return std::string(buffer, r.ptr);
+  return protocol::format_number<double>(x);
 }
 
 std::string fixed2(double x) {
@@ -176,51 +176,43 @@ std::string fixed2(double x) {
   return buffer;
 }
 
-std::string matrix_json(const Matrix4<double>& m) {
-  std::string out = "[";
-  for (int i = 0; i < 16; ++i) out += (i ? ", " : "") + number(m(i / 4, i % 4));
-  return out + "]";
-}
-
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    out += ch;
-  }
-  return out + "\"";
+nlohmann::ordered_json matrix_json(const Matrix4<double>& m) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (int i = 0; i < 16; ++i) out.push_back(m(i / 4, i % 4));
+  return out;
 }
 
 }  // namespace
 
 std::string to_json(const SceneCheck& check) {
-  std::string out = "{\"scene\": " + quoted(check.scene) +
-                    ", \"convention\": " + quoted(std::string(convention_name(check.convention))) +
-                    ", \"surfaces\": [";
-  for (std::size_t k = 0; k < check.surfaces.size(); ++k) {
-    const SurfaceCheck& s = check.surfaces[k];
-    out += k ? ", " : "";
-    out += "{\"name\": " + quoted(s.name) +
-           ", \"kind\": " + quoted(s.kind == SurfaceKind::mirror ? "mirror" : "clip") +
-           ", \"action\": " + quoted(s.render ? "render" : "skip") +
-           ", \"reason\": " + (s.render ? "null" : quoted(s.reason)) +
-           ", \"status\": " + quoted(std::string(status_code(s.status))) +
-           ", \"view\": " + matrix_json(s.view) +
-           ", \"projection\": " + (s.projection ? matrix_json(*s.projection) : "null") +
-           ", \"method\": " + (s.render ? quoted(std::string(method_name(s.method))) : "null") +
-           ", \"properties\": {";
-    for (std::size_t i = 0; i < s.properties.size(); ++i) {
-      out += (i ? ", " : "") + quoted(s.properties[i].name) + ": " +
-             (s.properties[i].holds ? "true" : "false");
+  using json = nlohmann::ordered_json;  // fields in the documented order; non-finite -> null
+  json surfaces = json::array();
+  for (const SurfaceCheck& s : check.surfaces) {
+    json properties = json::object(), residuals = json::object();
+    for (const PropertyCheck& p : s.properties) {
+      properties[p.name] = p.holds;
+      residuals[p.name] = p.ratio;
     }
-    out += "}, \"residuals\": {";
-    for (std::size_t i = 0; i < s.properties.size(); ++i)
-      out += (i ? ", " : "") + quoted(s.properties[i].name) + ": " + number(s.properties[i].ratio);
-    out += "}, \"max_depth\": " + (s.depth ? number(s.depth->far_depth) : "null") +
-           ", \"depth_fraction\": " + (s.depth ? number(s.depth->fraction) : "null") +
-           ", \"depth_bits_lost\": " + (s.depth ? number(s.depth->bits_lost) : "null") + "}";
+    surfaces.push_back({
+        {"name", s.name},
+        {"kind", s.kind == SurfaceKind::mirror ? "mirror" : "clip"},
+        {"action", s.render ? "render" : "skip"},
+        {"reason", s.render ? json(nullptr) : json(s.reason)},
+        {"status", std::string(status_code(s.status))},
+        {"view", matrix_json(s.view)},
+        {"projection", s.projection ? matrix_json(*s.projection) : json(nullptr)},
+        {"method", s.render ? json(std::string(method_name(s.method))) : json(nullptr)},
+        {"properties", properties},
+        {"residuals", residuals},
+        {"max_depth", s.depth ? json(s.depth->far_depth) : json(nullptr)},
+        {"depth_fraction", s.depth ? json(s.depth->fraction) : json(nullptr)},
+        {"depth_bits_lost", s.depth ? json(s.depth->bits_lost) : json(nullptr)},
+    });
   }
-  return out + "]}";
+  const json out = {{"scene", check.scene},
+                    {"convention", std::string(convention_name(check.convention))},
+                    {"surfaces", surfaces}};
+  return out.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 std::string to_text(const SceneCheck& check) {

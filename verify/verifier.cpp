@@ -150,9 +150,11 @@ std::optional<Answered<T>> read_answer(const std::string& line, std::string* err
     std::string why;
     const std::string& token = (*parsed.projection)[static_cast<std::size_t>(i)];
     std::optional<T> value = protocol::parse_number<T>(token, &why);
-    if (!value && why.find("overflows") != std::string::npos) {
-      value = token[0] == '-' ? -std::numeric_limits<T>::infinity()
-                              : std::numeric_limits<T>::infinity();  // judged, not refused
+    if (!value) {  // a number beyond T's range is an infinite entry to judge, not a protocol error
+      std::string wide_why;
+      if (const auto wide = protocol::parse_number<long double>(token, &wide_why))
+        value =
+            *wide < 0 ? -std::numeric_limits<T>::infinity() : std::numeric_limits<T>::infinity();
     }
     if (!value) {
       *error = "projection[" + std::to_string(i) + "]: " + why;

@@ -88,26 +88,6 @@ ObliqueResult<T> with_fault(const Matrix4<T>& m, const Vector4<T>& c, Convention
   return planted(m, c, convention, fault);
 }
 
-template <class T>
-ObliqueResult<T> signs_from_c(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
-  return with_fault(m, c, convention, Fault::signs_from_c);
-}
-
-template <class T>
-ObliqueResult<T> wrong_face(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
-  return with_fault(m, c, convention, Fault::wrong_face);
-}
-
-template <class T>
-ObliqueResult<T> sign_by_division(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
-  return with_fault(m, c, convention, Fault::sign_by_division);
-}
-
-template <class T>
-ObliqueResult<T> no_camera_check(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
-  return with_fault(m, c, convention, Fault::no_camera_check);
-}
-
 }  // namespace mutants
 
 template <class T>
@@ -124,15 +104,14 @@ Implementation<T> core_method(Method method) {
   return impl;
 }
 
+/// The core's general method with one planted fault, as an implementation named NAME.
 template <class T>
-Implementation<T> from_result(std::string name,
-                              ObliqueResult<T> (*fn)(const Matrix4<T>&, const Vector4<T>&,
-                                                     Convention)) {
+Implementation<T> planted_mutant(std::string name, mutants::Fault fault) {
   Implementation<T> impl;
   impl.name = std::move(name);
   impl.accepts = [](Convention, const Matrix4<T>&) { return true; };
-  impl.run = [fn](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
-    const ObliqueResult<T> r = fn(m, c, convention);
+  impl.run = [fault](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+    const ObliqueResult<T> r = mutants::with_fault(m, c, convention, fault);
     return Outcome<T>{r.status, r.projection};
   };
   return impl;
@@ -176,10 +155,11 @@ std::vector<Implementation<T>> known_implementations() {
         return seeded::note_reversed(Matrix4<T>(seeded::depth_flip<T>() * m), c,
                                      seeded::note_flip_as_printed<T>());
       }));
-  out.push_back(from_result<T>("mutant_signs_from_c", &mutants::signs_from_c<T>));
-  out.push_back(from_result<T>("mutant_wrong_face", &mutants::wrong_face<T>));
-  out.push_back(from_result<T>("mutant_sign_by_division", &mutants::sign_by_division<T>));
-  out.push_back(from_result<T>("mutant_no_camera_check", &mutants::no_camera_check<T>));
+  using mutants::Fault;
+  out.push_back(planted_mutant<T>("mutant_signs_from_c", Fault::signs_from_c));
+  out.push_back(planted_mutant<T>("mutant_wrong_face", Fault::wrong_face));
+  out.push_back(planted_mutant<T>("mutant_sign_by_division", Fault::sign_by_division));
+  out.push_back(planted_mutant<T>("mutant_no_camera_check", Fault::no_camera_check));
   {
     Implementation<T> impl;  // the [0, 1] factor (a = 1 / C.Q, M'_3 = a C) applied to gl matrices
     impl.name = "mutant_zero_one_factor";
