@@ -67,7 +67,7 @@ void batch(benchmark::State& state, Method method) {
 template <class T>
 void register_scalar(const char* scalar) {
   workload<T>();  // generated before any timing
-  for (Method method : {Method::closed_form, Method::general}) {
+  for (Method method : {Method::closed_form, Method::general, Method::accurate}) {
     const std::string name = std::string(oblique::method_name(method)) + "/" + scalar;
     benchmark::RegisterBenchmark(("oblique/" + name).c_str(),
                                  [method](benchmark::State& s) { per_call<T>(s, method); });

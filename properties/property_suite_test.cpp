@@ -102,6 +102,36 @@ void closed_form_and_general_agree() {
       Coverage::perspective_shape);
 }
 
+/// The accurate method within tolerance::kAccurateUlps of the correctly rounded exact answer, on
+/// every family, convention and hard place the generators make.
+template <class T>
+void accurate_method_is_within_its_ulps() {
+  run(
+      [] {
+        const Case<T> c = *generators::valid_case<T>();
+        const Problem<T> problem(c.matrix, c.plane, c.convention);
+        RC_PRE(problem.exact_status() == Status::ok);
+        count_case(c);
+        ++tally().implementations["core_accurate (ulps)"];
+        const auto result = apply<T>(c.matrix, c.plane, c.convention, Method::accurate);
+        if (!result.ok()) return;  // statuses are judged by the other properties
+        ++tally().applied["accurate_method_is_within_its_ulps"];
+        const double ulps = problem.ulps_from_exact(result.projection);
+        if (ulps <= tolerance::kAccurateUlps) return;
+        Counterexample ce = describe(c, core_method<T>(Method::accurate));
+        ce.property = "accurate_ulps";
+        ce.relation = "every entry of M' within 2 ulp of the correctly rounded exact answer";
+        ce.lhs = format_g17(ulps) + " ulp";
+        ce.rhs = format_g17(tolerance::kAccurateUlps) + " ulp";
+        ce.ratio = ulps / tolerance::kAccurateUlps;
+        for (int i = 0; i < 16; ++i)
+          ce.result_decimal.push_back(decimal(result.projection(i / 4, i % 4)));
+        tally().failure = ce;
+        RC_FAIL("the accurate method is " + ce.lhs + " from the correctly rounded answer");
+      },
+      Coverage::valid);
+}
+
 template <class T>
 void extracted_planes_match() {
   run(
@@ -145,6 +175,9 @@ void extracted_planes_match() {
   }                                                                                                \
   TEST(Suite, extractedFrustumPlanesMatch) {                                                       \
     extracted_planes_match<T>();                                                                   \
+  }                                                                                                \
+  TEST(Suite, accurateMethodIsWithinTwoUlps) {                                                     \
+    accurate_method_is_within_its_ulps<T>();                                                       \
   }
 
 OBLIQUE_PROPERTY_SUITE(PropertiesFloat, float)

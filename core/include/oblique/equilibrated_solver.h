@@ -3,8 +3,8 @@
 //  - M is equilibrated by powers of two (exactly, while no entry leaves the normal range) to
 //    Mt = R M S, and factorised once with partial pivoting;
 //  - each solve is refined with residuals computed in about twice the working precision
-//    (error-free transformations with FMA), keeping the iterate with the smallest componentwise
-//    backward error |b - A x|_i / (|A| |x| + |b|)_i.
+//    (error-free transformations, error_free.h), keeping the iterate with the smallest
+//    componentwise backward error |b - A x|_i / (|A| |x| + |b|)_i.
 // Partial pivoting alone is backward stable against |L| |U|, which can be far larger than |M|
 // entry by entry; fuzz_oblique found matrices with entries of 1e-6 beside ones of 1 to 13 whose
 // unrefined far corner missed the checker's bound by a factor of 400. The refinement brings the
@@ -16,17 +16,10 @@
 #include <cmath>
 #include <limits>
 
+#include "oblique/error_free.h"
 #include "oblique/plane.h"
 
 namespace oblique::detail {
-
-/// s + e = a + b exactly (Knuth's TwoSum).
-template <class T>
-void two_sum(T a, T b, T& s, T& e) noexcept {
-  s = a + b;
-  const T z = s - a;
-  e = (a - (s - z)) + (b - z);
-}
 
 /// b - A x (or b - A^T x), each entry with the accuracy of a computation in twice the working
 /// precision rounded once (Ogita, Rump and Oishi's Dot2).
@@ -38,11 +31,10 @@ Vector4<T> accurate_residual(const Matrix4<T>& a, const Vector4<T>& x, const Vec
     T s = b(i), c = T(0);
     for (int j = 0; j < 4; ++j) {
       const T aij = transpose ? a(j, i) : a(i, j);
-      const T p = aij * x(j);
-      const T p_error = std::fma(aij, x(j), -p);  // aij x_j = p + p_error exactly
-      T e;
-      two_sum(s, -p, s, e);
-      c += e - p_error;
+      const eft::Pair<T> p = eft::two_prod(aij, x(j));  // aij x_j exactly
+      const eft::Pair<T> t = eft::two_sum(s, -p.hi);
+      s = t.hi;
+      c += t.lo - p.lo;
     }
     r(i) = s + c;
   }
@@ -104,6 +96,15 @@ class EquilibratedSolver {
     const Vector4<T> bound =
         inverse.cwiseAbs().transpose() * (mt_.cwiseAbs().transpose() * y.cwiseAbs());
     return T(16) * std::numeric_limits<T>::epsilon() * bound;
+  }
+
+  /// The correction z1 to z = solve_transposed_unscaled(c) from one more refinement step whose
+  /// residual S c - Mt^T z is summed as in twice the working precision (z + z1 is then accurate to
+  /// about eps^2 times the conditioning). Its error is bounded by transposed_error_bound(z1) plus
+  /// eps transposed_error_bound(z).
+  Vector4<T> transposed_correction_unscaled(const Vector4<T>& c, const Vector4<T>& z) const {
+    const Vector4<T> scaled_c = col_scale_.cwiseProduct(c);
+    return lu_solve(accurate_residual(mt_, z, scaled_c, true), true);
   }
 
   /// x with M x = b: x = S Mt^-1 (R b).

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string_view>
 
+#include "oblique/accurate.h"
 #include "oblique/depth_convention.h"
 #include "oblique/equilibrated_solver.h"
 #include "oblique/plane.h"
@@ -22,15 +23,19 @@ enum class Method {
   automatic,    ///< closed_form when the matrix has the standard perspective shape, else general
   closed_form,  ///< Q from the matrix entries, no solve; standard perspective shape only
   general,      ///< C' = M^-T C and Q = M^-1 Q' by one LU factorisation; any invertible M
+  accurate,     ///< any invertible M, each entry of M'_3 within an ulp or two of the exact answer
+                ///< (accurate.h); closed-form solves for the perspective shape
 };
 
-inline constexpr Method all_methods[] = {Method::automatic, Method::closed_form, Method::general};
+inline constexpr Method all_methods[] = {Method::automatic, Method::closed_form, Method::general,
+                                         Method::accurate};
 
 constexpr std::string_view method_name(Method m) noexcept {
   switch (m) {
     case Method::automatic: return "auto";
     case Method::closed_form: return "closed_form";
     case Method::general: return "general";
+    case Method::accurate: return "accurate";
   }
   return "unknown";
 }
@@ -99,6 +104,36 @@ Vector4<T> clip_corner(T sign_x, T sign_y, T sign_z, Convention convention) {
   return Vector4<T>(sign_x, sign_y, z, T(1));
 }
 
+/// r with row 3 of its projection set to row3, or out_of_range where row3 is not finite or the
+/// near plane a consumer extracts from it no longer keeps C's side (c_hat: C scaled by 2^k).
+template <class T>
+ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const Vector4<T>& c_hat,
+                             Convention convention) {
+  const RowCombination near_combination = near_rows(convention);
+  const Vector4<T> t_m4 = T(near_combination.m4) * r.projection.row(3).transpose();
+  if (!all_finite(row3)) {
+    r.status = Status::out_of_range;
+    r.detail =
+        "the oblique matrix exceeds the range of the scalar type: C passes within rounding "
+        "distance of the far corner Q";
+    return r;
+  }
+  // The near plane as a consumer extracts it from the rounded matrix must still keep C's side:
+  // when a C is below the precision of M_4's entries, a C - M_4 rounds to -M_4 and it vanishes.
+  const Vector4<T> near_extracted = T(near_combination.m3) * row3 + t_m4;
+  const Vector4<T> near_hat =
+      scaled_by_power_of_two(near_extracted, -magnitude_exponent(near_extracted));
+  if (!(near_hat.dot(c_hat) > T(0))) {
+    r.status = Status::out_of_range;
+    r.detail =
+        "the oblique near plane a C is lost to rounding against M_4 (|a C| is below the precision "
+        "of M_4's entries): the plane is too far from the view volume for this scalar type";
+    return r;
+  }
+  r.projection.row(2) = row3.transpose();
+  return r;
+}
+
 /// Given Q with M_4 . Q = 1, builds M' with M'_3 chosen so that the near plane is a C, a > 0,
 /// and the far plane contains Q (paper Eqs. 9, 10 and 20, for every convention):
 ///   near' = s M'_3 + t M_4 = a C,   far' . Q = 0,   so   a = (z_high - z_low) / (C . Q).
@@ -133,31 +168,10 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
                             ? Vector4<T>(a * plane)
                             : Vector4<T>(a_hat * c_hat);
   const RowCombination near_combination = near_rows(convention);
-  const Vector4<T> m4 = m.row(3).transpose();
   // s = +-1: written as a difference either way so that a zero entry stays +0.
-  const Vector4<T> t_m4 = T(near_combination.m4) * m4;
+  const Vector4<T> t_m4 = T(near_combination.m4) * m.row(3).transpose();
   const Vector4<T> row3 = near_combination.m3 > 0 ? Vector4<T>(ac - t_m4) : Vector4<T>(t_m4 - ac);
-  if (!all_finite(row3)) {
-    r.status = Status::out_of_range;
-    r.detail =
-        "the oblique matrix exceeds the range of the scalar type: C passes within rounding "
-        "distance of the far corner Q";
-    return r;
-  }
-  // The near plane as a consumer extracts it from the rounded matrix must still keep C's side:
-  // when a C is below the precision of M_4's entries, a C - M_4 rounds to -M_4 and it vanishes.
-  const Vector4<T> near_extracted = T(near_combination.m3) * row3 + t_m4;
-  const Vector4<T> near_hat =
-      scaled_by_power_of_two(near_extracted, -magnitude_exponent(near_extracted));
-  if (!(near_hat.dot(c_hat) > T(0))) {
-    r.status = Status::out_of_range;
-    r.detail =
-        "the oblique near plane a C is lost to rounding against M_4 (|a C| is below the precision "
-        "of M_4's entries): the plane is too far from the view volume for this scalar type";
-    return r;
-  }
-  r.projection.row(2) = row3.transpose();
-  return r;
+  return accept_row3(std::move(r), row3, c_hat, convention);
 }
 
 /// Closed form for the standard perspective shape (see has_perspective_shape()):
@@ -198,23 +212,31 @@ Vector4<T> trusted_signs(const Vector4<T>& c_clip, const Vector4<T>& error_bound
 /// two, one LU factorisation for both solves):
 ///   C' = M^-T C   has the signs of   R^-1 C',
 ///   Q  = M^-1 Q'.
-template <class T>
-ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention) {
-  const EquilibratedSolver<T> solver(m);
+/// The refusal for a matrix the equilibrated solver cannot be trusted with, if any.
+template <class T, class W>
+std::optional<ObliqueResult<T>> solver_refusal(const Matrix4<T>& m,
+                                               const EquilibratedSolver<W>& solver, Method method) {
   switch (solver.failure()) {
-    case EquilibratedSolver<T>::Failure::zero_row:
-      return refuse(m, Method::general, Status::singular_projection,
+    case EquilibratedSolver<W>::Failure::zero_row:
+      return refuse(m, method, Status::singular_projection,
                     "the projection is singular: a row is zero");
-    case EquilibratedSolver<T>::Failure::zero_column:
-      return refuse(m, Method::general, Status::singular_projection,
+    case EquilibratedSolver<W>::Failure::zero_column:
+      return refuse(m, method, Status::singular_projection,
                     "the projection is singular: a column is zero");
-    case EquilibratedSolver<T>::Failure::none: break;
+    case EquilibratedSolver<W>::Failure::none: break;
   }
-  if (!(solver.rcond() > singular_rcond_threshold<T>())) {
-    return refuse(m, Method::general, Status::singular_projection,
+  if (!(solver.rcond() > singular_rcond_threshold<W>())) {
+    return refuse(m, method, Status::singular_projection,
                   "the projection is singular or numerically singular (reciprocal condition "
                   "number after equilibration at most 16 epsilon)");
   }
+  return std::nullopt;
+}
+
+template <class T>
+ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention) {
+  const EquilibratedSolver<T> solver(m);
+  if (auto refusal = solver_refusal(m, solver, Method::general)) return *refusal;
   if (!(plane.w() < T(0))) {
     return refuse(m, Method::general, Status::camera_not_behind_plane);
   }
@@ -227,6 +249,100 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   const Vector4<T> signs = trusted_signs(c_clip, solver.transposed_error_bound(c_clip));
   const Vector4<T> corner = clip_corner(signs.x(), signs.y(), signs.z(), convention);
   return finish(m, plane, solver.solve(corner), convention, Method::general);
+}
+
+/// The accurate method's last steps, once the far corner's first word is solved: refine Q to
+/// two words (more where C . Q or a row-3 entry cancels beyond them), C . Q and row 3.
+/// `contraction_floor` bounds below how much each refinement step shrinks Q's error: a few eps
+/// for the closed form's explicit solve, 16 eps / rcond for the equilibrated LU.
+template <class T, class W, class Corner>
+ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw, const Vector4<W>& c_hat,
+                                 const Vector4<T>& plane, Convention convention, Corner q,
+                                 W contraction_floor) {
+  ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
+  if (q.finite()) q.add_word();
+  r.far_corner = q.value().template cast<T>();
+  if (!q.finite() || !all_finite(r.far_corner)) {
+    r.status = Status::out_of_range;
+    r.detail = "the far corner Q = M^-1 Q' is beyond the range of the scalar type";
+    return r;
+  }
+  const Vector4<W> m4 = mw.row(3).transpose();
+  for (;;) {
+    const DotTerms<W> terms = dot_terms(c_hat, q);
+    DotTerms<W> copy = terms;
+    bool distilled = false;
+    const W d = copy.distil(distilled).hi;  // its sign is exact once distilled
+    if (!terms.all_finite() || !std::isfinite(d)) {
+      r.status = Status::out_of_range;
+      r.detail = "C . Q is beyond the range of the scalar type";
+      return r;
+    }
+    if (!(d > W(0))) {
+      r.status = Status::plane_misses_view_volume;
+      return r;
+    }
+    const W q_part = W(2) * q.remaining_error(c_hat, contraction_floor);
+    AccurateRow3<T> row3 = accurate_row3<T>(c_hat, terms, q_part, m4, convention, false);
+    if (!row3.resolved && q.add_word()) continue;
+    // Out of words (five, or a correction that is not finite): the best row there is.
+    if (!row3.resolved) row3 = accurate_row3<T>(c_hat, terms, q_part, m4, convention, true);
+    return accept_row3(std::move(r), row3.row3,
+                       scaled_by_power_of_two(plane, plane_scale_shift(plane)), convention);
+  }
+}
+
+/// The accurate method (accurate.h): the general method's refusals and far corner, with C',
+/// Q, C . Q and a carried to about twice the working precision and each entry rounded once.
+/// For the perspective shape the solves are the closed form's, and C' has exact signs.
+template <class T>
+ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
+                          bool perspective_shape) {
+  using W = typename AccurateWorkingType<T>::type;
+  const Matrix4<W> mw = m.template cast<W>();
+  const Vector4<W> c_hat =
+      scaled_by_power_of_two(Vector4<W>(plane.template cast<W>()), plane_scale_shift(plane));
+  if (perspective_shape) {
+    const W A = mw(0, 0), B = mw(0, 2), D = mw(1, 1), E = mw(1, 2), G = mw(2, 2), H = mw(2, 3),
+            K = mw(3, 2);
+    if (A == W(0) || D == W(0) || H == W(0)) {
+      return refuse(m, Method::accurate, Status::singular_projection,
+                    "the projection is singular: M11, M22 or M34 is zero");
+    }
+    if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
+    const Vector4<W> corner = clip_corner(sign(c_hat.x()) * sign(A), sign(c_hat.y()) * sign(D),
+                                          sign(c_hat.w()) * sign(H), convention);
+    return accurate_finish(m, mw, c_hat, plane, convention,
+                           RefinedCorner(mw, corner,
+                                         [A, B, D, E, G, H, K](const Vector4<W>& v) {
+                                           const W z = v.w() / K;
+                                           return Vector4<W>((v.x() - B * z) / A,
+                                                             (v.y() - E * z) / D, z,
+                                                             (v.z() - G * z) / H);
+                                         }),
+                           W(8) * std::numeric_limits<W>::epsilon());
+  }
+  const EquilibratedSolver<W> solver(mw);
+  if (auto refusal = solver_refusal(m, solver, Method::accurate)) return *refusal;
+  if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
+  const Vector4<W> c_clip = solver.solve_transposed_unscaled(c_hat);
+  if (!all_finite(c_clip)) {
+    return refuse(m, Method::accurate, Status::out_of_range,
+                  "C' = M^-T C is beyond the range of the scalar type");
+  }
+  const Vector4<W> correction = solver.transposed_correction_unscaled(c_hat, c_clip);
+  const bool refined = all_finite(correction);
+  const Vector4<W> signs =
+      refined ? trusted_signs(Vector4<W>(c_clip + correction),
+                              Vector4<W>(solver.transposed_error_bound(correction) +
+                                         std::numeric_limits<W>::epsilon() *
+                                             solver.transposed_error_bound(c_clip)))
+              : trusted_signs(c_clip, solver.transposed_error_bound(c_clip));
+  const Vector4<W> corner = clip_corner(signs.x(), signs.y(), signs.z(), convention);
+  return accurate_finish(
+      m, mw, c_hat, plane, convention,
+      RefinedCorner(mw, corner, [&solver](const Vector4<W>& v) { return solver.solve(v); }),
+      W(16) * std::numeric_limits<W>::epsilon() / solver.rcond());
 }
 
 }  // namespace detail
@@ -267,6 +383,9 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
                             "M11, M13, M22, M23, M33, M34, M43; M43 != 0); use auto or general");
     }
     return detail::closed_form(projection, plane, convention);
+  }
+  if (method == Method::accurate) {
+    return detail::accurate(projection, plane, convention, perspective_shape);
   }
   return detail::general(projection, plane, convention);
 }

@@ -4,8 +4,10 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "oblique/plane.h"
@@ -67,6 +69,57 @@ inline Rational power_of_two(long k) {
 inline Rational abs(const Rational& x) {
   return x < 0 ? Rational(-x) : x;
 }
+
+/// x rounded to the nearest T, ties to even, with T's subnormals and overflow to infinity: the
+/// correctly rounded value every error figure in ulps is measured against.
+template <class T>
+T round_to(const Rational& x) {
+  static_assert(std::numeric_limits<T>::radix == 2, "binary types only");
+  constexpr int p = std::numeric_limits<T>::digits;
+  constexpr int min_exponent = std::numeric_limits<T>::min_exponent;  // normals are >= 2^(min-1)
+  if (x == 0) return T(0);
+  const bool negative = x < 0;
+  const Rational magnitude = negative ? Rational(-x) : x;
+  // e with 2^e <= |x| < 2^(e+1), from the bit lengths, corrected by one comparison.
+  long e = static_cast<long>(mpz_sizeinbase(magnitude.get_num_mpz_t(), 2)) -
+           static_cast<long>(mpz_sizeinbase(magnitude.get_den_mpz_t(), 2));
+  if (magnitude < power_of_two(e)) --e;
+  if (e >= std::numeric_limits<T>::max_exponent) {
+    return negative ? -std::numeric_limits<T>::infinity() : std::numeric_limits<T>::infinity();
+  }
+  // The last kept bit has weight 2^(e - p + 1), or the subnormal quantum 2^(min_exponent - p).
+  const long quantum = std::max(e - p + 1, static_cast<long>(min_exponent - p));
+  const Rational scaled = magnitude / power_of_two(quantum);  // >= 1 unless subnormal
+  mpz_class integral, remainder;
+  mpz_fdiv_qr(integral.get_mpz_t(), remainder.get_mpz_t(), scaled.get_num_mpz_t(),
+              scaled.get_den_mpz_t());
+  const int half = cmp(2 * remainder, mpz_class(scaled.get_den_mpz_t()));
+  if (half > 0 || (half == 0 && mpz_odd_p(integral.get_mpz_t()))) ++integral;
+  // integral <= 2^p <= 2^64, exact in T; so is the scaling by 2^quantum (overflow gives inf).
+  const T significand =
+      mpz_fits_ulong_p(integral.get_mpz_t())
+          ? static_cast<T>(mpz_get_ui(integral.get_mpz_t()))
+          : std::ldexp(T(1), static_cast<int>(mpz_sizeinbase(integral.get_mpz_t(), 2)) - 1);
+  const T out = std::ldexp(significand, static_cast<int>(quantum));
+  return negative ? -out : out;
+}
+
+/// How far `computed` is from the correctly rounded value of `exact`, in units in the last place
+/// of that rounded value (the subnormal quantum at zero and below the normal range): 0 for the
+/// correctly rounded answer, infinity for a non-finite one.
+template <class T>
+double ulp_distance(T computed, const Rational& exact) {
+  if (!std::isfinite(computed)) return std::numeric_limits<double>::infinity();
+  const T rounded = round_to<T>(exact);
+  if (!std::isfinite(rounded)) return std::numeric_limits<double>::infinity();
+  constexpr int p = std::numeric_limits<T>::digits;
+  const long lowest = std::numeric_limits<T>::min_exponent - p;
+  const long quantum =
+      rounded == T(0) ? lowest : std::max(static_cast<long>(std::ilogb(rounded)) - p + 1, lowest);
+  const Rational gap = abs(Rational(to_rational(computed) - to_rational(rounded)));
+  return Rational(gap / power_of_two(quantum)).get_d();
+}
+
 inline int sign(const Rational& x) {
   return sgn(x);
 }

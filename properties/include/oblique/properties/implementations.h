@@ -5,12 +5,14 @@
 
 #include <cstdlib>
 #include <functional>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "oblique/oblique.h"
 #include "oblique/properties/seeded_recipes.h"
+#include "oblique/properties/tolerance.h"
 
 namespace oblique::properties {
 
@@ -28,6 +30,9 @@ struct Implementation {
   /// The inputs it is meant for; others are not given to it.
   std::function<bool(Convention, const Matrix4<T>&)> accepts;
   std::function<Outcome<T>(const Matrix4<T>&, const Vector4<T>&, Convention)> run;
+  /// The accuracy it promises in ulps of the correctly rounded answer (exact::ulp_distance);
+  /// infinity for none beyond the conditioning-aware bounds.
+  double max_ulps = std::numeric_limits<double>::infinity();
 };
 
 namespace mutants {
@@ -101,6 +106,7 @@ Implementation<T> core_method(Method method) {
     const ObliqueResult<T> r = apply<T>(m, c, convention, method);
     return Outcome<T>{r.status, r.projection};
   };
+  if (method == Method::accurate) impl.max_ulps = tolerance::kAccurateUlps;
   return impl;
 }
 
@@ -175,11 +181,12 @@ std::vector<Implementation<T>> known_implementations() {
 }
 
 /// The implementations selected by OBLIQUE_IMPL (comma-separated names; default: the core's
-/// three methods). An unknown name selects nothing, which the suite reports as an error.
+/// four methods). An unknown name selects nothing, which the suite reports as an error.
 template <class T>
 std::vector<Implementation<T>> selected_implementations() {
   const char* env = std::getenv("OBLIQUE_IMPL");
-  const std::string wanted = env && *env ? env : "core_auto,core_closed_form,core_general";
+  const std::string wanted =
+      env && *env ? env : "core_auto,core_closed_form,core_general,core_accurate";
   std::vector<Implementation<T>> out;
   for (auto& impl : known_implementations<T>()) {
     const std::string padded = "," + wanted + ",";

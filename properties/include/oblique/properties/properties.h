@@ -321,6 +321,20 @@ class Problem {
     return out;
   }
 
+  /// The largest exact::ulp_distance of an entry of `result` from the correctly rounded exact
+  /// M' (rows 1, 2 and 4 are M's own). Precondition: exact_status() == Status::ok.
+  double ulps_from_exact(const Matrix4<T>& result) const {
+    const exact::Vec row3 = exact_row3();
+    double worst = 0;
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        const exact::Rational& expected = i == 2 ? row3[j] : mx_[i][j];
+        worst = std::max(worst, exact::ulp_distance(result(i, j), expected));
+      }
+    }
+    return worst;
+  }
+
   /// The suite's cross-check through frustum_planes() in T: the side planes of M' equal those of
   /// M, and its near plane keeps C's positive side.
   Verdict check_extracted_planes(const Matrix4<T>& result) const {

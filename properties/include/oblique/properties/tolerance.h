@@ -38,6 +38,10 @@ constexpr int kScaleRoundings = 16;
 /// and one more for an implementation that forms k C_i / d instead of (k / d) C_i.
 constexpr int kEntryRoundings = 3;
 
+/// The accurate method's promise: every entry of M' within this many units in the last place of
+/// the correctly rounded exact answer (exact::ulp_distance).
+constexpr double kAccurateUlps = 2;
+
 /// eta = half the smallest subnormal of T: with gradual underflow a product or quotient that
 /// lands in the subnormal range carries an absolute error up to eta besides its relative one
 /// (fl(x op y) = (x op y)(1 + delta) + eta', |eta'| <= eta; sums and differences are exact there).

@@ -1,0 +1,178 @@
+// Error-free transformations and compensated sums (Knuth, Dekker, Ogita-Rump-Oishi): the
+// arithmetic behind the accurate method. Each function says what it computes exactly.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+
+namespace oblique::eft {
+
+/// An unevaluated sum hi + lo.
+template <class T>
+struct Pair {
+  T hi;
+  T lo;
+};
+
+/// s + e = a + b exactly, s = fl(a + b) (Knuth's TwoSum; no condition on a and b).
+template <class T>
+Pair<T> two_sum(T a, T b) noexcept {
+  const T s = a + b;
+  const T z = s - a;
+  return {s, (a - (s - z)) + (b - z)};
+}
+
+/// s + e = a + b exactly when |a| >= |b| or a = 0 (Dekker's FastTwoSum).
+template <class T>
+Pair<T> fast_two_sum(T a, T b) noexcept {
+  const T s = a + b;
+  return {s, b - (s - a)};
+}
+
+/// 2^e as a constant expression.
+template <class T>
+constexpr T power_of_two(int e) noexcept {
+  T x = T(1);
+  for (; e > 0; --e) x *= T(2);
+  for (; e < 0; ++e) x /= T(2);
+  return x;
+}
+
+/// hi + lo = a with hi holding the upper half of a's significand (Veltkamp's split).
+template <class T>
+Pair<T> split(T a) noexcept {
+  constexpr int half = (std::numeric_limits<T>::digits + 1) / 2;
+  constexpr T factor = power_of_two<T>(half) + T(1);
+  const T c = factor * a;
+  const T hi = c - (c - a);
+  return {hi, a - hi};
+}
+
+/// p + e = a b exactly, p = fl(a b), barring underflow (TwoProduct). With a hardware FMA where
+/// the compiler inlines one (FP_FAST_FMA); otherwise Dekker's product, which is twice as fast as
+/// glibc's fma() call for double and a hundred times faster than its fmal() for long double, and
+/// exact unless |a| or |b| is within 2^(p/2 + 2) of overflow (then std::fma).
+template <class T>
+Pair<T> two_prod(T a, T b) noexcept {
+  const T p = a * b;
+#if defined(FP_FAST_FMA)
+  if constexpr (std::is_same_v<T, double>) return {p, std::fma(a, b, -p)};
+#endif
+#if defined(FP_FAST_FMAF)
+  if constexpr (std::is_same_v<T, float>) return {p, std::fma(a, b, -p)};
+#endif
+  constexpr T large = power_of_two<T>(std::numeric_limits<T>::max_exponent -
+                                      (std::numeric_limits<T>::digits + 1) / 2 - 2);
+  if (std::fabs(a) < large && std::fabs(b) < large) {
+    const Pair<T> x = split(a), y = split(b);
+    return {p, ((x.hi * y.hi - p) + x.hi * y.lo + x.lo * y.hi) + x.lo * y.lo};
+  }
+  return {p, std::fma(a, b, -p)};
+}
+
+/// Terms of a sum, in a fixed-size buffer (no allocation on the core's path).
+template <class T, std::size_t Capacity>
+class Terms {
+ public:
+  /// Adds x; Capacity must allow every term the caller adds (a term beyond it is dropped).
+  void add(T x) noexcept {
+    if (x != T(0) && size_ < Capacity) {
+      values_[size_++] = x;
+      magnitude_ += std::fabs(x);
+    }
+  }
+  /// The sum of the magnitudes of the terms as added (SumK's error bounds scale with it).
+  T magnitude() const noexcept { return magnitude_; }
+  void add(Pair<T> x) noexcept {
+    add(x.hi);
+    add(x.lo);
+  }
+  /// a b, exactly, as two terms.
+  void add_product(T a, T b) noexcept { add(two_prod(a, b)); }
+
+  /// The sum as if computed in K-fold working precision and rounded once: K - 1 error-free
+  /// passes, then a plain sum (Ogita, Rump and Oishi's SumK). The terms keep their exact sum.
+  T sum(int k) noexcept {
+    for (int pass = 1; pass < k; ++pass) vec_sum();
+    T total = T(0);
+    for (std::size_t i = 0; i + 1 < size_; ++i) total += values_[i];
+    return size_ == 0 ? T(0) : total + values_[size_ - 1];
+  }
+
+  /// The exact sum as hi + lo, hi its rounding and lo that of the rest (so the pair is within
+  /// eps |lo| of the sum; a zero sum gives 0 + 0): error-free passes until one changes nothing,
+  /// when the terms no longer overlap. Returns false in `exact` if `max_passes` did not suffice.
+  Pair<T> distil(bool& exact, int max_passes = 8) noexcept {
+    exact = false;
+    for (int pass = 0; pass < max_passes && !exact; ++pass) exact = !vec_sum();
+    if (size_ == 0) return {T(0), T(0)};
+    T rest = T(0);
+    for (std::size_t i = 0; i + 1 < size_; ++i) rest += values_[i];
+    return fast_two_sum(values_[size_ - 1], rest);
+  }
+
+  std::size_t size() const noexcept { return size_; }
+  static constexpr std::size_t capacity() noexcept { return Capacity; }
+  T operator[](std::size_t i) const noexcept { return values_[i]; }
+
+  bool all_finite() const noexcept {
+    for (std::size_t i = 0; i < size_; ++i) {
+      if (!std::isfinite(values_[i])) return false;
+    }
+    return true;
+  }
+
+ private:
+  /// One error-free pass (Ogita-Rump-Oishi's VecSum): the running sum moves to the last term and
+  /// the rounding errors stay behind. Returns whether any term changed.
+  bool vec_sum() noexcept {
+    bool changed = false;
+    for (std::size_t i = 1; i < size_; ++i) {
+      const Pair<T> s = two_sum(values_[i], values_[i - 1]);
+      changed = changed || s.hi != values_[i] || s.lo != values_[i - 1];
+      values_[i] = s.hi;
+      values_[i - 1] = s.lo;
+    }
+    return changed;
+  }
+
+  std::array<T, Capacity> values_;  // the first size_ are set
+  std::size_t size_ = 0;
+  T magnitude_ = T(0);
+};
+
+/// (hi + lo) / b to about twice the working precision: q1 = fl(hi / b), and the exact remainder
+/// hi - q1 b (TwoProduct) plus lo, divided by b.
+template <class T>
+Pair<T> divide(Pair<T> a, T b) noexcept {
+  const T q1 = a.hi / b;
+  const Pair<T> p = two_prod(q1, b);
+  const T remainder = ((a.hi - p.hi) - p.lo) + a.lo;
+  return fast_two_sum(q1, remainder / b);
+}
+
+/// The value of hi + lo rounded to nearest (ties to even) in the narrower type N: hi is the
+/// working-precision sum, so its rounding to N differs from the exact one only when hi lies
+/// exactly halfway between two N values; then lo's sign decides.
+template <class N, class T>
+N round_pair(Pair<T> x) noexcept {
+  const N nearest = static_cast<N>(x.hi);
+  if constexpr (std::numeric_limits<T>::digits <= std::numeric_limits<N>::digits) {
+    return nearest;
+  } else {
+    if (x.lo == T(0) || !std::isfinite(nearest) || static_cast<T>(nearest) == x.hi) return nearest;
+    const N other = std::nextafter(nearest, x.hi > static_cast<T>(nearest)
+                                                ? std::numeric_limits<N>::infinity()
+                                                : -std::numeric_limits<N>::infinity());
+    const T midpoint = (static_cast<T>(nearest) + static_cast<T>(other)) / T(2);
+    if (midpoint != x.hi) return nearest;
+    // hi is a tie in N: the exact value lies on lo's side of it.
+    const bool other_is_above = static_cast<T>(other) > x.hi;
+    return (x.lo > T(0)) == other_is_above ? other : nearest;
+  }
+}
+
+}  // namespace oblique::eft
