@@ -1,0 +1,543 @@
+#include "accuracy_report.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <ostream>
+#include <random>
+#include <sstream>
+
+#include "oblique/oblique.h"
+#include "oblique/projection.h"
+#include "oblique/properties/properties.h"
+
+namespace oblique::report {
+namespace {
+
+using Matrix = Matrix4<double>;
+using Plane = Vector4<double>;
+using Vec3 = Eigen::Vector3d;
+
+struct Input {
+  Matrix matrix;
+  Plane plane;
+  Convention convention;
+};
+
+/// A regime: its stiffness parameter's values, and a maker of one case at a given value.
+struct Regime {
+  std::string name;
+  std::string parameter;  ///< empty when the regime has no stiffness sweep
+  std::vector<double> values;
+  std::function<std::optional<Input>(std::mt19937_64&, double, Convention)> make;
+};
+
+double uniform(std::mt19937_64& rng, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+
+/// A unit normal leaning toward -z (the view direction), so planes in front of the camera keep
+/// the far part of the view volume.
+Vec3 forward_normal(std::mt19937_64& rng) {
+  const Vec3 n(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1) - 2.0);
+  return n.normalized();
+}
+
+struct Frustum {
+  double l, r, b, t, n, f;
+};
+
+Frustum random_frustum(std::mt19937_64& rng, double n, double f) {
+  const double top = n * std::tan(uniform(rng, 0.3, 1.2) / 2);
+  const double right = top * uniform(rng, 0.75, 2.0);
+  return {-right, right, -top, top, n, f};
+}
+
+Matrix perspective_of(const Frustum& v, Convention c) {
+  return frustum<double>(v.l, v.r, v.b, v.t, v.n, v.f, c);
+}
+
+/// A plane through a random point inside the frustum's depth range [n, depth_limit], facing
+/// forward; empty when the eye is not behind it.
+std::optional<Plane> typical_plane(std::mt19937_64& rng, const Frustum& v, double depth_limit) {
+  const double z = -uniform(rng, v.n, std::min(v.f, depth_limit));
+  const double s = -z / v.n;
+  const Vec3 point(uniform(rng, v.l, v.r) * s, uniform(rng, v.b, v.t) * s, z);
+  const Plane c = plane_from_normal_and_point<double>(forward_normal(rng), point);
+  if (!(c.w() < 0)) return std::nullopt;
+  return c;
+}
+
+std::vector<double> powers_of_ten(int from, int to) {
+  std::vector<double> out;
+  for (int k = from; k <= to; ++k) out.push_back(std::pow(10.0, k));
+  return out;
+}
+
+std::vector<Regime> regimes() {
+  std::vector<Regime> out;
+  out.push_back({"typical", "", {1.0}, [](std::mt19937_64& rng, double, Convention c) {
+                   const Frustum v =
+                       random_frustum(rng, uniform(rng, 0.1, 1), uniform(rng, 50, 1000));
+                   auto plane = typical_plane(rng, v, v.f);
+                   if (!plane) return std::optional<Input>();
+                   return std::optional<Input>(Input{perspective_of(v, c), *plane, c});
+                 }});
+  out.push_back(
+      {"tiny_near", "1/n", powers_of_ten(1, 6), [](std::mt19937_64& rng, double k, Convention c) {
+         const Frustum v = random_frustum(rng, 1 / k, 100);
+         auto plane = typical_plane(rng, v, v.f);
+         if (!plane) return std::optional<Input>();
+         return std::optional<Input>(Input{perspective_of(v, c), *plane, c});
+       }});
+  out.push_back({"far_near_ratio", "f/n", powers_of_ten(1, 12),
+                 [](std::mt19937_64& rng, double k, Convention c) {
+                   const Frustum v = random_frustum(rng, 1, k);
+                   auto plane = typical_plane(rng, v, std::min(v.f, 1000.0));
+                   if (!plane) return std::optional<Input>();
+                   return std::optional<Input>(Input{perspective_of(v, c), *plane, c});
+                 }});
+  out.push_back({"infinite", "", {1.0}, [](std::mt19937_64& rng, double, Convention c) {
+                   const Frustum v = random_frustum(rng, uniform(rng, 0.1, 1), 1000);
+                   auto plane = typical_plane(rng, v, 1000);
+                   if (!plane) return std::optional<Input>();
+                   return std::optional<Input>(
+                       Input{infinite_frustum<double>(v.l, v.r, v.b, v.t, v.n, c), *plane, c});
+                 }});
+  out.push_back(
+      {"orthographic", "", {1.0}, [](std::mt19937_64& rng, double, Convention c) {
+         const double w = uniform(rng, 1, 50), h = uniform(rng, 1, 50);
+         const double n = uniform(rng, 0.1, 10), f = n + uniform(rng, 10, 1000);
+         const Vec3 point(uniform(rng, -w, w), uniform(rng, -h, h), -uniform(rng, n, f));
+         const Plane plane = plane_from_normal_and_point<double>(forward_normal(rng), point);
+         if (!(plane.w() < 0)) return std::optional<Input>();
+         return std::optional<Input>(Input{orthographic<double>(-w, w, -h, h, n, f, c), plane, c});
+       }});
+  out.push_back({"near_eye", "1/|C_w|", powers_of_ten(1, 12),
+                 [](std::mt19937_64& rng, double k, Convention c) {
+                   const Frustum v =
+                       random_frustum(rng, uniform(rng, 0.1, 1), uniform(rng, 50, 1000));
+                   const Vec3 n = forward_normal(rng);
+                   return std::optional<Input>(
+                       Input{perspective_of(v, c), Plane(n.x(), n.y(), n.z(), -1 / k), c});
+                 }});
+  out.push_back({"near_far_corner", "|C||Q|/(C.Q)", powers_of_ten(1, 12),
+                 [](std::mt19937_64& rng, double k, Convention c) {
+                   const Frustum v =
+                       random_frustum(rng, uniform(rng, 0.1, 1), uniform(rng, 50, 1000));
+                   const Vec3 n = forward_normal(rng);
+                   const double s = v.f / v.n;
+                   Vec3 far_corner(0, 0, 0);
+                   double best = -1;
+                   for (double x : {v.l * s, v.r * s}) {
+                     for (double y : {v.b * s, v.t * s}) {
+                       const Vec3 p(x, y, -v.f);
+                       if (n.dot(p) > best) best = n.dot(p), far_corner = p;
+                     }
+                   }
+                   const double delta = far_corner.norm() / k;  // C . Q = delta, |N| = 1
+                   if (!(best > delta)) return std::optional<Input>();
+                   return std::optional<Input>(
+                       Input{perspective_of(v, c), Plane(n.x(), n.y(), n.z(), delta - best), c});
+                 }});
+  out.push_back({"near_standard", "1/perturbation", powers_of_ten(1, 12),
+                 [](std::mt19937_64& rng, double k, Convention c) {
+                   const Frustum v =
+                       random_frustum(rng, uniform(rng, 0.1, 1), uniform(rng, 50, 1000));
+                   auto jitter = [&] { return uniform(rng, -1, 1) / k; };
+                   const Plane plane(jitter(), jitter(), -1 + jitter(), -v.n * (1 + jitter()));
+                   return std::optional<Input>(Input{perspective_of(v, c), plane, c});
+                 }});
+  out.push_back({"scaled",
+                 "scale",
+                 {1e-30, 1e-20, 1e-10, 1e10, 1e20, 1e30},
+                 [](std::mt19937_64& rng, double k, Convention c) {
+                   const Frustum v =
+                       random_frustum(rng, uniform(rng, 0.1, 1), uniform(rng, 50, 1000));
+                   auto plane = typical_plane(rng, v, v.f);
+                   if (!plane) return std::optional<Input>();
+                   const double matrix_scale = std::pow(k, 1.0 / 3.0);
+                   return std::optional<Input>(
+                       Input{Matrix(perspective_of(v, c) * matrix_scale), Plane(*plane * k), c});
+                 }});
+  return out;
+}
+
+constexpr Method kMethods[] = {Method::closed_form, Method::general, Method::accurate};
+
+struct Errors {
+  std::vector<double> ulps;
+  double max_bound_ratio = 0;
+  int answered = 0, refused = 0;
+};
+
+struct Stats {
+  double max = 0, p999 = 0, mean = 0;
+};
+
+Stats stats_of(std::vector<double> values) {
+  Stats s;
+  if (values.empty()) return s;
+  std::sort(values.begin(), values.end());
+  s.max = values.back();
+  const std::size_t index =
+      static_cast<std::size_t>(std::ceil(0.999 * static_cast<double>(values.size()))) - 1;
+  s.p999 = values[std::min(index, values.size() - 1)];
+  double sum = 0;
+  for (double v : values) sum += std::isfinite(v) ? v : 0;
+  s.mean = sum / static_cast<double>(values.size());
+  return s;
+}
+
+template <class T>
+const char* scalar_label() {
+  if (std::is_same_v<T, float>) return "float";
+  if (std::is_same_v<T, double>) return "double";
+  return "long_double";
+}
+
+template <class T>
+struct Case {
+  Matrix4<T> matrix;
+  Vector4<T> plane;
+  Convention convention;
+  std::size_t step;
+};
+
+template <class T>
+void measure_scalar(const Regime& regime, const std::vector<Input>& inputs,
+                    const std::vector<std::size_t>& steps, const AccuracyOptions& options,
+                    AccuracyReport& report) {
+  std::vector<Case<T>> cases;
+  std::vector<properties::Problem<T>> problems;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    Case<T> c{inputs[i].matrix.template cast<T>(), inputs[i].plane.template cast<T>(),
+              inputs[i].convention, steps[i]};
+    if (!all_finite(c.matrix) || !all_finite(c.plane)) continue;
+    problems.emplace_back(c.matrix, c.plane, c.convention);
+    cases.push_back(c);
+  }
+  for (Method method : kMethods) {
+    Errors all;
+    std::vector<Errors> by_step(regime.values.size());
+    std::vector<const Case<T>*> timed;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const Case<T>& c = cases[i];
+      const properties::Problem<T>& problem = problems[i];
+      if (method == Method::closed_form && !has_perspective_shape(c.matrix)) continue;
+      if (problem.exact_status() != Status::ok) continue;
+      timed.push_back(&c);
+      const ObliqueResult<T> r = apply<T>(c.matrix, c.plane, c.convention, method);
+      Errors& step = by_step[c.step];
+      if (!r.ok()) {
+        ++all.refused;
+        ++step.refused;
+        continue;
+      }
+      ++all.answered;
+      ++step.answered;
+      const exact::Vec row = problem.exact_row3();
+      const auto closeness = problem.compare_row3(r.projection);
+      const double ratio = closeness.judged ? closeness.ratio : 0.0;
+      all.max_bound_ratio = std::max(all.max_bound_ratio, ratio);
+      step.max_bound_ratio = std::max(step.max_bound_ratio, ratio);
+      for (int j = 0; j < 4; ++j) {
+        const double u = exact::ulp_distance(r.projection(2, j), row[j]);
+        all.ulps.push_back(u);
+        step.ulps.push_back(u);
+      }
+    }
+    if (timed.empty()) continue;
+    // Time per call: every answered case in turn, several passes; a checksum keeps the calls.
+    double checksum = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for (int pass = 0; pass < options.timing_repeats; ++pass) {
+      for (const Case<T>* c : timed)
+        checksum += static_cast<double>(
+            apply<T>(c->matrix, c->plane, c->convention, method).projection(2, 2));
+    }
+    const double elapsed =
+        std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+    if (checksum == 0.123456789) std::abort();  // never: only keeps the calls alive
+    AccuracyRow row;
+    row.regime = regime.name;
+    row.scalar = scalar_label<T>();
+    row.method = std::string(method_name(method));
+    row.answered = all.answered;
+    row.refused = all.refused;
+    const Stats s = stats_of(all.ulps);
+    row.max_ulps = s.max;
+    row.p999_ulps = s.p999;
+    row.mean_ulps = s.mean;
+    row.ns_per_call =
+        elapsed / (static_cast<double>(options.timing_repeats) * static_cast<double>(timed.size()));
+    row.max_bound_ratio = all.max_bound_ratio;
+    report.rows.push_back(row);
+    if (regime.parameter.empty()) continue;
+    for (std::size_t k = 0; k < regime.values.size(); ++k) {
+      if (by_step[k].ulps.empty()) continue;
+      StiffnessPoint p;
+      p.regime = regime.name;
+      p.parameter = regime.parameter;
+      p.scalar = row.scalar;
+      p.method = row.method;
+      p.value = regime.values[k];
+      p.max_ulps = stats_of(by_step[k].ulps).max;
+      p.max_bound_ratio = by_step[k].max_bound_ratio;
+      report.stiffness.push_back(p);
+    }
+  }
+}
+
+std::string number(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << x;
+  return s.str();
+}
+
+}  // namespace
+
+double ulps_to_bits(double ulps) {
+  return std::log2(ulps + 1);
+}
+
+AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& progress) {
+  AccuracyReport report;
+  std::mt19937_64 rng(options.seed);
+  const auto all = regimes();
+  for (std::size_t r = 0; r < all.size(); ++r) {
+    const Regime& regime = all[r];
+    if (options.progress)
+      progress << "report accuracy: regime " << (r + 1) << "/" << all.size() << " " << regime.name
+               << "\n"
+               << std::flush;
+    std::vector<Input> inputs;
+    std::vector<std::size_t> steps;
+    for (std::size_t k = 0; k < regime.values.size(); ++k) {
+      int made = 0;
+      for (int attempt = 0; made < options.cases_per_step && attempt < 20 * options.cases_per_step;
+           ++attempt) {
+        const Convention c = all_conventions[static_cast<std::size_t>(attempt) % 3];
+        if (auto input = regime.make(rng, regime.values[k], c)) {
+          inputs.push_back(*input);
+          steps.push_back(k);
+          ++made;
+        }
+      }
+    }
+    measure_scalar<float>(regime, inputs, steps, options, report);
+    measure_scalar<double>(regime, inputs, steps, options, report);
+    measure_scalar<long double>(regime, inputs, steps, options, report);
+  }
+  return report;
+}
+
+std::vector<std::pair<std::string, std::string>> pareto_front(const AccuracyReport& report) {
+  struct Point {
+    double ns = 0, ulps = 0;
+    int regimes = 0;
+  };
+  std::map<std::pair<std::string, std::string>, Point> points;
+  for (const AccuracyRow& row : report.rows) {
+    if (row.answered == 0) continue;
+    Point& p = points[{row.method, row.scalar}];
+    p.ns += row.ns_per_call;
+    p.ulps = std::max(p.ulps, row.max_ulps);
+    ++p.regimes;
+  }
+  std::vector<std::pair<std::string, std::string>> front;
+  for (const auto& [key, p] : points) {
+    bool dominated = false;
+    for (const auto& [other_key, q] : points) {
+      if (other_key == key) continue;
+      const double p_ns = p.ns / p.regimes, q_ns = q.ns / q.regimes;
+      if (q_ns <= p_ns && q.ulps <= p.ulps && (q_ns < p_ns || q.ulps < p.ulps)) dominated = true;
+    }
+    if (!dominated) front.push_back(key);
+  }
+  return front;
+}
+
+std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& report,
+                                                         const AccuracyOptions& options,
+                                                         std::ostream& log) {
+  namespace fs = std::filesystem;
+  fs::create_directories(options.out_dir);
+  std::vector<fs::path> written;
+  auto path = [&](const char* name) {
+    written.push_back(options.out_dir / name);
+    return written.back();
+  };
+
+  std::ofstream csv(path("accuracy.csv"));
+  csv << "regime,scalar,method,answered,refused,max_ulps,p999_ulps,mean_ulps,max_bits,p999_bits,"
+         "mean_bits,ns_per_call,max_error_over_bound\n";
+  csv.precision(17);
+  for (const AccuracyRow& r : report.rows) {
+    csv << r.regime << ',' << r.scalar << ',' << r.method << ',' << r.answered << ',' << r.refused
+        << ',' << r.max_ulps << ',' << r.p999_ulps << ',' << r.mean_ulps << ','
+        << ulps_to_bits(r.max_ulps) << ',' << ulps_to_bits(r.p999_ulps) << ','
+        << ulps_to_bits(r.mean_ulps) << ',' << r.ns_per_call << ',' << r.max_bound_ratio << '\n';
+  }
+
+  std::ofstream stiff(path("stiffness.csv"));
+  stiff << "regime,parameter,value,scalar,method,max_ulps,max_bits,max_error_over_bound\n";
+  stiff.precision(17);
+  for (const StiffnessPoint& p : report.stiffness) {
+    stiff << p.regime << ',' << p.parameter << ',' << p.value << ',' << p.scalar << ',' << p.method
+          << ',' << p.max_ulps << ',' << ulps_to_bits(p.max_ulps) << ',' << p.max_bound_ratio
+          << '\n';
+  }
+
+  // Overall points for the chart: mean time over regimes, worst error over regimes.
+  struct Overall {
+    double ns = 0, ulps = 0, p999 = 0, bound = 0;
+    int regimes = 0;
+  };
+  std::map<std::pair<std::string, std::string>, Overall> overall;
+  for (const AccuracyRow& r : report.rows) {
+    if (r.answered == 0) continue;
+    Overall& o = overall[{r.method, r.scalar}];
+    o.ns += r.ns_per_call;
+    o.ulps = std::max(o.ulps, r.max_ulps);
+    o.p999 = std::max(o.p999, r.p999_ulps);
+    o.bound = std::max(o.bound, r.max_bound_ratio);
+    ++o.regimes;
+  }
+  const auto front = pareto_front(report);
+  auto on_front = [&](const std::pair<std::string, std::string>& key) {
+    return std::find(front.begin(), front.end(), key) != front.end();
+  };
+
+  std::ofstream md(path("accuracy.md"));
+  md << "| method | scalar | max error (ulp) | max error (bits) | worst 99.9th pct (ulp) | "
+        "ns per call (mean over regimes) | max error / checker bound | on the front |\n"
+        "|---|---|---:|---:|---:|---:|---:|:---:|\n";
+  for (const auto& [key, o] : overall) {
+    md << "| " << key.first << " | " << key.second << " | " << number(o.ulps) << " | "
+       << number(ulps_to_bits(o.ulps)) << " | " << number(o.p999) << " | "
+       << number(o.ns / o.regimes) << " | " << number(o.bound) << " | "
+       << (on_front(key) ? "yes" : "") << " |\n";
+  }
+  md << "\nPer regime (max / 99.9th percentile / mean error in ulps, ns per call):\n\n"
+        "| regime | scalar | closed_form | general | accurate |\n|---|---|---|---|---|\n";
+  std::map<std::pair<std::string, std::string>, std::map<std::string, const AccuracyRow*>> cells;
+  std::vector<std::pair<std::string, std::string>> order;
+  for (const AccuracyRow& r : report.rows) {
+    const auto key = std::make_pair(r.regime, r.scalar);
+    if (cells.find(key) == cells.end()) order.push_back(key);
+    cells[key][r.method] = &r;
+  }
+  for (const auto& key : order) {
+    md << "| " << key.first << " | " << key.second;
+    for (const char* m : {"closed_form", "general", "accurate"}) {
+      const auto it = cells[key].find(m);
+      if (it == cells[key].end() || it->second->answered == 0) {
+        md << " | n/a";
+        continue;
+      }
+      const AccuracyRow& r = *it->second;
+      md << " | " << number(r.max_ulps) << " / " << number(r.p999_ulps) << " / "
+         << number(r.mean_ulps) << ", " << number(r.ns_per_call) << " ns";
+      if (r.refused > 0) md << " (" << r.refused << " refused)";
+    }
+    md << " |\n";
+  }
+
+  // Chart data: one line per (method, scalar); the front sorted by time.
+  std::ofstream points(path("accuracy_points.dat"));
+  for (const auto& [key, o] : overall) {
+    points << o.ns / o.regimes << ' ' << ulps_to_bits(o.ulps) << ' ' << key.first << '/'
+           << key.second << '\n';
+  }
+  std::vector<std::pair<double, double>> front_points;
+  for (const auto& key : front) {
+    const Overall& o = overall[key];
+    front_points.emplace_back(o.ns / o.regimes, ulps_to_bits(o.ulps));
+  }
+  std::sort(front_points.begin(), front_points.end());
+  std::ofstream front_file(path("accuracy_front.dat"));
+  for (const auto& [ns, bits] : front_points) front_file << ns << ' ' << bits << '\n';
+
+  std::ofstream gp(path("accuracy.gp"));
+  gp << "set terminal pngcairo size 900,600 noenhanced\n"
+        "set output '"
+     << (options.out_dir / "accuracy.png").string()
+     << "'\n"
+        "set title 'oblique: error against run time (worst over every regime)'\n"
+        "set xlabel 'ns per call (mean over regimes)'\nset logscale x\n"
+        "set ylabel 'max error, bits = log2(ulp + 1)'\nset yrange [-0.5:*]\nset key top right\n"
+        "plot '"
+     << (options.out_dir / "accuracy_front.dat").string()
+     << "' using 1:2 with lines lw 2 title 'non-dominated front', '"
+     << (options.out_dir / "accuracy_points.dat").string()
+     << "' using 1:2 with points pt 7 ps 1.5 title 'method/scalar', '' using 1:2:3 with labels "
+        "offset 1,1 left notitle\n";
+
+  // Stiffness: one panel per swept regime, error in bits against the parameter, double only.
+  std::vector<std::string> swept;
+  for (const StiffnessPoint& p : report.stiffness) {
+    if (std::find(swept.begin(), swept.end(), p.regime) == swept.end()) swept.push_back(p.regime);
+  }
+  std::ofstream sdat(path("stiffness.dat"));
+  for (const std::string& regime : swept) {
+    for (const char* m : {"closed_form", "general", "accurate"}) {
+      sdat << "# " << regime << ' ' << m << '\n';
+      for (const StiffnessPoint& p : report.stiffness) {
+        if (p.regime == regime && p.method == m && p.scalar == "double")
+          sdat << p.value << ' ' << ulps_to_bits(p.max_ulps) << '\n';
+      }
+      sdat << "\n\n";
+    }
+  }
+  std::ofstream sgp(path("stiffness.gp"));
+  sgp << "set terminal pngcairo size 1200," << 320 * ((swept.size() + 1) / 2)
+      << " noenhanced\nset output '" << (options.out_dir / "stiffness.png").string()
+      << "'\nset multiplot layout " << (swept.size() + 1) / 2
+      << ",2 title 'oblique: worst error (double) against the stiffness of each regime'\n"
+         "set logscale x\nset ylabel 'max error, bits'\nset yrange [-0.5:*]\nset key top left\n";
+  int block = 0;
+  std::string parameter;
+  for (const std::string& regime : swept) {
+    for (const StiffnessPoint& p : report.stiffness)
+      if (p.regime == regime) parameter = p.parameter;
+    sgp << "set title '" << regime << "'\nset xlabel '" << parameter << "'\nplot '"
+        << (options.out_dir / "stiffness.dat").string() << "' index " << block
+        << " using 1:2 with linespoints title 'closed_form', '' index " << block + 1
+        << " using 1:2 with linespoints title 'general', '' index " << block + 2
+        << " using 1:2 with linespoints title 'accurate'\n";
+    block += 3;
+  }
+  sgp << "unset multiplot\n";
+  csv.close();
+  stiff.close();
+  md.close();
+  points.close();
+  front_file.close();
+  gp.close();
+  sdat.close();
+  sgp.close();
+
+  if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+    for (const char* script : {"accuracy.gp", "stiffness.gp"}) {
+      const std::string command = "gnuplot '" + (options.out_dir / script).string() + "'";
+      if (std::system(command.c_str()) == 0) {
+        written.push_back(options.out_dir /
+                          (std::string(script).substr(0, std::string(script).size() - 3) + ".png"));
+      } else {
+        log << "report accuracy: gnuplot failed on " << script << "\n";
+      }
+    }
+  } else {
+    log << "report accuracy: gnuplot not found (bash scripts/setup.sh installs it); the .gp "
+           "scripts are written, no PNG\n";
+  }
+  return written;
+}
+
+}  // namespace oblique::report

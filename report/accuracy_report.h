@@ -1,0 +1,62 @@
+// `oblique report accuracy`: error against run time for every method and scalar type on the
+// input regimes that stress the modification, measured against the exact GMP oracle
+// (exact::round_to, the correctly rounded answer), plus how the error grows with each regime's
+// stiffness parameter and how close it comes to the checker's bound.
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace oblique::report {
+
+struct AccuracyOptions {
+  int cases_per_step = 24;  ///< generated cases per regime and stiffness step
+  int timing_repeats = 20;  ///< passes over a regime's cases when timing
+  unsigned long seed = 20261123;
+  std::filesystem::path out_dir = "report-out";
+  bool progress = true;
+};
+
+/// One row: a method on a scalar type in one regime (all its stiffness steps together).
+struct AccuracyRow {
+  std::string regime, scalar, method;
+  int answered = 0;  ///< cases the method answered ok where the exact answer exists
+  int refused = 0;   ///< cases it refused (a status) where the exact answer exists
+  double max_ulps = 0, p999_ulps = 0, mean_ulps = 0;
+  double ns_per_call = 0;
+  double max_bound_ratio = 0;  ///< largest error / the checker's bound (must stay <= 1)
+};
+
+/// One point of a stiffness sweep: a regime's parameter value, the worst error there.
+struct StiffnessPoint {
+  std::string regime, parameter, scalar, method;
+  double value = 0;
+  double max_ulps = 0;
+  double max_bound_ratio = 0;
+};
+
+struct AccuracyReport {
+  std::vector<AccuracyRow> rows;
+  std::vector<StiffnessPoint> stiffness;
+};
+
+/// Measures everything (takes tens of seconds at the default size).
+AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& progress);
+
+/// bits = log2(ulps + 1): 0 for the correctly rounded answer.
+double ulps_to_bits(double ulps);
+
+/// Writes accuracy.csv, stiffness.csv, accuracy.md, and the gnuplot scripts accuracy.gp and
+/// stiffness.gp in options.out_dir; runs gnuplot on them when it is installed (PNG charts).
+/// Returns the paths written.
+std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& report,
+                                                         const AccuracyOptions& options,
+                                                         std::ostream& log);
+
+/// The (method, scalar) pairs on the error-against-time front: no other pair is both faster
+/// (mean ns per call over the regimes) and more accurate (max ulps over the regimes).
+std::vector<std::pair<std::string, std::string>> pareto_front(const AccuracyReport& report);
+
+}  // namespace oblique::report
