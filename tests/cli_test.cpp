@@ -14,6 +14,7 @@
 
 #include "oblique/oblique.h"
 #include "oblique/properties/properties.h"
+#include "oblique/properties/tolerance.h"
 #include "printers.h"
 #include "protocol.h"
 
@@ -140,6 +141,34 @@ TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
     EXPECT_TRUE(closeness.within) << what << "\nrow 3 at " << closeness.ratio << " of its bound";
   }
   EXPECT_GT(ok, 300) << "too few generated cases were valid to mean anything";
+}
+
+TEST(Cli, accurateMethodAnswersTheCorrectlyRoundedMatrix) {
+  const std::vector<Case> cases = generated_cases(171717, 240);
+  std::string input;
+  for (const Case& k : cases) input += request_line(k) + "\n";
+  std::vector<std::string> lines;
+  run_cli("apply --method accurate", input, &lines);
+  ASSERT_EQ(lines.size(), cases.size());
+  int ok = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Case& k = cases[i];
+    const properties::Problem<double> problem(k.m, k.c, k.convention);
+    const auto answer = protocol::parse_answer(lines[i]);
+    ASSERT_TRUE(answer.valid) << answer.error;
+    if (problem.exact_status() != Status::ok || answer.status != "ok") continue;
+    ++ok;
+    Matrix4<double> result;
+    std::string error;
+    for (int j = 0; j < 16; ++j) {
+      result(j / 4, j % 4) =
+          protocol::parse_number<double>((*answer.projection)[j], &error).value();
+    }
+    // Printed so that it reads back exactly, so the ulp distance is the core's.
+    EXPECT_LE(problem.ulps_from_exact(result), tolerance::kAccurateUlps)
+        << k.family << " " << convention_name(k.convention) << ": " << lines[i];
+  }
+  EXPECT_GT(ok, 150) << "too few generated cases were valid to mean anything";
 }
 
 TEST(Cli, exitStatusSaysWhetherEveryLineWasOk) {
