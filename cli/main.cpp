@@ -11,6 +11,7 @@
 
 #include "accuracy_report.h"
 #include "check.h"
+#include "depth_report.h"
 #include "protocol.h"
 #include "verifier.h"
 
@@ -195,6 +196,18 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   accuracy->add_option("--seed", accuracy_options.seed, "Random seed")->capture_default_str();
   accuracy->add_flag("--quiet", quiet, "No progress lines on standard error");
+  oblique::report::DepthOptions depth_options;
+  std::string depth_out = "report-out";
+  CLI::App* depth = report->add_subcommand(
+      "depth",
+      "Depth precision: the paper's Figure 5 (maximum NDC z along the view axis, Eq. 19, against "
+      "the plane's angle and distance), checked against the core's matrices in every convention, "
+      "and the bits of a 24-bit fixed-point and a 32-bit float depth buffer still used along view "
+      "directions. Writes figure5.csv, depth_bits.csv, depth.md and (with gnuplot) figure5.png.");
+  depth->add_option("--out", depth_out, "Output directory")->capture_default_str();
+  depth->add_option("--far", depth_options.far_distance, "Far distance of the frustum")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -210,6 +223,18 @@ int main(int argc, char** argv) {
     return run_apply(apply_options);
   }
   if (check->parsed()) return run_check(scene_path, as_json);
+  if (depth->parsed()) {
+    depth_options.out_dir = depth_out;
+    if (!(depth_options.far_distance > depth_options.near_distance)) {
+      std::cerr << "oblique report depth: --far must exceed the near distance "
+                << depth_options.near_distance << "\n";
+      return 2;
+    }
+    const auto measured = oblique::report::measure_depth(depth_options);
+    for (const auto& path : oblique::report::write_depth_report(measured, depth_options, std::cerr))
+      std::cout << path.string() << "\n";
+    return 0;
+  }
   if (accuracy->parsed()) {
     accuracy_options.out_dir = accuracy_out;
     accuracy_options.progress = !quiet;

@@ -1,0 +1,101 @@
+// The reports' measurements against what can be derived by hand: Figure 5's surface from a
+// closed form of Eq. 19 for this frustum, the identity of the conventions' reachable depth, the
+// depth bits of planes parallel to the near plane, the oracle's rounding, the Pareto front.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "accuracy_report.h"
+#include "depth_report.h"
+#include "oblique/properties/exact.h"
+
+namespace oblique::report {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+TEST(DepthReport, figure5MatchesEq19InClosedFormForThisFrustum) {
+  // 90 degree square frustum, n = 1, f = 100: the far corner on C's side is Q = (1, y, -1, 1/f)
+  // (Q_z = -1 scaling), so C . Q = sin t + cos t - d / f and Eq. 19 along -z is
+  // z_max = 2 cos t / (sin t + cos t - d / f) - 1.
+  DepthOptions options;
+  const DepthReport report = measure_depth(options);
+  ASSERT_FALSE(report.figure5.empty());
+  int checked = 0;
+  for (const Figure5Point& p : report.figure5) {
+    const double t = p.angle_degrees * kPi / 180;
+    const double dot = std::sin(t) + std::cos(t) - p.distance / options.far_distance;
+    if (!(dot > 1e-9)) continue;
+    ASSERT_TRUE(p.answered) << p.angle_degrees << " " << p.distance;
+    const double expected = 2 * std::cos(t) / dot - 1;
+    EXPECT_NEAR(p.z_max_eq19, expected, 1e-12 * std::max(1.0, std::abs(expected)))
+        << p.angle_degrees << " degrees, d = " << p.distance;
+    EXPECT_NEAR(p.z_max_matrix, expected, 1e-12 * std::max(1.0, std::abs(expected)));
+    const double fraction = std::min(1.0, (expected + 1) / 2);
+    for (double r : p.reachable) EXPECT_NEAR(r, fraction, 1e-12);
+    ++checked;
+  }
+  EXPECT_GT(checked, 1000);
+  EXPECT_LT(report.eq19_vs_matrix_max_gap, 1e-12);
+  EXPECT_LT(report.convention_max_gap, 1e-12);
+}
+
+TEST(DepthReport, planesParallelToTheNearPlaneLoseNoFixedPointDepthAndTiltedOnesDo) {
+  const DepthReport report = measure_depth(DepthOptions{});
+  int parallel = 0, tilted = 0;
+  for (const DepthBitsRow& r : report.bits) {
+    EXPECT_DOUBLE_EQ(r.fixed24_bits_original, 24.0);
+    if (r.direction != "axis") continue;
+    const double lost = r.fixed24_bits_original - r.fixed24_bits_oblique;
+    if (r.angle_degrees == 0) {
+      // C parallel to the near plane: F is the original far plane, the axis spans the range.
+      EXPECT_NEAR(lost, 0.0, 1e-6) << r.convention << " d = " << r.distance;
+      ++parallel;
+    } else {
+      EXPECT_GT(lost, 0.01) << r.angle_degrees << " " << r.convention;
+      ++tilted;
+    }
+  }
+  EXPECT_GT(parallel, 0);
+  EXPECT_GT(tilted, 0);
+}
+
+TEST(AccuracyReport, oracleRoundsToNearestEven) {
+  // 1 + 2^-53 is halfway between 1 and 1 + 2^-52: ties go to the even significand, 1.
+  const exact::Rational tie = exact::Rational(1) + exact::power_of_two(-53);
+  EXPECT_EQ(exact::round_to<double>(tie), 1.0);
+  EXPECT_EQ(exact::round_to<double>(tie + exact::power_of_two(-100)), 1.0 + std::ldexp(1.0, -52));
+  EXPECT_EQ(exact::round_to<double>(exact::Rational(1, 3)), 1.0 / 3.0);
+  EXPECT_EQ(exact::round_to<float>(exact::Rational(1, 3)), 1.0f / 3.0f);
+  // Subnormals and overflow.
+  EXPECT_EQ(exact::round_to<double>(exact::power_of_two(-1074) * 3 / 4),
+            std::numeric_limits<double>::denorm_min());
+  EXPECT_EQ(exact::round_to<double>(exact::power_of_two(-1076)), 0.0);
+  EXPECT_TRUE(std::isinf(exact::round_to<float>(exact::power_of_two(128))));
+  EXPECT_EQ(exact::round_to<long double>(exact::Rational(1) + exact::power_of_two(-63)),
+            1.0L + std::ldexp(1.0L, -63));
+  EXPECT_EQ(exact::ulp_distance(1.0 + std::ldexp(1.0, -51), exact::Rational(1)), 2.0);
+}
+
+TEST(AccuracyReport, paretoFrontKeepsOnlyNonDominatedPairs) {
+  AccuracyReport report;
+  auto row = [](const char* method, double ulps, double ns) {
+    AccuracyRow r;
+    r.regime = "typical";
+    r.scalar = "double";
+    r.method = method;
+    r.answered = 1;
+    r.max_ulps = ulps;
+    r.ns_per_call = ns;
+    return r;
+  };
+  report.rows = {row("fast", 100, 10), row("slow_and_bad", 200, 50), row("exact", 0, 40)};
+  const auto front = pareto_front(report);
+  ASSERT_EQ(front.size(), 2u);
+  EXPECT_EQ(front[0].first, "exact");
+  EXPECT_EQ(front[1].first, "fast");
+}
+
+}  // namespace
+}  // namespace oblique::report
