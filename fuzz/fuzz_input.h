@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <string>
 
@@ -114,7 +115,7 @@ inline FuzzCase decode(const std::uint8_t* data, std::size_t size) {
   FuzzCase c;
   c.scalar = static_cast<Scalar>(in.byte() % 3);
   c.convention = all_conventions[in.byte() % 3];
-  c.method = all_methods[in.byte() % 3];
+  c.method = all_methods[in.byte() % std::size(all_methods)];
   c.family = in.byte() % 6;
   if (c.family == 5) {
     for (int i = 0; i < 16; ++i) c.matrix(i / 4, i % 4) = number(in);

@@ -3,6 +3,7 @@
 // a valid answer line carrying the same status, and an ok answer's numbers must read back finite.
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <string_view>
 
 #include "protocol.h"
@@ -33,7 +34,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ApplyOptions options;
   options.precision = static_cast<Precision>(data[0] % 3);
   options.convention = oblique::all_conventions[(data[0] / 3) % 3];
-  options.method = oblique::all_methods[(data[0] / 9) % 3];
+  options.method = oblique::all_methods[(data[0] / 9) % std::size(oblique::all_methods)];
   std::string_view text(reinterpret_cast<const char*>(data + 1), size - 1);
   while (!text.empty()) {
     const std::size_t end = text.find('\n');

@@ -1,6 +1,7 @@
 // Stiff inputs: tiny near planes, huge far/near ratios, infinite far planes, planes grazing the
 // eye or the far corner. Every method must give the right status, the five properties, and a
-// third row within the conditioning bound of the exact (rational) answer.
+// third row within the conditioning bound of the exact (rational) answer; the accurate method,
+// every entry within 2 ulp of the exact answer rounded.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 
 #include "oblique/oblique.h"
 #include "oblique/properties/properties.h"
+#include "oblique/properties/tolerance.h"
 #include "printers.h"
 
 namespace oblique {
@@ -24,7 +26,8 @@ void expect_correct(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
                     const std::string& what) {
   const properties::Problem<T> problem(m, c, convention);
   ASSERT_EQ(problem.exact_status(), Status::ok) << what;
-  for (Method method : {Method::automatic, Method::closed_form, Method::general}) {
+  for (Method method :
+       {Method::automatic, Method::closed_form, Method::general, Method::accurate}) {
     if (method == Method::closed_form && !has_perspective_shape(m)) continue;
     const auto result = apply<T>(m, c, convention, method);
     ASSERT_EQ(result.status, Status::ok) << what << " " << convention_name(convention) << " "
@@ -40,6 +43,10 @@ void expect_correct(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
                                   << method_name(method) << ": row 3 entry "
                                   << closeness.worst_entry << " at " << closeness.ratio
                                   << " of its bound (kappa " << problem.kappa().get_d() << ")";
+    if (method == Method::accurate) {
+      EXPECT_LE(problem.ulps_from_exact(result.projection), tolerance::kAccurateUlps)
+          << what << " " << convention_name(convention) << ": the accurate method";
+    }
   }
 }
 
