@@ -35,6 +35,18 @@ struct AccurateWorkingType<float> {
   using type = double;
 };
 
+/// v * 2^k entry by entry, as scaled_by_power_of_two() gives it: while 2^k is a normal number
+/// each product is the exact v_i 2^k rounded once, which is what ldexp returns, so one ldexp
+/// makes 2^k and four multiplications do the rest.
+template <class W>
+Vector4<W> scaled_by_power_of_two_fast(const Vector4<W>& v, int k) {
+  if (k >= std::numeric_limits<W>::min_exponent - 1 && k < std::numeric_limits<W>::max_exponent) {
+    const W factor = std::ldexp(W(1), k);
+    return Vector4<W>(v(0) * factor, v(1) * factor, v(2) * factor, v(3) * factor);
+  }
+  return scaled_by_power_of_two(v, k);
+}
+
 /// Q = x_0 + x_1 + ... + x_{n-1} with M Q = rhs, refined from exact residuals:
 /// x_0 = solve(rhs), x_j = solve(rhs - M (x_0 + ... + x_{j-1})), the residual summed as in
 /// (j + 1)-fold precision. Each word is about eps times the last (the closed form's solve has a
@@ -44,15 +56,25 @@ class RefinedCorner {
  public:
   static constexpr int kMaxWords = 5;
 
+  /// Keeps M's nonzero entries only: the residuals skip its zeros.
   RefinedCorner(const Matrix4<W>& m, const Vector4<W>& rhs, Solve solve)
-      : m_(m), rhs_(rhs), solve_(std::move(solve)) {
+      : rhs_(rhs), solve_(std::move(solve)) {
+    for (int i = 0; i < 4; ++i) {
+      nonzero_[i] = 0;
+      for (int col = 0; col < 4; ++col) {
+        if (m(i, col) != W(0)) {
+          columns_[i][nonzero_[i]] = col;
+          negated_[i][nonzero_[i]++] = -m(i, col);
+        }
+      }
+    }
     words_[0] = solve_(rhs_);
     count_ = 1;
   }
 
   int count() const { return count_; }
   const Vector4<W>& word(int k) const { return words_[k]; }
-  bool finite() const { return all_finite(words_[0]); }
+  bool finite() const { return finite_vector(words_[0]); }
 
   /// Adds the next correction; false when there is no room or it would not be finite.
   bool add_word() {
@@ -62,14 +84,14 @@ class RefinedCorner {
       eft::Terms<W, 1 + 2 * 4 * kMaxWords> terms;
       terms.add(rhs_(i));
       for (int k = 0; k < count_; ++k) {
-        for (int col = 0; col < 4; ++col) {
-          if (m_(i, col) != W(0)) terms.add_product(-m_(i, col), words_[k](col));
+        for (int j = 0; j < nonzero_[i]; ++j) {
+          terms.add_product(negated_[i][j], words_[k](columns_[i][j]));
         }
       }
       residual(i) = terms.sum(count_ + 1);
     }
     const Vector4<W> next = solve_(residual);
-    if (!all_finite(next)) return false;
+    if (!finite_vector(next)) return false;
     words_[count_++] = next;
     return true;
   }
@@ -95,9 +117,15 @@ class RefinedCorner {
   }
 
  private:
-  Matrix4<W> m_;
+  static bool finite_vector(const Vector4<W>& v) {
+    return std::isfinite(v(0)) && std::isfinite(v(1)) && std::isfinite(v(2)) && std::isfinite(v(3));
+  }
+
   Vector4<W> rhs_;
   Solve solve_;
+  std::array<std::array<W, 4>, 4> negated_{};  ///< -M_i,col for the nonzero entries of row i
+  std::array<std::array<int, 4>, 4> columns_{};
+  std::array<int, 4> nonzero_{};
   std::array<Vector4<W>, kMaxWords> words_{};
   int count_ = 0;
 };
@@ -109,25 +137,31 @@ using DotTerms = eft::Terms<W, 2 * 4 * 5>;
 
 template <class W, class Corner>
 DotTerms<W> dot_terms(const Vector4<W>& plane, const Corner& q) {
+  // Smallest first (the last word's products, then each word's product errors, then the first
+  // word's products): the error-free passes then settle in fewer rounds.
   DotTerms<W> terms;
-  for (int k = 0; k < q.count(); ++k) {
-    for (int i = 0; i < 4; ++i) {
-      if (k + 1 < q.count()) {
-        terms.add_product(plane(i), q.word(k)(i));
-      } else {
-        terms.add(plane(i) * q.word(k)(i));
-      }
-    }
+  const int last = q.count() - 1;
+  for (int i = 0; i < 4; ++i) terms.add(plane(i) * q.word(last)(i));
+  eft::Pair<W> products[DotTerms<W>::capacity() / 2];
+  for (int k = last - 1; k >= 0; --k) {
+    for (int i = 0; i < 4; ++i) products[4 * k + i] = eft::two_prod(plane(i), q.word(k)(i));
+  }
+  for (int k = last - 1; k >= 0; --k) {
+    for (int i = 0; i < 4; ++i) terms.add(products[4 * k + i].lo);
+  }
+  for (int k = last - 1; k >= 0; --k) {
+    for (int i = 0; i < 4; ++i) terms.add(products[4 * k + i].hi);
   }
   return terms;
 }
 
 /// Row 3 of M' and whether every entry is resolved (within an ulp of the exact answer): when
 /// not, Q needs another word.
-template <class T>
+template <class T, class W>
 struct AccurateRow3 {
   Vector4<T> row3;
   bool resolved = true;
+  W corner_dot = W(0);  ///< C . Q, distilled: its sign is exact for the words of Q
 };
 
 /// Row 3 of M', s (a C_i - t M4_i) with a = range / (C . Q), each entry rounded once to T.
@@ -140,17 +174,19 @@ struct AccurateRow3 {
 /// estimate of |C| . |Q error|), which must stay below eps / 8 of C . Q and of each N_i. When
 /// Q has no more words to give (`out_of_words`), an N_i within that error of zero is taken as 0.
 template <class T, class W>
-AccurateRow3<T> accurate_row3(const Vector4<W>& plane, const DotTerms<W>& terms, W q_part,
-                              const Vector4<W>& m4, Convention convention, bool out_of_words) {
+AccurateRow3<T, W> accurate_row3(const Vector4<W>& plane, const DotTerms<W>& terms, W q_part,
+                                 const Vector4<W>& m4, Convention convention, bool out_of_words) {
   constexpr W eps = std::numeric_limits<W>::epsilon();
   const DepthRange range = clip_depth_range(convention);
   const W k = W(range.z_high - range.z_low);
   const RowCombination near_combination = near_rows(convention);
   const W s = W(near_combination.m3), t = W(near_combination.m4);
-  AccurateRow3<T> out;
+  AccurateRow3<T, W> out;
   DotTerms<W> d_terms = terms;
   bool exact = false;
   const eft::Pair<W> d = d_terms.distil(exact);
+  out.corner_dot = d.hi;
+  if (!(d.hi > W(0)) || !std::isfinite(d.hi)) return out;
   // Not distilled: fall back on SumK's bound for 8 passes, (n eps)^8 of the magnitude.
   const W sum_part = exact ? W(0) : terms.magnitude() * std::pow(W(terms.size()) * eps, 8);
   const W d_error = q_part + sum_part + eps * std::abs(d.lo);
@@ -174,8 +210,11 @@ AccurateRow3<T> accurate_row3(const Vector4<W>& plane, const DotTerms<W>& terms,
         eft::Terms<W, 1 + 2 * DotTerms<W>::capacity()> slow;
         slow.add(k * plane(i));
         for (std::size_t j = 0; j < terms.size(); ++j) slow.add_product(-tm4, terms[j]);
+        // As added: distil rewrites the terms and drops zero ones.
+        const std::size_t slow_size = slow.size();
+        const W slow_magnitude = slow.magnitude();
         numerator = slow.distil(exact);
-        const W slow_sum_part = exact ? W(0) : slow.magnitude() * std::pow(W(slow.size()) * eps, 8);
+        const W slow_sum_part = exact ? W(0) : slow_magnitude * std::pow(W(slow_size) * eps, 8);
         const W bound = std::abs(tm4) * q_part + slow_sum_part;
         if (bound > eps / W(8) * std::abs(numerator.hi)) {
           // Out of words, N_i is indistinguishable from zero at five-fold precision: the exact

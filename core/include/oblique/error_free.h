@@ -10,6 +10,14 @@
 
 namespace oblique::eft {
 
+// The transformations below are a few flops each and sit in the accurate method's inner loops:
+// a call costs as much as the arithmetic.
+#if defined(__GNUC__)
+#define OBLIQUE_EFT_INLINE inline __attribute__((always_inline))
+#else
+#define OBLIQUE_EFT_INLINE inline
+#endif
+
 /// An unevaluated sum hi + lo.
 template <class T>
 struct Pair {
@@ -19,7 +27,7 @@ struct Pair {
 
 /// s + e = a + b exactly, s = fl(a + b) (Knuth's TwoSum; no condition on a and b).
 template <class T>
-Pair<T> two_sum(T a, T b) noexcept {
+OBLIQUE_EFT_INLINE Pair<T> two_sum(T a, T b) noexcept {
   const T s = a + b;
   const T z = s - a;
   return {s, (a - (s - z)) + (b - z)};
@@ -27,7 +35,7 @@ Pair<T> two_sum(T a, T b) noexcept {
 
 /// s + e = a + b exactly when |a| >= |b| or a = 0 (Dekker's FastTwoSum).
 template <class T>
-Pair<T> fast_two_sum(T a, T b) noexcept {
+OBLIQUE_EFT_INLINE Pair<T> fast_two_sum(T a, T b) noexcept {
   const T s = a + b;
   return {s, b - (s - a)};
 }
@@ -43,7 +51,7 @@ constexpr T power_of_two(int e) noexcept {
 
 /// hi + lo = a with hi holding the upper half of a's significand (Veltkamp's split).
 template <class T>
-Pair<T> split(T a) noexcept {
+OBLIQUE_EFT_INLINE Pair<T> split(T a) noexcept {
   constexpr int half = (std::numeric_limits<T>::digits + 1) / 2;
   constexpr T factor = power_of_two<T>(half) + T(1);
   const T c = factor * a;
@@ -56,7 +64,7 @@ Pair<T> split(T a) noexcept {
 /// glibc's fma() call for double and a hundred times faster than its fmal() for long double, and
 /// exact unless |a| or |b| is within 2^(p/2 + 2) of overflow (then std::fma).
 template <class T>
-Pair<T> two_prod(T a, T b) noexcept {
+OBLIQUE_EFT_INLINE Pair<T> two_prod(T a, T b) noexcept {
   const T p = a * b;
 #if defined(FP_FAST_FMA)
   if constexpr (std::is_same_v<T, double>) return {p, std::fma(a, b, -p)};
@@ -77,15 +85,28 @@ Pair<T> two_prod(T a, T b) noexcept {
 template <class T, std::size_t Capacity>
 class Terms {
  public:
+  Terms() noexcept = default;
+  /// Copies only the terms that are set (the buffer is large; a sum usually has a few terms).
+  Terms(const Terms& other) noexcept : size_(other.size_) {
+    for (std::size_t i = 0; i < size_; ++i) values_[i] = other.values_[i];
+  }
+  Terms& operator=(const Terms& other) noexcept {
+    size_ = other.size_;
+    for (std::size_t i = 0; i < size_; ++i) values_[i] = other.values_[i];
+    return *this;
+  }
+
   /// Adds x; Capacity must allow every term the caller adds (a term beyond it is dropped).
   void add(T x) noexcept {
-    if (x != T(0) && size_ < Capacity) {
-      values_[size_++] = x;
-      magnitude_ += std::fabs(x);
-    }
+    if (x != T(0) && size_ < Capacity) values_[size_++] = x;
   }
-  /// The sum of the magnitudes of the terms as added (SumK's error bounds scale with it).
-  T magnitude() const noexcept { return magnitude_; }
+  /// The sum of the magnitudes of the terms (SumK's error bounds scale with it): of the terms as
+  /// added until sum() or distil() rewrites them.
+  T magnitude() const noexcept {
+    T total = T(0);
+    for (std::size_t i = 0; i < size_; ++i) total += std::fabs(values_[i]);
+    return total;
+  }
   void add(Pair<T> x) noexcept {
     add(x.hi);
     add(x.lo);
@@ -106,8 +127,14 @@ class Terms {
   /// eps |lo| of the sum; a zero sum gives 0 + 0): error-free passes until one changes nothing,
   /// when the terms no longer overlap. Returns false in `exact` if `max_passes` did not suffice.
   Pair<T> distil(bool& exact, int max_passes = 8) noexcept {
-    exact = false;
-    for (int pass = 0; pass < max_passes && !exact; ++pass) exact = !vec_sum();
+    // The pass that would change nothing is replaced by a check of the same condition: a pass
+    // changes nothing iff fl(x_i + x_{i-1}) = x_i for every i (its running sums are then the
+    // terms themselves), and those sums, unlike the pass's, do not wait on each other.
+    exact = max_passes > 0 && !vec_sum();
+    for (int pass = 1; pass < max_passes && !exact; ++pass) {
+      exact = settled();
+      if (!exact) vec_sum();
+    }
     if (size_ == 0) return {T(0), T(0)};
     T rest = T(0);
     for (std::size_t i = 0; i + 1 < size_; ++i) rest += values_[i];
@@ -126,28 +153,41 @@ class Terms {
   }
 
  private:
+  /// Whether a VecSum pass would leave the terms as they are (false, as the pass would report,
+  /// when a term is not finite: TwoSum's error is then NaN).
+  bool settled() const noexcept {
+    bool same = true;
+    for (std::size_t i = 1; i < size_; ++i) {
+      same &= (values_[i] + values_[i - 1] == values_[i]) & (values_[i] - values_[i] == T(0));
+    }
+    return same;
+  }
+
   /// One error-free pass (Ogita-Rump-Oishi's VecSum): the running sum moves to the last term and
   /// the rounding errors stay behind. Returns whether any term changed.
   bool vec_sum() noexcept {
+    if (size_ < 2) return false;
     bool changed = false;
+    T carry = values_[0];
     for (std::size_t i = 1; i < size_; ++i) {
-      const Pair<T> s = two_sum(values_[i], values_[i - 1]);
-      changed = changed || s.hi != values_[i] || s.lo != values_[i - 1];
-      values_[i] = s.hi;
+      const T x = values_[i];
+      const Pair<T> s = two_sum(x, carry);
+      changed |= (s.hi != x) | (s.lo != carry);
       values_[i - 1] = s.lo;
+      carry = s.hi;
     }
+    values_[size_ - 1] = carry;
     return changed;
   }
 
   std::array<T, Capacity> values_;  // the first size_ are set
   std::size_t size_ = 0;
-  T magnitude_ = T(0);
 };
 
 /// (hi + lo) / b to about twice the working precision: q1 = fl(hi / b), and the exact remainder
 /// hi - q1 b (TwoProduct) plus lo, divided by b.
 template <class T>
-Pair<T> divide(Pair<T> a, T b) noexcept {
+OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, T b) noexcept {
   const T q1 = a.hi / b;
   const Pair<T> p = two_prod(q1, b);
   const T remainder = ((a.hi - p.hi) - p.lo) + a.lo;

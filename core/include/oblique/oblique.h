@@ -257,8 +257,7 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
 /// for the closed form's explicit solve, 16 eps / rcond for the equilibrated LU.
 template <class T, class W, class Corner>
 ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw, const Vector4<W>& c_hat,
-                                 const Vector4<T>& plane, Convention convention, Corner q,
-                                 W contraction_floor) {
+                                 Convention convention, Corner q, W contraction_floor) {
   ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
   if (q.finite()) q.add_word();
   r.far_corner = q.value().template cast<T>();
@@ -270,25 +269,23 @@ ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw, cons
   const Vector4<W> m4 = mw.row(3).transpose();
   for (;;) {
     const DotTerms<W> terms = dot_terms(c_hat, q);
-    DotTerms<W> copy = terms;
-    bool distilled = false;
-    const W d = copy.distil(distilled).hi;  // its sign is exact once distilled
-    if (!terms.all_finite() || !std::isfinite(d)) {
+    const W q_part = W(2) * q.remaining_error(c_hat, contraction_floor);
+    AccurateRow3<T, W> row3 = accurate_row3<T>(c_hat, terms, q_part, m4, convention, false);
+    if (!terms.all_finite() || !std::isfinite(row3.corner_dot)) {
       r.status = Status::out_of_range;
       r.detail = "C . Q is beyond the range of the scalar type";
       return r;
     }
-    if (!(d > W(0))) {
+    if (!(row3.corner_dot > W(0))) {
       r.status = Status::plane_misses_view_volume;
       return r;
     }
-    const W q_part = W(2) * q.remaining_error(c_hat, contraction_floor);
-    AccurateRow3<T> row3 = accurate_row3<T>(c_hat, terms, q_part, m4, convention, false);
     if (!row3.resolved && q.add_word()) continue;
     // Out of words (five, or a correction that is not finite): the best row there is.
     if (!row3.resolved) row3 = accurate_row3<T>(c_hat, terms, q_part, m4, convention, true);
-    return accept_row3(std::move(r), row3.row3,
-                       scaled_by_power_of_two(plane, plane_scale_shift(plane)), convention);
+    // c_hat is C scaled by 2^k in W; its rounding to T is C scaled by 2^k in T (each is the
+    // exact C_i 2^k rounded once), so plane_scale_shift need not run again.
+    return accept_row3(std::move(r), row3.row3, Vector4<T>(c_hat.template cast<T>()), convention);
   }
 }
 
@@ -301,7 +298,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   using W = typename AccurateWorkingType<T>::type;
   const Matrix4<W> mw = m.template cast<W>();
   const Vector4<W> c_hat =
-      scaled_by_power_of_two(Vector4<W>(plane.template cast<W>()), plane_scale_shift(plane));
+      scaled_by_power_of_two_fast(Vector4<W>(plane.template cast<W>()), plane_scale_shift(plane));
   if (perspective_shape) {
     const W A = mw(0, 0), B = mw(0, 2), D = mw(1, 1), E = mw(1, 2), G = mw(2, 2), H = mw(2, 3),
             K = mw(3, 2);
@@ -312,7 +309,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
     if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
     const Vector4<W> corner = clip_corner(sign(c_hat.x()) * sign(A), sign(c_hat.y()) * sign(D),
                                           sign(c_hat.w()) * sign(H), convention);
-    return accurate_finish(m, mw, c_hat, plane, convention,
+    return accurate_finish(m, mw, c_hat, convention,
                            RefinedCorner(mw, corner,
                                          [A, B, D, E, G, H, K](const Vector4<W>& v) {
                                            const W z = v.w() / K;
@@ -340,7 +337,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
               : trusted_signs(c_clip, solver.transposed_error_bound(c_clip));
   const Vector4<W> corner = clip_corner(signs.x(), signs.y(), signs.z(), convention);
   return accurate_finish(
-      m, mw, c_hat, plane, convention,
+      m, mw, c_hat, convention,
       RefinedCorner(mw, corner, [&solver](const Vector4<W>& v) { return solver.solve(v); }),
       W(16) * std::numeric_limits<W>::epsilon() / solver.rcond());
 }
