@@ -3,6 +3,7 @@
 // checks the mirrors and clip planes of a scene file.
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -33,6 +34,12 @@ int run_apply(const oblique::protocol::ApplyOptions& options) {
   }
   std::cout.flush();
   return all_ok ? 0 : 1;
+}
+
+/// Prints the files a report wrote, one per line; exit status 0.
+int print_paths(const std::vector<std::filesystem::path>& paths) {
+  for (const auto& path : paths) std::cout << path.string() << "\n";
+  return 0;
 }
 
 /// Splits "a,b,c" (spaces ignored).
@@ -231,18 +238,14 @@ int main(int argc, char** argv) {
       return 2;
     }
     const auto measured = oblique::report::measure_depth(depth_options);
-    for (const auto& path : oblique::report::write_depth_report(measured, depth_options, std::cerr))
-      std::cout << path.string() << "\n";
-    return 0;
+    return print_paths(oblique::report::write_depth_report(measured, depth_options, std::cerr));
   }
   if (accuracy->parsed()) {
     accuracy_options.out_dir = accuracy_out;
     accuracy_options.progress = !quiet;
     const auto measured = oblique::report::measure_accuracy(accuracy_options, std::cerr);
-    for (const auto& path :
-         oblique::report::write_accuracy_report(measured, accuracy_options, std::cerr))
-      std::cout << path.string() << "\n";
-    return 0;
+    return print_paths(
+        oblique::report::write_accuracy_report(measured, accuracy_options, std::cerr));
   }
   if (verify->parsed()) {
     if (!parse_lists(verify_conventions, families, verify_options)) return 2;

@@ -14,6 +14,7 @@
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
 #include "oblique/properties/properties.h"
+#include "report_files.h"
 
 namespace oblique::report {
 namespace {
@@ -366,13 +367,8 @@ std::vector<std::pair<std::string, std::string>> pareto_front(const AccuracyRepo
 std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& report,
                                                          const AccuracyOptions& options,
                                                          std::ostream& log) {
-  namespace fs = std::filesystem;
-  fs::create_directories(options.out_dir);
-  std::vector<fs::path> written;
-  auto path = [&](const char* name) {
-    written.push_back(options.out_dir / name);
-    return written.back();
-  };
+  ReportFiles files(options.out_dir);
+  auto path = [&files](const char* name) { return files.add(name); };
 
   std::ofstream csv(path("accuracy.csv"));
   csv << "regime,scalar,method,answered,refused,max_ulps,p999_ulps,mean_ulps,max_bits,p999_bits,"
@@ -523,21 +519,9 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
   sdat.close();
   sgp.close();
 
-  if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
-    for (const char* script : {"accuracy.gp", "stiffness.gp"}) {
-      const std::string command = "gnuplot '" + (options.out_dir / script).string() + "'";
-      if (std::system(command.c_str()) == 0) {
-        written.push_back(options.out_dir /
-                          (std::string(script).substr(0, std::string(script).size() - 3) + ".png"));
-      } else {
-        log << "report accuracy: gnuplot failed on " << script << "\n";
-      }
-    }
-  } else {
-    log << "report accuracy: gnuplot not found (bash scripts/setup.sh installs it); the .gp "
-           "scripts are written, no PNG\n";
-  }
-  return written;
+  files.plot("accuracy.gp", "accuracy.png", log);
+  files.plot("stiffness.gp", "stiffness.png", log);
+  return files.written();
 }
 
 }  // namespace oblique::report

@@ -11,6 +11,7 @@
 
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
+#include "report_files.h"
 
 namespace oblique::report {
 namespace {
@@ -178,13 +179,8 @@ DepthReport measure_depth(const DepthOptions& options) {
 std::vector<std::filesystem::path> write_depth_report(const DepthReport& report,
                                                       const DepthOptions& options,
                                                       std::ostream& log) {
-  namespace fs = std::filesystem;
-  fs::create_directories(options.out_dir);
-  std::vector<fs::path> written;
-  auto path = [&](const char* name) {
-    written.push_back(options.out_dir / name);
-    return written.back();
-  };
+  ReportFiles files(options.out_dir);
+  auto path = [&files](const char* name) { return files.add(name); };
   {
     std::ofstream csv(path("figure5.csv"));
     csv << "angle_degrees,distance,answered,z_max_eq19,z_max_matrix,reachable_gl,"
@@ -261,17 +257,8 @@ std::vector<std::filesystem::path> write_depth_report(const DepthReport& report,
           "unset surface\nset key off\nsplot '"
        << (options.out_dir / "figure5.dat").string() << "' using 1:2:3 with pm3d\n";
   }
-  if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
-    const std::string command = "gnuplot '" + (options.out_dir / "figure5.gp").string() + "'";
-    if (std::system(command.c_str()) == 0) {
-      written.push_back(options.out_dir / "figure5.png");
-    } else {
-      log << "report depth: gnuplot failed on figure5.gp\n";
-    }
-  } else {
-    log << "report depth: gnuplot not found (bash scripts/setup.sh installs it); no PNG\n";
-  }
-  return written;
+  files.plot("figure5.gp", "figure5.png", log);
+  return files.written();
 }
 
 }  // namespace oblique::report

@@ -106,6 +106,16 @@ int run_cli(const std::string& arguments, const std::string& input,
   return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
 }
 
+/// The matrix of an ok answer.
+template <class Answer>
+Matrix4<double> answered_matrix(const Answer& answer) {
+  Matrix4<double> result;
+  std::string error;
+  for (int j = 0; j < 16; ++j)
+    result(j / 4, j % 4) = protocol::parse_number<double>((*answer.projection)[j], &error).value();
+  return result;
+}
+
 TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
   std::srand(7);
   const std::vector<Case> cases = generated_cases(424242, 480);
@@ -125,12 +135,7 @@ TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
     ASSERT_EQ(answer.status, status_code(problem.exact_status())) << what;
     if (problem.exact_status() != Status::ok) continue;
     ++ok;
-    Matrix4<double> result;
-    std::string error;
-    for (int j = 0; j < 16; ++j) {
-      result(j / 4, j % 4) =
-          protocol::parse_number<double>((*answer.projection)[j], &error).value();
-    }
+    const Matrix4<double> result = answered_matrix(answer);
     const auto verdicts = problem.check(result);
     for (const auto& v : verdicts.items) {
       EXPECT_TRUE(!v.applies || v.holds)
@@ -158,12 +163,7 @@ TEST(Cli, accurateMethodAnswersTheCorrectlyRoundedMatrix) {
     ASSERT_TRUE(answer.valid) << answer.error;
     if (problem.exact_status() != Status::ok || answer.status != "ok") continue;
     ++ok;
-    Matrix4<double> result;
-    std::string error;
-    for (int j = 0; j < 16; ++j) {
-      result(j / 4, j % 4) =
-          protocol::parse_number<double>((*answer.projection)[j], &error).value();
-    }
+    const Matrix4<double> result = answered_matrix(answer);
     // Printed so that it reads back exactly, so the ulp distance is the core's.
     EXPECT_LE(problem.ulps_from_exact(result), tolerance::kAccurateUlps)
         << k.family << " " << convention_name(k.convention) << ": " << lines[i];

@@ -158,7 +158,9 @@ class Terms {
   bool settled() const noexcept {
     bool same = true;
     for (std::size_t i = 1; i < size_; ++i) {
-      same &= (values_[i] + values_[i - 1] == values_[i]) & (values_[i] - values_[i] == T(0));
+      const bool absorbed = values_[i] + values_[i - 1] == values_[i];
+      const bool finite = values_[i] - values_[i] == T(0);
+      same = same && absorbed && finite;
     }
     return same;
   }
