@@ -162,7 +162,40 @@ struct AccurateRow3 {
   Vector4<T> row3;
   bool resolved = true;
   W corner_dot = W(0);  ///< C . Q, distilled: its sign is exact for the words of Q
+  /// A component of C lost to the scaling (below T's range at C's scale) may carry C . Q.
+  bool lost_component_matters = false;
 };
+
+/// What scaling C by 2^shift cost: `lost` holds C_i (unscaled) where C_i 2^shift is not exact
+/// (it fell below the normal range), 0 elsewhere.
+template <class W>
+struct ScaledPlane {
+  Vector4<W> c_hat;
+  Vector4<W> lost = Vector4<W>::Zero();
+  int shift = 0;
+  bool lossy() const { return (lost.array() != W(0)).any(); }
+};
+
+template <class W>
+ScaledPlane<W> scale_plane(const Vector4<W>& c, int shift) {
+  ScaledPlane<W> out;
+  out.shift = shift;
+  out.c_hat = scaled_by_power_of_two_fast(c, shift);
+  for (int i = 0; i < 4; ++i) {
+    if (c(i) != W(0) && std::ldexp(out.c_hat(i), -shift) != c(i)) out.lost(i) = c(i);
+  }
+  return out;
+}
+
+/// a C_i for a component C_i lost to the scaling, from a_hat = a 2^-shift (hi + lo): C_i is
+/// brought to the normal range by 2^(shift + up), multiplied exactly, and scaled back by 2^-up.
+template <class W>
+eft::Pair<W> lost_product(eft::Pair<W> a_hat, W c, int shift) {
+  const int up = std::numeric_limits<W>::min_exponent - (std::ilogb(c) + 1 + shift);
+  const W c_normal = std::ldexp(c, shift + up);
+  const eft::Pair<W> p = eft::two_prod(a_hat.hi, c_normal);
+  return {std::ldexp(p.hi, -up), std::ldexp(p.lo + a_hat.lo * c_normal, -up)};
+}
 
 /// Row 3 of M', s (a C_i - t M4_i) with a = range / (C . Q), each entry rounded once to T.
 ///  - Where t M4_i = 0 it is s range C_i / (C . Q), from a double-word quotient.
@@ -174,8 +207,10 @@ struct AccurateRow3 {
 /// estimate of |C| . |Q error|), which must stay below eps / 8 of C . Q and of each N_i. When
 /// Q has no more words to give (`out_of_words`), an N_i within that error of zero is taken as 0.
 template <class T, class W>
-AccurateRow3<T, W> accurate_row3(const Vector4<W>& plane, const DotTerms<W>& terms, W q_part,
-                                 const Vector4<W>& m4, Convention convention, bool out_of_words) {
+AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>& q,
+                                 const DotTerms<W>& terms, W q_part, const Vector4<W>& m4,
+                                 Convention convention, bool out_of_words) {
+  const Vector4<W>& plane = scaled.c_hat;
   constexpr W eps = std::numeric_limits<W>::epsilon();
   const DepthRange range = clip_depth_range(convention);
   const W k = W(range.z_high - range.z_low);
@@ -194,10 +229,23 @@ AccurateRow3<T, W> accurate_row3(const Vector4<W>& plane, const DotTerms<W>& ter
   const eft::Pair<W> a = eft::divide(eft::Pair<W>{k, W(0)}, d.hi);
   const W lo_ratio = d.lo / d.hi;
   const W a_lo = a.lo - a.hi * lo_ratio;  // k / (hi + lo) to first order in lo / hi
+  // A lost component's part of C . Q, |C_i 2^shift Q_i| < 2^(ilogb C_i + shift + ilogb Q_i + 2),
+  // must be below the resolution asked of C . Q.
+  for (int i = 0; i < 4; ++i) {
+    if (scaled.lost(i) == W(0) || q(i) == W(0)) continue;
+    const int exponent = std::ilogb(scaled.lost(i)) + scaled.shift + std::ilogb(q(i)) + 2;
+    if (exponent > std::ilogb(d.hi) - std::numeric_limits<W>::digits - 3)
+      out.lost_component_matters = true;
+  }
   for (int i = 0; i < 4; ++i) {
     const W tm4 = t * m4(i);
     eft::Pair<W> entry;
-    if (tm4 == W(0)) {
+    if (scaled.lost(i) != W(0)) {
+      // a C_i is below the normal range at C's scale: formed at its own scale, then - t M4_i.
+      const eft::Pair<W> ac = lost_product(eft::Pair<W>{a.hi, a_lo}, scaled.lost(i), scaled.shift);
+      const eft::Pair<W> sum = eft::two_sum(s * ac.hi, -s * tm4);
+      entry = eft::fast_two_sum(sum.hi, sum.lo + s * ac.lo);
+    } else if (tm4 == W(0)) {
       const eft::Pair<W> ac = eft::two_prod(a.hi, plane(i));
       entry = eft::fast_two_sum(s * ac.hi, s * (ac.lo + a_lo * plane(i)));
     } else {

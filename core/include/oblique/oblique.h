@@ -256,8 +256,9 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
 /// `contraction_floor` bounds below how much each refinement step shrinks Q's error: a few eps
 /// for the closed form's explicit solve, 16 eps / rcond for the equilibrated LU.
 template <class T, class W, class Corner>
-ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw, const Vector4<W>& c_hat,
-                                 Convention convention, Corner q, W contraction_floor) {
+ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw,
+                                 const ScaledPlane<W>& scaled, Convention convention, Corner q,
+                                 W contraction_floor) {
   ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
   if (q.finite()) q.add_word();
   r.far_corner = q.value().template cast<T>();
@@ -268,24 +269,39 @@ ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw, cons
   }
   const Vector4<W> m4 = mw.row(3).transpose();
   for (;;) {
-    const DotTerms<W> terms = dot_terms(c_hat, q);
-    const W q_part = W(2) * q.remaining_error(c_hat, contraction_floor);
-    AccurateRow3<T, W> row3 = accurate_row3<T>(c_hat, terms, q_part, m4, convention, false);
+    const DotTerms<W> terms = dot_terms(scaled.c_hat, q);
+    const W q_part = W(2) * q.remaining_error(scaled.c_hat, contraction_floor);
+    const Vector4<W> q_value = q.value();
+    AccurateRow3<T, W> row3 =
+        accurate_row3<T>(scaled, q_value, terms, q_part, m4, convention, false);
     if (!terms.all_finite() || !std::isfinite(row3.corner_dot)) {
       r.status = Status::out_of_range;
       r.detail = "C . Q is beyond the range of the scalar type";
       return r;
     }
-    if (!(row3.corner_dot > W(0))) {
-      r.status = Status::plane_misses_view_volume;
-      return r;
+    bool lost_matters = row3.lost_component_matters;
+    for (int i = 0; i < 4; ++i) lost_matters |= scaled.lost(i) != W(0) && q_value(i) != W(0);
+    if (!(row3.corner_dot > W(0)) || row3.lost_component_matters) {
+      if (lost_matters) {
+        r.status = Status::out_of_range;
+        r.detail =
+            "the plane's components span more binades than the scalar type holds at one scale, "
+            "and the small ones carry C . Q";
+        return r;
+      }
+      if (!(row3.corner_dot > W(0))) {
+        r.status = Status::plane_misses_view_volume;
+        return r;
+      }
     }
     if (!row3.resolved && q.add_word()) continue;
     // Out of words (five, or a correction that is not finite): the best row there is.
-    if (!row3.resolved) row3 = accurate_row3<T>(c_hat, terms, q_part, m4, convention, true);
+    if (!row3.resolved)
+      row3 = accurate_row3<T>(scaled, q_value, terms, q_part, m4, convention, true);
     // c_hat is C scaled by 2^k in W; its rounding to T is C scaled by 2^k in T (each is the
     // exact C_i 2^k rounded once), so plane_scale_shift need not run again.
-    return accept_row3(std::move(r), row3.row3, Vector4<T>(c_hat.template cast<T>()), convention);
+    return accept_row3(std::move(r), row3.row3, Vector4<T>(scaled.c_hat.template cast<T>()),
+                       convention);
   }
 }
 
@@ -297,8 +313,9 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
                           bool perspective_shape) {
   using W = typename AccurateWorkingType<T>::type;
   const Matrix4<W> mw = m.template cast<W>();
-  const Vector4<W> c_hat =
-      scaled_by_power_of_two_fast(Vector4<W>(plane.template cast<W>()), plane_scale_shift(plane));
+  const ScaledPlane<W> scaled =
+      scale_plane(Vector4<W>(plane.template cast<W>()), plane_scale_shift(plane));
+  const Vector4<W>& c_hat = scaled.c_hat;
   if (perspective_shape) {
     const W A = mw(0, 0), B = mw(0, 2), D = mw(1, 1), E = mw(1, 2), G = mw(2, 2), H = mw(2, 3),
             K = mw(3, 2);
@@ -307,9 +324,11 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
                     "the projection is singular: M11, M22 or M34 is zero");
     }
     if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
-    const Vector4<W> corner = clip_corner(sign(c_hat.x()) * sign(A), sign(c_hat.y()) * sign(D),
-                                          sign(c_hat.w()) * sign(H), convention);
-    return accurate_finish(m, mw, c_hat, convention,
+    // Signs from C itself: a component lost to the scaling keeps its sign there.
+    const Vector4<T>& c = plane;
+    const Vector4<W> corner = clip_corner(W(sign(c.x())) * sign(A), W(sign(c.y())) * sign(D),
+                                          W(sign(c.w())) * sign(H), convention);
+    return accurate_finish(m, mw, scaled, convention,
                            RefinedCorner(mw, corner,
                                          [A, B, D, E, G, H, K](const Vector4<W>& v) {
                                            const W z = v.w() / K;
@@ -329,15 +348,30 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   }
   const Vector4<W> correction = solver.transposed_correction_unscaled(c_hat, c_clip);
   const bool refined = all_finite(correction);
-  const Vector4<W> signs =
-      refined ? trusted_signs(Vector4<W>(c_clip + correction),
-                              Vector4<W>(solver.transposed_error_bound(correction) +
-                                         std::numeric_limits<W>::epsilon() *
-                                             solver.transposed_error_bound(c_clip)))
-              : trusted_signs(c_clip, solver.transposed_error_bound(c_clip));
+  const Vector4<W> estimate = refined ? Vector4<W>(c_clip + correction) : c_clip;
+  const Vector4<W> bound =
+      refined
+          ? Vector4<W>(solver.transposed_error_bound(correction) +
+                       std::numeric_limits<W>::epsilon() * solver.transposed_error_bound(c_clip))
+          : solver.transposed_error_bound(c_clip);
+  Vector4<W> signs = trusted_signs(estimate, bound);
+  if (scaled.lossy()) {
+    // Components of C lost to the scaling still decide a sign of C' that the rest leaves at
+    // zero: solve for them at their own scale (C' is linear in C).
+    const int up = std::numeric_limits<W>::min_exponent -
+                   (magnitude_exponent(scaled.lost) - std::numeric_limits<W>::digits) -
+                   scaled.shift;
+    const Vector4<W> lost_clip =
+        solver.solve_transposed_unscaled(scaled_by_power_of_two(scaled.lost, scaled.shift + up));
+    const Vector4<W> lost_signs =
+        trusted_signs(lost_clip, solver.transposed_error_bound(lost_clip));
+    for (int i = 0; i < 4; ++i) {
+      if (signs(i) == W(0)) signs(i) = lost_signs(i);
+    }
+  }
   const Vector4<W> corner = clip_corner(signs.x(), signs.y(), signs.z(), convention);
   return accurate_finish(
-      m, mw, c_hat, convention,
+      m, mw, scaled, convention,
       RefinedCorner(mw, corner, [&solver](const Vector4<W>& v) { return solver.solve(v); }),
       W(16) * std::numeric_limits<W>::epsilon() / solver.rcond());
 }
