@@ -99,11 +99,12 @@ class RefinedCorner {
   /// An estimate of |w| . |Q - (x_0 + ... + x_{n-1})|, the error left in the words weighted by
   /// w: the last word's weighted size times the contraction per refinement step, measured from
   /// the last two words but never below `contraction_floor` (a bound the solve's conditioning
-  /// gives); the whole weighted size of Q while there is one word; 0 when the last correction
-  /// is exactly zero (Q is then exact).
+  /// gives); the floor times the weighted size of Q while there is one word; 0 when the last
+  /// correction is exactly zero (Q is then exact).
   W remaining_error(const Vector4<W>& weights, W contraction_floor) const {
     const W last = weights.cwiseAbs().dot(words_[count_ - 1].cwiseAbs());
-    if (count_ < 2 || !(last > W(0))) return count_ < 2 ? last : W(0);
+    if (!(last > W(0))) return W(0);
+    if (count_ < 2) return last * contraction_floor;  // the first solve's own error
     const W before = weights.cwiseAbs().dot(words_[count_ - 2].cwiseAbs());
     const W measured = before > W(0) ? last / before : W(1);
     return last * std::min(W(1), std::max(measured, contraction_floor));
@@ -212,6 +213,8 @@ AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>&
                                  Convention convention, bool out_of_words) {
   const Vector4<W>& plane = scaled.c_hat;
   constexpr W eps = std::numeric_limits<W>::epsilon();
+  // What the answer in T needs resolved: eps of T (float computes in double and needs less).
+  constexpr W target = W(std::numeric_limits<T>::epsilon());
   const DepthRange range = clip_depth_range(convention);
   const W k = W(range.z_high - range.z_low);
   const RowCombination near_combination = near_rows(convention);
@@ -225,7 +228,7 @@ AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>&
   // Not distilled: fall back on SumK's bound for 8 passes, (n eps)^8 of the magnitude.
   const W sum_part = exact ? W(0) : terms.magnitude() * std::pow(W(terms.size()) * eps, 8);
   const W d_error = q_part + sum_part + eps * std::abs(d.lo);
-  out.resolved = d_error <= eps / W(8) * d.hi;
+  out.resolved = d_error <= target / W(8) * d.hi;
   const eft::Pair<W> a = eft::divide(eft::Pair<W>{k, W(0)}, d.hi);
   const W lo_ratio = d.lo / d.hi;
   const W a_lo = a.lo - a.hi * lo_ratio;  // k / (hi + lo) to first order in lo / hi
@@ -254,7 +257,7 @@ AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>&
       fast.add_product(-tm4, d.hi);
       fast.add_product(-tm4, d.lo);
       eft::Pair<W> numerator = fast.distil(exact);
-      if (!exact || std::abs(tm4) * d_error > eps / W(8) * std::abs(numerator.hi)) {
+      if (!exact || std::abs(tm4) * d_error > target / W(8) * std::abs(numerator.hi)) {
         eft::Terms<W, 1 + 2 * DotTerms<W>::capacity()> slow;
         slow.add(k * plane(i));
         for (std::size_t j = 0; j < terms.size(); ++j) slow.add_product(-tm4, terms[j]);
@@ -264,7 +267,7 @@ AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>&
         numerator = slow.distil(exact);
         const W slow_sum_part = exact ? W(0) : slow_magnitude * std::pow(W(slow_size) * eps, 8);
         const W bound = std::abs(tm4) * q_part + slow_sum_part;
-        if (bound > eps / W(8) * std::abs(numerator.hi)) {
+        if (bound > target / W(8) * std::abs(numerator.hi)) {
           // Out of words, N_i is indistinguishable from zero at five-fold precision: the exact
           // zeros (C proportional to M_4 with a = 1, say) are where this happens.
           if (out_of_words && std::abs(numerator.hi) <= bound) numerator = {W(0), W(0)};

@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <string_view>
+#include <type_traits>
 
 #include "oblique/accurate.h"
 #include "oblique/depth_convention.h"
@@ -258,9 +259,12 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
 template <class T, class W, class Corner>
 ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw,
                                  const ScaledPlane<W>& scaled, Convention convention, Corner q,
-                                 W contraction_floor) {
+                                 W contraction_floor, bool first_word_bounded) {
   ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
-  if (q.finite()) q.add_word();
+  // In its own type the answer needs a second word of Q. float (run in double) rarely does when
+  // the first word comes from the closed form, whose few roundings contraction_floor bounds;
+  // an LU solve's error is only estimated by rcond, so it always gets a second word.
+  if ((std::is_same_v<T, W> || !first_word_bounded) && q.finite()) q.add_word();
   r.far_corner = q.value().template cast<T>();
   if (!q.finite() || !all_finite(r.far_corner)) {
     r.status = Status::out_of_range;
@@ -336,7 +340,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
                                                              (v.y() - E * z) / D, z,
                                                              (v.z() - G * z) / H);
                                          }),
-                           W(8) * std::numeric_limits<W>::epsilon());
+                           W(8) * std::numeric_limits<W>::epsilon(), true);
   }
   const EquilibratedSolver<W> solver(mw);
   if (auto refusal = solver_refusal(m, solver, Method::accurate)) return *refusal;
@@ -373,7 +377,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   return accurate_finish(
       m, mw, scaled, convention,
       RefinedCorner(mw, corner, [&solver](const Vector4<W>& v) { return solver.solve(v); }),
-      W(16) * std::numeric_limits<W>::epsilon() / solver.rcond());
+      W(16) * std::numeric_limits<W>::epsilon() / solver.rcond(), false);
 }
 
 }  // namespace detail
