@@ -14,6 +14,7 @@
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
 #include "oblique/properties/properties.h"
+#include "report.h"
 #include "report_files.h"
 
 namespace oblique::report {
@@ -195,13 +196,6 @@ Stats stats_of(std::vector<double> values) {
 }
 
 template <class T>
-const char* scalar_label() {
-  if (std::is_same_v<T, float>) return "float";
-  if (std::is_same_v<T, double>) return "double";
-  return "long_double";
-}
-
-template <class T>
 struct Case {
   Matrix4<T> matrix;
   Vector4<T> plane;
@@ -266,7 +260,7 @@ void measure_scalar(const Regime& regime, const std::vector<Input>& inputs,
     if (checksum == 0.123456789) std::abort();  // never: only keeps the calls alive
     AccuracyRow row;
     row.regime = regime.name;
-    row.scalar = scalar_label<T>();
+    row.scalar = properties::scalar_name<T>();
     row.method = std::string(method_name(method));
     row.answered = all.answered;
     row.refused = all.refused;

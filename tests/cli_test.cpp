@@ -116,13 +116,20 @@ Matrix4<double> answered_matrix(const Answer& answer) {
   return result;
 }
 
-TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
-  std::srand(7);
-  const std::vector<Case> cases = generated_cases(424242, 480);
+/// `oblique ARGUMENTS` on one request per case; its answer lines.
+std::vector<std::string> answer_lines(const std::vector<Case>& cases,
+                                      const std::string& arguments) {
   std::string input;
   for (const Case& k : cases) input += request_line(k) + "\n";
   std::vector<std::string> lines;
-  run_cli("apply", input, &lines);
+  run_cli(arguments, input, &lines);
+  return lines;
+}
+
+TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
+  std::srand(7);
+  const std::vector<Case> cases = generated_cases(424242, 480);
+  const std::vector<std::string> lines = answer_lines(cases, "apply");
   ASSERT_EQ(lines.size(), cases.size());
   int ok = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
@@ -150,10 +157,7 @@ TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
 
 TEST(Cli, accurateMethodAnswersTheCorrectlyRoundedMatrix) {
   const std::vector<Case> cases = generated_cases(171717, 240);
-  std::string input;
-  for (const Case& k : cases) input += request_line(k) + "\n";
-  std::vector<std::string> lines;
-  run_cli("apply --method accurate", input, &lines);
+  const std::vector<std::string> lines = answer_lines(cases, "apply --method accurate");
   ASSERT_EQ(lines.size(), cases.size());
   int ok = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {

@@ -3,12 +3,17 @@
 // `oblique report accuracy` against the GMP oracle, checked by the property suite at 2 ulp).
 //
 // Where the plain methods lose accuracy, and what this one does instead:
-//  - Q = M^-1 Q' rounds in every component: here Q is refined to two (or three) words, each
-//    correction solved from a residual Q' - M (q_0 + ...) summed as in K-fold precision;
-//  - C . Q cancels when C passes close to the far corner: summed from exact products (SumK);
+//  - Q = M^-1 Q' rounds in every component: here Q is refined to two words (one for float's
+//    closed form, up to five where needed), each correction solved from a residual
+//    Q' - M (q_0 + ...) summed as in K-fold precision;
+//  - C . Q cancels when C passes close to the far corner: distilled to its exact value from
+//    exact products;
 //  - a = range / (C . Q) rounds: kept as a double-word quotient;
 //  - a C_i - t M4_i cancels when C is close to the standard near plane (the a C_z + 1 of the
-//    paper's GL formula): formed from the exact product a C_i and one TwoSum, rounded once.
+//    paper's GL formula): formed as (k C_i - t M4_i (C . Q)) / (C . Q) from exact products,
+//    rounded once;
+//  - components of C that its power-of-two scaling pushes below the range: formed at their own
+//    scale (ScaledPlane).
 // float runs in double (float products are exact there and nothing under- or overflows); double
 // and long double run in their own type with double-word arithmetic.
 #pragma once
@@ -16,7 +21,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 #include "oblique/depth_convention.h"
 #include "oblique/equilibrated_solver.h"
@@ -35,26 +39,17 @@ struct AccurateWorkingType<float> {
   using type = double;
 };
 
-/// v * 2^k entry by entry, as scaled_by_power_of_two() gives it: while 2^k is a normal number
-/// each product is the exact v_i 2^k rounded once, which is what ldexp returns, so one ldexp
-/// makes 2^k and four multiplications do the rest.
-template <class W>
-Vector4<W> scaled_by_power_of_two_fast(const Vector4<W>& v, int k) {
-  if (k >= std::numeric_limits<W>::min_exponent - 1 && k < std::numeric_limits<W>::max_exponent) {
-    const W factor = std::ldexp(W(1), k);
-    return Vector4<W>(v(0) * factor, v(1) * factor, v(2) * factor, v(3) * factor);
-  }
-  return scaled_by_power_of_two(v, k);
-}
-
 /// Q = x_0 + x_1 + ... + x_{n-1} with M Q = rhs, refined from exact residuals:
 /// x_0 = solve(rhs), x_j = solve(rhs - M (x_0 + ... + x_{j-1})), the residual summed as in
 /// (j + 1)-fold precision. Each word is about eps times the last (the closed form's solve has a
 /// few roundings; the equilibrated LU is refined to a small componentwise backward error).
+/// The most words the far corner is refined to.
+inline constexpr int kMaxCornerWords = 5;
+
 template <class W, class Solve>
 class RefinedCorner {
  public:
-  static constexpr int kMaxWords = 5;
+  static constexpr int kMaxWords = kMaxCornerWords;
 
   /// Keeps M's nonzero entries only: the residuals skip its zeros.
   RefinedCorner(const Matrix4<W>& m, const Vector4<W>& rhs, Solve solve)
@@ -74,7 +69,7 @@ class RefinedCorner {
 
   int count() const { return count_; }
   const Vector4<W>& word(int k) const { return words_[k]; }
-  bool finite() const { return finite_vector(words_[0]); }
+  bool finite() const { return all_finite(words_[0]); }
 
   /// Adds the next correction; false when there is no room or it would not be finite.
   bool add_word() {
@@ -91,7 +86,7 @@ class RefinedCorner {
       residual(i) = terms.sum(count_ + 1);
     }
     const Vector4<W> next = solve_(residual);
-    if (!finite_vector(next)) return false;
+    if (!all_finite(next)) return false;
     words_[count_++] = next;
     return true;
   }
@@ -118,10 +113,6 @@ class RefinedCorner {
   }
 
  private:
-  static bool finite_vector(const Vector4<W>& v) {
-    return std::isfinite(v(0)) && std::isfinite(v(1)) && std::isfinite(v(2)) && std::isfinite(v(3));
-  }
-
   Vector4<W> rhs_;
   Solve solve_;
   std::array<std::array<W, 4>, 4> negated_{};  ///< -M_i,col for the nonzero entries of row i
@@ -134,7 +125,7 @@ class RefinedCorner {
 /// The products C_i x_k,i of C with every word of Q, exact (two terms each) but for the last
 /// word's, whose rounding errors are below eps times its own small contribution.
 template <class W>
-using DotTerms = eft::Terms<W, 2 * 4 * 5>;
+using DotTerms = eft::Terms<W, 2 * 4 * kMaxCornerWords>;
 
 template <class W, class Corner>
 DotTerms<W> dot_terms(const Vector4<W>& plane, const Corner& q) {
@@ -163,7 +154,8 @@ struct AccurateRow3 {
   Vector4<T> row3;
   bool resolved = true;
   W corner_dot = W(0);  ///< C . Q, distilled: its sign is exact for the words of Q
-  /// A component of C lost to the scaling (below T's range at C's scale) may carry C . Q.
+  /// A component of C lost to the scaling (ScaledPlane) carries more of C . Q than its
+  /// resolution allows, or C . Q came out <= 0 with such a component touching a nonzero Q_i.
   bool lost_component_matters = false;
 };
 
@@ -175,13 +167,17 @@ struct ScaledPlane {
   Vector4<W> lost = Vector4<W>::Zero();
   int shift = 0;
   bool lossy() const { return (lost.array() != W(0)).any(); }
+  /// Whether a lost component meets a nonzero coordinate of q (so it is part of C . q).
+  bool touches(const Vector4<W>& q) const {
+    return ((lost.array() != W(0)) && (q.array() != W(0))).any();
+  }
 };
 
 template <class W>
 ScaledPlane<W> scale_plane(const Vector4<W>& c, int shift) {
   ScaledPlane<W> out;
   out.shift = shift;
-  out.c_hat = scaled_by_power_of_two_fast(c, shift);
+  out.c_hat = scaled_by_power_of_two(c, shift);
   for (int i = 0; i < 4; ++i) {
     if (c(i) != W(0) && std::ldexp(out.c_hat(i), -shift) != c(i)) out.lost(i) = c(i);
   }
@@ -224,7 +220,10 @@ AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>&
   bool exact = false;
   const eft::Pair<W> d = d_terms.distil(exact);
   out.corner_dot = d.hi;
-  if (!(d.hi > W(0)) || !std::isfinite(d.hi)) return out;
+  if (!(d.hi > W(0)) || !std::isfinite(d.hi)) {
+    out.lost_component_matters = scaled.touches(q);
+    return out;
+  }
   // Not distilled: fall back on SumK's bound for 8 passes, (n eps)^8 of the magnitude.
   const W sum_part = exact ? W(0) : terms.magnitude() * std::pow(W(terms.size()) * eps, 8);
   const W d_error = q_part + sum_part + eps * std::abs(d.lo);

@@ -283,20 +283,16 @@ ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw,
       r.detail = "C . Q is beyond the range of the scalar type";
       return r;
     }
-    bool lost_matters = row3.lost_component_matters;
-    for (int i = 0; i < 4; ++i) lost_matters |= scaled.lost(i) != W(0) && q_value(i) != W(0);
-    if (!(row3.corner_dot > W(0)) || row3.lost_component_matters) {
-      if (lost_matters) {
-        r.status = Status::out_of_range;
-        r.detail =
-            "the plane's components span more binades than the scalar type holds at one scale, "
-            "and the small ones carry C . Q";
-        return r;
-      }
-      if (!(row3.corner_dot > W(0))) {
-        r.status = Status::plane_misses_view_volume;
-        return r;
-      }
+    if (row3.lost_component_matters) {
+      r.status = Status::out_of_range;
+      r.detail =
+          "the plane's components span more binades than the scalar type holds at one scale, "
+          "and the small ones carry C . Q";
+      return r;
+    }
+    if (!(row3.corner_dot > W(0))) {
+      r.status = Status::plane_misses_view_volume;
+      return r;
     }
     if (!row3.resolved && q.add_word()) continue;
     // Out of words (five, or a correction that is not finite): the best row there is.
@@ -329,9 +325,9 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
     }
     if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
     // Signs from C itself: a component lost to the scaling keeps its sign there.
-    const Vector4<T>& c = plane;
-    const Vector4<W> corner = clip_corner(W(sign(c.x())) * sign(A), W(sign(c.y())) * sign(D),
-                                          W(sign(c.w())) * sign(H), convention);
+    const Vector4<W> corner =
+        clip_corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
+                    W(sign(plane.w())) * sign(H), convention);
     return accurate_finish(m, mw, scaled, convention,
                            RefinedCorner(mw, corner,
                                          [A, B, D, E, G, H, K](const Vector4<W>& v) {

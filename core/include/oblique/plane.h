@@ -92,11 +92,19 @@ constexpr int max_magnitude_spread() noexcept {
 }
 
 /// v * 2^k entry by entry: exact unless an entry leaves the normal range, so it removes overflow
-/// and underflow from what follows without changing its rounding.
+/// and underflow from what follows without changing its rounding. While 2^k is itself a normal
+/// number, multiplying by it gives what ldexp gives (the exact v_i 2^k rounded once), so one
+/// ldexp makes the factor and multiplications do the rest.
 template <class Derived>
 typename Derived::PlainObject scaled_by_power_of_two(const Eigen::MatrixBase<Derived>& v, int k) {
+  using T = typename Derived::Scalar;
   typename Derived::PlainObject out = v;
-  for (Eigen::Index i = 0; i < out.size(); ++i) out.data()[i] = std::ldexp(out.data()[i], k);
+  if (k >= std::numeric_limits<T>::min_exponent - 1 && k < std::numeric_limits<T>::max_exponent) {
+    const T factor = std::ldexp(T(1), k);
+    for (Eigen::Index i = 0; i < out.size(); ++i) out.data()[i] *= factor;
+  } else {
+    for (Eigen::Index i = 0; i < out.size(); ++i) out.data()[i] = std::ldexp(out.data()[i], k);
+  }
   return out;
 }
 
