@@ -332,30 +332,30 @@ AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& pr
   return report;
 }
 
-std::vector<std::pair<std::string, std::string>> pareto_front(const AccuracyReport& report) {
-  struct Point {
-    double ns = 0, ulps = 0;
-    int regimes = 0;
-  };
-  std::map<std::pair<std::string, std::string>, Point> points;
+std::map<std::pair<std::string, std::string>, OverallPoint> overall_points(
+    const AccuracyReport& report) {
+  std::map<std::pair<std::string, std::string>, OverallPoint> points;
+  std::map<std::pair<std::string, std::string>, int> regimes;
   for (const AccuracyRow& row : report.rows) {
     if (row.answered == 0) continue;
-    Point& p = points[{row.method, row.scalar}];
-    p.ns += row.ns_per_call;
-    p.ulps = std::max(p.ulps, row.max_ulps);
-    ++p.regimes;
+    const auto key = std::make_pair(row.method, row.scalar);
+    OverallPoint& p = points[key];
+    p.ns_per_call += row.ns_per_call;  // a sum until divided below
+    p.max_ulps = std::max(p.max_ulps, row.max_ulps);
+    p.p999_ulps = std::max(p.p999_ulps, row.p999_ulps);
+    p.max_bound_ratio = std::max(p.max_bound_ratio, row.max_bound_ratio);
+    ++regimes[key];
   }
-  std::vector<std::pair<std::string, std::string>> front;
-  for (const auto& [key, p] : points) {
-    bool dominated = false;
+  for (auto& [key, p] : points) p.ns_per_call /= regimes[key];
+  for (auto& [key, p] : points) {
+    p.on_front = true;
     for (const auto& [other_key, q] : points) {
-      if (other_key == key) continue;
-      const double p_ns = p.ns / p.regimes, q_ns = q.ns / q.regimes;
-      if (q_ns <= p_ns && q.ulps <= p.ulps && (q_ns < p_ns || q.ulps < p.ulps)) dominated = true;
+      if (other_key != key && q.ns_per_call <= p.ns_per_call && q.max_ulps <= p.max_ulps &&
+          (q.ns_per_call < p.ns_per_call || q.max_ulps < p.max_ulps))
+        p.on_front = false;
     }
-    if (!dominated) front.push_back(key);
   }
-  return front;
+  return points;
 }
 
 std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& report,
@@ -384,35 +384,17 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
           << '\n';
   }
 
-  // Overall points for the chart: mean time over regimes, worst error over regimes.
-  struct Overall {
-    double ns = 0, ulps = 0, p999 = 0, bound = 0;
-    int regimes = 0;
-  };
-  std::map<std::pair<std::string, std::string>, Overall> overall;
-  for (const AccuracyRow& r : report.rows) {
-    if (r.answered == 0) continue;
-    Overall& o = overall[{r.method, r.scalar}];
-    o.ns += r.ns_per_call;
-    o.ulps = std::max(o.ulps, r.max_ulps);
-    o.p999 = std::max(o.p999, r.p999_ulps);
-    o.bound = std::max(o.bound, r.max_bound_ratio);
-    ++o.regimes;
-  }
-  const auto front = pareto_front(report);
-  auto on_front = [&](const std::pair<std::string, std::string>& key) {
-    return std::find(front.begin(), front.end(), key) != front.end();
-  };
+  const auto overall = overall_points(report);
 
   std::ofstream md(path("accuracy.md"));
   md << "| method | scalar | max error (ulp) | max error (bits) | worst 99.9th pct (ulp) | "
         "ns per call (mean over regimes) | max error / checker bound | on the front |\n"
         "|---|---|---:|---:|---:|---:|---:|:---:|\n";
   for (const auto& [key, o] : overall) {
-    md << "| " << key.first << " | " << key.second << " | " << number(o.ulps) << " | "
-       << number(ulps_to_bits(o.ulps)) << " | " << number(o.p999) << " | "
-       << number(o.ns / o.regimes) << " | " << number(o.bound) << " | "
-       << (on_front(key) ? "yes" : "") << " |\n";
+    md << "| " << key.first << " | " << key.second << " | " << number(o.max_ulps) << " | "
+       << number(ulps_to_bits(o.max_ulps)) << " | " << number(o.p999_ulps) << " | "
+       << number(o.ns_per_call) << " | " << number(o.max_bound_ratio) << " | "
+       << (o.on_front ? "yes" : "") << " |\n";
   }
   md << "\nPer regime (max / 99.9th percentile / mean error in ulps, ns per call):\n\n"
         "| regime | scalar | closed_form | general | accurate |\n|---|---|---|---|---|\n";
@@ -441,14 +423,11 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
 
   // Chart data: one line per (method, scalar); the front sorted by time.
   std::ofstream points(path("accuracy_points.dat"));
-  for (const auto& [key, o] : overall) {
-    points << o.ns / o.regimes << ' ' << ulps_to_bits(o.ulps) << ' ' << key.first << '/'
-           << key.second << '\n';
-  }
   std::vector<std::pair<double, double>> front_points;
-  for (const auto& key : front) {
-    const Overall& o = overall[key];
-    front_points.emplace_back(o.ns / o.regimes, ulps_to_bits(o.ulps));
+  for (const auto& [key, o] : overall) {
+    points << o.ns_per_call << ' ' << ulps_to_bits(o.max_ulps) << ' ' << key.first << '/'
+           << key.second << '\n';
+    if (o.on_front) front_points.emplace_back(o.ns_per_call, ulps_to_bits(o.max_ulps));
   }
   std::sort(front_points.begin(), front_points.end());
   std::ofstream front_file(path("accuracy_front.dat"));

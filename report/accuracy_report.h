@@ -6,7 +6,9 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace oblique::report {
@@ -55,8 +57,15 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
                                                          const AccuracyOptions& options,
                                                          std::ostream& log);
 
-/// The (method, scalar) pairs on the error-against-time front: no other pair is both faster
-/// (mean ns per call over the regimes) and more accurate (max ulps over the regimes).
-std::vector<std::pair<std::string, std::string>> pareto_front(const AccuracyReport& report);
+/// One (method, scalar) pair over every regime: mean ns per call, worst errors, and whether it is
+/// on the error-against-time front (no other pair is both faster and more accurate).
+struct OverallPoint {
+  double ns_per_call = 0;  ///< mean over the regimes it answered in
+  double max_ulps = 0, p999_ulps = 0, max_bound_ratio = 0;  ///< worst over the regimes
+  bool on_front = false;
+};
+
+std::map<std::pair<std::string, std::string>, OverallPoint> overall_points(
+    const AccuracyReport& report);
 
 }  // namespace oblique::report
