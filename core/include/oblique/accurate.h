@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "oblique/depth_convention.h"
 #include "oblique/equilibrated_solver.h"
@@ -179,7 +180,10 @@ ScaledPlane<W> scale_plane(const Vector4<W>& c, int shift) {
   out.shift = shift;
   out.c_hat = scaled_by_power_of_two(c, shift);
   for (int i = 0; i < 4; ++i) {
-    if (c(i) != W(0) && std::ldexp(out.c_hat(i), -shift) != c(i)) out.lost(i) = c(i);
+    // A normal result is exact; below the normal range it may be.
+    if (c(i) != W(0) && !(std::abs(out.c_hat(i)) >= std::numeric_limits<W>::min()) &&
+        std::ldexp(out.c_hat(i), -shift) != c(i))
+      out.lost(i) = c(i);
   }
   return out;
 }
@@ -279,6 +283,112 @@ AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>&
     out.row3(i) = eft::round_pair<T>(entry);
     if (out.row3(i) == T(0)) out.row3(i) = T(0);  // +0, as the plain methods give
   }
+  return out;
+}
+
+/// Row 3 of M' and Q from the fast path for the standard perspective shape.
+template <class T, class W>
+struct PerspectiveAnswer {
+  Vector4<T> row3;
+  Vector4<W> far_corner;
+};
+
+/// The accurate method for the standard perspective shape (M11, M13, M22, M23, M33, M34, M43 as
+/// A, B, D, E, G, H, K) without refining Q, where one pass of double-word arithmetic resolves the
+/// answer. With Q' the clip-space corner, n_i = Q'_i K - B_i (exact: Q'_i is 0, +-1/2 or +-1),
+/// r_i = n_i / A_i and u_i = C_i r_i for i = x, y, w (B_i = B, E, G; A_i = A, D, H):
+///   Q = (r_x, r_y, 1, r_w) / K,   N = K (C . Q) = u_x + u_y + C_z + u_w,
+///   a C_i = k K C_i / N  where M4_i = 0 (i = x, y, w),
+///   a C_z - t K = K ((k - t) C_z - t (u_x + u_y + u_w)) / N,
+/// so the a C_z + 1 cancellation of the GL formula is removed algebraically. Error: each u_i is
+/// within 11u^2 |u_i| (u = eps / 2: 8u^2 from the quotient, 3u^2 from the product) and the sums
+/// add under 18u^2 of S = |u_x| + |u_y| + |u_w| + |C_z|, so N and the z numerator V are within
+/// 29u^2 S, taken as 48u^2 S; both must be within target / 32 of their own size (target = eps
+/// of T), and the divisions and products after them add under 24u^2, so each entry is within
+/// target / 8 of its value before its one rounding (faithful). Every product and quotient's
+/// operands and results must lie 2p binades above the underflow threshold, where the error-free
+/// transformations are exact. std::nullopt when any condition fails: a component lost to the
+/// scaling, an unresolved N or V, N <= 0, a value outside that range or not finite; the refining
+/// path then answers.
+template <class T, class W>
+std::optional<PerspectiveAnswer<T, W>> perspective_row3(const ScaledPlane<W>& scaled,
+                                                        const Matrix4<W>& m,
+                                                        const Vector4<W>& corner,
+                                                        Convention convention) {
+  if (scaled.lossy()) return std::nullopt;
+  constexpr W u = std::numeric_limits<W>::epsilon() / W(2);
+  constexpr W target = W(std::numeric_limits<T>::epsilon());
+  constexpr W low = eft::power_of_two<W>(std::numeric_limits<W>::min_exponent +
+                                         2 * std::numeric_limits<W>::digits + 2);
+  bool in_range = true;
+  const auto check = [&in_range](W x) {
+    const W size = std::abs(x);
+    in_range &= (x == W(0)) | ((size >= low) & (size <= std::numeric_limits<W>::max()));
+  };
+  const Vector4<W>& c = scaled.c_hat;
+  const W K = m(3, 2);
+  const W b[3] = {m(0, 2), m(1, 2), m(2, 2)};  // B_i
+  const W a[3] = {m(0, 0), m(1, 1), m(2, 3)};  // A_i
+  const W q_clip[3] = {corner.x(), corner.y(), corner.z()};
+  const W c_i[3] = {c.x(), c.y(), c.w()};
+  check(K);
+  eft::Pair<W> r[3], u_i[3];
+  W magnitude = std::abs(c.z());
+  for (int i = 0; i < 3; ++i) {
+    check(a[i]);
+    const eft::Pair<W> n = eft::two_sum(q_clip[i] * K, -b[i]);
+    check(n.hi);
+    r[i] = eft::divide(n, a[i]);
+    check(r[i].hi);
+    u_i[i] = eft::multiply(r[i], c_i[i]);
+    check(u_i[i].hi);
+    magnitude += std::abs(u_i[i].hi);
+  }
+  // U = u_x + u_y + u_w: TwoSum on the leading words, the rest summed plainly (Sum2).
+  const eft::Pair<W> s1 = eft::two_sum(u_i[0].hi, u_i[1].hi);
+  const eft::Pair<W> s2 = eft::two_sum(s1.hi, u_i[2].hi);
+  const W u_rest = ((s1.lo + s2.lo) + (u_i[0].lo + u_i[1].lo)) + u_i[2].lo;
+  const auto plus = [](W hi, W lo, W y) {  // hi + lo + y, as a pair
+    const eft::Pair<W> sum = eft::two_sum(hi, y);
+    return eft::two_sum(sum.hi, sum.lo + lo);
+  };
+  const eft::Pair<W> n = plus(s2.hi, u_rest, c.z());
+  const W bound = W(48) * u * u * magnitude;
+  const W resolution = target / W(32);
+  // C . Q = N / K must be positive and resolved.
+  if (!in_range || n.hi == W(0) || (n.hi > W(0)) != (K > W(0)) ||
+      !(bound <= resolution * std::abs(n.hi)) || !std::isfinite(magnitude))
+    return std::nullopt;
+  const DepthRange range = clip_depth_range(convention);
+  const W k = W(range.z_high - range.z_low);
+  const RowCombination near_combination = near_rows(convention);
+  const W s = W(near_combination.m3), t = W(near_combination.m4);
+  const eft::Pair<W> g = eft::divide(eft::Pair<W>{k * K, W(0)}, n);  // a 2^-shift
+  check(g.hi);
+  eft::Pair<W> entries[4];
+  for (int i = 0; i < 4; ++i) {
+    entries[i] = eft::multiply(g, c(i));
+    check(entries[i].hi);
+  }
+  if (t != W(0)) {
+    // V = (k - t) C_z - t U, for t = 1 (gl, reversed_z), where (k - t) C_z is exact.
+    if (t != W(1)) return std::nullopt;
+    const eft::Pair<W> v = plus(-s2.hi, -u_rest, (k - t) * c.z());
+    check(v.hi);
+    if (!(bound <= resolution * std::abs(v.hi))) return std::nullopt;
+    const eft::Pair<W> kv = eft::multiply(v, K);
+    check(kv.hi);
+    entries[2] = eft::divide(kv, n);
+    check(entries[2].hi);
+  }
+  if (!in_range) return std::nullopt;
+  PerspectiveAnswer<T, W> out;
+  for (int i = 0; i < 4; ++i) {
+    const T entry = eft::round_pair<T>(eft::Pair<W>{s * entries[i].hi, s * entries[i].lo});
+    out.row3(i) = entry == T(0) ? T(0) : entry;  // +0, as the plain methods give
+  }
+  const W q_z = W(1) / K;
+  out.far_corner = Vector4<W>(r[0].hi * q_z, r[1].hi * q_z, q_z, r[2].hi * q_z);
   return out;
 }
 

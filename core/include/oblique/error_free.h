@@ -196,6 +196,26 @@ OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, T b) noexcept {
   return fast_two_sum(q1, remainder / b);
 }
 
+/// (hi + lo) b to about twice the working precision: within 3u^2 |a b| (u = eps / 2) barring
+/// underflow (Joldes, Muller and Popescu's DWTimesFP).
+template <class T>
+OBLIQUE_EFT_INLINE Pair<T> multiply(Pair<T> a, T b) noexcept {
+  const Pair<T> p = two_prod(a.hi, b);
+  return fast_two_sum(p.hi, p.lo + a.lo * b);
+}
+
+/// (a.hi + a.lo) / (b.hi + b.lo) to about twice the working precision: q1 = fl(a.hi / b.hi) and
+/// the remainder a - q1 b (a.hi - q1 b.hi exact by TwoProduct) divided by b.hi; within 18u^2 of
+/// the quotient barring underflow (each of the remainder's five roundings is below u times a few
+/// u |a|, and dividing by b.hi instead of b costs u |b.lo / b.hi| of the small second word).
+template <class T>
+OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, Pair<T> b) noexcept {
+  const T q1 = a.hi / b.hi;
+  const Pair<T> p = two_prod(q1, b.hi);
+  const T remainder = (((a.hi - p.hi) - p.lo) + a.lo) - q1 * b.lo;
+  return fast_two_sum(q1, remainder / b.hi);
+}
+
 /// The value of hi + lo rounded to nearest (ties to even) in the narrower type N: hi is the
 /// working-precision sum, so its rounding to N differs from the exact one only when hi lies
 /// exactly halfway between two N values; then lo's sign decides.
@@ -205,15 +225,16 @@ N round_pair(Pair<T> x) noexcept {
   if constexpr (std::numeric_limits<T>::digits <= std::numeric_limits<N>::digits) {
     return nearest;
   } else {
-    if (x.lo == T(0) || !std::isfinite(nearest) || static_cast<T>(nearest) == x.hi) return nearest;
-    const N other = std::nextafter(nearest, x.hi > static_cast<T>(nearest)
-                                                ? std::numeric_limits<N>::infinity()
-                                                : -std::numeric_limits<N>::infinity());
-    const T midpoint = (static_cast<T>(nearest) + static_cast<T>(other)) / T(2);
-    if (midpoint != x.hi) return nearest;
-    // hi is a tie in N: the exact value lies on lo's side of it.
-    const bool other_is_above = static_cast<T>(other) > x.hi;
-    return (x.lo > T(0)) == other_is_above ? other : nearest;
+    // r = hi - nearest is exact (T holds N's values with room to spare) and at most half the
+    // spacing of N on its side; hi is a tie iff nearest + 2r, the reflection of nearest through
+    // hi, is itself an N value (the neighbour on that side).
+    const T r = x.hi - static_cast<T>(nearest);
+    if (x.lo == T(0) || r == T(0) || !std::isfinite(nearest)) return nearest;
+    const T reflected = static_cast<T>(nearest) + T(2) * r;
+    const N other = static_cast<N>(reflected);
+    if (static_cast<T>(other) != reflected) return nearest;
+    // A tie in N: the exact value lies on lo's side of it.
+    return (x.lo > T(0)) == (r > T(0)) ? other : nearest;
   }
 }
 

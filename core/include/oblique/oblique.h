@@ -328,6 +328,14 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
     const Vector4<W> corner =
         clip_corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
                     W(sign(plane.w())) * sign(H), convention);
+    if (const auto fast = perspective_row3<T>(scaled, mw, corner, convention)) {
+      ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
+      r.far_corner = fast->far_corner.template cast<T>();
+      if (all_finite(r.far_corner)) {
+        return accept_row3(std::move(r), fast->row3, Vector4<T>(c_hat.template cast<T>()),
+                           convention);
+      }
+    }
     return accurate_finish(m, mw, scaled, convention,
                            RefinedCorner(mw, corner,
                                          [A, B, D, E, G, H, K](const Vector4<W>& v) {
