@@ -293,23 +293,97 @@ struct PerspectiveAnswer {
   Vector4<W> far_corner;
 };
 
-/// The accurate method for the standard perspective shape (M11, M13, M22, M23, M33, M34, M43 as
-/// A, B, D, E, G, H, K) without refining Q, where one pass of double-word arithmetic resolves the
-/// answer. With Q' the clip-space corner, n_i = Q'_i K - B_i (exact: Q'_i is 0, +-1/2 or +-1),
-/// r_i = n_i / A_i and u_i = C_i r_i for i = x, y, w (B_i = B, E, G; A_i = A, D, H):
+/// What the perspective fast path reads: M11, M13, M22, M23, M33, M34, M43 as A, B, D, E, G, H,
+/// K; C; the corner Q'; and the reciprocals it multiplies by instead of dividing.
+template <class W>
+struct PerspectiveInput {
+  W K;
+  std::array<W, 3> a, b, q_clip, c;  ///< A_i, B_i, Q'_i, C_i for i = x, y, w
+  W c_z;
+  std::array<W, 3> reciprocal;  ///< fl(1 / A_i)
+  W k, s, t;                    ///< z_high - z_low, and near = s M_3 + t M_4
+};
+
+/// Values the fast path can vouch for: 0, or finite and 2p binades above the underflow threshold,
+/// where the error-free transformations are exact and every rounding is relative.
+template <class W>
+struct RangeCheck {
+  static constexpr W low = eft::power_of_two<W>(std::numeric_limits<W>::min_exponent +
+                                                2 * std::numeric_limits<W>::digits + 2);
+  bool ok = true;
+  void operator()(W x) {
+    const W size = std::abs(x);
+    ok &= (x == W(0)) | ((size >= low) & (size <= std::numeric_limits<W>::max()));
+  }
+};
+
+/// The fast path in W's own precision, for T = float in W = double (53 bits against 24): the
+/// formulas of perspective_row3 with one rounding per operation. With u = eps / 2 of W, each
+/// u_i = n_i (1 / A_i) C_i is within 4u |u_i| (n_i rounded, the reciprocal, two products), the
+/// sums add 3u S, so N and V are within 8u S; the entries then take up to three more roundings.
+/// Each entry is accepted only when its whole error interval rounds to one T value (so the
+/// answer is the correctly rounded one); std::nullopt otherwise, and the double-word path runs.
+template <class T, class W>
+std::optional<Vector4<T>> perspective_row3_single(const PerspectiveInput<W>& in,
+                                                  const std::array<W, 3>& n) {
+  constexpr W u = std::numeric_limits<W>::epsilon() / W(2);
+  RangeCheck<W> check;
+  W u_i[3];
+  W magnitude = std::abs(in.c_z);
+  for (int i = 0; i < 3; ++i) {
+    u_i[i] = n[i] * in.reciprocal[i] * in.c[i];
+    check(u_i[i]);
+    magnitude += std::abs(u_i[i]);
+  }
+  const W sum = (u_i[0] + u_i[1]) + u_i[2];
+  const W big_n = sum + in.c_z;
+  const W v = (in.k - in.t) * in.c_z - in.t * sum;
+  check(big_n);
+  check(v);
+  const W error = W(8) * u * magnitude;
+  const W n_doubt = error / std::abs(big_n);
+  const W v_doubt = in.t != W(0) ? error / std::abs(v) : W(0);
+  // C . Q = N / K must be positive; N's doubt below 1 settles its sign.
+  if (!check.ok || (big_n > W(0)) != (in.K > W(0)) || !(n_doubt <= W(1) / W(64)) ||
+      !(v_doubt <= W(1) / W(64)))
+    return std::nullopt;
+  const W reciprocal_n = W(1) / big_n;
+  const W g = in.k * in.K * reciprocal_n;  // a 2^-shift
+  Vector4<W> entries(g * in.c[0], g * in.c[1], g * in.c_z, g * in.c[2]);
+  if (in.t != W(0)) entries(2) = in.K * v * reciprocal_n;
+  // Relative doubt per entry: N's and V's (first order, doubled for their own second order),
+  // three roundings, and room for the roundings of x -+ doubt |x| below.
+  const W doubt = W(2) * (n_doubt + v_doubt) + W(6) * u;
+  Vector4<T> row3;
+  for (int i = 0; i < 4; ++i) {
+    const W x = in.s * entries(i);
+    check(x);
+    const W spread = doubt * std::abs(x);
+    const T below = static_cast<T>(x - spread), above = static_cast<T>(x + spread);
+    if (below != above) return std::nullopt;
+    row3(i) = below == T(0) ? T(0) : below;  // +0, as the plain methods give
+  }
+  if (!check.ok) return std::nullopt;
+  return row3;
+}
+
+/// The accurate method for the standard perspective shape without refining Q, where one pass of
+/// double-word arithmetic resolves the answer. With Q' the clip-space corner, n_i = Q'_i K - B_i
+/// (exact: Q'_i is 0, +-1/2 or +-1), r_i = n_i / A_i and u_i = C_i r_i for i = x, y, w
+/// (B_i = B, E, G; A_i = A, D, H):
 ///   Q = (r_x, r_y, 1, r_w) / K,   N = K (C . Q) = u_x + u_y + C_z + u_w,
 ///   a C_i = k K C_i / N  where M4_i = 0 (i = x, y, w),
 ///   a C_z - t K = K ((k - t) C_z - t (u_x + u_y + u_w)) / N,
-/// so the a C_z + 1 cancellation of the GL formula is removed algebraically. Error: each u_i is
-/// within 11u^2 |u_i| (u = eps / 2: 8u^2 from the quotient, 3u^2 from the product) and the sums
-/// add under 18u^2 of S = |u_x| + |u_y| + |u_w| + |C_z|, so N and the z numerator V are within
-/// 29u^2 S, taken as 48u^2 S; both must be within target / 32 of their own size (target = eps
-/// of T), and the divisions and products after them add under 24u^2, so each entry is within
-/// target / 8 of its value before its one rounding (faithful). Every product and quotient's
-/// operands and results must lie 2p binades above the underflow threshold, where the error-free
-/// transformations are exact. std::nullopt when any condition fails: a component lost to the
-/// scaling, an unresolved N or V, N <= 0, a value outside that range or not finite; the refining
-/// path then answers.
+/// so the a C_z + 1 cancellation of the GL formula is removed algebraically. Divisions are
+/// multiplications by reciprocals with a remainder correction (eft::divide with a reciprocal).
+/// Error, u = eps / 2 of W: each u_i is within 20u^2 |u_i| (17u^2 from the quotient, 3u^2 from
+/// the product) and the sums add under 18u^2 of S = |u_x| + |u_y| + |u_w| + |C_z|, so N and
+/// the z numerator V are within 38u^2 S, taken as 64u^2 S; both must be within target / 32 of
+/// their own size (target = eps of T), and the divisions and products after them add under
+/// 32u^2, so each entry is within target / 8 of its value before its one rounding (faithful).
+/// Every product's and quotient's operands and results must pass RangeCheck. std::nullopt when
+/// any condition fails: a component lost to the scaling, an unresolved N or V, C . Q <= 0, a
+/// value outside that range; the refining path then answers.
 template <class T, class W>
 std::optional<PerspectiveAnswer<T, W>> perspective_row3(const ScaledPlane<W>& scaled,
                                                         const Matrix4<W>& m,
@@ -318,31 +392,47 @@ std::optional<PerspectiveAnswer<T, W>> perspective_row3(const ScaledPlane<W>& sc
   if (scaled.lossy()) return std::nullopt;
   constexpr W u = std::numeric_limits<W>::epsilon() / W(2);
   constexpr W target = W(std::numeric_limits<T>::epsilon());
-  constexpr W low = eft::power_of_two<W>(std::numeric_limits<W>::min_exponent +
-                                         2 * std::numeric_limits<W>::digits + 2);
-  bool in_range = true;
-  const auto check = [&in_range](W x) {
-    const W size = std::abs(x);
-    in_range &= (x == W(0)) | ((size >= low) & (size <= std::numeric_limits<W>::max()));
-  };
   const Vector4<W>& c = scaled.c_hat;
-  const W K = m(3, 2);
-  const W b[3] = {m(0, 2), m(1, 2), m(2, 2)};  // B_i
-  const W a[3] = {m(0, 0), m(1, 1), m(2, 3)};  // A_i
-  const W q_clip[3] = {corner.x(), corner.y(), corner.z()};
-  const W c_i[3] = {c.x(), c.y(), c.w()};
-  check(K);
+  const DepthRange range = clip_depth_range(convention);
+  const RowCombination near_combination = near_rows(convention);
+  const PerspectiveInput<W> in{m(3, 2),
+                               {m(0, 0), m(1, 1), m(2, 3)},
+                               {m(0, 2), m(1, 2), m(2, 2)},
+                               {corner.x(), corner.y(), corner.z()},
+                               {c.x(), c.y(), c.w()},
+                               c.z(),
+                               {W(1) / m(0, 0), W(1) / m(1, 1), W(1) / m(2, 3)},
+                               W(range.z_high - range.z_low),
+                               W(near_combination.m3),
+                               W(near_combination.m4)};
+  // V = (k - t) C_z - t U is formed for t = 1 (gl, reversed_z), where (k - t) C_z is exact.
+  if (in.t != W(0) && in.t != W(1)) return std::nullopt;
+  RangeCheck<W> check;
+  check(in.K);
   eft::Pair<W> r[3], u_i[3];
-  W magnitude = std::abs(c.z());
+  std::array<W, 3> n_hi;
+  W magnitude = std::abs(in.c_z);
   for (int i = 0; i < 3; ++i) {
-    check(a[i]);
-    const eft::Pair<W> n = eft::two_sum(q_clip[i] * K, -b[i]);
+    check(in.a[i]);
+    const eft::Pair<W> n = eft::two_sum(in.q_clip[i] * in.K, -in.b[i]);
+    n_hi[i] = n.hi;
     check(n.hi);
-    r[i] = eft::divide(n, a[i]);
+    r[i] = eft::divide(n, in.a[i], in.reciprocal[i]);
     check(r[i].hi);
-    u_i[i] = eft::multiply(r[i], c_i[i]);
+    u_i[i] = eft::multiply(r[i], in.c[i]);
     check(u_i[i].hi);
     magnitude += std::abs(u_i[i].hi);
+  }
+  if (!check.ok || !(in.K > W(0) || in.K < W(0))) return std::nullopt;
+  const W reciprocal_k = W(1) / in.K;
+  PerspectiveAnswer<T, W> out;
+  out.far_corner = Vector4<W>(r[0].hi * reciprocal_k, r[1].hi * reciprocal_k, reciprocal_k,
+                              r[2].hi * reciprocal_k);
+  if constexpr (std::numeric_limits<W>::digits >= 2 * std::numeric_limits<T>::digits + 5) {
+    if (const auto row3 = perspective_row3_single<T>(in, n_hi)) {
+      out.row3 = *row3;
+      return out;
+    }
   }
   // U = u_x + u_y + u_w: TwoSum on the leading words, the rest summed plainly (Sum2).
   const eft::Pair<W> s1 = eft::two_sum(u_i[0].hi, u_i[1].hi);
@@ -352,43 +442,35 @@ std::optional<PerspectiveAnswer<T, W>> perspective_row3(const ScaledPlane<W>& sc
     const eft::Pair<W> sum = eft::two_sum(hi, y);
     return eft::two_sum(sum.hi, sum.lo + lo);
   };
-  const eft::Pair<W> n = plus(s2.hi, u_rest, c.z());
-  const W bound = W(48) * u * u * magnitude;
+  const eft::Pair<W> n = plus(s2.hi, u_rest, in.c_z);
+  const W bound = W(64) * u * u * magnitude;
   const W resolution = target / W(32);
   // C . Q = N / K must be positive and resolved.
-  if (!in_range || n.hi == W(0) || (n.hi > W(0)) != (K > W(0)) ||
-      !(bound <= resolution * std::abs(n.hi)) || !std::isfinite(magnitude))
+  if (n.hi == W(0) || (n.hi > W(0)) != (in.K > W(0)) || !(bound <= resolution * std::abs(n.hi)) ||
+      !std::isfinite(magnitude))
     return std::nullopt;
-  const DepthRange range = clip_depth_range(convention);
-  const W k = W(range.z_high - range.z_low);
-  const RowCombination near_combination = near_rows(convention);
-  const W s = W(near_combination.m3), t = W(near_combination.m4);
-  const eft::Pair<W> g = eft::divide(eft::Pair<W>{k * K, W(0)}, n);  // a 2^-shift
+  const W reciprocal_n = W(1) / n.hi;
+  const eft::Pair<W> g = eft::divide(eft::Pair<W>{in.k * in.K, W(0)}, n, reciprocal_n);
   check(g.hi);
   eft::Pair<W> entries[4];
   for (int i = 0; i < 4; ++i) {
     entries[i] = eft::multiply(g, c(i));
     check(entries[i].hi);
   }
-  if (t != W(0)) {
-    // V = (k - t) C_z - t U, for t = 1 (gl, reversed_z), where (k - t) C_z is exact.
-    if (t != W(1)) return std::nullopt;
-    const eft::Pair<W> v = plus(-s2.hi, -u_rest, (k - t) * c.z());
+  if (in.t != W(0)) {
+    const eft::Pair<W> v = plus(-s2.hi, -u_rest, (in.k - in.t) * in.c_z);
     check(v.hi);
     if (!(bound <= resolution * std::abs(v.hi))) return std::nullopt;
-    const eft::Pair<W> kv = eft::multiply(v, K);
+    const eft::Pair<W> kv = eft::multiply(v, in.K);
     check(kv.hi);
-    entries[2] = eft::divide(kv, n);
+    entries[2] = eft::divide(kv, n, reciprocal_n);
     check(entries[2].hi);
   }
-  if (!in_range) return std::nullopt;
-  PerspectiveAnswer<T, W> out;
+  if (!check.ok) return std::nullopt;
   for (int i = 0; i < 4; ++i) {
-    const T entry = eft::round_pair<T>(eft::Pair<W>{s * entries[i].hi, s * entries[i].lo});
+    const T entry = eft::round_pair<T>(eft::Pair<W>{in.s * entries[i].hi, in.s * entries[i].lo});
     out.row3(i) = entry == T(0) ? T(0) : entry;  // +0, as the plain methods give
   }
-  const W q_z = W(1) / K;
-  out.far_corner = Vector4<W>(r[0].hi * q_z, r[1].hi * q_z, q_z, r[2].hi * q_z);
   return out;
 }
 

@@ -216,6 +216,29 @@ OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, Pair<T> b) noexcept {
   return fast_two_sum(q1, remainder / b.hi);
 }
 
+/// (a.hi + a.lo) / b from b and an approximate reciprocal r = fl(1 / b), with no division:
+/// q1 = fl(a.hi r) is within 2u of the quotient, so a.hi - q1 b is exact by TwoProduct and
+/// Sterbenz, and the remainder's correction rem r adds errors of order u^2 only; within 17u^2
+/// of the quotient barring underflow (the remainder's two roundings, below 7u^2 |a|, and 2u of
+/// a correction below 5u |a / b|).
+template <class T>
+OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, T b, T reciprocal) noexcept {
+  const T q1 = a.hi * reciprocal;
+  const Pair<T> p = two_prod(q1, b);
+  const T remainder = ((a.hi - p.hi) - p.lo) + a.lo;
+  return fast_two_sum(q1, remainder * reciprocal);
+}
+
+/// (a.hi + a.lo) / (b.hi + b.lo) from b and r = fl(1 / b.hi), as above; within 28u^2 (the
+/// remainder also subtracts q1 b.lo, and the correction divides by b.hi instead of b).
+template <class T>
+OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, Pair<T> b, T reciprocal) noexcept {
+  const T q1 = a.hi * reciprocal;
+  const Pair<T> p = two_prod(q1, b.hi);
+  const T remainder = (((a.hi - p.hi) - p.lo) + a.lo) - q1 * b.lo;
+  return fast_two_sum(q1, remainder * reciprocal);
+}
+
 /// The value of hi + lo rounded to nearest (ties to even) in the narrower type N: hi is the
 /// working-precision sum, so its rounding to N differs from the exact one only when hi lies
 /// exactly halfway between two N values; then lo's sign decides.
