@@ -49,7 +49,8 @@ constexpr T power_of_two(int e) noexcept {
   return x;
 }
 
-/// hi + lo = a with hi holding the upper half of a's significand (Veltkamp's split).
+/// hi + lo = a with hi holding the upper half of a's significand (Veltkamp's split), for
+/// |a| < 2^(max_exponent - p/2 - 1) (beyond, (2^(p/2) + 1) a overflows).
 template <class T>
 OBLIQUE_EFT_INLINE Pair<T> split(T a) noexcept {
   constexpr int half = (std::numeric_limits<T>::digits + 1) / 2;
@@ -62,7 +63,8 @@ OBLIQUE_EFT_INLINE Pair<T> split(T a) noexcept {
 /// p + e = a b exactly, p = fl(a b), barring underflow (TwoProduct). With a hardware FMA where
 /// the compiler inlines one (FP_FAST_FMA); otherwise Dekker's product, which is twice as fast as
 /// glibc's fma() call for double and a hundred times faster than its fmal() for long double, and
-/// exact unless |a| or |b| is within 2^(p/2 + 2) of overflow (then std::fma).
+/// exact unless |a| or |b| is within 2^(p/2 + 2) of overflow or |a b| within a factor 2 of it
+/// (then std::fma: the split halves' product x.hi y.hi exceeds |a b| by up to 2^(1 - p/2)).
 template <class T>
 OBLIQUE_EFT_INLINE Pair<T> two_prod(T a, T b) noexcept {
   const T p = a * b;
@@ -74,7 +76,8 @@ OBLIQUE_EFT_INLINE Pair<T> two_prod(T a, T b) noexcept {
 #endif
   constexpr T large = power_of_two<T>(std::numeric_limits<T>::max_exponent -
                                       (std::numeric_limits<T>::digits + 1) / 2 - 2);
-  if (std::fabs(a) < large && std::fabs(b) < large) {
+  constexpr T large_product = power_of_two<T>(std::numeric_limits<T>::max_exponent - 1);
+  if (std::fabs(a) < large && std::fabs(b) < large && std::fabs(p) < large_product) {
     const Pair<T> x = split(a), y = split(b);
     return {p, ((x.hi * y.hi - p) + x.hi * y.lo + x.lo * y.hi) + x.lo * y.lo};
   }
@@ -125,7 +128,8 @@ class Terms {
 
   /// The exact sum as hi + lo, hi its rounding and lo that of the rest (so the pair is within
   /// eps |lo| of the sum; a zero sum gives 0 + 0): error-free passes until one changes nothing,
-  /// when the terms no longer overlap. Returns false in `exact` if `max_passes` did not suffice.
+  /// when the terms no longer overlap. Returns false in `exact` if `max_passes` did not suffice;
+  /// hi + lo is then the top term plus the plain sum of the others.
   Pair<T> distil(bool& exact, int max_passes = 8) noexcept {
     // The pass that would change nothing is replaced by a check of the same condition: a pass
     // changes nothing iff fl(x_i + x_{i-1}) = x_i for every i (its running sums are then the
@@ -136,9 +140,23 @@ class Terms {
       if (!exact) vec_sum();
     }
     if (size_ == 0) return {T(0), T(0)};
-    T rest = T(0);
-    for (std::size_t i = 0; i + 1 < size_; ++i) rest += values_[i];
-    return fast_two_sum(values_[size_ - 1], rest);
+    if (!exact) {
+      T rest = T(0);
+      for (std::size_t i = 0; i + 1 < size_; ++i) rest += values_[i];
+      return fast_two_sum(values_[size_ - 1], rest);
+    }
+    // Settled: the top term is the sum rounded, bar a tie that a lower term breaks.
+    const T hi = settled_rounding(values_.data(), size_);
+    if (hi == values_[size_ - 1]) return {hi, settled_rounding(values_.data(), size_ - 1)};
+    // hi = top + 2 x (x the next term, half the spacing at top), so the rest is -x plus the terms
+    // below x: not settled, as -x and the next lower term may now overlap.
+    Terms rest;
+    for (std::size_t i = 0; i + 2 < size_; ++i) rest.add(values_[i]);
+    rest.add(-values_[size_ - 2]);
+    // Iterated passes settle any finite terms (Priest); a few suffice for these.
+    for (int pass = 0; pass < 64 && rest.vec_sum(); ++pass) {
+    }
+    return {hi, settled_rounding(rest.values_.data(), rest.size_)};
   }
 
   std::size_t size() const noexcept { return size_; }
@@ -163,6 +181,20 @@ class Terms {
       same = same && absorbed && finite;
     }
     return same;
+  }
+
+  /// The sum of x[0, n) rounded to nearest (ties to even), for settled terms: nonzero ones
+  /// increase in magnitude, each at most half the spacing of T next to the one above it, and
+  /// the terms below any x_i add up to less than x_i in magnitude, with the sign of the first
+  /// nonzero one. So the top term is the rounding unless the next, x, lies exactly halfway to
+  /// the top's neighbour (top + 2x is then that neighbour) and a third term beyond it has the
+  /// same sign (the tie is broken away from the top).
+  static T settled_rounding(const T* x, std::size_t n) noexcept {
+    if (n == 0) return T(0);
+    const T top = x[n - 1];
+    if (n < 3 || x[n - 3] == T(0) || (x[n - 3] > T(0)) != (x[n - 2] > T(0))) return top;
+    const Pair<T> neighbour = two_sum(top, T(2) * x[n - 2]);
+    return neighbour.lo == T(0) && neighbour.hi != top ? neighbour.hi : top;
   }
 
   /// One error-free pass (Ogita-Rump-Oishi's VecSum): the running sum moves to the last term and
@@ -251,8 +283,20 @@ N round_pair(Pair<T> x) noexcept {
     // r = hi - nearest is exact (T holds N's values with room to spare) and at most half the
     // spacing of N on its side; hi is a tie iff nearest + 2r, the reflection of nearest through
     // hi, is itself an N value (the neighbour on that side).
+    if (!std::isfinite(nearest)) {
+      // hi at the midpoint between N's largest value and 2^max_exponent rounds to infinity as
+      // a tie (to even); hi + lo with lo towards zero lies below it and rounds to the largest.
+      constexpr T largest = static_cast<T>(std::numeric_limits<N>::max());
+      constexpr T midpoint = largest + power_of_two<T>(std::numeric_limits<N>::max_exponent -
+                                                       std::numeric_limits<N>::digits - 1);
+      const bool below = x.lo != T(0) && (x.lo > T(0)) != (x.hi > T(0));
+      if (std::fabs(x.hi) == midpoint && below) {
+        return static_cast<N>(x.hi > T(0) ? largest : -largest);
+      }
+      return nearest;
+    }
     const T r = x.hi - static_cast<T>(nearest);
-    if (x.lo == T(0) || r == T(0) || !std::isfinite(nearest)) return nearest;
+    if (x.lo == T(0) || r == T(0)) return nearest;
     const T reflected = static_cast<T>(nearest) + T(2) * r;
     const N other = static_cast<N>(reflected);
     if (static_cast<T>(other) != reflected) return nearest;
