@@ -823,6 +823,78 @@ TYPED_TEST(ErrorFree, dividePairByPairWithItsReciprocalIsWithin28uSquared) {
   tally.expect_no_failure();
 }
 
+TYPED_TEST(ErrorFree, addPairsIsWithin3uSquaredOfTheSumEvenWhenItCancels) {
+  // The bound is relative to the exact sum itself: cancellation must not spoil it.
+  using T = TypeParam;
+  Generator<T> g(0xe102);
+  Tally tally("add(Pair, Pair) within 3u^2 / (1 - 4u) of the sum");
+  const Rational u = unit_roundoff<T>();
+  const Rational bound = 3 * u * u / (1 - 4 * u);
+  double largest = 0;
+  for (int i = 0; i < kDoubleWordCases; ++i) {
+    const Pair<T> a = g.pair(-kPairSpan<T>, kPairSpan<T>);
+    Pair<T> b = g.pair(-kPairSpan<T>, kPairSpan<T>);
+    if (g.coin()) {
+      // Near -a: the high words cancel (a few ulps apart), the low words decide.
+      T hi = -a.hi;
+      for (int steps = g.integer(0, 3); steps > 0; --steps) {
+        hi = std::nextafter(hi, g.coin() ? std::numeric_limits<T>::infinity()
+                                         : -std::numeric_limits<T>::infinity());
+      }
+      b = {hi, g.coin() ? -a.lo : g.fraction() * ulp(hi) / T(4)};
+    }
+    const Pair<T> r = add(a, b);
+    const Rational exact = rational(a) + rational(b);
+    const Rational error = exact::abs(rational(r) - exact);
+    const std::string what = "add(" + hex(a) + ", " + hex(b) + ") = " + hex(r);
+    if (exact == 0) {
+      tally.check(finite(r) && rational(r) == 0, [&] { return what + ", exact sum 0"; });
+      continue;
+    }
+    largest = std::max(largest, Rational(error / (u * u * exact::abs(exact))).get_d());
+    tally.check(finite(r) && error <= bound * exact::abs(exact), [&] { return what; });
+  }
+  std::printf("[ measured ] add(Pair, Pair)<%s>: largest error %.4g u^2 |sum| (bound 3 u^2)\n",
+              type_name<T>(), largest);
+  tally.expect_no_failure();
+}
+
+TYPED_TEST(ErrorFree, multiplyPairsIsWithin7uSquared) {
+  using T = TypeParam;
+  constexpr int bound = 7;
+  Generator<T> g(0xe103);
+  Tally tally("multiply(Pair, Pair) within 7u^2");
+  Ratio ratio;
+  for (int i = 0; i < kDoubleWordCases; ++i) {
+    const Pair<T> a = g.pair(-kPairSpan<T>, kPairSpan<T>);
+    const Pair<T> b = g.pair(-kPairSpan<T>, kPairSpan<T>);
+    const Pair<T> r = multiply(a, b);
+    const std::string what = "multiply(" + hex(a) + ", " + hex(b) + ") = " + hex(r);
+    if (!finite(r)) {
+      tally.check(false, [&] { return what; });
+      continue;
+    }
+    measure<T>(ratio, tally, rational(r), rational(a) * rational(b), bound, what);
+  }
+  report<T>("multiply(Pair, Pair)", ratio, bound);
+  tally.expect_no_failure();
+}
+
+TYPED_TEST(ErrorFree, twoProdWithTheHardwareFmaFlavourIsTheSameExactPair) {
+  // Fma::hardware is what the run-time FMA dispatch compiles; here it calls std::fma. Both
+  // flavours must give the exact pair (long double has no hardware flavour: Dekker in both).
+  using T = TypeParam;
+  Generator<T> g(0xe104);
+  for (int i = 0; i < kDoubleWordCases; ++i) {
+    const T a = g.value(-kPairSpan<T>, kPairSpan<T>), b = g.value(-kPairSpan<T>, kPairSpan<T>);
+    const Pair<T> hardware = two_prod<T, Fma::hardware>(a, b);
+    const Pair<T> portable = two_prod<T, Fma::portable>(a, b);
+    ASSERT_EQ(rational(hardware), rational(a) * rational(b)) << hex(a) << " " << hex(b);
+    ASSERT_EQ(hardware.hi, portable.hi);
+    ASSERT_EQ(hardware.lo, portable.lo);
+  }
+}
+
 // round_pair<N, T>: the pair's value rounded to the narrower N, against exact::round_to<N>.
 
 template <class Types>

@@ -60,14 +60,23 @@ OBLIQUE_EFT_INLINE Pair<T> split(T a) noexcept {
   return {hi, a - hi};
 }
 
+/// How two_prod finds a product's rounding error: `hardware` uses the FMA instruction, and is
+/// for code compiled for a target that has one (a function with __attribute__((target("fma"))),
+/// chosen at run time; see accurate.h); `portable` uses it only where the whole build targets it.
+enum class Fma { portable, hardware };
+
 /// p + e = a b exactly, p = fl(a b), barring underflow (TwoProduct). With a hardware FMA where
-/// the compiler inlines one (FP_FAST_FMA); otherwise Dekker's product, which is twice as fast as
-/// glibc's fma() call for double and a hundred times faster than its fmal() for long double, and
-/// exact unless |a| or |b| is within 2^(p/2 + 2) of overflow or |a b| within a factor 2 of it
-/// (then std::fma: the split halves' product x.hi y.hi exceeds |a b| by up to 2^(1 - p/2)).
-template <class T>
+/// the compiler inlines one (FP_FAST_FMA, or F = Fma::hardware for float and double); otherwise
+/// Dekker's product, which is twice as fast as glibc's fma() call for double and a hundred times
+/// faster than its fmal() for long double, and exact unless |a| or |b| is within 2^(p/2 + 2) of
+/// overflow or |a b| within a factor 2 of it (then std::fma: the split halves' product
+/// x.hi y.hi exceeds |a b| by up to 2^(1 - p/2)). Both give the same, exact, pair.
+template <class T, Fma F = Fma::portable>
 OBLIQUE_EFT_INLINE Pair<T> two_prod(T a, T b) noexcept {
   const T p = a * b;
+  if constexpr (F == Fma::hardware && (std::is_same_v<T, double> || std::is_same_v<T, float>)) {
+    return {p, std::fma(a, b, -p)};
+  }
 #if defined(FP_FAST_FMA)
   if constexpr (std::is_same_v<T, double>) return {p, std::fma(a, b, -p)};
 #endif
@@ -230,10 +239,30 @@ OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, T b) noexcept {
 
 /// (hi + lo) b to about twice the working precision: within 3u^2 |a b| (u = eps / 2) barring
 /// underflow (Joldes, Muller and Popescu's DWTimesFP).
-template <class T>
+template <Fma F = Fma::portable, class T>
 OBLIQUE_EFT_INLINE Pair<T> multiply(Pair<T> a, T b) noexcept {
-  const Pair<T> p = two_prod(a.hi, b);
+  const Pair<T> p = two_prod<T, F>(a.hi, b);
   return fast_two_sum(p.hi, p.lo + a.lo * b);
+}
+
+/// (a.hi + a.lo) + (b.hi + b.lo) within 3u^2 / (1 - 4u) of the exact sum, relative to the sum
+/// itself however much it cancels, barring overflow (Joldes, Muller and Popescu's
+/// AccurateDWPlusDW; both operands normalised, |lo| <= ulp(hi) / 2).
+template <class T>
+OBLIQUE_EFT_INLINE Pair<T> add(Pair<T> a, Pair<T> b) noexcept {
+  const Pair<T> s = two_sum(a.hi, b.hi);
+  const Pair<T> t = two_sum(a.lo, b.lo);
+  const Pair<T> v = fast_two_sum(s.hi, s.lo + t.hi);
+  return fast_two_sum(v.hi, t.lo + v.lo);
+}
+
+/// (a.hi + a.lo) (b.hi + b.lo) within 7u^2 of the product barring underflow (Joldes, Muller and
+/// Popescu's DWTimesDW1: the exact a.hi b.hi, the cross terms rounded, a.lo b.lo left out).
+template <Fma F = Fma::portable, class T>
+OBLIQUE_EFT_INLINE Pair<T> multiply(Pair<T> a, Pair<T> b) noexcept {
+  const Pair<T> c = two_prod<T, F>(a.hi, b.hi);
+  const T cross = a.lo * b.hi + a.hi * b.lo;
+  return fast_two_sum(c.hi, c.lo + cross);
 }
 
 /// (a.hi + a.lo) / (b.hi + b.lo) to about twice the working precision: q1 = fl(a.hi / b.hi) and
@@ -253,20 +282,20 @@ OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, Pair<T> b) noexcept {
 /// Sterbenz, and the remainder's correction rem r adds errors of order u^2 only; within 17u^2
 /// of the quotient barring underflow (the remainder's two roundings, below 7u^2 |a|, and 2u of
 /// a correction below 5u |a / b|).
-template <class T>
+template <Fma F = Fma::portable, class T>
 OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, T b, T reciprocal) noexcept {
   const T q1 = a.hi * reciprocal;
-  const Pair<T> p = two_prod(q1, b);
+  const Pair<T> p = two_prod<T, F>(q1, b);
   const T remainder = ((a.hi - p.hi) - p.lo) + a.lo;
   return fast_two_sum(q1, remainder * reciprocal);
 }
 
 /// (a.hi + a.lo) / (b.hi + b.lo) from b and r = fl(1 / b.hi), as above; within 28u^2 (the
 /// remainder also subtracts q1 b.lo, and the correction divides by b.hi instead of b).
-template <class T>
+template <Fma F = Fma::portable, class T>
 OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, Pair<T> b, T reciprocal) noexcept {
   const T q1 = a.hi * reciprocal;
-  const Pair<T> p = two_prod(q1, b.hi);
+  const Pair<T> p = two_prod<T, F>(q1, b.hi);
   const T remainder = (((a.hi - p.hi) - p.lo) + a.lo) - q1 * b.lo;
   return fast_two_sum(q1, remainder * reciprocal);
 }

@@ -312,13 +312,12 @@ template <class T>
 ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
                           bool perspective_shape) {
   using W = typename AccurateWorkingType<T>::type;
-  const Matrix4<W> mw = m.template cast<W>();
   const ScaledPlane<W> scaled =
       scale_plane(Vector4<W>(plane.template cast<W>()), plane_scale_shift(plane));
   const Vector4<W>& c_hat = scaled.c_hat;
   if (perspective_shape) {
-    const W A = mw(0, 0), B = mw(0, 2), D = mw(1, 1), E = mw(1, 2), G = mw(2, 2), H = mw(2, 3),
-            K = mw(3, 2);
+    const W A = W(m(0, 0)), B = W(m(0, 2)), D = W(m(1, 1)), E = W(m(1, 2)), G = W(m(2, 2)),
+            H = W(m(2, 3)), K = W(m(3, 2));
     if (A == W(0) || D == W(0) || H == W(0)) {
       return refuse(m, Method::accurate, Status::singular_projection,
                     "the projection is singular: M11, M22 or M34 is zero");
@@ -328,7 +327,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
     const Vector4<W> corner =
         clip_corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
                     W(sign(plane.w())) * sign(H), convention);
-    if (const auto fast = perspective_row3<T>(scaled, mw, corner, convention)) {
+    if (const auto fast = perspective_row3_dispatched<T>(scaled, m, corner, convention)) {
       ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
       r.far_corner = fast->far_corner.template cast<T>();
       if (all_finite(r.far_corner)) {
@@ -336,6 +335,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
                            convention);
       }
     }
+    const Matrix4<W> mw = m.template cast<W>();
     return accurate_finish(m, mw, scaled, convention,
                            RefinedCorner(mw, corner,
                                          [A, B, D, E, G, H, K](const Vector4<W>& v) {
@@ -346,6 +346,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
                                          }),
                            W(8) * std::numeric_limits<W>::epsilon(), true);
   }
+  const Matrix4<W> mw = m.template cast<W>();
   const EquilibratedSolver<W> solver(mw);
   if (auto refusal = solver_refusal(m, solver, Method::accurate)) return *refusal;
   if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
