@@ -242,19 +242,23 @@ TYPED_TEST_SUITE(ErrorFree, Scalars);
 
 constexpr int kRandomCases = 4000;
 
-TYPED_TEST(ErrorFree, twoSumIsExactAndItsHighWordIsTheRoundedSum) {
-  using T = TypeParam;
-  Generator<T> g(0xe0f1);
-  Tally tally("two_sum");
+/// Checks that `sum(a, b)` (two_sum or fast_two_sum) is exact with its high word the rounded sum,
+/// on the edge cases and random summands (the larger first where `larger_first`, as
+/// fast_two_sum requires; both orders otherwise).
+template <class T, class Sum>
+void check_error_free_sum(const char* name, std::uint64_t seed, bool larger_first, Sum sum) {
+  Generator<T> g(seed);
+  Tally tally(name);
   const auto check = [&](T a, T b) {
-    const Pair<T> s = two_sum(a, b);
-    const Rational sum = rational(a) + rational(b);
-    tally.check(finite(s) && rational(s) == sum && s.hi == exact::round_to<T>(sum),
-                [&] { return "two_sum(" + hex(a) + ", " + hex(b) + ") = " + hex(s); });
+    if (larger_first && std::fabs(a) < std::fabs(b)) std::swap(a, b);
+    const Pair<T> s = sum(a, b);
+    const Rational exact_sum = rational(a) + rational(b);
+    tally.check(finite(s) && rational(s) == exact_sum && s.hi == exact::round_to<T>(exact_sum),
+                [&] { return std::string(name) + "(" + hex(a) + ", " + hex(b) + ") = " + hex(s); });
   };
   for (const auto& [a, b] : edge_summands<T>()) {
     check(a, b);
-    check(b, a);
+    if (!larger_first) check(b, a);
     check(-a, -b);
   }
   for (int i = 0; i < kRandomCases; ++i) {
@@ -264,26 +268,15 @@ TYPED_TEST(ErrorFree, twoSumIsExactAndItsHighWordIsTheRoundedSum) {
   tally.expect_no_failure();
 }
 
+TYPED_TEST(ErrorFree, twoSumIsExactAndItsHighWordIsTheRoundedSum) {
+  using T = TypeParam;
+  check_error_free_sum<T>("two_sum", 0xe0f1, false, [](T a, T b) { return two_sum(a, b); });
+}
+
 TYPED_TEST(ErrorFree, fastTwoSumIsExactWhenTheFirstSummandIsTheLarger) {
   using T = TypeParam;
-  Generator<T> g(0xe0f2);
-  Tally tally("fast_two_sum");
-  const auto check = [&](T a, T b) {
-    if (std::fabs(a) < std::fabs(b)) std::swap(a, b);
-    const Pair<T> s = fast_two_sum(a, b);
-    const Rational sum = rational(a) + rational(b);
-    tally.check(finite(s) && rational(s) == sum && s.hi == exact::round_to<T>(sum),
-                [&] { return "fast_two_sum(" + hex(a) + ", " + hex(b) + ") = " + hex(s); });
-  };
-  for (const auto& [a, b] : edge_summands<T>()) {
-    check(a, b);
-    check(-a, -b);
-  }
-  for (int i = 0; i < kRandomCases; ++i) {
-    const auto [a, b] = random_summands(g);
-    check(a, b);
-  }
-  tally.expect_no_failure();
+  check_error_free_sum<T>("fast_two_sum", 0xe0f2, true,
+                          [](T a, T b) { return fast_two_sum(a, b); });
 }
 
 /// Checks that two_prod(a, b) is exact with its high word the rounded product.
@@ -716,111 +709,78 @@ T random_operand(Generator<T>& g) {
   return g.value(-kPairSpan<T>, kPairSpan<T>);
 }
 
-TYPED_TEST(ErrorFree, multiplyPairByScalarIsWithin3uSquared) {
-  using T = TypeParam;
-  constexpr int bound = 3;
-  Generator<T> g(0xe0f9);
-  Tally tally("multiply(Pair, T) within 3u^2");
+/// A double-word operation `op(a, b)` against its exact value `exact(a, b)` on random operands
+/// (a a normalized pair, b from `operand`), within `bound` u^2 of the exact value.
+template <class T, class Operand, class Op, class Exact>
+void check_double_word(const char* name, int bound, std::uint64_t seed, Operand operand, Op op,
+                       Exact exact) {
+  Generator<T> g(seed);
+  Tally tally(std::string(name) + " within " + std::to_string(bound) + "u^2");
   Ratio ratio;
   for (int i = 0; i < kDoubleWordCases; ++i) {
     const Pair<T> a = g.pair(-kPairSpan<T>, kPairSpan<T>);
-    const T b = random_operand(g);
-    const Pair<T> r = multiply(a, b);
-    const std::string what = "multiply(" + hex(a) + ", " + hex(b) + ") = " + hex(r);
+    const auto b = operand(g);
+    const Pair<T> r = op(a, b);
+    const std::string what = std::string(name) + "(" + hex(a) + ", " + hex(b) + ") = " + hex(r);
     if (!finite(r)) {
       tally.check(false, [&] { return what; });
       continue;
     }
-    measure<T>(ratio, tally, rational(r), rational(a) * rational(b), bound, what);
+    measure<T>(ratio, tally, rational(r), exact(rational(a), rational(b)), bound, what);
   }
-  report<T>("multiply(Pair, T)", ratio, bound);
+  report<T>(name, ratio, bound);
   tally.expect_no_failure();
+}
+
+template <class T>
+Pair<T> random_pair_operand(Generator<T>& g) {
+  return g.pair(-kPairSpan<T>, kPairSpan<T>);
+}
+const auto product = [](const Rational& a, const Rational& b) { return Rational(a * b); };
+const auto quotient = [](const Rational& a, const Rational& b) { return Rational(a / b); };
+
+TYPED_TEST(ErrorFree, multiplyPairByScalarIsWithin3uSquared) {
+  using T = TypeParam;
+  check_double_word<T>(
+      "multiply(Pair, T)", 3, 0xe0f9, random_operand<T>,
+      [](Pair<T> a, T b) { return multiply(a, b); }, product);
 }
 
 TYPED_TEST(ErrorFree, dividePairByScalarIsWithin8uSquared) {
   // The header says "to about twice the working precision"; 8u^2 is the analysis' bound.
   using T = TypeParam;
-  constexpr int bound = 8;
-  Generator<T> g(0xe0fa);
-  Tally tally("divide(Pair, T) within 8u^2");
-  Ratio ratio;
-  for (int i = 0; i < kDoubleWordCases; ++i) {
-    const Pair<T> a = g.pair(-kPairSpan<T>, kPairSpan<T>);
-    const T b = random_operand(g);
-    const Pair<T> r = divide(a, b);
-    const std::string what = "divide(" + hex(a) + ", " + hex(b) + ") = " + hex(r);
-    if (!finite(r)) {
-      tally.check(false, [&] { return what; });
-      continue;
-    }
-    measure<T>(ratio, tally, rational(r), rational(a) / rational(b), bound, what);
-  }
-  report<T>("divide(Pair, T)", ratio, bound);
-  tally.expect_no_failure();
+  check_double_word<T>(
+      "divide(Pair, T)", 8, 0xe0fa, random_operand<T>, [](Pair<T> a, T b) { return divide(a, b); },
+      quotient);
 }
 
 TYPED_TEST(ErrorFree, dividePairByPairIsWithin18uSquared) {
   using T = TypeParam;
-  constexpr int bound = 18;
-  Generator<T> g(0xe0fb);
-  Tally tally("divide(Pair, Pair) within 18u^2");
-  Ratio ratio;
-  for (int i = 0; i < kDoubleWordCases; ++i) {
-    const Pair<T> a = g.pair(-kPairSpan<T>, kPairSpan<T>);
-    const Pair<T> b = g.pair(-kPairSpan<T>, kPairSpan<T>);
-    const Pair<T> r = divide(a, b);
-    const std::string what = "divide(" + hex(a) + ", " + hex(b) + ") = " + hex(r);
-    if (!finite(r)) {
-      tally.check(false, [&] { return what; });
-      continue;
-    }
-    measure<T>(ratio, tally, rational(r), rational(a) / rational(b), bound, what);
-  }
-  report<T>("divide(Pair, Pair)", ratio, bound);
-  tally.expect_no_failure();
+  check_double_word<T>(
+      "divide(Pair, Pair)", 18, 0xe0fb, random_pair_operand<T>,
+      [](Pair<T> a, Pair<T> b) { return divide(a, b); }, quotient);
 }
 
 TYPED_TEST(ErrorFree, dividePairByScalarWithItsReciprocalIsWithin17uSquared) {
   // The perspective fast path's division: the reciprocal fl(1 / b) computed once, no division.
   using T = TypeParam;
-  constexpr int bound = 17;
-  Generator<T> g(0xe100);
-  Tally tally("divide(Pair, T, 1 / b) within 17u^2");
-  Ratio ratio;
-  for (int i = 0; i < kDoubleWordCases; ++i) {
-    const Pair<T> a = g.pair(-kPairSpan<T>, kPairSpan<T>);
-    const T b = random_operand(g);
-    const Pair<T> r = divide(a, b, T(1) / b);
-    const std::string what = "divide(" + hex(a) + ", " + hex(b) + ", 1 / b) = " + hex(r);
-    if (!finite(r)) {
-      tally.check(false, [&] { return what; });
-      continue;
-    }
-    measure<T>(ratio, tally, rational(r), rational(a) / rational(b), bound, what);
-  }
-  report<T>("divide(Pair, T, 1 / b)", ratio, bound);
-  tally.expect_no_failure();
+  check_double_word<T>(
+      "divide(Pair, T, 1 / b)", 17, 0xe100, random_operand<T>,
+      [](Pair<T> a, T b) { return divide(a, b, T(1) / b); }, quotient);
 }
 
 TYPED_TEST(ErrorFree, dividePairByPairWithItsReciprocalIsWithin28uSquared) {
   using T = TypeParam;
-  constexpr int bound = 28;
-  Generator<T> g(0xe101);
-  Tally tally("divide(Pair, Pair, 1 / b.hi) within 28u^2");
-  Ratio ratio;
-  for (int i = 0; i < kDoubleWordCases; ++i) {
-    const Pair<T> a = g.pair(-kPairSpan<T>, kPairSpan<T>);
-    const Pair<T> b = g.pair(-kPairSpan<T>, kPairSpan<T>);
-    const Pair<T> r = divide(a, b, T(1) / b.hi);
-    const std::string what = "divide(" + hex(a) + ", " + hex(b) + ", 1 / b.hi) = " + hex(r);
-    if (!finite(r)) {
-      tally.check(false, [&] { return what; });
-      continue;
-    }
-    measure<T>(ratio, tally, rational(r), rational(a) / rational(b), bound, what);
-  }
-  report<T>("divide(Pair, Pair, 1 / b.hi)", ratio, bound);
-  tally.expect_no_failure();
+  check_double_word<T>(
+      "divide(Pair, Pair, 1 / b.hi)", 28, 0xe101, random_pair_operand<T>,
+      [](Pair<T> a, Pair<T> b) { return divide(a, b, T(1) / b.hi); }, quotient);
+}
+
+TYPED_TEST(ErrorFree, multiplyPairsIsWithin7uSquared) {
+  using T = TypeParam;
+  check_double_word<T>(
+      "multiply(Pair, Pair)", 7, 0xe103, random_pair_operand<T>,
+      [](Pair<T> a, Pair<T> b) { return multiply(a, b); }, product);
 }
 
 TYPED_TEST(ErrorFree, addPairsIsWithin3uSquaredOfTheSumEvenWhenItCancels) {
@@ -856,27 +816,6 @@ TYPED_TEST(ErrorFree, addPairsIsWithin3uSquaredOfTheSumEvenWhenItCancels) {
   }
   std::printf("[ measured ] add(Pair, Pair)<%s>: largest error %.4g u^2 |sum| (bound 3 u^2)\n",
               type_name<T>(), largest);
-  tally.expect_no_failure();
-}
-
-TYPED_TEST(ErrorFree, multiplyPairsIsWithin7uSquared) {
-  using T = TypeParam;
-  constexpr int bound = 7;
-  Generator<T> g(0xe103);
-  Tally tally("multiply(Pair, Pair) within 7u^2");
-  Ratio ratio;
-  for (int i = 0; i < kDoubleWordCases; ++i) {
-    const Pair<T> a = g.pair(-kPairSpan<T>, kPairSpan<T>);
-    const Pair<T> b = g.pair(-kPairSpan<T>, kPairSpan<T>);
-    const Pair<T> r = multiply(a, b);
-    const std::string what = "multiply(" + hex(a) + ", " + hex(b) + ") = " + hex(r);
-    if (!finite(r)) {
-      tally.check(false, [&] { return what; });
-      continue;
-    }
-    measure<T>(ratio, tally, rational(r), rational(a) * rational(b), bound, what);
-  }
-  report<T>("multiply(Pair, Pair)", ratio, bound);
   tally.expect_no_failure();
 }
 
