@@ -12,8 +12,9 @@
 //  - a C_i - t M4_i cancels when C is close to the standard near plane (the a C_z + 1 of the
 //    paper's GL formula): formed as (k C_i - t M4_i (C . Q)) / (C . Q) from exact products,
 //    rounded once;
-//  - components of C that its power-of-two scaling pushes below the range: formed at their own
-//    scale (ScaledPlane).
+//  - stiff planes (components spanning more binades than the type holds, or pushed below the
+//    range by the power-of-two scaling), signs of C' within their error bound of zero, and what
+//    five words of Q do not resolve: the exact answer (exact_cramer.h).
 // float runs in double (float products are exact there and nothing under- or overflows); double
 // and long double run in their own type with double-word arithmetic.
 #pragma once
@@ -155,9 +156,6 @@ struct AccurateRow3 {
   Vector4<T> row3;
   bool resolved = true;
   W corner_dot = W(0);  ///< C . Q, distilled: its sign is exact for the words of Q
-  /// A component of C lost to the scaling (ScaledPlane) carries more of C . Q than its
-  /// resolution allows, or C . Q came out <= 0 with such a component touching a nonzero Q_i.
-  bool lost_component_matters = false;
 };
 
 /// What scaling C by 2^shift cost: `lost` holds C_i (unscaled) where C_i 2^shift is not exact
@@ -168,10 +166,6 @@ struct ScaledPlane {
   Vector4<W> lost = Vector4<W>::Zero();
   int shift = 0;
   bool lossy() const { return (lost.array() != W(0)).any(); }
-  /// Whether a lost component meets a nonzero coordinate of q (so it is part of C . q).
-  bool touches(const Vector4<W>& q) const {
-    return ((lost.array() != W(0)) && (q.array() != W(0))).any();
-  }
 };
 
 template <class W>
@@ -188,16 +182,6 @@ ScaledPlane<W> scale_plane(const Vector4<W>& c, int shift) {
   return out;
 }
 
-/// a C_i for a component C_i lost to the scaling, from a_hat = a 2^-shift (hi + lo): C_i is
-/// brought to the normal range by 2^(shift + up), multiplied exactly, and scaled back by 2^-up.
-template <class W>
-eft::Pair<W> lost_product(eft::Pair<W> a_hat, W c, int shift) {
-  const int up = std::numeric_limits<W>::min_exponent - (std::ilogb(c) + 1 + shift);
-  const W c_normal = std::ldexp(c, shift + up);
-  const eft::Pair<W> p = eft::two_prod(a_hat.hi, c_normal);
-  return {std::ldexp(p.hi, -up), std::ldexp(p.lo + a_hat.lo * c_normal, -up)};
-}
-
 /// Row 3 of M', s (a C_i - t M4_i) with a = range / (C . Q), each entry rounded once to T.
 ///  - Where t M4_i = 0 it is s range C_i / (C . Q), from a double-word quotient.
 ///  - Elsewhere it is s N_i / (C . Q) with N_i = range C_i - t M4_i (C . Q) summed from exact
@@ -205,12 +189,12 @@ eft::Pair<W> lost_product(eft::Pair<W> a_hat, W c, int shift) {
 ///    formula) instead of rounding into it: from C . Q's double-word value where that resolves
 ///    N_i, else from M4_i times each term of C . Q.
 /// Every sum is distilled to its exact value; what is left is Q's own error, `q_part` (an
-/// estimate of |C| . |Q error|), which must stay below eps / 8 of C . Q and of each N_i. When
-/// Q has no more words to give (`out_of_words`), an N_i within that error of zero is taken as 0.
+/// estimate of |C| . |Q error|), which must stay below eps / 8 of C . Q and of each N_i; a
+/// C . Q <= 0 is resolved when that error cannot lift it above zero.
+/// Precondition: scaling C lost nothing (not scaled.lossy()).
 template <class T, class W>
-AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>& q,
-                                 const DotTerms<W>& terms, W q_part, const Vector4<W>& m4,
-                                 Convention convention, bool out_of_words) {
+AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const DotTerms<W>& terms, W q_part,
+                                 const Vector4<W>& m4, Convention convention) {
   const Vector4<W>& plane = scaled.c_hat;
   constexpr W eps = std::numeric_limits<W>::epsilon();
   // What the answer in T needs resolved: eps of T (float computes in double and needs less).
@@ -224,34 +208,21 @@ AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>&
   bool exact = false;
   const eft::Pair<W> d = d_terms.distil(exact);
   out.corner_dot = d.hi;
-  if (!(d.hi > W(0)) || !std::isfinite(d.hi)) {
-    out.lost_component_matters = scaled.touches(q);
-    return out;
-  }
   // Not distilled: fall back on SumK's bound for 8 passes, (n eps)^8 of the magnitude.
   const W sum_part = exact ? W(0) : terms.magnitude() * std::pow(W(terms.size()) * eps, 8);
   const W d_error = q_part + sum_part + eps * std::abs(d.lo);
+  if (!(d.hi > W(0)) || !std::isfinite(d.hi)) {
+    out.resolved = !std::isfinite(d.hi) || d_error < std::abs(d.hi) || d_error == W(0);
+    return out;
+  }
   out.resolved = d_error <= target / W(8) * d.hi;
   const eft::Pair<W> a = eft::divide(eft::Pair<W>{k, W(0)}, d.hi);
   const W lo_ratio = d.lo / d.hi;
   const W a_lo = a.lo - a.hi * lo_ratio;  // k / (hi + lo) to first order in lo / hi
-  // A lost component's part of C . Q, |C_i 2^shift Q_i| < 2^(ilogb C_i + shift + ilogb Q_i + 2),
-  // must be below the resolution asked of C . Q.
-  for (int i = 0; i < 4; ++i) {
-    if (scaled.lost(i) == W(0) || q(i) == W(0)) continue;
-    const int exponent = std::ilogb(scaled.lost(i)) + scaled.shift + std::ilogb(q(i)) + 2;
-    if (exponent > std::ilogb(d.hi) - std::numeric_limits<W>::digits - 3)
-      out.lost_component_matters = true;
-  }
   for (int i = 0; i < 4; ++i) {
     const W tm4 = t * m4(i);
     eft::Pair<W> entry;
-    if (scaled.lost(i) != W(0)) {
-      // a C_i is below the normal range at C's scale: formed at its own scale, then - t M4_i.
-      const eft::Pair<W> ac = lost_product(eft::Pair<W>{a.hi, a_lo}, scaled.lost(i), scaled.shift);
-      const eft::Pair<W> sum = eft::two_sum(s * ac.hi, -s * tm4);
-      entry = eft::fast_two_sum(sum.hi, sum.lo + s * ac.lo);
-    } else if (tm4 == W(0)) {
+    if (tm4 == W(0)) {
       const eft::Pair<W> ac = eft::two_prod(a.hi, plane(i));
       entry = eft::fast_two_sum(s * ac.hi, s * (ac.lo + a_lo * plane(i)));
     } else {
@@ -270,12 +241,7 @@ AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>&
         numerator = slow.distil(exact);
         const W slow_sum_part = exact ? W(0) : slow_magnitude * std::pow(W(slow_size) * eps, 8);
         const W bound = std::abs(tm4) * q_part + slow_sum_part;
-        if (bound > target / W(8) * std::abs(numerator.hi)) {
-          // Out of words, N_i is indistinguishable from zero at five-fold precision: the exact
-          // zeros (C proportional to M_4 with a = 1, say) are where this happens.
-          if (out_of_words && std::abs(numerator.hi) <= bound) numerator = {W(0), W(0)};
-          out.resolved = false;
-        }
+        if (bound > target / W(8) * std::abs(numerator.hi)) out.resolved = false;
       }
       const eft::Pair<W> quotient = eft::divide(numerator, d.hi);
       entry = eft::fast_two_sum(s * quotient.hi, s * (quotient.lo - quotient.hi * lo_ratio));
