@@ -66,9 +66,9 @@ struct ObliqueResult {
   /// Q = M^-1 Q' in camera space (a direction, w = 0, for infinite projections); set when the
   /// computation got that far (ok, plane_misses_view_volume, out_of_range), else zero.
   Vector4<T> far_corner = Vector4<T>::Zero();
-  /// The method that ran: closed_form or general (automatic resolved), accurate where the general
-  /// method handed a stiff input to it, or what was asked for if the request was refused before
-  /// one ran.
+  /// The method that ran: closed_form or general (automatic resolved), accurate where one of them
+  /// handed a stiff input to it, or what was asked for if the request was refused before one
+  /// ran.
   Method method = Method::automatic;
 
   bool ok() const noexcept { return status == Status::ok; }
@@ -144,6 +144,41 @@ ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const V
   return r;
 }
 
+/// Whether scaling C by 2^shift (c_hat) pushed a nonzero component below the normal range and
+/// off some of its bits: C . c_hat-sums then miss what those bits carry. Only comparisons unless
+/// a component is below the normal range.
+template <class W>
+bool scaling_loses_bits(const Vector4<W>& plane, const Vector4<W>& c_hat, int shift) {
+  bool lost = false;
+  for (int i = 0; i < 4; ++i) {
+    if (plane(i) != W(0) && !(std::abs(c_hat(i)) >= std::numeric_limits<W>::min()))
+      lost |= std::ldexp(c_hat(i), -shift) != plane(i);
+  }
+  return lost;
+}
+
+/// Whether a plane is stiff for a computation in W: its nonzero components span more binades
+/// than W has significand bits (in every sum the small ones are below the rounding of the large
+/// ones, yet C' or C . Q may rest on them), or scaling it by 2^shift (c_hat) lost bits.
+template <class W>
+bool stiff_plane(const Vector4<W>& plane, const Vector4<W>& c_hat, int shift) {
+  return magnitude_spread(plane) > std::numeric_limits<W>::digits ||
+         scaling_loses_bits(plane, c_hat, shift);
+}
+
+template <class T>
+ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
+                          bool perspective_shape);
+
+/// The hand-off of the closed form and the general method to the accurate method, for the
+/// inputs they cannot settle in T (stiff planes, stalled solves). Out of line, so that their own
+/// path does not grow.
+template <class T>
+OBLIQUE_NOINLINE ObliqueResult<T> handed_to_accurate(const Matrix4<T>& m, const Vector4<T>& plane,
+                                                     Convention convention) {
+  return accurate(m, plane, convention, has_perspective_shape(m));
+}
+
 /// Given Q with M_4 . Q = 1, builds M' with M'_3 chosen so that the near plane is a C, a > 0,
 /// and the far plane contains Q (paper Eqs. 9, 10 and 20, for every convention):
 ///   near' = s M'_3 + t M_4 = a C,   far' . Q = 0,   so   a = (z_high - z_low) / (C . Q).
@@ -160,6 +195,8 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
   // C scaled by 2^k so that C . Q neither overflows nor underflows; a C is unchanged.
   const int k = plane_scale_shift(plane);
   const Vector4<T> c_hat = scaled_by_power_of_two(plane, k);
+  // A component lost to the scaling may carry C . Q (a DBL_MIN beside a -DBL_MAX).
+  if (scaling_loses_bits(plane, c_hat, k)) return handed_to_accurate(m, plane, convention);
   const T d = c_hat.dot(q);
   if (!std::isfinite(d)) {
     r.status = Status::out_of_range;
@@ -243,35 +280,6 @@ std::optional<ObliqueResult<T>> solver_refusal(const Matrix4<T>& m,
   return std::nullopt;
 }
 
-/// Whether a plane is stiff for a computation in W: its nonzero components span more binades
-/// than W has significand bits (in every sum the small ones are below the rounding of the large
-/// ones, yet C' or C . Q may rest on them), or scaling it by 2^shift pushes a component below
-/// the normal range and off some of its bits.
-template <class W>
-bool stiff_plane(const Vector4<W>& plane, int shift) {
-  if (magnitude_spread(plane) > std::numeric_limits<W>::digits) return true;
-  for (int i = 0; i < 4; ++i) {
-    const W scaled = std::ldexp(plane(i), shift);
-    if (plane(i) != W(0) && !(std::abs(scaled) >= std::numeric_limits<W>::min()) &&
-        std::ldexp(scaled, -shift) != plane(i))
-      return true;
-  }
-  return false;
-}
-
-template <class T>
-ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
-                          bool perspective_shape);
-
-/// The general method's hand-off to the accurate method, for the inputs it cannot settle in T.
-/// Out of line, so that the general method's own path does not grow.
-template <class T>
-OBLIQUE_NOINLINE ObliqueResult<T> general_handed_to_accurate(const Matrix4<T>& m,
-                                                             const Vector4<T>& plane,
-                                                             Convention convention) {
-  return accurate(m, plane, convention, has_perspective_shape(m));
-}
-
 /// The largest componentwise backward error the general method accepts from its refined solves
 /// (the refinement stops at eps; beyond this it has stalled, and the answer goes to the accurate
 /// method).
@@ -288,9 +296,9 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
     return refuse(m, Method::general, Status::camera_not_behind_plane);
   }
   const int shift = plane_scale_shift(plane);
-  // Stiff planes: C' and C . Q may rest on components below the others' rounding.
-  if (stiff_plane(plane, shift)) return general_handed_to_accurate(m, plane, convention);
   const Vector4<T> c_hat = scaled_by_power_of_two(plane, shift);
+  // Stiff planes: C' and C . Q may rest on components below the others' rounding.
+  if (stiff_plane(plane, c_hat, shift)) return handed_to_accurate(m, plane, convention);
   T transposed_error = T(0);
   const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat, &transposed_error);
   if (!all_finite(c_clip)) {
@@ -305,7 +313,7 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   // (the signs' and the checker's) assume one.
   if (all_finite(q) && (transposed_error > general_backward_error_limit<T>() ||
                         corner_error > general_backward_error_limit<T>()))
-    return general_handed_to_accurate(m, plane, convention);
+    return handed_to_accurate(m, plane, convention);
   return finish(m, plane, q, convention, Method::general);
 }
 
