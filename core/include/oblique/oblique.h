@@ -157,12 +157,14 @@ bool scaling_loses_bits(const Vector4<W>& plane, const Vector4<W>& c_hat, int sh
   return lost;
 }
 
-/// Whether a plane is stiff for a computation in W: its nonzero components span more binades
-/// than W has significand bits (in every sum the small ones are below the rounding of the large
-/// ones, yet C' or C . Q may rest on them), or scaling it by 2^shift (c_hat) lost bits.
+/// Whether a plane is stiff for a computation in W: its nonzero components span more than
+/// max_magnitude_spread<W>() = 2p binades, beyond what even the refinement's twice-precision
+/// residuals resolve (C' or C . Q may rest on the small components: fuzz_oblique found a float
+/// plane spanning 2^-126 to 1 whose C' came out with a trusted wrong sign), or scaling it by
+/// 2^shift (c_hat) lost bits.
 template <class W>
 bool stiff_plane(const Vector4<W>& plane, const Vector4<W>& c_hat, int shift) {
-  return magnitude_spread(plane) > std::numeric_limits<W>::digits ||
+  return magnitude_spread(plane) > max_magnitude_spread<W>() ||
          scaling_loses_bits(plane, c_hat, shift);
 }
 
@@ -407,7 +409,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   const ScaledPlane<W> scaled = scale_plane(plane_w, plane_scale_shift(plane));
   const Vector4<W>& c_hat = scaled.c_hat;
   // C' and C . Q may rest on components below the others' rounding, or lost to the scaling.
-  const bool stiff = scaled.lossy() || magnitude_spread(plane_w) > std::numeric_limits<W>::digits;
+  const bool stiff = scaled.lossy() || magnitude_spread(plane_w) > max_magnitude_spread<W>();
   const auto exact_answer = [&] {
     return accurate_exact(m, mw, plane_w, Vector4<T>(c_hat.template cast<T>()), convention);
   };
