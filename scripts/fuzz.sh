@@ -55,7 +55,9 @@ for target in "${targets[@]}"; do
   # Merge what was found back into the checked-in corpus, minimised.
   merged="$work/$target/merged"
   mkdir -p "$merged"
-  "$binary" -merge=1 "$merged" "fuzz/corpus/$target" "$corpus" > "$work/$target/merge.log" 2>&1 || true
+  # (Without OBLIQUE_IMPL: the merge keeps what covers the default implementations, so a run on
+  # one implementation does not drop the inputs that reach the others.)
+  env -u OBLIQUE_IMPL "$binary" -merge=1 "$merged" "fuzz/corpus/$target" "$corpus" > "$work/$target/merge.log" 2>&1 || true
   rm -rf "fuzz/corpus/$target" && mv "$merged" "fuzz/corpus/$target"
   echo "corpus: $before -> $(ls "fuzz/corpus/$target" | wc -l) inputs"
   grep -E "exec/s" "$work/$target/log" | tail -n 1 | sed 's/^/last progress: /' || true

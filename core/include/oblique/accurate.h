@@ -12,8 +12,9 @@
 //  - a C_i - t M4_i cancels when C is close to the standard near plane (the a C_z + 1 of the
 //    paper's GL formula): formed as (k C_i - t M4_i (C . Q)) / (C . Q) from exact products,
 //    rounded once;
-//  - components of C that its power-of-two scaling pushes below the range: formed at their own
-//    scale (ScaledPlane).
+//  - stiff planes (components spanning more binades than the type holds, or pushed below the
+//    range by the power-of-two scaling), signs of C' within their error bound of zero, and what
+//    five words of Q do not resolve: the exact answer (exact_cramer.h).
 // float runs in double (float products are exact there and nothing under- or overflows); double
 // and long double run in their own type with double-word arithmetic.
 #pragma once
@@ -159,9 +160,6 @@ struct AccurateRow3 {
   Vector4<T> row3;
   bool resolved = true;
   W corner_dot = W(0);  ///< C . Q, distilled: its sign is exact for the words of Q
-  /// A component of C lost to the scaling (ScaledPlane) carries more of C . Q than its
-  /// resolution allows, or C . Q came out <= 0 with such a component touching a nonzero Q_i.
-  bool lost_component_matters = false;
 };
 
 /// What scaling C by 2^shift cost: `lost` holds C_i (unscaled) where C_i 2^shift is not exact
@@ -172,10 +170,6 @@ struct ScaledPlane {
   Vector4<W> lost = Vector4<W>::Zero();
   int shift = 0;
   bool lossy() const { return (lost.array() != W(0)).any(); }
-  /// Whether a lost component meets a nonzero coordinate of q (so it is part of C . q).
-  bool touches(const Vector4<W>& q) const {
-    return ((lost.array() != W(0)) && (q.array() != W(0))).any();
-  }
 };
 
 template <class W>
@@ -192,16 +186,6 @@ ScaledPlane<W> scale_plane(const Vector4<W>& c, int shift) {
   return out;
 }
 
-/// a C_i for a component C_i lost to the scaling, from a_hat = a 2^-shift (hi + lo): C_i is
-/// brought to the normal range by 2^(shift + up), multiplied exactly, and scaled back by 2^-up.
-template <class W>
-eft::Pair<W> lost_product(eft::Pair<W> a_hat, W c, int shift) {
-  const int up = std::numeric_limits<W>::min_exponent - (std::ilogb(c) + 1 + shift);
-  const W c_normal = std::ldexp(c, shift + up);
-  const eft::Pair<W> p = eft::two_prod(a_hat.hi, c_normal);
-  return {std::ldexp(p.hi, -up), std::ldexp(p.lo + a_hat.lo * c_normal, -up)};
-}
-
 /// Row 3 of M', s (a C_i - t M4_i) with a = range / (C . Q), each entry rounded once to T.
 ///  - Where t M4_i = 0 it is s range C_i / (C . Q), from a double-word quotient.
 ///  - Elsewhere it is s N_i / (C . Q) with N_i = range C_i - t M4_i (C . Q) summed from exact
@@ -209,12 +193,12 @@ eft::Pair<W> lost_product(eft::Pair<W> a_hat, W c, int shift) {
 ///    formula) instead of rounding into it: from C . Q's double-word value where that resolves
 ///    N_i, else from M4_i times each term of C . Q.
 /// Every sum is distilled to its exact value; what is left is Q's own error, `q_part` (an
-/// estimate of |C| . |Q error|), which must stay below eps / 8 of C . Q and of each N_i. When
-/// Q has no more words to give (`out_of_words`), an N_i within that error of zero is taken as 0.
+/// estimate of |C| . |Q error|), which must stay below eps / 8 of C . Q and of each N_i; a
+/// C . Q <= 0 is resolved when that error cannot lift it above zero.
+/// Precondition: scaling C lost nothing (not scaled.lossy()).
 template <class T, class W>
-AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>& q,
-                                 const DotTerms<W>& terms, W q_part, const Vector4<W>& m4,
-                                 Convention convention, bool out_of_words) {
+AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const DotTerms<W>& terms, W q_part,
+                                 const Vector4<W>& m4, Convention convention) {
   const Vector4<W>& plane = scaled.c_hat;
   constexpr W eps = std::numeric_limits<W>::epsilon();
   // What the answer in T needs resolved: eps of T (float computes in double and needs less).
@@ -228,34 +212,21 @@ AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>&
   bool exact = false;
   const eft::Pair<W> d = d_terms.distil(exact);
   out.corner_dot = d.hi;
-  if (!(d.hi > W(0)) || !std::isfinite(d.hi)) {
-    out.lost_component_matters = scaled.touches(q);
-    return out;
-  }
   // Not distilled: fall back on SumK's bound for 8 passes, (n eps)^8 of the magnitude.
   const W sum_part = exact ? W(0) : terms.magnitude() * std::pow(W(terms.size()) * eps, 8);
   const W d_error = q_part + sum_part + eps * std::abs(d.lo);
+  if (!(d.hi > W(0)) || !std::isfinite(d.hi)) {
+    out.resolved = !std::isfinite(d.hi) || d_error < std::abs(d.hi) || d_error == W(0);
+    return out;
+  }
   out.resolved = d_error <= target / W(8) * d.hi;
   const eft::Pair<W> a = eft::divide(eft::Pair<W>{k, W(0)}, d.hi);
   const W lo_ratio = d.lo / d.hi;
   const W a_lo = a.lo - a.hi * lo_ratio;  // k / (hi + lo) to first order in lo / hi
-  // A lost component's part of C . Q, |C_i 2^shift Q_i| < 2^(ilogb C_i + shift + ilogb Q_i + 2),
-  // must be below the resolution asked of C . Q.
-  for (int i = 0; i < 4; ++i) {
-    if (scaled.lost(i) == W(0) || q(i) == W(0)) continue;
-    const int exponent = std::ilogb(scaled.lost(i)) + scaled.shift + std::ilogb(q(i)) + 2;
-    if (exponent > std::ilogb(d.hi) - std::numeric_limits<W>::digits - 3)
-      out.lost_component_matters = true;
-  }
   for (int i = 0; i < 4; ++i) {
     const W tm4 = t * m4(i);
     eft::Pair<W> entry;
-    if (scaled.lost(i) != W(0)) {
-      // a C_i is below the normal range at C's scale: formed at its own scale, then - t M4_i.
-      const eft::Pair<W> ac = lost_product(eft::Pair<W>{a.hi, a_lo}, scaled.lost(i), scaled.shift);
-      const eft::Pair<W> sum = eft::two_sum(s * ac.hi, -s * tm4);
-      entry = eft::fast_two_sum(sum.hi, sum.lo + s * ac.lo);
-    } else if (tm4 == W(0)) {
+    if (tm4 == W(0)) {
       const eft::Pair<W> ac = eft::two_prod(a.hi, plane(i));
       entry = eft::fast_two_sum(s * ac.hi, s * (ac.lo + a_lo * plane(i)));
     } else {
@@ -274,12 +245,7 @@ AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const Vector4<W>&
         numerator = slow.distil(exact);
         const W slow_sum_part = exact ? W(0) : slow_magnitude * std::pow(W(slow_size) * eps, 8);
         const W bound = std::abs(tm4) * q_part + slow_sum_part;
-        if (bound > target / W(8) * std::abs(numerator.hi)) {
-          // Out of words, N_i is indistinguishable from zero at five-fold precision: the exact
-          // zeros (C proportional to M_4 with a = 1, say) are where this happens.
-          if (out_of_words && std::abs(numerator.hi) <= bound) numerator = {W(0), W(0)};
-          out.resolved = false;
-        }
+        if (bound > target / W(8) * std::abs(numerator.hi)) out.resolved = false;
       }
       const eft::Pair<W> quotient = eft::divide(numerator, d.hi);
       entry = eft::fast_two_sum(s * quotient.hi, s * (quotient.lo - quotient.hi * lo_ratio));
@@ -365,22 +331,23 @@ std::optional<Vector4<T>> perspective_row3_single(const PerspectiveInput<W>& in)
   const W big_n = sum + in.c_z;
   const W v = (in.k - in.t) * in.c_z - in.t * sum;
   const W error = W(8) * u * magnitude;
-  const W n_doubt = error / std::abs(big_n);
-  const W v_doubt = in.t != W(0) ? error / std::abs(v) : W(0);
-  // C . Q = N / K must be positive; N's doubt below 1 settles its sign.
-  if ((big_n > W(0)) != (in.K > W(0)) || !(n_doubt <= W(1) / W(64)) || !(v_doubt <= W(1) / W(64)))
+  // C . Q = N / K must be positive; N's doubt below 1 settles its sign. N and V within 1/64.
+  if ((big_n > W(0)) != (in.K > W(0)) || !(W(64) * error <= std::abs(big_n)) ||
+      (in.t != W(0) && !(W(64) * error <= std::abs(v))))
     return std::nullopt;
   const W reciprocal_n = W(1) / big_n;
   const W g = in.k * in.K * reciprocal_n;  // a 2^-shift
   Vector4<W> entries(g * in.c[0], g * in.c[1], g * in.c_z, g * in.c[2]);
   if (in.t != W(0)) entries(2) = in.K * v * reciprocal_n;
-  // Relative doubt per entry: N's and V's (first order, doubled for their own second order),
-  // three roundings, and room for the roundings of x -+ doubt |x| below.
-  const W doubt = W(2) * (n_doubt + v_doubt) + W(6) * u;
+  // Relative doubt per entry: N's (error / |N|, first order, doubled for its own second order
+  // and for the rounding of 1 / N), three roundings, and room for the roundings of x -+ spread
+  // below. The z entry K V / N also carries V's: error / |V| of |K V / N|, error |K / N|.
+  const W doubt = W(2) * error * std::abs(reciprocal_n) + W(6) * u;
+  const W v_part = in.t != W(0) ? W(2) * error * std::abs(in.K * reciprocal_n) : W(0);
   Vector4<T> row3;
   for (int i = 0; i < 4; ++i) {
     const W x = in.s * entries(i);
-    const W spread = doubt * std::abs(x);
+    const W spread = doubt * std::abs(x) + (i == 2 ? v_part : W(0));
     const T below = static_cast<T>(x - spread), above = static_cast<T>(x + spread);
     if (below != above) return std::nullopt;
     row3(i) = below == T(0) ? T(0) : below;  // +0, as the plain methods give
@@ -493,22 +460,19 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, T>> perspective_row3_in_do
   const P sum = eft::add(eft::add(u_i[0], u_i[1]), u_i[2]);
   const P big_n = eft::add(sum, cp[2]);
   const D error = D(72) * u * u * magnitude;
-  const D n_doubt = error / std::abs(big_n.hi);
   P v{D(0), D(0)};
-  D v_doubt = D(0);
-  if (t != D(0)) {
-    v = eft::add(P{(k - t) * cp[2].hi, (k - t) * cp[2].lo}, P{-sum.hi, -sum.lo});
-    v_doubt = error / std::abs(v.hi);
-  }
-  if ((big_n.hi > D(0)) != (big_k.hi > D(0)) || !(n_doubt <= D(1) / D(64)) ||
-      !(v_doubt <= D(1) / D(64)))
+  if (t != D(0)) v = eft::add(P{(k - t) * cp[2].hi, (k - t) * cp[2].lo}, P{-sum.hi, -sum.lo});
+  if ((big_n.hi > D(0)) != (big_k.hi > D(0)) || !(D(64) * error <= std::abs(big_n.hi)) ||
+      (t != D(0) && !(D(64) * error <= std::abs(v.hi))))
     return std::nullopt;
   const D reciprocal_n = D(1) / big_n.hi;
   const P g = eft::divide<F>(P{k * big_k.hi, k * big_k.lo}, big_n, reciprocal_n);
   P entries[4] = {eft::multiply<F>(g, cp[0]), eft::multiply<F>(g, cp[1]),
                   eft::multiply<F>(g, cp[2]), eft::multiply<F>(g, cp[3])};
   if (t != D(0)) entries[2] = eft::divide<F>(eft::multiply<F>(big_k, v), big_n, reciprocal_n);
-  const D doubt = D(2) * (n_doubt + v_doubt) + D(48) * u * u;
+  // As in perspective_row3_single: N's relative doubt on every entry, V's on the z entry.
+  const D doubt = D(2) * error * std::abs(reciprocal_n) + D(48) * u * u;
+  const D v_part = t != D(0) ? D(2) * error * std::abs(big_k.hi * reciprocal_n) : D(0);
   PerspectiveAnswer<T, T> out;
   for (int i = 0; i < 4; ++i) {
     const P x{s * entries[i].hi, s * entries[i].lo};
@@ -521,8 +485,8 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, T>> perspective_row3_in_do
     const D y_hi = D(y), y_lo = D(y - T(y_hi));
     const D distance = std::abs((x.hi - y_hi) + (x.lo - y_lo));
     const D margin = D(1) - D(1) / D(1 << 20);  // for the roundings of the distance and doubt
-    if (!(distance + doubt * std::abs(x.hi) < margin * long_double_half_spacing(y)))
-      return std::nullopt;
+    const D spread = doubt * std::abs(x.hi) + (i == 2 ? v_part : D(0));
+    if (!(distance + spread < margin * long_double_half_spacing(y))) return std::nullopt;
     out.row3(i) = y;
   }
   const T reciprocal_k = T(1) / m(3, 2);
@@ -628,19 +592,19 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, W>> perspective_row3(
   const eft::Pair<W> g = eft::divide<F>(eft::Pair<W>{in.k * in.K, W(0)}, n, reciprocal_n);
   eft::Pair<W> entries[4];
   for (int i = 0; i < 4; ++i) entries[i] = eft::multiply<F>(g, c(i));
-  W v_doubt = W(0);
   if (in.t != W(0)) {
     const eft::Pair<W> v = plus(-s2.hi, -u_rest, (in.k - in.t) * in.c_z);
     if (!(bound <= resolution * std::abs(v.hi))) return std::nullopt;
-    v_doubt = bound / std::abs(v.hi);
     const eft::Pair<W> kv = eft::multiply<F>(v, in.K);
     entries[2] = eft::divide<F>(kv, n, reciprocal_n);
   }
-  // Each entry is within doubt of itself: N's and V's relative errors (first order, doubled for
-  // their own second order) and the quotient and product after them (31u^2, taken as 48u^2).
-  // Its rounding y is certified when |x - y| plus that doubt stays below half the spacing of T
-  // at y: the exact entry then rounds to y too (correct rounding, not only faithful).
-  const W doubt = W(2) * (bound / std::abs(n.hi) + v_doubt) + W(48) * u * u;
+  // Each entry is within doubt of itself: N's relative error (first order, doubled for its own
+  // second order and the rounding of 1 / N) and the quotient and product after it (31u^2,
+  // taken as 48u^2); the z entry K V / N also V's, bound / |V| of it: bound |K / N|. Its
+  // rounding y is certified when |x - y| plus that doubt stays below half the spacing of T at
+  // y: the exact entry then rounds to y too (correct rounding, not only faithful).
+  const W doubt = W(2) * bound * std::abs(reciprocal_n) + W(48) * u * u;
+  const W v_part = in.t != W(0) ? W(2) * bound * std::abs(in.K * reciprocal_n) : W(0);
   for (int i = 0; i < 4; ++i) {
     const eft::Pair<W> x{in.s * entries[i].hi, in.s * entries[i].lo};
     if (x.hi == W(0)) {
@@ -650,7 +614,8 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, W>> perspective_row3(
     const T y = eft::round_pair<T>(x);
     const W distance = std::abs((x.hi - W(y)) + x.lo);
     const W margin = W(1) - W(1) / W(1 << 20);  // for the roundings of the distance and doubt
-    if (!(distance + doubt * std::abs(x.hi) < margin * half_spacing<W>(y))) return std::nullopt;
+    const W spread = doubt * std::abs(x.hi) + (i == 2 ? v_part : W(0));
+    if (!(distance + spread < margin * half_spacing<W>(y))) return std::nullopt;
     out.row3(i) = y;
   }
   return out;

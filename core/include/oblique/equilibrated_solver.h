@@ -107,15 +107,16 @@ class EquilibratedSolver {
     return lu_solve(accurate_residual(mt_, z, scaled_c, true), true);
   }
 
-  /// x with M x = b: x = S Mt^-1 (R b).
-  Vector4<T> solve(const Vector4<T>& b) const {
-    return col_scale_.cwiseProduct(refined(row_scale_.cwiseProduct(b), false));
+  /// x with M x = b: x = S Mt^-1 (R b). With `backward_error`, also the componentwise backward
+  /// error of x (max_i |b - M x|_i / (|M| |x| + |b|)_i, the same for the equilibrated system).
+  Vector4<T> solve(const Vector4<T>& b, T* backward_error = nullptr) const {
+    return col_scale_.cwiseProduct(refined(row_scale_.cwiseProduct(b), false, backward_error));
   }
 
   /// Mt^-T (S c) = R^-1 M^-T c: the solution of M^T y = c divided by R's positive diagonal, so
   /// it has the signs of y (all that the far corner needs) without overflowing where y would.
-  Vector4<T> solve_transposed_unscaled(const Vector4<T>& c) const {
-    return refined(col_scale_.cwiseProduct(c), true);
+  Vector4<T> solve_transposed_unscaled(const Vector4<T>& c, T* backward_error = nullptr) const {
+    return refined(col_scale_.cwiseProduct(c), true, backward_error);
   }
 
  private:
@@ -123,9 +124,10 @@ class EquilibratedSolver {
     return transpose ? Vector4<T>(lu_.transpose().solve(b)) : Vector4<T>(lu_.solve(b));
   }
 
-  Vector4<T> refined(const Vector4<T>& b, bool transpose) const {
+  Vector4<T> refined(const Vector4<T>& b, bool transpose, T* backward_error) const {
     constexpr int kMaxSteps = 4;
     Vector4<T> x = lu_solve(b, transpose);
+    if (backward_error) *backward_error = std::numeric_limits<T>::infinity();
     if (!all_finite(x)) return x;
     Vector4<T> r = accurate_residual(mt_, x, b, transpose);
     T error = componentwise_backward_error(mt_, x, b, r, transpose);
@@ -140,6 +142,7 @@ class EquilibratedSolver {
       r = next_r;
       error = next_error;
     }
+    if (backward_error) *backward_error = error;
     return x;
   }
 

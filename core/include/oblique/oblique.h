@@ -13,6 +13,7 @@
 #include "oblique/accurate.h"
 #include "oblique/depth_convention.h"
 #include "oblique/equilibrated_solver.h"
+#include "oblique/exact_cramer.h"
 #include "oblique/plane.h"
 #include "oblique/projection.h"
 #include "oblique/status.h"
@@ -65,8 +66,9 @@ struct ObliqueResult {
   /// Q = M^-1 Q' in camera space (a direction, w = 0, for infinite projections); set when the
   /// computation got that far (ok, plane_misses_view_volume, out_of_range), else zero.
   Vector4<T> far_corner = Vector4<T>::Zero();
-  /// The method that ran: closed_form or general (automatic resolved), or what was asked for
-  /// if the request was refused before one ran.
+  /// The method that ran: closed_form or general (automatic resolved), accurate where one of them
+  /// handed a stiff input to it, or what was asked for if the request was refused before one
+  /// ran.
   Method method = Method::automatic;
 
   bool ok() const noexcept { return status == Status::ok; }
@@ -74,6 +76,13 @@ struct ObliqueResult {
     return detail.empty() ? status_message(status) : detail;
   }
 };
+
+/// Keeps a rarely taken path out of its caller's code.
+#if defined(__GNUC__)
+#define OBLIQUE_NOINLINE __attribute__((noinline))
+#else
+#define OBLIQUE_NOINLINE
+#endif
 
 namespace detail {
 
@@ -135,6 +144,43 @@ ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const V
   return r;
 }
 
+/// Whether scaling C by 2^shift (c_hat) pushed a nonzero component below the normal range and
+/// off some of its bits: C . c_hat-sums then miss what those bits carry. Only comparisons unless
+/// a component is below the normal range.
+template <class W>
+bool scaling_loses_bits(const Vector4<W>& plane, const Vector4<W>& c_hat, int shift) {
+  bool lost = false;
+  for (int i = 0; i < 4; ++i) {
+    if (plane(i) != W(0) && !(std::abs(c_hat(i)) >= std::numeric_limits<W>::min()))
+      lost |= std::ldexp(c_hat(i), -shift) != plane(i);
+  }
+  return lost;
+}
+
+/// Whether a plane is stiff for a computation in W: its nonzero components span more than
+/// max_magnitude_spread<W>() = 2p binades, beyond what even the refinement's twice-precision
+/// residuals resolve (C' or C . Q may rest on the small components: fuzz_oblique found a float
+/// plane spanning 2^-126 to 1 whose C' came out with a trusted wrong sign), or scaling it by
+/// 2^shift (c_hat) lost bits.
+template <class W>
+bool stiff_plane(const Vector4<W>& plane, const Vector4<W>& c_hat, int shift) {
+  return magnitude_spread(plane) > max_magnitude_spread<W>() ||
+         scaling_loses_bits(plane, c_hat, shift);
+}
+
+template <class T>
+ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
+                          bool perspective_shape);
+
+/// The hand-off of the closed form and the general method to the accurate method, for the
+/// inputs they cannot settle in T (stiff planes, stalled solves). Out of line, so that their own
+/// path does not grow.
+template <class T>
+OBLIQUE_NOINLINE ObliqueResult<T> handed_to_accurate(const Matrix4<T>& m, const Vector4<T>& plane,
+                                                     Convention convention) {
+  return accurate(m, plane, convention, has_perspective_shape(m));
+}
+
 /// Given Q with M_4 . Q = 1, builds M' with M'_3 chosen so that the near plane is a C, a > 0,
 /// and the far plane contains Q (paper Eqs. 9, 10 and 20, for every convention):
 ///   near' = s M'_3 + t M_4 = a C,   far' . Q = 0,   so   a = (z_high - z_low) / (C . Q).
@@ -151,6 +197,8 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
   // C scaled by 2^k so that C . Q neither overflows nor underflows; a C is unchanged.
   const int k = plane_scale_shift(plane);
   const Vector4<T> c_hat = scaled_by_power_of_two(plane, k);
+  // A component lost to the scaling may carry C . Q (a DBL_MIN beside a -DBL_MAX).
+  if (scaling_loses_bits(plane, c_hat, k)) return handed_to_accurate(m, plane, convention);
   const T d = c_hat.dot(q);
   if (!std::isfinite(d)) {
     r.status = Status::out_of_range;
@@ -234,6 +282,14 @@ std::optional<ObliqueResult<T>> solver_refusal(const Matrix4<T>& m,
   return std::nullopt;
 }
 
+/// The largest componentwise backward error the general method accepts from its refined solves
+/// (the refinement stops at eps; beyond this it has stalled, and the answer goes to the accurate
+/// method).
+template <class T>
+constexpr T general_backward_error_limit() noexcept {
+  return T(8) * std::numeric_limits<T>::epsilon();
+}
+
 template <class T>
 ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention) {
   const EquilibratedSolver<T> solver(m);
@@ -241,26 +297,71 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   if (!(plane.w() < T(0))) {
     return refuse(m, Method::general, Status::camera_not_behind_plane);
   }
-  const Vector4<T> c_hat = scaled_by_power_of_two(plane, plane_scale_shift(plane));
-  const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat);
+  const int shift = plane_scale_shift(plane);
+  const Vector4<T> c_hat = scaled_by_power_of_two(plane, shift);
+  // Stiff planes: C' and C . Q may rest on components below the others' rounding.
+  if (stiff_plane(plane, c_hat, shift)) return handed_to_accurate(m, plane, convention);
+  T transposed_error = T(0);
+  const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat, &transposed_error);
   if (!all_finite(c_clip)) {
     return refuse(m, Method::general, Status::out_of_range,
                   "C' = M^-T C is beyond the range of the scalar type");
   }
   const Vector4<T> signs = trusted_signs(c_clip, solver.transposed_error_bound(c_clip));
   const Vector4<T> corner = clip_corner(signs.x(), signs.y(), signs.z(), convention);
-  return finish(m, plane, solver.solve(corner), convention, Method::general);
+  T corner_error = T(0);
+  const Vector4<T> q = solver.solve(corner, &corner_error);
+  // A refinement that stalled short of a small componentwise backward error: the error bounds
+  // (the signs' and the checker's) assume one.
+  if (all_finite(q) && (transposed_error > general_backward_error_limit<T>() ||
+                        corner_error > general_backward_error_limit<T>()))
+    return handed_to_accurate(m, plane, convention);
+  return finish(m, plane, q, convention, Method::general);
+}
+
+/// The accurate method's answer in exact integer arithmetic (exact_cramer.h), for stiff planes,
+/// signs of C' that floating point cannot settle, and C . Q or row-3 entries the refined far
+/// corner does not resolve. Out of line: it is rarely taken, and costs microseconds.
+/// `plane` is C in W (any power-of-two multiple of it gives the same answer); `c_hat` is C
+/// scaled by 2^plane_scale_shift(C) in T, for accept_row3.
+template <class T, class W>
+OBLIQUE_NOINLINE ObliqueResult<T> accurate_exact(const Matrix4<T>& m, const Matrix4<W>& mw,
+                                                 const Vector4<W>& plane, const Vector4<T>& c_hat,
+                                                 Convention convention) {
+  using Outcome = typename ExactOblique<T, W>::Outcome;
+  const ExactOblique<T, W> exact = exact_oblique<T, W>(mw, plane, convention);
+  if (exact.outcome == Outcome::singular) {
+    return refuse(m, Method::accurate, Status::singular_projection,
+                  "the projection is singular: its determinant, computed exactly, is zero");
+  }
+  ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
+  r.far_corner = exact.far_corner.template cast<T>();
+  if (exact.outcome == Outcome::plane_misses_view_volume) {
+    r.status = Status::plane_misses_view_volume;
+    return r;
+  }
+  if (!all_finite(r.far_corner)) {
+    r.status = Status::out_of_range;
+    r.detail = "the far corner Q = M^-1 Q' is beyond the range of the scalar type";
+    return r;
+  }
+  return accept_row3(std::move(r), exact.row3, c_hat, convention);
 }
 
 /// The accurate method's last steps, once the far corner's first word is solved: refine Q to
-/// two words (more where C . Q or a row-3 entry cancels beyond them), C . Q and row 3.
+/// two words (more where C . Q or a row-3 entry cancels beyond them), C . Q and row 3; where
+/// five words do not resolve them, the exact answer.
 /// `contraction_floor` bounds below how much each refinement step shrinks Q's error: a few eps
 /// for the closed form's explicit solve, 16 eps / rcond for the equilibrated LU.
+/// Precondition: scaling C lost nothing (not scaled.lossy()).
 template <class T, class W, class Corner>
 ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw,
                                  const ScaledPlane<W>& scaled, Convention convention, Corner q,
                                  W contraction_floor, bool first_word_bounded) {
   ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
+  // c_hat is C scaled by 2^k in W; its rounding to T is C scaled by 2^k in T (each is the
+  // exact C_i 2^k rounded once), so plane_scale_shift need not run again.
+  const Vector4<T> c_hat(scaled.c_hat.template cast<T>());
   // In its own type the answer needs a second word of Q. float (run in double) rarely does when
   // the first word comes from the closed form, whose few roundings contraction_floor bounds;
   // an LU solve's error is only estimated by rcond, so it always gets a second word.
@@ -275,46 +376,43 @@ ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw,
   for (;;) {
     const DotTerms<W> terms = dot_terms(scaled.c_hat, q);
     const W q_part = W(2) * q.remaining_error(scaled.c_hat, contraction_floor);
-    const Vector4<W> q_value = q.value();
-    AccurateRow3<T, W> row3 =
-        accurate_row3<T>(scaled, q_value, terms, q_part, m4, convention, false);
+    const AccurateRow3<T, W> row3 = accurate_row3<T>(scaled, terms, q_part, m4, convention);
     if (!terms.all_finite() || !std::isfinite(row3.corner_dot)) {
       r.status = Status::out_of_range;
       r.detail = "C . Q is beyond the range of the scalar type";
       return r;
     }
-    if (row3.lost_component_matters) {
-      r.status = Status::out_of_range;
-      r.detail =
-          "the plane's components span more binades than the scalar type holds at one scale, "
-          "and the small ones carry C . Q";
-      return r;
-    }
-    if (!(row3.corner_dot > W(0))) {
+    if (row3.resolved && !(row3.corner_dot > W(0))) {
       r.status = Status::plane_misses_view_volume;
       return r;
     }
-    if (!row3.resolved && q.add_word()) continue;
-    // Out of words (five, or a correction that is not finite): the best row there is.
-    if (!row3.resolved)
-      row3 = accurate_row3<T>(scaled, q_value, terms, q_part, m4, convention, true);
-    // c_hat is C scaled by 2^k in W; its rounding to T is C scaled by 2^k in T (each is the
-    // exact C_i 2^k rounded once), so plane_scale_shift need not run again.
-    return accept_row3(std::move(r), row3.row3, Vector4<T>(scaled.c_hat.template cast<T>()),
-                       convention);
+    if (row3.resolved) return accept_row3(std::move(r), row3.row3, c_hat, convention);
+    if (!q.add_word()) {
+      // Out of words (five, or a correction that is not finite): C . Q's sign or the row is
+      // still within Q's error, which rcond may underestimate on a nearly singular M.
+      return accurate_exact(m, mw, scaled.c_hat, c_hat, convention);
+    }
   }
 }
 
 /// The accurate method (accurate.h): the general method's refusals and far corner, with C',
 /// Q, C . Q and a carried to about twice the working precision and each entry rounded once.
-/// For the perspective shape the solves are the closed form's, and C' has exact signs.
+/// For the perspective shape the solves are the closed form's, and C' has exact signs. Stiff
+/// planes (stiff_plane()), and signs of C' within their error bound of zero, are settled in
+/// exact arithmetic (exact_cramer.h).
 template <class T>
 ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
                           bool perspective_shape) {
   using W = typename AccurateWorkingType<T>::type;
-  const ScaledPlane<W> scaled =
-      scale_plane(Vector4<W>(plane.template cast<W>()), plane_scale_shift(plane));
+  const Vector4<W> plane_w = plane.template cast<W>();
+  const ScaledPlane<W> scaled = scale_plane(plane_w, plane_scale_shift(plane));
   const Vector4<W>& c_hat = scaled.c_hat;
+  // C' and C . Q may rest on components below the others' rounding, or lost to the scaling.
+  const bool stiff = scaled.lossy() || magnitude_spread(plane_w) > max_magnitude_spread<W>();
+  const auto exact_answer = [&] {
+    return accurate_exact(m, Matrix4<W>(m.template cast<W>()), plane_w,
+                          Vector4<T>(c_hat.template cast<T>()), convention);
+  };
   if (perspective_shape) {
     const W A = W(m(0, 0)), B = W(m(0, 2)), D = W(m(1, 1)), E = W(m(1, 2)), G = W(m(2, 2)),
             H = W(m(2, 3)), K = W(m(3, 2));
@@ -323,7 +421,8 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
                     "the projection is singular: M11, M22 or M34 is zero");
     }
     if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
-    // Signs from C itself: a component lost to the scaling keeps its sign there.
+    if (stiff) return exact_answer();
+    // Signs from C itself, exact.
     const Vector4<W> corner =
         clip_corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
                     W(sign(plane.w())) * sign(H), convention);
@@ -350,6 +449,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   const EquilibratedSolver<W> solver(mw);
   if (auto refusal = solver_refusal(m, solver, Method::accurate)) return *refusal;
   if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
+  if (stiff) return exact_answer();
   const Vector4<W> c_clip = solver.solve_transposed_unscaled(c_hat);
   if (!all_finite(c_clip)) {
     return refuse(m, Method::accurate, Status::out_of_range,
@@ -363,21 +463,10 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
           ? Vector4<W>(solver.transposed_error_bound(correction) +
                        std::numeric_limits<W>::epsilon() * solver.transposed_error_bound(c_clip))
           : solver.transposed_error_bound(c_clip);
-  Vector4<W> signs = trusted_signs(estimate, bound);
-  if (scaled.lossy()) {
-    // Components of C lost to the scaling still decide a sign of C' that the rest leaves at
-    // zero: solve for them at their own scale (C' is linear in C).
-    const int up = std::numeric_limits<W>::min_exponent -
-                   (magnitude_exponent(scaled.lost) - std::numeric_limits<W>::digits) -
-                   scaled.shift;
-    const Vector4<W> lost_clip =
-        solver.solve_transposed_unscaled(scaled_by_power_of_two(scaled.lost, scaled.shift + up));
-    const Vector4<W> lost_signs =
-        trusted_signs(lost_clip, solver.transposed_error_bound(lost_clip));
-    for (int i = 0; i < 4; ++i) {
-      if (signs(i) == W(0)) signs(i) = lost_signs(i);
-    }
-  }
+  const Vector4<W> signs = trusted_signs(estimate, bound);
+  // A sign within its error bound of zero: the middle of the edge is within rounding as far,
+  // but not within an ulp of the answer where C . Q is small; the exact signs settle it.
+  if (signs.x() == W(0) || signs.y() == W(0) || signs.z() == W(0)) return exact_answer();
   const Vector4<W> corner = clip_corner(signs.x(), signs.y(), signs.z(), convention);
   return accurate_finish(
       m, mw, scaled, convention,
