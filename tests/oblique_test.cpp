@@ -202,6 +202,40 @@ TYPED_TEST(ObliqueTest, matrixSpanningTooManyBinadesIsOutOfRange) {
       Status::ok);
 }
 
+// magnitude_spread_exceeds (the core's check, without ilogb where the ratio decides) agrees with
+// magnitude_spread on spreads around the limit, significands at both ends of their binades,
+// subnormals, zeros and values near overflow.
+TYPED_TEST(ObliqueTest, spreadCheckAgreesWithTheSpread) {
+  using T = TypeParam;
+  constexpr int limit = max_magnitude_spread<T>();
+  const T below_two = T(2) - std::numeric_limits<T>::epsilon();
+  const T denorm = std::numeric_limits<T>::denorm_min();
+  int checked = 0;
+  for (T low_significand : {T(1), T(1.5), below_two}) {
+    for (T high_significand : {T(1), T(1.5), below_two}) {
+      for (int low_exponent : {std::numeric_limits<T>::min_exponent - 1, -3, 0, 7}) {
+        for (int gap = limit - 2; gap <= limit + 2; ++gap) {
+          const int high_exponent = low_exponent + gap;
+          if (high_exponent >= std::numeric_limits<T>::max_exponent) continue;
+          const Vector4<T> v(std::ldexp(low_significand, low_exponent), T(0),
+                             -std::ldexp(high_significand, high_exponent), T(0));
+          EXPECT_EQ(magnitude_spread_exceeds<limit>(v), magnitude_spread(v) > limit)
+              << v.transpose() << " spread " << magnitude_spread(v);
+          ++checked;
+        }
+      }
+    }
+  }
+  const Vector4<T> subnormal_to_large(denorm, T(0), std::ldexp(T(1), limit - 60), T(0));
+  EXPECT_EQ(magnitude_spread_exceeds<limit>(subnormal_to_large),
+            magnitude_spread(subnormal_to_large) > limit);
+  const Vector4<T> near_overflow(std::numeric_limits<T>::max(), T(1), T(0), T(0));
+  EXPECT_EQ(magnitude_spread_exceeds<limit>(near_overflow),
+            magnitude_spread(near_overflow) > limit);
+  EXPECT_FALSE(magnitude_spread_exceeds<limit>(Vector4<T>::Zero().eval()));
+  EXPECT_GT(checked, 100);
+}
+
 }  // namespace
 }  // namespace oblique
 

@@ -164,7 +164,7 @@ bool scaling_loses_bits(const Vector4<W>& plane, const Vector4<W>& c_hat, int sh
 /// 2^shift (c_hat) lost bits.
 template <class W>
 bool stiff_plane(const Vector4<W>& plane, const Vector4<W>& c_hat, int shift) {
-  return magnitude_spread(plane) > max_magnitude_spread<W>() ||
+  return magnitude_spread_exceeds<max_magnitude_spread<W>()>(plane) ||
          scaling_loses_bits(plane, c_hat, shift);
 }
 
@@ -408,7 +408,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   const ScaledPlane<W> scaled = scale_plane(plane_w, plane_scale_shift(plane));
   const Vector4<W>& c_hat = scaled.c_hat;
   // C' and C . Q may rest on components below the others' rounding, or lost to the scaling.
-  const bool stiff = scaled.lossy() || magnitude_spread(plane_w) > max_magnitude_spread<W>();
+  const bool stiff = scaled.lossy() || magnitude_spread_exceeds<max_magnitude_spread<W>()>(plane_w);
   const auto exact_answer = [&] {
     return accurate_exact(m, Matrix4<W>(m.template cast<W>()), plane_w,
                           Vector4<T>(c_hat.template cast<T>()), convention);
@@ -430,6 +430,21 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
       ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
       r.far_corner = fast->far_corner.template cast<T>();
       if (all_finite(r.far_corner)) {
+        // accept_row3's test that the extracted near plane keeps C's side, decided by signs:
+        // its x, y and w components are the correctly rounded a C_i (M_4 = (0, 0, K, 0)), so
+        // their terms of the dot product with C are >= 0, and the w term > 0 (C_w < 0, and in
+        // the fast path's range a C_w and its scaled product stay normal in double and long
+        // double); a z term >= 0 then makes the sum positive, as accept_row3 would find.
+        // (float's fast-path values can underflow in float: accept_row3 decides.)
+        if constexpr (!std::is_same_v<T, float>) {
+          const RowCombination near_combination = near_rows(convention);
+          const T near_z =
+              T(near_combination.m3) * fast->row3(2) + T(near_combination.m4) * m(3, 2);
+          if (!(near_z * T(sign(plane.z())) < T(0))) {
+            r.projection.row(2) = fast->row3.transpose();
+            return r;
+          }
+        }
         return accept_row3(std::move(r), fast->row3, Vector4<T>(c_hat.template cast<T>()),
                            convention);
       }
@@ -496,7 +511,7 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
     return detail::refuse(projection, method, Status::invalid_input,
                           "the clip plane has a NaN or infinite component");
   }
-  if (magnitude_spread(projection) > max_magnitude_spread<T>()) {
+  if (magnitude_spread_exceeds<max_magnitude_spread<T>()>(projection)) {
     return detail::refuse(projection, method, Status::out_of_range,
                           "the projection's nonzero entries span more binades than twice the "
                           "precision of the scalar type (max_magnitude_spread)");

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "oblique/error_free.h"
+
 namespace oblique {
 
 template <class T>
@@ -78,6 +80,30 @@ int magnitude_spread(const Eigen::MatrixBase<Derived>& v) {
     }
   }
   return high > T(0) ? std::ilogb(high) - std::ilogb(low) : 0;
+}
+
+/// Whether magnitude_spread(v) > limit, mostly without ilogb (a libm call per value on the
+/// core's path): with high and low the largest and smallest nonzero |v_ij|, high < low 2^limit
+/// gives a spread of at most limit and high >= low 2^(limit + 1) one above it (ilogb is the
+/// floor of log2); only between them are the exponents compared. Entries must be finite.
+template <int Limit, class Derived>
+bool magnitude_spread_exceeds(const Eigen::MatrixBase<Derived>& v) {
+  using T = typename Derived::Scalar;
+  T high = T(0), low = std::numeric_limits<T>::infinity();
+  for (Eigen::Index i = 0; i < v.rows(); ++i) {
+    for (Eigen::Index j = 0; j < v.cols(); ++j) {
+      const T a = std::abs(v(i, j));
+      if (a == T(0)) continue;
+      high = std::max(high, a);
+      low = std::min(low, a);
+    }
+  }
+  if (!(high > T(0))) return false;
+  // Multiplying by a power of two is exact (an overflow to infinity keeps the comparisons right).
+  constexpr T factor = eft::power_of_two<T>(Limit);
+  if (high < low * factor) return false;
+  if (high >= low * factor * T(2)) return true;
+  return std::ilogb(high) - std::ilogb(low) > Limit;
 }
 
 /// The widest magnitude_spread() of a projection matrix that the core computes with in T: 2p
