@@ -144,11 +144,10 @@ ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const V
   return r;
 }
 
-/// Whether scaling C by 2^shift (c_hat) pushed a nonzero component below the normal range and
-/// off some of its bits: C . c_hat-sums then miss what those bits carry. Only comparisons unless
-/// a component is below the normal range.
+/// The slow part of scaling_loses_bits(): some component is below the normal range.
 template <class W>
-bool scaling_loses_bits(const Vector4<W>& plane, const Vector4<W>& c_hat, int shift) {
+OBLIQUE_NOINLINE bool scaled_components_inexact(const Vector4<W>& plane, const Vector4<W>& c_hat,
+                                                int shift) {
   bool lost = false;
   for (int i = 0; i < 4; ++i) {
     if (plane(i) != W(0) && !(std::abs(c_hat(i)) >= std::numeric_limits<W>::min()))
@@ -157,15 +156,22 @@ bool scaling_loses_bits(const Vector4<W>& plane, const Vector4<W>& c_hat, int sh
   return lost;
 }
 
+/// Whether scaling C by 2^shift (c_hat) pushed a nonzero component below the normal range and
+/// off some of its bits: sums with c_hat then miss what those bits carry. No work unless the
+/// smallest nonzero component went below the normal range.
+template <class W>
+bool scaling_loses_bits(const Vector4<W>& plane, const Vector4<W>& c_hat, PlaneScale scale) {
+  return scale.below_normal && scaled_components_inexact(plane, c_hat, scale.shift);
+}
+
 /// Whether a plane is stiff for a computation in W: its nonzero components span more than
 /// max_magnitude_spread<W>() = 2p binades, beyond what even the refinement's twice-precision
 /// residuals resolve (C' or C . Q may rest on the small components: fuzz_oblique found a float
 /// plane spanning 2^-126 to 1 whose C' came out with a trusted wrong sign), or scaling it by
 /// 2^shift (c_hat) lost bits.
 template <class W>
-bool stiff_plane(const Vector4<W>& plane, const Vector4<W>& c_hat, int shift) {
-  return magnitude_spread_exceeds<max_magnitude_spread<W>()>(plane) ||
-         scaling_loses_bits(plane, c_hat, shift);
+bool stiff_plane(const Vector4<W>& plane, const Vector4<W>& c_hat, PlaneScale scale) {
+  return scale.spread > max_magnitude_spread<W>() || scaling_loses_bits(plane, c_hat, scale);
 }
 
 template <class T>
@@ -184,9 +190,12 @@ OBLIQUE_NOINLINE ObliqueResult<T> handed_to_accurate(const Matrix4<T>& m, const 
 /// Given Q with M_4 . Q = 1, builds M' with M'_3 chosen so that the near plane is a C, a > 0,
 /// and the far plane contains Q (paper Eqs. 9, 10 and 20, for every convention):
 ///   near' = s M'_3 + t M_4 = a C,   far' . Q = 0,   so   a = (z_high - z_low) / (C . Q).
+/// `c_hat` is C scaled by 2^k (plane_scale_shift()) so that C . Q neither overflows nor
+/// underflows; a C is unchanged by it. The core's callers hand a plane whose scaling loses bits
+/// to the accurate method instead.
 template <class T>
 ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vector4<T>& q,
-                        Convention convention, Method method) {
+                        Convention convention, Method method, int k, const Vector4<T>& c_hat) {
   ObliqueResult<T> r = refuse(m, method, Status::ok);
   r.far_corner = q;
   if (!all_finite(q)) {
@@ -194,11 +203,6 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
     r.detail = "the far corner Q = M^-1 Q' is beyond the range of the scalar type";
     return r;
   }
-  // C scaled by 2^k so that C . Q neither overflows nor underflows; a C is unchanged.
-  const int k = plane_scale_shift(plane);
-  const Vector4<T> c_hat = scaled_by_power_of_two(plane, k);
-  // A component lost to the scaling may carry C . Q (a DBL_MIN beside a -DBL_MAX).
-  if (scaling_loses_bits(plane, c_hat, k)) return handed_to_accurate(m, plane, convention);
   const T d = c_hat.dot(q);
   if (!std::isfinite(d)) {
     r.status = Status::out_of_range;
@@ -237,11 +241,15 @@ ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Conve
   if (!(plane.w() < T(0))) {
     return refuse(m, Method::closed_form, Status::camera_not_behind_plane);
   }
+  const PlaneScale scale = plane_scale(plane);
+  const Vector4<T> c_hat = scaled_by_power_of_two(plane, scale.shift);
+  // A component lost to the scaling may carry C . Q (a DBL_MIN beside a -DBL_MAX).
+  if (scaling_loses_bits(plane, c_hat, scale)) return handed_to_accurate(m, plane, convention);
   const Vector4<T> corner = clip_corner(sign(plane.x()) * sign(A), sign(plane.y()) * sign(D),
                                         sign(plane.w()) * sign(H), convention);
   const Vector4<T> q((corner.x() - B / K) / A, (corner.y() - E / K) / D, T(1) / K,
                      (corner.z() - G / K) / H);
-  return finish(m, plane, q, convention, Method::closed_form);
+  return finish(m, plane, q, convention, Method::closed_form, scale.shift, c_hat);
 }
 
 /// The signs of C' for the far corner, with 0 for a component within its error bound of zero:
@@ -297,10 +305,10 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   if (!(plane.w() < T(0))) {
     return refuse(m, Method::general, Status::camera_not_behind_plane);
   }
-  const int shift = plane_scale_shift(plane);
-  const Vector4<T> c_hat = scaled_by_power_of_two(plane, shift);
+  const PlaneScale scale = plane_scale(plane);
+  const Vector4<T> c_hat = scaled_by_power_of_two(plane, scale.shift);
   // Stiff planes: C' and C . Q may rest on components below the others' rounding.
-  if (stiff_plane(plane, c_hat, shift)) return handed_to_accurate(m, plane, convention);
+  if (stiff_plane(plane, c_hat, scale)) return handed_to_accurate(m, plane, convention);
   T transposed_error = T(0);
   const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat, &transposed_error);
   if (!all_finite(c_clip)) {
@@ -316,7 +324,7 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   if (all_finite(q) && (transposed_error > general_backward_error_limit<T>() ||
                         corner_error > general_backward_error_limit<T>()))
     return handed_to_accurate(m, plane, convention);
-  return finish(m, plane, q, convention, Method::general);
+  return finish(m, plane, q, convention, Method::general, scale.shift, c_hat);
 }
 
 /// The accurate method's answer in exact integer arithmetic (exact_cramer.h), for stiff planes,
@@ -405,10 +413,11 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
                           bool perspective_shape) {
   using W = typename AccurateWorkingType<T>::type;
   const Vector4<W> plane_w = plane.template cast<W>();
-  const ScaledPlane<W> scaled = scale_plane(plane_w, plane_scale_shift(plane));
+  const PlaneScale scale = plane_scale(plane);
+  const ScaledPlane<W> scaled = scale_plane(plane_w, scale.shift);
   const Vector4<W>& c_hat = scaled.c_hat;
   // C' and C . Q may rest on components below the others' rounding, or lost to the scaling.
-  const bool stiff = scaled.lossy() || magnitude_spread_exceeds<max_magnitude_spread<W>()>(plane_w);
+  const bool stiff = scaled.lossy() || scale.spread > max_magnitude_spread<W>();
   const auto exact_answer = [&] {
     return accurate_exact(m, Matrix4<W>(m.template cast<W>()), plane_w,
                           Vector4<T>(c_hat.template cast<T>()), convention);

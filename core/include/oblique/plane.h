@@ -44,25 +44,39 @@ int magnitude_exponent(const Eigen::MatrixBase<Derived>& v) {
   return exponent;
 }
 
+/// How the core scales a plane before C . Q, and the plane's magnitude_spread(), from one pass.
+struct PlaneScale {
+  int shift = 0;   ///< see plane_scale_shift()
+  int spread = 0;  ///< binades from the smallest nonzero component to the largest
+  /// Whether the smallest nonzero component, scaled by 2^shift, is below the normal range (and
+  /// may have lost bits).
+  bool below_normal = false;
+};
+
 /// The power of two k by which the core scales a plane before C . Q: k = -e brings the largest
 /// component to [1/2, 1), unless that would push the smallest nonzero component below the normal
 /// range (losing its bits, which C . Q may need when Q is large in that coordinate); then k keeps
 /// that component normal, as long as the largest stays below 2^(max_exponent / 2).
 template <class Derived>
-int plane_scale_shift(const Eigen::MatrixBase<Derived>& v) {
+PlaneScale plane_scale(const Eigen::MatrixBase<Derived>& v) {
   using T = typename Derived::Scalar;
   const int e = magnitude_exponent(v);
   T low = std::numeric_limits<T>::infinity();
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (v(i) != T(0)) low = std::min(low, T(std::abs(v(i))));
   }
-  if (!(low < std::numeric_limits<T>::infinity())) return -e;
+  if (!(low < std::numeric_limits<T>::infinity())) return {-e, 0};
   int low_exponent = 0;
   std::frexp(low, &low_exponent);
   const int keep_normal = std::numeric_limits<T>::min_exponent - low_exponent;
   if (-e < keep_normal && e + keep_normal <= std::numeric_limits<T>::max_exponent / 2)
-    return keep_normal;
-  return -e;
+    return {keep_normal, e - low_exponent, false};
+  return {-e, e - low_exponent, -e < keep_normal};
+}
+
+template <class Derived>
+int plane_scale_shift(const Eigen::MatrixBase<Derived>& v) {
+  return plane_scale(v).shift;
 }
 
 /// How many binades the nonzero entries of v span: ilogb(max |v_ij|) - ilogb(min nonzero |v_ij|);

@@ -62,7 +62,8 @@ ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   if (fault != Fault::no_camera_check && !(plane.w() < T(0))) {
     return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
   }
-  const Vector4<T> c_hat = scaled_by_power_of_two(plane, plane_scale_shift(plane));
+  const int shift = plane_scale_shift(plane);
+  const Vector4<T> c_hat = scaled_by_power_of_two(plane, shift);
   const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat);
   if (!all_finite(c_clip)) {
     return detail::refuse(m, Method::general, Status::out_of_range,
@@ -80,7 +81,7 @@ ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   const Vector4<T> corner =
       detail::clip_corner(sgn(from_c ? plane.x() : trusted.x()),
                           sgn(from_c ? plane.y() : trusted.y()), z_sign, convention);
-  return detail::finish(m, plane, solver.solve(corner), convention, Method::general);
+  return detail::finish(m, plane, solver.solve(corner), convention, Method::general, shift, c_hat);
 }
 
 template <class T>
