@@ -79,21 +79,35 @@ int plane_scale_shift(const Eigen::MatrixBase<Derived>& v) {
   return plane_scale(v).shift;
 }
 
+/// The largest and the smallest nonzero |v_ij| (high = 0 when every entry is 0).
+template <class T>
+struct MagnitudeRange {
+  T high = T(0);
+  T low = std::numeric_limits<T>::infinity();
+};
+
+template <class Derived>
+MagnitudeRange<typename Derived::Scalar> magnitude_range(const Eigen::MatrixBase<Derived>& v) {
+  using T = typename Derived::Scalar;
+  MagnitudeRange<T> range;
+  for (Eigen::Index i = 0; i < v.rows(); ++i) {
+    for (Eigen::Index j = 0; j < v.cols(); ++j) {
+      const T a = std::abs(v(i, j));
+      if (a == T(0)) continue;
+      range.high = std::max(range.high, a);
+      range.low = std::min(range.low, a);
+    }
+  }
+  return range;
+}
+
 /// How many binades the nonzero entries of v span: ilogb(max |v_ij|) - ilogb(min nonzero |v_ij|);
 /// 0 when fewer than two entries are nonzero. Entries must be finite.
 template <class Derived>
 int magnitude_spread(const Eigen::MatrixBase<Derived>& v) {
   using T = typename Derived::Scalar;
-  T high = T(0), low = std::numeric_limits<T>::infinity();
-  for (Eigen::Index i = 0; i < v.rows(); ++i) {
-    for (Eigen::Index j = 0; j < v.cols(); ++j) {
-      const T a = std::abs(v(i, j));
-      if (a == T(0)) continue;
-      high = std::max(high, a);
-      low = std::min(low, a);
-    }
-  }
-  return high > T(0) ? std::ilogb(high) - std::ilogb(low) : 0;
+  const MagnitudeRange<T> range = magnitude_range(v);
+  return range.high > T(0) ? std::ilogb(range.high) - std::ilogb(range.low) : 0;
 }
 
 /// Whether magnitude_spread(v) > limit, mostly without ilogb (a libm call per value on the
@@ -103,15 +117,7 @@ int magnitude_spread(const Eigen::MatrixBase<Derived>& v) {
 template <int Limit, class Derived>
 bool magnitude_spread_exceeds(const Eigen::MatrixBase<Derived>& v) {
   using T = typename Derived::Scalar;
-  T high = T(0), low = std::numeric_limits<T>::infinity();
-  for (Eigen::Index i = 0; i < v.rows(); ++i) {
-    for (Eigen::Index j = 0; j < v.cols(); ++j) {
-      const T a = std::abs(v(i, j));
-      if (a == T(0)) continue;
-      high = std::max(high, a);
-      low = std::min(low, a);
-    }
-  }
+  const auto [high, low] = magnitude_range(v);
   if (!(high > T(0))) return false;
   // Multiplying by a power of two is exact (an overflow to infinity keeps the comparisons right).
   constexpr T factor = eft::power_of_two<T>(Limit);
