@@ -973,6 +973,31 @@ TYPED_TEST(RoundPair, theOverflowMidpointRoundsByTheSignOfLo) {
   tally.expect_no_failure();
 }
 
+TEST(RoundPairWider, aPairOfDoublesRoundsOnceToLongDouble) {
+  // round_pair<long double>(Pair<double>) adds the two words in long double: one rounding of
+  // their exact sum (x87: 64 bits hold at most 64 of the pair's up to 106).
+  if constexpr (std::numeric_limits<long double>::digits > std::numeric_limits<double>::digits) {
+    Generator<double> g(0xe105);
+    Tally tally("round_pair<long double>(Pair<double>)");
+    const auto check = [&](Pair<double> x) {
+      const long double rounded = round_pair<long double>(x);
+      const long double expected = exact::round_to<long double>(rational(x));
+      tally.check(rounded == expected, [&] { return "round_pair(" + hex(x) + ")"; });
+    };
+    for (int i = 0; i < kRandomCases; ++i) check(g.pair(-300, 300));
+    // Ties in long double, and their neighbours: 1 + 2^-64 (+- 2^-100).
+    for (double sign : {1.0, -1.0}) {
+      check({sign, sign * std::ldexp(1.0, -64)});
+      check({sign, sign * (std::ldexp(1.0, -64) + std::ldexp(1.0, -100))});
+      check({sign, sign * (std::ldexp(1.0, -64) - std::ldexp(1.0, -100))});
+      check({sign * 3, sign * std::ldexp(1.0, -63)});
+    }
+    tally.expect_no_failure();
+  } else {
+    GTEST_SKIP() << "long double is no wider than double here";
+  }
+}
+
 TYPED_TEST(ErrorFree, roundPairToTheSameTypeIsTheHighWord) {
   using T = TypeParam;
   Generator<T> g(0xe0ff);

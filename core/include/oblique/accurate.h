@@ -162,30 +162,6 @@ struct AccurateRow3 {
   W corner_dot = W(0);  ///< C . Q, distilled: its sign is exact for the words of Q
 };
 
-/// What scaling C by 2^shift cost: `lost` holds C_i (unscaled) where C_i 2^shift is not exact
-/// (it fell below the normal range), 0 elsewhere.
-template <class W>
-struct ScaledPlane {
-  Vector4<W> c_hat;
-  Vector4<W> lost = Vector4<W>::Zero();
-  int shift = 0;
-  bool lossy() const { return (lost.array() != W(0)).any(); }
-};
-
-template <class W>
-ScaledPlane<W> scale_plane(const Vector4<W>& c, int shift) {
-  ScaledPlane<W> out;
-  out.shift = shift;
-  out.c_hat = scaled_by_power_of_two(c, shift);
-  for (int i = 0; i < 4; ++i) {
-    // A normal result is exact; below the normal range it may be.
-    if (c(i) != W(0) && !(std::abs(out.c_hat(i)) >= std::numeric_limits<W>::min()) &&
-        std::ldexp(out.c_hat(i), -shift) != c(i))
-      out.lost(i) = c(i);
-  }
-  return out;
-}
-
 /// Row 3 of M', s (a C_i - t M4_i) with a = range / (C . Q), each entry rounded once to T.
 ///  - Where t M4_i = 0 it is s range C_i / (C . Q), from a double-word quotient.
 ///  - Elsewhere it is s N_i / (C . Q) with N_i = range C_i - t M4_i (C . Q) summed from exact
@@ -195,7 +171,7 @@ ScaledPlane<W> scale_plane(const Vector4<W>& c, int shift) {
 /// Every sum is distilled to its exact value; what is left is Q's own error, `q_part` (an
 /// estimate of |C| . |Q error|), which must stay below eps / 8 of C . Q and of each N_i; a
 /// C . Q <= 0 is resolved when that error cannot lift it above zero.
-/// Precondition: scaling C lost nothing (not scaled.lossy()).
+/// Precondition: scaling C lost nothing (not scaled.lossy).
 template <class T, class W>
 AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const DotTerms<W>& terms, W q_part,
                                  const Vector4<W>& m4, Convention convention) {
@@ -355,9 +331,16 @@ std::optional<Vector4<T>> perspective_row3_single(const PerspectiveInput<W>& in)
   return row3;
 }
 
+/// x87's long double (64-bit significand, 15-bit exponent), whose values split exactly into two
+/// doubles: the perspective fast path computes in pairs of doubles (106 bits) there, in SSE
+/// registers, instead of in double-word long double on the x87 stack (several times slower).
+inline constexpr bool kX87LongDouble = std::numeric_limits<long double>::digits == 64 &&
+                                       std::numeric_limits<long double>::max_exponent == 16384;
+
 /// Half the spacing of T at y (finite, nonzero), towards zero where y is a power of two (the
 /// spacing below is half that above), in W. From the bits for IEEE double in its normal range
-/// (the fast path's entries); from the neighbours elsewhere.
+/// and for x87 long double whose half spacing is a normal double (the fast paths' entries); from
+/// the neighbours elsewhere.
 template <class W, class T>
 W half_spacing(T y) {
   if constexpr (std::is_same_v<T, double> && std::numeric_limits<double>::is_iec559) {
@@ -372,6 +355,22 @@ W half_spacing(T y) {
       std::memcpy(&out, &half_bits, sizeof out);
       return W(out);
     }
+  } else if constexpr (std::is_same_v<T, long double> && kX87LongDouble) {
+    // y = +-m 2^(e - 63), m in [2^63, 2^64): bytes 0-7 hold m, bytes 8-9 the sign and exponent.
+    unsigned char bytes[sizeof(long double)];
+    std::memcpy(bytes, &y, sizeof bytes);
+    std::uint64_t significand;
+    std::uint16_t sign_exponent;
+    std::memcpy(&significand, bytes, 8);
+    std::memcpy(&sign_exponent, bytes + 8, 2);
+    const int e = (sign_exponent & 0x7fff) - 16383;  // y in [2^e, 2^(e + 1))
+    const int half = e - 64 - (significand == (std::uint64_t(1) << 63) ? 1 : 0);
+    if (half > -1022 && half < 1024) {
+      const std::uint64_t half_bits = std::uint64_t(half + 1023) << 52;
+      double out;
+      std::memcpy(&out, &half_bits, sizeof out);
+      return W(out);
+    }
   }
   const T toward = std::nextafter(y, T(0));
   const T away = std::nextafter(
@@ -379,11 +378,24 @@ W half_spacing(T y) {
   return std::min(std::abs(W(y) - W(toward)), std::abs(W(away) - W(y))) / W(2);
 }
 
-/// x87's long double (64-bit significand, 15-bit exponent), whose values split exactly into two
-/// doubles: the perspective fast path computes in pairs of doubles (106 bits) there, in SSE
-/// registers, instead of in double-word long double on the x87 stack (several times slower).
-inline constexpr bool kX87LongDouble = std::numeric_limits<long double>::digits == 64 &&
-                                       std::numeric_limits<long double>::max_exponent == 16384;
+/// The rounding y of x = hi + lo to T, when it is certified: the exact value lies within
+/// `spread` of x, and |x - y| + spread stays below half the spacing of T at y (with room for the
+/// roundings of this test), so the exact value rounds to y as well. +0 for x = 0 (as the plain
+/// methods give); std::nullopt when not certified (or y is not finite).
+template <class T, class W>
+OBLIQUE_EFT_INLINE std::optional<T> certified_rounding(eft::Pair<W> x, W spread) {
+  if (x.hi == W(0)) return T(0);
+  const T y = eft::round_pair<T>(x);
+  // x - y exactly enough: y as y_hi + y_lo in W (y_lo only where T is wider than W).
+  const W y_hi = W(y);
+  W y_lo = W(0);
+  if constexpr (std::numeric_limits<T>::digits > std::numeric_limits<W>::digits)
+    y_lo = W(y - T(y_hi));
+  const W distance = std::abs((x.hi - y_hi) + (x.lo - y_lo));
+  const W margin = W(1) - W(1) / W(1 << 20);
+  if (!(distance + spread < margin * half_spacing<W>(y))) return std::nullopt;
+  return y;
+}
 
 /// x as hi + lo in doubles, exactly (hi the rounding of x, lo the at most 11 bits left), when
 /// x is 0 or 2^+-E of 1, E = 128 (in_fast_range's for double); ok is cleared otherwise.
@@ -397,24 +409,6 @@ inline eft::Pair<double> long_double_pair(long double x, bool& ok) {
     ok &= x == 0.0L;  // not a nonzero x below double's range
   }
   return {hi, static_cast<double>(x - static_cast<long double>(hi))};
-}
-
-/// Half the spacing of long double at y (normal, y = +-m 2^(e - 63), m in [2^63, 2^64)), towards
-/// zero where y is a power of two (where the spacing below is half that above), as a double.
-inline double long_double_half_spacing(long double y) {
-  unsigned char bytes[sizeof(long double)];
-  std::memcpy(bytes, &y, sizeof bytes);
-  std::uint64_t significand;
-  std::uint16_t sign_exponent;
-  std::memcpy(&significand, bytes, 8);
-  std::memcpy(&sign_exponent, bytes + 8, 2);
-  const int e = (sign_exponent & 0x7fff) - 16383;  // y in [2^e, 2^(e + 1))
-  const int half = e - 64 - (significand == (std::uint64_t(1) << 63) ? 1 : 0);
-  // 2^half as a double, built from its bits: the callers' entries keep it in the normal range.
-  const std::uint64_t bits = std::uint64_t(half + 1023) << 52;
-  double out;
-  std::memcpy(&out, &bits, sizeof out);
-  return out;
 }
 
 /// The perspective fast path for x87 long double, in pairs of doubles: the formulas of
@@ -475,19 +469,10 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, T>> perspective_row3_in_do
   const D v_part = t != D(0) ? D(2) * error * std::abs(big_k.hi * reciprocal_n) : D(0);
   PerspectiveAnswer<T, T> out;
   for (int i = 0; i < 4; ++i) {
-    const P x{s * entries[i].hi, s * entries[i].lo};
-    if (x.hi == D(0)) {
-      out.row3(i) = T(0);  // C_i = 0: exactly 0 (+0, as the plain methods give)
-      continue;
-    }
-    // y, the pair rounded once (the x87 sum of two exact operands), and its exact distance to x.
-    const T y = T(x.hi) + T(x.lo);
-    const D y_hi = D(y), y_lo = D(y - T(y_hi));
-    const D distance = std::abs((x.hi - y_hi) + (x.lo - y_lo));
-    const D margin = D(1) - D(1) / D(1 << 20);  // for the roundings of the distance and doubt
-    const D spread = doubt * std::abs(x.hi) + (i == 2 ? v_part : D(0));
-    if (!(distance + spread < margin * long_double_half_spacing(y))) return std::nullopt;
-    out.row3(i) = y;
+    const D spread = doubt * std::abs(entries[i].hi) + (i == 2 ? v_part : D(0));
+    const auto y = certified_rounding<T>(P{s * entries[i].hi, s * entries[i].lo}, spread);
+    if (!y) return std::nullopt;
+    out.row3(i) = *y;
   }
   const T reciprocal_k = T(1) / m(3, 2);
   for (int i = 0; i < 3; ++i) {
@@ -538,7 +523,7 @@ template <class T, class W, eft::Fma F = eft::Fma::portable>
 OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, W>> perspective_row3(
     const ScaledPlane<W>& scaled, const Matrix4<T>& m, const Vector4<W>& corner,
     Convention convention) {
-  if (scaled.lossy()) return std::nullopt;
+  if (scaled.lossy) return std::nullopt;
   constexpr W u = std::numeric_limits<W>::epsilon() / W(2);
   constexpr W target = W(std::numeric_limits<T>::epsilon());
   const Vector4<W>& c = scaled.c_hat;
@@ -606,17 +591,11 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, W>> perspective_row3(
   const W doubt = W(2) * bound * std::abs(reciprocal_n) + W(48) * u * u;
   const W v_part = in.t != W(0) ? W(2) * bound * std::abs(in.K * reciprocal_n) : W(0);
   for (int i = 0; i < 4; ++i) {
-    const eft::Pair<W> x{in.s * entries[i].hi, in.s * entries[i].lo};
-    if (x.hi == W(0)) {
-      out.row3(i) = T(0);  // C_i = 0: exactly 0 (+0, as the plain methods give)
-      continue;
-    }
-    const T y = eft::round_pair<T>(x);
-    const W distance = std::abs((x.hi - W(y)) + x.lo);
-    const W margin = W(1) - W(1) / W(1 << 20);  // for the roundings of the distance and doubt
-    const W spread = doubt * std::abs(x.hi) + (i == 2 ? v_part : W(0));
-    if (!(distance + spread < margin * half_spacing<W>(y))) return std::nullopt;
-    out.row3(i) = y;
+    const W spread = doubt * std::abs(entries[i].hi) + (i == 2 ? v_part : W(0));
+    const auto y =
+        certified_rounding<T>(eft::Pair<W>{in.s * entries[i].hi, in.s * entries[i].lo}, spread);
+    if (!y) return std::nullopt;
+    out.row3(i) = *y;
   }
   return out;
 }

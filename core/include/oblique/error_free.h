@@ -300,13 +300,17 @@ OBLIQUE_EFT_INLINE Pair<T> divide(Pair<T> a, Pair<T> b, T reciprocal) noexcept {
   return fast_two_sum(q1, remainder * reciprocal);
 }
 
-/// The value of hi + lo rounded to nearest (ties to even) in the narrower type N: hi is the
+/// The value of hi + lo rounded to nearest (ties to even) in N. In a narrower N: hi is the
 /// working-precision sum, so its rounding to N differs from the exact one only when hi lies
-/// exactly halfway between two N values; then lo's sign decides.
+/// exactly halfway between two N values; then lo's sign decides. In T itself: hi. In a wider N
+/// (with T's exponent range): N(hi) + N(lo), one rounding of the exact sum.
 template <class N, class T>
 N round_pair(Pair<T> x) noexcept {
   const N nearest = static_cast<N>(x.hi);
-  if constexpr (std::numeric_limits<T>::digits <= std::numeric_limits<N>::digits) {
+  if constexpr (std::numeric_limits<T>::digits < std::numeric_limits<N>::digits) {
+    // N wider (a pair of doubles into x87's long double): one addition of the exact operands.
+    return nearest + static_cast<N>(x.lo);
+  } else if constexpr (std::numeric_limits<T>::digits == std::numeric_limits<N>::digits) {
     return nearest;
   } else {
     // r = hi - nearest is exact (T holds N's values with room to spare) and at most half the

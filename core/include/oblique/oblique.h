@@ -77,13 +77,6 @@ struct ObliqueResult {
   }
 };
 
-/// Keeps a rarely taken path out of its caller's code.
-#if defined(__GNUC__)
-#define OBLIQUE_NOINLINE __attribute__((noinline))
-#else
-#define OBLIQUE_NOINLINE
-#endif
-
 namespace detail {
 
 template <class T>
@@ -142,36 +135,6 @@ ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const V
   }
   r.projection.row(2) = row3.transpose();
   return r;
-}
-
-/// The slow part of scaling_loses_bits(): some component is below the normal range.
-template <class W>
-OBLIQUE_NOINLINE bool scaled_components_inexact(const Vector4<W>& plane, const Vector4<W>& c_hat,
-                                                int shift) {
-  bool lost = false;
-  for (int i = 0; i < 4; ++i) {
-    if (plane(i) != W(0) && !(std::abs(c_hat(i)) >= std::numeric_limits<W>::min()))
-      lost |= std::ldexp(c_hat(i), -shift) != plane(i);
-  }
-  return lost;
-}
-
-/// Whether scaling C by 2^shift (c_hat) pushed a nonzero component below the normal range and
-/// off some of its bits: sums with c_hat then miss what those bits carry. No work unless the
-/// smallest nonzero component went below the normal range.
-template <class W>
-bool scaling_loses_bits(const Vector4<W>& plane, const Vector4<W>& c_hat, PlaneScale scale) {
-  return scale.below_normal && scaled_components_inexact(plane, c_hat, scale.shift);
-}
-
-/// Whether a plane is stiff for a computation in W: its nonzero components span more than
-/// max_magnitude_spread<W>() = 2p binades, beyond what even the refinement's twice-precision
-/// residuals resolve (C' or C . Q may rest on the small components: fuzz_oblique found a float
-/// plane spanning 2^-126 to 1 whose C' came out with a trusted wrong sign), or scaling it by
-/// 2^shift (c_hat) lost bits.
-template <class W>
-bool stiff_plane(const Vector4<W>& plane, const Vector4<W>& c_hat, PlaneScale scale) {
-  return scale.spread > max_magnitude_spread<W>() || scaling_loses_bits(plane, c_hat, scale);
 }
 
 template <class T>
@@ -241,15 +204,14 @@ ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Conve
   if (!(plane.w() < T(0))) {
     return refuse(m, Method::closed_form, Status::camera_not_behind_plane);
   }
-  const PlaneScale scale = plane_scale(plane);
-  const Vector4<T> c_hat = scaled_by_power_of_two(plane, scale.shift);
+  const ScaledPlane<T> scaled = scale_plane(plane, plane_scale(plane));
   // A component lost to the scaling may carry C . Q (a DBL_MIN beside a -DBL_MAX).
-  if (scaling_loses_bits(plane, c_hat, scale)) return handed_to_accurate(m, plane, convention);
+  if (scaled.lossy) return handed_to_accurate(m, plane, convention);
   const Vector4<T> corner = clip_corner(sign(plane.x()) * sign(A), sign(plane.y()) * sign(D),
                                         sign(plane.w()) * sign(H), convention);
   const Vector4<T> q((corner.x() - B / K) / A, (corner.y() - E / K) / D, T(1) / K,
                      (corner.z() - G / K) / H);
-  return finish(m, plane, q, convention, Method::closed_form, scale.shift, c_hat);
+  return finish(m, plane, q, convention, Method::closed_form, scaled.shift, scaled.c_hat);
 }
 
 /// The signs of C' for the far corner, with 0 for a component within its error bound of zero:
@@ -306,11 +268,11 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
     return refuse(m, Method::general, Status::camera_not_behind_plane);
   }
   const PlaneScale scale = plane_scale(plane);
-  const Vector4<T> c_hat = scaled_by_power_of_two(plane, scale.shift);
+  const ScaledPlane<T> scaled = scale_plane(plane, scale);
   // Stiff planes: C' and C . Q may rest on components below the others' rounding.
-  if (stiff_plane(plane, c_hat, scale)) return handed_to_accurate(m, plane, convention);
+  if (stiff_plane(scale, scaled)) return handed_to_accurate(m, plane, convention);
   T transposed_error = T(0);
-  const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat, &transposed_error);
+  const Vector4<T> c_clip = solver.solve_transposed_unscaled(scaled.c_hat, &transposed_error);
   if (!all_finite(c_clip)) {
     return refuse(m, Method::general, Status::out_of_range,
                   "C' = M^-T C is beyond the range of the scalar type");
@@ -324,7 +286,7 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   if (all_finite(q) && (transposed_error > general_backward_error_limit<T>() ||
                         corner_error > general_backward_error_limit<T>()))
     return handed_to_accurate(m, plane, convention);
-  return finish(m, plane, q, convention, Method::general, scale.shift, c_hat);
+  return finish(m, plane, q, convention, Method::general, scaled.shift, scaled.c_hat);
 }
 
 /// The accurate method's answer in exact integer arithmetic (exact_cramer.h), for stiff planes,
@@ -361,7 +323,7 @@ OBLIQUE_NOINLINE ObliqueResult<T> accurate_exact(const Matrix4<T>& m, const Matr
 /// five words do not resolve them, the exact answer.
 /// `contraction_floor` bounds below how much each refinement step shrinks Q's error: a few eps
 /// for the closed form's explicit solve, 16 eps / rcond for the equilibrated LU.
-/// Precondition: scaling C lost nothing (not scaled.lossy()).
+/// Precondition: scaling C lost nothing (not scaled.lossy).
 template <class T, class W, class Corner>
 ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw,
                                  const ScaledPlane<W>& scaled, Convention convention, Corner q,
@@ -414,10 +376,10 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   using W = typename AccurateWorkingType<T>::type;
   const Vector4<W> plane_w = plane.template cast<W>();
   const PlaneScale scale = plane_scale(plane);
-  const ScaledPlane<W> scaled = scale_plane(plane_w, scale.shift);
+  const ScaledPlane<W> scaled = scale_plane(plane_w, scale);
   const Vector4<W>& c_hat = scaled.c_hat;
   // C' and C . Q may rest on components below the others' rounding, or lost to the scaling.
-  const bool stiff = scaled.lossy() || scale.spread > max_magnitude_spread<W>();
+  const bool stiff = stiff_plane(scale, scaled);
   const auto exact_answer = [&] {
     return accurate_exact(m, Matrix4<W>(m.template cast<W>()), plane_w,
                           Vector4<T>(c_hat.template cast<T>()), convention);

@@ -154,4 +154,53 @@ typename Derived::PlainObject scaled_by_power_of_two(const Eigen::MatrixBase<Der
   return out;
 }
 
+/// Keeps a rarely taken path out of its caller's code.
+#if defined(__GNUC__)
+#define OBLIQUE_NOINLINE __attribute__((noinline))
+#else
+#define OBLIQUE_NOINLINE
+#endif
+
+/// C scaled by 2^shift (c_hat), and whether that lost bits: a nonzero component pushed below
+/// the normal range and off some of its bits, so that sums with c_hat miss what they carry.
+template <class T>
+struct ScaledPlane {
+  Vector4<T> c_hat;
+  int shift = 0;
+  bool lossy = false;
+};
+
+/// The slow part of scale_plane(): some scaled component is below the normal range.
+template <class T>
+OBLIQUE_NOINLINE bool scaled_components_inexact(const Vector4<T>& c, const Vector4<T>& c_hat,
+                                                int shift) {
+  bool lost = false;
+  for (int i = 0; i < 4; ++i) {
+    if (c(i) != T(0) && !(std::abs(c_hat(i)) >= std::numeric_limits<T>::min()))
+      lost |= std::ldexp(c_hat(i), -shift) != c(i);
+  }
+  return lost;
+}
+
+/// c scaled by plane_scale(c)'s shift, computed in T (the plane's own type, or a wider one: a
+/// component normal at the narrower type's scale is normal in the wider one, so `below_normal`
+/// still tells when to look). No work beyond the scaling unless the smallest nonzero component
+/// went below the normal range.
+template <class T>
+ScaledPlane<T> scale_plane(const Vector4<T>& c, const PlaneScale& scale) {
+  ScaledPlane<T> out{scaled_by_power_of_two(c, scale.shift), scale.shift, false};
+  out.lossy = scale.below_normal && scaled_components_inexact(c, out.c_hat, scale.shift);
+  return out;
+}
+
+/// Whether a plane is stiff for a computation in W: its nonzero components span more than
+/// max_magnitude_spread<W>() = 2p binades, beyond what even the refinement's twice-precision
+/// residuals resolve (C' or C . Q may rest on the small components: fuzz_oblique found a float
+/// plane spanning 2^-126 to 1 whose C' came out with a trusted wrong sign), or scaling it lost
+/// bits.
+template <class W>
+bool stiff_plane(const PlaneScale& scale, const ScaledPlane<W>& scaled) {
+  return scaled.lossy || scale.spread > max_magnitude_spread<W>();
+}
+
 }  // namespace oblique
