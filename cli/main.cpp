@@ -6,35 +6,18 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "accuracy_report.h"
-#include "check.h"
-#include "depth_report.h"
-#include "protocol.h"
-#include "verifier.h"
+#include "oblique/protocol/apply.h"
+#include "oblique/report/accuracy_report.h"
+#include "oblique/report/depth_report.h"
+#include "oblique/scene/check.h"
+#include "oblique/verify/verifier.h"
 
 namespace {
-
-int run_apply(const oblique::protocol::ApplyOptions& options) {
-  std::ios::sync_with_stdio(false);
-  std::cin.tie(nullptr);
-  std::string line;
-  bool all_ok = true;
-  for (;;) {
-    // Answer promptly when the writer waits for us; batch when it has sent many lines.
-    if (std::cin.rdbuf()->in_avail() <= 0) std::cout.flush();
-    if (!std::getline(std::cin, line)) break;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const auto answer = oblique::protocol::answer_request(line, options);
-    all_ok = all_ok && answer.status == oblique::Status::ok;
-    std::cout << answer.line << '\n';
-  }
-  std::cout.flush();
-  return all_ok ? 0 : 1;
-}
 
 /// Prints the files a report wrote, one per line; exit status 0.
 int print_paths(const std::vector<std::filesystem::path>& paths) {
@@ -103,36 +86,53 @@ int run_check(const std::string& path, bool as_json) {
   return check.passes() ? 0 : 1;
 }
 
-}  // namespace
+/// Each subcommand: its options and what it runs once parsed (CLI11's callbacks). A callback
+/// stores its exit status in `exit_code`.
 
-int main(int argc, char** argv) {
-  CLI::App app{"oblique: oblique near-plane clipping, verified"};
-  app.require_subcommand(1);
-
-  oblique::protocol::ApplyOptions apply_options;
-  std::string convention = "gl", method = "auto", precision = "double";
+void setup_apply(CLI::App& app, int& exit_code) {
+  struct Settings {
+    std::string convention = "gl", method = "auto", precision = "double";
+  };
+  auto settings = std::make_shared<Settings>();
   CLI::App* apply = app.add_subcommand(
       "apply",
       "Read JSON Lines requests {\"projection\": [16 numbers, row-major], \"plane\": [4 numbers], "
       "\"convention\": ...} on standard input; answer one line each: {\"status\": \"ok\", "
       "\"projection\": [...]} or {\"status\": CODE, \"message\": ...}. Exit 0 when every line was "
       "ok, 1 otherwise.");
-  apply->add_option("--convention", convention, "Depth convention of requests that name none")
+  apply
+      ->add_option("--convention", settings->convention,
+                   "Depth convention of requests that name none")
       ->check(CLI::IsMember({"gl", "zero_one", "reversed_z"}))
       ->capture_default_str();
   apply
-      ->add_option("--method", method,
+      ->add_option("--method", settings->method,
                    "auto: closed form for the perspective shape, else general; accurate: every "
                    "entry within 2 ulp of the exact answer (measured: correctly rounded)")
       ->check(CLI::IsMember({"auto", "closed_form", "general", "accurate"}))
       ->capture_default_str();
-  apply->add_option("--precision", precision, "Scalar type of the computation")
+  apply->add_option("--precision", settings->precision, "Scalar type of the computation")
       ->check(CLI::IsMember({"float", "double", "long_double"}))
       ->capture_default_str();
+  apply->callback([settings, &exit_code] {
+    oblique::protocol::ApplyOptions options;
+    options.convention = *oblique::parse_convention(settings->convention);
+    options.method = *oblique::parse_method(settings->method);
+    options.precision = *oblique::protocol::parse_precision(settings->precision);
+    std::ios::sync_with_stdio(false);
+    std::cin.tie(nullptr);
+    exit_code = oblique::protocol::serve(std::cin, std::cout, options);
+  });
+}
 
-  oblique::verify::VerifyOptions verify_options;
-  std::string verify_conventions = "gl", families, verify_precision = "double";
-  bool quiet = false;
+void setup_verify(CLI::App& app, int& exit_code, const char* self) {
+  struct Settings {
+    oblique::verify::VerifyOptions options;
+    std::string conventions = "gl", families, precision = "double";
+    bool quiet = false;
+  };
+  auto settings = std::make_shared<Settings>();
+  oblique::verify::VerifyOptions& options = settings->options;
   CLI::App* verify = app.add_subcommand(
       "verify",
       "Check another implementation of the oblique modification: start COMMAND once, send it "
@@ -140,54 +140,79 @@ int main(int argc, char** argv) {
       "input; it answers one line each, flushed), judge every answer with the property suite, and "
       "shrink the first violation to a report. Exit 0: no violation; 1: a violation (report "
       "written); 2: usage or protocol error.");
-  verify->add_option("--impl", verify_options.command, "The implementation's command (run by sh)")
+  verify->add_option("--impl", options.command, "The implementation's command (run by sh)")
       ->required();
   verify
-      ->add_option("--convention", verify_conventions,
+      ->add_option("--convention", settings->conventions,
                    "Conventions to request: gl, zero_one, reversed_z, a comma list, or all")
       ->capture_default_str();
-  verify->add_option("--families", families,
+  verify->add_option("--families", settings->families,
                      "Comma list of projection families (default: all): perspective, off_axis, "
                      "infinite, orthographic, y_flipped, jittered, rotated, general");
-  verify->add_option("--precision", verify_precision, "Scalar type of inputs and bounds")
+  verify->add_option("--precision", settings->precision, "Scalar type of inputs and bounds")
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
-  verify->add_option("--cases", verify_options.cases, "Number of generated requests")
+  verify->add_option("--cases", options.cases, "Number of generated requests")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  verify->add_option("--seed", verify_options.seed, "Random seed (default: a fresh one, printed)");
+  verify->add_option("--seed", options.seed, "Random seed (default: a fresh one, printed)");
   verify
-      ->add_option("--time-limit", verify_options.time_limit_seconds,
+      ->add_option("--time-limit", options.time_limit_seconds,
                    "Stop after this many seconds, shrinking included")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   verify
-      ->add_option("--timeout", verify_options.request_timeout_seconds,
+      ->add_option("--timeout", options.request_timeout_seconds,
                    "Seconds to wait for one answer before calling the implementation hung")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  verify
-      ->add_option("--report-dir", verify_options.report_dir,
-                   "Where the counterexample report goes")
+  verify->add_option("--report-dir", options.report_dir, "Where the counterexample report goes")
       ->capture_default_str();
-  verify->add_flag("--quiet", quiet, "No progress lines on standard error");
+  verify->add_flag("--quiet", settings->quiet, "No progress lines on standard error");
+  verify->callback([settings, &exit_code, self] {
+    oblique::verify::VerifyOptions& options = settings->options;
+    if (!parse_lists(settings->conventions, settings->families, options)) {
+      exit_code = 2;
+      return;
+    }
+    options.precision = *oblique::protocol::parse_precision(settings->precision);
+    options.progress = !settings->quiet;
+    options.self = self;
+    exit_code = oblique::verify::run_verify(options, std::cout, std::cerr);
+  });
+}
 
-  std::string scene_path;
-  bool as_json = false;
+void setup_check(CLI::App& app, int& exit_code) {
+  struct Settings {
+    std::string scene_path;
+    bool as_json = false;
+  };
+  auto settings = std::make_shared<Settings>();
   CLI::App* check = app.add_subcommand(
       "check",
       "Check the mirrors and clip planes of a scene file: for each surface, render or skip (with "
       "the reason), the pass camera's view and oblique projection, the properties that apply, "
       "and the depth precision left. Exit 0: every rendered pass passes; 1: a property fails; 2: "
       "the scene cannot be read.");
-  check->add_option("SCENE", scene_path, "The scene file (JSON; see the README)")->required();
-  check->add_flag("--json", as_json, "Print one JSON object instead of a table");
+  check->add_option("SCENE", settings->scene_path, "The scene file (JSON; see the README)")
+      ->required();
+  check->add_flag("--json", settings->as_json, "Print one JSON object instead of a table");
+  check->callback(
+      [settings, &exit_code] { exit_code = run_check(settings->scene_path, settings->as_json); });
+}
 
+void setup_report(CLI::App& app, int& exit_code) {
+  struct Settings {
+    oblique::report::AccuracyOptions accuracy;
+    std::string accuracy_out = "report-out";
+    bool quiet = false;
+    oblique::report::DepthOptions depth;
+    std::string depth_out = "report-out";
+  };
+  auto settings = std::make_shared<Settings>();
   CLI::App* report =
       app.add_subcommand("report", "Measurement reports (CSV, Markdown, PNG charts)");
   report->require_subcommand(1);
-  oblique::report::AccuracyOptions accuracy_options;
-  std::string accuracy_out = "report-out";
   CLI::App* accuracy = report->add_subcommand(
       "accuracy",
       "Error against run time: every method x scalar type x input regime (typical, tiny near "
@@ -195,64 +220,60 @@ int main(int argc, char** argv) {
       "standard near plane, huge and tiny scales) against the exact oracle; stiffness sweeps; the "
       "checker's bound against the measured error. Writes accuracy.csv, stiffness.csv, "
       "accuracy.md and (with gnuplot) accuracy.png and stiffness.png.");
-  accuracy->add_option("--out", accuracy_out, "Output directory")->capture_default_str();
+  accuracy->add_option("--out", settings->accuracy_out, "Output directory")->capture_default_str();
   accuracy
-      ->add_option("--cases", accuracy_options.cases_per_step,
+      ->add_option("--cases", settings->accuracy.cases_per_step,
                    "Cases per regime and stiffness step")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  accuracy->add_option("--seed", accuracy_options.seed, "Random seed")->capture_default_str();
-  accuracy->add_flag("--quiet", quiet, "No progress lines on standard error");
-  oblique::report::DepthOptions depth_options;
-  std::string depth_out = "report-out";
+  accuracy->add_option("--seed", settings->accuracy.seed, "Random seed")->capture_default_str();
+  accuracy->add_flag("--quiet", settings->quiet, "No progress lines on standard error");
+  accuracy->callback([settings, &exit_code] {
+    oblique::report::AccuracyOptions& options = settings->accuracy;
+    options.out_dir = settings->accuracy_out;
+    options.progress = !settings->quiet;
+    const auto measured = oblique::report::measure_accuracy(options, std::cerr);
+    exit_code = print_paths(oblique::report::write_accuracy_report(measured, options, std::cerr));
+  });
   CLI::App* depth = report->add_subcommand(
       "depth",
       "Depth precision: the paper's Figure 5 (maximum NDC z along the view axis, Eq. 19, against "
       "the plane's angle and distance), checked against the core's matrices in every convention, "
       "and the bits of a 24-bit fixed-point and a 32-bit float depth buffer still used along view "
       "directions. Writes figure5.csv, depth_bits.csv, depth.md and (with gnuplot) figure5.png.");
-  depth->add_option("--out", depth_out, "Output directory")->capture_default_str();
-  depth->add_option("--far", depth_options.far_distance, "Far distance of the frustum")
+  depth->add_option("--out", settings->depth_out, "Output directory")->capture_default_str();
+  depth->add_option("--far", settings->depth.far_distance, "Far distance of the frustum")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  depth->callback([settings, &exit_code] {
+    oblique::report::DepthOptions& options = settings->depth;
+    options.out_dir = settings->depth_out;
+    if (!(options.far_distance > options.near_distance)) {
+      std::cerr << "oblique report depth: --far must exceed the near distance "
+                << options.near_distance << "\n";
+      exit_code = 2;
+      return;
+    }
+    const auto measured = oblique::report::measure_depth(options);
+    exit_code = print_paths(oblique::report::write_depth_report(measured, options, std::cerr));
+  });
+}
 
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"oblique: oblique near-plane clipping, verified"};
+  app.require_subcommand(1);
+  int exit_code = 2;
+  setup_apply(app, exit_code);
+  setup_verify(app, exit_code, argv[0]);
+  setup_check(app, exit_code);
+  setup_report(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;  // --help exits 0; every usage error exits 2
   }
-
-  if (apply->parsed()) {
-    apply_options.convention = *oblique::parse_convention(convention);
-    apply_options.method = *oblique::parse_method(method);
-    apply_options.precision = *oblique::protocol::parse_precision(precision);
-    return run_apply(apply_options);
-  }
-  if (check->parsed()) return run_check(scene_path, as_json);
-  if (depth->parsed()) {
-    depth_options.out_dir = depth_out;
-    if (!(depth_options.far_distance > depth_options.near_distance)) {
-      std::cerr << "oblique report depth: --far must exceed the near distance "
-                << depth_options.near_distance << "\n";
-      return 2;
-    }
-    const auto measured = oblique::report::measure_depth(depth_options);
-    return print_paths(oblique::report::write_depth_report(measured, depth_options, std::cerr));
-  }
-  if (accuracy->parsed()) {
-    accuracy_options.out_dir = accuracy_out;
-    accuracy_options.progress = !quiet;
-    const auto measured = oblique::report::measure_accuracy(accuracy_options, std::cerr);
-    return print_paths(
-        oblique::report::write_accuracy_report(measured, accuracy_options, std::cerr));
-  }
-  if (verify->parsed()) {
-    if (!parse_lists(verify_conventions, families, verify_options)) return 2;
-    verify_options.precision = *oblique::protocol::parse_precision(verify_precision);
-    verify_options.progress = !quiet;
-    verify_options.self = argv[0];
-    return oblique::verify::run_verify(verify_options, std::cout, std::cerr);
-  }
-  return 2;
+  return exit_code;
 }

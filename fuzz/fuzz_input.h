@@ -14,6 +14,7 @@
 
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
+#include "oblique/protocol/numbers.h"
 
 namespace oblique::fuzz {
 
@@ -92,10 +93,8 @@ inline double number(ByteReader& in) {
   return (selector - kSpecialCount - 64) / 8.0;
 }
 
-enum class Scalar { float32, float64, long_double };
-
 struct FuzzCase {
-  Scalar scalar = Scalar::float64;
+  protocol::Precision scalar = protocol::Precision::float64;
   Convention convention = Convention::gl;
   Method method = Method::automatic;
   int family =
@@ -113,7 +112,7 @@ inline const char* family_label(int family) {
 inline FuzzCase decode(const std::uint8_t* data, std::size_t size) {
   ByteReader in(data, size);
   FuzzCase c;
-  c.scalar = static_cast<Scalar>(in.byte() % 3);
+  c.scalar = protocol::all_precisions[in.byte() % 3];
   c.convention = all_conventions[in.byte() % 3];
   c.method = all_methods[in.byte() % std::size(all_methods)];
   c.family = in.byte() % 6;

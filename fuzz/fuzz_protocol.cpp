@@ -6,7 +6,7 @@
 #include <iterator>
 #include <string_view>
 
-#include "protocol.h"
+#include "oblique/protocol/apply.h"
 
 namespace {
 

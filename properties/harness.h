@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "oblique/properties/counterexample_report.h"
 #include "oblique/properties/generators.h"
 #include "oblique/properties/implementations.h"
 #include "oblique/properties/properties.h"
-#include "report.h"
 
 namespace oblique::properties::suite {
 
@@ -117,66 +117,44 @@ void count_case(const generators::Case<T>& c) {
 
 template <class T>
 Counterexample describe(const generators::Case<T>& c, const Implementation<T>& impl) {
-  Counterexample ce = make_counterexample(c.matrix, c.plane);
+  Counterexample ce = make_counterexample(c.matrix, c.plane, c.convention);
   ce.implementation = impl.name;
   ce.family = std::string(generators::family_name(c.family));
-  ce.convention = std::string(convention_name(c.convention));
   ce.place = std::string(generators::place_name(c.place));
   return ce;
 }
 
+/// Fails the current RapidCheck case with `finding` as its report.
 template <class T>
-std::string status_list(const std::vector<Status>& statuses) {
-  std::string out;
-  for (Status s : statuses) out += (out.empty() ? "" : " or ") + std::string(status_code(s));
-  return out;
+void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, const Finding& finding,
+               const Outcome<T>* outcome = nullptr) {
+  Counterexample ce = describe(c, impl);
+  ce.finding = finding;
+  if (outcome && outcome->status == Status::ok) set_result(ce, outcome->projection);
+  tally().failure = ce;
+  if (finding.kind == "status")
+    RC_FAIL(impl.name + " answered " + finding.got + ", expected " + finding.expected);
+  RC_FAIL(impl.name + " violates " + finding.kind + ": " + finding.lhs + " against " + finding.rhs);
 }
 
-/// Runs every selected implementation on the case. For each ok answer that the properties can
-/// judge, calls judge(impl, result) which returns a failed Verdict (or nothing). A status outside
-/// acceptable_statuses() fails too, for implementations that report statuses.
-template <class T, class Judge>
-void for_each_answer(const generators::Case<T>& c, const Problem<T>& problem, Judge&& judge,
+/// Runs every selected implementation on the case and judges each answer (judge(), with
+/// `checks` and the implementation's own status contract); fails the case on the first violation.
+/// An implementation without statuses is judged on inputs without an answer only where invalid
+/// inputs are the point (judge_statuses), so its property failures are not masked.
+template <class T>
+void for_each_answer(const generators::Case<T>& c, const Problem<T>& problem, Checks checks,
                      bool judge_statuses = false) {
-  const std::vector<Status> acceptable = problem.acceptable_statuses();
   for (const Implementation<T>& impl : selected_implementations<T>()) {
     if (!impl.accepts(c.convention, c.matrix)) continue;
-    // An implementation without statuses is judged on inputs without an answer only where
-    // invalid inputs are the point (judge_statuses), so its property failures are not masked.
     if (!impl.reports_statuses && !judge_statuses && problem.exact_status() != Status::ok) continue;
     ++tally().implementations[impl.name];
     const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
-    const bool allowed =
-        std::find(acceptable.begin(), acceptable.end(), outcome.status) != acceptable.end();
-    if (!allowed && (impl.reports_statuses || outcome.status == Status::ok)) {
-      Counterexample ce = describe(c, impl);
-      ce.property = "status";
-      ce.relation = "the answered status is one the input allows";
-      ce.lhs = std::string(status_code(outcome.status));
-      ce.rhs = status_list<T>(acceptable);
-      ce.ratio = 1e300;
-      ce.status_expected = ce.rhs;
-      ce.status_got = ce.lhs;
-      if (outcome.status == Status::ok) {
-        for (int i = 0; i < 16; ++i)
-          ce.result_decimal.push_back(decimal(outcome.projection(i / 4, i % 4)));
-      }
-      tally().failure = ce;
-      RC_FAIL(impl.name + " answered " + ce.lhs + ", expected " + ce.rhs);
+    checks.statuses = impl.status_contract();
+    const Judgement judgement = judge(problem, outcome, checks);
+    for (const Finding& f : judgement.checks) {
+      if (f.kind != "status" && f.kind != "finite_result") ++tally().applied[f.kind];
     }
-    if (outcome.status != Status::ok || problem.exact_status() != Status::ok) continue;
-    const std::optional<Verdict> failed = judge(impl, outcome.projection);
-    if (!failed) continue;
-    Counterexample ce = describe(c, impl);
-    ce.property = std::string(property_name(failed->property));
-    ce.relation = failed->relation;
-    ce.lhs = failed->lhs;
-    ce.rhs = failed->rhs;
-    ce.ratio = failed->ratio;
-    for (int i = 0; i < 16; ++i)
-      ce.result_decimal.push_back(decimal(outcome.projection(i / 4, i % 4)));
-    tally().failure = ce;
-    RC_FAIL(impl.name + " violates " + ce.property + ": " + ce.lhs + " against " + ce.rhs);
+    if (const Finding* violation = judgement.violation()) fail_with(c, impl, *violation, &outcome);
   }
 }
 
@@ -190,9 +168,9 @@ void showValue(const Case<T>& c, std::ostream& os) {
   os << family_name(c.family) << " " << convention_name(c.convention) << " " << place_name(c.place)
      << "\nM = [";
   for (int i = 0; i < 16; ++i)
-    os << (i ? (i % 4 ? ", " : "; ") : "") << properties::decimal(c.matrix(i / 4, i % 4));
+    os << (i ? (i % 4 ? ", " : "; ") : "") << protocol::format_number(c.matrix(i / 4, i % 4));
   os << "]\nC = (";
-  for (int i = 0; i < 4; ++i) os << (i ? ", " : "") << properties::decimal(c.plane(i));
+  for (int i = 0; i < 4; ++i) os << (i ? ", " : "") << protocol::format_number(c.plane(i));
   os << ")";
 }
 

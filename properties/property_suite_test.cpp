@@ -19,15 +19,9 @@ void property_holds(Property which, Coverage coverage, const rc::Gen<Case<T>>& g
         const Case<T> c = *gen;
         const Problem<T> problem(c.matrix, c.plane, c.convention);
         if (problem.exact_status() == Status::ok) count_case(c);
-        for_each_answer(c, problem, [&](const Implementation<T>&, const Matrix4<T>& result) {
-          const Verdicts verdicts = problem.check(result);
-          const Verdict& v = verdicts[which];
-          std::optional<Verdict> failed;
-          if (!v.applies) return failed;
-          ++tally().applied[std::string(property_name(which))];
-          if (!v.holds) failed = v;
-          return failed;
-        });
+        Checks checks;
+        checks.properties = {which};
+        for_each_answer(c, problem, checks);
       },
       coverage);
 }
@@ -43,15 +37,9 @@ void invalid_inputs_get_their_status() {
         ++tally().conventions[std::string(convention_name(c.convention))];
         RC_TAG(std::string(generators::defect_name(ic.defect)));
         // An ok answer is allowed only in a gray zone, and must then have every property.
-        for_each_answer(
-            c, problem,
-            [&](const Implementation<T>&, const Matrix4<T>& result) {
-              const Verdicts verdicts = problem.check(result);
-              std::optional<Verdict> failed;
-              if (const Verdict* v = verdicts.first_failure()) failed = *v;
-              return failed;
-            },
-            /*judge_statuses=*/true);
+        Checks checks;
+        checks.properties.assign(std::begin(all_properties), std::end(all_properties));
+        for_each_answer(c, problem, checks, /*judge_statuses=*/true);
       },
       Coverage::invalid);
 }
@@ -85,18 +73,13 @@ void closed_form_and_general_agree() {
           const exact::Rational gap = exact::abs(exact::to_rational(closed.projection(2, i)) -
                                                  exact::to_rational(general.projection(2, i)));
           if (gap <= 2 * bounds[i]) continue;
-          Counterexample ce = make_counterexample(c.matrix, c.plane);
-          ce.property = "closed_form_and_general_agree";
-          ce.relation = "|M'_3i(closed form) - M'_3i(general)| <= 2 bound_i";
-          ce.lhs = "entry " + std::to_string(i + 1) + ": " + format_g17(gap);
-          ce.rhs = format_g17(exact::Rational(2 * bounds[i]));
-          ce.ratio = bounds[i] > 0 ? exact::Rational(gap / (2 * bounds[i])).get_d() : 1e300;
-          ce.implementation = "core_closed_form";
-          ce.family = std::string(generators::family_name(c.family));
-          ce.convention = std::string(convention_name(c.convention));
-          ce.place = std::string(generators::place_name(c.place));
-          tally().failure = ce;
-          RC_FAIL("closed form and general differ: " + ce.lhs + " > " + ce.rhs);
+          Finding f;
+          f.kind = "closed_form_and_general_agree";
+          f.relation = "|M'_3i(closed form) - M'_3i(general)| <= 2 bound_i";
+          f.lhs = "entry " + std::to_string(i + 1) + ": " + format_number(gap);
+          f.rhs = format_number(exact::Rational(2 * bounds[i]));
+          f.ratio = bounds[i] > 0 ? exact::Rational(gap / (2 * bounds[i])).get_d() : 1e300;
+          fail_with(c, core_method<T>(Method::closed_form), f);
         }
       },
       Coverage::perspective_shape);
@@ -116,18 +99,13 @@ void accurate_method_is_within_its_ulps() {
         const auto result = apply<T>(c.matrix, c.plane, c.convention, Method::accurate);
         if (!result.ok()) return;  // statuses are judged by the other properties
         ++tally().applied["accurate_method_is_within_its_ulps"];
-        const double ulps = problem.ulps_from_exact(result.projection);
-        if (ulps <= tolerance::kAccurateUlps) return;
-        Counterexample ce = describe(c, core_method<T>(Method::accurate));
-        ce.property = "accurate_ulps";
-        ce.relation = "every entry of M' within 2 ulp of the correctly rounded exact answer";
-        ce.lhs = format_g17(ulps) + " ulp";
-        ce.rhs = format_g17(tolerance::kAccurateUlps) + " ulp";
-        ce.ratio = ulps / tolerance::kAccurateUlps;
-        for (int i = 0; i < 16; ++i)
-          ce.result_decimal.push_back(decimal(result.projection(i / 4, i % 4)));
-        tally().failure = ce;
-        RC_FAIL("the accurate method is " + ce.lhs + " from the correctly rounded answer");
+        Checks checks;
+        checks.properties.clear();
+        checks.max_ulps = tolerance::kAccurateUlps;
+        const Outcome<T> outcome{result.status, result.projection};
+        const Judgement judgement = judge(problem, outcome, checks);
+        if (const Finding* violation = judgement.violation())
+          fail_with(c, core_method<T>(Method::accurate), *violation, &outcome);
       },
       Coverage::valid);
 }
@@ -139,11 +117,9 @@ void extracted_planes_match() {
         const Case<T> c = *generators::valid_case<T>();
         const Problem<T> problem(c.matrix, c.plane, c.convention);
         if (problem.exact_status() == Status::ok) count_case(c);
-        for_each_answer(c, problem, [&](const Implementation<T>&, const Matrix4<T>& result) {
-          ++tally().applied["extracted_planes_match"];
-          const Verdict v = problem.check_extracted_planes(result);
-          return v.holds ? std::optional<Verdict>() : std::optional<Verdict>(v);
-        });
+        Checks checks;
+        checks.properties = {Property::extracted_planes_match};
+        for_each_answer(c, problem, checks);
       },
       Coverage::valid);
 }

@@ -1,4 +1,4 @@
-#include "accuracy_report.h"
+#include "oblique/report/accuracy_report.h"
 
 #include <algorithm>
 #include <chrono>
@@ -14,7 +14,7 @@
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
 #include "oblique/properties/properties.h"
-#include "report.h"
+#include "oblique/protocol/numbers.h"
 #include "report_files.h"
 
 namespace oblique::report {
@@ -260,7 +260,7 @@ void measure_scalar(const Regime& regime, const std::vector<Input>& inputs,
     if (checksum == 0.123456789) std::abort();  // never: only keeps the calls alive
     AccuracyRow row;
     row.regime = regime.name;
-    row.scalar = properties::scalar_name<T>();
+    row.scalar = std::string(protocol::scalar_name<T>());
     row.method = std::string(method_name(method));
     row.answered = all.answered;
     row.refused = all.refused;

@@ -1,4 +1,4 @@
-#include "depth_report.h"
+#include "oblique/report/depth_report.h"
 
 #include <algorithm>
 #include <cmath>

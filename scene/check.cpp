@@ -1,4 +1,4 @@
-#include "check.h"
+#include "oblique/scene/check.h"
 
 #include <nlohmann/json.hpp>
 
@@ -9,12 +9,12 @@
 #include <sstream>
 
 #include "oblique/properties/properties.h"
-#include "protocol.h"
+#include "oblique/protocol/numbers.h"
 
 namespace oblique::scene {
 
 bool SurfaceCheck::passes() const {
-  for (const PropertyCheck& p : properties) {
+  for (const properties::Finding& p : properties) {
     if (!p.holds) return false;
   }
   return true;
@@ -76,18 +76,14 @@ std::string reason_for(Status status, SurfaceKind kind) {
   }
 }
 
-std::vector<PropertyCheck> judge(const Matrix4<double>& projection, const Vector4<double>& plane,
-                                 Convention convention, const Matrix4<double>& result) {
+/// Every property that applies to the pass, holding or not.
+std::vector<properties::Finding> judge(const Matrix4<double>& projection,
+                                       const Vector4<double>& plane, Convention convention,
+                                       const Matrix4<double>& result) {
   const properties::Problem<double> problem(projection, plane, convention);
-  std::vector<PropertyCheck> out;
-  for (const properties::Verdict& v : problem.check(result).items) {
-    if (!v.applies) continue;
-    out.push_back({std::string(properties::property_name(v.property)), v.holds, v.ratio, v.lhs});
-  }
-  const properties::Verdict planes = problem.check_extracted_planes(result);
-  out.push_back({std::string(properties::property_name(planes.property)), planes.holds,
-                 planes.ratio, planes.lhs});
-  return out;
+  properties::Checks checks;
+  checks.every = true;
+  return properties::judge(problem, properties::Outcome<double>{Status::ok, result}, checks).checks;
 }
 
 }  // namespace
@@ -189,9 +185,9 @@ std::string to_json(const SceneCheck& check) {
   json surfaces = json::array();
   for (const SurfaceCheck& s : check.surfaces) {
     json properties = json::object(), residuals = json::object();
-    for (const PropertyCheck& p : s.properties) {
-      properties[p.name] = p.holds;
-      residuals[p.name] = p.ratio;
+    for (const properties::Finding& p : s.properties) {
+      properties[p.kind] = p.holds;
+      residuals[p.kind] = p.ratio;
     }
     surfaces.push_back({
         {"name", s.name},
@@ -249,8 +245,8 @@ std::string to_text(const SceneCheck& check) {
       for (int j = 0; j < 4; ++j) out << (j ? ", " : "") << number((*s.projection)(i, j));
       out << "]\n";
     }
-    for (const PropertyCheck& p : s.properties) {
-      out << "  " << (p.holds ? "ok   " : "FAIL ") << p.name;
+    for (const properties::Finding& p : s.properties) {
+      out << "  " << (p.holds ? "ok   " : "FAIL ") << p.kind;
       if (p.ratio > 0) out << "  (residual / bound " << number(p.ratio) << ")";
       out << "\n";
     }

@@ -1,4 +1,4 @@
-#include "scene.h"
+#include "oblique/scene/scene.h"
 
 #include <nlohmann/json.hpp>
 

@@ -15,8 +15,8 @@
 #include "oblique/oblique.h"
 #include "oblique/properties/properties.h"
 #include "oblique/properties/tolerance.h"
+#include "oblique/protocol/protocol.h"
 #include "printers.h"
-#include "protocol.h"
 
 namespace oblique {
 namespace {
@@ -83,12 +83,7 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
 }
 
 std::string request_line(const Case& k) {
-  std::string line = "{\"projection\": [";
-  for (int i = 0; i < 16; ++i) line += (i ? ", " : "") + protocol::format_number(k.m(i / 4, i % 4));
-  line += "], \"plane\": [";
-  for (int i = 0; i < 4; ++i) line += (i ? ", " : "") + protocol::format_number(k.c(i));
-  line += "], \"convention\": \"" + std::string(convention_name(k.convention)) + "\"}";
-  return line;
+  return protocol::request_line(k.m, k.c, k.convention);
 }
 
 int run_cli(const std::string& arguments, const std::string& input,

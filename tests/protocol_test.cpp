@@ -1,4 +1,4 @@
-#include "protocol.h"
+#include "oblique/protocol/apply.h"
 
 #include <gtest/gtest.h>
 

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <limits>
 
-#include "accuracy_report.h"
-#include "depth_report.h"
 #include "oblique/properties/exact.h"
+#include "oblique/report/accuracy_report.h"
+#include "oblique/report/depth_report.h"
 
 namespace oblique::report {
 namespace {

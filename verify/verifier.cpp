@@ -1,4 +1,4 @@
-#include "verifier.h"
+#include "oblique/verify/verifier.h"
 
 #include <rapidcheck.h>
 #include <signal.h>
@@ -14,50 +14,12 @@
 #include <sstream>
 
 #include "child_process.h"
+#include "oblique/properties/counterexample_report.h"
+#include "oblique/properties/judge.h"
 #include "oblique/properties/properties.h"
-#include "report.h"
+#include "oblique/protocol/protocol.h"
 
 namespace oblique::verify {
-
-std::string normalise_non_finite(std::string_view line) {
-  std::string out;
-  out.reserve(line.size() + 16);
-  bool in_string = false;
-  auto starts = [&](std::size_t i, std::string_view word) {
-    return line.substr(i, word.size()) == word;
-  };
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char ch = line[i];
-    if (in_string) {
-      out += ch;
-      if (ch == '\\' && i + 1 < line.size()) {
-        out += line[++i];
-      } else if (ch == '"') {
-        in_string = false;
-      }
-      continue;
-    }
-    if (ch == '"') {
-      in_string = true;
-      out += ch;
-    } else if (starts(i, "-Infinity")) {
-      out += "\"-inf\"";
-      i += 8;
-    } else if (starts(i, "Infinity")) {
-      out += "\"inf\"";
-      i += 7;
-    } else if (starts(i, "NaN")) {
-      out += "\"nan\"";
-      i += 2;
-    } else if (starts(i, "null")) {
-      out += "\"nan\"";
-      i += 3;
-    } else {
-      out += ch;
-    }
-  }
-  return out;
-}
 
 namespace {
 
@@ -97,40 +59,23 @@ rc::Gen<VerifyCase<T>> verify_case(std::vector<Family> families,
   });
 }
 
-/// A number as the requests carry it (a JSON number, or "nan", "inf", "-inf"). Floats are written
-/// as the shortest double that equals them, so a reader that parses doubles and one that parses
-/// floats both get the float exactly.
-template <class T>
-std::string json_number(T x) {
-  if (std::isnan(x)) return "\"nan\"";
-  if (std::isinf(x)) return x > 0 ? "\"inf\"" : "\"-inf\"";
-  // -0 as "-0.0": many JSON readers (Python's, nlohmann's) read the integer -0 as +0.
-  if (x == 0 && std::signbit(x)) return "-0.0";
-  return protocol::format_number<double>(static_cast<double>(x));
-}
-
 template <class T>
 std::string request_text(const Case<T>& c) {
-  std::string line = "{\"projection\": [";
-  for (int i = 0; i < 16; ++i) line += (i ? ", " : "") + json_number(c.matrix(i / 4, i % 4));
-  line += "], \"plane\": [";
-  for (int i = 0; i < 4; ++i) line += (i ? ", " : "") + json_number(c.plane(i));
-  line += "], \"convention\": \"" + std::string(convention_name(c.convention)) + "\"}";
-  return line;
+  return protocol::request_line(c.matrix, c.plane, c.convention);
 }
 
-/// An answer as read back.
+/// An answer as read back: the outcome judge() takes, and the message of a refusal.
 template <class T>
 struct Answered {
-  Status status = Status::ok;
-  Matrix4<T> projection = Matrix4<T>::Zero();
+  properties::Outcome<T> outcome{Status::ok, Matrix4<T>::Zero()};
   std::string message;
 };
 
 /// Reads one answer line; empty with `error` when it is not an answer of the protocol.
 template <class T>
 std::optional<Answered<T>> read_answer(const std::string& line, std::string* error) {
-  const protocol::ParsedAnswer parsed = protocol::parse_answer(normalise_non_finite(line));
+  const protocol::ParsedAnswer parsed =
+      protocol::parse_answer(protocol::normalise_non_finite(line));
   if (!parsed.valid) {
     *error = parsed.error;
     return std::nullopt;
@@ -143,7 +88,7 @@ std::optional<Answered<T>> read_answer(const std::string& line, std::string* err
       *error = "unknown status \"" + parsed.status + "\"";
       return std::nullopt;
     }
-    a.status = *status;
+    a.outcome.status = *status;
     return a;
   }
   for (int i = 0; i < 16; ++i) {
@@ -160,94 +105,34 @@ std::optional<Answered<T>> read_answer(const std::string& line, std::string* err
       *error = "projection[" + std::to_string(i) + "]: " + why;
       return std::nullopt;
     }
-    a.projection(i / 4, i % 4) = *value;
+    a.outcome.projection(i / 4, i % 4) = *value;
   }
   return a;
 }
 
-std::string status_list(const std::vector<Status>& statuses) {
-  std::string out;
-  for (Status s : statuses) out += (out.empty() ? "" : " or ") + std::string(status_code(s));
-  return out;
-}
-
-/// What went wrong with one answer (or with the process while it was answering).
+/// What went wrong with one answer (or with the process while it was answering): the finding
+/// and its evidence.
 template <class T>
-struct Finding {
-  std::string kind;  ///< "status", a property's name, "row3_accuracy", "crash", "timeout"
-  std::string relation, lhs, rhs;
-  double ratio = 0;
-  std::string expected, got;  ///< statuses, when the kind is "status"
+struct Found {
+  properties::Finding finding;  ///< kind: "status", a property, ..., or "crash", "timeout"
   std::optional<Matrix4<T>> result;
   std::string answer_line, process;
 };
 
-/// The properties and the status contract, as the suite applies them, with one difference:
-/// an input without an answer may get any refusal (the implementation need not name our status).
+/// The suite's judgement, with the contract for external implementations: an input without an
+/// answer may get any refusal (the implementation need not name our status); row 3 is held to
+/// its accuracy bound.
 template <class T>
-std::optional<Finding<T>> judge(const Problem<T>& problem, const Answered<T>& a) {
-  const Status exact = problem.exact_status();
-  const std::vector<Status> acceptable = problem.acceptable_statuses();
-  const bool allowed =
-      std::find(acceptable.begin(), acceptable.end(), a.status) != acceptable.end();
-  Finding<T> f;
-  if (a.status != Status::ok) {
-    if (exact != Status::ok || allowed) return std::nullopt;
-    f.kind = "status";
-    f.relation = "an input with an answer is answered (or refused only where rounding allows)";
-    f.got = f.lhs = std::string(status_code(a.status));
-    f.expected = f.rhs = status_list(acceptable);
-    f.ratio = 1e300;
-    return f;
-  }
-  f.result = a.projection;
-  if (!allowed) {
-    f.kind = "status";
-    f.relation = exact == Status::ok ? "an answer beyond the range of the type is refused"
-                                     : "an input without an answer is refused";
-    f.got = f.lhs = "ok";
-    f.expected = f.rhs = status_list(acceptable);
-    f.ratio = 1e300;
-    return f;
-  }
-  if (!all_finite(a.projection)) {
-    f.kind = "finite_result";
-    f.relation = "an ok answer is finite";
-    f.lhs = "NaN or infinity in M'";
-    f.rhs = "finite entries";
-    f.ratio = 1e300;
-    return f;
-  }
-  if (exact != Status::ok) return std::nullopt;  // ok within rounding of a boundary, and finite
-  const properties::Verdicts verdicts = problem.check(a.projection);
-  std::optional<properties::Verdict> failed;
-  if (const properties::Verdict* v = verdicts.first_failure()) failed = *v;
-  if (!failed) {
-    const properties::Verdict planes = problem.check_extracted_planes(a.projection);
-    if (!planes.holds) failed = planes;
-  }
-  if (failed) {
-    f.kind = std::string(properties::property_name(failed->property));
-    f.relation = failed->relation;
-    f.lhs = failed->lhs;
-    f.rhs = failed->rhs;
-    f.ratio = failed->ratio;
-    return f;
-  }
-  const auto closeness = problem.compare_row3(a.projection);
-  if (closeness.within) return std::nullopt;
-  const int i = closeness.worst_entry;
-  const exact::Vec expected = problem.exact_row3();
-  const exact::Vec bounds = *problem.row3_bounds();
-  f.kind = "row3_accuracy";
-  f.relation = "|M'_3i - exact M'_3i| <= bound_i (what careful " +
-               std::string(properties::scalar_name<T>()) + " arithmetic achieves)";
-  f.lhs = "entry " + std::to_string(i + 1) + ": |" + properties::decimal(a.projection(2, i)) +
-          " - " + properties::format_g17(expected[i]) + "| = " +
-          properties::format_g17(
-              exact::Rational(exact::abs(exact::to_rational(a.projection(2, i)) - expected[i])));
-  f.rhs = properties::format_g17(bounds[i]);
-  f.ratio = closeness.ratio;
+std::optional<Found<T>> judge(const Problem<T>& problem, const Answered<T>& a) {
+  properties::Checks checks;
+  checks.statuses = properties::StatusContract::any_refusal;
+  checks.row3_accuracy = true;
+  const properties::Judgement judgement = properties::judge(problem, a.outcome, checks);
+  const properties::Finding* violation = judgement.violation();
+  if (!violation) return std::nullopt;
+  Found<T> f;
+  f.finding = *violation;
+  if (a.outcome.status == Status::ok) f.result = a.outcome.projection;
   return f;
 }
 
@@ -302,7 +187,7 @@ class Verifier {
         if (!j.protocol_error.empty())
           return protocol_error(current.requests[k], answers[k], j.protocol_error);
         if (j.finding) {
-          Finding<T> finding = *j.finding;
+          Found<T> finding = *j.finding;
           finding.answer_line = answers[k];
           return violation(current.cases[k], finding, done + static_cast<long>(k) + 1);
         }
@@ -359,7 +244,7 @@ class Verifier {
 
   struct Judged {
     std::string protocol_error;
-    std::optional<Finding<T>> finding;
+    std::optional<Found<T>> finding;
   };
 
   /// Reads and judges every answer; the second half on another thread (GMP objects are not
@@ -404,7 +289,7 @@ class Verifier {
 
   int passed(long done) {
     const double elapsed = seconds_since(start_);
-    out_ << "oblique verify: " << done << " cases, no violation (" << properties::scalar_name<T>()
+    out_ << "oblique verify: " << done << " cases, no violation (" << protocol::scalar_name<T>()
          << ", seed " << options_.seed << ", " << std::fixed;
     out_.precision(1);
     out_ << elapsed << " s, " << static_cast<long>(elapsed > 0 ? done / elapsed : 0)
@@ -433,7 +318,7 @@ class Verifier {
   enum class Evaluation { pass, finding, protocol_error, out_of_time };
 
   /// Sends one case alone (restarting the implementation when it is not running).
-  Evaluation evaluate(const VerifyCase<T>& v, Finding<T>& finding) {
+  Evaluation evaluate(const VerifyCase<T>& v, Found<T>& finding) {
     if (Clock::now() >= deadline_) return Evaluation::out_of_time;
     std::string error;
     if (!child_.running() && !child_.start(&error)) return Evaluation::protocol_error;
@@ -457,28 +342,29 @@ class Verifier {
     return Evaluation::finding;
   }
 
-  Finding<T> lost_finding(ChildProcess::Outcome outcome) {
-    Finding<T> f;
+  Found<T> lost_finding(ChildProcess::Outcome outcome) {
+    Found<T> found;
+    properties::Finding& f = found.finding;
     f.ratio = 1e300;
     if (outcome == ChildProcess::Outcome::exited) {
       f.kind = "crash";
       f.relation = "the implementation answers every request and keeps running";
-      f.process = child_.end_description();
-      f.lhs = "it " + f.process + " before answering";
+      found.process = child_.end_description();
+      f.lhs = "it " + found.process + " before answering";
       f.rhs = "an answer line";
     } else {
       f.kind = "timeout";
       std::ostringstream relation;
       relation << "an answer within " << options_.request_timeout_seconds << " s (--timeout)";
       f.relation = relation.str();
-      f.process = "no answer line";
+      found.process = "no answer line";
       f.lhs =
           "no answer within the timeout: it hangs on this request, or does not flush its "
           "standard output after each answer line";
       f.rhs = "an answer line";
     }
-    f.answer_line = child_.stderr_tail().empty() ? "" : "(stderr) " + child_.stderr_tail();
-    return f;
+    found.answer_line = child_.stderr_tail().empty() ? "" : "(stderr) " + child_.stderr_tail();
+    return found;
   }
 
   /// The implementation stopped answering inside a batch: find the request that does it alone.
@@ -488,7 +374,7 @@ class Verifier {
     const std::string tail = child_.stderr_tail();
     child_.stop();
     for (std::size_t k = answered; k < cases.size(); ++k) {
-      Finding<T> finding;
+      Found<T> finding;
       switch (evaluate(cases[k].value(), finding)) {
         case Evaluation::pass: ++done; continue;
         case Evaluation::finding: return violation(cases[k], finding, done + 1);
@@ -502,28 +388,28 @@ class Verifier {
     return 1;
   }
 
-  int violation(const rc::Shrinkable<VerifyCase<T>>& failing, Finding<T> finding, long cases_run) {
+  int violation(const rc::Shrinkable<VerifyCase<T>>& failing, Found<T> finding, long cases_run) {
     child_.stop();  // it may still be working on the next batch; shrinking restarts it
-    out_ << "oblique verify: " << finding.kind << " violated after " << cases_run
+    out_ << "oblique verify: " << finding.finding.kind << " violated after " << cases_run
          << " cases; shrinking";
     out_.flush();
     rc::Shrinkable<VerifyCase<T>> current = failing;
     int steps = 0, tries = 0;
     bool out_of_time = false;
     // Timeouts cost the whole timeout per try: the case is reported as found.
-    bool progress = finding.kind != "timeout";
+    bool progress = finding.finding.kind != "timeout";
     while (progress && !out_of_time) {
       progress = false;
       auto shrinks = current.shrinks();
       while (auto next = shrinks.next()) {
-        Finding<T> candidate;
+        Found<T> candidate;
         ++tries;
         const Evaluation e = evaluate(next->value(), candidate);
         if (e == Evaluation::out_of_time) {
           out_of_time = true;
           break;
         }
-        if (e == Evaluation::finding && candidate.kind == finding.kind) {
+        if (e == Evaluation::finding && candidate.finding.kind == finding.finding.kind) {
           current = *next;
           finding = candidate;
           ++steps;
@@ -539,23 +425,15 @@ class Verifier {
     return write(current.value(), finding, steps, out_of_time);
   }
 
-  int write(const VerifyCase<T>& v, const Finding<T>& f, int steps, bool out_of_time) {
-    properties::Counterexample ce = properties::make_counterexample(v.c.matrix, v.c.plane);
-    ce.property = f.kind;
-    ce.relation = f.relation;
-    ce.lhs = f.lhs;
-    ce.rhs = f.rhs;
-    ce.ratio = f.ratio;
+  int write(const VerifyCase<T>& v, const Found<T>& found, int steps, bool out_of_time) {
+    const properties::Finding& f = found.finding;
+    properties::Counterexample ce =
+        properties::make_counterexample(v.c.matrix, v.c.plane, v.c.convention);
+    ce.finding = f;
     ce.implementation = options_.command;
     ce.family = std::string(generators::family_name(v.c.family));
-    ce.convention = std::string(convention_name(v.c.convention));
     ce.place = v.kind();
-    ce.status_expected = f.expected;
-    ce.status_got = f.got;
-    if (f.result) {
-      for (int i = 0; i < 16; ++i)
-        ce.result_decimal.push_back(properties::decimal((*f.result)(i / 4, i % 4)));
-    }
+    if (found.result) properties::set_result(ce, *found.result);
     const Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
     ce.notes.emplace_back("implementation", options_.command);
     ce.notes.emplace_back("exact status", std::string(status_code(problem.exact_status())));
@@ -564,12 +442,13 @@ class Verifier {
       const exact::Vec exact_row = problem.exact_row3();
       for (int i = 0; i < 4; ++i) {
         T rounded = static_cast<T>(exact_row[i].get_d());
-        row += (i ? ", " : "") + properties::decimal(rounded);
+        row += (i ? ", " : "") + protocol::format_number(rounded);
       }
       ce.notes.emplace_back("exact third row (rounded)", "(" + row + ")");
     }
-    if (!f.answer_line.empty()) ce.notes.emplace_back("answer", f.answer_line.substr(0, 2000));
-    if (!f.process.empty()) ce.notes.emplace_back("process", f.process);
+    if (!found.answer_line.empty())
+      ce.notes.emplace_back("answer", found.answer_line.substr(0, 2000));
+    if (!found.process.empty()) ce.notes.emplace_back("process", found.process);
     ce.notes.emplace_back("shrinking", std::to_string(steps) + " steps" +
                                            (out_of_time ? ", stopped by the time limit" : ""));
 
@@ -587,15 +466,16 @@ class Verifier {
     context.replay_run =
         options_.self + " verify --impl " + shell_quote(options_.command) + " --convention " +
         conventions + (families.empty() ? "" : " --families " + families) + " --precision " +
-        properties::scalar_name<T>() + " --cases " + std::to_string(options_.cases) + " --seed " +
-        std::to_string(options_.seed);
+        std::string(protocol::scalar_name<T>()) + " --cases " + std::to_string(options_.cases) +
+        " --seed " + std::to_string(options_.seed);
     context.replay_case = "echo " + shell_quote(request) + " | " + options_.command;
     const std::string path = properties::write_report(ce, context);
 
     out_ << "  " << f.kind << ": " << f.relation << "\n  residual: " << f.lhs
          << "\n  bound:    " << f.rhs << "\n  input (" << ce.family << ", " << ce.convention << ", "
          << ce.place << "): " << request << "\n";
-    if (!f.answer_line.empty()) out_ << "  answer: " << f.answer_line.substr(0, 400) << "\n";
+    if (!found.answer_line.empty())
+      out_ << "  answer: " << found.answer_line.substr(0, 400) << "\n";
     out_ << "  report: " << path << "\n  replay: " << context.replay_case << "\n";
     return 1;
   }

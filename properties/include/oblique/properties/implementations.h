@@ -11,16 +11,11 @@
 #include <vector>
 
 #include "oblique/oblique.h"
+#include "oblique/properties/judge.h"
 #include "oblique/properties/seeded_recipes.h"
 #include "oblique/properties/tolerance.h"
 
 namespace oblique::properties {
-
-template <class T>
-struct Outcome {
-  Status status = Status::ok;
-  Matrix4<T> projection;
-};
 
 template <class T>
 struct Implementation {
@@ -33,6 +28,20 @@ struct Implementation {
   /// The accuracy it promises in ulps of the correctly rounded answer (exact::ulp_distance);
   /// infinity for none beyond the conditioning-aware bounds.
   double max_ulps = std::numeric_limits<double>::infinity();
+
+  /// How judge() treats its statuses.
+  StatusContract status_contract() const {
+    return reports_statuses ? StatusContract::exact : StatusContract::answers_only;
+  }
+  /// What judge() checks of its answers: every property under its status contract and, with
+  /// `accuracy`, row 3 within its bound and the ulps it promises.
+  Checks checks(bool accuracy = false) const {
+    Checks out;
+    out.statuses = status_contract();
+    out.row3_accuracy = accuracy;
+    if (accuracy) out.max_ulps = max_ulps;
+    return out;
+  }
 };
 
 namespace mutants {

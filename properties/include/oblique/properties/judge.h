@@ -1,34 +1,215 @@
-// One verdict on one answer: the status contract first, then every property.
+// The one judgement of one answer: the status contract first, then the properties, then (when
+// asked) the third row's accuracy. The property suite, `oblique verify`, the fuzz targets and
+// `oblique check` all judge through judge().
 #pragma once
 
 #include <algorithm>
+#include <limits>
 #include <string>
+#include <vector>
 
-#include "oblique/properties/implementations.h"
 #include "oblique/properties/properties.h"
+#include "oblique/protocol/numbers.h"
 
 namespace oblique::properties {
 
-/// The first thing the outcome violates ("status", a property's name, or "row3_accuracy" when
-/// `check_accuracy` asks for the third row to be within its bound of the exact answer, and
-/// "accurate_ulps" when it also misses the implementation's own max_ulps), or "".
-/// A status outside acceptable_statuses() violates the contract for implementations that report
-/// statuses; for those that do not, only an ok answer to an input without one does.
+/// What an implementation answered for one input.
 template <class T>
-std::string first_violation(const Problem<T>& problem, const Implementation<T>& impl,
-                            const Outcome<T>& outcome, bool check_accuracy = false) {
-  const auto acceptable = problem.acceptable_statuses();
-  const bool allowed =
-      std::find(acceptable.begin(), acceptable.end(), outcome.status) != acceptable.end();
-  if (!allowed && (impl.reports_statuses || outcome.status == Status::ok)) return "status";
-  if (outcome.status != Status::ok || problem.exact_status() != Status::ok) return "";
-  const Verdicts verdicts = problem.check(outcome.projection);
-  if (const Verdict* v = verdicts.first_failure()) return std::string(property_name(v->property));
-  if (!problem.check_extracted_planes(outcome.projection).holds) return "extracted_planes_match";
-  if (check_accuracy && !problem.compare_row3(outcome.projection).within) return "row3_accuracy";
-  if (check_accuracy && problem.ulps_from_exact(outcome.projection) > impl.max_ulps)
-    return "accurate_ulps";
-  return "";
+struct Outcome {
+  Status status = Status::ok;
+  Matrix4<T> projection;  ///< M' when ok
+};
+
+/// How an implementation's statuses are judged.
+enum class StatusContract {
+  /// Every status must be one the input allows (Problem::acceptable_statuses()): the core.
+  exact,
+  /// An input without an answer may get any refusal (an external implementation need not name
+  /// our status); an input with an answer must be answered, or refused only where rounding allows.
+  any_refusal,
+  /// The implementation reports no statuses (a printed formula): only an ok answer to an input
+  /// that allows none fails.
+  answers_only,
+};
+
+/// What to check.
+struct Checks {
+  StatusContract statuses = StatusContract::exact;
+  /// The properties judged, in Property's order (extracted_planes_match included by default).
+  std::vector<Property> properties = {
+      Property::near_is_clip_plane,       Property::side_rows_unchanged,
+      Property::far_plane_through_corner, Property::no_clipping,
+      Property::infinite_edge_parallel,   Property::extracted_planes_match};
+  /// Row 3 within Problem::row3_bounds() of the exact answer.
+  bool row3_accuracy = false;
+  /// Every entry within this many ulps of the correctly rounded answer (an implementation's own
+  /// promise: the accurate method's tolerance::kAccurateUlps); infinity checks nothing.
+  double max_ulps = std::numeric_limits<double>::infinity();
+  /// Keep going after a violation and list the checks that hold too (`oblique check`'s table);
+  /// otherwise the judgement stops at the first violation.
+  bool every = false;
+};
+
+/// One check on one answer: what was compared, both sides, and whether it holds.
+struct Finding {
+  /// "status", "finite_result", a property's name (property_name()), "row3_accuracy",
+  /// "accurate_ulps"; tools add their own ("crash", "timeout", "closed_form_and_general_agree").
+  std::string kind;
+  bool holds = false;
+  std::string relation;  ///< what was compared, in words
+  std::string lhs;       ///< the residual side
+  std::string rhs;       ///< the bound side
+  double ratio = 0;      ///< |residual| / bound: holds at ratio <= 1
+  std::string expected;  ///< the statuses the input allows (status findings)
+  std::string got;       ///< the status answered (status findings)
+};
+
+/// The checks that applied, in order.
+struct Judgement {
+  std::vector<Finding> checks;
+
+  /// The first check that fails, or nullptr.
+  const Finding* violation() const {
+    for (const Finding& f : checks) {
+      if (!f.holds) return &f;
+    }
+    return nullptr;
+  }
+  bool holds() const { return violation() == nullptr; }
+};
+
+/// "a or b or c".
+inline std::string status_list(const std::vector<Status>& statuses) {
+  std::string out;
+  for (Status s : statuses) out += (out.empty() ? "" : " or ") + std::string(status_code(s));
+  return out;
+}
+
+namespace judging {
+
+inline Finding from_verdict(const Verdict& v) {
+  return Finding{
+      std::string(property_name(v.property)), v.holds, v.relation, v.lhs, v.rhs, v.ratio, {}, {}};
+}
+
+/// The status finding for `got` (or nothing when the contract allows it).
+template <class T>
+std::optional<Finding> status_finding(const Problem<T>& problem, Status got,
+                                      StatusContract contract) {
+  const Status exact = problem.exact_status();
+  const std::vector<Status> acceptable = problem.acceptable_statuses();
+  if (std::find(acceptable.begin(), acceptable.end(), got) != acceptable.end()) {
+    return std::nullopt;
+  }
+  if (got != Status::ok) {
+    if (contract == StatusContract::answers_only) return std::nullopt;
+    if (contract == StatusContract::any_refusal && exact != Status::ok) return std::nullopt;
+  }
+  Finding f;
+  f.kind = "status";
+  f.relation = got != Status::ok && exact == Status::ok
+                   ? "an input with an answer is answered (or refused only where rounding allows)"
+               : got != Status::ok   ? "an input without an answer is refused with its status"
+               : exact == Status::ok ? "an answer beyond the range of the type is refused"
+                                     : "an input without an answer is refused";
+  f.got = f.lhs = std::string(status_code(got));
+  f.expected = f.rhs = status_list(acceptable);
+  f.ratio = 1e300;
+  return f;
+}
+
+template <class T>
+Finding row3_accuracy(const Problem<T>& problem, const Matrix4<T>& result) {
+  using protocol::format_number;
+  const auto closeness = problem.compare_row3(result);
+  Finding f;
+  f.kind = "row3_accuracy";
+  f.holds = closeness.within;
+  f.ratio = closeness.ratio;
+  f.relation = "|M'_3i - exact M'_3i| <= bound_i (what careful " +
+               std::string(protocol::scalar_name<T>()) + " arithmetic achieves)";
+  const std::optional<exact::Vec> bounds = problem.row3_bounds();
+  if (!bounds) {
+    f.lhs = "C lies within rounding of the far corner";
+    f.rhs = "no bound";
+    return f;
+  }
+  const int i = closeness.worst_entry;
+  const exact::Vec expected = problem.exact_row3();
+  f.lhs = "entry " + std::to_string(i + 1) + ": |" + format_number(result(2, i)) + " - " +
+          format_number(expected[i].get_d()) + "| = " +
+          format_number(
+              exact::Rational(exact::abs(exact::to_rational(result(2, i)) - expected[i])).get_d());
+  f.rhs = format_number((*bounds)[i].get_d());
+  return f;
+}
+
+}  // namespace judging
+
+/// Judges what an implementation answered for the input `problem` describes:
+///  1. the status (Checks::statuses);
+///  2. an ok answer is finite ("finite_result");
+///  3. where the input has an exact answer: the selected properties (Problem::check(), and
+///     Problem::check_extracted_planes()), row 3's accuracy, the ulps promise.
+/// An ok answer to an input within rounding of having none is judged by 1 and 2 only.
+template <class T>
+Judgement judge(const Problem<T>& problem, const Outcome<T>& outcome, const Checks& checks = {}) {
+  Judgement out;
+  // Records a check; true when the judgement goes on.
+  auto record = [&](Finding f) {
+    const bool go_on = f.holds || checks.every;
+    out.checks.push_back(std::move(f));
+    return go_on;
+  };
+  if (auto f = judging::status_finding(problem, outcome.status, checks.statuses)) {
+    if (!record(std::move(*f))) return out;
+  }
+  if (outcome.status != Status::ok) return out;
+  if (!all_finite(outcome.projection)) {
+    if (!record(Finding{"finite_result",
+                        false,
+                        "an ok answer is finite",
+                        "NaN or infinity in M'",
+                        "finite entries",
+                        1e300,
+                        {},
+                        {}}))
+      return out;
+  }
+  if (problem.exact_status() != Status::ok) return out;
+  auto wanted = [&](Property p) {
+    return std::find(checks.properties.begin(), checks.properties.end(), p) !=
+           checks.properties.end();
+  };
+  const bool any_of_the_five = std::any_of(std::begin(all_properties), std::end(all_properties),
+                                           [&](Property p) { return wanted(p); });
+  if (any_of_the_five) {
+    const Verdicts verdicts = problem.check(outcome.projection);
+    for (const Verdict& v : verdicts.items) {
+      if (!v.applies || !wanted(v.property)) continue;
+      if (!record(judging::from_verdict(v))) return out;
+    }
+  }
+  if (wanted(Property::extracted_planes_match)) {
+    if (!record(judging::from_verdict(problem.check_extracted_planes(outcome.projection))))
+      return out;
+  }
+  if (checks.row3_accuracy) {
+    if (!record(judging::row3_accuracy(problem, outcome.projection))) return out;
+  }
+  if (checks.max_ulps < std::numeric_limits<double>::infinity()) {
+    const double ulps = problem.ulps_from_exact(outcome.projection);
+    Finding f;
+    f.kind = "accurate_ulps";
+    f.holds = ulps <= checks.max_ulps;
+    f.relation = "every entry of M' within " + protocol::format_number(checks.max_ulps) +
+                 " ulp of the correctly rounded exact answer";
+    f.lhs = protocol::format_number(ulps) + " ulp";
+    f.rhs = protocol::format_number(checks.max_ulps) + " ulp";
+    f.ratio = ulps / checks.max_ulps;
+    record(std::move(f));
+  }
+  return out;
 }
 
 }  // namespace oblique::properties

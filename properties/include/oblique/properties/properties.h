@@ -16,6 +16,7 @@
 #include "oblique/plane.h"
 #include "oblique/properties/exact.h"
 #include "oblique/properties/tolerance.h"
+#include "oblique/protocol/numbers.h"
 #include "oblique/status.h"
 
 namespace oblique::properties {
@@ -53,8 +54,8 @@ struct Verdict {
   bool holds = true;
   double ratio = 0;
   std::string relation;  ///< what was compared, in words
-  std::string lhs;       ///< the residual side, %.17g
-  std::string rhs;       ///< the bound side, %.17g
+  std::string lhs;       ///< the residual side
+  std::string rhs;       ///< the bound side
 };
 
 struct Verdicts {
@@ -75,14 +76,11 @@ struct Verdicts {
   const Verdict& operator[](Property p) const { return items.at(static_cast<std::size_t>(p)); }
 };
 
-inline std::string format_g17(double x) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  return buffer;
-}
-
-inline std::string format_g17(const exact::Rational& x) {
-  return format_g17(x.get_d());
+/// The checker's numbers as text (protocol::format_number, the one number printer); a rational
+/// shows its double.
+using protocol::format_number;
+inline std::string format_number(const exact::Rational& x) {
+  return protocol::format_number(x.get_d());
 }
 
 /// Everything exact about one input (M, C, convention): the inverse, the clip-space plane C',
@@ -350,7 +348,7 @@ class Problem {
         v.holds = false;
         v.ratio = 1e300;
         v.lhs = "side plane " + std::to_string(i + 1) + " differs by " +
-                format_g17(
+                format_number(
                     static_cast<double>((sides_after[i] - sides_before[i]).cwiseAbs().maxCoeff()));
         v.rhs = "0";
         return v;
@@ -366,7 +364,7 @@ class Problem {
     const exact::Rational dot = exact::dot(exact::to_rational(Vector4<T>(after.near_plane)), cx_);
     v.holds = dot > 0;
     v.ratio = v.holds ? 0 : 1e300;
-    v.lhs = "n . C = " + format_g17(dot);
+    v.lhs = "n . C = " + format_number(dot);
     v.rhs = "> 0";
     return v;
   }
@@ -448,7 +446,8 @@ class Problem {
       }
       v.holds = feasible;
       v.ratio = feasible ? std::min(worst.get_d(), 1.0) : std::max(worst.get_d(), 1.0 + 1e-9);
-      v.lhs = "lambda = " + format_g17(lambda) + ", worst residual/bound = " + format_g17(worst) +
+      v.lhs = "lambda = " + format_number(lambda) +
+              ", worst residual/bound = " + format_number(worst) +
               (feasible ? "" : ", no lambda > 0 fits every entry");
       v.rhs = "1";
       out.items.push_back(v);
@@ -465,9 +464,9 @@ class Problem {
           if (!(before == after && std::signbit(before) == std::signbit(after))) {
             if (v.holds) {
               v.lhs = "M'(" + std::to_string(row + 1) + "," + std::to_string(j + 1) +
-                      ") = " + format_g17(static_cast<double>(after));
+                      ") = " + format_number(static_cast<double>(after));
               v.rhs = "M(" + std::to_string(row + 1) + "," + std::to_string(j + 1) +
-                      ") = " + format_g17(static_cast<double>(before));
+                      ") = " + format_number(static_cast<double>(before));
             }
             v.holds = false;
           }
@@ -502,8 +501,8 @@ class Problem {
                                   : "not judged: C is within rounding of Q (gamma(16) kappa >= 1)";
       v.holds = exact::abs(far_q) <= far_q_bound;
       v.ratio = far_q_ratio;
-      v.lhs = format_g17(far_q);
-      v.rhs = format_g17(far_q_bound);
+      v.lhs = format_number(far_q);
+      v.rhs = format_number(far_q_bound);
       out.items.push_back(v);
     }
     // 4. far' . p >= -bound at every vertex p of the view volume on C's positive side: the
@@ -520,8 +519,8 @@ class Problem {
         const double ratio = bound > 0 ? exact::Rational(-value / bound).get_d() : 1e300;
         if (-value > bound) {
           if (v.holds || ratio > worst) {
-            v.lhs = std::string("far' . p = ") + format_g17(value) + " at " + what;
-            v.rhs = "-" + format_g17(bound);
+            v.lhs = std::string("far' . p = ") + format_number(value) + " at " + what;
+            v.rhs = "-" + format_number(bound);
           }
           v.holds = false;
         }
@@ -554,8 +553,8 @@ class Problem {
       v.relation = "Q_w = 0 and |far' . Q| <= bound (far' parallel to the frustum edge Q)";
       v.holds = !v.applies || (q_[3] == 0 && exact::abs(far_q) <= far_q_bound);
       v.ratio = v.applies ? far_q_ratio : 0;
-      v.lhs = "Q_w = " + format_g17(q_[3]) + ", far' . Q = " + format_g17(far_q);
-      v.rhs = format_g17(far_q_bound);
+      v.lhs = "Q_w = " + format_number(q_[3]) + ", far' . Q = " + format_number(far_q);
+      v.rhs = format_number(far_q_bound);
       out.items.push_back(v);
     }
     return out;

@@ -1,6 +1,8 @@
-#include "report.h"
+#include "oblique/properties/counterexample_report.h"
 
 #include <nlohmann/json.hpp>
+
+#include "oblique/protocol/protocol.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -16,83 +18,44 @@
 
 namespace oblique::properties {
 
-namespace {
-
-template <class V>
-std::string printed(const char* format, V x) {
-  char b[64];
-  std::snprintf(b, sizeof b, format, x);
-  return b;
-}
-
-}  // namespace
-
-// Round-trip decimal digits (max_digits10) and exact hex for each scalar type.
-template <>
-std::string decimal<float>(float x) {
-  return printed("%.9g", static_cast<double>(x));
-}
-template <>
-std::string decimal<double>(double x) {
-  return printed("%.17g", x);
-}
-template <>
-std::string decimal<long double>(long double x) {
-  return printed("%.21Lg", x);
-}
-template <>
-std::string hexadecimal<float>(float x) {
-  return printed("%a", static_cast<double>(x));
-}
-template <>
-std::string hexadecimal<double>(double x) {
-  return printed("%a", x);
-}
-template <>
-std::string hexadecimal<long double>(long double x) {
-  return printed("%La", x);
-}
-template <>
-const char* scalar_name<float>() {
-  return "float";
-}
-template <>
-const char* scalar_name<double>() {
-  return "double";
-}
-template <>
-const char* scalar_name<long double>() {
-  return "long_double";
+template <class T>
+Counterexample make_counterexample(const Matrix4<T>& m, const Vector4<T>& c,
+                                   Convention convention) {
+  using protocol::format_number;
+  using protocol::Notation;
+  Counterexample ce;
+  ce.scalar = std::string(protocol::scalar_name<T>());
+  ce.convention = std::string(convention_name(convention));
+  for (int i = 0; i < 16; ++i) {
+    ce.projection_decimal.push_back(format_number(m(i / 4, i % 4)));
+    ce.projection_hex.push_back(format_number(m(i / 4, i % 4), Notation::hex));
+  }
+  for (int i = 0; i < 4; ++i) {
+    ce.plane_decimal.push_back(format_number(c(i)));
+    ce.plane_hex.push_back(format_number(c(i), Notation::hex));
+  }
+  ce.request = protocol::request_line(m, c, convention, Notation::hex);
+  ce.request_decimal = protocol::request_line(m, c, convention, Notation::shortest);
+  return ce;
 }
 
 template <class T>
-Counterexample make_counterexample(const Matrix4<T>& m, const Vector4<T>& c) {
-  Counterexample ce;
-  ce.scalar = scalar_name<T>();
-  for (int i = 0; i < 16; ++i) {
-    ce.projection_decimal.push_back(decimal(m(i / 4, i % 4)));
-    ce.projection_hex.push_back(hexadecimal(m(i / 4, i % 4)));
-  }
-  for (int i = 0; i < 4; ++i) {
-    ce.plane_decimal.push_back(decimal(c(i)));
-    ce.plane_hex.push_back(hexadecimal(c(i)));
-  }
-  return ce;
+void set_result(Counterexample& ce, const Matrix4<T>& result) {
+  ce.result_decimal.clear();
+  for (int i = 0; i < 16; ++i)
+    ce.result_decimal.push_back(protocol::format_number(result(i / 4, i % 4)));
 }
-template Counterexample make_counterexample<float>(const Matrix4<float>&, const Vector4<float>&);
-template Counterexample make_counterexample<double>(const Matrix4<double>&, const Vector4<double>&);
-template Counterexample make_counterexample<long double>(const Matrix4<long double>&,
-                                                         const Vector4<long double>&);
+
+#define OBLIQUE_COUNTEREXAMPLE(T)                                                      \
+  template Counterexample make_counterexample<T>(const Matrix4<T>&, const Vector4<T>&, \
+                                                 Convention);                          \
+  template void set_result<T>(Counterexample&, const Matrix4<T>&);
+OBLIQUE_COUNTEREXAMPLE(float)
+OBLIQUE_COUNTEREXAMPLE(double)
+OBLIQUE_COUNTEREXAMPLE(long double)
+#undef OBLIQUE_COUNTEREXAMPLE
 
 namespace {
-
-std::string json_number(const std::string& hex) {
-  // Non-finite values are protocol strings; finite ones are exact hex-float strings.
-  if (hex == "nan" || hex == "-nan") return "\"nan\"";
-  if (hex == "inf") return "\"inf\"";
-  if (hex == "-inf") return "\"-inf\"";
-  return "\"" + hex + "\"";
-}
 
 std::string matrix_table(const std::vector<std::string>& values) {
   std::ostringstream out;
@@ -114,36 +77,6 @@ std::string core_method_of(const std::string& implementation) {
 
 }  // namespace
 
-namespace {
-
-/// A request line from number texts, each passed through `number` on the way.
-template <class Number>
-std::string request_from(const std::vector<std::string>& projection,
-                         const std::vector<std::string>& plane, const std::string& convention,
-                         Number number) {
-  std::string line = "{\"projection\": [";
-  for (std::size_t i = 0; i < projection.size(); ++i)
-    line += (i ? ", " : "") + number(projection[i]);
-  line += "], \"plane\": [";
-  for (std::size_t i = 0; i < plane.size(); ++i) line += (i ? ", " : "") + number(plane[i]);
-  line += "], \"convention\": \"" + convention + "\"}";
-  return line;
-}
-
-}  // namespace
-
-std::string request_line(const Counterexample& ce) {
-  return request_from(ce.projection_hex, ce.plane_hex, ce.convention, json_number);
-}
-
-std::string request_line_decimal(const Counterexample& ce) {
-  return request_from(
-      ce.projection_decimal, ce.plane_decimal, ce.convention, [](const std::string& text) {
-        const bool non_finite = text == "nan" || text == "-nan" || text == "inf" || text == "-inf";
-        return non_finite ? json_number(text) : text;
-      });
-}
-
 std::string write_report(const Counterexample& ce, const ReportContext& context) {
   std::filesystem::create_directories(context.directory);
   std::string stem =
@@ -164,22 +97,21 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   const std::string method = core_method_of(ce.implementation);
   const std::string replay_case = !context.replay_case.empty() ? context.replay_case
                                   : method.empty()             ? ""
-                                                   : "echo '" + request_line(ce) + "' | " +
-                                                         context.cli + " apply --method " + method +
+                                                   : "echo '" + ce.request + "' | " + context.cli +
+                                                         " apply --method " + method +
                                                          " --precision " + ce.scalar;
 
   std::ofstream md(md_path);
-  md << "# Counterexample: " << ce.property << " (" << ce.implementation << ", " << ce.scalar
-     << ")\n\n";
-  md << "**Relation:** " << ce.relation << "\n\n";
-  md << "| side | value |\n|---|---|\n| residual | `" << ce.lhs << "` |\n| bound | `" << ce.rhs
-     << "` |\n| residual / bound | `" << decimal(ce.ratio) << "` |\n";
-  if (!ce.status_expected.empty()) {
-    md << "| status expected | `" << ce.status_expected << "` |\n| status answered | `"
-       << ce.status_got << "` |\n";
+  const Finding& f = ce.finding;
+  md << "# Counterexample: " << f.kind << " (" << ce.implementation << ", " << ce.scalar << ")\n\n";
+  md << "**Relation:** " << f.relation << "\n\n";
+  md << "| side | value |\n|---|---|\n| residual | `" << f.lhs << "` |\n| bound | `" << f.rhs
+     << "` |\n| residual / bound | `" << protocol::format_number(f.ratio) << "` |\n";
+  if (!f.expected.empty()) {
+    md << "| status expected | `" << f.expected << "` |\n| status answered | `" << f.got << "` |\n";
   }
   md << "\nFamily `" << ce.family << "`, convention `" << ce.convention << "`, place `" << ce.place
-     << "`.\n\n## Input\n\nProjection M (%.17g):\n\n"
+     << "`.\n\n## Input\n\nProjection M (shortest round-trip decimals):\n\n"
      << matrix_table(ce.projection_decimal) << "\nProjection M (hex, exact):\n\n"
      << matrix_table(ce.projection_hex) << "\nPlane C: `(" << ce.plane_decimal[0] << ", "
      << ce.plane_decimal[1] << ", " << ce.plane_decimal[2] << ", " << ce.plane_decimal[3]
@@ -204,11 +136,11 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   md << "Built with " << OBLIQUE_COMPILER << ", flags `" << OBLIQUE_CXX_FLAGS << "`.\n";
 
   nlohmann::json j;
-  j["property"] = ce.property;
-  j["relation"] = ce.relation;
-  j["lhs"] = ce.lhs;
-  j["rhs"] = ce.rhs;
-  j["ratio"] = ce.ratio;
+  j["property"] = f.kind;
+  j["relation"] = f.relation;
+  j["lhs"] = f.lhs;
+  j["rhs"] = f.rhs;
+  j["ratio"] = f.ratio;
   j["implementation"] = ce.implementation;
   j["precision"] = ce.scalar;
   j["family"] = ce.family;
@@ -219,13 +151,13 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   j["projection_decimal"] = ce.projection_decimal;
   j["plane_decimal"] = ce.plane_decimal;
   j["result"] = ce.result_decimal;
-  j["status_expected"] = ce.status_expected;
-  j["status_answered"] = ce.status_got;
+  j["status_expected"] = f.expected;
+  j["status_answered"] = f.got;
   j["seed"] = context.seed;
   j["replay"] = replay_suite;
   j["replay_case"] = replay_case;
-  j["request"] = request_line(ce);
-  j["request_decimal"] = request_line_decimal(ce);
+  j["request"] = ce.request;
+  j["request_decimal"] = ce.request_decimal;
   nlohmann::json notes = nlohmann::json::object();
   for (const auto& [key, value] : ce.notes) notes[key] = value;
   j["notes"] = notes;

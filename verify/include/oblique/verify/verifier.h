@@ -10,7 +10,7 @@
 
 #include "oblique/depth_convention.h"
 #include "oblique/properties/generators.h"
-#include "protocol.h"
+#include "oblique/protocol/protocol.h"
 
 namespace oblique::verify {
 
@@ -31,10 +31,5 @@ struct VerifyOptions {
 /// Exit codes: 0 no violation within the budget, 1 a violation (or a crash or hang of the
 /// implementation) with a report written, 2 usage or protocol errors.
 int run_verify(const VerifyOptions& options, std::ostream& out, std::ostream& err);
-
-/// The JSON Lines answer of an implementation, made strict JSON first: the bare tokens NaN,
-/// Infinity and -Infinity (Python's json module) become the protocol's "nan", "inf", "-inf",
-/// and null inside "projection" (JavaScript's JSON.stringify(NaN)) becomes "nan".
-std::string normalise_non_finite(std::string_view line);
 
 }  // namespace oblique::verify

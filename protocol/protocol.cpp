@@ -1,4 +1,4 @@
-#include "protocol.h"
+#include "oblique/protocol/protocol.h"
 
 #include <nlohmann/json.hpp>
 
@@ -12,22 +12,6 @@
 #include <vector>
 
 namespace oblique::protocol {
-
-std::string_view precision_name(Precision p) noexcept {
-  switch (p) {
-    case Precision::float32: return "float";
-    case Precision::float64: return "double";
-    case Precision::long_double: return "long_double";
-  }
-  return "unknown";
-}
-
-std::optional<Precision> parse_precision(std::string_view name) noexcept {
-  for (Precision p : {Precision::float32, Precision::float64, Precision::long_double}) {
-    if (precision_name(p) == name) return p;
-  }
-  return std::nullopt;
-}
 
 namespace {
 
@@ -172,41 +156,6 @@ class TreeBuilder final : public nlohmann::json_sax<json> {
   std::size_t next_number_ = 0;
 };
 
-bool is_hex_float(std::string_view s) {
-  std::size_t i = 0;
-  if (i < s.size() && (s[i] == '-' || s[i] == '+')) ++i;
-  if (s.substr(i, 2) != "0x" && s.substr(i, 2) != "0X") return false;
-  i += 2;
-  auto hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; };
-  std::size_t digits = 0;
-  while (i < s.size() && hex(s[i])) ++i, ++digits;
-  if (i < s.size() && s[i] == '.') {
-    ++i;
-    while (i < s.size() && hex(s[i])) ++i, ++digits;
-  }
-  if (digits == 0 || i >= s.size() || (s[i] != 'p' && s[i] != 'P')) return false;
-  ++i;
-  if (i < s.size() && (s[i] == '-' || s[i] == '+')) ++i;
-  std::size_t exponent_digits = 0;
-  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i, ++exponent_digits;
-  return exponent_digits > 0 && i == s.size();
-}
-
-template <class T>
-T string_to(const char* begin, char** end);
-template <>
-float string_to<float>(const char* begin, char** end) {
-  return std::strtof(begin, end);
-}
-template <>
-double string_to<double>(const char* begin, char** end) {
-  return std::strtod(begin, end);
-}
-template <>
-long double string_to<long double>(const char* begin, char** end) {
-  return std::strtold(begin, end);
-}
-
 /// A number token: a JSON number's text, or a string (marked by a leading '"' here).
 std::optional<std::string> number_token(const Value& v) {
   if (v.kind == Value::Kind::number) return v.text;
@@ -243,88 +192,7 @@ std::string quoted(std::string_view s) {
   return json(std::string(s)).dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
-Answer refusal(Status status, std::string_view message) {
-  Answer a;
-  a.status = status;
-  a.line =
-      "{\"status\": " + quoted(status_code(status)) + ", \"message\": " + quoted(message) + "}";
-  return a;
-}
-
-template <class T>
-Answer run(const Request& request, const ApplyOptions& options) {
-  Matrix4<T> m;
-  Vector4<T> c;
-  std::string error;
-  for (int i = 0; i < 16; ++i) {
-    auto value = parse_number<T>(request.projection[i], &error);
-    if (!value)
-      return refusal(Status::invalid_input, "projection[" + std::to_string(i) + "]: " + error);
-    m(i / 4, i % 4) = *value;
-  }
-  for (int i = 0; i < 4; ++i) {
-    auto value = parse_number<T>(request.plane[i], &error);
-    if (!value) return refusal(Status::invalid_input, "plane[" + std::to_string(i) + "]: " + error);
-    c(i) = *value;
-  }
-  const Convention convention = request.convention.value_or(options.convention);
-  const ObliqueResult<T> result = apply<T>(m, c, convention, options.method);
-  if (!result.ok()) return refusal(result.status, result.message());
-  Answer a;
-  a.status = Status::ok;
-  a.line = "{\"status\": \"ok\", \"projection\": [";
-  for (int i = 0; i < 16; ++i) {
-    if (i) a.line += ", ";
-    a.line += format_number<T>(result.projection(i / 4, i % 4));
-  }
-  a.line += "]}";
-  return a;
-}
-
 }  // namespace
-
-template <class T>
-std::optional<T> parse_number(const std::string& token, std::string* error) {
-  const bool quoted_string = !token.empty() && token[0] == '"';
-  const std::string text = quoted_string ? token.substr(1) : token;
-  if (quoted_string) {
-    if (text == "nan") return std::numeric_limits<T>::quiet_NaN();
-    if (text == "inf") return std::numeric_limits<T>::infinity();
-    if (text == "-inf") return -std::numeric_limits<T>::infinity();
-    if (!is_hex_float(text)) {
-      *error =
-          "the string \"" + text +
-          "\" is not a number (use \"nan\", \"inf\", \"-inf\" or a hex float such as \"0x1.8p+1\")";
-      return std::nullopt;
-    }
-  }
-  char* end = nullptr;
-  errno = 0;
-  const T value = string_to<T>(text.c_str(), &end);
-  if (end != text.c_str() + text.size()) {
-    *error = "\"" + text + "\" is not a number";
-    return std::nullopt;
-  }
-  if (std::isinf(value)) {
-    *error = text + " overflows the scalar type";
-    return std::nullopt;
-  }
-  return value;
-}
-
-template <class T>
-std::string format_number(T value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
-
-template std::optional<float> parse_number<float>(const std::string&, std::string*);
-template std::optional<double> parse_number<double>(const std::string&, std::string*);
-template std::optional<long double> parse_number<long double>(const std::string&, std::string*);
-template std::string format_number<float>(float);
-template std::string format_number<double>(double);
-template std::string format_number<long double>(long double);
 
 namespace {
 
@@ -418,16 +286,89 @@ ParsedAnswer parse_answer(std::string_view line) {
   return out;
 }
 
-Answer answer_request(std::string_view line, const ApplyOptions& options) {
-  ParsedLine parsed = parse_request(line);
-  if (!parsed.request)
-    return refusal(Status::invalid_input, "not a valid request: " + parsed.error);
-  switch (options.precision) {
-    case Precision::float32: return run<float>(*parsed.request, options);
-    case Precision::float64: return run<double>(*parsed.request, options);
-    case Precision::long_double: return run<long double>(*parsed.request, options);
+std::string request_line(const std::array<std::string, 16>& projection,
+                         const std::array<std::string, 4>& plane,
+                         std::optional<Convention> convention) {
+  std::string line = "{\"projection\": [";
+  for (std::size_t i = 0; i < projection.size(); ++i) line += (i ? ", " : "") + projection[i];
+  line += "], \"plane\": [";
+  for (std::size_t i = 0; i < plane.size(); ++i) line += (i ? ", " : "") + plane[i];
+  line += "]";
+  if (convention) line += ", \"convention\": \"" + std::string(convention_name(*convention)) + "\"";
+  return line + "}";
+}
+
+template <class T>
+std::string request_line(const Matrix4<T>& projection, const Vector4<T>& plane,
+                         std::optional<Convention> convention, Notation notation) {
+  std::array<std::string, 16> m;
+  std::array<std::string, 4> c;
+  for (int i = 0; i < 16; ++i) m[i] = json_number(projection(i / 4, i % 4), notation);
+  for (int i = 0; i < 4; ++i) c[i] = json_number(plane(i), notation);
+  return request_line(m, c, convention);
+}
+
+template <class T>
+std::string ok_answer_line(const Matrix4<T>& projection) {
+  std::string line = "{\"status\": \"ok\", \"projection\": [";
+  for (int i = 0; i < 16; ++i) {
+    if (i) line += ", ";
+    line += format_number<T>(projection(i / 4, i % 4));
   }
-  return refusal(Status::invalid_input, "unknown precision");
+  return line + "]}";
+}
+
+std::string refusal_line(Status status, std::string_view message) {
+  return "{\"status\": " + quoted(status_code(status)) + ", \"message\": " + quoted(message) + "}";
+}
+
+#define OBLIQUE_PROTOCOL_MESSAGES(T)                                         \
+  template std::string request_line<T>(const Matrix4<T>&, const Vector4<T>&, \
+                                       std::optional<Convention>, Notation); \
+  template std::string ok_answer_line<T>(const Matrix4<T>&);
+OBLIQUE_PROTOCOL_MESSAGES(float)
+OBLIQUE_PROTOCOL_MESSAGES(double)
+OBLIQUE_PROTOCOL_MESSAGES(long double)
+#undef OBLIQUE_PROTOCOL_MESSAGES
+
+std::string normalise_non_finite(std::string_view line) {
+  std::string out;
+  out.reserve(line.size() + 16);
+  bool in_string = false;
+  auto starts = [&](std::size_t i, std::string_view word) {
+    return line.substr(i, word.size()) == word;
+  };
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (in_string) {
+      out += ch;
+      if (ch == '\\' && i + 1 < line.size()) {
+        out += line[++i];
+      } else if (ch == '"') {
+        in_string = false;
+      }
+      continue;
+    }
+    if (ch == '"') {
+      in_string = true;
+      out += ch;
+    } else if (starts(i, "-Infinity")) {
+      out += "\"-inf\"";
+      i += 8;
+    } else if (starts(i, "Infinity")) {
+      out += "\"inf\"";
+      i += 7;
+    } else if (starts(i, "NaN")) {
+      out += "\"nan\"";
+      i += 2;
+    } else if (starts(i, "null")) {
+      out += "\"nan\"";
+      i += 3;
+    } else {
+      out += ch;
+    }
+  }
+  return out;
 }
 
 }  // namespace oblique::protocol

@@ -9,17 +9,10 @@
 #include <vector>
 
 #include "oblique/oblique.h"
-#include "scene.h"
+#include "oblique/properties/judge.h"
+#include "oblique/scene/scene.h"
 
 namespace oblique::scene {
-
-/// One property judged on one pass (only those that apply to its camera and convention).
-struct PropertyCheck {
-  std::string name;
-  bool holds = true;
-  double ratio = 0;  ///< |residual| / bound
-  std::string residual;
-};
 
 /// Depth along the pass camera's view axis, from where it enters the kept region to where it
 /// leaves the view volume (the paper's Eq. 19, for any matrix and convention).
@@ -39,7 +32,8 @@ struct SurfaceCheck {
   Vector4<double> plane_in_camera;  ///< the surface plane in the pass camera's space
   std::optional<Matrix4<double>> projection;  ///< the oblique projection, when rendered
   Method method = Method::automatic;
-  std::vector<PropertyCheck> properties;
+  /// The properties that apply to its camera and convention, judged (properties::judge()).
+  std::vector<properties::Finding> properties;
   std::optional<DepthPrecision> depth;
 
   bool passes() const;

@@ -7,39 +7,34 @@
 #include <utility>
 #include <vector>
 
-#include "oblique/plane.h"
+#include "oblique/depth_convention.h"
+#include "oblique/projection.h"
+#include "oblique/properties/judge.h"
 
 namespace oblique::properties {
 
-/// Shortest round-trip decimal (%.17g for double, %.9g for float, %.21Lg for long double).
-template <class T>
-std::string decimal(T x);
-/// Exact hexadecimal (%a / %La).
-template <class T>
-std::string hexadecimal(T x);
-/// "float", "double", "long_double".
-template <class T>
-const char* scalar_name();
-
 struct Counterexample {
-  std::string property;        ///< the property's name, or "status"
-  std::string relation;        ///< what was compared
-  std::string lhs, rhs;        ///< both sides
-  double ratio = 0;            ///< |residual| / bound
+  Finding finding;             ///< what the answer violates (its kind names the property)
   std::string implementation;  ///< e.g. core_general, listing_5_1
-  std::string scalar;          ///< float, double, long_double
+  std::string scalar;          ///< float, double, long_double (protocol::scalar_name)
   std::string family, convention, place;
   std::vector<std::string> projection_decimal, projection_hex;  ///< 16, row-major
   std::vector<std::string> plane_decimal, plane_hex;            ///< 4
-  std::vector<std::string> result_decimal;                      ///< 16, or empty if refused
-  std::string status_expected, status_got;
+  std::string request, request_decimal;     ///< the `oblique apply` request: hex strings, numbers
+  std::vector<std::string> result_decimal;  ///< 16, or empty if refused
   /// Further facts for the reader (the exact answer, what an external program printed...),
   /// shown as a table in the Markdown and as an object in the JSON.
   std::vector<std::pair<std::string, std::string>> notes;
 };
 
+/// The input's part of a counterexample: the numbers (shortest decimal and exact hex), the
+/// request lines (protocol::request_line), the scalar and the convention.
 template <class T>
-Counterexample make_counterexample(const Matrix4<T>& m, const Vector4<T>& c);
+Counterexample make_counterexample(const Matrix4<T>& m, const Vector4<T>& c, Convention convention);
+
+/// Fills result_decimal from an answered M'.
+template <class T>
+void set_result(Counterexample& ce, const Matrix4<T>& result);
 
 /// Where the report goes and how it is replayed.
 struct ReportContext {
@@ -57,12 +52,5 @@ struct ReportContext {
 
 /// Writes NAME.md and NAME.json into the reports folder; returns the Markdown path.
 std::string write_report(const Counterexample& ce, const ReportContext& context);
-
-/// The `oblique apply` request line for the case (numbers as exact hex strings).
-std::string request_line(const Counterexample& ce);
-
-/// The same request with plain JSON numbers (shortest round-trip decimals; "nan", "inf", "-inf"
-/// strings for non-finite values), which any JSON reader takes.
-std::string request_line_decimal(const Counterexample& ce);
 
 }  // namespace oblique::properties

@@ -1,0 +1,72 @@
+// The JSON Lines protocol of `oblique apply` (and of every implementation `oblique verify` drives),
+// both directions:
+//   request: {"projection": [16 numbers, row-major], "plane": [4 numbers], "convention": "gl"}
+//   answer:  {"status": "ok", "projection": [16 numbers]}  or  {"status": "<code>", "message":
+//   "..."}
+// A number may be a JSON number or a string: "nan", "inf", "-inf" or a hex float ("0x1.8p+1").
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "oblique/depth_convention.h"
+#include "oblique/projection.h"
+#include "oblique/protocol/numbers.h"
+#include "oblique/status.h"
+
+namespace oblique::protocol {
+
+/// A request as read, its numbers kept as text so each precision converts them exactly once.
+struct Request {
+  std::array<std::string, 16> projection;  ///< row-major number tokens, for parse_number()
+  std::array<std::string, 4> plane;
+  std::optional<Convention> convention;
+};
+
+/// A request, or why the line is not one (with the JSON parser's line and column when relevant).
+struct ParsedLine {
+  std::optional<Request> request;
+  std::string error;
+};
+
+ParsedLine parse_request(std::string_view line);
+
+/// The one request writer: a request line (no trailing newline) from JSON number tokens
+/// (json_number()), the convention omitted when empty.
+std::string request_line(const std::array<std::string, 16>& projection,
+                         const std::array<std::string, 4>& plane,
+                         std::optional<Convention> convention);
+
+/// A request line for M (row-major) and C, numbers in the given notation (json_number()).
+template <class T>
+std::string request_line(const Matrix4<T>& projection, const Vector4<T>& plane,
+                         std::optional<Convention> convention,
+                         Notation notation = Notation::shortest);
+
+/// An answer line as read back (by tests, and by `oblique verify` from other implementations).
+/// Unknown fields are ignored; `valid` is false (with `error`) when the line is not an answer.
+struct ParsedAnswer {
+  bool valid = false;
+  std::string status;
+  std::optional<std::array<std::string, 16>> projection;  ///< number tokens, for parse_number()
+  std::string message;
+  std::string error;
+};
+
+ParsedAnswer parse_answer(std::string_view line);
+
+/// The answer line of an ok result: each entry the shortest text that reads back as it in T.
+template <class T>
+std::string ok_answer_line(const Matrix4<T>& projection);
+
+/// The answer line of a refusal.
+std::string refusal_line(Status status, std::string_view message);
+
+/// The JSON Lines answer of an implementation, made strict JSON first: the bare tokens NaN,
+/// Infinity and -Infinity (Python's json module) become the protocol's "nan", "inf", "-inf",
+/// and null inside "projection" (JavaScript's JSON.stringify(NaN)) becomes "nan".
+std::string normalise_non_finite(std::string_view line);
+
+}  // namespace oblique::protocol

@@ -1,0 +1,156 @@
+// The one judgement (properties/judge.h): each status contract accepts and rejects what it says,
+// each check is made only when asked, and `every` lists the checks that hold.
+#include "oblique/properties/judge.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "oblique/oblique.h"
+#include "oblique/projection.h"
+#include "printers.h"
+
+namespace oblique::properties {
+namespace {
+
+const Matrix4<double> kFrustum = frustum(-1.0, 1.0, -1.0, 1.0, 1.0, 10.0, Convention::gl);
+const Vector4<double> kPlane(0.25, 0.5, -1.0, -2.0);  // the camera behind it, C . Q > 0
+
+Outcome<double> core_answer() {
+  const ObliqueResult<double> r = apply<double>(kFrustum, kPlane, Convention::gl);
+  EXPECT_TRUE(r.ok()) << r.message();
+  return Outcome<double>{r.status, r.projection};
+}
+
+Checks with_statuses(StatusContract contract) {
+  Checks checks;
+  checks.statuses = contract;
+  return checks;
+}
+
+TEST(Judge, theCoresAnswerHoldsEveryCheck) {
+  const Problem<double> problem(kFrustum, kPlane, Convention::gl);
+  Checks checks;
+  checks.row3_accuracy = true;
+  checks.max_ulps = 2;
+  checks.every = true;
+  const Judgement j = judge(problem, core_answer(), checks);
+  EXPECT_TRUE(j.holds());
+  std::vector<std::string> kinds;
+  for (const Finding& f : j.checks) kinds.push_back(f.kind);
+  // Properties 1-4 apply to a finite frustum (5 only to infinite ones), then the cross-checks.
+  const std::vector<std::string> expected = {
+      "near_is_clip_plane", "side_rows_unchanged",    "far_plane_through_corner",
+      "no_clipping",        "extracted_planes_match", "row3_accuracy",
+      "accurate_ulps"};
+  EXPECT_EQ(kinds, expected);
+}
+
+TEST(Judge, anOkAnswerToAnInputWithoutOneFailsEveryContract) {
+  const Vector4<double> in_front(0.0, 0.0, -1.0, 2.0);  // C_w > 0: camera_not_behind_plane
+  const Problem<double> problem(kFrustum, in_front, Convention::gl);
+  ASSERT_EQ(problem.exact_status(), Status::camera_not_behind_plane);
+  for (StatusContract contract :
+       {StatusContract::exact, StatusContract::any_refusal, StatusContract::answers_only}) {
+    const Judgement j =
+        judge(problem, Outcome<double>{Status::ok, kFrustum}, with_statuses(contract));
+    ASSERT_NE(j.violation(), nullptr);
+    EXPECT_EQ(j.violation()->kind, "status");
+    EXPECT_EQ(j.violation()->got, "ok");
+    EXPECT_EQ(j.violation()->expected, "camera_not_behind_plane");
+  }
+}
+
+TEST(Judge, aWrongRefusalFailsOnlyTheExactContract) {
+  const Vector4<double> in_front(0.0, 0.0, -1.0, 2.0);
+  const Problem<double> problem(kFrustum, in_front, Convention::gl);
+  const Outcome<double> wrong_code{Status::singular_projection, kFrustum};
+  const Judgement exact = judge(problem, wrong_code, with_statuses(StatusContract::exact));
+  ASSERT_NE(exact.violation(), nullptr);
+  EXPECT_EQ(exact.violation()->kind, "status");
+  EXPECT_EQ(exact.violation()->got, "singular_projection");
+  EXPECT_TRUE(judge(problem, wrong_code, with_statuses(StatusContract::any_refusal)).holds());
+  EXPECT_TRUE(judge(problem, wrong_code, with_statuses(StatusContract::answers_only)).holds());
+}
+
+TEST(Judge, refusingAnInputWithAnAnswerFailsUnlessStatusesAreNotReported) {
+  const Problem<double> problem(kFrustum, kPlane, Convention::gl);
+  const Outcome<double> refused{Status::camera_not_behind_plane, kFrustum};
+  for (StatusContract contract : {StatusContract::exact, StatusContract::any_refusal}) {
+    const Judgement j = judge(problem, refused, with_statuses(contract));
+    ASSERT_NE(j.violation(), nullptr);
+    EXPECT_EQ(j.violation()->kind, "status");
+    EXPECT_EQ(j.violation()->expected, "ok");
+  }
+  EXPECT_TRUE(judge(problem, refused, with_statuses(StatusContract::answers_only)).holds());
+}
+
+TEST(Judge, aNonFiniteAnswerIsNamedFirst) {
+  const Problem<double> problem(kFrustum, kPlane, Convention::gl);
+  Outcome<double> answer = core_answer();
+  answer.projection(2, 0) = std::numeric_limits<double>::quiet_NaN();
+  const Judgement j = judge(problem, answer);
+  ASSERT_NE(j.violation(), nullptr);
+  EXPECT_EQ(j.violation()->kind, "finite_result");
+}
+
+TEST(Judge, onlyTheSelectedPropertiesAreChecked) {
+  const Problem<double> problem(kFrustum, kPlane, Convention::gl);
+  Outcome<double> answer = core_answer();
+  answer.projection(0, 0) *= 2;  // a changed side row; row 3 (and the near plane) untouched
+  Checks near_only;
+  near_only.properties = {Property::near_is_clip_plane};
+  const Judgement near = judge(problem, answer, near_only);
+  EXPECT_TRUE(near.holds());
+  ASSERT_EQ(near.checks.size(), 1u);
+  EXPECT_EQ(near.checks[0].kind, "near_is_clip_plane");
+  Checks sides_only;
+  sides_only.properties = {Property::side_rows_unchanged};
+  const Judgement sides = judge(problem, answer, sides_only);
+  ASSERT_NE(sides.violation(), nullptr);
+  EXPECT_EQ(sides.violation()->kind, "side_rows_unchanged");
+}
+
+TEST(Judge, stopsAtTheFirstViolationUnlessEveryIsAsked) {
+  const Problem<double> problem(kFrustum, kPlane, Convention::gl);
+  Outcome<double> answer = core_answer();
+  answer.projection(0, 0) *= 2;
+  const Judgement first = judge(problem, answer);
+  ASSERT_NE(first.violation(), nullptr);
+  EXPECT_EQ(first.violation(), &first.checks.back());
+  Checks every;
+  every.every = true;
+  const Judgement all = judge(problem, answer, every);
+  EXPECT_EQ(all.violation()->kind, first.violation()->kind);
+  EXPECT_GT(all.checks.size(), first.checks.size());
+}
+
+TEST(Judge, rowThreeAccuracyAndTheUlpsPromiseAreCheckedWhenAsked) {
+  const Problem<double> problem(kFrustum, kPlane, Convention::gl);
+  Outcome<double> answer = core_answer();
+  answer.projection(2, 3) *= 1 + 1e-9;  // far beyond the bound of careful double arithmetic
+  Checks none;
+  none.properties.clear();
+  EXPECT_TRUE(judge(problem, answer, none).holds());
+  Checks accuracy = none;
+  accuracy.row3_accuracy = true;
+  const Judgement j = judge(problem, answer, accuracy);
+  ASSERT_NE(j.violation(), nullptr);
+  EXPECT_EQ(j.violation()->kind, "row3_accuracy");
+  EXPECT_GT(j.violation()->ratio, 1);
+
+  Outcome<double> one_ulp = core_answer();
+  one_ulp.projection(2, 3) = std::nextafter(one_ulp.projection(2, 3), 0.0);
+  Checks ulps = none;
+  ulps.max_ulps = 2;
+  const double measured = problem.ulps_from_exact(one_ulp.projection);
+  EXPECT_EQ(judge(problem, one_ulp, ulps).holds(), measured <= 2) << measured;
+  ulps.max_ulps = 0;
+  const Judgement strict = judge(problem, one_ulp, ulps);
+  ASSERT_NE(strict.violation(), nullptr);
+  EXPECT_EQ(strict.violation()->kind, "accurate_ulps");
+}
+
+}  // namespace
+}  // namespace oblique::properties
