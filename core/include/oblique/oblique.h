@@ -23,8 +23,9 @@ namespace detail {
 // The methods apply() chooses between, defined below (the accurate method in accurate/accurate.h).
 template <class T>
 ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention);
-template <class T>
-ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention);
+template <class T, class CornerRule = TrustedCornerSigns>
+ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
+                         const CornerRule& rule = CornerRule{});
 
 }  // namespace detail
 
@@ -108,12 +109,14 @@ constexpr T general_backward_error_limit() noexcept {
 /// General method for any invertible M, through EquilibratedSolver (equilibration by powers of
 /// two, one LU factorisation for both solves):
 ///   C' = M^-T C   has the signs of   R^-1 C',
-///   Q  = M^-1 Q'.
-template <class T>
-ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention) {
+///   Q  = M^-1 Q',
+/// with the signs of Q' from `rule` (TrustedCornerSigns: the trusted signs of C').
+template <class T, class CornerRule>
+ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
+                         const CornerRule& rule) {
   const EquilibratedSolver<T> solver(m);
   if (auto refusal = solver_refusal(m, solver, Method::general)) return *refusal;
-  if (!(plane.w() < T(0))) {
+  if (rule.checks_camera() && !(plane.w() < T(0))) {
     return refuse(m, Method::general, Status::camera_not_behind_plane);
   }
   const PlaneScale scale = plane_scale(plane);
@@ -126,7 +129,7 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
     return refuse(m, Method::general, Status::out_of_range,
                   "C' = M^-T C is beyond the range of the scalar type");
   }
-  const Vector4<T> signs = trusted_signs(c_clip, solver.transposed_error_bound(c_clip));
+  const Vector4<T> signs = rule.corner_signs(plane, c_clip, solver.transposed_error_bound(c_clip));
   const Vector4<T> corner = clip_corner(signs.x(), signs.y(), signs.z(), convention);
   T corner_error = T(0);
   const Vector4<T> q = solver.solve(corner, &corner_error);
