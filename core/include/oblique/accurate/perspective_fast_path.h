@@ -186,6 +186,23 @@ OBLIQUE_EFT_INLINE std::optional<T> certified_rounding(eft::Pair<W> x, W spread)
   return y;
 }
 
+/// Row 3 from the double-word fast paths' entries x_i (before the sign s): each s x_i rounded to
+/// T where certified_rounding() certifies it, the exact entry being within doubt |x_i| of x_i
+/// (the z entry, i = 2, within doubt |x_2| + v_part); std::nullopt when any entry is not.
+template <class T, class W>
+OBLIQUE_EFT_INLINE std::optional<Vector4<T>> certified_row3(const eft::Pair<W> (&entries)[4], W s,
+                                                            W doubt, W v_part) {
+  Vector4<T> row3;
+  for (int i = 0; i < 4; ++i) {
+    const W spread = doubt * std::abs(entries[i].hi) + (i == 2 ? v_part : W(0));
+    const auto y =
+        certified_rounding<T>(eft::Pair<W>{s * entries[i].hi, s * entries[i].lo}, spread);
+    if (!y) return std::nullopt;
+    row3(i) = *y;
+  }
+  return row3;
+}
+
 /// x as hi + lo in doubles, exactly (hi the rounding of x, lo the at most 11 bits left), when
 /// x is 0 or 2^+-E of 1, E = 128 (in_fast_range's for double); ok is cleared otherwise.
 inline eft::Pair<double> long_double_pair(long double x, bool& ok) {
@@ -256,13 +273,10 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, T>> perspective_row3_in_do
   // As in perspective_row3_single: N's relative doubt on every entry, V's on the z entry.
   const D doubt = D(2) * error * std::abs(reciprocal_n) + D(48) * u * u;
   const D v_part = t != D(0) ? D(2) * error * std::abs(big_k.hi * reciprocal_n) : D(0);
+  const std::optional<Vector4<T>> row3 = certified_row3<T>(entries, s, doubt, v_part);
+  if (!row3) return std::nullopt;
   PerspectiveAnswer<T, T> out;
-  for (int i = 0; i < 4; ++i) {
-    const D spread = doubt * std::abs(entries[i].hi) + (i == 2 ? v_part : D(0));
-    const auto y = certified_rounding<T>(P{s * entries[i].hi, s * entries[i].lo}, spread);
-    if (!y) return std::nullopt;
-    out.row3(i) = *y;
-  }
+  out.row3 = *row3;
   const T reciprocal_k = T(1) / m(3, 2);
   for (int i = 0; i < 3; ++i) {
     out.far_corner(i == 2 ? 3 : i) = (T(r[i].hi) + T(r[i].lo)) * reciprocal_k;
@@ -379,13 +393,9 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, W>> perspective_row3(
   // y: the exact entry then rounds to y too (correct rounding, not only faithful).
   const W doubt = W(2) * bound * std::abs(reciprocal_n) + W(48) * u * u;
   const W v_part = in.t != W(0) ? W(2) * bound * std::abs(in.K * reciprocal_n) : W(0);
-  for (int i = 0; i < 4; ++i) {
-    const W spread = doubt * std::abs(entries[i].hi) + (i == 2 ? v_part : W(0));
-    const auto y =
-        certified_rounding<T>(eft::Pair<W>{in.s * entries[i].hi, in.s * entries[i].lo}, spread);
-    if (!y) return std::nullopt;
-    out.row3(i) = *y;
-  }
+  const std::optional<Vector4<T>> row3 = certified_row3<T>(entries, in.s, doubt, v_part);
+  if (!row3) return std::nullopt;
+  out.row3 = *row3;
   return out;
 }
 
