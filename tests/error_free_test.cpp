@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "oblique/error_free.h"
+#include "oblique/accurate/error_free.h"
 #include "oblique/properties/exact.h"
 
 namespace oblique::eft {

@@ -1,6 +1,6 @@
 // The accurate method's exact path (exact_cramer.h): big-integer arithmetic, and the oblique
 // answer by Cramer's rule against the rational oracle (properties::Problem) on stiff inputs.
-#include "oblique/exact_cramer.h"
+#include "oblique/accurate/exact_cramer.h"
 
 #include <gtest/gtest.h>
 

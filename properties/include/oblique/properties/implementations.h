@@ -3,6 +3,7 @@
 // the suite catches the mistakes engines ship. OBLIQUE_IMPL=name selects one; see the README.
 #pragma once
 
+#include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <limits>
@@ -46,7 +47,8 @@ struct Implementation {
 
 namespace mutants {
 
-/// The core's general method with one planted fault (its steps on the same EquilibratedSolver).
+/// The core's general method with one planted fault, through its corner-sign seam
+/// (detail::general's CornerRule).
 enum class Fault {
   signs_from_c,      ///< the corner's x, y signs from C instead of C' (Listing 5.1's shortcut)
   wrong_face,        ///< the far corner on the wrong depth face
@@ -54,45 +56,31 @@ enum class Fault {
   no_camera_check,   ///< no C_w < 0 check
 };
 
-template <class T>
-ObliqueResult<T> planted(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
-                         Fault fault) {
-  const detail::EquilibratedSolver<T> solver(m);
-  if (solver.failure() != detail::EquilibratedSolver<T>::Failure::none) {
-    return detail::refuse(m, Method::general, Status::singular_projection,
-                          "the projection is singular: a row or column is zero");
-  }
-  if (!(solver.rcond() > singular_rcond_threshold<T>())) {
-    return detail::refuse(
-        m, Method::general, Status::singular_projection,
-        "the projection is singular or numerically singular (reciprocal condition "
-        "number after equilibration at most 16 epsilon)");
-  }
-  if (fault != Fault::no_camera_check && !(plane.w() < T(0))) {
-    return detail::refuse(m, Method::general, Status::camera_not_behind_plane);
-  }
-  const int shift = plane_scale_shift(plane);
-  const Vector4<T> c_hat = scaled_by_power_of_two(plane, shift);
-  const Vector4<T> c_clip = solver.solve_transposed_unscaled(c_hat);
-  if (!all_finite(c_clip)) {
-    return detail::refuse(m, Method::general, Status::out_of_range,
-                          "C' = M^-T C is beyond the range of the scalar type");
-  }
-  // The planted fault (on the core's trusted components: a rounded zero counts as zero).
-  const Vector4<T> trusted = detail::trusted_signs(c_clip, solver.transposed_error_bound(c_clip))
-                                 .cwiseAbs()
-                                 .cwiseProduct(c_clip);
-  auto sgn = [fault](T x) {
-    return fault == Fault::sign_by_division ? x / std::abs(x) : detail::sign(x);
-  };
-  const bool from_c = fault == Fault::signs_from_c;
-  const T z_sign = fault == Fault::wrong_face ? -sgn(trusted.z()) : sgn(trusted.z());
-  const Vector4<T> corner =
-      detail::clip_corner(sgn(from_c ? plane.x() : trusted.x()),
-                          sgn(from_c ? plane.y() : trusted.y()), z_sign, convention);
-  return detail::finish(m, plane, solver.solve(corner), convention, Method::general, shift, c_hat);
-}
+/// detail::TrustedCornerSigns with `fault` planted: the same trusted components of C' (a rounded
+/// zero counts as zero), then their signs taken wrongly.
+struct PlantedCornerRule {
+  Fault fault;
 
+  bool checks_camera() const noexcept { return fault != Fault::no_camera_check; }
+
+  template <class T>
+  Vector4<T> corner_signs(const Vector4<T>& plane, const Vector4<T>& c_clip,
+                          const Vector4<T>& error_bound) const {
+    // C'_i where its sign is trusted, else 0.
+    const Vector4<T> trusted = detail::TrustedCornerSigns::corner_signs(plane, c_clip, error_bound)
+                                   .cwiseAbs()
+                                   .cwiseProduct(c_clip);
+    const auto sgn = [this](T x) {
+      return fault == Fault::sign_by_division ? x / std::abs(x) : detail::sign(x);
+    };
+    const bool from_c = fault == Fault::signs_from_c;
+    const T z_sign = fault == Fault::wrong_face ? -sgn(trusted.z()) : sgn(trusted.z());
+    return Vector4<T>(sgn(from_c ? plane.x() : trusted.x()), sgn(from_c ? plane.y() : trusted.y()),
+                      z_sign, T(0));
+  }
+};
+
+/// The general method with `fault` planted, behind apply()'s input checks.
 template <class T>
 ObliqueResult<T> with_fault(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
                             Fault fault) {
@@ -100,7 +88,7 @@ ObliqueResult<T> with_fault(const Matrix4<T>& m, const Vector4<T>& c, Convention
     return detail::refuse(m, Method::general, Status::invalid_input);
   if (magnitude_spread(m) > max_magnitude_spread<T>())
     return detail::refuse(m, Method::general, Status::out_of_range);
-  return planted(m, c, convention, fault);
+  return detail::general(m, c, convention, PlantedCornerRule{fault});
 }
 
 }  // namespace mutants

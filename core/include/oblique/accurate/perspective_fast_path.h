@@ -1,22 +1,6 @@
-// The accurate method: the same answer as closed_form / general, with every entry of M'_3 close
-// to the exactly rounded value of the exact answer (aim: correct rounding; measured by
-// `oblique report accuracy` against the GMP oracle, checked by the property suite at 2 ulp).
-//
-// Where the plain methods lose accuracy, and what this one does instead:
-//  - Q = M^-1 Q' rounds in every component: here Q is refined to two words (one for float's
-//    closed form, up to five where needed), each correction solved from a residual
-//    Q' - M (q_0 + ...) summed as in K-fold precision;
-//  - C . Q cancels when C passes close to the far corner: distilled to its exact value from
-//    exact products;
-//  - a = range / (C . Q) rounds: kept as a double-word quotient;
-//  - a C_i - t M4_i cancels when C is close to the standard near plane (the a C_z + 1 of the
-//    paper's GL formula): formed as (k C_i - t M4_i (C . Q)) / (C . Q) from exact products,
-//    rounded once;
-//  - stiff planes (components spanning more binades than the type holds, or pushed below the
-//    range by the power-of-two scaling), signs of C' within their error bound of zero, and what
-//    five words of Q do not resolve: the exact answer (exact_cramer.h).
-// float runs in double (float products are exact there and nothing under- or overflows); double
-// and long double run in their own type with double-word arithmetic.
+// The accurate method's fast path for the standard perspective shape: row 3 of M' in one pass of
+// double-word arithmetic (plain double first for float; pairs of doubles for x87 long double),
+// each entry accepted only where its rounding is certified; otherwise the refining path answers.
 #pragma once
 
 #include <algorithm>
@@ -28,209 +12,14 @@
 #include <optional>
 #include <type_traits>
 
+#include "oblique/accurate/error_free.h"
 #include "oblique/depth_convention.h"
-#include "oblique/equilibrated_solver.h"
-#include "oblique/error_free.h"
+#include "oblique/detail/config.h"
+#include "oblique/magnitudes.h"
 #include "oblique/plane.h"
+#include "oblique/plane_scaling.h"
 
 namespace oblique::detail {
-
-/// The type the accurate method computes in for a given scalar type.
-template <class T>
-struct AccurateWorkingType {
-  using type = T;
-};
-template <>
-struct AccurateWorkingType<float> {
-  using type = double;
-};
-
-/// Q = x_0 + x_1 + ... + x_{n-1} with M Q = rhs, refined from exact residuals:
-/// x_0 = solve(rhs), x_j = solve(rhs - M (x_0 + ... + x_{j-1})), the residual summed as in
-/// (j + 1)-fold precision. Each word is about eps times the last (the closed form's solve has a
-/// few roundings; the equilibrated LU is refined to a small componentwise backward error).
-/// The most words the far corner is refined to.
-inline constexpr int kMaxCornerWords = 5;
-
-template <class W, class Solve>
-class RefinedCorner {
- public:
-  static constexpr int kMaxWords = kMaxCornerWords;
-
-  /// Keeps M's nonzero entries only: the residuals skip its zeros.
-  RefinedCorner(const Matrix4<W>& m, const Vector4<W>& rhs, Solve solve)
-      : rhs_(rhs), solve_(std::move(solve)) {
-    for (int i = 0; i < 4; ++i) {
-      nonzero_[i] = 0;
-      for (int col = 0; col < 4; ++col) {
-        if (m(i, col) != W(0)) {
-          columns_[i][nonzero_[i]] = col;
-          negated_[i][nonzero_[i]++] = -m(i, col);
-        }
-      }
-    }
-    words_[0] = solve_(rhs_);
-    count_ = 1;
-  }
-
-  int count() const { return count_; }
-  const Vector4<W>& word(int k) const { return words_[k]; }
-  bool finite() const { return all_finite(words_[0]); }
-
-  /// Adds the next correction; false when there is no room or it would not be finite.
-  bool add_word() {
-    if (count_ == kMaxWords) return false;
-    Vector4<W> residual;
-    for (int i = 0; i < 4; ++i) {
-      eft::Terms<W, 1 + 2 * 4 * kMaxWords> terms;
-      terms.add(rhs_(i));
-      for (int k = 0; k < count_; ++k) {
-        for (int j = 0; j < nonzero_[i]; ++j) {
-          terms.add_product(negated_[i][j], words_[k](columns_[i][j]));
-        }
-      }
-      residual(i) = terms.sum(count_ + 1);
-    }
-    const Vector4<W> next = solve_(residual);
-    if (!all_finite(next)) return false;
-    words_[count_++] = next;
-    return true;
-  }
-
-  /// An estimate of |w| . |Q - (x_0 + ... + x_{n-1})|, the error left in the words weighted by
-  /// w: the last word's weighted size times the contraction per refinement step, measured from
-  /// the last two words but never below `contraction_floor` (a bound the solve's conditioning
-  /// gives); the floor times the weighted size of Q while there is one word; 0 when the last
-  /// correction is exactly zero (Q is then exact).
-  W remaining_error(const Vector4<W>& weights, W contraction_floor) const {
-    const W last = weights.cwiseAbs().dot(words_[count_ - 1].cwiseAbs());
-    if (!(last > W(0))) return W(0);
-    if (count_ < 2) return last * contraction_floor;  // the first solve's own error
-    const W before = weights.cwiseAbs().dot(words_[count_ - 2].cwiseAbs());
-    const W measured = before > W(0) ? last / before : W(1);
-    return last * std::min(W(1), std::max(measured, contraction_floor));
-  }
-
-  /// The sum of the words, rounded.
-  Vector4<W> value() const {
-    Vector4<W> sum = words_[count_ - 1];
-    for (int k = count_ - 2; k >= 0; --k) sum += words_[k];
-    return sum;
-  }
-
- private:
-  Vector4<W> rhs_;
-  Solve solve_;
-  std::array<std::array<W, 4>, 4> negated_{};  ///< -M_i,col for the nonzero entries of row i
-  std::array<std::array<int, 4>, 4> columns_{};
-  std::array<int, 4> nonzero_{};
-  std::array<Vector4<W>, kMaxWords> words_{};
-  int count_ = 0;
-};
-
-/// The products C_i x_k,i of C with every word of Q, exact (two terms each) but for the last
-/// word's, whose rounding errors are below eps times its own small contribution.
-template <class W>
-using DotTerms = eft::Terms<W, 2 * 4 * kMaxCornerWords>;
-
-template <class W, class Corner>
-DotTerms<W> dot_terms(const Vector4<W>& plane, const Corner& q) {
-  // Smallest first (the last word's products, then each word's product errors, then the first
-  // word's products): the error-free passes then settle in fewer rounds.
-  DotTerms<W> terms;
-  const int last = q.count() - 1;
-  for (int i = 0; i < 4; ++i) terms.add(plane(i) * q.word(last)(i));
-  eft::Pair<W> products[DotTerms<W>::capacity() / 2];
-  for (int k = last - 1; k >= 0; --k) {
-    for (int i = 0; i < 4; ++i) products[4 * k + i] = eft::two_prod(plane(i), q.word(k)(i));
-  }
-  for (int k = last - 1; k >= 0; --k) {
-    for (int i = 0; i < 4; ++i) terms.add(products[4 * k + i].lo);
-  }
-  for (int k = last - 1; k >= 0; --k) {
-    for (int i = 0; i < 4; ++i) terms.add(products[4 * k + i].hi);
-  }
-  return terms;
-}
-
-/// Row 3 of M' and whether every entry is resolved (within an ulp of the exact answer): when
-/// not, Q needs another word.
-template <class T, class W>
-struct AccurateRow3 {
-  Vector4<T> row3;
-  bool resolved = true;
-  W corner_dot = W(0);  ///< C . Q, distilled: its sign is exact for the words of Q
-};
-
-/// Row 3 of M', s (a C_i - t M4_i) with a = range / (C . Q), each entry rounded once to T.
-///  - Where t M4_i = 0 it is s range C_i / (C . Q), from a double-word quotient.
-///  - Elsewhere it is s N_i / (C . Q) with N_i = range C_i - t M4_i (C . Q) summed from exact
-///    products, which removes the cancellation of a C_i against t M4_i (the a C_z + 1 of the GL
-///    formula) instead of rounding into it: from C . Q's double-word value where that resolves
-///    N_i, else from M4_i times each term of C . Q.
-/// Every sum is distilled to its exact value; what is left is Q's own error, `q_part` (an
-/// estimate of |C| . |Q error|), which must stay below eps / 8 of C . Q and of each N_i; a
-/// C . Q <= 0 is resolved when that error cannot lift it above zero.
-/// Precondition: scaling C lost nothing (not scaled.lossy).
-template <class T, class W>
-AccurateRow3<T, W> accurate_row3(const ScaledPlane<W>& scaled, const DotTerms<W>& terms, W q_part,
-                                 const Vector4<W>& m4, Convention convention) {
-  const Vector4<W>& plane = scaled.c_hat;
-  constexpr W eps = std::numeric_limits<W>::epsilon();
-  // What the answer in T needs resolved: eps of T (float computes in double and needs less).
-  constexpr W target = W(std::numeric_limits<T>::epsilon());
-  const DepthRange range = clip_depth_range(convention);
-  const W k = W(range.z_high - range.z_low);
-  const RowCombination near_combination = near_rows(convention);
-  const W s = W(near_combination.m3), t = W(near_combination.m4);
-  AccurateRow3<T, W> out;
-  DotTerms<W> d_terms = terms;
-  bool exact = false;
-  const eft::Pair<W> d = d_terms.distil(exact);
-  out.corner_dot = d.hi;
-  // Not distilled: fall back on SumK's bound for 8 passes, (n eps)^8 of the magnitude.
-  const W sum_part = exact ? W(0) : terms.magnitude() * std::pow(W(terms.size()) * eps, 8);
-  const W d_error = q_part + sum_part + eps * std::abs(d.lo);
-  if (!(d.hi > W(0)) || !std::isfinite(d.hi)) {
-    out.resolved = !std::isfinite(d.hi) || d_error < std::abs(d.hi) || d_error == W(0);
-    return out;
-  }
-  out.resolved = d_error <= target / W(8) * d.hi;
-  const eft::Pair<W> a = eft::divide(eft::Pair<W>{k, W(0)}, d.hi);
-  const W lo_ratio = d.lo / d.hi;
-  const W a_lo = a.lo - a.hi * lo_ratio;  // k / (hi + lo) to first order in lo / hi
-  for (int i = 0; i < 4; ++i) {
-    const W tm4 = t * m4(i);
-    eft::Pair<W> entry;
-    if (tm4 == W(0)) {
-      const eft::Pair<W> ac = eft::two_prod(a.hi, plane(i));
-      entry = eft::fast_two_sum(s * ac.hi, s * (ac.lo + a_lo * plane(i)));
-    } else {
-      eft::Terms<W, 5> fast;
-      fast.add(k * plane(i));  // k = 1 or 2: exact
-      fast.add_product(-tm4, d.hi);
-      fast.add_product(-tm4, d.lo);
-      eft::Pair<W> numerator = fast.distil(exact);
-      if (!exact || std::abs(tm4) * d_error > target / W(8) * std::abs(numerator.hi)) {
-        eft::Terms<W, 1 + 2 * DotTerms<W>::capacity()> slow;
-        slow.add(k * plane(i));
-        for (std::size_t j = 0; j < terms.size(); ++j) slow.add_product(-tm4, terms[j]);
-        // As added: distil rewrites the terms and drops zero ones.
-        const std::size_t slow_size = slow.size();
-        const W slow_magnitude = slow.magnitude();
-        numerator = slow.distil(exact);
-        const W slow_sum_part = exact ? W(0) : slow_magnitude * std::pow(W(slow_size) * eps, 8);
-        const W bound = std::abs(tm4) * q_part + slow_sum_part;
-        if (bound > target / W(8) * std::abs(numerator.hi)) out.resolved = false;
-      }
-      const eft::Pair<W> quotient = eft::divide(numerator, d.hi);
-      entry = eft::fast_two_sum(s * quotient.hi, s * (quotient.lo - quotient.hi * lo_ratio));
-    }
-    out.row3(i) = eft::round_pair<T>(entry);
-    if (out.row3(i) == T(0)) out.row3(i) = T(0);  // +0, as the plain methods give
-  }
-  return out;
-}
 
 /// Row 3 of M' and Q from the fast path for the standard perspective shape.
 template <class T, class W>
@@ -397,6 +186,23 @@ OBLIQUE_EFT_INLINE std::optional<T> certified_rounding(eft::Pair<W> x, W spread)
   return y;
 }
 
+/// Row 3 from the double-word fast paths' entries x_i (before the sign s): each s x_i rounded to
+/// T where certified_rounding() certifies it, the exact entry being within doubt |x_i| of x_i
+/// (the z entry, i = 2, within doubt |x_2| + v_part); std::nullopt when any entry is not.
+template <class T, class W>
+OBLIQUE_EFT_INLINE std::optional<Vector4<T>> certified_row3(const eft::Pair<W> (&entries)[4], W s,
+                                                            W doubt, W v_part) {
+  Vector4<T> row3;
+  for (int i = 0; i < 4; ++i) {
+    const W spread = doubt * std::abs(entries[i].hi) + (i == 2 ? v_part : W(0));
+    const auto y =
+        certified_rounding<T>(eft::Pair<W>{s * entries[i].hi, s * entries[i].lo}, spread);
+    if (!y) return std::nullopt;
+    row3(i) = *y;
+  }
+  return row3;
+}
+
 /// x as hi + lo in doubles, exactly (hi the rounding of x, lo the at most 11 bits left), when
 /// x is 0 or 2^+-E of 1, E = 128 (in_fast_range's for double); ok is cleared otherwise.
 inline eft::Pair<double> long_double_pair(long double x, bool& ok) {
@@ -467,13 +273,10 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, T>> perspective_row3_in_do
   // As in perspective_row3_single: N's relative doubt on every entry, V's on the z entry.
   const D doubt = D(2) * error * std::abs(reciprocal_n) + D(48) * u * u;
   const D v_part = t != D(0) ? D(2) * error * std::abs(big_k.hi * reciprocal_n) : D(0);
+  const std::optional<Vector4<T>> row3 = certified_row3<T>(entries, s, doubt, v_part);
+  if (!row3) return std::nullopt;
   PerspectiveAnswer<T, T> out;
-  for (int i = 0; i < 4; ++i) {
-    const D spread = doubt * std::abs(entries[i].hi) + (i == 2 ? v_part : D(0));
-    const auto y = certified_rounding<T>(P{s * entries[i].hi, s * entries[i].lo}, spread);
-    if (!y) return std::nullopt;
-    out.row3(i) = *y;
-  }
+  out.row3 = *row3;
   const T reciprocal_k = T(1) / m(3, 2);
   for (int i = 0; i < 3; ++i) {
     out.far_corner(i == 2 ? 3 : i) = (T(r[i].hi) + T(r[i].lo)) * reciprocal_k;
@@ -590,13 +393,9 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, W>> perspective_row3(
   // y: the exact entry then rounds to y too (correct rounding, not only faithful).
   const W doubt = W(2) * bound * std::abs(reciprocal_n) + W(48) * u * u;
   const W v_part = in.t != W(0) ? W(2) * bound * std::abs(in.K * reciprocal_n) : W(0);
-  for (int i = 0; i < 4; ++i) {
-    const W spread = doubt * std::abs(entries[i].hi) + (i == 2 ? v_part : W(0));
-    const auto y =
-        certified_rounding<T>(eft::Pair<W>{in.s * entries[i].hi, in.s * entries[i].lo}, spread);
-    if (!y) return std::nullopt;
-    out.row3(i) = *y;
-  }
+  const std::optional<Vector4<T>> row3 = certified_row3<T>(entries, in.s, doubt, v_part);
+  if (!row3) return std::nullopt;
+  out.row3 = *row3;
   return out;
 }
 

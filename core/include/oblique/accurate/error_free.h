@@ -8,15 +8,9 @@
 #include <limits>
 #include <type_traits>
 
-namespace oblique::eft {
+#include "oblique/detail/config.h"
 
-// The transformations below are a few flops each and sit in the accurate method's inner loops:
-// a call costs as much as the arithmetic.
-#if defined(__GNUC__)
-#define OBLIQUE_EFT_INLINE inline __attribute__((always_inline))
-#else
-#define OBLIQUE_EFT_INLINE inline
-#endif
+namespace oblique::eft {
 
 /// An unevaluated sum hi + lo.
 template <class T>

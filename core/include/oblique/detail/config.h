@@ -1,0 +1,18 @@
+// The core's compiler hints: where a path is kept out of its caller, and where it is forced in.
+#pragma once
+
+/// Keeps a rarely taken path out of its caller's code.
+#if defined(__GNUC__)
+#define OBLIQUE_NOINLINE __attribute__((noinline))
+#else
+#define OBLIQUE_NOINLINE
+#endif
+
+/// Forces a small function into its caller: the error-free transformations (accurate/error_free.h)
+/// are a few flops each and sit in the accurate method's inner loops, where a call costs as much
+/// as the arithmetic.
+#if defined(__GNUC__)
+#define OBLIQUE_EFT_INLINE inline __attribute__((always_inline))
+#else
+#define OBLIQUE_EFT_INLINE inline
+#endif

@@ -1,0 +1,177 @@
+// What the closed form, the general method and the accurate method share: the refusal, the
+// clip-space far corner Q' from the signs of C', the refusal of a solver that cannot be trusted,
+// and the finish from a far corner Q to the oblique matrix M'.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string_view>
+#include <utility>
+
+#include "oblique/depth_convention.h"
+#include "oblique/equilibrated_solver.h"
+#include "oblique/magnitudes.h"
+#include "oblique/plane.h"
+#include "oblique/result.h"
+#include "oblique/status.h"
+
+namespace oblique {
+
+/// The general method refuses a matrix whose equilibrated reciprocal condition number is at or
+/// below this: its solve for Q could not be trusted to even two significant digits.
+template <class T>
+constexpr T singular_rcond_threshold() noexcept {
+  return T(16) * std::numeric_limits<T>::epsilon();
+}
+
+namespace detail {
+
+template <class T>
+T sign(T x) noexcept {
+  return x > T(0) ? T(1) : (x < T(0) ? T(-1) : T(0));
+}
+
+template <class T>
+ObliqueResult<T> refuse(const Matrix4<T>& m, Method method, Status status,
+                        std::string_view why = {}) {
+  ObliqueResult<T> r;
+  r.status = status;
+  r.detail = why;
+  r.projection = m;
+  r.method = method;
+  return r;
+}
+
+/// The clip-space corner Q' (paper Eq. 7, every convention): x, y = sgn(C'_x), sgn(C'_y) and z on
+/// the depth face C' leans toward (the far face whenever the camera is behind C in a perspective
+/// projection). A zero sign gives the middle of the edge, which is an equally far point.
+template <class T>
+Vector4<T> clip_corner(T sign_x, T sign_y, T sign_z, Convention convention) {
+  const DepthRange range = clip_depth_range(convention);
+  const T z = sign_z > T(0)   ? T(range.z_high)
+              : sign_z < T(0) ? T(range.z_low)
+                              : T(range.z_low + range.z_high) / T(2);
+  return Vector4<T>(sign_x, sign_y, z, T(1));
+}
+
+/// r with row 3 of its projection set to row3, or out_of_range where row3 is not finite or the
+/// near plane a consumer extracts from it no longer keeps C's side (c_hat: C scaled by 2^k).
+template <class T>
+ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const Vector4<T>& c_hat,
+                             Convention convention) {
+  const RowCombination near_combination = near_rows(convention);
+  const Vector4<T> t_m4 = T(near_combination.m4) * r.projection.row(3).transpose();
+  if (!all_finite(row3)) {
+    r.status = Status::out_of_range;
+    r.detail =
+        "the oblique matrix exceeds the range of the scalar type: C passes within rounding "
+        "distance of the far corner Q";
+    return r;
+  }
+  // The near plane as a consumer extracts it from the rounded matrix must still keep C's side:
+  // when a C is below the precision of M_4's entries, a C - M_4 rounds to -M_4 and it vanishes.
+  const Vector4<T> near_extracted = T(near_combination.m3) * row3 + t_m4;
+  const Vector4<T> near_hat =
+      scaled_by_power_of_two(near_extracted, -magnitude_exponent(near_extracted));
+  if (!(near_hat.dot(c_hat) > T(0))) {
+    r.status = Status::out_of_range;
+    r.detail =
+        "the oblique near plane a C is lost to rounding against M_4 (|a C| is below the precision "
+        "of M_4's entries): the plane is too far from the view volume for this scalar type";
+    return r;
+  }
+  r.projection.row(2) = row3.transpose();
+  return r;
+}
+
+/// Given Q with M_4 . Q = 1, builds M' with M'_3 chosen so that the near plane is a C, a > 0,
+/// and the far plane contains Q (paper Eqs. 9, 10 and 20, for every convention):
+///   near' = s M'_3 + t M_4 = a C,   far' . Q = 0,   so   a = (z_high - z_low) / (C . Q).
+/// `c_hat` is C scaled by 2^k (plane_scale_shift()) so that C . Q neither overflows nor
+/// underflows; a C is unchanged by it. The core's callers hand a plane whose scaling loses bits
+/// to the accurate method instead.
+template <class T>
+ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vector4<T>& q,
+                        Convention convention, Method method, int k, const Vector4<T>& c_hat) {
+  ObliqueResult<T> r = refuse(m, method, Status::ok);
+  r.far_corner = q;
+  if (!all_finite(q)) {
+    r.status = Status::out_of_range;
+    r.detail = "the far corner Q = M^-1 Q' is beyond the range of the scalar type";
+    return r;
+  }
+  const T d = c_hat.dot(q);
+  if (!std::isfinite(d)) {
+    r.status = Status::out_of_range;
+    r.detail = "C . Q is beyond the range of the scalar type";
+    return r;
+  }
+  if (!(d > T(0))) {
+    r.status = Status::plane_misses_view_volume;
+    return r;
+  }
+  const DepthRange range = clip_depth_range(convention);
+  const T a_hat = T(range.z_high - range.z_low) / d;  // a * 2^-k
+  const T a = std::ldexp(a_hat, k);
+  // a * C_i rounds once; fall back to a_hat * c_hat_i (the same value) when a itself is not normal.
+  const Vector4<T> ac = (std::isfinite(a) && std::abs(a) >= std::numeric_limits<T>::min())
+                            ? Vector4<T>(a * plane)
+                            : Vector4<T>(a_hat * c_hat);
+  const RowCombination near_combination = near_rows(convention);
+  // s = +-1: written as a difference either way so that a zero entry stays +0.
+  const Vector4<T> t_m4 = T(near_combination.m4) * m.row(3).transpose();
+  const Vector4<T> row3 = near_combination.m3 > 0 ? Vector4<T>(ac - t_m4) : Vector4<T>(t_m4 - ac);
+  return accept_row3(std::move(r), row3, c_hat, convention);
+}
+
+/// The signs of C' for the far corner, with 0 for a component within its error bound of zero:
+/// a rounded zero's sign would send Q' to a face whose corner may lie arbitrarily far out (a
+/// matrix entry of 2^-52 puts it at 2^52), and C . Q, computed there, cancels to nothing. Where
+/// the component is really that small, every point of the edge is within rounding as far, and
+/// the middle of the edge is the safe choice.
+template <class T>
+Vector4<T> trusted_signs(const Vector4<T>& c_clip, const Vector4<T>& error_bound) {
+  Vector4<T> signs;
+  for (int i = 0; i < 4; ++i)
+    signs(i) = std::abs(c_clip(i)) <= error_bound(i) ? T(0) : sign(c_clip(i));
+  return signs;
+}
+
+/// The general method's rule for the signs of the clip-space corner Q' (the seam the property
+/// suite's planted mutants perturb): corner_signs(C, C', bound) gives the x, y and z signs that
+/// clip_corner() takes (w unused), and checks_camera() whether C_w < 0 is required. This default
+/// is the method itself: trusted_signs(C', bound), and the check. A rule is any type with these
+/// two members; the general method takes it by template parameter, so this one costs nothing.
+struct TrustedCornerSigns {
+  static constexpr bool checks_camera() noexcept { return true; }
+  template <class T>
+  static Vector4<T> corner_signs(const Vector4<T>& /*plane*/, const Vector4<T>& c_clip,
+                                 const Vector4<T>& error_bound) {
+    return trusted_signs(c_clip, error_bound);
+  }
+};
+
+/// The refusal for a matrix the equilibrated solver cannot be trusted with, if any.
+template <class T, class W>
+std::optional<ObliqueResult<T>> solver_refusal(const Matrix4<T>& m,
+                                               const EquilibratedSolver<W>& solver, Method method) {
+  switch (solver.failure()) {
+    case EquilibratedSolver<W>::Failure::zero_row:
+      return refuse(m, method, Status::singular_projection,
+                    "the projection is singular: a row is zero");
+    case EquilibratedSolver<W>::Failure::zero_column:
+      return refuse(m, method, Status::singular_projection,
+                    "the projection is singular: a column is zero");
+    case EquilibratedSolver<W>::Failure::none: break;
+  }
+  if (!(solver.rcond() > singular_rcond_threshold<W>())) {
+    return refuse(m, method, Status::singular_projection,
+                  "the projection is singular or numerically singular (reciprocal condition "
+                  "number after equilibration at most 16 epsilon)");
+  }
+  return std::nullopt;
+}
+
+}  // namespace detail
+}  // namespace oblique

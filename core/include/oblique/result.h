@@ -1,0 +1,63 @@
+// What apply() is asked for and what it answers: the method that finds the far corner, and the
+// result (status, matrix, far corner, method that ran).
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+#include "oblique/plane.h"
+#include "oblique/status.h"
+
+namespace oblique {
+
+/// How the far corner Q is found.
+enum class Method {
+  automatic,    ///< closed_form when the matrix has the standard perspective shape, else general
+  closed_form,  ///< Q from the matrix entries, no solve; standard perspective shape only
+  general,      ///< C' = M^-T C and Q = M^-1 Q' by one LU factorisation; any invertible M
+  accurate,     ///< any invertible M, each entry of M'_3 within an ulp or two of the exact answer
+                ///< (accurate/accurate.h); closed-form solves for the perspective shape
+};
+
+inline constexpr Method all_methods[] = {Method::automatic, Method::closed_form, Method::general,
+                                         Method::accurate};
+
+constexpr std::string_view method_name(Method m) noexcept {
+  switch (m) {
+    case Method::automatic: return "auto";
+    case Method::closed_form: return "closed_form";
+    case Method::general: return "general";
+    case Method::accurate: return "accurate";
+  }
+  return "unknown";
+}
+
+constexpr std::optional<Method> parse_method(std::string_view name) noexcept {
+  for (Method m : all_methods) {
+    if (method_name(m) == name) return m;
+  }
+  return std::nullopt;
+}
+
+template <class T>
+struct ObliqueResult {
+  Status status = Status::ok;
+  /// A more specific reason than status_message(status); empty when there is none.
+  std::string_view detail;
+  /// M' when ok; otherwise the input matrix, unchanged.
+  Matrix4<T> projection;
+  /// Q = M^-1 Q' in camera space (a direction, w = 0, for infinite projections); set when the
+  /// computation got that far (ok, plane_misses_view_volume, out_of_range), else zero.
+  Vector4<T> far_corner = Vector4<T>::Zero();
+  /// The method that ran: closed_form or general (automatic resolved), accurate where one of them
+  /// handed a stiff input to it, or what was asked for if the request was refused before one
+  /// ran.
+  Method method = Method::automatic;
+
+  bool ok() const noexcept { return status == Status::ok; }
+  std::string_view message() const noexcept {
+    return detail.empty() ? status_message(status) : detail;
+  }
+};
+
+}  // namespace oblique

@@ -1,0 +1,212 @@
+// The accurate method (accurate/accurate.h) on its own claims: every entry of M'_3 the correctly
+// rounded exact answer (rational oracle, properties::Problem) where its perspective fast path
+// certifies it, within tolerance::kAccurateUlps everywhere; the fast path and the refining path
+// give the same matrix; the closed form and the general method hand it what they cannot settle.
+#include "oblique/accurate/accurate.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "oblique/oblique.h"
+#include "oblique/properties/exact.h"
+#include "oblique/properties/properties.h"
+#include "oblique/properties/tolerance.h"
+#include "printers.h"
+
+namespace oblique {
+namespace {
+
+template <class T>
+class AccurateMethod : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double, long double>;
+TYPED_TEST_SUITE(AccurateMethod, Scalars);
+
+const double kFovy = 1.0471975511965976;  // 60 degrees
+
+static_assert(std::is_same_v<detail::AccurateWorkingType<float>::type, double>);
+static_assert(std::is_same_v<detail::AccurateWorkingType<double>::type, double>);
+static_assert(std::is_same_v<detail::AccurateWorkingType<long double>::type, long double>);
+
+/// Ordinary clip planes with the camera behind them, including one close to the standard near
+/// plane (the a C_z + 1 cancellation of the GL formula) and one almost through the eye.
+template <class T>
+std::vector<Vector4<T>> planes() {
+  return {Vector4<T>(T(0.3), T(-0.2), T(-1), T(-2)), Vector4<T>(T(0.6), T(0.28), T(-0.75), T(-1)),
+          Vector4<T>(T(0), T(0), T(-1), T(-0.1000001)),
+          Vector4<T>(T(-0.125), T(0.5), T(-0.25), T(-1e-3)), Vector4<T>(T(1), T(2), T(-3), T(-4))};
+}
+
+template <class T>
+std::vector<Matrix4<T>> perspective_matrices(Convention convention) {
+  return {perspective<T>(T(kFovy), T(1.5), T(0.1), T(1000), convention),
+          perspective<T>(T(kFovy), T(0.75), T(1), T(3), convention),
+          frustum<T>(T(-0.3), T(0.5), T(-0.2), T(0.1), T(0.25), T(64), convention),
+          infinite_perspective<T>(T(kFovy), T(1.5), T(0.1), convention)};
+}
+
+std::string describe(Convention convention, int matrix, int plane) {
+  return std::string(convention_name(convention)) + " matrix " + std::to_string(matrix) +
+         " plane " + std::to_string(plane);
+}
+
+// The fast path's answer, where it gives one, is the exact answer correctly rounded: each entry
+// is accepted only when its whole error interval rounds to one value.
+TYPED_TEST(AccurateMethod, fastPathIsCorrectlyRounded) {
+  using T = TypeParam;
+  using W = typename detail::AccurateWorkingType<T>::type;
+  int answered = 0;
+  for (Convention convention : all_conventions) {
+    const auto matrices = perspective_matrices<T>(convention);
+    const auto cs = planes<T>();
+    for (std::size_t i = 0; i < matrices.size(); ++i) {
+      for (std::size_t j = 0; j < cs.size(); ++j) {
+        const Matrix4<T>& m = matrices[i];
+        const Vector4<T>& c = cs[j];
+        const properties::Problem<T> problem(m, c, convention);
+        if (problem.exact_status() != Status::ok) continue;
+        const Vector4<W> c_w = c.template cast<W>();
+        const ScaledPlane<W> scaled = scale_plane(c_w, plane_scale(c));
+        const W sign_x = W(detail::sign(c.x()) * detail::sign(m(0, 0)));
+        const W sign_y = W(detail::sign(c.y()) * detail::sign(m(1, 1)));
+        const W sign_z = W(detail::sign(c.w()) * detail::sign(m(2, 3)));
+        const Vector4<W> corner = detail::clip_corner(sign_x, sign_y, sign_z, convention);
+        const auto fast = detail::perspective_row3_dispatched<T>(scaled, m, corner, convention);
+        if (!fast) continue;
+        ++answered;
+        const exact::Vec row3 = problem.exact_row3();
+        for (int k = 0; k < 4; ++k) {
+          EXPECT_EQ(exact::ulp_distance(fast->row3(k), row3[k]), 0.0)
+              << describe(convention, int(i), int(j)) << " entry " << k;
+        }
+        // And the accurate method returns it.
+        const ObliqueResult<T> r = detail::accurate(m, c, convention, true);
+        ASSERT_TRUE(r.ok()) << r.message();
+        EXPECT_EQ(Vector4<T>(r.projection.row(2).transpose()), fast->row3)
+            << describe(convention, int(i), int(j));
+      }
+    }
+  }
+  // Most of these ordinary inputs are the fast path's: it must not have gone quiet.
+  EXPECT_GE(answered, 40);
+}
+
+// The refining path (the equilibrated LU, refined corner, exact products) on the same
+// perspective inputs, and the fast path, give the same matrix: both round the exact answer.
+TYPED_TEST(AccurateMethod, fastPathAndRefiningPathAgree) {
+  using T = TypeParam;
+  for (Convention convention : all_conventions) {
+    const auto matrices = perspective_matrices<T>(convention);
+    const auto cs = planes<T>();
+    for (std::size_t i = 0; i < matrices.size(); ++i) {
+      for (std::size_t j = 0; j < cs.size(); ++j) {
+        const ObliqueResult<T> fast = detail::accurate(matrices[i], cs[j], convention, true);
+        const ObliqueResult<T> refined = detail::accurate(matrices[i], cs[j], convention, false);
+        ASSERT_EQ(fast.status, refined.status) << describe(convention, int(i), int(j));
+        EXPECT_EQ(fast.method, Method::accurate);
+        EXPECT_EQ(refined.method, Method::accurate);
+        if (!fast.ok()) continue;
+        EXPECT_EQ(fast.projection, refined.projection) << describe(convention, int(i), int(j));
+      }
+    }
+  }
+}
+
+// Matrices without the perspective shape take the refining path; its promise is
+// tolerance::kAccurateUlps of the correctly rounded answer, which it keeps here.
+TYPED_TEST(AccurateMethod, generalMatricesWithinPromisedUlps) {
+  using T = TypeParam;
+  for (Convention convention : all_conventions) {
+    Matrix4<T> rotated = perspective<T>(T(kFovy), T(1.5), T(0.1), T(100), convention);
+    Matrix4<T> rotation = Matrix4<T>::Identity();
+    rotation.template topLeftCorner<2, 2>() << T(0.6), T(-0.8), T(0.8), T(0.6);
+    rotated = Matrix4<T>(rotated * rotation);
+    const std::vector<Matrix4<T>> matrices = {
+        orthographic<T>(T(-2), T(3), T(-1), T(1.5), T(0.5), T(50), convention), rotated};
+    const auto cs = planes<T>();
+    for (std::size_t i = 0; i < matrices.size(); ++i) {
+      for (std::size_t j = 0; j < cs.size(); ++j) {
+        const properties::Problem<T> problem(matrices[i], cs[j], convention);
+        const ObliqueResult<T> r = detail::accurate(matrices[i], cs[j], convention, false);
+        ASSERT_EQ(r.status, problem.exact_status()) << describe(convention, int(i), int(j));
+        if (!r.ok()) continue;
+        EXPECT_LE(problem.ulps_from_exact(r.projection), tolerance::kAccurateUlps)
+            << describe(convention, int(i), int(j));
+      }
+    }
+  }
+}
+
+// A stiff plane (components spanning more than 2p binades): the general method hands it to the
+// accurate method, which settles it exactly. (The closed form hands over only a plane whose
+// scaling lost bits.)
+TYPED_TEST(AccurateMethod, stiffPlanesAreHandedToItAndSettled) {
+  using T = TypeParam;
+  const T tiny = std::ldexp(T(1), -3 * std::numeric_limits<T>::digits);
+  const Vector4<T> c(tiny, T(0.25), T(-1), T(-0.5));
+  for (Convention convention : all_conventions) {
+    const Matrix4<T> m = perspective<T>(T(kFovy), T(1.5), T(0.1), T(100), convention);
+    const properties::Problem<T> problem(m, c, convention);
+    ASSERT_EQ(problem.exact_status(), Status::ok);
+    for (Method method : {Method::general, Method::accurate}) {
+      const ObliqueResult<T> r = apply<T>(m, c, convention, method);
+      ASSERT_TRUE(r.ok()) << method_name(method) << ": " << r.message();
+      EXPECT_EQ(r.method, Method::accurate) << method_name(method);
+      EXPECT_LE(problem.ulps_from_exact(r.projection), tolerance::kAccurateUlps)
+          << method_name(method);
+    }
+  }
+}
+
+// The refusals are the general method's, in the same order, reported as the accurate method's.
+TYPED_TEST(AccurateMethod, refusals) {
+  using T = TypeParam;
+  const Matrix4<T> m = perspective<T>(T(kFovy), T(1.5), T(0.1), T(100), Convention::gl);
+  const ObliqueResult<T> in_front =
+      detail::accurate(m, Vector4<T>(T(0), T(0), T(-1), T(0.5)), Convention::gl, true);
+  EXPECT_EQ(in_front.status, Status::camera_not_behind_plane);
+  EXPECT_EQ(in_front.method, Method::accurate);
+  EXPECT_EQ(in_front.projection, m);
+  Matrix4<T> singular = m;
+  singular.row(1).setZero();
+  const ObliqueResult<T> zero_row =
+      detail::accurate(singular, Vector4<T>(T(0), T(0), T(-1), T(-0.5)), Convention::gl, false);
+  EXPECT_EQ(zero_row.status, Status::singular_projection);
+  EXPECT_EQ(zero_row.projection, singular);
+  // The plane behind the view volume: C . Q <= 0.
+  const ObliqueResult<T> misses =
+      detail::accurate(m, Vector4<T>(T(0), T(0), T(1), T(-1000)), Convention::gl, true);
+  EXPECT_EQ(misses.status, Status::plane_misses_view_volume);
+}
+
+// RefinedCorner: each word is the solve of the residual left by the words before it, so a
+// system whose answer needs two words gets it, and an exact answer leaves no error.
+TEST(RefinedCorner, addsWordsFromExactResiduals) {
+  Matrix4<double> m = Matrix4<double>::Identity();
+  m(0, 0) = 3;  // x = 1 / 3 takes more than one word
+  const Vector4<double> rhs(1, 1, 1, 1);
+  const auto solve = [&m](const Vector4<double>& b) {
+    return Vector4<double>(m.partialPivLu().solve(b));
+  };
+  detail::RefinedCorner<double, decltype(solve)> q(m, rhs, solve);
+  ASSERT_EQ(q.count(), 1);
+  EXPECT_GT(q.remaining_error(Vector4<double>::Ones(), 1e-16), 0.0);
+  ASSERT_TRUE(q.add_word());
+  EXPECT_EQ(q.count(), 2);
+  // 1/3 = x_0 + x_1 to about 2^-106: 3 (x_0 + x_1) - 1 is below 2^-100.
+  const exact::Rational sum = exact::to_rational(q.word(0)(0)) + exact::to_rational(q.word(1)(0));
+  EXPECT_LT(exact::abs(exact::Rational(3) * sum - 1), exact::power_of_two(-100));
+  // Components 1 to 3 were exact: their corrections are zero.
+  for (int i = 1; i < 4; ++i) EXPECT_EQ(q.word(1)(i), 0.0);
+  const Vector4<double> weights(0, 1, 1, 1);
+  EXPECT_EQ(q.remaining_error(weights, 1e-16), 0.0);
+  for (int k = 2; k < detail::kMaxCornerWords; ++k) ASSERT_TRUE(q.add_word());
+  EXPECT_FALSE(q.add_word());  // no room beyond kMaxCornerWords
+}
+
+}  // namespace
+}  // namespace oblique
