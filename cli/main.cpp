@@ -71,14 +71,7 @@ bool parse_lists(const std::string& conventions, const std::string& families,
 }
 
 int run_check(const std::string& path, bool as_json) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    std::cerr << "oblique check: cannot read " << path << "\n";
-    return 2;
-  }
-  std::ostringstream text;
-  text << file.rdbuf();
-  const oblique::scene::ParsedScene parsed = oblique::scene::parse_scene(text.str());
+  const oblique::scene::ParsedScene parsed = oblique::scene::read_scene_file(path);
   if (!parsed.scene) {
     std::cerr << "oblique check: " << path << ": " << parsed.error << "\n";
     return 2;
