@@ -16,6 +16,7 @@ cmake --build "$build" --target "${targets[@]}" -j"$(nproc)"
 for target in "${targets[@]}"; do
   cp "$build/fuzz/$target" "$OUT/"
   cp "$root/fuzz/$target.dict" "$OUT/$target.dict"
+  if [[ -f "$root/fuzz/$target.options" ]]; then cp "$root/fuzz/$target.options" "$OUT/"; fi
   rm -f "$OUT/${target}_seed_corpus.zip"
   (cd "$root/fuzz/corpus/$target" && python3 -m zipfile -c "$OUT/${target}_seed_corpus.zip" .)
 done

@@ -3,6 +3,8 @@
 // checks the mirrors and clip planes of a scene file.
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -69,14 +71,7 @@ bool parse_lists(const std::string& conventions, const std::string& families,
 }
 
 int run_check(const std::string& path, bool as_json) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    std::cerr << "oblique check: cannot read " << path << "\n";
-    return 2;
-  }
-  std::ostringstream text;
-  text << file.rdbuf();
-  const oblique::scene::ParsedScene parsed = oblique::scene::parse_scene(text.str());
+  const oblique::scene::ParsedScene parsed = oblique::scene::read_scene_file(path);
   if (!parsed.scene) {
     std::cerr << "oblique check: " << path << ": " << parsed.error << "\n";
     return 2;
@@ -99,7 +94,8 @@ void setup_apply(CLI::App& app, int& exit_code) {
       "Read JSON Lines requests {\"projection\": [16 numbers, row-major], \"plane\": [4 numbers], "
       "\"convention\": ...} on standard input; answer one line each: {\"status\": \"ok\", "
       "\"projection\": [...]} or {\"status\": CODE, \"message\": ...}. Exit 0 when every line was "
-      "ok, 1 otherwise.");
+      "ok, 1 otherwise, 2 when the answers could not be written. A line longer than 1 MiB is "
+      "answered invalid_input and skipped.");
   apply
       ->add_option("--convention", settings->convention,
                    "Depth convention of requests that name none")
@@ -121,7 +117,12 @@ void setup_apply(CLI::App& app, int& exit_code) {
     options.precision = *oblique::protocol::parse_precision(settings->precision);
     std::ios::sync_with_stdio(false);
     std::cin.tie(nullptr);
+    errno = 0;
     exit_code = oblique::protocol::serve(std::cin, std::cout, options);
+    if (exit_code == 2) {
+      std::cerr << "oblique apply: cannot write the answers to standard output"
+                << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << "\n";
+    }
   });
 }
 
@@ -274,6 +275,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;  // --help exits 0; every usage error exits 2
+  }
+  // What a subcommand printed must have reached standard output (a full disk, a closed pipe).
+  if (exit_code != 2 && !std::cout.flush()) {
+    std::cerr << "oblique: cannot write to standard output"
+              << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << "\n";
+    return 2;
   }
   return exit_code;
 }

@@ -1,5 +1,6 @@
 #include "oblique/protocol/apply.h"
 
+#include <algorithm>
 #include <istream>
 #include <ostream>
 
@@ -48,18 +49,41 @@ Answer answer_request(std::string_view line, const ApplyOptions& options) {
 }
 
 int serve(std::istream& in, std::ostream& out, const ApplyOptions& options) {
+  std::streambuf& input = *in.rdbuf();
   std::string line;
+  line.reserve(std::min<std::size_t>(options.max_line_bytes, 4096));
   bool all_ok = true;
-  for (;;) {
-    // Answer promptly when the writer waits for us; batch when it has sent many lines.
-    if (in.rdbuf()->in_avail() <= 0) out.flush();
-    if (!std::getline(in, line)) break;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const Answer answer = answer_request(line, options);
+  for (bool more = true; more;) {
+    // One line, at most max_line_bytes of it kept. Before any read that may wait for the
+    // writer (nothing buffered), the answers so far are flushed.
+    line.clear();
+    std::size_t length = 0;
+    bool any = false;
+    for (;;) {
+      if (input.in_avail() <= 0 && !out.flush()) return 2;
+      const int ch = input.sbumpc();
+      if (ch == std::char_traits<char>::eof()) {
+        more = false;
+        break;
+      }
+      any = true;
+      if (ch == '\n') break;
+      if (length++ < options.max_line_bytes) line.push_back(static_cast<char>(ch));
+    }
+    if (!any) break;
+    Answer answer;
+    if (length > options.max_line_bytes) {
+      answer = refusal(
+          Status::invalid_input,
+          "line longer than " + std::to_string(options.max_line_bytes) + " bytes (skipped)");
+    } else {
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      answer = answer_request(line, options);
+    }
     all_ok = all_ok && answer.status == Status::ok;
-    out << answer.line << '\n';
+    if (!(out << answer.line << '\n')) return 2;
   }
-  out.flush();
+  if (!out.flush()) return 2;
   return all_ok ? 0 : 1;
 }
 

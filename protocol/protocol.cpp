@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -38,38 +39,40 @@ const char* kind_name(Value::Kind kind) {
   return "a value";
 }
 
-/// The texts of the JSON numbers in `line`, in order. Valid only for text the JSON parser accepts:
-/// outside strings, a number is the only token that starts with '-' or a digit.
-std::vector<std::string> number_texts(std::string_view line) {
-  std::vector<std::string> out;
-  bool in_string = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char ch = line[i];
-    if (in_string) {
-      if (ch == '\\')
-        ++i;
-      else if (ch == '"')
-        in_string = false;
-    } else if (ch == '"') {
-      in_string = true;
-    } else if (ch == '-' || (ch >= '0' && ch <= '9')) {
-      std::size_t end = i + 1;
-      while (end < line.size() && std::strchr("0123456789.eE+-", line[end]) != nullptr) ++end;
-      out.emplace_back(line.substr(i, end - i));
-      i = end - 1;
-    }
+bool is_json_number(std::string_view s) {
+  std::size_t i = 0;
+  auto digits = [&] {
+    const std::size_t from = i;
+    while (i < s.size() && s[i] >= '0' && s[i] <= '9') ++i;
+    return i - from;
+  };
+  if (i < s.size() && s[i] == '-') ++i;
+  if (i < s.size() && s[i] == '0') {
+    ++i;
+  } else if (digits() == 0) {
+    return false;
   }
-  return out;
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    if (digits() == 0) return false;
+  }
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    if (digits() == 0) return false;
+  }
+  return i == s.size();
 }
 
-/// Builds a Value tree from nlohmann's SAX events; refuses nesting deeper than a request needs.
-/// Numbers take their text from number_texts(): SAX gives the text of floats only, and reports
-/// the integer -0 as 0.
+/// Builds a Value tree from nlohmann's SAX events (run on JsonNumbers::masked); refuses nesting
+/// deeper than a request needs and more than kMaxValuesPerLine values. Numbers take their text
+/// from scan_json_numbers(): SAX gives the text of floats only, reports the integer -0 as 0, and
+/// refuses a number beyond double's range even when the request asks for long double.
 class TreeBuilder final : public nlohmann::json_sax<json> {
  public:
   static constexpr std::size_t kMaxDepth = 8;
 
-  explicit TreeBuilder(std::string_view line) : numbers_(number_texts(line)) {}
+  explicit TreeBuilder(const std::vector<std::string_view>& numbers) : numbers_(numbers) {}
 
   Value root;
   std::string error;
@@ -115,7 +118,7 @@ class TreeBuilder final : public nlohmann::json_sax<json> {
     }
     Value v;
     v.kind = Value::Kind::number;
-    v.text = numbers_[next_number_++];
+    v.text = std::string(numbers_[next_number_++]);
     return add(std::move(v));
   }
   Value* place(Value v) {
@@ -131,11 +134,18 @@ class TreeBuilder final : public nlohmann::json_sax<json> {
     parent.members.emplace_back(pending_key_, std::move(v));
     return &parent.members.back().second;
   }
+  bool count_value() {
+    if (++values_ <= kMaxValuesPerLine) return true;
+    error = "more than " + std::to_string(kMaxValuesPerLine) + " JSON values in a line";
+    return false;
+  }
   bool add(Value v) {
+    if (!count_value()) return false;
     place(std::move(v));
     return true;
   }
   bool open(Value::Kind kind) {
+    if (!count_value()) return false;
     if (stack_.size() >= kMaxDepth) {
       error = "JSON nested deeper than " + std::to_string(kMaxDepth) + " levels";
       return false;
@@ -152,8 +162,9 @@ class TreeBuilder final : public nlohmann::json_sax<json> {
 
   std::vector<Value*> stack_;
   std::string pending_key_;
-  std::vector<std::string> numbers_;
+  const std::vector<std::string_view>& numbers_;
   std::size_t next_number_ = 0;
+  std::size_t values_ = 0;
 };
 
 /// A number token: a JSON number's text, or a string (marked by a leading '"' here).
@@ -194,13 +205,53 @@ std::string quoted(std::string_view s) {
 
 }  // namespace
 
+std::optional<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t max_numbers,
+                                             std::string* error) {
+  JsonNumbers out;
+  out.masked.assign(text);
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (in_string) {
+      if (ch == '\\')
+        ++i;
+      else if (ch == '"')
+        in_string = false;
+    } else if (ch == '"') {
+      in_string = true;
+    } else if (ch == '-' || (ch >= '0' && ch <= '9')) {
+      std::size_t end = i + 1;
+      while (end < text.size() && std::strchr("0123456789.eE+-", text[end]) != nullptr) ++end;
+      if (out.texts.size() == max_numbers) {
+        *error = "more than " + std::to_string(max_numbers) + " numbers";
+        return std::nullopt;
+      }
+      const std::string_view token = text.substr(i, end - i);
+      out.texts.push_back(token);
+      if (is_json_number(token)) {  // an invalid token is left for the parser to report
+        out.masked[i] = '0';
+        std::fill(out.masked.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                  out.masked.begin() + static_cast<std::ptrdiff_t>(end), ' ');
+      }
+      i = end - 1;
+    }
+  }
+  return out;
+}
+
 namespace {
 
 /// Parses one line into a Value tree, or says why it is not JSON.
 std::optional<Value> parse_tree(std::string_view line, std::string& error) {
-  TreeBuilder builder(line);
-  if (!json::sax_parse(line.begin(), line.end(), &builder, json::input_format_t::json, true,
-                       false)) {
+  if (const auto nul = line.find('\0'); nul != std::string_view::npos) {
+    error = "a NUL byte at column " + std::to_string(nul + 1) + " (a line is JSON text)";
+    return std::nullopt;
+  }
+  const std::optional<JsonNumbers> numbers = scan_json_numbers(line, kMaxValuesPerLine, &error);
+  if (!numbers) return std::nullopt;
+  TreeBuilder builder(numbers->texts);
+  if (!json::sax_parse(numbers->masked.begin(), numbers->masked.end(), &builder,
+                       json::input_format_t::json, true, false)) {
     error = builder.error.empty() ? "not valid JSON" : builder.error;
     return std::nullopt;
   }
@@ -219,8 +270,14 @@ ParsedLine parse_request(std::string_view line) {
     return out;
   }
   Request request;
-  bool has_projection = false, has_plane = false;
+  bool has_projection = false, has_plane = false, has_convention = false;
   for (const auto& [key, value] : root.members) {
+    const bool repeated = (key == "projection" && has_projection) ||
+                          (key == "plane" && has_plane) || (key == "convention" && has_convention);
+    if (repeated) {
+      out.error = "field \"" + key + "\" given twice";
+      return out;
+    }
     if (key == "projection") {
       if (!read_numbers(value, "projection", request.projection, out.error)) return out;
       has_projection = true;
@@ -232,6 +289,7 @@ ParsedLine parse_request(std::string_view line) {
         out.error = std::string("\"convention\" must be a string, not ") + kind_name(value.kind);
         return out;
       }
+      has_convention = true;
       request.convention = parse_convention(value.text);
       if (!request.convention) {
         out.error = "unknown convention \"" + value.text + "\" (gl, zero_one or reversed_z)";

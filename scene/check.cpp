@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include "oblique/properties/properties.h"
 #include "oblique/protocol/numbers.h"
@@ -211,26 +213,67 @@ std::string to_json(const SceneCheck& check) {
   return out.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
+namespace {
+
+/// A name as printed in the table: control characters and DEL escaped (\n, \t, \x1b, ...), so a
+/// name cannot move the cursor or forge rows.
+std::string printable(std::string_view name) {
+  std::string out;
+  for (const char ch : name) {
+    const auto byte = static_cast<unsigned char>(ch);
+    if (ch == '\n') {
+      out += "\\n";
+    } else if (ch == '\t') {
+      out += "\\t";
+    } else if (ch == '\r') {
+      out += "\\r";
+    } else if (ch == '\\') {
+      out += "\\\\";
+    } else if (byte < 0x20 || byte == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", byte);
+      out += hex;
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string to_text(const SceneCheck& check) {
   std::ostringstream out;
-  out << "scene " << check.scene << " (" << convention_name(check.convention) << ")\n\n";
-  // The summary table, then the details of each rendered pass.
+  out << "scene " << printable(check.scene) << " (" << convention_name(check.convention) << ")\n\n";
+  // The summary table, then the details of each rendered pass. The name column is as wide as the
+  // longest name up to kNameColumn; a longer name has a line of its own above its row.
+  constexpr std::size_t kNameColumn = 32;
+  std::vector<std::string> names;
   std::size_t width = 7;
-  for (const SurfaceCheck& s : check.surfaces) width = std::max(width, s.name.size());
+  for (const SurfaceCheck& s : check.surfaces) {
+    names.push_back(printable(s.name));
+    if (names.back().size() <= kNameColumn) width = std::max(width, names.back().size());
+  }
   auto cell = [](std::string text, std::size_t w) {
     text.resize(std::max(w, text.size()), ' ');
     return text;
   };
   out << cell("surface", width) << "  kind    action  properties  depth bits lost  reason\n";
-  for (const SurfaceCheck& s : check.surfaces) {
-    out << cell(s.name, width) << "  " << cell(s.kind == SurfaceKind::mirror ? "mirror" : "clip", 6)
-        << "  " << cell(s.render ? "render" : "skip", 6) << "  "
+  for (std::size_t i = 0; i < check.surfaces.size(); ++i) {
+    const SurfaceCheck& s = check.surfaces[i];
+    const bool own_line = names[i].size() > width;
+    if (own_line) out << names[i] << "\n";
+    out << cell(own_line ? "" : names[i], width) << "  "
+        << cell(s.kind == SurfaceKind::mirror ? "mirror" : "clip", 6) << "  "
+        << cell(s.render ? "render" : "skip", 6) << "  "
         << cell(s.render ? (s.passes() ? "pass" : "FAIL") : "-", 10) << "  "
         << cell(s.depth ? fixed2(s.depth->bits_lost) : "-", 15) << "  " << s.reason << "\n";
   }
   for (const SurfaceCheck& s : check.surfaces) {
     if (!s.render) continue;
-    out << "\n" << s.name << " (" << (s.kind == SurfaceKind::mirror ? "mirror" : "clip") << "): ";
+    out << "\n"
+        << printable(s.name) << " (" << (s.kind == SurfaceKind::mirror ? "mirror" : "clip")
+        << "): ";
     out << "render, " << method_name(s.method) << " method, "
         << (s.passes() ? "every property holds" : "A PROPERTY FAILS") << "\n";
     out << "  view:       ";

@@ -7,7 +7,8 @@
 # every fuzz/fuzz_*.cpp) runs libFuzzer for SECONDS (default 600) with -fork=N (default: cores)
 # over a working copy of fuzz/corpus/TARGET, with its dictionary and -use_value_profile=1,
 # printing libFuzzer's progress lines (executions per second, coverage). Afterwards it merges
-# the new inputs into fuzz/corpus/TARGET (minimised with -merge=1), minimises each crash,
+# the new inputs into fuzz/corpus/TARGET (scripts/fuzz_merge.sh: minimised with -merge=1, never
+# losing what an old input covered, swapped in only when the merge succeeded), minimises each crash,
 # de-duplicates crashes by their violation message, and for each new one writes a report to
 # reports/fuzz/ and a regression input to fuzz/regressions/TARGET/ (which CTest replays).
 # --impl NAME fuzzes another implementation (OBLIQUE_IMPL, e.g. a planted mutant) instead.
@@ -23,7 +24,7 @@ while (($#)); do
     --time) seconds="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
     --impl) impl="$2"; shift 2 ;;
-    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
     *) targets+=("$1"); shift ;;
   esac
 done
@@ -38,6 +39,16 @@ cmake --build --preset fuzz --target "${targets[@]}" $(printf '%s_replay ' "${ta
 
 work=build/fuzz/work
 mkdir -p "$work" reports/fuzz
+# Ctrl-C (or SIGTERM) stops the whole run with exit 130. The fuzzing itself is interrupted
+# (libFuzzer exits normally on SIGINT, so the flag is what tells the script); a merge under way
+# leaves the corpus as it was (scripts/fuzz_merge.sh); crashes already kept stay kept.
+interrupted=0
+stop() {
+  echo "fuzz.sh: interrupted; the checked-in corpus is as it was before this target's merge" >&2
+  exit 130
+}
+trap 'interrupted=1' INT TERM
+merge_failed=0
 for target in "${targets[@]}"; do
   binary="build/fuzz/fuzz/$target"
   corpus="$work/$target/corpus"
@@ -46,24 +57,37 @@ for target in "${targets[@]}"; do
   cp fuzz/corpus/"$target"/* "$corpus"/ 2>/dev/null || true
   echo "== $target: ${seconds}s, $jobs jobs${impl:+, implementation $impl}"
   before=$(ls "$corpus" | wc -l)
+  # fuzz/TARGET.options (OSS-Fuzz's format: "[libfuzzer]" then "name = value" lines) adds flags,
+  # e.g. fuzz_protocol's max_len, so long lines are explored.
+  options=()
+  if [[ -f "fuzz/$target.options" ]]; then
+    while IFS='= ' read -r name value; do
+      [[ -n "$name" && -n "$value" && "$name" != \[* ]] && options+=("-$name=$value")
+    done < "fuzz/$target.options"
+  fi
   set +e
   (cd "$crashes" && "../../../../../$binary" -fork="$jobs" -ignore_crashes=1 -max_total_time="$seconds" \
       -use_value_profile=1 -dict="../../../../../fuzz/$target.dict" -print_final_stats=1 \
-      "../corpus") 2>&1 | tee "$work/$target/log" | grep -E --line-buffered "exec/s|cov:|crash|deadly|ERROR" | \
+      ${options[@]+"${options[@]}"} "../corpus") 2>&1 | tee "$work/$target/log" | grep -E --line-buffered "exec/s|cov:|crash|deadly|ERROR" | \
       awk 'NR % 20 == 1 || /crash|deadly|ERROR/'
   set -e
-  # Merge what was found back into the checked-in corpus, minimised.
-  merged="$work/$target/merged"
-  mkdir -p "$merged"
-  # (Without OBLIQUE_IMPL: the merge keeps what covers the default implementations, so a run on
-  # one implementation does not drop the inputs that reach the others.)
-  env -u OBLIQUE_IMPL "$binary" -merge=1 "$merged" "fuzz/corpus/$target" "$corpus" > "$work/$target/merge.log" 2>&1 || true
-  rm -rf "fuzz/corpus/$target" && mv "$merged" "fuzz/corpus/$target"
-  echo "corpus: $before -> $(ls "fuzz/corpus/$target" | wc -l) inputs"
+  ((interrupted)) && stop
+  # Merge what was found back into the checked-in corpus (scripts/fuzz_merge.sh: replaced only
+  # by a merge that succeeded and is not empty, no covering input lost). Without OBLIQUE_IMPL:
+  # the merge keeps what covers the default implementations, so a run on one implementation does
+  # not drop the inputs that reach the others.
+  if ! env -u OBLIQUE_IMPL bash scripts/fuzz_merge.sh "$binary" "fuzz/corpus/$target" "$corpus" \
+      "$work/$target/merge.log"; then
+    ((interrupted)) && stop
+    echo "the merge failed: fuzz/corpus/$target kept as it was; the new inputs stay in $corpus"
+    merge_failed=1
+  fi
+  ((interrupted)) && stop
   grep -E "exec/s" "$work/$target/log" | tail -n 1 | sed 's/^/last progress: /' || true
   # Crashes: minimise, de-duplicate by message, report, keep as regression input.
   declare -A seen=()
   for crash in "$crashes"/crash-* "$crashes"/leak-* "$crashes"/timeout-*; do
+    ((interrupted)) && stop
     [[ -e "$crash" ]] || continue
     minimized="$crash.min"
     "$binary" -minimize_crash=1 -runs=2000 -exact_artifact_path="$minimized" "$crash" > /dev/null 2>&1 || true
@@ -101,3 +125,7 @@ for target in "${targets[@]}"; do
   done
   unset seen
 done
+if ((merge_failed)); then
+  echo "fuzz.sh: a corpus merge failed (see above)" >&2
+  exit 1
+fi

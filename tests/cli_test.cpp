@@ -187,5 +187,50 @@ TEST(Cli, exitStatusSaysWhetherEveryLineWasOk) {
   EXPECT_EQ(run_cli("apply extra-argument", good, &lines), 2);
 }
 
+const std::string kGood =
+    "{\"projection\": [1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0], \"plane\": [0,0,-1,-1]}";
+
+/// Runs a shell command; its exit status, and its standard output in `out`.
+int shell(const std::string& command, std::string* out) {
+  const std::string out_path = ::testing::TempDir() + "oblique_cli_shell_out.txt";
+  const int raw = std::system((command + " > " + out_path).c_str());
+  std::ifstream file(out_path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  *out = text.str();
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+TEST(Cli, applyOnAFullDiskExitsTwoAndSaysSo) {
+  const std::string in_path = ::testing::TempDir() + "oblique_cli_full_in.jsonl";
+  std::ofstream(in_path) << kGood << "\n" << kGood << "\n";
+  std::string err;
+  // Standard error to the file shell() reads, standard output to the full device.
+  const int status =
+      shell("{ " + std::string(OBLIQUE_CLI) + " apply < " + in_path + " 2>&1 > /dev/full; }", &err);
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(err.find("cannot write the answers"), std::string::npos) << err;
+}
+
+TEST(Cli, applySkipsALineLongerThanOneMebibyte) {
+  std::vector<std::string> lines;
+  const std::string input =
+      kGood + "\n{\"projection\": [" + std::string(1 << 21, '1') + "]}\n" + kGood + "\n";
+  EXPECT_EQ(run_cli("apply", input, &lines), 1);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(protocol::parse_answer(lines[0]).status, "ok");
+  EXPECT_NE(lines[1].find("line longer than 1048576 bytes"), std::string::npos) << lines[1];
+  EXPECT_EQ(protocol::parse_answer(lines[2]).status, "ok");
+}
+
+TEST(Cli, applyAnswersARequestFollowedByAPartialLineAtOnce) {
+  // The writer sends one request and the start of the next, then waits: the answer must come
+  // before the second line completes (here: before the writer's 4 s pause ends; 3 s allowed).
+  std::string out;
+  const std::string writer = "(printf '%s\\n{\"projection\"' '" + kGood + "'; sleep 4)";
+  shell(writer + " | timeout 3 " + OBLIQUE_CLI + " apply | head -n 1", &out);
+  EXPECT_EQ(out.rfind("{\"status\": \"ok\"", 0), 0u) << "no answer within 3 s: " << out;
+}
+
 }  // namespace
 }  // namespace oblique

@@ -2,10 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
+#include <sstream>
+#include <streambuf>
+#include <string>
+#include <vector>
 
 #include "oblique/projection.h"
 #include "printers.h"
@@ -152,6 +157,156 @@ TEST(Protocol, answersThatAreNotAnswersAreNamed) {
             std::string::npos);
   EXPECT_NE(parse_answer("{\"status\": 3}").error.find("must be a string"), std::string::npos);
   EXPECT_TRUE(parse_answer("{\"status\": \"camera_not_behind_plane\", \"message\": \"x\"}").valid);
+}
+
+const std::string kRequest =
+    "{\"projection\": [1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0], \"plane\": [0,0,-1,-1]}";
+
+TEST(Protocol, longDoubleReadsNumbersBeyondDoubleRange) {
+  // 1e400 is a long double but not a double: the request must be read at the precision asked.
+  const std::string line =
+      "{\"projection\": [1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0], \"plane\": [0,0,-1e400,-1e400]}";
+  const ParsedLine parsed = parse_request(line);
+  ASSERT_TRUE(parsed.request) << parsed.error;
+  EXPECT_EQ(parsed.request->plane[2], "-1e400");
+  ApplyOptions options;
+  options.precision = Precision::long_double;
+  const Answer answer = answer_request(line, options);
+  EXPECT_EQ(answer.status, Status::ok) << answer.line;
+  // In double the same number is named as overflowing, not as a JSON error.
+  options.precision = Precision::float64;
+  const Answer in_double = answer_request(line, options);
+  EXPECT_NE(in_double.line.find("plane[2]: -1e400 overflows"), std::string::npos) << in_double.line;
+  // An integer beyond every range, too.
+  const std::string huge(400, '9');
+  const Answer integer = answer_request(
+      "{\"projection\": [1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0], \"plane\": [0,0,-1,-" + huge + "]}",
+      options);
+  EXPECT_NE(integer.line.find("plane[3]: -" + huge + " overflows"), std::string::npos)
+      << integer.line;
+}
+
+TEST(Protocol, repeatedFieldsNulBytesAndTooManyValuesAreRefused) {
+  const std::string matrix = "[1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0]";
+  std::string many_strings = "[\"\"";
+  for (int i = 0; i < 300; ++i) many_strings += ",\"\"";
+  many_strings += "]";
+  const std::pair<std::string, std::string> cases[] = {
+      {"{\"projection\": " + matrix + ", \"plane\": [0,0,-1,-1], \"plane\": [0,0,-1,-2]}",
+       "field \"plane\" given twice"},
+      {"{\"projection\": " + matrix + ", \"projection\": " + matrix + ", \"plane\": [0,0,-1,-1]}",
+       "field \"projection\" given twice"},
+      {"{\"convention\": \"gl\", \"projection\": " + matrix +
+           ", \"plane\": [0,0,-1,-1], \"convention\": \"zero_one\"}",
+       "field \"convention\" given twice"},
+      {kRequest + std::string(1, '\0') + "{\"anything\": 1}",
+       "a NUL byte at column " + std::to_string(kRequest.size() + 1)},
+      {std::string(1, '\0'), "a NUL byte at column 1"},
+      {many_strings, "more than 256 JSON values"},
+  };
+  for (const auto& [line, expected] : cases) {
+    const ParsedLine parsed = parse_request(line);
+    EXPECT_FALSE(parsed.request) << line;
+    EXPECT_NE(parsed.error.find(expected), std::string::npos) << line << " -> " << parsed.error;
+    EXPECT_EQ(answer_request(line, ApplyOptions{}).status, Status::invalid_input);
+  }
+  // Numbers are counted before any parsing: a line of a million numbers is refused at once.
+  std::string numbers = "{\"projection\": [1";
+  for (int i = 0; i < 1000000; ++i) numbers += ",1";
+  const ParsedLine parsed = parse_request(numbers + "]}");
+  EXPECT_NE(parsed.error.find("more than 256 numbers"), std::string::npos) << parsed.error;
+}
+
+/// Input that arrives in chunks, as from a pipe: `underflow` hands out the next chunk and, before
+/// it does, records what the reader had delivered to its output at that point.
+class ChunkedInput : public std::streambuf {
+ public:
+  ChunkedInput(std::vector<std::string> chunks, const std::string* delivered)
+      : chunks_(std::move(chunks)), delivered_(delivered) {}
+  std::vector<std::string> seen_before_chunk;  ///< the output delivered before each chunk
+
+ protected:
+  int_type underflow() override {
+    if (next_ == chunks_.size()) return traits_type::eof();
+    seen_before_chunk.push_back(*delivered_);
+    std::string& chunk = chunks_[next_++];
+    setg(chunk.data(), chunk.data(), chunk.data() + chunk.size());
+    return traits_type::to_int_type(chunk[0]);
+  }
+
+ private:
+  std::vector<std::string> chunks_;
+  std::size_t next_ = 0;
+  const std::string* delivered_;
+};
+
+/// Output that reaches the other side only when flushed (like a pipe behind a buffer), or never
+/// (like /dev/full) when `fails`.
+class DeliveredOutput : public std::streambuf {
+ public:
+  explicit DeliveredOutput(bool fails = false) : fails_(fails) {}
+  std::string delivered;
+
+ protected:
+  int_type overflow(int_type ch) override {
+    if (fails_) return traits_type::eof();
+    if (!traits_type::eq_int_type(ch, traits_type::eof()))
+      pending_ += traits_type::to_char_type(ch);
+    return traits_type::not_eof(ch);
+  }
+  int sync() override {
+    if (fails_) return -1;
+    delivered += pending_;
+    pending_.clear();
+    return 0;
+  }
+
+ private:
+  bool fails_;
+  std::string pending_;
+};
+
+TEST(Serve, answersEachCompleteRequestBeforeWaitingForMoreInput) {
+  DeliveredOutput output;
+  // One complete request and the start of the next; the rest arrives only later.
+  ChunkedInput input({kRequest + "\n{\"projection\"", ": [1]}\n"}, &output.delivered);
+  std::istream in(&input);
+  std::ostream out(&output);
+  EXPECT_EQ(serve(in, out, ApplyOptions{}), 1);
+  ASSERT_EQ(input.seen_before_chunk.size(), 2u);
+  EXPECT_EQ(input.seen_before_chunk[1].find("{\"status\": \"ok\""), 0u)
+      << "the first answer was held back until the second line completed";
+  EXPECT_EQ(std::count(output.delivered.begin(), output.delivered.end(), '\n'), 2);
+}
+
+TEST(Serve, aLineLongerThanTheLimitIsAnsweredAndSkipped) {
+  ApplyOptions options;
+  options.max_line_bytes = 100;
+  std::istringstream in(kRequest + "\n" + std::string(101, ' ') + "\n" + kRequest + "\n" +
+                        std::string(100, ' ') + "\n");
+  std::ostringstream out;
+  EXPECT_EQ(serve(in, out, options), 1);
+  std::istringstream answers(out.str());
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(answers, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 4u) << out.str();
+  EXPECT_EQ(parse_answer(lines[0]).status, "ok");
+  EXPECT_NE(lines[1].find("line longer than 100 bytes"), std::string::npos) << lines[1];
+  EXPECT_EQ(parse_answer(lines[2]).status, "ok");
+  EXPECT_NE(lines[3].find("parse error"), std::string::npos) << lines[3];  // 100 bytes: read
+  // The default limit is 1 MiB: a 2 MiB line is skipped, the request after it answered.
+  std::istringstream big(std::string(2 << 20, '1') + "\n" + kRequest + "\n");
+  std::ostringstream big_out;
+  EXPECT_EQ(serve(big, big_out, ApplyOptions{}), 1);
+  EXPECT_NE(big_out.str().find("line longer than 1048576 bytes"), std::string::npos);
+  EXPECT_NE(big_out.str().find("\n{\"status\": \"ok\""), std::string::npos) << big_out.str();
+}
+
+TEST(Serve, anOutputErrorEndsTheRunWithStatusTwo) {
+  DeliveredOutput full(true);
+  std::istringstream in(kRequest + "\n" + kRequest + "\n");
+  std::ostream out(&full);
+  EXPECT_EQ(serve(in, out, ApplyOptions{}), 2);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -271,6 +272,24 @@ TEST(Scenes, brokenFilesNameTheFieldOrThePosition) {
        "surfaces[0].plane.normal: must not be the zero vector"},
       {with("\"surfaces\": []", "\"surfaces\": [{\"name\": \"m\", \"kind\": \"clip\"}]"),
        "surfaces[0].plane: missing"},
+      // Numbers beyond double's range, named by their field (nlohmann threw out_of_range.406).
+      {"[1e999]", "(top level): must be an object"},
+      {with("\"near\": 0.1", "\"near\": 1e999"), "camera.projection.near: out of the range"},
+      {with("\"eye\": [0, 0, 0]", "\"eye\": [0, -" + std::string(400, '9') + ", 0]"),
+       "camera.view.eye[1]: out of the range"},
+      // Degenerate cameras: no finite view volume in double.
+      {with("\"near\": 0.1, \"far\": 10", "\"near\": 1e-308, \"far\": 1e308"),
+       "camera.projection: degenerate in double"},
+      {with(
+           R"("type": "perspective", "fovy_deg": 60, "aspect": 1, "near": 0.1, "far": 10)",
+           R"("type": "orthographic", "left": -1e308, "right": 1e308, "bottom": -1e308, "top": 1e308, "near": -1e308, "far": 1e308)"),
+       "camera.projection: degenerate in double"},
+      {with("\"eye\": [0, 0, 0]", "\"eye\": [0, 0, 1.7e308]"), "camera"},
+      {with("\"surfaces\": []",
+            "\"surfaces\": [{\"name\": \"m\", \"kind\": \"mirror\", \"plane\": {\"normal\": [1, 1, "
+            "1], \"point\": [1e308, 1e308, 1e308]}}]"),
+       "surfaces[0].plane.point: out of range for this normal"},
+      {std::string("{\"name\": \"x\"}") + std::string(1, '\0') + "garbage", "a NUL byte"},
   };
   for (const Broken& b : cases) {
     const ParsedScene parsed = parse_scene(b.text);
@@ -278,6 +297,65 @@ TEST(Scenes, brokenFilesNameTheFieldOrThePosition) {
     EXPECT_NE(parsed.error.find(b.message), std::string::npos)
         << "expected \"" << b.message << "\" in \"" << parsed.error << "\"";
   }
+}
+
+TEST(Scenes, directionsAreJudgedByDirectionNotLength) {
+  // An up vector of length 1e200 and a normal of length 1e-200 are as good as unit ones: the
+  // scene checks exactly as with unit vectors (they were refused as parallel, or reflected NaN).
+  const std::string lake = read_file(std::string(OBLIQUE_SCENES_DIR) + "/lake.json");
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string text = lake;
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  const ParsedScene unit = parse_scene(lake);
+  ASSERT_TRUE(unit.scene) << unit.error;
+  const std::string expected = to_json(check_scene(*unit.scene));
+  for (const std::string& text : {replaced("\"up\": [0, 1, 0]", "\"up\": [0, 1e200, 0]"),
+                                  replaced("\"normal\": [0, 1, 0]", "\"normal\": [0, 1e-200, 0]"),
+                                  replaced("\"normal\": [0, 1, 0]", "\"normal\": [0, 1e300, 0]")}) {
+    const ParsedScene parsed = parse_scene(text);
+    ASSERT_TRUE(parsed.scene) << parsed.error;
+    EXPECT_EQ(to_json(check_scene(*parsed.scene)), expected);
+  }
+}
+
+TEST(Scenes, tableColumnIsCappedAndNamesAreEscaped) {
+  const ParsedScene parsed = parse_scene(read_file(std::string(OBLIQUE_SCENES_DIR) + "/lake.json"));
+  ASSERT_TRUE(parsed.scene) << parsed.error;
+  Scene scene = *parsed.scene;
+  const std::string long_name(10000, 'w');
+  scene.surfaces[0].name = long_name;
+  scene.surfaces[1].name = "evil\n\x1b[2Jname";
+  const std::string text = to_text(check_scene(scene));
+  // The long name stands on its own line; no row is padded to its length.
+  std::istringstream lines(text);
+  std::size_t longest = 0, rows_with_long_name = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line == long_name)
+      ++rows_with_long_name;                        // the name on its own line, above its row
+    else if (line.rfind(long_name + " (", 0) != 0)  // not the rendered pass's heading
+      longest = std::max(longest, line.size());
+  }
+  EXPECT_GE(rows_with_long_name, 1u);
+  EXPECT_LT(longest, 200u) << text.substr(0, 400);
+  EXPECT_NE(text.find("evil\\n\\x1b[2Jname"), std::string::npos) << text;
+  EXPECT_EQ(text.find('\x1b'), std::string::npos);
+}
+
+TEST(Scenes, unreadableAndSpecialFilesAreRefused) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"/dev/zero", "larger than"},
+      {::testing::TempDir(), "is a directory"},
+      {std::string(OBLIQUE_SCENES_DIR) + "/no-such-scene.json", "cannot open"},
+  };
+  for (const auto& [path, expected] : cases) {
+    const ParsedScene parsed = read_scene_file(path);
+    EXPECT_FALSE(parsed.scene) << path;
+    EXPECT_NE(parsed.error.find(expected), std::string::npos) << path << ": " << parsed.error;
+  }
+  EXPECT_TRUE(read_scene_file(std::string(OBLIQUE_SCENES_DIR) + "/lake.json").scene);
 }
 
 #ifdef OBLIQUE_CLI
@@ -295,6 +373,14 @@ TEST(Scenes, cliExitStatus) {
   const std::string broken = ::testing::TempDir() + "oblique_broken_scene.json";
   std::ofstream(broken) << "{\"name\": \"broken\", \"convention\": \"gl\"";
   EXPECT_EQ(run_check(broken), 2);
+  // Numbers out of range, special files, a full disk: exit 2, never an abort.
+  std::ofstream(broken, std::ios::trunc) << "[1e999]";
+  EXPECT_EQ(run_check(broken), 2);
+  EXPECT_EQ(run_check("/dev/zero"), 2);
+  EXPECT_EQ(run_check(dir), 2);
+  const int full = std::system(
+      (std::string(OBLIQUE_CLI) + " check " + dir + "/lake.json > /dev/full 2>/dev/null").c_str());
+  EXPECT_EQ(WIFEXITED(full) ? WEXITSTATUS(full) : -1, 2);
 }
 #endif  // OBLIQUE_CLI
 

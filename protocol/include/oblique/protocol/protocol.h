@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "oblique/depth_convention.h"
 #include "oblique/projection.h"
@@ -17,6 +18,21 @@
 #include "oblique/status.h"
 
 namespace oblique::protocol {
+
+/// The JSON number tokens of a text, for readers that need a number's text rather than the double
+/// a JSON parser makes of it (a long double beyond double's range, the integer -0, an overflow
+/// named by its field): `masked` is the text with each token that is a valid JSON number replaced
+/// by "0" and spaces (same length, so a parser's line and column still hold, and no number can
+/// overflow it), and `texts` holds every number-like token's text, in order, viewing `text`.
+/// Outside strings, a number is the only JSON token that starts with '-' or a digit.
+struct JsonNumbers {
+  std::string masked;
+  std::vector<std::string_view> texts;
+};
+
+/// Empty, with `error` set, when the text holds more than `max_numbers` number tokens.
+std::optional<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t max_numbers,
+                                             std::string* error);
 
 /// A request as read, its numbers kept as text so each precision converts them exactly once.
 struct Request {
@@ -31,7 +47,14 @@ struct ParsedLine {
   std::string error;
 };
 
+/// Refuses (with a message) what is not JSON, what is not a request, unknown and repeated fields,
+/// anything after a NUL byte, nesting deeper than 8 levels and more JSON values than
+/// kMaxValuesPerLine, so the memory a line takes stays a small multiple of its length.
 ParsedLine parse_request(std::string_view line);
+
+/// The most JSON values (numbers, strings, arrays, ...) a request or answer line may hold: a
+/// request holds 24.
+inline constexpr std::size_t kMaxValuesPerLine = 256;
 
 /// The one request writer: a request line (no trailing newline) from JSON number tokens
 /// (json_number()), the convention omitted when empty.

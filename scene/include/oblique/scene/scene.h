@@ -50,7 +50,18 @@ struct ParsedScene {
   std::string error;
 };
 
+/// Every failure names the field (numbers beyond double's range, degenerate cameras whose view
+/// volume has no finite corners in double, a normal or up vector of zero length) or the position.
+/// Directions (up, normals) are judged by direction, whatever their length.
 ParsedScene parse_scene(std::string_view text);
+
+/// The most a scene file may hold: bytes, and numbers.
+inline constexpr std::size_t kMaxSceneBytes = std::size_t{16} << 20;
+inline constexpr std::size_t kMaxSceneNumbers = std::size_t{1} << 20;
+
+/// parse_scene() of a file's text; a file that cannot be opened or read, a directory, or one
+/// larger than kMaxSceneBytes (read no further: /dev/zero) is refused with its reason.
+ParsedScene read_scene_file(const std::string& path);
 
 /// gluLookAt's view matrix; empty when eye = target or up is parallel to the view direction.
 std::optional<Matrix4<double>> look_at(const Vector3& eye, const Vector3& target,

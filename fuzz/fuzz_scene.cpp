@@ -1,0 +1,53 @@
+// libFuzzer target: the scene reader and checker of `oblique check`. The bytes are a scene file.
+// A scene is either refused with a message, or read and checked: every surface gets a decision
+// with a reason when skipped, every rendered pass a finite projection, and the table and JSON
+// outputs are written (the JSON must parse back) without a crash.
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+#include "oblique/scene/check.h"
+#include "oblique/scene/scene.h"
+
+namespace {
+
+[[noreturn]] void fail(const char* what, const std::string& detail) {
+  std::fprintf(stderr, "scene contract violated: %s\n%s\n", what, detail.c_str());
+  std::abort();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace oblique::scene;
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  const ParsedScene parsed = parse_scene(text);
+  if (!parsed.scene) {
+    if (parsed.error.empty()) fail("a refused scene without a message", std::string(text));
+    return 0;
+  }
+  const Scene& scene = *parsed.scene;
+  if (!scene.camera.projection.allFinite() || !scene.camera.view.allFinite())
+    fail("an accepted camera with a non-finite matrix", std::string(text));
+  const SceneCheck check = check_scene(scene);
+  if (check.surfaces.size() != scene.surfaces.size())
+    fail("a surface without a decision", std::string(text));
+  for (const SurfaceCheck& s : check.surfaces) {
+    if (!s.render && s.reason.empty()) fail("a skipped surface without a reason", s.name);
+    if (s.render && (!s.projection || !s.projection->allFinite()))
+      fail("a rendered pass without a finite projection", s.name);
+  }
+  const std::string json_text = to_json(check);
+  if (!nlohmann::json::accept(json_text)) fail("--json output that is not JSON", json_text);
+  const std::string table = to_text(check);
+  for (const char ch : table) {
+    if (ch != '\n' && static_cast<unsigned char>(ch) < 0x20)
+      fail("a control character in the table", table);
+  }
+  return 0;
+}
