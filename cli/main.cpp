@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,9 +22,11 @@
 
 namespace {
 
-/// Prints the files a report wrote, one per line; exit status 0.
-int print_paths(const std::vector<std::filesystem::path>& paths) {
-  for (const auto& path : paths) std::cout << path.string() << "\n";
+/// Prints the files a report wrote, one per line: exit status 0; 2 when it could not write them
+/// (the reason is on standard error already).
+int print_paths(const std::optional<std::vector<std::filesystem::path>>& paths) {
+  if (!paths) return 2;
+  for (const auto& path : *paths) std::cout << path.string() << "\n";
   return 0;
 }
 

@@ -358,13 +358,11 @@ std::map<std::pair<std::string, std::string>, OverallPoint> overall_points(
   return points;
 }
 
-std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& report,
-                                                         const AccuracyOptions& options,
-                                                         std::ostream& log) {
+std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
+    const AccuracyReport& report, const AccuracyOptions& options, std::ostream& log) {
   ReportFiles files(options.out_dir);
-  auto path = [&files](const char* name) { return files.add(name); };
 
-  std::ofstream csv(path("accuracy.csv"));
+  std::ostream& csv = files.open("accuracy.csv");
   csv << "regime,scalar,method,answered,refused,max_ulps,p999_ulps,mean_ulps,max_bits,p999_bits,"
          "mean_bits,ns_per_call,max_error_over_bound\n";
   csv.precision(17);
@@ -375,7 +373,7 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
         << ulps_to_bits(r.mean_ulps) << ',' << r.ns_per_call << ',' << r.max_bound_ratio << '\n';
   }
 
-  std::ofstream stiff(path("stiffness.csv"));
+  std::ostream& stiff = files.open("stiffness.csv");
   stiff << "regime,parameter,value,scalar,method,max_ulps,max_bits,max_error_over_bound\n";
   stiff.precision(17);
   for (const StiffnessPoint& p : report.stiffness) {
@@ -386,7 +384,7 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
 
   const auto overall = overall_points(report);
 
-  std::ofstream md(path("accuracy.md"));
+  std::ostream& md = files.open("accuracy.md");
   md << "| method | scalar | max error (ulp) | max error (bits) | worst 99.9th pct (ulp) | "
         "ns per call (mean over regimes) | max error / checker bound | on the front |\n"
         "|---|---|---:|---:|---:|---:|---:|:---:|\n";
@@ -422,7 +420,7 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
   }
 
   // Chart data: one line per (method, scalar); the front sorted by time.
-  std::ofstream points(path("accuracy_points.dat"));
+  std::ostream& points = files.open("accuracy_points.dat");
   std::vector<std::pair<double, double>> front_points;
   for (const auto& [key, o] : overall) {
     points << o.ns_per_call << ' ' << ulps_to_bits(o.max_ulps) << ' ' << key.first << '/'
@@ -430,10 +428,10 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
     if (o.on_front) front_points.emplace_back(o.ns_per_call, ulps_to_bits(o.max_ulps));
   }
   std::sort(front_points.begin(), front_points.end());
-  std::ofstream front_file(path("accuracy_front.dat"));
+  std::ostream& front_file = files.open("accuracy_front.dat");
   for (const auto& [ns, bits] : front_points) front_file << ns << ' ' << bits << '\n';
 
-  std::ofstream gp(path("accuracy.gp"));
+  std::ostream& gp = files.open("accuracy.gp");
   gp << "set terminal pngcairo size 900,600 noenhanced\n"
         "set output '"
      << (options.out_dir / "accuracy.png").string()
@@ -453,7 +451,7 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
   for (const StiffnessPoint& p : report.stiffness) {
     if (std::find(swept.begin(), swept.end(), p.regime) == swept.end()) swept.push_back(p.regime);
   }
-  std::ofstream sdat(path("stiffness.dat"));
+  std::ostream& sdat = files.open("stiffness.dat");
   for (const std::string& regime : swept) {
     for (const char* m : {"closed_form", "general", "accurate"}) {
       sdat << "# " << regime << ' ' << m << '\n';
@@ -464,7 +462,7 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
       sdat << "\n\n";
     }
   }
-  std::ofstream sgp(path("stiffness.gp"));
+  std::ostream& sgp = files.open("stiffness.gp");
   sgp << "set terminal pngcairo size 1200," << 320 * ((swept.size() + 1) / 2)
       << " noenhanced\nset output '" << (options.out_dir / "stiffness.png").string()
       << "'\nset multiplot layout " << (swept.size() + 1) / 2
@@ -483,15 +481,8 @@ std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& r
     block += 3;
   }
   sgp << "unset multiplot\n";
-  csv.close();
-  stiff.close();
-  md.close();
-  points.close();
-  front_file.close();
-  gp.close();
-  sdat.close();
-  sgp.close();
 
+  if (!files.commit(log)) return std::nullopt;
   files.plot("accuracy.gp", "accuracy.png", log);
   files.plot("stiffness.gp", "stiffness.png", log);
   return files.written();

@@ -176,13 +176,12 @@ DepthReport measure_depth(const DepthOptions& options) {
   return report;
 }
 
-std::vector<std::filesystem::path> write_depth_report(const DepthReport& report,
-                                                      const DepthOptions& options,
-                                                      std::ostream& log) {
+std::optional<std::vector<std::filesystem::path>> write_depth_report(const DepthReport& report,
+                                                                     const DepthOptions& options,
+                                                                     std::ostream& log) {
   ReportFiles files(options.out_dir);
-  auto path = [&files](const char* name) { return files.add(name); };
   {
-    std::ofstream csv(path("figure5.csv"));
+    std::ostream& csv = files.open("figure5.csv");
     csv << "angle_degrees,distance,answered,z_max_eq19,z_max_matrix,reachable_gl,"
            "reachable_zero_one,reachable_reversed_z\n";
     csv.precision(17);
@@ -194,7 +193,7 @@ std::vector<std::filesystem::path> write_depth_report(const DepthReport& report,
   }
   {
     // gnuplot grid: blocks by angle, NaN where the plane misses the view volume.
-    std::ofstream dat(path("figure5.dat"));
+    std::ostream& dat = files.open("figure5.dat");
     double angle = -1;
     for (const Figure5Point& p : report.figure5) {
       if (p.angle_degrees != angle && angle >= 0) dat << '\n';
@@ -208,7 +207,7 @@ std::vector<std::filesystem::path> write_depth_report(const DepthReport& report,
     }
   }
   {
-    std::ofstream csv(path("depth_bits.csv"));
+    std::ostream& csv = files.open("depth_bits.csv");
     csv << "angle_degrees,distance,convention,direction,fixed24_bits_original,"
            "fixed24_bits_oblique,fixed24_bits_lost,float32_bits_original,float32_bits_oblique,"
            "float32_bits_lost\n";
@@ -222,7 +221,7 @@ std::vector<std::filesystem::path> write_depth_report(const DepthReport& report,
     }
   }
   {
-    std::ofstream md(path("depth.md"));
+    std::ostream& md = files.open("depth.md");
     md << "Frustum: gluPerspective " << options.fovy_degrees << " degrees, aspect "
        << options.aspect << ", n = " << options.near_distance << ", f = " << options.far_distance
        << "; plane C = (sin t, 0, -cos t, -d). Eq. 19 against the core's matrix: largest gap "
@@ -246,7 +245,7 @@ std::vector<std::filesystem::path> write_depth_report(const DepthReport& report,
     md << "\ndepth_bits.csv has the same for two directions toward far corners of the frustum.\n";
   }
   {
-    std::ofstream gp(path("figure5.gp"));
+    std::ostream& gp = files.open("figure5.gp");
     gp << "set terminal pngcairo size 900,650 noenhanced\nset output '"
        << (options.out_dir / "figure5.png").string()
        << "'\nset title 'Figure 5 reproduced: max NDC z along the view axis (Eq. 19, gl), clamped "
@@ -257,6 +256,7 @@ std::vector<std::filesystem::path> write_depth_report(const DepthReport& report,
           "unset surface\nset key off\nsplot '"
        << (options.out_dir / "figure5.dat").string() << "' using 1:2:3 with pm3d\n";
   }
+  if (!files.commit(log)) return std::nullopt;
   files.plot("figure5.gp", "figure5.png", log);
   return files.written();
 }

@@ -5,7 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
+#include <string>
 
 #include "oblique/properties/exact.h"
 #include "oblique/report/accuracy_report.h"
@@ -97,6 +101,43 @@ TEST(AccuracyReport, frontKeepsOnlyNonDominatedPairs) {
   EXPECT_TRUE((points.at({"fast", "double"}).on_front));
   EXPECT_TRUE((points.at({"exact", "double"}).on_front));
   EXPECT_FALSE((points.at({"slow_and_bad", "double"}).on_front));
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A report either replaces its files whole or leaves the folder as it was: a folder that cannot
+// be made (under a regular file) writes nothing and says so; a complete run replaces the earlier
+// files and leaves no staging folder behind.
+TEST(ReportFiles, aRunThatCannotWriteLeavesTheFolderAsItWas) {
+  const std::filesystem::path root =
+      std::filesystem::path(::testing::TempDir()) / "oblique_report_files_test";
+  std::filesystem::remove_all(root);
+  std::filesystem::create_directories(root);
+  std::ofstream(root / "plain_file") << "not a folder";
+  DepthOptions options;
+  options.out_dir = root / "plain_file" / "report";
+  const DepthReport report = measure_depth(options);
+  std::ostringstream log;
+  EXPECT_FALSE(write_depth_report(report, options, log));
+  EXPECT_NE(log.str().find("nothing written"), std::string::npos) << log.str();
+  EXPECT_EQ(read_file(root / "plain_file"), "not a folder");
+
+  options.out_dir = root / "report";
+  std::filesystem::create_directories(options.out_dir);
+  std::ofstream(options.out_dir / "depth.md") << "an earlier report";
+  std::ofstream(options.out_dir / "kept.txt") << "the user's";
+  const auto written = write_depth_report(report, options, log);
+  ASSERT_TRUE(written) << log.str();
+  EXPECT_NE(read_file(options.out_dir / "depth.md"), "an earlier report");
+  EXPECT_EQ(read_file(options.out_dir / "kept.txt"), "the user's");
+  for (const auto& entry : std::filesystem::directory_iterator(options.out_dir))
+    EXPECT_EQ(entry.path().filename().string().rfind(".oblique-staging", 0), std::string::npos)
+        << entry.path();
 }
 
 }  // namespace

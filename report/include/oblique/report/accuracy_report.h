@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,10 +53,10 @@ double ulps_to_bits(double ulps);
 
 /// Writes accuracy.csv, stiffness.csv, accuracy.md, and the gnuplot scripts accuracy.gp and
 /// stiffness.gp in options.out_dir; runs gnuplot on them when it is installed (PNG charts).
-/// Returns the paths written.
-std::vector<std::filesystem::path> write_accuracy_report(const AccuracyReport& report,
-                                                         const AccuracyOptions& options,
-                                                         std::ostream& log);
+/// Returns the paths written; all or nothing: empty (the reason on `log`, the folder's earlier
+/// files kept) when a file cannot be written.
+std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
+    const AccuracyReport& report, const AccuracyOptions& options, std::ostream& log);
 
 /// One (method, scalar) pair over every regime: mean ns per call, worst errors, and whether it is
 /// on the error-against-time front (no other pair is both faster and more accurate).

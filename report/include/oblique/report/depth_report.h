@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,8 +50,10 @@ struct DepthReport {
 DepthReport measure_depth(const DepthOptions& options);
 
 /// Writes figure5.csv, depth_bits.csv, depth.md, figure5.gp (and figure5.png with gnuplot).
-std::vector<std::filesystem::path> write_depth_report(const DepthReport& report,
-                                                      const DepthOptions& options,
-                                                      std::ostream& log);
+/// Returns the paths written; all or nothing: empty (the reason on `log`, the folder's earlier
+/// files kept) when a file cannot be written.
+std::optional<std::vector<std::filesystem::path>> write_depth_report(const DepthReport& report,
+                                                                     const DepthOptions& options,
+                                                                     std::ostream& log);
 
 }  // namespace oblique::report
