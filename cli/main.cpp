@@ -129,13 +129,21 @@ void setup_apply(CLI::App& app, int& exit_code) {
   });
 }
 
-void setup_verify(CLI::App& app, int& exit_code, const char* self) {
+void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
+  const char* self = argv[0];
   struct Settings {
     oblique::verify::VerifyOptions options;
     std::string conventions = "gl", families, precision = "double";
+    std::string statuses, planes = "any", places, exclude, contract;
+    std::vector<std::string> arguments;  // after "verify", for the replay command
     bool quiet = false;
   };
   auto settings = std::make_shared<Settings>();
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) != "verify") continue;
+    settings->arguments.assign(argv + i + 1, argv + argc);
+    break;
+  }
   oblique::verify::VerifyOptions& options = settings->options;
   CLI::App* verify = app.add_subcommand(
       "verify",
@@ -156,9 +164,10 @@ void setup_verify(CLI::App& app, int& exit_code, const char* self) {
   verify->add_option("--precision", settings->precision, "Scalar type of inputs and bounds")
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
-  verify->add_option("--cases", options.cases, "Number of generated requests")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  verify
+      ->add_option("--cases", options.cases,
+                   "Number of generated requests (default: no limit, --time-limit ends the run)")
+      ->check(CLI::PositiveNumber);
   verify->add_option("--seed", options.seed, "Random seed (default: a fresh one, printed)");
   verify
       ->add_option("--time-limit", options.time_limit_seconds,
@@ -173,15 +182,77 @@ void setup_verify(CLI::App& app, int& exit_code, const char* self) {
   verify->add_option("--report-dir", options.report_dir, "Where the counterexample report goes")
       ->capture_default_str();
   verify->add_flag("--quiet", settings->quiet, "No progress lines on standard error");
+  // The contract: what the implementation promises.
+  verify->add_flag("--answers-only", options.answers_only,
+                   "Send only inputs with an exact answer (an implementation without statuses)");
+  verify->add_option("--statuses", settings->statuses,
+                     "Comma list of the refusal codes it implements: inputs needing others are "
+                     "not sent, these must be exact");
+  verify->add_option("--planes", settings->planes, "unit: planes with a unit normal; any")
+      ->check(CLI::IsMember({"unit", "any"}))
+      ->capture_default_str();
+  verify->add_option("--places", settings->places,
+                     "Comma list of hard places to send (default: all): typical, "
+                     "zero_in_clip_plane, near_eye, near_far_corner, along_axis, near_standard, "
+                     "scaled");
+  verify->add_option("--exclude", settings->exclude,
+                     "Comma list of families, hard places and kinds of input without an answer "
+                     "to leave out");
+  verify->add_option("--contract", settings->contract,
+                     "A JSON contract file: answers_only, statuses, planes, places, exclude, "
+                     "families, conventions (flags add to it)");
+  verify->add_flag("--keep-going", options.keep_going,
+                   "Go on after a finding; report each kind (property x family x place) once");
+  verify->add_option("--replay", options.replay,
+                     "Re-judge the case of a report (its .json) with --impl: exit 0 or 1");
+  verify->add_option("--regressions", options.regressions,
+                     "Replay every report (.json) in this folder before the run");
+  verify->add_option("--save-regressions", options.save_regressions,
+                     "Keep each new shrunk case's report in this folder too");
   verify->callback([settings, &exit_code, self] {
     oblique::verify::VerifyOptions& options = settings->options;
+    std::string error;
+    if (!settings->contract.empty() &&
+        !oblique::verify::read_contract(settings->contract, options, &error)) {
+      std::cerr << "oblique verify: " << error << "\n";
+      exit_code = 2;
+      return;
+    }
+    const std::vector<oblique::Convention> from_contract = options.conventions;
     if (!parse_lists(settings->conventions, settings->families, options)) {
+      exit_code = 2;
+      return;
+    }
+    if (!settings->contract.empty() && settings->conventions == "gl" && !from_contract.empty())
+      options.conventions = from_contract;  // the default flag does not override the file
+    for (const std::string& name : split_list(settings->statuses)) {
+      const auto status = oblique::parse_status(name);
+      if (!status || *status == oblique::Status::ok) {
+        std::cerr << "oblique verify: --statuses: \"" << name << "\" is not a refusal status\n";
+        exit_code = 2;
+        return;
+      }
+      options.statuses.push_back(*status);
+    }
+    if (settings->planes == "unit") options.unit_planes = true;
+    for (const std::string& name : split_list(settings->places)) {
+      const auto place = oblique::generators::parse_place(name);
+      if (!place) {
+        std::cerr << "oblique verify: --places: unknown place \"" << name << "\"\n";
+        exit_code = 2;
+        return;
+      }
+      options.places.push_back(*place);
+    }
+    if (!oblique::verify::exclude_names(split_list(settings->exclude), options, &error)) {
+      std::cerr << "oblique verify: " << error << "\n";
       exit_code = 2;
       return;
     }
     options.precision = *oblique::protocol::parse_precision(settings->precision);
     options.progress = !settings->quiet;
     options.self = self;
+    options.arguments = settings->arguments;
     exit_code = oblique::verify::run_verify(options, std::cout, std::cerr);
   });
 }
@@ -270,7 +341,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = 2;
   setup_apply(app, exit_code);
-  setup_verify(app, exit_code, argv[0]);
+  setup_verify(app, exit_code, argc, argv);
   setup_check(app, exit_code);
   setup_report(app, exit_code);
   try {

@@ -3,7 +3,8 @@ cmake_minimum_required(VERSION 3.25)
 #   cmake -DOBLIQUE=... -DIMPL=... -DARGS="--cases;2000" -DEXIT=0|1|2 [-DKINDS="a;b"]
 #         [-DMATCH=regex] -DREPORTS=dir -P expect_verify.cmake
 # EXIT 1 also requires the report (Markdown + JSON) to name one of KINDS, carry the replay
-# command, and the replay command to get an answer from the implementation.
+# command, and the replay command to get an answer from the implementation; with
+# -DALL_KINDS="a;b" (--keep-going) an index and a report for each of ALL_KINDS instead.
 file(REMOVE_RECURSE "${REPORTS}")
 execute_process(COMMAND "${OBLIQUE}" verify --impl "${IMPL}" --report-dir "${REPORTS}" --quiet ${ARGS}
                 RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE errors)
@@ -19,6 +20,25 @@ if(NOT EXIT EQUAL 1)
 endif()
 file(GLOB reports "${REPORTS}/verify-*.json")
 list(LENGTH reports count)
+if(ALL_KINDS)
+  # --keep-going: one report per kind and an index; every kind in ALL_KINDS among them.
+  if(NOT EXISTS "${REPORTS}/verify-index.md")
+    message(FATAL_ERROR "no index of the findings in ${REPORTS}")
+  endif()
+  set(found_kinds "")
+  foreach(report ${reports})
+    file(READ "${report}" json)
+    string(JSON kind GET "${json}" property)
+    list(APPEND found_kinds ${kind})
+  endforeach()
+  foreach(kind ${ALL_KINDS})
+    if(NOT kind IN_LIST found_kinds)
+      message(FATAL_ERROR "no report names '${kind}'; the reports name: ${found_kinds}")
+    endif()
+  endforeach()
+  message(STATUS "caught every kind: ${found_kinds}")
+  return()
+endif()
 if(NOT count EQUAL 1)
   message(FATAL_ERROR "expected one report in ${REPORTS}, found ${count}")
 endif()
@@ -29,7 +49,14 @@ if(NOT kind IN_LIST KINDS)
 endif()
 string(REPLACE ".json" ".md" markdown "${reports}")
 file(READ "${markdown}" text)
-foreach(part "# Counterexample: ${kind}" "## Input" "## Replay" "oblique verify" "--seed")
+# The whole-run replay carries every flag of the run.
+set(parts "# Counterexample: ${kind}" "## Input" "## Replay" "oblique verify" "--seed" "found after")
+foreach(arg ${ARGS})
+  if(arg MATCHES "^--")
+    list(APPEND parts "${arg}")
+  endif()
+endforeach()
+foreach(part ${parts})
   string(FIND "${text}" "${part}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "the Markdown report lacks '${part}':\n${text}")
@@ -44,4 +71,11 @@ execute_process(COMMAND sh -c "${replay}" RESULT_VARIABLE replay_result OUTPUT_V
 if(NOT answer MATCHES "\"status\"")
   message(FATAL_ERROR "the replay command gave no answer: ${replay}\n${answer}")
 endif()
-message(STATUS "caught: ${kind}; replay answers ${answer}")
+# Replay with a verdict: the report's case, re-judged, is violated again (exit 1).
+execute_process(COMMAND "${OBLIQUE}" verify --replay "${reports}" --impl "${IMPL}"
+                RESULT_VARIABLE rejudged OUTPUT_VARIABLE verdict ERROR_VARIABLE verdict_errors
+                TIMEOUT 20)
+if(NOT rejudged EQUAL 1)
+  message(FATAL_ERROR "verify --replay exited with ${rejudged}, expected 1:\n${verdict}${verdict_errors}")
+endif()
+message(STATUS "caught: ${kind}; replay answers ${answer}; re-judged: ${verdict}")

@@ -97,16 +97,21 @@ struct FuzzCase {
   protocol::Precision scalar = protocol::Precision::float64;
   Convention convention = Convention::gl;
   Method method = Method::automatic;
-  int family =
-      0;  ///< 0..4 built (frustum, infinite, orthographic, y-flipped frustum, rotated), 5 raw
+  /// 0..4 built (frustum, infinite, orthographic, y-flipped frustum, rotated), 5 raw, 6 a
+  /// frustum or infinite frustum times a camera shift T(tx, ty, 0): M14, M24 != 0 (stereo, lens
+  /// shift; generators::Family::stereo_shift).
+  int family = 0;
   Matrix4<double> matrix = Matrix4<double>::Identity();
   Vector4<double> plane = Vector4<double>::Zero();
 };
 
 inline const char* family_label(int family) {
-  const char* names[] = {"frustum", "infinite", "orthographic", "y_flipped", "rotated", "raw"};
-  return names[family % 6];
+  const char* names[] = {"frustum", "infinite", "orthographic", "y_flipped",
+                         "rotated", "raw",      "stereo_shift"};
+  return names[family % 7];
 }
+
+inline constexpr std::uint8_t kShiftMarker = 0x53;  // 'S'
 
 /// Builds the case; builder parameters that break a builder's preconditions fall back to raw.
 inline FuzzCase decode(const std::uint8_t* data, std::size_t size) {
@@ -144,6 +149,17 @@ inline FuzzCase decode(const std::uint8_t* data, std::size_t size) {
     }
   }
   for (int i = 0; i < 4; ++i) c.plane(i) = number(in);
+  // After the plane, the byte kShiftMarker shifts a frustum or infinite frustum by (tx, ty, 0)
+  // (two more numbers). Inputs that end earlier, or go on with another byte, decode as before.
+  if ((c.family == 0 || c.family == 1) && in.byte() == kShiftMarker) {
+    Matrix4<double> shift = Matrix4<double>::Identity();
+    shift(0, 3) = number(in);
+    shift(1, 3) = number(in);
+    if (std::isfinite(shift(0, 3)) && std::isfinite(shift(1, 3))) {
+      c.matrix = c.matrix * shift;
+      c.family = 6;
+    }
+  }
   return c;
 }
 

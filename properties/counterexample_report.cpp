@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #ifndef OBLIQUE_COMPILER
 #define OBLIQUE_COMPILER "unknown compiler"
@@ -75,6 +76,21 @@ std::string core_method_of(const std::string& implementation) {
   return method;
 }
 
+/// Writes `text` to a temporary file beside `path`, then renames it into place.
+void write_file(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".partial";
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    file << text;
+    file.flush();
+    if (!file) {
+      std::filesystem::remove(temporary);
+      throw std::runtime_error("cannot write " + temporary);
+    }
+  }
+  std::filesystem::rename(temporary, path);
+}
+
 }  // namespace
 
 std::string write_report(const Counterexample& ce, const ReportContext& context) {
@@ -83,6 +99,13 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
       context.stem.empty() ? context.test_id + "." + ce.implementation : context.stem;
   for (char& ch : stem) {
     if (ch == '/' || ch == ' ') ch = '_';
+  }
+  if (context.keep_existing) {
+    const std::string base = stem;
+    for (int n = 2; std::filesystem::exists(context.directory + "/" + stem + ".md") ||
+                    std::filesystem::exists(context.directory + "/" + stem + ".json");
+         ++n)
+      stem = base + "-" + std::to_string(n);
   }
   const std::string md_path = context.directory + "/" + stem + ".md";
   const std::string json_path = context.directory + "/" + stem + ".json";
@@ -101,14 +124,16 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
                                                          " apply --method " + method +
                                                          " --precision " + ce.scalar;
 
-  std::ofstream md(md_path);
+  std::ostringstream md;
   const Finding& f = ce.finding;
   md << "# Counterexample: " << f.kind << " (" << ce.implementation << ", " << ce.scalar << ")\n\n";
   md << "**Relation:** " << f.relation << "\n\n";
-  md << "| side | value |\n|---|---|\n| residual | `" << f.lhs << "` |\n| bound | `" << f.rhs
-     << "` |\n| residual / bound | `" << protocol::format_number(f.ratio) << "` |\n";
-  if (!f.expected.empty()) {
-    md << "| status expected | `" << f.expected << "` |\n| status answered | `" << f.got << "` |\n";
+  if (!f.expected.empty()) {  // a status finding: what was expected and what came
+    md << "| | status |\n|---|---|\n| expected | `" << f.expected << "` |\n| got | `" << f.got
+       << "` |\n";
+  } else {
+    md << "| side | value |\n|---|---|\n| residual | `" << f.lhs << "` |\n| bound | `" << f.rhs
+       << "` |\n| residual / bound | `" << protocol::format_number(f.ratio) << "` |\n";
   }
   md << "\nFamily `" << ce.family << "`, convention `" << ce.convention << "`, place `" << ce.place
      << "`.\n\n## Input\n\nProjection M (shortest round-trip decimals):\n\n"
@@ -163,7 +188,9 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   j["notes"] = notes;
   j["compiler"] = OBLIQUE_COMPILER;
   j["flags"] = OBLIQUE_CXX_FLAGS;
-  std::ofstream(json_path) << j.dump(2) << "\n";
+  // Text from other programs may be any bytes: invalid UTF-8 becomes U+FFFD, never an abort.
+  write_file(json_path, j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  write_file(md_path, md.str());
   return md_path;
 }
 

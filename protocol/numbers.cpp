@@ -80,9 +80,13 @@ std::optional<T> parse_number(const std::string& token, std::string* error) {
   const bool quoted_string = !token.empty() && token[0] == '"';
   const std::string text = quoted_string ? token.substr(1) : token;
   if (quoted_string) {
-    if (text == "nan" || text == "-nan") return std::numeric_limits<T>::quiet_NaN();
-    if (text == "inf") return std::numeric_limits<T>::infinity();
-    if (text == "-inf") return -std::numeric_limits<T>::infinity();
+    // The protocol's spellings, and those of writers that quote non-finite numbers (Jackson,
+    // Newtonsoft: "NaN", "Infinity", "-Infinity").
+    if (text == "nan" || text == "-nan" || text == "NaN" || text == "-NaN")
+      return std::numeric_limits<T>::quiet_NaN();
+    if (text == "inf" || text == "+inf" || text == "Infinity" || text == "+Infinity")
+      return std::numeric_limits<T>::infinity();
+    if (text == "-inf" || text == "-Infinity") return -std::numeric_limits<T>::infinity();
     if (!is_hex_float(text)) {
       *error =
           "the string \"" + text +

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace oblique::protocol {
@@ -410,19 +411,26 @@ std::string normalise_non_finite(std::string_view line) {
     if (ch == '"') {
       in_string = true;
       out += ch;
-    } else if (starts(i, "-Infinity")) {
-      out += "\"-inf\"";
-      i += 8;
-    } else if (starts(i, "Infinity")) {
-      out += "\"inf\"";
-      i += 7;
-    } else if (starts(i, "NaN")) {
-      out += "\"nan\"";
-      i += 2;
-    } else if (starts(i, "null")) {
-      out += "\"nan\"";
-      i += 3;
-    } else {
+      continue;
+    }
+    // The bare non-finite tokens writers print: Python's NaN/Infinity, JavaScript's null, C's
+    // printf("%.17g") nan/-nan/inf/-inf; longest first, so "-Infinity" is not read as "-inf".
+    static constexpr std::pair<std::string_view, std::string_view> kTokens[] = {
+        {"-Infinity", "\"-inf\""}, {"+Infinity", "\"inf\""}, {"Infinity", "\"inf\""},
+        {"-infinity", "\"-inf\""}, {"+infinity", "\"inf\""}, {"infinity", "\"inf\""},
+        {"-NaN", "\"nan\""},       {"NaN", "\"nan\""},       {"-nan", "\"nan\""},
+        {"nan", "\"nan\""},        {"-inf", "\"-inf\""},     {"+inf", "\"inf\""},
+        {"inf", "\"inf\""},        {"null", "\"nan\""}};
+    bool replaced = false;
+    for (const auto& [token, replacement] : kTokens) {
+      if (starts(i, token)) {
+        out += replacement;
+        i += token.size() - 1;
+        replaced = true;
+        break;
+      }
+    }
+    if (!replaced) {
       out += ch;
     }
   }

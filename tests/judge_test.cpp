@@ -112,6 +112,33 @@ TEST(Judge, onlyTheSelectedPropertiesAreChecked) {
   EXPECT_EQ(sides.violation()->kind, "side_rows_unchanged");
 }
 
+TEST(Judge, aChangedSignOfZeroInTheSideRowsIsNotAViolation) {
+  // A y-flipped frustum has zeros in rows 1, 2 and 4; an answer that wrote them back as +0 (or
+  // -0) describes the same side planes.
+  Matrix4<double> flipped = kFrustum;
+  flipped.row(1) *= -1;
+  const Problem<double> problem(flipped, kPlane, Convention::gl);
+  const ObliqueResult<double> r = apply<double>(flipped, kPlane, Convention::gl);
+  ASSERT_TRUE(r.ok()) << r.message();
+  Outcome<double> answer{r.status, r.projection};
+  int flips = 0;
+  for (int row : {0, 1, 3}) {
+    for (int j = 0; j < 4; ++j) {
+      if (answer.projection(row, j) == 0) {
+        answer.projection(row, j) = -answer.projection(row, j);
+        ++flips;
+      }
+    }
+  }
+  ASSERT_GT(flips, 0);
+  EXPECT_TRUE(judge(problem, answer).holds());
+  // A real change of a side row is still caught, however small.
+  answer.projection(1, 1) = std::nextafter(answer.projection(1, 1), 0.0);
+  const Judgement changed = judge(problem, answer);
+  ASSERT_NE(changed.violation(), nullptr);
+  EXPECT_EQ(changed.violation()->kind, "side_rows_unchanged");
+}
+
 TEST(Judge, stopsAtTheFirstViolationUnlessEveryIsAsked) {
   const Problem<double> problem(kFrustum, kPlane, Convention::gl);
   Outcome<double> answer = core_answer();

@@ -130,6 +130,43 @@ TEST(Protocol, flagsAndRequestFieldsChooseConventionAndPrecision) {
   EXPECT_EQ(answer_request(line, options).status, Status::ok);
 }
 
+TEST(Protocol, everyWritersNonFiniteTokensReadAsNonFiniteNumbers) {
+  // C's printf("%.17g") (nan, -nan, inf, -inf), Python (NaN, Infinity, -Infinity), JavaScript
+  // (null), bare or quoted: each is a number to judge, not a protocol error.
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::pair<const char*, double> tokens[] = {{"nan", NAN},
+                                                   {"-nan", NAN},
+                                                   {"inf", inf},
+                                                   {"-inf", -inf},
+                                                   {"NaN", NAN},
+                                                   {"Infinity", inf},
+                                                   {"-Infinity", -inf},
+                                                   {"null", NAN},
+                                                   {"\"NaN\"", NAN},
+                                                   {"\"Infinity\"", inf},
+                                                   {"\"-Infinity\"", -inf},
+                                                   {"\"-nan\"", NAN}};
+  for (const auto& [token, value] : tokens) {
+    std::string line = "{\"status\": \"ok\", \"projection\": [";
+    for (int i = 0; i < 16; ++i) line += std::string(i ? ", " : "") + (i == 5 ? token : "1");
+    line += "]}";
+    const ParsedAnswer parsed = parse_answer(normalise_non_finite(line));
+    ASSERT_TRUE(parsed.valid) << line << ": " << parsed.error;
+    std::string error;
+    const std::optional<double> read = parse_number<double>((*parsed.projection)[5], &error);
+    ASSERT_TRUE(read) << token << ": " << error;
+    if (std::isnan(value)) {
+      EXPECT_TRUE(std::isnan(*read)) << token;
+    } else {
+      EXPECT_EQ(*read, value) << token;
+    }
+    EXPECT_EQ(parse_number<double>((*parsed.projection)[0], &error), 1.0);
+  }
+  // Inside strings nothing changes.
+  EXPECT_EQ(normalise_non_finite("{\"message\": \"nan inf null\"}"),
+            "{\"message\": \"nan inf null\"}");
+}
+
 }  // namespace
 }  // namespace oblique::protocol
 

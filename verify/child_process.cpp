@@ -1,14 +1,19 @@
 #include "child_process.h"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <thread>
 
 namespace oblique::verify {
@@ -27,7 +32,79 @@ bool set_nonblocking(int fd) {
   return flags >= 0 && ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) == 0;
 }
 
+/// Our children (processes whose parent we are), from /proc: the implementation's descendants
+/// that were orphaned to us as their subreaper.
+std::vector<pid_t> own_children() {
+  std::vector<pid_t> out;
+  DIR* proc = ::opendir("/proc");
+  if (!proc) return out;
+  const pid_t self = ::getpid();
+  while (const dirent* entry = ::readdir(proc)) {
+    char* end = nullptr;
+    const long pid = std::strtol(entry->d_name, &end, 10);
+    if (pid <= 0 || *end != '\0') continue;
+    std::ifstream stat("/proc/" + std::string(entry->d_name) + "/stat");
+    std::string text;
+    std::getline(stat, text);
+    // pid (comm) state ppid ...: comm may hold spaces and parentheses, so read after the last ')'.
+    const std::size_t close = text.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(text.substr(close + 1));
+    char state = 0;
+    long ppid = 0;
+    if (rest >> state >> ppid && ppid == self) out.push_back(static_cast<pid_t>(pid));
+  }
+  ::closedir(proc);
+  return out;
+}
+
+std::size_t utf8_sequence_length(std::string_view s, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char b = byte(i);
+  std::size_t n = 0;
+  if (b >= 0xC2 && b <= 0xDF) {
+    n = 2;
+  } else if (b >= 0xE0 && b <= 0xEF) {
+    n = 3;
+  } else if (b >= 0xF0 && b <= 0xF4) {
+    n = 4;
+  } else {
+    return 0;
+  }
+  if (i + n > s.size()) return 0;  // cut short
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((byte(i + k) & 0xC0) != 0x80) return 0;
+  }
+  // Overlong forms, surrogates and code points beyond U+10FFFF.
+  if (b == 0xE0 && byte(i + 1) < 0xA0) return 0;
+  if (b == 0xED && byte(i + 1) >= 0xA0) return 0;
+  if (b == 0xF0 && byte(i + 1) < 0x90) return 0;
+  if (b == 0xF4 && byte(i + 1) >= 0x90) return 0;
+  return n;
+}
+
 }  // namespace
+
+std::string escape_bytes(std::string_view bytes) {
+  std::string out;
+  out.reserve(bytes.size());
+  for (std::size_t i = 0; i < bytes.size();) {
+    const auto b = static_cast<unsigned char>(bytes[i]);
+    if ((b >= 0x20 && b < 0x7F) || b == '\n' || b == '\t') {
+      out += static_cast<char>(b);
+      ++i;
+    } else if (const std::size_t n = b >= 0x80 ? utf8_sequence_length(bytes, i) : 0) {
+      out.append(bytes.substr(i, n));
+      i += n;
+    } else {
+      char hex[5];
+      std::snprintf(hex, sizeof hex, "\\x%02X", b);
+      out += hex;
+      ++i;
+    }
+  }
+  return out;
+}
 
 ChildProcess::ChildProcess(std::string command) : command_(std::move(command)) {}
 
@@ -37,6 +114,10 @@ ChildProcess::~ChildProcess() {
 
 bool ChildProcess::start(std::string* error) {
   stop();
+  // Descendants that leave the process group (setsid) are orphaned to us, not to init, so stop()
+  // can still end them.
+  static const bool subreaper = ::prctl(PR_SET_CHILD_SUBREAPER, 1) == 0;
+  (void)subreaper;
   int in[2], out[2], err[2];
   if (::pipe2(in, O_CLOEXEC) != 0 || ::pipe2(out, O_CLOEXEC) != 0 || ::pipe2(err, O_CLOEXEC) != 0) {
     *error = std::string("cannot create pipes: ") + std::strerror(errno);
@@ -51,9 +132,17 @@ bool ChildProcess::start(std::string* error) {
   if (pid == 0) {
     ::setpgid(0, 0);
     ::signal(SIGPIPE, SIG_DFL);
-    ::dup2(in[0], STDIN_FILENO);
-    ::dup2(out[1], STDOUT_FILENO);
-    ::dup2(err[1], STDERR_FILENO);
+    // The pipe ends may themselves be fds 0..2 (when we were started with those closed): move
+    // them above 2 first, so each dup2 below gives fds 0, 1, 2 a pipe that survives exec.
+    const int child_in = ::fcntl(in[0], F_DUPFD, 3);
+    const int child_out = ::fcntl(out[1], F_DUPFD, 3);
+    const int child_err = ::fcntl(err[1], F_DUPFD, 3);
+    if (child_in < 0 || child_out < 0 || child_err < 0 || ::dup2(child_in, STDIN_FILENO) < 0 ||
+        ::dup2(child_out, STDOUT_FILENO) < 0 || ::dup2(child_err, STDERR_FILENO) < 0)
+      ::_exit(126);
+    ::close(child_in);
+    ::close(child_out);
+    ::close(child_err);
     ::execl("/bin/sh", "sh", "-c", command_.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
@@ -71,6 +160,8 @@ bool ChildProcess::start(std::string* error) {
   unwritten_.clear();
   written_ = 0;
   stderr_tail_.clear();
+  overlong_.clear();
+  last_line_ = Clock::now();
   set_nonblocking(in_);
   set_nonblocking(out_);
   set_nonblocking(err_);
@@ -101,9 +192,14 @@ ChildProcess::Outcome ChildProcess::exchange(std::string_view input, std::size_t
       pending_.erase(0, nl + 1);
       if (!line.empty() && line.back() == '\r') line.pop_back();
       lines.push_back(std::move(line));
-      last_progress = Clock::now();
+      last_progress = last_line_ = Clock::now();
     }
     if (lines.size() >= want) return Outcome::done;
+    if (pending_.size() > kMaxLineBytes) {
+      overlong_ = pending_.substr(0, 200);
+      pending_.clear();  // not kept: memory per line stays bounded
+      return Outcome::too_long;
+    }
     if (out_ < 0) return Outcome::exited;
 
     const auto now = Clock::now();
@@ -140,16 +236,66 @@ ChildProcess::Outcome ChildProcess::exchange(std::string_view input, std::size_t
       else if (r == 0 || (errno != EAGAIN && errno != EINTR))
         close_fd(err_);
     }
-    if (fds[out_index].revents & (POLLIN | POLLHUP | POLLERR)) {
-      const ssize_t r = ::read(out_, buffer, sizeof buffer);
-      if (r > 0) {
-        pending_.append(buffer, static_cast<std::size_t>(r));
-      } else if (r == 0 || (errno != EAGAIN && errno != EINTR)) {
-        close_fd(out_);
-        if (!pending_.empty()) pending_ += '\n';  // a last line without its newline still counts
-      }
-    }
+    if (fds[out_index].revents & (POLLIN | POLLHUP | POLLERR)) read_output(buffer, sizeof buffer);
   }
+}
+
+bool ChildProcess::read_output(char* buffer, std::size_t size) {
+  const ssize_t r = ::read(out_, buffer, size);
+  if (r > 0) {
+    pending_.append(buffer, static_cast<std::size_t>(r));
+    return true;
+  }
+  if (r == 0 || (errno != EAGAIN && errno != EINTR)) {
+    close_fd(out_);
+    if (!pending_.empty()) pending_ += '\n';  // a last line without its newline still counts
+  }
+  return false;
+}
+
+namespace {
+
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t from = 0;
+  while (from < text.size()) {
+    std::size_t nl = text.find('\n', from);
+    if (nl == std::string::npos) nl = text.size();
+    std::string line = text.substr(from, nl - from);
+    if (line.size() > 400) line = line.substr(0, 400) + "...";
+    out.push_back(std::move(line));
+    from = nl + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> ChildProcess::unasked_output() {
+  char buffer[1 << 12];
+  // What the pipe holds now, up to one line's worth (a babbling child must not keep us here).
+  while (out_ >= 0 && pending_.size() <= kMaxLineBytes) {
+    pollfd fd{out_, POLLIN, 0};
+    if (::poll(&fd, 1, 0) <= 0 || !(fd.revents & (POLLIN | POLLHUP | POLLERR))) break;
+    if (!read_output(buffer, sizeof buffer)) break;
+  }
+  return split_lines(pending_);
+}
+
+std::vector<std::string> ChildProcess::close_and_drain(Clock::time_point until) {
+  close_fd(in_);
+  char buffer[1 << 12];
+  while (out_ >= 0 && pending_.size() <= kMaxLineBytes) {
+    const auto now = Clock::now();
+    if (now >= until) break;
+    const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(until - now).count();
+    pollfd fd{out_, POLLIN, 0};
+    const int ready = ::poll(&fd, 1, static_cast<int>(wait) + 1);
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) break;
+    read_output(buffer, sizeof buffer);
+  }
+  return split_lines(pending_);
 }
 
 bool ChildProcess::reap(bool wait) {
@@ -174,6 +320,16 @@ void ChildProcess::stop() {
   }
   // The group may outlive its leader (a shell's children): end it too.
   ::kill(-pid_, SIGKILL);
+  // Descendants that left the group (setsid) and lost their parent are now our children: end
+  // them, and theirs as they are orphaned to us in turn.
+  for (int round = 0; round < 100; ++round) {
+    const std::vector<pid_t> orphans = own_children();
+    if (orphans.empty()) break;
+    for (pid_t orphan : orphans) {
+      ::kill(orphan, SIGKILL);
+      ::waitpid(orphan, nullptr, 0);
+    }
+  }
   close_fds();
   pid_ = -1;
   unwritten_.clear();

@@ -27,11 +27,21 @@ enum class Mistake {
   zero_one_factor_on_gl,  ///< a = 1 / (C . Q), M'_3 = a C (the [0, 1] formula) on every matrix
   no_camera_guard,        ///< no check that the camera is behind the plane (C_w < 0)
   sign_by_division,       ///< sgn(x) = x / |x|, which is NaN at 0
+  two_bugs,               ///< no_camera_guard and sign_by_division together
+  ignores_shift,          ///< C' and Q from M without its stereo / lens shift (M14 = M24 = 0)
+  no_statuses,            ///< no guards, no refusals: every input gets a matrix, as in engines
 };
+
+inline bool has_sign_by_division(Mistake m) {
+  return m == Mistake::sign_by_division || m == Mistake::two_bugs;
+}
+inline bool has_no_camera_guard(Mistake m) {
+  return m == Mistake::no_camera_guard || m == Mistake::two_bugs || m == Mistake::no_statuses;
+}
 
 template <class T>
 T sgn(T x, Mistake mistake) {
-  if (mistake == Mistake::sign_by_division) return x / std::abs(x);
+  if (has_sign_by_division(mistake)) return x / std::abs(x);
   return x > 0 ? T(1) : (x < 0 ? T(-1) : T(0));
 }
 
@@ -94,16 +104,18 @@ T skeel_condition(const T (&a)[16]) {
 template <class T>
 std::string oblique(const T (&m)[16], const T (&c_in)[4], const std::string& convention,
                     Mistake mistake, T (&out)[16]) {
+  const bool guards = mistake != Mistake::no_statuses;
+  for (int i = 0; i < 16; ++i) out[i] = m[i];  // what an engine without statuses keeps
   for (T v : m) {
-    if (!std::isfinite(v)) return "invalid_input";
+    if (guards && !std::isfinite(v)) return "invalid_input";
   }
   for (T v : c_in) {
-    if (!std::isfinite(v)) return "invalid_input";
+    if (guards && !std::isfinite(v)) return "invalid_input";
   }
   // A matrix this close to singular has no trustworthy inverse in T.
-  if (skeel_condition(m) >= T(1) / (128 * std::numeric_limits<T>::epsilon()))
+  if (guards && skeel_condition(m) >= T(1) / (128 * std::numeric_limits<T>::epsilon()))
     return "singular_projection";
-  if (mistake != Mistake::no_camera_guard && !(c_in[3] < 0)) return "camera_not_behind_plane";
+  if (!has_no_camera_guard(mistake) && !(c_in[3] < 0)) return "camera_not_behind_plane";
   // a C does not change when C is scaled, so bring a very tiny or very huge C to magnitude about
   // 1 by a power of two first (C . Q would underflow or overflow). Only then: scaling down an
   // ordinary C would push a subnormal component further down and lose its bits.
@@ -115,7 +127,11 @@ std::string oblique(const T (&m)[16], const T (&c_in)[4], const std::string& con
   T c[4];
   for (int i = 0; i < 4; ++i) c[i] = std::ldexp(c_in[i], shift);
   T c_clip[4], q[4];
-  if (!solve(m, true, c, c_clip)) return "singular_projection";
+  // The mistake ignores_shift: portal math written for a centred camera, M14 = M24 = 0.
+  T solved[16];
+  for (int i = 0; i < 16; ++i) solved[i] = m[i];
+  if (mistake == Mistake::ignores_shift) solved[3] = solved[7] = 0;
+  if (!solve(solved, true, c, c_clip)) return guards ? "singular_projection" : "ok";
   // The mistake zero_one_factor_on_gl: the [0, 1] formulas (z in [0, 1], M'_3 = a C) on gl.
   const bool as_zero_one =
       convention == "zero_one" || (convention == "gl" && mistake == Mistake::zero_one_factor_on_gl);
@@ -124,10 +140,10 @@ std::string oblique(const T (&m)[16], const T (&c_in)[4], const std::string& con
   const T sx = sgn(mistake == Mistake::camera_space_signs ? c[0] : c_clip[0], mistake);
   const T sy = sgn(mistake == Mistake::camera_space_signs ? c[1] : c_clip[1], mistake);
   const T corner[4] = {sx, sy, sz > 0 ? z_high : (sz < 0 ? z_low : (z_low + z_high) / 2), 1};
-  if (!solve(m, false, corner, q)) return "singular_projection";
+  if (!solve(solved, false, corner, q)) return guards ? "singular_projection" : "ok";
   const T d = c[0] * q[0] + c[1] * q[1] + c[2] * q[2] + c[3] * q[3];
   // Written as engines write it: a NaN d (from a NaN sign) passes this test.
-  if (d <= 0) return "plane_misses_view_volume";
+  if (guards && d <= 0) return "plane_misses_view_volume";
   const T a = (z_high - z_low) / d;
   for (int i = 0; i < 16; ++i) out[i] = m[i];
   // Near plane: gl M_4 + M_3 = a C; zero_one M_3 = a C; reversed_z M_4 - M_3 = a C.
@@ -135,7 +151,7 @@ std::string oblique(const T (&m)[16], const T (&c_in)[4], const std::string& con
     const T ac = a * c[j], m4 = m[12 + j];
     out[8 + j] = convention == "reversed_z" ? m4 - ac : (as_zero_one ? ac : ac - m4);
   }
-  if (mistake != Mistake::sign_by_division) {
+  if (guards && !has_sign_by_division(mistake)) {
     for (T v : out) {
       if (!std::isfinite(v)) return "out_of_range";
     }

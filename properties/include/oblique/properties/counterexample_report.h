@@ -48,9 +48,13 @@ struct ReportContext {
   std::string stem;         ///< the report's file name without extension (default: test id.impl)
   std::string replay_run;   ///< the command that repeats the whole run, instead of the suite's
   std::string replay_case;  ///< the command that replays this one case, instead of `oblique apply`
+  /// Never replace an earlier report: a taken stem gets "-2", "-3", ... (oblique verify).
+  bool keep_existing = false;
 };
 
-/// Writes NAME.md and NAME.json into the reports folder; returns the Markdown path.
+/// Writes NAME.md and NAME.json into the reports folder (each to a temporary file renamed into
+/// place, so a failed write leaves no empty report over an earlier one); returns the Markdown
+/// path. Throws std::runtime_error (or std::filesystem::filesystem_error) when it cannot.
 std::string write_report(const Counterexample& ce, const ReportContext& context);
 
 }  // namespace oblique::properties

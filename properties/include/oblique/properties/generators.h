@@ -31,11 +31,17 @@ enum class Family {
   y_flipped,
   jittered,
   rotated,
-  general
+  general,
+  /// A stereo eye or a lens shift: the perspective shape (finite or infinite) times a camera
+  /// translation T(tx, ty, 0), so M14 = M11 tx and/or M24 = M22 ty are not zero (row-major:
+  /// M14 is m(0, 3)). Engines whose portal math ignores the shift clip a sliver of the far
+  /// corner; the core takes these to the general method (not the perspective shape).
+  stereo_shift,
 };
-inline constexpr Family all_families[] = {Family::perspective,  Family::off_axis,  Family::infinite,
-                                          Family::orthographic, Family::y_flipped, Family::jittered,
-                                          Family::rotated,      Family::general};
+inline constexpr Family all_families[] = {
+    Family::perspective,  Family::off_axis,  Family::infinite,
+    Family::orthographic, Family::y_flipped, Family::jittered,
+    Family::rotated,      Family::general,   Family::stereo_shift};
 
 constexpr std::string_view family_name(Family f) noexcept {
   switch (f) {
@@ -47,6 +53,7 @@ constexpr std::string_view family_name(Family f) noexcept {
     case Family::jittered: return "jittered";
     case Family::rotated: return "rotated";
     case Family::general: return "general";
+    case Family::stereo_shift: return "stereo_shift";
   }
   return "unknown";
 }
@@ -247,6 +254,26 @@ rc::Gen<Matrix4<T>> projection(Family family, Convention convention) {
         m.row(1) += (T(*rc::gen::inRange(-4, 5)) / T(4096)) * m.row(3);
         return m;
       }
+      case Family::stereo_shift: {
+        // Which shift: horizontal (a stereo eye), vertical (a lens shift), or both.
+        const int which = *rc::gen::inRange(0, 3);
+        const bool infinite_far = *rc::gen::inRange(0, 2) == 1;
+        // A stereo pair's frustums lean toward each other: off-axis by 0 .. 1/2 in x.
+        const T sx = T(*rc::gen::inRange(0, 5)) / T(8);
+        const T left = -right * (T(1) - sx), right_edge = right * (T(1) + sx);
+        Matrix4<T> m = infinite_far
+                           ? infinite_frustum<T>(left, right_edge, -top, top, n, convention)
+                           : frustum<T>(left, right_edge, -top, top, n, f, convention);
+        // Shifts of n/8 .. 2n either way (an interocular half-distance of 0.032 with n = 0.1 is
+        // 0.32 n), exact multiples of n.
+        auto shift = [&] { return n * T(detail::zigzag(2 + *rc::gen::inRange(0, 32))) / T(8); };
+        const T tx = which != 1 ? shift() : T(0);
+        const T ty = which != 0 ? shift() : T(0);
+        Matrix4<T> translation = Matrix4<T>::Identity();
+        translation(0, 3) = tx;
+        translation(1, 3) = ty;
+        return Matrix4<T>(m * translation);
+      }
       case Family::rotated:
       case Family::general: {
         const Matrix4<T> p = frustum<T>(-right, right, -top, top, n, f, convention);
@@ -376,14 +403,34 @@ rc::Gen<Vector4<T>> plane(const Matrix4<T>& m, Convention convention, Place plac
   });
 }
 
-/// A valid-looking case of one of `families` in one of `conventions` (both non-empty).
+inline std::vector<Place> every_place() {
+  return {std::begin(all_places), std::end(all_places)};
+}
+
+inline std::optional<Place> parse_place(std::string_view name) noexcept {
+  for (Place p : all_places) {
+    if (place_name(p) == name) return p;
+  }
+  return std::nullopt;
+}
+
+inline std::optional<Defect> parse_defect(std::string_view name) noexcept {
+  for (Defect d : all_defects) {
+    if (defect_name(d) == name) return d;
+  }
+  return std::nullopt;
+}
+
+/// A valid-looking case of one of `families` in one of `conventions` at one of `places` (all
+/// non-empty).
 template <class T>
-rc::Gen<Case<T>> valid_case_in(std::vector<Family> families, std::vector<Convention> conventions) {
-  return rc::gen::exec([families, conventions] {
+rc::Gen<Case<T>> valid_case_in(std::vector<Family> families, std::vector<Convention> conventions,
+                               std::vector<Place> places = every_place()) {
+  return rc::gen::exec([families, conventions, places] {
     Case<T> c;
     c.family = *detail::category(families);
     c.convention = *detail::category(conventions);
-    c.place = *detail::category(all_places);
+    c.place = *detail::category(places);
     c.matrix = *projection<T>(c.family, c.convention);
     c.plane = *plane<T>(c.matrix, c.convention, c.place);
     return c;
@@ -412,11 +459,14 @@ rc::Gen<Case<T>> valid_case() {
 /// An input that has no answer, or sits next to one that has none.
 template <class T>
 rc::Gen<InvalidCase<T>> invalid_case_in(std::vector<Family> families,
-                                        std::vector<Convention> conventions) {
-  return rc::gen::exec([families, conventions] {
+                                        std::vector<Convention> conventions,
+                                        std::vector<Place> places = every_place(),
+                                        std::vector<Defect> defects = std::vector<Defect>(
+                                            std::begin(all_defects), std::end(all_defects))) {
+  return rc::gen::exec([families, conventions, places, defects] {
     InvalidCase<T> out;
-    out.defect = *detail::category(all_defects);
-    out.base = *valid_case_in<T>(families, conventions);
+    out.defect = *detail::category(defects);
+    out.base = *valid_case_in<T>(families, conventions, places);
     Case<T>& c = out.base;
     const Vector4<T> nrm(c.plane.x(), c.plane.y(), c.plane.z(), T(0));
     switch (out.defect) {

@@ -23,7 +23,7 @@ namespace oblique::properties {
 
 enum class Property {
   near_is_clip_plane,        ///< 1. near(M') = lambda C with lambda > 0
-  side_rows_unchanged,       ///< 2. rows 1, 2, 4 of M' are those of M, bit for bit
+  side_rows_unchanged,       ///< 2. rows 1, 2, 4 of M' are those of M (values: -0 == +0)
   far_plane_through_corner,  ///< 3. far(M') . Q = 0, Q the corner farthest on C's positive side
   no_clipping,               ///< 4. far(M') . p >= 0 for every p of the view volume with C . p >= 0
   infinite_edge_parallel,    ///< 5. infinite M: Q is a direction and far(M') is parallel to it
@@ -446,22 +446,26 @@ class Problem {
       }
       v.holds = feasible;
       v.ratio = feasible ? std::min(worst.get_d(), 1.0) : std::max(worst.get_d(), 1.0 + 1e-9);
+      // lambda <= 0 is the wrong side: near' keeps the half-space C cuts away, whatever the
+      // residual (which may well be below its bound).
       v.lhs = "lambda = " + format_number(lambda) +
+              (!feasible && lambda <= 0 ? " (wrong side: near' is C negated)" : "") +
               ", worst residual/bound = " + format_number(worst) +
               (feasible ? "" : ", no lambda > 0 fits every entry");
       v.rhs = "1";
       out.items.push_back(v);
     }
-    // 2. Rows 1, 2, 4 bit for bit.
+    // 2. Rows 1, 2, 4 unchanged in value: -0 and +0 are the same plane coefficient, so a changed
+    // sign of zero (JavaScript's JSON.stringify(-0) writes 0) is not a changed side plane.
     {
       Verdict v;
       v.property = Property::side_rows_unchanged;
-      v.relation = "rows 1, 2, 4 of M' are those of M, bit for bit";
+      v.relation = "rows 1, 2, 4 of M' are those of M (equal values; -0 equals +0)";
       for (int row : {0, 1, 3}) {
         for (int j = 0; j < 4; ++j) {
           const T before = m_(row, j), after = result(row, j);
-          // Equal values with equal signs are equal bits (inputs are finite).
-          if (!(before == after && std::signbit(before) == std::signbit(after))) {
+          // Equal values (inputs are finite, so a NaN or an infinity here is a change).
+          if (!(before == after)) {
             if (v.holds) {
               v.lhs = "M'(" + std::to_string(row + 1) + "," + std::to_string(j + 1) +
                       ") = " + format_number(static_cast<double>(after));

@@ -73,8 +73,9 @@ template <class T>
 std::string json_number(T value, Notation notation = Notation::shortest);
 
 /// The value of a number token in type T, correctly rounded from its text: a JSON number's text,
-/// or a JSON string's contents marked by a leading '"' ("nan", "-nan", "inf", "-inf" or a hex
-/// float). Empty (with `error` set) for anything else, and for a finite literal that overflows T.
+/// or a JSON string's contents marked by a leading '"' ("nan", "-nan", "inf", "-inf", "NaN",
+/// "-NaN", "+inf", "Infinity", "+Infinity", "-Infinity" or a hex float). Empty (with `error` set)
+/// for anything else, and for a finite literal that overflows T.
 template <class T>
 std::optional<T> parse_number(const std::string& token, std::string* error);
 

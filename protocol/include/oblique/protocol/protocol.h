@@ -87,9 +87,10 @@ std::string ok_answer_line(const Matrix4<T>& projection);
 /// The answer line of a refusal.
 std::string refusal_line(Status status, std::string_view message);
 
-/// The JSON Lines answer of an implementation, made strict JSON first: the bare tokens NaN,
-/// Infinity and -Infinity (Python's json module) become the protocol's "nan", "inf", "-inf",
-/// and null inside "projection" (JavaScript's JSON.stringify(NaN)) becomes "nan".
+/// The JSON Lines answer of an implementation, made strict JSON first: the bare tokens NaN, -NaN,
+/// Infinity, -Infinity (Python's json module, .NET), nan, -nan, inf, -inf (C's printf) and null
+/// (JavaScript's JSON.stringify(NaN)) outside strings become the protocol's "nan", "inf", "-inf",
+/// so each reads as a non-finite number wherever a number is expected.
 std::string normalise_non_finite(std::string_view line);
 
 }  // namespace oblique::protocol

@@ -11,6 +11,7 @@
 #include "oblique/depth_convention.h"
 #include "oblique/properties/generators.h"
 #include "oblique/protocol/protocol.h"
+#include "oblique/status.h"
 
 namespace oblique::verify {
 
@@ -19,14 +20,46 @@ struct VerifyOptions {
   std::vector<Convention> conventions{Convention::gl};
   std::vector<generators::Family> families;  ///< empty: every family
   protocol::Precision precision = protocol::Precision::float64;
-  long cases = 10000;
-  std::uint64_t seed = 0;  ///< 0: a fresh one (printed, so the run can be repeated)
-  double time_limit_seconds = 60;
-  double request_timeout_seconds = 10;
+  long cases = 0;                       ///< 0: no limit (the time limit ends the run)
+  std::uint64_t seed = 0;               ///< 0: a fresh one (printed, so the run can be repeated)
+  double time_limit_seconds = 60;       ///< (0, 1e8]
+  double request_timeout_seconds = 10;  ///< [0.001, 1e8]
   std::string report_dir = "oblique-reports";
   std::string self;  ///< how to invoke this tool, for the replay commands in reports
+  /// The run's own arguments after `verify`, for the replay command (which carries every flag).
+  std::vector<std::string> arguments;
   bool progress = true;
+
+  // The contract: what the implementation promises, and so which inputs it is sent and how its
+  // statuses are judged (the summary says what was left out).
+  /// Only inputs with an exact answer; refusals are not judged (StatusContract::answers_only).
+  bool answers_only = false;
+  /// The refusal codes it implements: inputs whose status is another are not sent, and the
+  /// others must get their exact status (StatusContract::exact). Empty: any refusal for any
+  /// input without an answer (StatusContract::any_refusal).
+  std::vector<Status> statuses;
+  /// Planes with a unit normal, as engines build them (the `scaled` place is then left out).
+  bool unit_planes = false;
+  std::vector<generators::Place> places;    ///< hard places sent (empty: every place)
+  std::vector<generators::Defect> defects;  ///< kinds of input without an answer (empty: all)
+
+  /// Go on after a finding: each distinct kind (property x family x place) is shrunk once and
+  /// reported, plus an index; the exit status is 1 if any was found.
+  bool keep_going = false;
+  /// Re-judge the case of this report (its JSON) instead of a run: exit 0 holds, 1 violated.
+  std::string replay;
+  std::string regressions;       ///< replay every report kept here before the run
+  std::string save_regressions;  ///< keep each new shrunk case here
 };
+
+/// Reads a contract file (JSON: "answers_only", "statuses", "planes", "places", "exclude",
+/// "families", "conventions") into `options`; false with `error`.
+bool read_contract(const std::string& path, VerifyOptions& options, std::string* error);
+
+/// Applies an --exclude list: family, place and defect names, removed from the options' lists
+/// (filled with every value first when empty); false with `error` for an unknown name.
+bool exclude_names(const std::vector<std::string>& names, VerifyOptions& options,
+                   std::string* error);
 
 /// Exit codes: 0 no violation within the budget, 1 a violation (or a crash or hang of the
 /// implementation) with a report written, 2 usage or protocol errors.
