@@ -182,6 +182,10 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
   verify->add_option("--report-dir", options.report_dir, "Where the counterexample report goes")
       ->capture_default_str();
   verify->add_flag("--quiet", settings->quiet, "No progress lines on standard error");
+  verify
+      ->add_option("--threads", options.threads,
+                   "Threads that judge the answers (default: the machine's hardware threads)")
+      ->capture_default_str();
   // The contract: what the implementation promises.
   verify->add_flag("--answers-only", options.answers_only,
                    "Send only inputs with an exact answer (an implementation without statuses)");

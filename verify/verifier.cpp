@@ -21,6 +21,7 @@
 #include <ostream>
 #include <random>
 #include <sstream>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -252,7 +253,7 @@ class Verifier {
     std::size_t batch = 16;
     auto last_progress = start_;
     // Batch k + 1 is generated and queued before batch k's answers are read, so the
-    // implementation works on it while batch k is judged (on two threads).
+    // implementation works on it while batch k is judged (on --threads threads).
     Batch current = next_batch(random, generated, batch);
     while (!current.cases.empty()) {
       batch = std::min<std::size_t>(batch * 2, 1024);
@@ -428,8 +429,8 @@ class Verifier {
     std::optional<Found<T>> finding;
   };
 
-  /// Reads and judges every answer; the second half on another thread (GMP objects are not
-  /// shared, and the values were taken out of their Shrinkables on this thread).
+  /// Reads and judges every answer, in equal slices on up to options_.threads threads (GMP
+  /// objects are not shared, and the values were taken out of their Shrinkables on this thread).
   std::vector<Judged> judge_all(const Batch& b, const std::vector<std::string>& answers) const {
     std::vector<Judged> out(answers.size());
     auto judge_range = [&](std::size_t from, std::size_t to) {
@@ -445,14 +446,18 @@ class Verifier {
         }
       }
     };
-    const std::size_t half = answers.size() / 2;
-    if (half < 8) {
-      judge_range(0, answers.size());
-      return out;
+    constexpr std::size_t kMinSlice = 8;  // below this a thread costs more than it saves
+    const std::size_t slices =
+        std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(options_.threads),
+                                                       answers.size() / kMinSlice));
+    const std::size_t size = (answers.size() + slices - 1) / slices;
+    std::vector<std::future<void>> others;
+    for (std::size_t i = 1; i < slices; ++i) {
+      others.push_back(std::async(std::launch::async, judge_range, i * size,
+                                  std::min(answers.size(), (i + 1) * size)));
     }
-    auto second = std::async(std::launch::async, judge_range, half, answers.size());
-    judge_range(0, half);
-    second.get();
+    judge_range(0, std::min(answers.size(), size));
+    for (auto& other : others) other.get();
     return out;
   }
 
@@ -1222,6 +1227,10 @@ bool read_contract(const std::string& path, VerifyOptions& options, std::string*
   return exclude_names(exclude, options, error);
 }
 
+int default_threads() {
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 int run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err) {
   ::signal(SIGPIPE, SIG_IGN);  // a child that exits must not take us with it
   VerifyOptions options = given;
@@ -1247,6 +1256,10 @@ int run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err)
   }
   if (options.cases < 0) {
     err << "oblique verify: --cases must be positive\n";
+    return 2;
+  }
+  if (!(options.threads >= 1 && options.threads <= 256)) {
+    err << "oblique verify: --threads must be between 1 and 256, not " << options.threads << "\n";
     return 2;
   }
   // Standard input, output and error closed when we were started: give them /dev/null, so the

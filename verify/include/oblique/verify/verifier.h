@@ -15,6 +15,9 @@
 
 namespace oblique::verify {
 
+/// The machine's hardware threads (at least 1).
+int default_threads();
+
 struct VerifyOptions {
   std::string command;  ///< the implementation, run under /bin/sh -c
   std::vector<Convention> conventions{Convention::gl};
@@ -29,6 +32,8 @@ struct VerifyOptions {
   /// The run's own arguments after `verify`, for the replay command (which carries every flag).
   std::vector<std::string> arguments;
   bool progress = true;
+  /// Threads that judge answers (default: the machine's hardware threads).
+  int threads = default_threads();
 
   // The contract: what the implementation promises, and so which inputs it is sent and how its
   // statuses are judged (the summary says what was left out).
