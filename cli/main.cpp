@@ -102,14 +102,14 @@ bool judge_implementation(const CheckSettings& settings, const oblique::scene::S
   }
   std::vector<std::string> lines;
   const auto idle = std::chrono::milliseconds(static_cast<long>(settings.timeout_seconds * 1000));
-  const auto outcome = child.exchange(input, rendered.size(), lines, idle,
-                                      oblique::verify::Clock::now() + 4 * idle);
+  const auto outcome =
+      child.exchange(input, rendered.size(), lines, idle, oblique::verify::Clock::now() + 4 * idle);
   child.stop();
   if (outcome != ChildProcess::Outcome::done || lines.size() < rendered.size()) {
     std::cerr << "oblique check: the implementation answered " << lines.size() << " of "
               << rendered.size() << " requests ("
               << (outcome == ChildProcess::Outcome::timed_out ? "timed out"
-                                                               : child.end_description())
+                                                              : child.end_description())
               << ")";
     if (!child.stderr_tail().empty()) std::cerr << "; its standard error:\n" << child.stderr_tail();
     std::cerr << "\n";
@@ -143,8 +143,7 @@ int run_check(const CheckSettings& settings) {
     std::ostream& paths = settings.as_json ? std::cerr : std::cout;
     if (!settings.as_json) paths << "\n";
     for (const auto& file : plot.written) {
-      if (file.extension() == ".png")
-        paths << "picture: " << file.string() << "\n";
+      if (file.extension() == ".png") paths << "picture: " << file.string() << "\n";
     }
   }
   return check.passes() ? 0 : 1;
@@ -268,8 +267,9 @@ void setup_check(CLI::App& app, int& exit_code) {
   check->add_option("--impl", settings->impl,
                     "Send each rendered pass's request to this command (run by /bin/sh, speaking "
                     "the apply protocol) and judge its answers as oblique verify does");
-  check->add_option("--timeout", settings->timeout_seconds,
-                    "With --impl: seconds to wait for each answer")
+  check
+      ->add_option("--timeout", settings->timeout_seconds,
+                   "With --impl: seconds to wait for each answer")
       ->check(CLI::PositiveNumber);
   check->add_option("--plot", settings->plot_dir,
                     "Write a top and a side view (gnuplot PNG) of the scene and its passes here");

@@ -74,8 +74,10 @@ bool out_of_view(const Matrix4<double>& projection, const Matrix4<double>& view,
 std::string reason_for(Status status, SurfaceKind kind) {
   switch (status) {
     case Status::camera_not_behind_plane:
-      return kind == SurfaceKind::mirror   ? "the camera is behind the surface (on the mirror's back side)"
-             : kind == SurfaceKind::portal ? "the camera is behind the surface (on the portal's back side)"
+      return kind == SurfaceKind::mirror
+                 ? "the camera is behind the surface (on the mirror's back side)"
+             : kind == SurfaceKind::portal
+                 ? "the camera is behind the surface (on the portal's back side)"
                  : "the camera is on the kept side of the clip plane (oblique clipping needs it "
                    "behind)";
     case Status::plane_misses_view_volume:
@@ -137,7 +139,8 @@ std::optional<DepthPrecision> depth_precision(const Matrix4<double>& original,
   // float32: count the representable values between the two window depths (for non-negative
   // floats the bit patterns are in the order of the values).
   auto index = [&](double z) {
-    const double window = std::clamp((z - range.z_low) / double(range.z_high - range.z_low), 0.0, 1.0);
+    const double window =
+        std::clamp((z - range.z_low) / double(range.z_high - range.z_low), 0.0, 1.0);
     const float f = static_cast<float>(window);
     std::uint32_t bits = 0;
     std::memcpy(&bits, &f, sizeof bits);
@@ -170,17 +173,17 @@ std::vector<Vector4<double>> clip_by(const std::vector<Vector4<double>>& in,
 }  // namespace
 
 std::optional<Scissor> clip_polygon(const std::vector<Vector3>& polygon,
-                                    const Matrix4<double>& view,
-                                    const Matrix4<double>& projection, Convention convention,
-                                    const std::optional<Scissor>& within,
+                                    const Matrix4<double>& view, const Matrix4<double>& projection,
+                                    Convention convention, const std::optional<Scissor>& within,
                                     const std::optional<std::array<int, 2>>& viewport) {
   const Matrix4<double> to_clip = projection * view;
   std::vector<Vector4<double>> points;
-  for (const Vector3& v : polygon) points.push_back(to_clip * Vector4<double>(v.x(), v.y(), v.z(), 1));
+  for (const Vector3& v : polygon)
+    points.push_back(to_clip * Vector4<double>(v.x(), v.y(), v.z(), 1));
   // The six planes of the view volume (depth: gl -w <= z <= w; zero_one and reversed_z
   // 0 <= z <= w), then the parent's rectangle.
-  std::vector<Vector4<double>> planes = {{1, 0, 0, 1}, {-1, 0, 0, 1}, {0, 1, 0, 1},
-                                         {0, -1, 0, 1}, {0, 0, -1, 1}};
+  std::vector<Vector4<double>> planes = {
+      {1, 0, 0, 1}, {-1, 0, 0, 1}, {0, 1, 0, 1}, {0, -1, 0, 1}, {0, 0, -1, 1}};
   planes.push_back(convention == Convention::gl ? Vector4<double>(0, 0, 1, 1)
                                                 : Vector4<double>(0, 0, 1, 0));
   if (within) {
@@ -323,8 +326,8 @@ class Checker {
       // Beyond the depth limit only the passes that would have been rendered are listed.
       if (level > scene_.max_depth && s.reason.rfind("depth limit", 0) != 0) continue;
       const bool render = s.render;
-      Through next{s.view,   result.projection, scene_.camera.projection, scissor,
-                   s.path, s.name,            level,                    kept_plane};
+      Through next{s.view, result.projection, scene_.camera.projection, scissor, s.path, s.name,
+                   level,  kept_plane};
       out_.surfaces.push_back(std::move(s));
       if (render && surface.kind != SurfaceKind::clip) passes_through(next);
     }
@@ -344,9 +347,15 @@ SceneCheck check_scene(const Scene& scene) {
   out.depth_buffer = scene.depth_buffer;
   out.max_depth = scene.max_depth;
   const Camera& camera = scene.camera;
-  Checker(scene, out).passes_through(
-      Through{camera.view, camera.projection, camera.projection, std::nullopt, {}, "", 0,
-              std::nullopt});
+  Checker(scene, out)
+      .passes_through(Through{camera.view,
+                              camera.projection,
+                              camera.projection,
+                              std::nullopt,
+                              {},
+                              "",
+                              0,
+                              std::nullopt});
   return out;
 }
 
@@ -454,14 +463,13 @@ std::string to_json(const SceneCheck& check) {
         {"max_depth", s.depth ? json(s.depth->far_depth) : json(nullptr)},
         {"depth_fraction", s.depth ? json(s.depth->fraction) : json(nullptr)},
         {"depth_bits_lost", s.depth ? json(s.depth->bits_lost) : json(nullptr)},
-        {"scissor_ndc", s.scissor ? json({s.scissor->x0, s.scissor->y0, s.scissor->x1,
-                                          s.scissor->y1})
-                                  : json(nullptr)},
+        {"scissor_ndc", s.scissor
+                            ? json({s.scissor->x0, s.scissor->y0, s.scissor->x1, s.scissor->y1})
+                            : json(nullptr)},
         {"scissor_pixels",
          s.scissor && s.scissor->pixels ? json(*s.scissor->pixels) : json(nullptr)},
-        {"covered_pixels", s.scissor && s.scissor->covered_pixels
-                               ? json(*s.scissor->covered_pixels)
-                               : json(nullptr)},
+        {"covered_pixels",
+         s.scissor && s.scissor->covered_pixels ? json(*s.scissor->covered_pixels) : json(nullptr)},
     });
     if (s.impl_answer) {
       json findings = json::array();
@@ -535,16 +543,14 @@ std::string to_text(const SceneCheck& check) {
     const SurfaceCheck& s = check.surfaces[i];
     const bool own_line = names[i].size() > width;
     if (own_line) out << names[i] << "\n";
-    out << cell(own_line ? "" : names[i], width) << "  "
-        << cell(kind_name(s.kind), 6) << "  "
+    out << cell(own_line ? "" : names[i], width) << "  " << cell(kind_name(s.kind), 6) << "  "
         << cell(s.render ? "render" : "skip", 6) << "  "
         << cell(s.render ? (s.passes() ? "pass" : "FAIL") : "-", 10) << "  "
         << cell(s.depth ? fixed2(s.depth->bits_lost) : "-", 15) << "  " << s.reason << "\n";
   }
   for (const SurfaceCheck& s : check.surfaces) {
     if (!s.render) continue;
-    out << "\n"
-        << printable(s.name) << " (" << kind_name(s.kind) << "): ";
+    out << "\n" << printable(s.name) << " (" << kind_name(s.kind) << "): ";
     out << "render, " << method_name(s.method) << " method, "
         << (s.passes() ? "every property holds" : "A PROPERTY FAILS") << "\n";
     out << "  view:       ";
@@ -567,7 +573,8 @@ std::string to_text(const SceneCheck& check) {
     if (s.depth) {
       out << "  depth along the view axis: reaches " << number(s.depth->far_depth) << ", spans "
           << number(s.depth->fraction) << " of the range: " << number(s.depth->bits_lost)
-          << " bits of the " << (s.depth->buffer == DepthBuffer::fixed24 ? "24-bit fixed-point" : "32-bit float")
+          << " bits of the "
+          << (s.depth->buffer == DepthBuffer::fixed24 ? "24-bit fixed-point" : "32-bit float")
           << " buffer lost\n";
     } else {
       out << "  depth along the view axis: the axis does not pass through the kept region\n";
@@ -577,8 +584,8 @@ std::string to_text(const SceneCheck& check) {
           << "] x [" << number(s.scissor->y0) << ", " << number(s.scissor->y1) << "]";
       if (s.scissor->pixels) {
         const auto& px = *s.scissor->pixels;
-        out << "; pixels x " << px[0] << ", y " << px[1] << ", " << px[2] << " x " << px[3]
-            << " (" << static_cast<long long>(px[2]) * px[3] << " pixels), the surface covers "
+        out << "; pixels x " << px[0] << ", y " << px[1] << ", " << px[2] << " x " << px[3] << " ("
+            << static_cast<long long>(px[2]) * px[3] << " pixels), the surface covers "
             << number(std::round(*s.scissor->covered_pixels)) << " pixels";
       }
       out << "\n";

@@ -13,40 +13,47 @@
 
 namespace oblique::scene {
 
-namespace {
-
-/// The clip-space planes (coefficients on clip coordinates) of a view volume.
-std::vector<Vector4<double>> clip_planes(Convention convention) {
-  return {{1, 0, 0, 1},  {-1, 0, 0, 1}, {0, 1, 0, 1}, {0, -1, 0, 1}, {0, 0, -1, 1},
-          convention == Convention::gl ? Vector4<double>(0, 0, 1, 1) : Vector4<double>(0, 0, 1, 0)};
-}
-
-}  // namespace
-
 std::vector<Segment> volume_edges(const Matrix4<double>& view, const Matrix4<double>& projection,
-                                  Convention convention, double reach) {
+                                  Convention convention, double reach,
+                                  const std::array<double, 4>& rect) {
   const Matrix4<double> to_clip = projection * view;
   const Matrix4<double> inverse = to_clip.inverse();
   const DepthRange range = clip_depth_range(convention);
-  std::vector<Vector4<double>> world_planes;  // rows of to_clip combined: q . (p, 1) >= 0
-  for (const Vector4<double>& c : clip_planes(convention))
-    world_planes.push_back(to_clip.transpose() * c);
+  // The planes, as coefficients on clip coordinates: the rectangle's four sides, then depth.
+  const std::array<Vector4<double>, 6> clip = {
+      Vector4<double>(1, 0, 0, -rect[0]),
+      Vector4<double>(-1, 0, 0, rect[2]),
+      Vector4<double>(0, 1, 0, -rect[1]),
+      Vector4<double>(0, -1, 0, rect[3]),
+      Vector4<double>(0, 0, -1, 1),
+      convention == Convention::gl ? Vector4<double>(0, 0, 1, 1) : Vector4<double>(0, 0, 1, 0)};
+  std::vector<Vector4<double>> world_planes;  // q . (p, 1) >= 0
+  for (const Vector4<double>& c : clip) world_planes.push_back(to_clip.transpose() * c);
   std::vector<Vector3> low, high;
   for (const auto& [sx, sy] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
-    // Two points of the edge line x = sx w, y = sy w (the same line for every depth row).
-    Vector4<double> a = inverse * Vector4<double>(sx, sy, range.z_low, 1);
-    Vector4<double> b = inverse * Vector4<double>(sx, sy, range.z_high, 1);
-    if (std::abs(a.w()) < std::abs(b.w())) std::swap(a, b);
+    const double ex = sx < 0 ? rect[0] : rect[2], ey = sy < 0 ? rect[1] : rect[3];
+    // Two points of the edge line x = ex w, y = ey w (the same line for every depth row): on the
+    // near face (reversed Z: z = 1) and on the far face (a direction when the far face is at
+    // infinity). The line is walked from its near point, so `reach` counts from there.
+    const double near_z = convention == Convention::reversed_z ? 1 : range.z_low;
+    const double far_z = convention == Convention::reversed_z ? 0 : 1;
+    const Vector4<double> a = inverse * Vector4<double>(ex, ey, near_z, 1);
+    const Vector4<double> b = inverse * Vector4<double>(ex, ey, far_z, 1);
     if (!(std::abs(a.w()) > 0)) return {};
     const Vector3 p = a.head<3>() / a.w();
-    const Vector3 d = std::abs(b.w()) > 1e-12 * std::abs(a.w())
-                          ? Vector3(b.head<3>() / b.w() - p)
-                          : Vector3(b.head<3>() * (a.w() > 0 ? 1 : -1));
+    const Vector3 d = std::abs(b.w()) > 1e-12 * std::abs(a.w()) ? Vector3(b.head<3>() / b.w() - p)
+                                                                : Vector3(b.head<3>());
     if (!(d.norm() > 0) || !p.allFinite() || !d.allFinite()) return {};
     // Every plane and w > 0: q . (p + t d, 1) = q . (p, 1) + t q . (d, 0), linear in t.
     const double limit = reach / d.norm();
     double t0 = -limit, t1 = limit;
-    std::vector<Vector4<double>> constraints = world_planes;
+    // The edge lies in two side planes (x = sx w, y = sy w): left out, since rounding puts it a
+    // hair outside them.
+    std::vector<Vector4<double>> constraints;
+    for (std::size_t k = 0; k < world_planes.size(); ++k) {
+      if (k == (sx < 0 ? 0u : 1u) || k == (sy < 0 ? 2u : 3u)) continue;
+      constraints.push_back(world_planes[k]);
+    }
     constraints.push_back(to_clip.row(3).transpose());
     for (const Vector4<double>& q : constraints) {
       const double c = q.head<3>().dot(p) + q.w(), k = q.head<3>().dot(d);
@@ -105,15 +112,16 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
   }
   const double reach = 3 * extent;
   std::vector<Dataset> sets;
-  sets.push_back({"main view volume", "lc rgb 'black' lw 2",
-                  volume_edges(scene.camera.view, scene.camera.projection, scene.convention,
-                               reach)});
+  sets.push_back(
+      {"main view volume", "lc rgb 'black' lw 2",
+       volume_edges(scene.camera.view, scene.camera.projection, scene.convention, reach)});
   for (const Surface& s : scene.surfaces) {
     Dataset d{s.name, "lc rgb 'blue' lw 3", {}};
     std::vector<Vector3> outline = s.polygon;
     if (outline.empty()) {  // an infinite plane: a square of the scene's size around its point
       const Vector3 n = s.normal.normalized();
-      const Vector3 a = (std::abs(n.x()) < 0.9 ? Vector3::UnitX() : Vector3::UnitY()).cross(n).normalized();
+      const Vector3 a =
+          (std::abs(n.x()) < 0.9 ? Vector3::UnitX() : Vector3::UnitY()).cross(n).normalized();
       const Vector3 b = n.cross(a);
       for (const auto& [u, v] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}})
         outline.push_back(s.point + extent * (u * a + v * b));
@@ -122,15 +130,17 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
       d.segments.push_back({outline[i], outline[(i + 1) % outline.size()]});
     sets.push_back(std::move(d));
   }
-  const char* colors[] = {"#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2",
-                          "#17becf", "#bcbd22"};
+  const char* colors[] = {"#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
+                          "#8c564b", "#e377c2", "#17becf", "#bcbd22"};
   std::size_t color = 0;
   for (const SurfaceCheck& s : check.surfaces) {
     if (!s.render || !s.projection) continue;
-    // The virtual volume in the pass's world: the pass camera's view.
-    sets.push_back({s.name + " (pass)",
+    // The virtual volume in the pass's world (the pass camera's view), within its scissor.
+    std::array<double, 4> rect = {-1, -1, 1, 1};
+    if (s.scissor) rect = {s.scissor->x0, s.scissor->y0, s.scissor->x1, s.scissor->y1};
+    sets.push_back({s.name + (s.scissor ? " (pass, scissored)" : " (pass)"),
                     "lc rgb '" + std::string(colors[color++ % 8]) + "' dt 2 lw 1.5",
-                    volume_edges(s.view, *s.projection, scene.convention, reach)});
+                    volume_edges(s.view, *s.projection, scene.convention, reach, rect)});
   }
   try {
     report::ReportFiles files(dir);
@@ -180,9 +190,9 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
          << protocol::format_number(hi[axes[1]]) << "]\n"
          << "plot \\\n";
       for (std::size_t i = 0; i < sets.size(); ++i) {
-        gp << "  " << gnuplot_string((dir / "scene.dat").string()) << " index " << i << " using " << columns
-           << " with lines " << sets[i].style << " title " << gnuplot_string(sets[i].title)
-           << (i + 1 < sets.size() ? ", \\\n" : "\n");
+        gp << "  " << gnuplot_string((dir / "scene.dat").string()) << " index " << i << " using "
+           << columns << " with lines " << sets[i].style << " title "
+           << gnuplot_string(sets[i].title) << (i + 1 < sets.size() ? ", \\\n" : "\n");
       }
       gp.close();
       if (!gp) throw std::runtime_error("cannot write " + (dir / script).string());

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <initializer_list>
 #include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 
@@ -227,7 +227,8 @@ bool has(const json& object, const char* key) {
 bool boolean(const json& object, const std::string& path, const char* key) {
   if (!has(object, key)) return false;
   const json& v = object.at(key);
-  if (!v.is_boolean()) fail(join(path, key), std::string("must be true or false, not ") + type_of(v));
+  if (!v.is_boolean())
+    fail(join(path, key), std::string("must be true or false, not ") + type_of(v));
   return v.get<bool>();
 }
 
@@ -236,8 +237,8 @@ int integer(const json& v, const std::string& where, int low, int high) {
   if (!v.is_number()) fail(where, std::string("must be an integer, not ") + type_of(v));
   const double x = v.get<double>();
   if (!(x >= low && x <= high) || x != std::floor(x))
-    fail(where, "must be an integer in [" + std::to_string(low) + ", " + std::to_string(high) +
-                    "]");
+    fail(where,
+         "must be an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
   return static_cast<int>(x);
 }
 
@@ -384,7 +385,8 @@ void read_view(const json& view, Camera& c) {
     only_keys(view, p, {"position", "quaternion_xyzw"});
     c.eye = vector3(view, p, "position");
     const json& q = member(view, p, "quaternion_xyzw");
-    if (!q.is_array() || q.size() != 4) fail(p + ".quaternion_xyzw", "must be 4 numbers x, y, z, w");
+    if (!q.is_array() || q.size() != 4)
+      fail(p + ".quaternion_xyzw", "must be 4 numbers x, y, z, w");
     Vector4<double> v;
     for (std::size_t i = 0; i < 4; ++i) {
       const std::string where = p + ".quaternion_xyzw[" + std::to_string(i) + "]";
@@ -435,8 +437,8 @@ Vector3 unit_normal(const Vector3& n, const std::string& where) {
 
 std::vector<Vector3> read_polygon(const json& vertices, const std::string& where) {
   if (!vertices.is_array() || vertices.size() < 3 || vertices.size() > kMaxPolygonVertices)
-    fail(where, "must be an array of 3 to " + std::to_string(kMaxPolygonVertices) +
-                    " vertices [x, y, z]");
+    fail(where,
+         "must be an array of 3 to " + std::to_string(kMaxPolygonVertices) + " vertices [x, y, z]");
   std::vector<Vector3> out;
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     const std::string at = where + "[" + std::to_string(i) + "]";
@@ -460,7 +462,8 @@ void polygon_plane(Surface& out, const std::string& where) {
   Vector3 centroid = Vector3::Zero();
   for (const Vector3& v : out.polygon) centroid += v / static_cast<double>(out.polygon.size());
   double extent = 0;
-  for (const Vector3& v : out.polygon) extent = std::max(extent, (v - centroid).cwiseAbs().maxCoeff());
+  for (const Vector3& v : out.polygon)
+    extent = std::max(extent, (v - centroid).cwiseAbs().maxCoeff());
   if (!centroid.allFinite() || !std::isfinite(extent)) fail(where, "out of the range of a double");
   if (!(extent > 0)) fail(where, "degenerate: every vertex is the same point");
   const double scale = std::ldexp(1.0, -std::ilogb(extent));
@@ -517,8 +520,8 @@ Surface read_surface(const json& s, const std::string& path) {
     const json& polygon = s.at("polygon");
     if (!polygon.is_object()) fail(path + ".polygon", "must be an object {\"vertices\": [...]}");
     only_keys(polygon, path + ".polygon", {"vertices"});
-    out.polygon = read_polygon(member(polygon, path + ".polygon", "vertices"),
-                               path + ".polygon.vertices");
+    out.polygon =
+        read_polygon(member(polygon, path + ".polygon", "vertices"), path + ".polygon.vertices");
     polygon_plane(out, path + ".polygon.vertices");
   } else {
     const std::string r = path + ".rectangle";
@@ -584,9 +587,7 @@ Matrix4<double> portal_map(const Matrix4<double>& frame, const Matrix4<double>& 
   return frame * turn * linked.inverse();
 }
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 ParsedScene read_scene_file(const std::string& path) {
   ParsedScene out;
@@ -642,8 +643,9 @@ ParsedScene parse_scene(std::string_view text_in) {
     Scene scene;
     if (!root.is_object())
       fail("(top level)", std::string("must be an object, not ") + type_of(root));
-    only_keys(root, "", {"name", "convention", "depth_buffer", "camera", "surfaces", "max_depth",
-                         "viewport"});
+    only_keys(
+        root, "",
+        {"name", "convention", "depth_buffer", "camera", "surfaces", "max_depth", "viewport"});
     scene.name = text(root, "", "name");
     const std::string convention = text(root, "", "convention");
     const auto c = parse_convention(convention);
@@ -663,7 +665,8 @@ ParsedScene parse_scene(std::string_view text_in) {
         fail("depth_buffer", "unknown depth buffer \"" + buffer + "\" (fixed24 or float32)");
       }
     }
-    if (has(root, "max_depth")) scene.max_depth = integer(root.at("max_depth"), "max_depth", 1, kMaxDepth);
+    if (has(root, "max_depth"))
+      scene.max_depth = integer(root.at("max_depth"), "max_depth", 1, kMaxDepth);
     if (has(root, "viewport")) {
       const json& v = root.at("viewport");
       if (!v.is_array() || v.size() != 2) fail("viewport", "must be [width, height] in pixels");

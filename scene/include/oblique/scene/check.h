@@ -39,7 +39,7 @@ struct Scissor {
 };
 
 struct SurfaceCheck {
-  std::string name;  ///< the pass's path: "hall mirror > window"
+  std::string name;               ///< the pass's path: "hall mirror > window"
   std::vector<std::size_t> path;  ///< indices into Scene::surfaces, outermost first
   int level = 1;                  ///< 1 for a pass the main camera sees
   SurfaceKind kind = SurfaceKind::mirror;
@@ -102,9 +102,8 @@ std::optional<DepthPrecision> depth_precision(const Matrix4<double>& original,
 /// given, the NDC rectangle `within`: empty when nothing of it is left (homogeneous clipping
 /// against each plane, as a GPU clips).
 std::optional<Scissor> clip_polygon(const std::vector<Vector3>& polygon,
-                                    const Matrix4<double>& view,
-                                    const Matrix4<double>& projection, Convention convention,
-                                    const std::optional<Scissor>& within,
+                                    const Matrix4<double>& view, const Matrix4<double>& projection,
+                                    Convention convention, const std::optional<Scissor>& within,
                                     const std::optional<std::array<int, 2>>& viewport);
 
 }  // namespace oblique::scene

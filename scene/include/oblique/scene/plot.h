@@ -3,6 +3,7 @@
 // volume, cut by its oblique near plane and its tilted far plane.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -19,10 +20,12 @@ struct Segment {
 };
 
 /// The edges of the view volume of `projection` x `view` (a pass's oblique matrix, or the main
-/// camera's), each side edge the line x = +-w, y = +-w of `original` x `view` cut by every plane
-/// of the volume; an unbounded volume (infinite far) is cut `reach` from the line's near end.
+/// camera's) within the NDC rectangle `rect` (x0, y0, x1, y1: a scissor): each side edge, the
+/// line x = x0|x1 w, y = y0|y1 w, cut by the other planes of the volume (w > 0); an unbounded
+/// volume (infinite far) is cut `reach` from the edge's near end.
 std::vector<Segment> volume_edges(const Matrix4<double>& view, const Matrix4<double>& projection,
-                                  Convention convention, double reach);
+                                  Convention convention, double reach,
+                                  const std::array<double, 4>& rect = {-1, -1, 1, 1});
 
 struct PlotResult {
   std::vector<std::filesystem::path> written;  ///< the data, scripts and PNGs
