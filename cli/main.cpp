@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -94,6 +95,9 @@ bool judge_implementation(const CheckSettings& settings, const oblique::scene::S
     input += oblique::scene::impl_request(scene, s) + "\n";
   }
   if (rendered.empty()) return true;
+  // An implementation that exits early must not take us down with it: a write to its closed
+  // input fails with EPIPE instead.
+  std::signal(SIGPIPE, SIG_IGN);
   ChildProcess child(settings.impl);
   std::string error;
   if (!child.start(&error)) {
@@ -104,6 +108,8 @@ bool judge_implementation(const CheckSettings& settings, const oblique::scene::S
   const auto idle = std::chrono::milliseconds(static_cast<long>(settings.timeout_seconds * 1000));
   const auto outcome =
       child.exchange(input, rendered.size(), lines, idle, oblique::verify::Clock::now() + 4 * idle);
+  std::string end = outcome == ChildProcess::Outcome::exited ? child.end_description() : "";
+  if (end.empty() || end == "not running") end = "it closed its output or exited";
   child.stop();
   if (outcome != ChildProcess::Outcome::done || lines.size() < rendered.size()) {
     std::cerr << "oblique check: the implementation answered " << lines.size() << " of "

@@ -18,10 +18,15 @@
 
 namespace oblique::scene {
 
-bool SurfaceCheck::passes() const {
+bool SurfaceCheck::properties_hold() const {
   for (const properties::Finding& p : properties) {
     if (!p.holds) return false;
   }
+  return true;
+}
+
+bool SurfaceCheck::passes() const {
+  if (!properties_hold()) return false;
   for (const properties::Finding& p : impl_findings) {
     if (!p.holds) return false;
   }
@@ -545,14 +550,14 @@ std::string to_text(const SceneCheck& check) {
     if (own_line) out << names[i] << "\n";
     out << cell(own_line ? "" : names[i], width) << "  " << cell(kind_name(s.kind), 6) << "  "
         << cell(s.render ? "render" : "skip", 6) << "  "
-        << cell(s.render ? (s.passes() ? "pass" : "FAIL") : "-", 10) << "  "
+        << cell(s.render ? (s.properties_hold() ? "pass" : "FAIL") : "-", 10) << "  "
         << cell(s.depth ? fixed2(s.depth->bits_lost) : "-", 15) << "  " << s.reason << "\n";
   }
   for (const SurfaceCheck& s : check.surfaces) {
     if (!s.render) continue;
     out << "\n" << printable(s.name) << " (" << kind_name(s.kind) << "): ";
     out << "render, " << method_name(s.method) << " method, "
-        << (s.passes() ? "every property holds" : "A PROPERTY FAILS") << "\n";
+        << (s.properties_hold() ? "every property holds" : "A PROPERTY FAILS") << "\n";
     out << "  view:       ";
     for (int i = 0; i < 4; ++i) {
       out << (i ? "              " : "") << "[";

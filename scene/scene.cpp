@@ -500,6 +500,7 @@ Surface read_surface(const json& s, const std::string& path) {
     fail(path + ".kind", "unknown kind \"" + kind + "\" (mirror, clip or portal)");
   }
   const int shapes = int{has(s, "plane")} + int{has(s, "polygon")} + int{has(s, "rectangle")};
+  if (shapes == 0) fail(path + ".plane", "missing (or polygon, or rectangle)");
   if (shapes != 1) fail(path + ".plane", "give exactly one of plane, polygon or rectangle");
   if (out.kind != SurfaceKind::portal && has(s, "linked"))
     fail(path + ".linked", "only a portal has a linked portal");
@@ -561,7 +562,8 @@ Surface read_surface(const json& s, const std::string& path) {
     if (!out.portal_transform.allFinite()) fail(l, "out of the range of a double");
   }
   if (!out.plane().allFinite())
-    fail(path, "out of range for this normal (n . point overflows a double)");
+    fail(path + (has(s, "plane") ? ".plane.point" : ""),
+         "out of range for this normal (n . point overflows a double)");
   return out;
 }
 

@@ -59,7 +59,9 @@ struct SurfaceCheck {
   std::optional<std::string> impl_answer;
   std::vector<properties::Finding> impl_findings;
 
-  /// Every property of our matrix holds, and the user's answer (when asked) violates none.
+  /// Every property of our oblique matrix holds.
+  bool properties_hold() const;
+  /// properties_hold(), and the user's answer (when asked) violates nothing.
   bool passes() const;
 };
 
