@@ -83,8 +83,8 @@ SceneCheck check_scene(const Scene& scene);
 std::string impl_request(const Scene& scene, const SurfaceCheck& pass);
 
 /// Judges the user's answer line to impl_request() as `oblique verify` does
-/// (StatusContract::any_refusal, row 3's accuracy), every check listed; a line that is not an
-/// answer is one failing finding "protocol". Stores them in pass.impl_findings.
+/// (StatusContract::any_refusal, row 3's accuracy; the checks up to the first violation); a line
+/// that is not an answer is one failing finding "protocol". Stores them in pass.impl_findings.
 void judge_impl_answer(const Scene& scene, SurfaceCheck& pass, const std::string& line);
 
 /// {"scene": ..., "surfaces": [{"name", "action", "reason", "view", "projection", "method",
