@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +20,8 @@
 #include "oblique/report/accuracy_report.h"
 #include "oblique/report/depth_report.h"
 #include "oblique/scene/check.h"
+#include "oblique/scene/plot.h"
+#include "oblique/verify/child_process.h"
 #include "oblique/verify/verifier.h"
 
 namespace {
@@ -73,14 +77,84 @@ bool parse_lists(const std::string& conventions, const std::string& families,
   return !options.conventions.empty();
 }
 
-int run_check(const std::string& path, bool as_json) {
+struct CheckSettings {
+  std::string scene_path;
+  bool as_json = false;
+  std::string impl;      ///< --impl CMD: the user's implementation, over the apply protocol
+  std::string plot_dir;  ///< --plot DIR
+  double timeout_seconds = 10;
+};
+
+/// Sends every rendered pass's request to the implementation and judges its answers; false (with
+/// a message on `err`) when the implementation cannot be started or does not answer every line.
+bool judge_implementation(const CheckSettings& settings, const oblique::scene::Scene& scene,
+                          oblique::scene::SceneCheck& check) {
+  using oblique::verify::ChildProcess;
+  std::vector<oblique::scene::SurfaceCheck*> rendered;
+  std::string input;
+  for (oblique::scene::SurfaceCheck& s : check.surfaces) {
+    if (!s.render) continue;
+    rendered.push_back(&s);
+    input += oblique::scene::impl_request(scene, s) + "\n";
+  }
+  if (rendered.empty()) return true;
+  // An implementation that exits early must not take us down with it: a write to its closed
+  // input fails with EPIPE instead.
+  std::signal(SIGPIPE, SIG_IGN);
+  ChildProcess child(settings.impl);
+  std::string error;
+  if (!child.start(&error)) {
+    std::cerr << "oblique check: cannot start the implementation: " << error << "\n";
+    return false;
+  }
+  std::vector<std::string> lines;
+  const auto idle = std::chrono::milliseconds(static_cast<long>(settings.timeout_seconds * 1000));
+  const auto outcome =
+      child.exchange(input, rendered.size(), lines, idle, oblique::verify::Clock::now() + 4 * idle);
+  std::string end = outcome == ChildProcess::Outcome::exited ? child.end_description() : "";
+  if (end.empty() || end == "not running") end = "it closed its output or exited";
+  child.stop();
+  if (outcome != ChildProcess::Outcome::done || lines.size() < rendered.size()) {
+    std::cerr << "oblique check: the implementation answered " << lines.size() << " of "
+              << rendered.size() << " requests ("
+              << (outcome == ChildProcess::Outcome::timed_out ? "timed out"
+                                                              : child.end_description())
+              << ")";
+    if (!child.stderr_tail().empty()) std::cerr << "; its standard error:\n" << child.stderr_tail();
+    std::cerr << "\n";
+    return false;
+  }
+  for (std::size_t i = 0; i < rendered.size(); ++i)
+    oblique::scene::judge_impl_answer(scene, *rendered[i], lines[i]);
+  return true;
+}
+
+int run_check(const CheckSettings& settings) {
+  const std::string& path = settings.scene_path;
   const oblique::scene::ParsedScene parsed = oblique::scene::read_scene_file(path);
   if (!parsed.scene) {
     std::cerr << "oblique check: " << path << ": " << parsed.error << "\n";
     return 2;
   }
-  const oblique::scene::SceneCheck check = oblique::scene::check_scene(*parsed.scene);
-  std::cout << (as_json ? oblique::scene::to_json(check) + "\n" : oblique::scene::to_text(check));
+  oblique::scene::SceneCheck check = oblique::scene::check_scene(*parsed.scene);
+  if (!settings.impl.empty() && !judge_implementation(settings, *parsed.scene, check)) return 2;
+  std::cout << (settings.as_json ? oblique::scene::to_json(check) + "\n"
+                                 : oblique::scene::to_text(check));
+  if (!settings.plot_dir.empty()) {
+    const oblique::scene::PlotResult plot =
+        oblique::scene::write_plot(*parsed.scene, check, settings.plot_dir);
+    if (!plot.error.empty()) {
+      std::cerr << "oblique check: cannot write the picture to " << settings.plot_dir << ": "
+                << plot.error << "\n";
+      return 2;
+    }
+    // With --json, standard output stays one JSON object: the paths go to standard error.
+    std::ostream& paths = settings.as_json ? std::cerr : std::cout;
+    if (!settings.as_json) paths << "\n";
+    for (const auto& file : plot.written) {
+      if (file.extension() == ".png") paths << "picture: " << file.string() << "\n";
+    }
+  }
   return check.passes() ? 0 : 1;
 }
 
@@ -262,22 +336,28 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
 }
 
 void setup_check(CLI::App& app, int& exit_code) {
-  struct Settings {
-    std::string scene_path;
-    bool as_json = false;
-  };
-  auto settings = std::make_shared<Settings>();
+  auto settings = std::make_shared<CheckSettings>();
   CLI::App* check = app.add_subcommand(
       "check",
-      "Check the mirrors and clip planes of a scene file: for each surface, render or skip (with "
-      "the reason), the pass camera's view and oblique projection, the properties that apply, "
-      "and the depth precision left. Exit 0: every rendered pass passes; 1: a property fails; 2: "
-      "the scene cannot be read.");
+      "Check the mirrors, portals and clip planes of a scene file: for each pass (recursively up "
+      "to the scene's max_depth), render or skip (with the reason), the pass camera's view and "
+      "oblique projection, the properties that apply, the depth precision left and the scissor "
+      "rectangle. Exit 0: every rendered pass passes; 1: a property fails (ours, or the "
+      "implementation's with --impl); 2: the scene cannot be read, the implementation does not "
+      "answer, or the output or picture cannot be written.");
   check->add_option("SCENE", settings->scene_path, "The scene file (JSON; see the README)")
       ->required();
   check->add_flag("--json", settings->as_json, "Print one JSON object instead of a table");
-  check->callback(
-      [settings, &exit_code] { exit_code = run_check(settings->scene_path, settings->as_json); });
+  check->add_option("--impl", settings->impl,
+                    "Send each rendered pass's request to this command (run by /bin/sh, speaking "
+                    "the apply protocol) and judge its answers as oblique verify does");
+  check
+      ->add_option("--timeout", settings->timeout_seconds,
+                   "With --impl: seconds to wait for each answer")
+      ->check(CLI::PositiveNumber);
+  check->add_option("--plot", settings->plot_dir,
+                    "Write a top and a side view (gnuplot PNG) of the scene and its passes here");
+  check->callback([settings, &exit_code] { exit_code = run_check(*settings); });
 }
 
 void setup_report(CLI::App& app, int& exit_code) {

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "oblique/scene/check.h"
+#include "oblique/scene/plot.h"
 #include "oblique/scene/scene.h"
 
 namespace {
@@ -35,12 +36,27 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!scene.camera.projection.allFinite() || !scene.camera.view.allFinite())
     fail("an accepted camera with a non-finite matrix", std::string(text));
   const SceneCheck check = check_scene(scene);
-  if (check.surfaces.size() != scene.surfaces.size())
+  std::size_t first_level = 0;
+  for (const SurfaceCheck& s : check.surfaces) first_level += s.level == 1 ? 1 : 0;
+  if (!check.truncated && first_level != scene.surfaces.size())
     fail("a surface without a decision", std::string(text));
+  if (check.surfaces.size() > kMaxPasses) fail("more passes than kMaxPasses", std::string(text));
   for (const SurfaceCheck& s : check.surfaces) {
     if (!s.render && s.reason.empty()) fail("a skipped surface without a reason", s.name);
+    if (s.level > scene.max_depth + 1) fail("a pass beyond the depth limit", s.name);
     if (s.render && (!s.projection || !s.projection->allFinite()))
       fail("a rendered pass without a finite projection", s.name);
+    if (s.render && s.level > scene.max_depth) fail("a pass rendered beyond max_depth", s.name);
+    if (s.scissor &&
+        !(s.scissor->x0 >= -1 && s.scissor->x0 <= s.scissor->x1 && s.scissor->x1 <= 1 &&
+          s.scissor->y0 >= -1 && s.scissor->y0 <= s.scissor->y1 && s.scissor->y1 <= 1))
+      fail("a scissor outside the screen", s.name);
+    // The picture's geometry: finite segments (or none).
+    if (s.render) {
+      for (const Segment& seg : volume_edges(s.view, *s.projection, scene.convention, 100)) {
+        if (!seg.a.allFinite() || !seg.b.allFinite()) fail("a non-finite picture edge", s.name);
+      }
+    }
   }
   const std::string json_text = to_json(check);
   if (!nlohmann::json::accept(json_text)) fail("--json output that is not JSON", json_text);

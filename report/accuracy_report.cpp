@@ -15,7 +15,7 @@
 #include "oblique/projection.h"
 #include "oblique/properties/properties.h"
 #include "oblique/protocol/numbers.h"
-#include "report_files.h"
+#include "oblique/report/report_files.h"
 
 namespace oblique::report {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
-#include "report_files.h"
+#include "oblique/report/report_files.h"
 
 namespace oblique::report {
 namespace {

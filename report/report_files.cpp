@@ -1,4 +1,4 @@
-#include "report_files.h"
+#include "oblique/report/report_files.h"
 
 #include <unistd.h>
 

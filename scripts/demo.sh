@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the main job on the bundled default scene:
 # `oblique check examples/scenes/lake.json` (a camera over a lake, its reflection and refraction
-# passes). Another scene: bash scripts/demo.sh examples/scenes/wall_mirror_reversed_z.json
+# passes), with its picture in build/demo-picture/. Another scene:
+# bash scripts/demo.sh examples/scenes/hall_of_mirrors.json
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake --preset release > /dev/null
 cmake --build --preset release --target oblique > /dev/null
-./build/release/cli/oblique check "${1:-examples/scenes/lake.json}"
+# The table, then the paths of the picture (a top and a side view of the scene and its passes).
+./build/release/cli/oblique check "${1:-examples/scenes/lake.json}" --plot build/demo-picture

@@ -4,6 +4,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -94,6 +97,8 @@ TEST(Scenes, bundledExamplesGiveTheirVerdicts) {
       {"wall_mirror_reversed_z.json", {"render"}},
       {"map_orthographic.json", {"render", "render"}},
       {"mirror_behind_camera.json", {"skip: outside", "skip: camera behind"}},
+      {"mirror_off_screen.json", {"skip: outside", "render"}},
+      {"vulkan_reversed_z.json", {"render"}},
   };
   for (const Bundled& b : bundled) {
     const ParsedScene parsed =
@@ -183,7 +188,19 @@ TEST(Scenes, heldOutScenesGetTheRightDecisionsAndExactMatrices) {
   for (const HeldOut& c : cases) {
     const ParsedScene parsed = parse_scene(c.json);
     ASSERT_TRUE(parsed.scene) << c.what << ": " << parsed.error;
-    const SceneCheck check = check_scene(*parsed.scene);
+    const SceneCheck all = check_scene(*parsed.scene);
+    // max_depth 1: the passes seen in passes (infinite planes see each other) are listed, at the
+    // depth limit; the main camera's passes, one per surface, in order.
+    SceneCheck check = all;
+    check.surfaces.clear();
+    for (const SurfaceCheck& s : all.surfaces) {
+      if (s.level == 1) {
+        check.surfaces.push_back(s);
+      } else {
+        EXPECT_EQ(s.level, 2) << c.what;
+        EXPECT_EQ(s.reason, "depth limit (max_depth 1)") << c.what << ": " << s.name;
+      }
+    }
     EXPECT_EQ(actions(check), c.actions) << c.what;
     expect_exact(*parsed.scene, check);
     for (std::size_t i = 0; i < check.surfaces.size(); ++i) {
@@ -264,7 +281,7 @@ TEST(Scenes, brokenFilesNameTheFieldOrThePosition) {
       {with("\"perspective\"", "\"fisheye\""), "camera.projection.type: unknown type"},
       {with("\"fovy_deg\": 60", "\"fovy_deg\": 180"),
        "camera.projection.fovy_deg: must be in (0, 180)"},
-      {with("\"surfaces\": []", "\"surfaces\": [{\"name\": \"m\", \"kind\": \"portal\"}]"),
+      {with("\"surfaces\": []", "\"surfaces\": [{\"name\": \"m\", \"kind\": \"door\"}]"),
        "surfaces[0].kind: unknown kind"},
       {with("\"surfaces\": []",
             "\"surfaces\": [{\"name\": \"m\", \"kind\": \"mirror\", \"plane\": {\"normal\": [0, 0, "
@@ -358,6 +375,353 @@ TEST(Scenes, unreadableAndSpecialFilesAreRefused) {
   EXPECT_TRUE(read_scene_file(std::string(OBLIQUE_SCENES_DIR) + "/lake.json").scene);
 }
 
+// ---- Engine scenes: cameras as engines hold them, bounded surfaces, portals, recursion ----
+
+/// The passes' names and "render" / the first words of their reasons.
+std::vector<std::pair<std::string, std::string>> named_actions(const SceneCheck& check) {
+  std::vector<std::pair<std::string, std::string>> out;
+  const std::vector<std::string> a = actions(check);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    std::string action = a[i];
+    if (action.find("depth limit") != std::string::npos) action = "skip: depth limit";
+    if (action.find("not visible through its parent") != std::string::npos)
+      action = "skip: not visible through its parent";
+    out.emplace_back(check.surfaces[i].name, action);
+  }
+  return out;
+}
+
+Scene bundled_scene(const std::string& file) {
+  const ParsedScene parsed = read_scene_file(std::string(OBLIQUE_SCENES_DIR) + "/" + file);
+  if (!parsed.scene) ADD_FAILURE() << file << ": " << parsed.error;
+  return parsed.scene ? *parsed.scene : Scene{};
+}
+
+Vector3 reflect(const Surface& s, const Vector3& p) {
+  const Vector3 n = s.normal.normalized();
+  return p - 2 * n.dot(p - s.point) * n;
+}
+
+/// Where a pass camera is in the world: its view's inverse applied to the origin.
+Vector3 pass_eye(const SurfaceCheck& s) {
+  return (s.view.inverse() * Vector4<double>(0, 0, 0, 1)).head<3>();
+}
+
+using Actions = std::vector<std::pair<std::string, std::string>>;
+
+TEST(EngineScenes, hallOfMirrorsRecursesToItsDepthWithReflectedEyes) {
+  const Scene scene = bundled_scene("hall_of_mirrors.json");
+  const SceneCheck check = check_scene(scene);
+  const Actions expected = {
+      {"north mirror", "render"},
+      {"north mirror > south mirror", "render"},
+      {"north mirror > south mirror > north mirror", "render"},
+      {"north mirror > south mirror > north mirror > south mirror", "skip: depth limit"},
+      {"south mirror", "skip: outside"}};
+  EXPECT_EQ(named_actions(check), expected);
+  EXPECT_TRUE(check.passes());
+  expect_exact(scene, check);
+  // Each pass's eye is the main eye reflected through each mirror of its path, outermost first;
+  // each reflection flips handedness.
+  for (const SurfaceCheck& s : check.surfaces) {
+    if (!s.render) continue;
+    Vector3 eye = scene.camera.eye;
+    for (const std::size_t k : s.path) eye = reflect(scene.surfaces[k], eye);
+    EXPECT_TRUE(pass_eye(s).isApprox(eye, 1e-12)) << s.name << ": " << pass_eye(s).transpose();
+    EXPECT_NEAR((s.view.block<3, 3>(0, 0).determinant()), s.path.size() % 2 ? -1 : 1, 1e-12);
+    ASSERT_TRUE(s.scissor) << s.name;
+    EXPECT_TRUE(s.scissor->pixels) << s.name;
+  }
+  // A mirror seen in a mirror is smaller: each scissor lies within its parent's.
+  for (std::size_t i = 1; i < 3; ++i) {
+    const Scissor& inner = *check.surfaces[i].scissor;
+    const Scissor& outer = *check.surfaces[i - 1].scissor;
+    EXPECT_GE(inner.x0, outer.x0);
+    EXPECT_LE(inner.x1, outer.x1);
+    EXPECT_GE(inner.y0, outer.y0);
+    EXPECT_LE(inner.y1, outer.y1);
+    EXPECT_LT(inner.ndc_area, outer.ndc_area);
+  }
+}
+
+TEST(EngineScenes, heldOutHallsChangeTheirVerdictsWithDepthAndPosition) {
+  std::string text = R"({"name": "hall", "convention": "zero_one", "max_depth": MAXD,
+    "camera": {"projection": {"type": "perspective", "fovy_deg": 70, "aspect": 1, "near": 0.1, "far": 50},
+               "view": {"eye": EYE, "target": TARGET, "up": [0, 1, 0]}},
+    "surfaces": [
+      {"name": "a", "kind": "mirror", "rectangle": {"center": [0, 1, -3], "normal": [0, 0, 1], "up": [0, 1, 0], "size": [3, 2]}},
+      {"name": "b", "kind": "mirror", "rectangle": {"center": [0, 1, 3], "normal": [0, 0, -1], "up": [0, 1, 0], "size": [3, 2]}}]})";
+  auto variant = [&](const std::string& depth, const std::string& eye,
+                     const std::string& target = "[0, 1, -3]") {
+    std::string t = text;
+    t.replace(t.find("MAXD"), 4, depth);
+    t.replace(t.find("EYE"), 3, eye);
+    t.replace(t.find("TARGET"), 6, target);
+    const ParsedScene parsed = parse_scene(t);
+    EXPECT_TRUE(parsed.scene) << parsed.error;
+    return parsed.scene ? check_scene(*parsed.scene) : SceneCheck{};
+  };
+  EXPECT_EQ(named_actions(variant("1", "[0, 1, 0]")),
+            (Actions{{"a", "render"}, {"a > b", "skip: depth limit"}, {"b", "skip: outside"}}));
+  const SceneCheck deep = variant("5", "[0.2, 1.1, 0]");
+  ASSERT_EQ(deep.surfaces.size(), 7u);  // a, a>b, ..., five rendered, the sixth at the limit, b
+  for (int i = 0; i < 5; ++i) EXPECT_TRUE(deep.surfaces[static_cast<std::size_t>(i)].render) << i;
+  EXPECT_EQ(deep.surfaces[5].reason, "depth limit (max_depth 5)");
+  // Beside the mirrors (x = 10), looking away along +x: neither is seen, nothing renders.
+  const SceneCheck aside = variant("3", "[10, 1, 0]", "[20, 1, 0]");
+  EXPECT_EQ(named_actions(aside), (Actions{{"a", "skip: outside"}, {"b", "skip: outside"}}));
+  for (const SurfaceCheck& s : aside.surfaces) EXPECT_FALSE(s.render) << s.name;
+}
+
+TEST(EngineScenes, portalPassLooksOutOfTheLinkedPortal) {
+  const Scene scene = bundled_scene("portal_pair.json");
+  const SceneCheck check = check_scene(scene);
+  const Actions expected = {{"blue portal", "render"},
+                            {"blue portal > orange portal", "skip: camera behind"},
+                            {"blue portal > wall mirror", "render"},
+                            {"blue portal > wall mirror > orange portal", "skip: depth limit"},
+                            {"orange portal", "skip: outside"},
+                            {"wall mirror", "skip: camera behind"}};
+  EXPECT_EQ(named_actions(check), expected);
+  expect_exact(scene, check);
+  // By hand: the eye is 6 in front of blue (0.1 above its center); through the portal it is 6
+  // behind orange (whose front faces -x), 0.1 above its center, and looks along orange's normal.
+  const SurfaceCheck& blue = check.surfaces[0];
+  EXPECT_TRUE(pass_eye(blue).isApprox(Vector3(26, 1.6, 0), 1e-12)) << pass_eye(blue).transpose();
+  const Vector3 forward = -blue.view.block<1, 3>(2, 0).transpose();
+  EXPECT_TRUE(forward.isApprox(Vector3(-1, 0, 0), 1e-12)) << forward.transpose();
+  EXPECT_NEAR((blue.view.block<3, 3>(0, 0).determinant()), 1, 1e-12);  // a portal keeps handedness
+  // Its oblique near plane is orange's plane: a point on orange's face is on the near plane.
+  const Vector4<double> on_orange(20, 2, 0.5, 1);
+  const Vector4<double> clip = *blue.projection * blue.view * on_orange;
+  EXPECT_NEAR(clip.z() / clip.w(), 0, 1e-12);  // zero_one: the near plane at z = 0
+}
+
+TEST(EngineScenes, boundedSurfacesAreDecidedByThePolygonNotThePlane) {
+  const Scene scene = bundled_scene("mirror_off_screen.json");
+  const SceneCheck check = check_scene(scene);
+  EXPECT_EQ(named_actions(check),
+            (Actions{{"far side mirror", "skip: outside"}, {"vanity mirror", "render"}}));
+  // The same mirror as an infinite plane: its plane enters the view volume far away, so render.
+  Scene unbounded = scene;
+  unbounded.surfaces[0].polygon.clear();
+  EXPECT_TRUE(check_scene(unbounded).surfaces[0].render);
+  // The vanity mirror's scissor by hand: x = +-0.5, y = 1..2 at distance 10 from the eye (y 1.6).
+  const Scissor& s = *check.surfaces[1].scissor;
+  const double f = 1 / std::tan(30 * 3.14159265358979323846 / 180), aspect = 1.78;
+  EXPECT_NEAR(s.x0, -0.5 * f / aspect / 10, 1e-12);
+  EXPECT_NEAR(s.x1, 0.5 * f / aspect / 10, 1e-12);
+  EXPECT_NEAR(s.y0, -0.6 * f / 10, 1e-12);
+  EXPECT_NEAR(s.y1, 0.4 * f / 10, 1e-12);
+  ASSERT_TRUE(s.pixels && s.covered_pixels);
+  const auto px = [](double ndc, double size) { return (ndc + 1) / 2 * size; };
+  EXPECT_EQ((*s.pixels)[0], static_cast<int>(std::floor(px(s.x0, 1920))));
+  EXPECT_EQ((*s.pixels)[1], static_cast<int>(std::floor(px(s.y0, 1080))));
+  EXPECT_EQ((*s.pixels)[0] + (*s.pixels)[2], static_cast<int>(std::ceil(px(s.x1, 1920))));
+  EXPECT_EQ((*s.pixels)[1] + (*s.pixels)[3], static_cast<int>(std::ceil(px(s.y1, 1080))));
+  EXPECT_NEAR(*s.covered_pixels,
+              (px(s.x1, 1920) - px(s.x0, 1920)) * (px(s.y1, 1080) - px(s.y0, 1080)), 1e-6);
+}
+
+TEST(EngineScenes, polygonPartlyOnScreenIsClippedToTheScreen) {
+  const Scene scene = bundled_scene("mirror_off_screen.json");
+  // A wide quad across the whole view at distance 10: clipped to the screen's edges.
+  const std::vector<Vector3> wide = {
+      {-100, -50, -10}, {100, -50, -10}, {100, 50, -10}, {-100, 50, -10}};
+  const auto s = clip_polygon(wide, scene.camera.view, scene.camera.projection, scene.convention,
+                              std::nullopt, std::array<int, 2>{100, 50});
+  ASSERT_TRUE(s);
+  EXPECT_NEAR(s->x0, -1, 1e-15);  // the clipped vertex lies on x = -w, within rounding
+  EXPECT_NEAR(s->x1, 1, 1e-15);
+  EXPECT_NEAR(s->ndc_area, 4, 1e-9);
+  EXPECT_EQ(*s->pixels, (std::array<int, 4>{0, 0, 100, 50}));
+  // Behind the camera, or beyond the far plane: nothing left.
+  const std::vector<Vector3> behind = {{-1, 0, 5}, {1, 0, 5}, {1, 2, 5}, {-1, 2, 5}};
+  EXPECT_FALSE(clip_polygon(behind, scene.camera.view, scene.camera.projection, scene.convention,
+                            std::nullopt, std::nullopt));
+  const std::vector<Vector3> beyond = {
+      {-1, 0, -2000}, {1, 0, -2000}, {1, 2, -2000}, {-1, 2, -2000}};
+  EXPECT_FALSE(clip_polygon(beyond, scene.camera.view, scene.camera.projection, scene.convention,
+                            std::nullopt, std::nullopt));
+}
+
+TEST(EngineScenes, vulkanCameraIsYFlippedReversedZWithAFloatBuffer) {
+  const Scene scene = bundled_scene("vulkan_reversed_z.json");
+  EXPECT_EQ(scene.depth_buffer, DepthBuffer::float32);
+  EXPECT_EQ(scene.camera.type, ProjectionType::infinite);
+  EXPECT_LT(scene.camera.projection(1, 1), 0);  // y flipped
+  const SceneCheck check = check_scene(scene);
+  EXPECT_EQ(named_actions(check), (Actions{{"puddle", "render"}}));
+  expect_exact(scene, check);
+  expect_mirrored_view(scene, check.surfaces[0], scene.surfaces[0]);
+  // The quaternion is a rotation of -15 degrees about x: the camera looks down by 15 degrees.
+  const Vector3 forward = -scene.camera.view.block<1, 3>(2, 0).transpose();
+  const double a = 15 * 3.14159265358979323846 / 180;
+  EXPECT_TRUE(forward.isApprox(Vector3(0, -std::sin(a), -std::cos(a)), 1e-12));
+  // y-flipped: the puddle (below the eye) is in the upper half of NDC.
+  EXPECT_GT(check.surfaces[0].scissor->y1, 0);
+}
+
+/// Bits lost in a float32 buffer, by a second route: floats in [0, x) counted by binades (frexp).
+double floats_below(double x) {
+  const float f = static_cast<float>(x);
+  if (f <= 0) return 0;
+  int e = 0;
+  const double m = std::frexp(static_cast<double>(f), &e);       // f = m 2^e, m in [0.5, 1)
+  if (e < -125) return std::ldexp(static_cast<double>(f), 149);  // subnormal: in steps of 2^-149
+  return std::ldexp(1.0, 23) * (e + 125) + (2 * m - 1) * std::ldexp(1.0, 23) + std::ldexp(1.0, 23);
+}
+
+TEST(EngineScenes, depthBitsAreCountedInTheDeclaredBuffer) {
+  Scene scene = bundled_scene("wall_mirror_reversed_z.json");
+  EXPECT_EQ(scene.depth_buffer, DepthBuffer::float32);  // reversed Z: a float buffer
+  const SceneCheck as_float = check_scene(scene);
+  scene.depth_buffer = DepthBuffer::fixed24;
+  const SceneCheck as_fixed = check_scene(scene);
+  const DepthPrecision& f = *as_float.surfaces[0].depth;
+  const DepthPrecision& x = *as_fixed.surfaces[0].depth;
+  EXPECT_EQ(f.fraction, x.fraction);
+  EXPECT_DOUBLE_EQ(x.bits_lost, -std::log2(x.fraction));
+  // Reversed Z [0, 1]: near at 1; the axis spans window depths [far_depth, 1].
+  const double expected =
+      std::log2(floats_below(1) / (floats_below(1) - floats_below(f.far_depth)));
+  EXPECT_NEAR(f.bits_lost, expected, 1e-9) << f.far_depth;
+  EXPECT_GT(f.bits_lost, x.bits_lost);  // the tilted far plane takes the dense floats near 0
+}
+
+TEST(EngineScenes, cameraFormsAgree) {
+  // One camera written five ways: eye/target/up, a row- and a column-major view matrix,
+  // position + quaternion, and fovy in radians.
+  const std::string head = R"({"name": "forms", "convention": "gl", "camera": {"projection": )";
+  const std::string deg =
+      R"({"type": "perspective", "fovy_deg": 90, "aspect": 1, "near": 0.5, "far": 100})";
+  const std::string rad =
+      R"({"type": "perspective", "fovy_rad": 1.5707963267948966, "aspect": 1, "near": 0.5, "far": 100})";
+  const std::string tail =
+      R"(}, "surfaces": [{"name": "m", "kind": "mirror", "rectangle": {"center": [-5, 2, 3], "normal": [1, 0, 0.2], "up": [0, 1, 0], "size": [2, 2]}}]})";
+  // Eye (1, 2, 3) looking along -x: the camera's x axis is world -z (a yaw of +90 degrees).
+  const std::string look = R"("view": {"eye": [1, 2, 3], "target": [0, 2, 3], "up": [0, 1, 0]})";
+  const std::string rows =
+      R"("view": {"layout": "row_major", "matrix": [0, 0, -1, 3,  0, 1, 0, -2,  1, 0, 0, -1,  0, 0, 0, 1]})";
+  const std::string columns =
+      R"("view": {"layout": "column_major", "matrix": [0, 0, 1, 0,  0, 1, 0, 0,  -1, 0, 0, 0,  3, -2, -1, 1]})";
+  const std::string quaternion =
+      R"("view": {"position": [1, 2, 3], "quaternion_xyzw": [0, 0.7071067811865476, 0, 0.7071067811865476]})";
+  std::vector<SceneCheck> checks;
+  for (const auto& [projection, view] :
+       {std::pair{deg, look}, {deg, rows}, {deg, columns}, {deg, quaternion}, {rad, look}}) {
+    const ParsedScene parsed = parse_scene(head + projection + ", " + view + tail);
+    ASSERT_TRUE(parsed.scene) << view << ": " << parsed.error;
+    checks.push_back(check_scene(*parsed.scene));
+    ASSERT_EQ(checks.back().surfaces.size(), 1u);
+    EXPECT_TRUE(checks.back().surfaces[0].render) << view;
+  }
+  for (const SceneCheck& c : checks) {
+    EXPECT_TRUE(c.surfaces[0].view.isApprox(checks[0].surfaces[0].view, 1e-12));
+    EXPECT_TRUE(c.surfaces[0].projection->isApprox(*checks[0].surfaces[0].projection, 1e-12));
+  }
+  // y_flip negates clip y, nothing else; infinite_far is the infinite projection.
+  const ParsedScene flipped = parse_scene(
+      head +
+      R"({"type": "perspective", "fovy_deg": 90, "aspect": 1, "near": 0.5, "far": 100, "y_flip": true}, )" +
+      look + tail);
+  ASSERT_TRUE(flipped.scene) << flipped.error;
+  const ParsedScene plain = parse_scene(head + deg + ", " + look + tail);
+  Matrix4<double> expected = plain.scene->camera.projection;
+  expected.row(1) *= -1;
+  EXPECT_EQ(flipped.scene->camera.projection, expected);
+  const ParsedScene endless = parse_scene(
+      head +
+      R"({"type": "perspective", "fovy_deg": 90, "aspect": 1, "near": 0.5, "infinite_far": true}, )" +
+      look + tail);
+  const ParsedScene infinite = parse_scene(
+      head + R"({"type": "infinite", "fovy_deg": 90, "aspect": 1, "near": 0.5}, )" + look + tail);
+  ASSERT_TRUE(endless.scene && infinite.scene) << endless.error << infinite.error;
+  EXPECT_EQ(endless.scene->camera.projection, infinite.scene->camera.projection);
+}
+
+TEST(EngineScenes, unknownKeysAndBadShapesAreRefusedWithTheirPath) {
+  const std::string base = read_file(std::string(OBLIQUE_SCENES_DIR) + "/portal_pair.json");
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string body = base;
+    const auto at = body.find(from);
+    if (at == std::string::npos) ADD_FAILURE() << from;
+    return at == std::string::npos ? body : body.replace(at, from.size(), to);
+  };
+  const Broken cases[] = {
+      {with("\"fovy_rad\"", "\"fovy\""), "camera.projection.fovy: unknown key"},
+      {with("\"near\": 0.1,", "\"near\": 0.1, \"y_flip\": 1,"),
+       "camera.projection.y_flip: must be true or false"},
+      {with("\"up\": [0, 1, 0]}", "\"up\": [0, 1, 0], \"y_flip\": true}"),
+       "camera.view.y_flip: unknown key"},
+      {with("\"max_depth\": 2", "\"max_depth\": 2, \"maxdepth\": 3"), "maxdepth: unknown key"},
+      {with("\"max_depth\": 2", "\"max_depth\": 0"), "max_depth: must be an integer in [1, 8]"},
+      {with("\"max_depth\": 2", "\"max_depth\": 2.5"), "max_depth: must be an integer"},
+      {with("[1280, 720]", "[1280]"), "viewport: must be [width, height]"},
+      {with("[1280, 720]", "[0, 720]"), "viewport[0]: must be an integer in [1, 65536]"},
+      {with("\"fovy_rad\": 1.0471975511965976", "\"fovy_rad\": 60"),
+       "camera.projection.fovy_rad: must be in (0, pi) radians"},
+      {with("\"fovy_rad\": 1.0471975511965976", "\"fovy_rad\": 1, \"fovy_deg\": 60"),
+       "camera.projection.fovy_rad: give fovy_deg or fovy_rad, not both"},
+      {with("\"size\": [2, 3]},\n     \"linked\"",
+            "\"size\": [2, 3], \"colour\": 1},\n     \"linked\""),
+       "surfaces[0].rectangle.colour: unknown key"},
+      {with("\"linked\": {\"center\": [20, 1.5, 0]", "\"link\": {\"center\": [20, 1.5, 0]"),
+       "surfaces[0].link: unknown key"},
+      {with("\"size\": [2, 3]},\n     \"linked\": {\"center\": [20, 1.5, 0], \"normal\": [-1, 0, "
+            "0], \"up\": [0, 1, 0]}},",
+            "\"size\": [2, 3]}},"),
+       "surfaces[0].linked: missing"},
+      {with("\"size\": [3, 3]}}", "\"size\": [3, 3]}, \"linked\": {}}"),
+       "surfaces[2].linked: only a portal"},
+      {with("\"up\": [0, 1, 0], \"size\": [3, 3]", "\"up\": [1, 0, 0], \"size\": [3, 3]"),
+       "surfaces[2].rectangle.up: must not be the zero vector nor parallel to the normal"},
+      {with("\"size\": [3, 3]", "\"size\": [3, -1]"),
+       "surfaces[2].rectangle.size: width and height"},
+      {with("\"rectangle\": {\"center\": [10, 1.5, 0], \"normal\": [1, 0, 0], \"up\": [0, 1, 0], "
+            "\"size\": [3, 3]}",
+            "\"polygon\": {\"vertices\": [[10, 0, 0], [10, 0, 1], [10, 1, 1], [10.5, 1, 0]]}"),
+       "surfaces[2].polygon.vertices[0]: not in the plane of the others (not planar)"},
+      {with("\"rectangle\": {\"center\": [10, 1.5, 0], \"normal\": [1, 0, 0], \"up\": [0, 1, 0], "
+            "\"size\": [3, 3]}",
+            "\"polygon\": {\"vertices\": [[0, 0, 0], [1, 1, 1], [2, 2, 2]]}"),
+       "surfaces[2].polygon.vertices: degenerate: the vertices are collinear"},
+      {with("\"rectangle\": {\"center\": [10, 1.5, 0], \"normal\": [1, 0, 0], \"up\": [0, 1, 0], "
+            "\"size\": [3, 3]}",
+            "\"rectangle\": {\"center\": [10, 1.5, 0], \"normal\": [1, 0, 0], \"up\": [0, 1, 0], "
+            "\"size\": [3, 3]}, \"plane\": {}"),
+       "surfaces[2].plane: give exactly one of plane, polygon or rectangle"},
+      {with("\"kind\": \"portal\",\n     \"rectangle\": {\"center\": [0, 1.5, -4], \"normal\": [0, "
+            "0, 1], \"up\": [0, 1, 0], \"size\": [2, 3]}",
+            "\"kind\": \"portal\",\n     \"polygon\": {\"vertices\": [[0, 0, -4], [1, 0, -4], [1, "
+            "1, -4]]}"),
+       "surfaces[0].rectangle: a portal is a rectangle"},
+      {with("\"view\": {\"eye\": [0, 1.6, 2], \"target\": [0, 1.6, -4], \"up\": [0, 1, 0]}",
+            "\"view\": {\"matrix\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}"),
+       "camera.view.layout: missing"},
+      {with("\"view\": {\"eye\": [0, 1.6, 2], \"target\": [0, 1.6, -4], \"up\": [0, 1, 0]}",
+            "\"view\": {\"layout\": \"row_major\", \"matrix\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, "
+            "0, 0, 0, 1, 1]}"),
+       "camera.view.matrix: must be affine"},
+      {with("\"view\": {\"eye\": [0, 1.6, 2], \"target\": [0, 1.6, -4], \"up\": [0, 1, 0]}",
+            "\"view\": {\"layout\": \"rows\", \"matrix\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, "
+            "0, 0, 1]}"),
+       "camera.view.layout: unknown layout"},
+      {with("\"view\": {\"eye\": [0, 1.6, 2], \"target\": [0, 1.6, -4], \"up\": [0, 1, 0]}",
+            "\"view\": {\"position\": [0, 1.6, 2], \"quaternion_xyzw\": [0, 0, 0, 0]}"),
+       "camera.view.quaternion_xyzw: must not be zero"},
+      {with("\"convention\": \"zero_one\"",
+            "\"convention\": \"zero_one\", \"depth_buffer\": \"float16\""),
+       "depth_buffer: unknown depth buffer"},
+  };
+  for (const Broken& c : cases) {
+    const ParsedScene parsed = parse_scene(c.text);
+    EXPECT_FALSE(parsed.scene) << c.message;
+    EXPECT_NE(parsed.error.find(c.message), std::string::npos)
+        << "expected: " << c.message << "\n     got: " << parsed.error;
+  }
+}
+
 #ifdef OBLIQUE_CLI
 int run_check(const std::string& arguments) {
   const int raw =
@@ -381,6 +745,40 @@ TEST(Scenes, cliExitStatus) {
   const int full = std::system(
       (std::string(OBLIQUE_CLI) + " check " + dir + "/lake.json > /dev/full 2>/dev/null").c_str());
   EXPECT_EQ(WIFEXITED(full) ? WEXITSTATUS(full) : -1, 2);
+}
+
+TEST(Scenes, cliImplJudgesTheUsersMatricesOnEveryPass) {
+  const std::string dir = OBLIQUE_SCENES_DIR;
+  // Our own `oblique apply` answers every pass correctly.
+  EXPECT_EQ(
+      run_check(dir + "/hall_of_mirrors.json --impl '" + std::string(OBLIQUE_CLI) + " apply'"), 0);
+  // An implementation that answers the unchanged identity: the report names pass and property.
+  const std::string out = ::testing::TempDir() + "oblique_check_impl.txt";
+  const std::string identity = ::testing::TempDir() + "oblique_identity_impl.sh";
+  std::ofstream(identity) << "while read line; do echo '{\"status\": \"ok\", \"projection\": "
+                             "[1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}'; done\n";
+  const int raw =
+      std::system((std::string(OBLIQUE_CLI) + " check " + dir +
+                   "/hall_of_mirrors.json --impl 'sh " + identity + "' > " + out + " 2>&1")
+                      .c_str());
+  EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 1);
+  const std::string text = read_file(out);
+  EXPECT_NE(text.find("north mirror > south mirror: FAIL"), std::string::npos) << text;
+  EXPECT_NE(text.find("FAIL near_is_clip_plane"), std::string::npos) << text;
+  // One that answers nothing, or cannot be started: exit 2.
+  EXPECT_EQ(run_check(dir + "/hall_of_mirrors.json --timeout 2 --impl 'cat > /dev/null'"), 2);
+  EXPECT_EQ(run_check(dir + "/hall_of_mirrors.json --impl 'exit 3'"), 2);
+}
+
+TEST(Scenes, cliPlotWritesTwoViewsOrSaysWhyNot) {
+  const std::string dir = OBLIQUE_SCENES_DIR;
+  const std::string plot = ::testing::TempDir() + "oblique_check_plot";
+  std::filesystem::remove_all(plot);
+  EXPECT_EQ(run_check(dir + "/hall_of_mirrors.json --plot " + plot), 0);
+  for (const char* file : {"top.png", "side.png", "scene.dat", "top.gp", "side.gp"})
+    EXPECT_GT(std::filesystem::file_size(plot + "/" + file), 0u) << file;
+  // A directory that cannot be made (under a regular file): exit 2, with a message.
+  EXPECT_EQ(run_check(dir + "/lake.json --plot " + dir + "/lake.json/pictures"), 2);
 }
 #endif  // OBLIQUE_CLI
 

@@ -4,6 +4,7 @@
 // residuals, and the depth precision left along the view axis.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,11 +20,28 @@ namespace oblique::scene {
 struct DepthPrecision {
   double far_depth = 0;  ///< NDC depth at the far end of the kept part of the axis
   double fraction = 0;   ///< of the depth range [z_low, z_high] that the axis still spans
-  double bits_lost = 0;  ///< log2(1 / fraction): bits of a fixed-point depth buffer not used
+  /// log2(values of the buffer / values the axis still spans): for fixed24, log2(1 / fraction);
+  /// for float32, the float32 values between the window depths (z - z_low) / (z_high - z_low)
+  /// of the axis's two ends, against those in [0, 1].
+  double bits_lost = 0;
+  DepthBuffer buffer = DepthBuffer::fixed24;
+};
+
+/// The screen rectangle a visible bounded surface covers (the scissor an engine sets), from its
+/// polygon clipped against the parent pass's view volume (and the parent's own rectangle).
+struct Scissor {
+  double x0 = -1, y0 = -1, x1 = 1, y1 = 1;  ///< NDC
+  double ndc_area = 0;                      ///< of the clipped polygon, in NDC units (4 = all)
+  /// With the scene's viewport: pixels x from the left, y from the edge where NDC y = -1 (the
+  /// bottom in GL, the top with a y-flipped projection); outward-rounded, clamped.
+  std::optional<std::array<int, 4>> pixels;  ///< x, y, width, height
+  std::optional<double> covered_pixels;      ///< the polygon's own area in pixels
 };
 
 struct SurfaceCheck {
-  std::string name;
+  std::string name;               ///< the pass's path: "hall mirror > window"
+  std::vector<std::size_t> path;  ///< indices into Scene::surfaces, outermost first
+  int level = 1;                  ///< 1 for a pass the main camera sees
   SurfaceKind kind = SurfaceKind::mirror;
   bool render = false;
   std::string reason;               ///< why it is skipped (empty when rendered)
@@ -35,18 +53,39 @@ struct SurfaceCheck {
   /// The properties that apply to its camera and convention, judged (properties::judge()).
   std::vector<properties::Finding> properties;
   std::optional<DepthPrecision> depth;
+  std::optional<Scissor> scissor;  ///< rendered bounded surfaces
 
+  /// `--impl`: the user's answer to this pass's request, judged (empty when not asked).
+  std::optional<std::string> impl_answer;
+  std::vector<properties::Finding> impl_findings;
+
+  /// Every property of our oblique matrix holds.
+  bool properties_hold() const;
+  /// properties_hold(), and the user's answer (when asked) violates nothing.
   bool passes() const;
 };
 
 struct SceneCheck {
   std::string scene;
   Convention convention = Convention::gl;
-  std::vector<SurfaceCheck> surfaces;
+  DepthBuffer depth_buffer = DepthBuffer::fixed24;
+  int max_depth = 1;
+  std::vector<SurfaceCheck> surfaces;  ///< every pass, depth first: a pass, then those within it
+  bool truncated = false;              ///< more than kMaxPasses passes: the rest not looked at
   bool passes() const;
 };
 
+inline constexpr std::size_t kMaxPasses = 512;
+
 SceneCheck check_scene(const Scene& scene);
+
+/// The request line `oblique check --impl` sends for a rendered pass (the protocol's writer).
+std::string impl_request(const Scene& scene, const SurfaceCheck& pass);
+
+/// Judges the user's answer line to impl_request() as `oblique verify` does
+/// (StatusContract::any_refusal, row 3's accuracy; the checks up to the first violation); a line
+/// that is not an answer is one failing finding "protocol". Stores them in pass.impl_findings.
+void judge_impl_answer(const Scene& scene, SurfaceCheck& pass, const std::string& line);
 
 /// {"scene": ..., "surfaces": [{"name", "action", "reason", "view", "projection", "method",
 /// "properties": {name: bool}, "depth_bits_lost", ...}]}; numbers round-trip.
@@ -58,6 +97,15 @@ std::string to_text(const SceneCheck& check);
 /// Depth precision of `oblique` (the oblique version of `original`) along the view axis.
 std::optional<DepthPrecision> depth_precision(const Matrix4<double>& original,
                                               const Matrix4<double>& oblique,
-                                              const Vector4<double>& plane, Convention convention);
+                                              const Vector4<double>& plane, Convention convention,
+                                              DepthBuffer buffer = DepthBuffer::fixed24);
+
+/// The polygon (world space) clipped against the view volume of `projection` x `view` and, when
+/// given, the NDC rectangle `within`: empty when nothing of it is left (homogeneous clipping
+/// against each plane, as a GPU clips).
+std::optional<Scissor> clip_polygon(const std::vector<Vector3>& polygon,
+                                    const Matrix4<double>& view, const Matrix4<double>& projection,
+                                    Convention convention, const std::optional<Scissor>& within,
+                                    const std::optional<std::array<int, 2>>& viewport);
 
 }  // namespace oblique::scene

@@ -1,10 +1,14 @@
-// Scene files for `oblique check`: a camera (projection and gluLookAt view) and the surfaces that
-// need an oblique pass (mirrors, clip planes), read from JSON with errors that name the field, or
-// the line and column of malformed JSON.
+// Scene files for `oblique check`: a camera as engines hold it (a view matrix in a named layout,
+// eye/target/up, or position + quaternion; a field of view with its unit in the key, frustum
+// bounds or a matrix; y-flip, reversed Z, infinite far) and the surfaces that need an oblique pass
+// (mirrors, clip planes, portals), bounded (a polygon or a rectangle) or infinite (a plane), read
+// from JSON with errors that name the field, or the line and column of malformed JSON. Unknown
+// keys are refused with their path.
 #pragma once
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -19,29 +23,43 @@ using Vector3 = Eigen::Vector3d;
 
 enum class ProjectionType { perspective, infinite, frustum, orthographic, matrix };
 
+/// How the scene's depth buffer stores depth: bits lost are counted in its representable values.
+enum class DepthBuffer { fixed24, float32 };
+
 struct Camera {
   ProjectionType type = ProjectionType::perspective;
   Matrix4<double> projection = Matrix4<double>::Identity();  ///< built in the scene's convention
+  /// eye/target/up as given (eye/target/up views), else the eye from the view matrix, target one
+  /// unit along the view direction and up its up vector.
   Vector3 eye = Vector3::Zero(), target = -Vector3::UnitZ(), up = Vector3::UnitY();
-  Matrix4<double> view = Matrix4<double>::Identity();  ///< world -> camera, as gluLookAt builds it
+  Matrix4<double> view = Matrix4<double>::Identity();  ///< world -> camera
 };
 
-enum class SurfaceKind { mirror, clip };
+enum class SurfaceKind { mirror, clip, portal };
 
 struct Surface {
   std::string name;
   SurfaceKind kind = SurfaceKind::mirror;
   Vector3 normal = Vector3::UnitY();  ///< toward the front: the side that is seen and kept
   Vector3 point = Vector3::Zero();
+  /// The bounded surface, counter-clockwise seen from its front; empty for an infinite plane.
+  std::vector<Vector3> polygon;
+  /// Portals: world -> world, from around the linked portal to behind this one (rectangle frame
+  /// x (rotation by 180 degrees about up) x linked frame^-1); identity otherwise.
+  Matrix4<double> portal_transform = Matrix4<double>::Identity();
   /// The world-space plane (n, -n . p), positive in front.
   Vector4<double> plane() const;
+  bool bounded() const { return !polygon.empty(); }
 };
 
 struct Scene {
   std::string name;
   Convention convention = Convention::gl;
+  DepthBuffer depth_buffer = DepthBuffer::fixed24;
   Camera camera;
   std::vector<Surface> surfaces;
+  int max_depth = 1;  ///< passes seen through passes, up to this many levels
+  std::optional<std::array<int, 2>> viewport;  ///< width, height in pixels
 };
 
 /// A scene, or why the text is not one (naming the field, or the line and column).
@@ -51,13 +69,17 @@ struct ParsedScene {
 };
 
 /// Every failure names the field (numbers beyond double's range, degenerate cameras whose view
-/// volume has no finite corners in double, a normal or up vector of zero length) or the position.
-/// Directions (up, normals) are judged by direction, whatever their length.
+/// volume has no finite corners in double, a normal or up vector of zero length, an unknown key)
+/// or the position. Directions (up, normals, quaternions) are judged by direction, whatever their
+/// length.
 ParsedScene parse_scene(std::string_view text);
 
 /// The most a scene file may hold: bytes, and numbers.
 inline constexpr std::size_t kMaxSceneBytes = std::size_t{16} << 20;
 inline constexpr std::size_t kMaxSceneNumbers = std::size_t{1} << 20;
+/// The deepest recursion a scene may ask for, and the most vertices a polygon may have.
+inline constexpr int kMaxDepth = 8;
+inline constexpr std::size_t kMaxPolygonVertices = 64;
 
 /// parse_scene() of a file's text; a file that cannot be opened or read, a directory, or one
 /// larger than kMaxSceneBytes (read no further: /dev/zero) is refused with its reason.
@@ -69,5 +91,15 @@ std::optional<Matrix4<double>> look_at(const Vector3& eye, const Vector3& target
 
 /// The reflection through a world-space plane (n, d): p -> p - 2 (n . p + d) n / |n|^2.
 Matrix4<double> reflection(const Vector4<double>& plane);
+
+/// The world -> world map of a portal at `frame` linked to `linked` (frames: columns right, up,
+/// normal, center): a point in front of the linked portal goes to where it is seen behind this
+/// one.
+Matrix4<double> portal_map(const Matrix4<double>& frame, const Matrix4<double>& linked);
+
+/// The frame (columns right = up x normal, up, normal, center) of a rectangle; empty when up is
+/// parallel to the normal.
+std::optional<Matrix4<double>> rectangle_frame(const Vector3& center, const Vector3& normal,
+                                               const Vector3& up);
 
 }  // namespace oblique::scene
