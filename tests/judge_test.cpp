@@ -93,6 +93,14 @@ TEST(Judge, aNonFiniteAnswerIsNamedFirst) {
   const Judgement j = judge(problem, answer);
   ASSERT_NE(j.violation(), nullptr);
   EXPECT_EQ(j.violation()->kind, "finite_result");
+  // Even when every check is asked for, nothing after it (the exact checks take finite entries).
+  Checks every;
+  every.every = true;
+  every.row3_accuracy = true;
+  every.max_ulps = 2;
+  const Judgement all = judge(problem, answer, every);
+  ASSERT_EQ(all.checks.size(), 1u);
+  EXPECT_EQ(all.checks[0].kind, "finite_result");
 }
 
 TEST(Judge, onlyTheSelectedPropertiesAreChecked) {

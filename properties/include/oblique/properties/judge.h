@@ -148,7 +148,7 @@ Finding row3_accuracy(const Problem<T>& problem, const Matrix4<T>& result) {
 
 /// Judges what an implementation answered for the input `problem` describes:
 ///  1. the status (Checks::statuses);
-///  2. an ok answer is finite ("finite_result");
+///  2. an ok answer is finite ("finite_result"; the judgement ends at a non-finite one);
 ///  3. where the input has an exact answer: the selected properties (Problem::check(), and
 ///     Problem::check_extracted_planes()), row 3's accuracy, the ulps promise.
 /// An ok answer to an input within rounding of having none is judged by 1 and 2 only.
@@ -166,15 +166,15 @@ Judgement judge(const Problem<T>& problem, const Outcome<T>& outcome, const Chec
   }
   if (outcome.status != Status::ok) return out;
   if (!all_finite(outcome.projection)) {
-    if (!record(Finding{"finite_result",
-                        false,
-                        "an ok answer is finite",
-                        "NaN or infinity in M'",
-                        "finite entries",
-                        1e300,
-                        {},
-                        {}}))
-      return out;
+    // Nothing further is judged, even with Checks::every: the exact checks take finite entries.
+    Finding f;
+    f.kind = "finite_result";
+    f.relation = "an ok answer is finite";
+    f.lhs = "NaN or infinity in M'";
+    f.rhs = "finite entries";
+    f.ratio = 1e300;
+    record(std::move(f));
+    return out;
   }
   if (problem.exact_status() != Status::ok) return out;
   auto wanted = [&](Property p) {
