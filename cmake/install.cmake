@@ -26,7 +26,8 @@ if(TARGET oblique_testing)
 endif()
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/obliqueConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/obliqueConfig.cmake
-                              INSTALL_DESTINATION ${OBLIQUE_CMAKE_DIR})
+                              INSTALL_DESTINATION ${OBLIQUE_CMAKE_DIR}
+                              PATH_VARS CMAKE_INSTALL_DATADIR)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/obliqueConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/obliqueConfig.cmake
