@@ -10,7 +10,8 @@ const auto make_oblique =
                           oblique::perspective_shape_only<float>);
 
 // What the engine promises: OpenGL depth, the perspective shapes it builds (symmetric,
-// off-axis, infinite, y-flipped, jittered), every plane; no statuses (it returns nothing).
+// off-axis, infinite, y-flipped, jittered), every plane; it refuses (returns false) the inputs
+// without an answer, in its own words (StatusContract::any_refusal, from the bool).
 oblique::testing::Contract engine_contract() {
   using oblique::generators::Family;
   oblique::testing::Contract contract;
