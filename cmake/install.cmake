@@ -8,7 +8,7 @@ set(OBLIQUE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/oblique)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ ${PROJECT_SOURCE_DIR}/protocol/include/
                   ${PROJECT_SOURCE_DIR}/properties/include/ ${PROJECT_SOURCE_DIR}/fuzzing/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
-set(OBLIQUE_EXPORTED oblique_core oblique_protocol oblique_properties
+set(OBLIQUE_EXPORTED oblique_core oblique_core_instances oblique_protocol oblique_properties
     oblique_counterexample_reports oblique_fuzzing oblique_fuzzing_replay)
 if(TARGET oblique_testing)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/testing/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}

@@ -44,7 +44,8 @@ bool make_oblique(float m[16], const float plane[4]) {
                       (1.0f - m[10] * qz) / m[14]};
   // M'_3 = (2 M_4 . Q / C . Q) C - M_4, with M_4 . Q = 1.
   const float dot = plane[0] * q[0] + plane[1] * q[1] + plane[2] * q[2] + plane[3] * q[3];
-  if (!(dot > 0.0f)) return false;  // the plane misses the view volume
+  if (!(dot > 0.0f)) return false;        // the plane misses the view volume
+  if (!std::isfinite(dot)) return false;  // C . Q beyond float's range
   const float scale = 2.0f / dot;
   const float row3[4] = {scale * plane[0] - m[3], scale * plane[1] - m[7], scale * plane[2] - m[11],
                          scale * plane[3] - m[15]};
