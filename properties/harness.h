@@ -35,7 +35,8 @@ void run_property(Testable&& testable, Coverage coverage) {
 /// Skips the current test, with a message, unless OBLIQUE_IMPL selects each of `names` (a
 /// property of the core's own methods says nothing about another implementation).
 inline bool runs_only_for(std::initializer_list<std::string_view> names) {
-  if (!implementation_selection_error().empty()) return true;  // run_property() fails with the error
+  if (!implementation_selection_error().empty())
+    return true;  // run_property() fails with the error
   for (std::string_view name : names) {
     if (!implementation_selected(name)) {
       std::cout << "OBLIQUE_IMPL does not select " << name << ": this property is about "
