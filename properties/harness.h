@@ -1,183 +1,57 @@
-// Runs RapidCheck properties inside GoogleTest tests: tallies what the cases covered (and fails
-// a run that missed a hard place), and writes the shrunk counterexample as a report.
+// The project's own property suite on oblique::testing (the same harness users get): the
+// implementations OBLIQUE_IMPL selects by name, reports in OBLIQUE_REPORT_DIR whose replay
+// commands name this test binary and the oblique CLI.
 #pragma once
 
-#include <gtest/gtest.h>
-#include <rapidcheck.h>
-
-#include <algorithm>
-#include <cstdlib>
+#include <initializer_list>
 #include <iostream>
-#include <map>
-#include <optional>
-#include <sstream>
 #include <string>
-#include <vector>
+#include <string_view>
+#include <utility>
 
-#include "oblique/properties/counterexample_report.h"
-#include "oblique/properties/generators.h"
 #include "oblique/properties/implementations.h"
-#include "oblique/properties/properties.h"
+#include "oblique/testing.h"
 
 namespace oblique::properties::suite {
 
-/// What the cases of one property run covered, and its last (so most shrunk) failure.
-struct Tally {
-  std::map<std::string, int> families, conventions, places, defects, implementations, applied;
-  std::optional<Counterexample> failure;
-};
+using testing::count_case;
+using testing::Coverage;
+using testing::fail_with;
+using testing::tally;
 
-inline Tally& tally() {
-  static Tally t;
-  return t;
-}
-
-/// Which kinds of case a run must have covered.
-enum class Coverage { valid, infinite_only, perspective_shape, invalid };
-
-inline ReportContext report_context() {
-  ReportContext context;
-  const char* dir = std::getenv("OBLIQUE_REPORT_DIR");
-  context.directory = dir && *dir ? dir : OBLIQUE_REPORT_DIR;
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  context.test_id = std::string(info->test_suite_name()) + "." + info->name();
-  context.seed = rc::detail::configuration().testParams.seed;
-  context.max_success = rc::detail::configuration().testParams.maxSuccess;
-  context.binary = OBLIQUE_PROPERTY_BINARY;
-  context.cli = OBLIQUE_CLI;
-  return context;
-}
-
-inline std::string summary(const std::map<std::string, int>& counts) {
-  std::string out;
-  for (const auto& [name, count] : counts)
-    out += (out.empty() ? "" : ", ") + name + " " + std::to_string(count);
-  return out;
-}
-
-/// Runs `testable` as a RapidCheck property of the current test; fails the test with the report's
-/// path on a counterexample, and when the cases missed a family, convention or hard place.
+/// Runs `testable` as a RapidCheck property of the current test (testing::run), after refusing
+/// an OBLIQUE_IMPL that names an unknown implementation.
 template <class Testable>
-void run(Testable&& testable, Coverage coverage) {
-  tally() = Tally{};
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  rc::detail::TestMetadata metadata;
-  metadata.id = std::string(info->test_suite_name()) + "/" + info->name();
-  metadata.description = info->name();
-  const auto result = rc::detail::checkTestable(std::forward<Testable>(testable), metadata);
-  std::ostringstream message;
-  rc::detail::printResultMessage(result, message);
-  const Tally& t = tally();
-  std::cout << message.str() << "\nran: " << summary(t.implementations)
-            << "\nfamilies: " << summary(t.families) << "\nconventions: " << summary(t.conventions)
-            << "\nplaces: " << summary(t.places);
-  if (!t.defects.empty()) std::cout << "\ndefects: " << summary(t.defects);
-  if (!t.applied.empty()) std::cout << "\napplied: " << summary(t.applied);
-  std::cout << std::endl;
-  if (!result.template is<rc::detail::SuccessResult>()) {
-    std::string where;
-    if (t.failure) where = "\nreport: " + write_report(*t.failure, report_context());
-    FAIL() << message.str() << where;
-  }
-  if (t.implementations.empty()) {
-    FAIL() << "no implementation ran: check OBLIQUE_IMPL (or the generator discarded every case)";
-  }
-  auto require = [](const std::map<std::string, int>& counts, auto names, const char* what) {
-    for (const auto& name : names) {
-      EXPECT_GT(counts.count(std::string(name)) ? counts.at(std::string(name)) : 0, 0)
-          << "no case covered " << what << " " << name << ": raise max_success";
+void run_property(Testable&& testable, Coverage coverage) {
+  testing::Settings& s = testing::settings();
+  s.report_directory = OBLIQUE_REPORT_DIR;
+  s.binary = OBLIQUE_PROPERTY_BINARY;
+  s.cli = OBLIQUE_CLI;
+  s.replay_names_implementation = true;
+  if (const std::string error = implementation_selection_error(); !error.empty()) FAIL() << error;
+  testing::run(std::forward<Testable>(testable), coverage);
+}
+
+/// Skips the current test, with a message, unless OBLIQUE_IMPL selects each of `names` (a
+/// property of the core's own methods says nothing about another implementation).
+inline bool runs_only_for(std::initializer_list<std::string_view> names) {
+  if (!implementation_selection_error().empty())
+    return true;  // run_property() fails with the error
+  for (std::string_view name : names) {
+    if (!implementation_selected(name)) {
+      std::cout << "OBLIQUE_IMPL does not select " << name << ": this property is about "
+                << "the core's own methods, skipped" << std::endl;
+      return false;
     }
-  };
-  std::vector<std::string_view> families, conventions, places, defects;
-  for (auto f : generators::all_families) families.push_back(generators::family_name(f));
-  for (auto c : all_conventions) conventions.push_back(convention_name(c));
-  for (auto p : generators::all_places) places.push_back(generators::place_name(p));
-  for (auto d : generators::all_defects) defects.push_back(generators::defect_name(d));
-  require(t.conventions, conventions, "convention");
-  switch (coverage) {
-    case Coverage::valid:
-      require(t.families, families, "family");
-      require(t.places, places, "hard place");
-      break;
-    case Coverage::infinite_only:
-    case Coverage::perspective_shape: require(t.places, places, "hard place"); break;
-    case Coverage::invalid: require(t.defects, defects, "defect"); break;
   }
+  return true;
 }
 
-template <class T>
-void count_case(const generators::Case<T>& c) {
-  Tally& t = tally();
-  ++t.families[std::string(generators::family_name(c.family))];
-  ++t.conventions[std::string(convention_name(c.convention))];
-  ++t.places[std::string(generators::place_name(c.place))];
-  RC_TAG(std::string(generators::family_name(c.family)), std::string(convention_name(c.convention)),
-         std::string(generators::place_name(c.place)));
-}
-
-template <class T>
-Counterexample describe(const generators::Case<T>& c, const Implementation<T>& impl) {
-  Counterexample ce = make_counterexample(c.matrix, c.plane, c.convention);
-  ce.implementation = impl.name;
-  ce.family = std::string(generators::family_name(c.family));
-  ce.place = std::string(generators::place_name(c.place));
-  return ce;
-}
-
-/// Fails the current RapidCheck case with `finding` as its report.
-template <class T>
-void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, const Finding& finding,
-               const Outcome<T>* outcome = nullptr) {
-  Counterexample ce = describe(c, impl);
-  ce.finding = finding;
-  if (outcome && outcome->status == Status::ok) set_result(ce, outcome->projection);
-  tally().failure = ce;
-  if (finding.kind == "status")
-    RC_FAIL(impl.name + " answered " + finding.got + ", expected " + finding.expected);
-  RC_FAIL(impl.name + " violates " + finding.kind + ": " + finding.lhs + " against " + finding.rhs);
-}
-
-/// Runs every selected implementation on the case and judges each answer (judge(), with
-/// `checks` and the implementation's own status contract); fails the case on the first violation.
-/// An implementation without statuses is judged on inputs without an answer only where invalid
-/// inputs are the point (judge_statuses), so its property failures are not masked.
+/// Every implementation OBLIQUE_IMPL selects, on the case (testing::for_each_answer).
 template <class T>
 void for_each_answer(const generators::Case<T>& c, const Problem<T>& problem, Checks checks,
                      bool judge_statuses = false) {
-  for (const Implementation<T>& impl : selected_implementations<T>()) {
-    if (!impl.accepts(c.convention, c.matrix)) continue;
-    if (!impl.reports_statuses && !judge_statuses && problem.exact_status() != Status::ok) continue;
-    ++tally().implementations[impl.name];
-    const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
-    checks.statuses = impl.status_contract();
-    const Judgement judgement = judge(problem, outcome, checks);
-    for (const Finding& f : judgement.checks) {
-      if (f.kind != "status" && f.kind != "finite_result") ++tally().applied[f.kind];
-    }
-    if (const Finding* violation = judgement.violation()) fail_with(c, impl, *violation, &outcome);
-  }
+  testing::for_each_answer(selected_implementations<T>(), c, problem, checks, judge_statuses);
 }
 
 }  // namespace oblique::properties::suite
-
-namespace oblique::generators {
-
-/// How RapidCheck shows a case: every number so that it reads back to the same value.
-template <class T>
-void showValue(const Case<T>& c, std::ostream& os) {
-  os << family_name(c.family) << " " << convention_name(c.convention) << " " << place_name(c.place)
-     << "\nM = [";
-  for (int i = 0; i < 16; ++i)
-    os << (i ? (i % 4 ? ", " : "; ") : "") << protocol::format_number(c.matrix(i / 4, i % 4));
-  os << "]\nC = (";
-  for (int i = 0; i < 4; ++i) os << (i ? ", " : "") << protocol::format_number(c.plane(i));
-  os << ")";
-}
-
-template <class T>
-void showValue(const InvalidCase<T>& c, std::ostream& os) {
-  os << defect_name(c.defect) << ": ";
-  showValue(c.base, os);
-}
-
-}  // namespace oblique::generators

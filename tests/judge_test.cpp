@@ -86,6 +86,25 @@ TEST(Judge, refusingAnInputWithAnAnswerFailsUnlessStatusesAreNotReported) {
   EXPECT_TRUE(judge(problem, refused, with_statuses(StatusContract::answers_only)).holds());
 }
 
+TEST(Judge, aRefusalInItsOwnWordsWhereRoundingAllowsOnePassesAnyRefusal) {
+  // An infinite float frustum and a plane within rounding of its far corner (found by fuzzing
+  // the downstream example): the exact answer exists, but rounding allows a refusal.
+  Matrix4<float> m;
+  m << 0.5616438356164384f, 0, 0.9452054794520548f, 0, 0, 1.9069767441860466f, 0.9069767441860465f,
+      0, 0, 0, -1, -10.25f, 0, 0, -1, 0;
+  const Vector4<float> plane(-0.0f, 5.125f, 5.125f, -7.75f);
+  const Problem<float> problem(m, plane, Convention::gl);
+  ASSERT_EQ(problem.exact_status(), Status::ok);
+  const auto acceptable = problem.acceptable_statuses();
+  ASSERT_NE(std::find(acceptable.begin(), acceptable.end(), Status::plane_misses_view_volume),
+            acceptable.end());
+  const Outcome<float> own_words{Status::invalid_input, m};
+  EXPECT_TRUE(judge(problem, own_words, with_statuses(StatusContract::any_refusal)).holds());
+  const Judgement exact = judge(problem, own_words, with_statuses(StatusContract::exact));
+  ASSERT_NE(exact.violation(), nullptr);
+  EXPECT_EQ(exact.violation()->got, "invalid_input");
+}
+
 TEST(Judge, aNonFiniteAnswerIsNamedFirst) {
   const Problem<double> problem(kFrustum, kPlane, Convention::gl);
   Outcome<double> answer = core_answer();

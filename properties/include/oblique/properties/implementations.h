@@ -3,6 +3,7 @@
 // the suite catches the mistakes engines ship. OBLIQUE_IMPL=name selects one; see the README.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -23,6 +24,9 @@ struct Implementation {
   std::string name;
   /// Whether it answers statuses (the recipes return a matrix whatever the input).
   bool reports_statuses = true;
+  /// Whether it refuses in its own words (a bool "no"): any refusal of an input without an answer
+  /// is then right (StatusContract::any_refusal).
+  bool own_refusals = false;
   /// The inputs it is meant for; others are not given to it.
   std::function<bool(Convention, const Matrix4<T>&)> accepts;
   std::function<Outcome<T>(const Matrix4<T>&, const Vector4<T>&, Convention)> run;
@@ -32,7 +36,8 @@ struct Implementation {
 
   /// How judge() treats its statuses.
   StatusContract status_contract() const {
-    return reports_statuses ? StatusContract::exact : StatusContract::answers_only;
+    if (!reports_statuses) return StatusContract::answers_only;
+    return own_refusals ? StatusContract::any_refusal : StatusContract::exact;
   }
   /// What judge() checks of its answers: every property under its status contract and, with
   /// `accuracy`, row 3 within its bound and the ulps it promises.
@@ -178,17 +183,50 @@ std::vector<Implementation<T>> known_implementations() {
   return out;
 }
 
-/// The implementations selected by OBLIQUE_IMPL (comma-separated names; default: the core's
-/// four methods). An unknown name selects nothing, which the suite reports as an error.
-template <class T>
-std::vector<Implementation<T>> selected_implementations() {
+/// The names OBLIQUE_IMPL selects (comma-separated; default: the core's four methods).
+inline std::vector<std::string> selected_implementation_names() {
   const char* env = std::getenv("OBLIQUE_IMPL");
   const std::string wanted =
       env && *env ? env : "core_auto,core_closed_form,core_general,core_accurate";
+  std::vector<std::string> names;
+  std::string::size_type start = 0;
+  while (start <= wanted.size()) {
+    const auto end = std::min(wanted.find(',', start), wanted.size());
+    if (end > start) names.push_back(wanted.substr(start, end - start));
+    start = end + 1;
+  }
+  return names;
+}
+
+/// An error naming each OBLIQUE_IMPL name that is no known implementation (and the known ones),
+/// or empty. An unknown name must stop a run, never select nothing and pass.
+inline std::string implementation_selection_error() {
+  const auto known = known_implementations<double>();
+  std::string unknown, names;
+  for (const auto& impl : known) names += (names.empty() ? "" : ", ") + impl.name;
+  for (const std::string& name : selected_implementation_names()) {
+    const bool found = std::any_of(known.begin(), known.end(),
+                                   [&](const Implementation<double>& i) { return i.name == name; });
+    if (!found) unknown += (unknown.empty() ? "" : ", ") + name;
+  }
+  if (unknown.empty() && !selected_implementation_names().empty()) return {};
+  return "OBLIQUE_IMPL: unknown implementation " + (unknown.empty() ? "(none named)" : unknown) +
+         "; known: " + names;
+}
+
+/// Whether OBLIQUE_IMPL selects the implementation `name`.
+inline bool implementation_selected(std::string_view name) {
+  const auto names = selected_implementation_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+/// The implementations selected by OBLIQUE_IMPL, in the order known_implementations() lists
+/// them. Callers check implementation_selection_error() first: an unknown name is an error.
+template <class T>
+std::vector<Implementation<T>> selected_implementations() {
   std::vector<Implementation<T>> out;
   for (auto& impl : known_implementations<T>()) {
-    const std::string padded = "," + wanted + ",";
-    if (padded.find("," + impl.name + ",") != std::string::npos) out.push_back(impl);
+    if (implementation_selected(impl.name)) out.push_back(impl);
   }
   return out;
 }

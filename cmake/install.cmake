@@ -1,0 +1,39 @@
+# The installed package: headers, libraries, exported targets (oblique::core, ::protocol,
+# ::properties, ::counterexample_reports, ::testing, ::fuzzing, ::fuzzing_replay),
+# obliqueConfig.cmake with its version file, and the fuzz seed corpus and dictionary
+# (share/oblique/fuzz). oblique::warnings is build-only and never exported.
+include(CMakePackageConfigHelpers)
+set(OBLIQUE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/oblique)
+
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ ${PROJECT_SOURCE_DIR}/protocol/include/
+                  ${PROJECT_SOURCE_DIR}/properties/include/ ${PROJECT_SOURCE_DIR}/fuzzing/include/
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
+set(OBLIQUE_EXPORTED oblique_core oblique_core_instances oblique_protocol oblique_properties
+    oblique_counterexample_reports oblique_fuzzing oblique_fuzzing_replay)
+if(TARGET oblique_testing)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/testing/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+          FILES_MATCHING PATTERN "*.h")
+  list(APPEND OBLIQUE_EXPORTED oblique_testing)
+endif()
+install(TARGETS ${OBLIQUE_EXPORTED} EXPORT obliqueTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT obliqueTargets NAMESPACE oblique:: DESTINATION ${OBLIQUE_CMAKE_DIR})
+
+set(OBLIQUE_PACKAGE_HAS_TESTING OFF)
+if(TARGET oblique_testing)
+  set(OBLIQUE_PACKAGE_HAS_TESTING ON)
+endif()
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/obliqueConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/obliqueConfig.cmake
+                              INSTALL_DESTINATION ${OBLIQUE_CMAKE_DIR}
+                              PATH_VARS CMAKE_INSTALL_DATADIR)
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/obliqueConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/obliqueConfig.cmake
+              ${PROJECT_BINARY_DIR}/obliqueConfigVersion.cmake DESTINATION ${OBLIQUE_CMAKE_DIR})
+
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/fuzz/corpus/fuzz_oblique/
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/oblique/fuzz/corpus)
+install(FILES ${PROJECT_SOURCE_DIR}/fuzz/fuzz_oblique.dict
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/oblique/fuzz RENAME oblique.dict)

@@ -1,0 +1,13 @@
+// An engine's oblique near-plane clipping, as engines write it (Lengyel's Listing 5.1 style):
+// OpenGL conventions, a column-major perspective matrix m (m[4 * column + row]), modified in
+// place so that its near plane becomes `plane` (a, b, c, d in camera space, the kept side
+// positive, the camera behind it: d < 0). Returns false, leaving m as it was, when there is no
+// such matrix in float (the camera not behind the plane, a plane that misses the view volume, a
+// degenerate matrix, numbers that are not finite, an answer beyond float's range).
+#pragma once
+
+namespace engine {
+
+bool make_oblique(float m[16], const float plane[4]);
+
+}  // namespace engine

@@ -1,0 +1,317 @@
+// The fuzz driver for your own function: the project's input decoder (scalar type, convention,
+// method, a projection of a family built from decoded parameters or 16 raw numbers, and a
+// plane; every number a special value picked by index or 8 raw bytes), and the exact judgement
+// (properties::judge). A libFuzzer target of a few lines:
+//
+//   #include <oblique/fuzzing.h>
+//   void make_oblique(float m[16], const float plane[4]);   // yours
+//
+//   extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+//     static const auto mine = oblique::adapt<float>("make_oblique", oblique::Layout::column_major,
+//                                                     make_oblique);
+//     oblique::fuzzing::Options options;
+//     options.conventions = {oblique::Convention::gl};
+//     return oblique::fuzzing::test_one_input(data, size, mine, options);
+//   }
+//
+// Build it with clang++ -fsanitize=fuzzer,address and link oblique::fuzzing; run it on the seed
+// corpus and with the dictionary installed in share/oblique/fuzz (oblique_FUZZ_DIR). A violation
+// prints the case (decimal and hex), what the checker knows of it and the property broken, then
+// aborts, which libFuzzer saves as a crash. Linking oblique::fuzzing_replay instead of
+// -fsanitize=fuzzer gives a main() that replays files and directories, with any compiler.
+//
+// Special values: libFuzzer's comparison tracing does not see double compares, so 0, -0,
+// subnormals, DBL_MIN, DBL_MAX, powers of two and ties are picked by index.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "oblique/oblique.h"
+#include "oblique/projection.h"
+#include "oblique/properties/adapter.h"
+#include "oblique/properties/implementations.h"
+#include "oblique/properties/judge.h"
+#include "oblique/protocol/numbers.h"
+
+namespace oblique::fuzzing {
+
+/// Reads bytes front to back; past the end it yields zeros.
+class ByteReader {
+ public:
+  ByteReader(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
+  std::uint8_t byte() { return pos_ < size_ ? data_[pos_++] : 0; }
+  double raw_double() {
+    std::uint8_t bytes[8] = {};
+    for (auto& b : bytes) b = byte();
+    double d;
+    std::memcpy(&d, bytes, sizeof d);
+    return d;
+  }
+
+ private:
+  const std::uint8_t* data_;
+  std::size_t size_;
+  std::size_t pos_ = 0;
+};
+
+/// The special values, by index. A selector byte below kSpecialCount picks one; 255 reads 8 raw
+/// bytes; anything else gives a small dyadic (selector - kSpecialCount - 64) / 8.
+inline double special_value(int index) {
+  constexpr double dmax = std::numeric_limits<double>::max();
+  constexpr double dmin = std::numeric_limits<double>::min();
+  constexpr double denorm = std::numeric_limits<double>::denorm_min();
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const double table[] = {0.0,
+                          -0.0,
+                          1.0,
+                          -1.0,
+                          2.0,
+                          0.5,
+                          -2.0,
+                          -0.5,
+                          dmin,
+                          -dmin,
+                          denorm,
+                          -denorm,
+                          dmax,
+                          -dmax,
+                          eps,
+                          1.0 + eps,
+                          1.0 - eps / 2,
+                          1e-6,
+                          1e12,
+                          1e-12,
+                          1e6,
+                          0.1,
+                          3.0,
+                          0.25,
+                          -0.25,
+                          1e-300,
+                          1e300,
+                          std::ldexp(1.0, -1074 + 52),
+                          0.75,
+                          1.5,
+                          4.0,
+                          -4.0,
+                          1.0 / 3,
+                          std::ldexp(1.0, 1023),
+                          std::numeric_limits<double>::infinity(),
+                          -std::numeric_limits<double>::infinity(),
+                          std::numeric_limits<double>::quiet_NaN()};
+  constexpr int count = sizeof(table) / sizeof(table[0]);
+  return table[index % count];
+}
+constexpr int kSpecialCount = 37;
+
+inline double number(ByteReader& in) {
+  const int selector = in.byte();
+  if (selector < kSpecialCount) return special_value(selector);
+  if (selector == 255) return in.raw_double();
+  return (selector - kSpecialCount - 64) / 8.0;
+}
+
+struct FuzzCase {
+  protocol::Precision scalar = protocol::Precision::float64;
+  Convention convention = Convention::gl;
+  Method method = Method::automatic;
+  /// 0..4 built (frustum, infinite, orthographic, y-flipped frustum, rotated), 5 raw, 6 a
+  /// frustum or infinite frustum times a camera shift T(tx, ty, 0): M14, M24 != 0 (stereo, lens
+  /// shift; generators::Family::stereo_shift).
+  int family = 0;
+  Matrix4<double> matrix = Matrix4<double>::Identity();
+  Vector4<double> plane = Vector4<double>::Zero();
+};
+
+inline const char* family_label(int family) {
+  const char* names[] = {"frustum", "infinite", "orthographic", "y_flipped",
+                         "rotated", "raw",      "stereo_shift"};
+  return names[family % 7];
+}
+
+inline constexpr std::uint8_t kShiftMarker = 0x53;  // 'S'
+
+/// Builds the case; builder parameters that break a builder's preconditions fall back to raw.
+/// With `conventions` (non-empty), the convention byte picks one of them instead of any of the
+/// three, so a function for one convention is given only inputs of it.
+inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
+                       const std::vector<Convention>& conventions = {}) {
+  ByteReader in(data, size);
+  FuzzCase c;
+  c.scalar = protocol::all_precisions[in.byte() % 3];
+  const int convention_byte = in.byte();
+  c.convention = conventions.empty() ? all_conventions[convention_byte % 3]
+                                     : conventions[convention_byte % conventions.size()];
+  c.method = all_methods[in.byte() % std::size(all_methods)];
+  c.family = in.byte() % 6;
+  if (c.family == 5) {
+    for (int i = 0; i < 16; ++i) c.matrix(i / 4, i % 4) = number(in);
+  } else {
+    const double l = number(in), r = number(in), b = number(in), t = number(in);
+    const double n = number(in), f = number(in);
+    const bool finite = std::isfinite(l) && std::isfinite(r) && std::isfinite(b) &&
+                        std::isfinite(t) && std::isfinite(n) && std::isfinite(f);
+    const bool sides = finite && l != r && b != t;
+    if (c.family == 2 && sides && n != f) {
+      c.matrix = orthographic(l, r, b, t, n, f, c.convention);
+    } else if (c.family == 1 && sides && n > 0) {
+      c.matrix = infinite_frustum(l, r, b, t, n, c.convention);
+    } else if (sides && n > 0 && f > n) {
+      c.matrix = frustum(l, r, b, t, n, f, c.convention);
+      if (c.family == 3) c.matrix.row(1) *= -1;
+      if (c.family == 4) {
+        const double angle = number(in);
+        const double ca = std::cos(angle), sa = std::sin(angle);
+        Matrix4<double> rot = Matrix4<double>::Identity();
+        rot(0, 0) = ca, rot(0, 2) = sa, rot(2, 0) = -sa, rot(2, 2) = ca;
+        if (std::isfinite(ca) && std::isfinite(sa)) c.matrix = c.matrix * rot;
+      }
+    } else {
+      c.family = 5;
+      for (int i = 0; i < 16; ++i) c.matrix(i / 4, i % 4) = number(in);
+    }
+  }
+  for (int i = 0; i < 4; ++i) c.plane(i) = number(in);
+  // After the plane, the byte kShiftMarker shifts a frustum or infinite frustum by (tx, ty, 0)
+  // (two more numbers). Inputs that end earlier, or go on with another byte, decode as before.
+  if ((c.family == 0 || c.family == 1) && in.byte() == kShiftMarker) {
+    Matrix4<double> shift = Matrix4<double>::Identity();
+    shift(0, 3) = number(in);
+    shift(1, 3) = number(in);
+    if (std::isfinite(shift(0, 3)) && std::isfinite(shift(1, 3))) {
+      c.matrix = c.matrix * shift;
+      c.family = 6;
+    }
+  }
+  return c;
+}
+
+/// double -> T without undefined behaviour: out-of-range finite values become +-infinity.
+template <class T>
+T narrow(double x) {
+  if (std::isfinite(x) && std::abs(x) > static_cast<double>(std::numeric_limits<T>::max())) {
+    return std::signbit(x) ? -std::numeric_limits<T>::infinity()
+                           : std::numeric_limits<T>::infinity();
+  }
+  return static_cast<T>(x);
+}
+
+/// Whether OBLIQUE_FUZZ_DESCRIBE is set: then every case is printed before it is checked.
+inline bool describing() {
+  static const bool enabled = std::getenv("OBLIQUE_FUZZ_DESCRIBE") != nullptr;
+  return enabled;
+}
+
+/// Prints the decoded case: every number in shortest decimal and exact hex.
+inline void describe(const FuzzCase& c, std::FILE* out = stderr) {
+  std::fprintf(out, "scalar %s, convention %s, method %s, family %s\n",
+               std::string(protocol::precision_name(c.scalar)).c_str(),
+               std::string(convention_name(c.convention)).c_str(),
+               std::string(method_name(c.method)).c_str(), family_label(c.family));
+  using protocol::format_number;
+  using protocol::Notation;
+  for (int i = 0; i < 5; ++i) {
+    std::string decimal, hex;
+    for (int j = 0; j < 4; ++j) {
+      const double x = i < 4 ? c.matrix(i, j) : c.plane(j);
+      decimal += " " + format_number(x);
+      hex += (j ? " " : "") + format_number(x, Notation::hex);
+    }
+    if (i < 4)
+      std::fprintf(out, "M row %d:%s  (%s)\n", i + 1, decimal.c_str(), hex.c_str());
+    else
+      std::fprintf(out, "C:%s  (%s)\n", decimal.c_str(), hex.c_str());
+  }
+}
+
+/// Prints what the checker knows of the case and the answer, and every check that fails.
+template <class T>
+void explain(const properties::Problem<T>& problem, const properties::Outcome<T>& outcome,
+             std::FILE* out = stderr) {
+  using protocol::format_number;
+  std::fprintf(out, "exact status %s; acceptable: %s; Skeel condition %s; kappa %s\n",
+               std::string(status_code(problem.exact_status())).c_str(),
+               properties::status_list(problem.acceptable_statuses()).c_str(),
+               format_number(problem.skeel_condition()).c_str(),
+               format_number(problem.kappa().get_d()).c_str());
+  if (outcome.status != Status::ok || problem.exact_status() != Status::ok) return;
+  for (int i = 0; i < 4; ++i) {
+    std::string row;
+    for (int j = 0; j < 4; ++j) row += " " + format_number(outcome.projection(i, j));
+    std::fprintf(out, "M' row %d:%s\n", i + 1, row.c_str());
+  }
+  std::string row;
+  for (const auto& v : problem.exact_row3()) row += " " + format_number(v.get_d());
+  std::fprintf(out, "exact row 3:%s\n", row.c_str());
+  properties::Checks every;
+  every.every = true;
+  for (const auto& f : properties::judge(problem, outcome, every).checks) {
+    if (!f.holds)
+      std::fprintf(out, "%s: %s; residual %s, bound %s\n", f.kind.c_str(), f.relation.c_str(),
+                   f.lhs.c_str(), f.rhs.c_str());
+  }
+}
+
+/// Runs `impl` on the case (in T) when it accepts it, and judges the answer with `checks`.
+/// With `unanswerable` false, inputs without an exact answer are not given to it (a function
+/// without statuses has no way to refuse them). On a violation: prints the case, the checker's
+/// view and the property, then aborts.
+template <class T>
+void check(const FuzzCase& c, const properties::Implementation<T>& impl,
+           const properties::Checks& checks, bool unanswerable = true) {
+  Matrix4<T> m;
+  Vector4<T> plane;
+  for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = narrow<T>(c.matrix(i / 4, i % 4));
+  for (int i = 0; i < 4; ++i) plane(i) = narrow<T>(c.plane(i));
+  if (!impl.accepts(c.convention, m)) return;
+  const properties::Problem<T> problem(m, plane, c.convention);
+  if (!unanswerable && problem.exact_status() != Status::ok) return;
+  const properties::Outcome<T> outcome = impl.run(m, plane, c.convention);
+  const properties::Judgement judgement = properties::judge(problem, outcome, checks);
+  const properties::Finding* violation = judgement.violation();
+  if (!violation) return;
+  if (!describing()) describe(c);
+  explain(problem, outcome);
+  std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, family %s, status %s)\n",
+               violation->kind.c_str(), impl.name.c_str(),
+               std::string(protocol::scalar_name<T>()).c_str(),
+               std::string(convention_name(c.convention)).c_str(), family_label(c.family),
+               std::string(status_code(outcome.status)).c_str());
+  std::abort();
+}
+
+/// What the driver checks of your function.
+struct Options {
+  /// The conventions your function is for (empty: all three).
+  std::vector<Convention> conventions;
+  /// How its statuses are judged (empty: from the adapter; see oblique/properties/adapter.h).
+  std::optional<properties::StatusContract> statuses;
+  /// Also row 3 within the accuracy careful arithmetic achieves (the core's promise).
+  bool row3_accuracy = false;
+};
+
+/// The body of a libFuzzer target for one function: decodes the input (in the function's scalar
+/// type, whatever the scalar byte says), runs the function and judges its answer; aborts on a
+/// violation. Returns 0, as LLVMFuzzerTestOneInput does.
+template <class T>
+int test_one_input(const std::uint8_t* data, std::size_t size,
+                   const properties::Implementation<T>& impl, const Options& options = {}) {
+  const FuzzCase c = decode(data, size, options.conventions);
+  if (describing()) describe(c);
+  properties::Checks checks = impl.checks(options.row3_accuracy);
+  if (options.statuses) checks.statuses = *options.statuses;
+  // As in the property suite: a function without statuses is judged where an answer exists.
+  check<T>(c, impl, checks, checks.statuses != properties::StatusContract::answers_only);
+  return 0;
+}
+
+}  // namespace oblique::fuzzing

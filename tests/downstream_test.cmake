@@ -1,0 +1,75 @@
+# The downstream example (examples/downstream) against the installed package, as a user would
+# build it: install this build tree into WORK/prefix, configure the example with
+# -DCMAKE_PREFIX_PATH, build it, then
+#  - the fixed engine passes the property suite and its fuzz replay;
+#  - the engine as shipped fails the suite with a report naming make_oblique, the y-flipped
+#    family and a property, and the report's replay command, pasted into a shell, fails again;
+#  - the fuzz replay of the installed seed corpus catches it too;
+#  - with CLANGXX, the libFuzzer target builds and, run, stops on a violation.
+# cmake -DBUILD=... -DSOURCE=... -DWORK=... [-DCLANGXX=...] -P downstream_test.cmake
+function(run)
+  cmake_parse_arguments(R "" "EXPECT;OUTPUT;DIR" "COMMAND" ${ARGN})
+  execute_process(COMMAND ${R_COMMAND} WORKING_DIRECTORY "${R_DIR}" RESULT_VARIABLE result
+                  OUTPUT_VARIABLE output ERROR_VARIABLE output)
+  if(R_EXPECT STREQUAL "ok" AND NOT result EQUAL 0)
+    message(FATAL_ERROR "${R_COMMAND} failed (${result}):\n${output}")
+  elseif(R_EXPECT STREQUAL "fail" AND result EQUAL 0)
+    message(FATAL_ERROR "${R_COMMAND} should have failed:\n${output}")
+  endif()
+  if(R_OUTPUT)
+    set(${R_OUTPUT} "${output}" PARENT_SCOPE)
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE "${WORK}")
+set(prefix "${WORK}/prefix")
+run(EXPECT ok COMMAND ${CMAKE_COMMAND} --install "${BUILD}" --prefix "${prefix}")
+run(EXPECT ok COMMAND ${CMAKE_COMMAND} -S "${SOURCE}/examples/downstream" -B "${WORK}/gcc"
+                      -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
+run(EXPECT ok COMMAND ${CMAKE_COMMAND} --build "${WORK}/gcc" -j2)
+
+set(ENV{OBLIQUE_REPORT_DIR} "${WORK}/reports")
+run(EXPECT ok COMMAND "${WORK}/gcc/engine_property_test_fixed")
+run(EXPECT ok COMMAND "${WORK}/gcc/engine_fuzz_replay_fixed" "${prefix}/share/oblique/fuzz/corpus")
+run(EXPECT fail OUTPUT output COMMAND "${WORK}/gcc/engine_property_test")
+if(NOT output MATCHES "make_oblique violates ([a-z_]+)")
+  message(FATAL_ERROR "the suite's failure names no property of make_oblique:\n${output}")
+endif()
+if(NOT output MATCHES "report: ([^\n]+\\.md)")
+  message(FATAL_ERROR "the suite wrote no report:\n${output}")
+endif()
+set(report "${CMAKE_MATCH_1}")
+file(READ "${report}" text)
+if(NOT text MATCHES "# Counterexample: [a-z_]+ \\(make_oblique, float\\)" OR
+   NOT text MATCHES "Family `y_flipped`")
+  message(FATAL_ERROR "the report ${report} does not name make_oblique on a y-flipped matrix:\n${text}")
+endif()
+if(NOT text MATCHES "```sh\n(RC_PARAMS=[^\n]+)\n```")
+  message(FATAL_ERROR "the report ${report} has no replay command:\n${text}")
+endif()
+set(replay "${CMAKE_MATCH_1}")
+run(EXPECT fail OUTPUT output COMMAND sh -c "${replay}" DIR "${WORK}")
+if(NOT output MATCHES "make_oblique violates")
+  message(FATAL_ERROR "the replay command (${replay}) did not reproduce the failure:\n${output}")
+endif()
+run(EXPECT fail OUTPUT output COMMAND "${WORK}/gcc/engine_fuzz_replay" "${prefix}/share/oblique/fuzz/corpus")
+if(NOT output MATCHES "oblique property violated: [a-z_]+ by make_oblique")
+  message(FATAL_ERROR "the fuzz replay did not catch make_oblique:\n${output}")
+endif()
+message(STATUS "the engine as shipped is caught (${report}); the fixed one passes")
+
+if(CLANGXX)
+  run(EXPECT ok COMMAND ${CMAKE_COMMAND} -S "${SOURCE}/examples/downstream" -B "${WORK}/clang"
+                        -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release
+                        -DCMAKE_CXX_COMPILER=${CLANGXX})
+  run(EXPECT ok COMMAND ${CMAKE_COMMAND} --build "${WORK}/clang" --target engine_fuzz)
+  file(MAKE_DIRECTORY "${WORK}/new-inputs")
+  run(EXPECT fail OUTPUT output DIR "${WORK}"
+      COMMAND "${WORK}/clang/engine_fuzz" -runs=100000 -artifact_prefix=${WORK}/
+              -dict=${prefix}/share/oblique/fuzz/oblique.dict "${WORK}/new-inputs"
+              "${prefix}/share/oblique/fuzz/corpus")
+  if(NOT output MATCHES "oblique property violated: [a-z_]+ by make_oblique")
+    message(FATAL_ERROR "the libFuzzer target did not catch make_oblique:\n${output}")
+  endif()
+  message(STATUS "the libFuzzer target (${CLANGXX}) builds and catches make_oblique")
+endif()
