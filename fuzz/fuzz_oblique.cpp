@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "fuzz_input.h"
+#include "oblique/properties/filtered.h"
 #include "oblique/properties/implementations.h"
 #include "oblique/properties/judge.h"
 #include "oblique/protocol/numbers.h"
@@ -62,7 +63,7 @@ void check(const oblique::fuzz::FuzzCase& c) {
   Vector4<T> plane;
   for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = narrow<T>(c.matrix(i / 4, i % 4));
   for (int i = 0; i < 4; ++i) plane(i) = narrow<T>(c.plane(i));
-  const properties::Problem<T> problem(m, plane, c.convention);
+  const properties::FilteredProblem<T> problem(m, plane, c.convention);
   static const auto implementations = properties::selected_implementations<T>();
   for (const auto& impl : implementations) {
     if (!impl.accepts(c.convention, m)) continue;
@@ -72,7 +73,7 @@ void check(const oblique::fuzz::FuzzCase& c) {
     const properties::Judgement judgement = properties::judge(problem, outcome, impl.checks(core));
     const properties::Finding* violation = judgement.violation();
     if (!violation) continue;
-    explain(problem, outcome);
+    explain(problem.exact(), outcome);
     std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, family %s, status %s)\n",
                  violation->kind.c_str(), impl.name.c_str(),
                  std::string(protocol::scalar_name<T>()).c_str(),

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "oblique/properties/counterexample_report.h"
+#include "oblique/properties/filtered.h"
 #include "oblique/properties/generators.h"
 #include "oblique/properties/implementations.h"
 #include "oblique/properties/properties.h"
@@ -140,9 +141,10 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
 /// Runs every selected implementation on the case and judges each answer (judge(), with
 /// `checks` and the implementation's own status contract); fails the case on the first violation.
 /// An implementation without statuses is judged on inputs without an answer only where invalid
-/// inputs are the point (judge_statuses), so its property failures are not masked.
-template <class T>
-void for_each_answer(const generators::Case<T>& c, const Problem<T>& problem, Checks checks,
+/// inputs are the point (judge_statuses), so its property failures are not masked. `problem` is
+/// a Problem<T> or a FilteredProblem<T> (filtered.h: the same verdicts, most without GMP).
+template <class T, class AnyProblem>
+void for_each_answer(const generators::Case<T>& c, const AnyProblem& problem, Checks checks,
                      bool judge_statuses = false) {
   for (const Implementation<T>& impl : selected_implementations<T>()) {
     if (!impl.accepts(c.convention, c.matrix)) continue;

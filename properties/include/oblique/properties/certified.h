@@ -200,6 +200,43 @@ inline Num min(const Num& x, const Num& y) {
   return -max(-x, -y);
 }
 
+/// A nonnegative quantity known to lie in [lo, hi]: sums and products of magnitudes (condition
+/// numbers, bounds), computed in plain double with each result widened outward by 2^-50 relative
+/// (above the 2^-53 of its rounding) and 2^-1074 absolute (the subnormal range).
+struct Range {
+  double lo = 0, hi = 0;
+};
+
+inline Range widened(double lo, double hi) {
+  const double l = lo * (1 - 0x1p-50) - 0x1p-1074;
+  return Range{l > 0 ? l : 0.0, hi * (1 + 0x1p-50) + (hi > 0 ? 0x1p-1074 : 0.0)};
+}
+inline Range operator+(const Range& x, const Range& y) {
+  if (x.hi == 0) return y;
+  if (y.hi == 0) return x;
+  return widened(x.lo + y.lo, x.hi + y.hi);
+}
+inline Range operator*(const Range& x, const Range& y) {
+  if (x.hi == 0 || y.hi == 0) return Range{};
+  return widened(x.lo * y.lo, x.hi * y.hi);
+}
+/// |x| as a range.
+inline Range magnitude_of(const Num& x) {
+  if (is_exact_zero(x)) return Range{};
+  const double l = lower(x), u = upper(x);
+  if (l >= 0) return Range{l, u};
+  if (u <= 0) return Range{-u, -l};
+  return Range{0, std::fmax(-l, u)};
+}
+/// A range as a certified number (Undecided beyond double's range).
+inline Num as_num(const Range& r) {
+  if (!std::isfinite(r.hi)) throw Undecided{__LINE__};
+  if (r.hi == 0) return Num{};
+  const double mid = r.lo * 0.5 + r.hi * 0.5;
+  const double half = std::fmax(mid - r.lo, r.hi - mid) * detail::kBoundGrowth + 0x1p-1074;
+  return Num{mid, 0, half};
+}
+
 /// An approximation of the value, for reports (ratios).
 inline double approx(const Num& x) {
   return x.hi + x.lo;

@@ -161,8 +161,44 @@ using NumVec = std::array<Num, 4>;
 
 inline Num dot(const NumVec& a, const NumVec& b) {
   Num s;
+  bool first = true;
+  for (int i = 0; i < 4; ++i) {
+    if (certified::is_exact_zero(a[i]) || certified::is_exact_zero(b[i])) continue;
+    s = first ? a[i] * b[i] : s + a[i] * b[i];
+    first = false;
+  }
+  return s;
+}
+
+using RangeVec = std::array<certified::Range, 4>;
+inline RangeVec magnitudes(const NumVec& v) {
+  return {certified::magnitude_of(v[0]), certified::magnitude_of(v[1]),
+          certified::magnitude_of(v[2]), certified::magnitude_of(v[3])};
+}
+inline certified::Range dot(const RangeVec& a, const RangeVec& b) {
+  certified::Range s;
   for (int i = 0; i < 4; ++i) s = s + a[i] * b[i];
   return s;
+}
+inline RangeVec mul(const std::array<RangeVec, 4>& m, const RangeVec& v) {
+  return {dot(m[0], v), dot(m[1], v), dot(m[2], v), dot(m[3], v)};
+}
+/// v . p' for p' with entries -1, 0 or 1: a signed sum, no products.
+inline Num signed_sum(const NumVec& v, const std::array<int, 4>& p) {
+  Num s;
+  bool first = true;
+  for (int j = 0; j < 4; ++j) {
+    if (p[j] == 0 || certified::is_exact_zero(v[j])) continue;
+    const Num term = p[j] > 0 ? v[j] : -v[j];
+    s = first ? term : s + term;
+    first = false;
+  }
+  return s;
+}
+
+/// M^-1 p' for p' with entries -1, 0 or 1: sums of columns, no products.
+inline NumVec signed_column_sum(const std::array<NumVec, 4>& m, const std::array<int, 4>& p) {
+  return {signed_sum(m[0], p), signed_sum(m[1], p), signed_sum(m[2], p), signed_sum(m[3], p)};
 }
 inline NumVec abs(const NumVec& v) {
   return {certified::abs(v[0]), certified::abs(v[1]), certified::abs(v[2]), certified::abs(v[3])};
@@ -275,8 +311,8 @@ class FilteredProblem {
       for (int y : {-1, 1}) {
         for (int z : {range.z_low, range.z_high}) {
           clip_corners_[index] = {x, y, z, 1};
-          corners_[index] = filtering::mul(inverse_, filtering::integers(clip_corners_[index]));
-          corner_dots_[index] = filtering::dot(c_clip_, filtering::integers(clip_corners_[index]));
+          corners_[index] = filtering::signed_column_sum(inverse_, clip_corners_[index]);
+          corner_dots_[index] = filtering::signed_sum(c_clip_, clip_corners_[index]);
           const std::array<int, 4> p = clip_corners_[index];
           corner_sign_[index] =
               sign_or_exact(corner_dots_[index], [&] { return integers().dot_sign(p); });
@@ -306,13 +342,23 @@ class FilteredProblem {
     far_at_infinity_ = infinite_ && q_clip2_[2] == 2 * far_z(convention_);
     // Q on the far face at infinity is an affine combination of corners with w = 0.
     if (far_at_infinity_) q_[3] = Num{};
-    const std::array<NumVec, 4> abs_m = abs_matrix(mx_), abs_inv = abs_matrix(inverse_);
-    const NumVec abs_c = filtering::abs(cx_), abs_q = filtering::abs(q_);
+    // kappa's numerator and Skeel's row sums: sums of products of magnitudes, as ranges.
+    std::array<filtering::RangeVec, 4> abs_m, abs_inv;
+    for (int i = 0; i < 4; ++i) {
+      abs_m[i] = filtering::magnitudes(mx_[i]);
+      abs_inv[i] = filtering::magnitudes(inverse_[i]);
+    }
+    const filtering::RangeVec abs_c = filtering::magnitudes(cx_), abs_q = filtering::magnitudes(q_);
+    filtering::RangeVec abs_q_clip;
+    for (int i = 0; i < 4; ++i) {
+      const double v = std::abs(q_clip2_[i]) * 0.5;
+      abs_q_clip[i] = cert::Range{v, v};
+    }
     kappa_numerator_ =
-        filtering::dot(abs_c, abs_q) +
-        filtering::dot(abs_c, filtering::mul(abs_inv, filtering::mul(abs_m, abs_q))) +
-        filtering::dot(filtering::abs(c_clip_),
-                       filtering::mul(abs_m, filtering::mul(abs_inv, filtering::abs(q_clip))));
+        cert::as_num(filtering::dot(abs_c, abs_q) +
+                     filtering::dot(abs_c, filtering::mul(abs_inv, filtering::mul(abs_m, abs_q))) +
+                     filtering::dot(filtering::magnitudes(c_clip_),
+                                    filtering::mul(abs_m, filtering::mul(abs_inv, abs_q_clip))));
     const bool camera_behind = c_(3) < T(0);
     d_positive_ = camera_behind && cert::positive(d_);
     status_ = !camera_behind ? Status::camera_not_behind_plane
@@ -328,15 +374,19 @@ class FilteredProblem {
     if (too_spread) add(Status::out_of_range);
     // Skeel's condition number (its double, truncated) times 256 eps >= 1, i.e. some row sum of
     // |M^-1| |M| 1 at least 2^(p - 9).
-    const NumVec ones{cert::constant(1), cert::constant(1), cert::constant(1), cert::constant(1)};
-    const NumVec row_sums = filtering::mul(abs_inv, filtering::mul(abs_m, ones));
-    const Num skeel_threshold = cert::constant(std::ldexp(1.0, constants_.p - 9));
-    for (const Num& s : row_sums) {
-      if (cert::less_equal(skeel_threshold, s)) {
-        add(Status::singular_projection);
-        break;
-      }
+    const cert::Range one{1, 1};
+    const filtering::RangeVec row_sums =
+        filtering::mul(abs_inv, filtering::mul(abs_m, filtering::RangeVec{one, one, one, one}));
+    const double skeel_threshold = std::ldexp(1.0, constants_.p - 9);
+    bool skeel_decided = true, skeel_large = false;
+    for (const cert::Range& r : row_sums) {
+      if (r.lo >= skeel_threshold)
+        skeel_large = true;
+      else if (!(r.hi < skeel_threshold))
+        skeel_decided = false;
     }
+    if (!skeel_large && !skeel_decided) throw filtering::Undecided{__LINE__};
+    if (skeel_large) add(Status::singular_projection);
     if (!camera_behind) return;
     const Num d_error = constants_.scale_gamma * kappa_numerator_ +
                         cert::constant(tolerance::kScaleRoundings) * constants_.underflow_unit;
@@ -422,10 +472,6 @@ class FilteredProblem {
       }
     }
     return true;
-  }
-
-  static std::array<NumVec, 4> abs_matrix(const std::array<NumVec, 4>& m) {
-    return {filtering::abs(m[0]), filtering::abs(m[1]), filtering::abs(m[2]), filtering::abs(m[3])};
   }
 
   template <class Exact>
@@ -554,11 +600,15 @@ class FilteredProblem {
       const bool corners_judged = scale.has_value();
       const Num scale_term =
           corners_judged ? cert::constant(range.z_high - range.z_low) * *scale : Num{};
+      const cert::Range scale_range = cert::magnitude_of(scale_term);
+      filtering::RangeVec twice_entry_bound;
+      for (int i = 0; i < 4; ++i) {
+        const cert::Range e = cert::magnitude_of(entry_bound[i]);
+        twice_entry_bound[i] = cert::Range{2 * e.lo, 2 * e.hi};
+      }
       auto point_bound = [&](const NumVec& point, bool through_scale) {
-        Num b = through_scale ? scale_term : Num{};
-        for (int i = 0; i < 4; ++i)
-          b = b + cert::constant(2) * entry_bound[i] * cert::abs(point[i]);
-        return b;
+        const cert::Range b = filtering::dot(twice_entry_bound, filtering::magnitudes(point));
+        return cert::as_num(through_scale ? scale_range + b : b);
       };
       const Num far_q = filtering::dot(far, q_);
       const Num far_q_bound = point_bound(q_, true);
