@@ -1,6 +1,6 @@
 // The checker's own mutation test: for each property, a class of wrong answers built from the
 // core's correct answers on generated cases (properties/wrong_answers.h), and each property,
-// judged alone, must reject every member of its class.
+// judged alone, must reject every member of its class, in the exact checker and the filtered one.
 #include "oblique/properties/wrong_answers.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
+#include "oblique/properties/filtered.h"
 #include "oblique/properties/generators.h"
 #include "oblique/properties/judge.h"
 
@@ -18,9 +19,10 @@ namespace {
 
 using generators::Case;
 
-/// Judges `projection` with `which` alone (an ok answer, the exact status contract).
-template <class T>
-Judgement judge_alone(const Problem<T>& problem, const Matrix4<T>& projection, Property which) {
+/// Judges `projection` with `which` alone (an ok answer, the exact status contract), with the
+/// exact checker or the filtered one.
+template <class AnyProblem, class T>
+Judgement judge_alone(const AnyProblem& problem, const Matrix4<T>& projection, Property which) {
   Checks checks;
   checks.properties = {which};
   return judge(problem, Outcome<T>{Status::ok, projection}, checks);
@@ -61,11 +63,16 @@ void every_member_is_rejected(const rc::Gen<Case<T>>& gen, int count, std::uint6
     if (!r.ok()) continue;
     const std::vector<Status> acceptable = problem.acceptable_statuses();
     if (std::find(acceptable.begin(), acceptable.end(), Status::ok) == acceptable.end()) continue;
+    const FilteredProblem<T> filtered(c.matrix, c.plane, c.convention);
     for (const auto& mutant : wrong_answers::mutants(problem, r.projection, c.plane)) {
       const Property p = mutant.what.catches;
       ++members[p];
       const Judgement j = judge_alone(problem, mutant.projection, p);
       const Finding* violation = j.violation();
+      const Judgement jf = judge_alone(filtered, mutant.projection, p);
+      const Finding* filtered_violation = jf.violation();
+      EXPECT_TRUE(filtered_violation != nullptr && filtered_violation->kind == property_name(p))
+          << "the filtered checker accepts a member of " << property_name(p) << "'s class";
       if (violation != nullptr && violation->kind == property_name(p)) continue;
       ++rejected_wrongly;
       ADD_FAILURE() << property_name(p) << " accepts a member of its class (entry "
