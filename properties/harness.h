@@ -9,6 +9,7 @@
 #include <string_view>
 #include <utility>
 
+#include "oblique/properties/filtered.h"
 #include "oblique/properties/implementations.h"
 #include "oblique/testing.h"
 
@@ -47,9 +48,10 @@ inline bool runs_only_for(std::initializer_list<std::string_view> names) {
   return true;
 }
 
-/// Every implementation OBLIQUE_IMPL selects, on the case (testing::for_each_answer).
-template <class T>
-void for_each_answer(const generators::Case<T>& c, const Problem<T>& problem, Checks checks,
+/// Every implementation OBLIQUE_IMPL selects, on the case (testing::for_each_answer); `problem`
+/// is a Problem<T> or a FilteredProblem<T>.
+template <class T, class AnyProblem>
+void for_each_answer(const generators::Case<T>& c, const AnyProblem& problem, Checks checks,
                      bool judge_statuses = false) {
   testing::for_each_answer(selected_implementations<T>(), c, problem, checks, judge_statuses);
 }

@@ -39,6 +39,7 @@
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
 #include "oblique/properties/adapter.h"
+#include "oblique/properties/filtered.h"
 #include "oblique/properties/implementations.h"
 #include "oblique/properties/judge.h"
 #include "oblique/protocol/numbers.h"
@@ -273,14 +274,15 @@ void check(const FuzzCase& c, const properties::Implementation<T>& impl,
   for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = narrow<T>(c.matrix(i / 4, i % 4));
   for (int i = 0; i < 4; ++i) plane(i) = narrow<T>(c.plane(i));
   if (!impl.accepts(c.convention, m)) return;
-  const properties::Problem<T> problem(m, plane, c.convention);
+  // The filtered checker (the exact one's verdicts, most without GMP; filtered.h).
+  const properties::FilteredProblem<T> problem(m, plane, c.convention);
   if (!unanswerable && problem.exact_status() != Status::ok) return;
   const properties::Outcome<T> outcome = impl.run(m, plane, c.convention);
   const properties::Judgement judgement = properties::judge(problem, outcome, checks);
   const properties::Finding* violation = judgement.violation();
   if (!violation) return;
   if (!describing()) describe(c);
-  explain(problem, outcome);
+  explain(problem.exact(), outcome);
   std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, family %s, status %s)\n",
                violation->kind.c_str(), impl.name.c_str(),
                std::string(protocol::scalar_name<T>()).c_str(),

@@ -40,6 +40,7 @@
 
 #include "oblique/properties/adapter.h"
 #include "oblique/properties/counterexample_report.h"
+#include "oblique/properties/filtered.h"
 #include "oblique/properties/generators.h"
 #include "oblique/properties/implementations.h"
 #include "oblique/properties/properties.h"
@@ -253,9 +254,11 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
 /// implementation's status contract, or `statuses` when given); fails the case on the first
 /// violation. An implementation without statuses is judged on inputs without an answer only
 /// where invalid inputs are the point (judge_statuses), so its property failures are not masked.
-template <class T>
+/// `problem` is a Problem<T> or a FilteredProblem<T> (filtered.h: the same verdicts, most
+/// without GMP).
+template <class T, class AnyProblem>
 void for_each_answer(const std::vector<Implementation<T>>& implementations,
-                     const generators::Case<T>& c, const Problem<T>& problem, Checks checks,
+                     const generators::Case<T>& c, const AnyProblem& problem, Checks checks,
                      bool judge_statuses = false,
                      std::optional<StatusContract> statuses = std::nullopt) {
   for (const Implementation<T>& impl : implementations) {
@@ -318,7 +321,7 @@ void check_properties(const Implementation<T>& impl, const Contract& contract = 
     run(
         [=] {
           const generators::Case<T> c = *valid_case<T>(generate);
-          const Problem<T> problem(c.matrix, c.plane, c.convention);
+          const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
           if (problem.exact_status() == Status::ok) count_case(c);
           Checks checks;
           checks.properties = {p};
@@ -333,7 +336,7 @@ void check_properties(const Implementation<T>& impl, const Contract& contract = 
         const generators::InvalidCase<T> ic =
             *generators::invalid_case_in<T>(contract.families, contract.conventions);
         const generators::Case<T>& c = ic.base;
-        const Problem<T> problem(c.matrix, c.plane, c.convention);
+        const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
         ++tally().defects[std::string(generators::defect_name(ic.defect))];
         ++tally().conventions[std::string(convention_name(c.convention))];
         RC_TAG(std::string(generators::defect_name(ic.defect)));

@@ -92,12 +92,10 @@ inline Finding from_verdict(const Verdict& v) {
       std::string(property_name(v.property)), v.holds, v.relation, v.lhs, v.rhs, v.ratio, {}, {}};
 }
 
-/// The status finding for `got` (or nothing when the contract allows it).
-template <class T>
-std::optional<Finding> status_finding(const Problem<T>& problem, Status got,
-                                      StatusContract contract) {
-  const Status exact = problem.exact_status();
-  const std::vector<Status> acceptable = problem.acceptable_statuses();
+/// The status finding for `got` (or nothing when the contract allows it), given the input's
+/// exact status and the statuses it allows.
+inline std::optional<Finding> status_finding(Status exact, const std::vector<Status>& acceptable,
+                                             Status got, StatusContract contract) {
   if (std::find(acceptable.begin(), acceptable.end(), got) != acceptable.end()) {
     return std::nullopt;
   }
@@ -121,6 +119,13 @@ std::optional<Finding> status_finding(const Problem<T>& problem, Status got,
   f.expected = f.rhs = status_list(acceptable);
   f.ratio = 1e300;
   return f;
+}
+
+/// The status finding for `got` on `problem`.
+template <class T>
+std::optional<Finding> status_finding(const Problem<T>& problem, Status got,
+                                      StatusContract contract) {
+  return status_finding(problem.exact_status(), problem.acceptable_statuses(), got, contract);
 }
 
 template <class T>

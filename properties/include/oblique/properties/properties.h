@@ -403,8 +403,10 @@ class Problem {
     //    Each entry bounds lambda to an interval; the property holds when they intersect above 0.
     const exact::Rational& g = entry_gamma;
     const exact::Rational underflow = tolerance::kEntryRoundings * tolerance::underflow_unit<T>();
-    exact::Rational lambda_low = 0, lambda_high = -1;  // high < 0: no upper bound yet
-    bool feasible = true;
+    // Every entry with C_i != 0 bounds lambda from above; the first one sets the upper bound
+    // (a negative upper bound is an answer, not "none yet": it makes the test fail).
+    exact::Rational lambda_low = 0, lambda_high = 0;
+    bool has_high = false, feasible = true;
     for (int i = 0; i < 4; ++i) {
       const exact::Rational b = g * t_near * exact::abs(m4[i]) + underflow;
       if (cx_[i] == 0) {
@@ -415,9 +417,10 @@ class Problem {
       const exact::Rational y = cx_[i] > 0 ? near[i] : exact::Rational(-near[i]);
       const exact::Rational low = (y - b) / (c * (1 + g)), high = (y + b) / (c * (1 - g));
       lambda_low = std::max(lambda_low, low);
-      lambda_high = lambda_high < 0 ? high : std::min(lambda_high, high);
+      lambda_high = has_high ? std::min(lambda_high, high) : high;
+      has_high = true;
     }
-    feasible = feasible && lambda_high > 0 && lambda_low <= lambda_high;
+    feasible = feasible && has_high && lambda_high > 0 && lambda_low <= lambda_high;
     // For the reports and the bounds below: a feasible lambda, or the one the largest |C_k| gives.
     int k = 0;
     for (int i = 1; i < 4; ++i) {

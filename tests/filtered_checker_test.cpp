@@ -1,0 +1,221 @@
+// The filtered checker (properties/filtered.h) against the exact one (properties.h), on the same
+// generated cases and answers: every disagreement fails.
+//
+// Differential.filteredAgreesWithExact judges, per case (float, double and long double in turn;
+// four valid cases in five, one invalid), the core's answer with the core's checks (row 3's
+// accuracy and the ulps promise), one perturbation of it (an ulp move, a sign flip, swapped rows, a
+// refusal), one member of a wrong-answer class (wrong_answers.h) and one other implementation (a
+// printed recipe or a planted mutant: signs from C, the wrong face, ...), with both checkers, and
+// compares statuses, acceptable statuses and every finding (kind, holds, relation, statuses).
+// Which cases: OBLIQUE_DIFFERENTIAL_SLICE (seed offset) and OBLIQUE_DIFFERENTIAL_CASES (count), set
+// by CTest per slice (tests/CMakeLists.txt).
+#include "oblique/properties/filtered.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "oblique/oblique.h"
+#include "oblique/projection.h"
+#include "oblique/properties/generators.h"
+#include "oblique/properties/implementations.h"
+#include "oblique/properties/wrong_answers.h"
+
+namespace oblique::properties {
+namespace {
+
+using generators::Case;
+
+struct Tally {
+  long cases = 0, judgements = 0, filtered = 0, statuses_filtered = 0, disagreements = 0;
+  std::map<int, long> undecided_at;  ///< where the filter gave up on an answer that holds
+};
+
+std::string describe(const Judgement& j) {
+  std::string out;
+  for (const Finding& f : j.checks) {
+    out += "  " + f.kind + (f.holds ? " holds" : " FAILS") + " [" + f.relation + "] " + f.lhs +
+           " / " + f.rhs + (f.got.empty() ? "" : " got " + f.got + " expected " + f.expected) +
+           "\n";
+  }
+  return out.empty() ? "  (no findings)\n" : out;
+}
+
+bool same(const Judgement& a, const Judgement& b) {
+  if (a.checks.size() != b.checks.size()) return false;
+  for (std::size_t i = 0; i < a.checks.size(); ++i) {
+    const Finding &x = a.checks[i], &y = b.checks[i];
+    if (x.kind != y.kind || x.holds != y.holds || x.relation != y.relation ||
+        x.expected != y.expected || x.got != y.got)
+      return false;
+  }
+  return true;
+}
+
+template <class T>
+void compare(const Case<T>& c, const Problem<T>& exact, const FilteredProblem<T>& filtered,
+             const Outcome<T>& outcome, const Checks& checks, const std::string& what,
+             Tally& tally) {
+  ++tally.judgements;
+  const Judgement expected = judge(exact, outcome, checks);
+  const std::optional<Judgement> fast = filtered.filtered_judgement(outcome, checks);
+  if (fast) ++tally.filtered;
+  if (!fast && expected.holds()) ++tally.undecided_at[filtered.undecided_at()];
+  const Judgement got = fast ? *fast : judge(filtered, outcome, checks);
+  if (same(expected, got)) return;
+  ++tally.disagreements;
+  std::ostringstream os;
+  os << generators::family_name(c.family) << " " << convention_name(c.convention) << " "
+     << generators::place_name(c.place) << "\nM =";
+  for (int i = 0; i < 16; ++i) os << " " << protocol::format_number(c.matrix(i / 4, i % 4));
+  os << "\nC =";
+  for (int i = 0; i < 4; ++i) os << " " << protocol::format_number(c.plane(i));
+  ADD_FAILURE() << "filtered and exact checkers disagree (" << protocol::scalar_name<T>() << ", "
+                << what << ", status " << status_code(outcome.status) << ")\n"
+                << os.str() << "\nexact:\n"
+                << describe(expected) << "filtered" << (fast ? " (decided)" : "") << ":\n"
+                << describe(got);
+}
+
+template <class T>
+Outcome<T> perturbed(const Outcome<T>& answer, int which, const Matrix4<T>& m) {
+  Outcome<T> out = answer;
+  Matrix4<T>& p = out.projection;
+  const int entry = which / 9 % 4;
+  T& x = p(2, entry);
+  auto ulps = [&](int k) {
+    for (int i = 0; i < std::abs(k); ++i)
+      x = std::nextafter(
+          x, k > 0 ? std::numeric_limits<T>::infinity() : -std::numeric_limits<T>::infinity());
+  };
+  switch (which % 9) {
+    case 0: ulps(1); break;
+    case 1: ulps(-1); break;
+    case 2: ulps(3); break;
+    case 3: ulps(-16); break;
+    case 4: x = -x; break;                   // a sign flip in row 3
+    case 5: p.row(2).swap(p.row(3)); break;  // rows 3 and 4 swapped
+    case 6: p.row(0).swap(p.row(1)); break;  // rows 1 and 2 swapped
+    case 7: p(entry == 2 ? 0 : 1, entry) = -m(entry == 2 ? 0 : 1, entry); break;  // a side sign
+    case 8: {  // a refusal instead of the answer
+      const Status refusals[] = {Status::plane_misses_view_volume, Status::out_of_range,
+                                 Status::singular_projection, Status::camera_not_behind_plane};
+      out.status = refusals[which / 9 % 4];
+      break;
+    }
+  }
+  return out;
+}
+
+template <class T>
+void one_case(std::uint64_t index, rc::Random& random, Tally& tally) {
+  const bool invalid = index % 5 == 4;
+  const Case<T> c =
+      invalid ? generators::invalid_case<T>()(random.split(), int(index % 101)).value().base
+              : generators::valid_case<T>()(random.split(), int(index % 101)).value();
+  ++tally.cases;
+  const Problem<T> exact(c.matrix, c.plane, c.convention);
+  const FilteredProblem<T> filtered(c.matrix, c.plane, c.convention);
+  if (filtered.statuses_decided()) ++tally.statuses_filtered;
+  EXPECT_EQ(filtered.exact_status(), exact.exact_status());
+  EXPECT_EQ(filtered.acceptable_statuses(), exact.acceptable_statuses());
+
+  const auto known = known_implementations<T>();
+  const Implementation<T>& core = known[0];  // core_auto
+  const Outcome<T> answer = core.run(c.matrix, c.plane, c.convention);
+  compare(c, exact, filtered, answer, core.checks(true), "core answer", tally);
+  if (answer.status == Status::ok) {
+    const int which = int(index / 5 % 36);
+    compare(c, exact, filtered, perturbed(answer, which, c.matrix), core.checks(true),
+            "perturbation " + std::to_string(which % 9), tally);
+    Checks defaults;
+    if (exact.exact_status() == Status::ok) {
+      const auto wrong = wrong_answers::mutants(exact, answer.projection, c.plane);
+      if (!wrong.empty()) {
+        const auto& w = wrong[index % wrong.size()];
+        Checks alone;
+        alone.properties = {w.what.catches};
+        compare(c, exact, filtered, Outcome<T>{Status::ok, w.projection},
+                index % 2 ? alone : defaults,
+                "wrong answer for " + std::string(property_name(w.what.catches)), tally);
+      }
+    }
+  }
+  // Another implementation, in turn: the other methods, the recipes, the planted mutants.
+  const Implementation<T>& other = known[1 + index % (known.size() - 1)];
+  if (other.accepts(c.convention, c.matrix)) {
+    const Outcome<T> o = other.run(c.matrix, c.plane, c.convention);
+    Checks checks = other.checks(other.name.rfind("core_", 0) == 0);
+    if (index % 3 == 0) checks.statuses = StatusContract::any_refusal;
+    compare(c, exact, filtered, o, checks, other.name, tally);
+  }
+}
+
+long from_env(const char* name, long fallback) {
+  const char* v = std::getenv(name);
+  return v && *v ? std::strtol(v, nullptr, 10) : fallback;
+}
+
+TEST(Differential, filteredAgreesWithExact) {
+  const long slice = from_env("OBLIQUE_DIFFERENTIAL_SLICE", 0);
+  const long cases = from_env("OBLIQUE_DIFFERENTIAL_CASES", 300);
+  rc::Random random(20261130 + static_cast<std::uint64_t>(slice) * 7919);
+  Tally tally;
+  for (long i = 0; i < cases; ++i) {
+    const std::uint64_t index = static_cast<std::uint64_t>(i);
+    switch (i % 3) {
+      case 0: one_case<float>(index, random, tally); break;
+      case 1: one_case<double>(index, random, tally); break;
+      case 2: one_case<long double>(index, random, tally); break;
+    }
+  }
+  std::cout << "slice " << slice << ": " << tally.cases << " cases, statuses decided by the filter "
+            << tally.statuses_filtered << "; " << tally.judgements << " judgements, "
+            << tally.filtered << " decided by the filter, " << tally.disagreements
+            << " disagreements\nwhere the filter left a holding judgement to exact arithmetic "
+               "(line: count):";
+  for (const auto& [line, count] : tally.undecided_at) std::cout << " " << line << ": " << count;
+  std::cout << "\n";
+  EXPECT_EQ(tally.disagreements, 0);
+}
+
+TEST(Filtered, decidesTheCoresAnswerOnAPlainFrustum) {
+  const Matrix4<double> m = frustum(-1.0, 1.0, -1.0, 1.0, 1.0, 10.0, Convention::gl);
+  const Vector4<double> c(0.25, 0.5, -1.0, -2.0);
+  const FilteredProblem<double> problem(m, c, Convention::gl);
+  ASSERT_TRUE(problem.statuses_decided());
+  EXPECT_EQ(problem.exact_status(), Status::ok);
+  const ObliqueResult<double> r = apply<double>(m, c, Convention::gl);
+  Checks checks;
+  checks.row3_accuracy = true;
+  checks.max_ulps = 2;
+  const std::optional<Judgement> j =
+      problem.filtered_judgement(Outcome<double>{r.status, r.projection}, checks);
+  ASSERT_TRUE(j.has_value());
+  EXPECT_TRUE(j->holds());
+  EXPECT_EQ(j->checks.size(), 7u);
+  // The sign-flip repro: the filter does not decide it, the exact checker rejects it.
+  Matrix4<double> wrong = r.projection;
+  wrong(2, 0) = -wrong(2, 0) - 2 * m(3, 0);
+  const Judgement rejected = judge(problem, Outcome<double>{Status::ok, wrong}, checks);
+  ASSERT_NE(rejected.violation(), nullptr);
+  EXPECT_EQ(rejected.violation()->kind, "near_is_clip_plane");
+}
+
+TEST(Certified, exactZerosStayExactAndUndecidedSignsThrow) {
+  using certified::Num;
+  const Num a = certified::exactly(0.1), b = certified::exactly(-0.1);
+  EXPECT_EQ(certified::sign(a + b), 0);
+  const Num third = certified::constant(1) / certified::constant(3);
+  EXPECT_THROW(certified::sign(third * certified::constant(3) - certified::constant(1)),
+               certified::Undecided);
+  EXPECT_LT(certified::lower(third), 1.0 / 3);
+  EXPECT_GT(certified::upper(third), 1.0 / 3);
+}
+
+}  // namespace
+}  // namespace oblique::properties
