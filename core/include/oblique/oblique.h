@@ -3,11 +3,14 @@
 // possible by making it pass through Q, the view-volume corner farthest on C's positive side.
 #pragma once
 
+#include <algorithm>
+#include <cstring>
 #include <limits>
 
 #include "oblique/accurate/accurate.h"
 #include "oblique/depth_convention.h"
 #include "oblique/detail/finish.h"
+#include "oblique/detail/input_checks.h"
 #include "oblique/equilibrated_solver.h"
 #include "oblique/magnitudes.h"
 #include "oblique/plane.h"
@@ -23,6 +26,15 @@ namespace detail {
 // The methods apply() chooses between, defined below (the accurate method in accurate/accurate.h).
 template <class T>
 ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention);
+template <class T>
+struct ClosedFormAnswer;
+template <class T>
+OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vector4<T>& plane,
+                                                Convention convention, const OrdinaryInput& input,
+                                                ClosedFormAnswer<T>& out);
+template <class T>
+ObliqueResult<T> apply_checked(const Matrix4<T>& projection, const Vector4<T>& plane,
+                               Convention convention, Method method, bool ordinary);
 template <class T, class CornerRule = TrustedCornerSigns>
 ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
                          const CornerRule& rule = CornerRule{});
@@ -41,6 +53,31 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
 template <class T>
 ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Convention convention,
                        Method method = Method::automatic) {
+  // The common request passes the first four checks at once (detail/input_checks.h); the closed
+  // form then answers it here, and every other request goes through detail::apply_checked().
+  const detail::OrdinaryInput input = detail::ordinary_input(projection, plane);
+  if (input.ordinary && (method == Method::automatic || method == Method::closed_form)) {
+    detail::ClosedFormAnswer<T> answer;
+    if (detail::closed_form_ordinary(projection, plane, convention, input, answer))
+      return answer.result(projection);
+  }
+  return detail::apply_checked(projection, plane, convention, method, input.ordinary);
+}
+
+namespace detail {
+
+/// apply()'s checks one by one, in the documented order, and the method; `ordinary`: the
+/// request passed ordinary_input() (so the first four checks pass).
+template <class T>
+OBLIQUE_NOINLINE ObliqueResult<T> apply_checked(const Matrix4<T>& projection,
+                                                const Vector4<T>& plane, Convention convention,
+                                                Method method, bool ordinary) {
+  if (ordinary) {
+    if (method == Method::automatic || method == Method::closed_form)
+      return detail::closed_form(projection, plane, convention);
+    if (method == Method::accurate) return detail::accurate(projection, plane, convention, true);
+    return detail::general(projection, plane, convention);
+  }
   if (!all_finite(projection)) {
     return detail::refuse(projection, method, Status::invalid_input,
                           "the projection matrix has a NaN or infinite entry");
@@ -72,6 +109,8 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
   return detail::general(projection, plane, convention);
 }
 
+}  // namespace detail
+
 namespace detail {
 
 /// Closed form for the standard perspective shape (see has_perspective_shape()):
@@ -96,6 +135,170 @@ ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Conve
   const Vector4<T> q((corner.x() - B / K) / A, (corner.y() - E / K) / D, T(1) / K,
                      (corner.z() - G / K) / H);
   return finish(m, plane, q, convention, Method::closed_form, scaled.shift, scaled.c_hat);
+}
+
+/// A convention's constants as closed_form_ordinary() reads them, in T: corner_z = {z_low,
+/// (z_low + z_high) / 2, z_high} (clip_corner() for sgn C'_z = -1, 0, 1), depth_span =
+/// z_high - z_low, and the near plane s M_3 + t M_4 (near_rows()), with first = 0 for s = 1 and
+/// 1 for s = -1 (M'_3 = a C - t M_4, or t M_4 - a C).
+template <class T>
+struct ConventionTable {
+  T corner_z[3];
+  T depth_span;
+  T s, t;
+  int first;
+};
+
+template <class T>
+constexpr ConventionTable<T> make_convention_table(Convention convention) {
+  const DepthRange range = clip_depth_range(convention);
+  const RowCombination near_combination = near_rows(convention);
+  return {{T(range.z_low), T(range.z_low + range.z_high) / T(2), T(range.z_high)},
+          T(range.z_high - range.z_low),
+          T(near_combination.m3),
+          T(near_combination.m4),
+          near_combination.m3 > 0 ? 0 : 1};
+}
+
+/// The table for `convention` (gl, zero_one, reversed_z: the enumerators' order).
+template <class T>
+const ConventionTable<T>& convention_table(Convention convention) {
+  static constexpr ConventionTable<T> tables[] = {make_convention_table<T>(Convention::gl),
+                                                  make_convention_table<T>(Convention::zero_one),
+                                                  make_convention_table<T>(Convention::reversed_z)};
+  return tables[static_cast<int>(convention)];
+}
+
+/// closed_form()'s answer, without the matrix it modifies: the status (and message), row 3 of
+/// M' when ok, and Q when the computation got that far.
+template <class T>
+struct ClosedFormAnswer {
+  Status status = Status::ok;
+  std::string_view detail;
+  Vector4<T> row3 = Vector4<T>::Zero();
+  Vector4<T> far_corner = Vector4<T>::Zero();
+
+  /// The ObliqueResult closed_form() gives for projection m.
+  ObliqueResult<T> result(const Matrix4<T>& m) const {
+    ObliqueResult<T> r;
+    r.status = status;
+    r.detail = detail;
+    std::memcpy(r.projection.data(), m.data(), sizeof(T) * 16);
+    if (status == Status::ok) {
+      for (int j = 0; j < 4; ++j) r.projection(2, j) = row3(j);
+    }
+    r.far_corner = far_corner;
+    r.method = Method::closed_form;
+    return r;
+  }
+};
+
+/// closed_form() for an input that passed ordinary_perspective_input(), in one function and
+/// without libm calls: the same statuses, messages and bits, step for step (scale_plane(),
+/// finish() and accept_row3() with C's exponents read from its bits). Returns false, with `out`
+/// untouched, where closed_form() would scale C otherwise than by 2^-e (e the exponent of its
+/// largest component: a plane whose nonzero components span about min_exponent binades, or a
+/// largest component at or above 2^(max_exponent - 2)); closed_form() then answers (and hands a
+/// lossy scaling to the accurate method).
+///
+/// Preconditions: ordinary_perspective_input(m, plane), so the entries of m and C are finite and
+/// each is zero or normal.
+template <class T>
+OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vector4<T>& plane,
+                                                Convention convention, const OrdinaryInput& input,
+                                                ClosedFormAnswer<T>& out) {
+  const T A = m(0, 0), B = m(0, 2), D = m(1, 1), E = m(1, 2), G = m(2, 2), H = m(2, 3), K = m(3, 2);
+  if (A == T(0) || D == T(0) || H == T(0)) {
+    out.status = Status::singular_projection;
+    out.detail = "the projection is singular: M11, M22 or M34 is zero";
+    return true;
+  }
+  if (!(plane.w() < T(0))) {
+    out.status = Status::camera_not_behind_plane;
+    return true;
+  }
+  // plane_scale(C): e = frexp exponent of max |C_i| (C_w != 0), low_exponent that of the
+  // smallest nonzero |C_i|, both (every component zero or normal) biased field - (bias - 1).
+  const unsigned high = input.plane_high, low = input.plane_low;
+  const int e = static_cast<int>(high) - (ExponentBits<T>::bias - 1);
+  const int low_exponent = static_cast<int>(low) - (ExponentBits<T>::bias - 1);
+  const int keep_normal = std::numeric_limits<T>::min_exponent - low_exponent;
+  // plane_scale() gives shift = -e, nothing below the normal range, exactly when -e >= keep_normal;
+  // scale_plane() then multiplies by 2^-e where that is normal (and so does finish()'s ldexp).
+  const int shift = -e;
+  if (shift < keep_normal || !normal_power_of_two<T>(shift)) return false;
+  const T factor = power_of_two<T>(shift);
+  const Vector4<T> c_hat = plane * factor;
+  // clip_corner(): z from a table by the sign of C'_z, not by a branch (the convention, and so
+  // the sign of H, changes from one request to the next).
+  const ConventionTable<T>& table = convention_table<T>(convention);
+  const T sign_z = sign(plane.w()) * sign(H);
+  const T corner_z = table.corner_z[(sign_z > T(0)) - (sign_z < T(0)) + 1];
+  const Vector4<T> q((sign(plane.x()) * sign(A) - B / K) / A,
+                     (sign(plane.y()) * sign(D) - E / K) / D, T(1) / K, (corner_z - G / K) / H);
+  // finish():
+  out.far_corner = q;
+  if (!all_finite(q)) {
+    out.status = Status::out_of_range;
+    out.detail = "the far corner Q = M^-1 Q' is beyond the range of the scalar type";
+    return true;
+  }
+  const T d = c_hat.dot(q);
+  if (!std::isfinite(d)) {
+    out.status = Status::out_of_range;
+    out.detail = "C . Q is beyond the range of the scalar type";
+    return true;
+  }
+  if (!(d > T(0))) {
+    out.status = Status::plane_misses_view_volume;
+    return true;
+  }
+  const T a_hat = table.depth_span / d;
+  const T a = a_hat * factor;  // std::ldexp(a_hat, shift): 2^shift is normal
+  // a C (or a_hat c_hat where a is not normal) and t M_4; M'_3 = a C - t M_4 for s = 1 and
+  // t M_4 - a C for s = -1, the operands chosen by pointer (a zero entry stays +0 either way).
+  const bool a_normal = std::isfinite(a) && std::abs(a) >= std::numeric_limits<T>::min();
+  T ac[4], t_m4[4];
+  for (int i = 0; i < 4; ++i) {
+    ac[i] = a_normal ? a * plane(i) : a_hat * c_hat(i);
+    t_m4[i] = table.t * m(3, i);
+  }
+  const T* const minuend = table.first == 0 ? ac : t_m4;
+  const T* const subtrahend = table.first == 0 ? t_m4 : ac;
+  Vector4<T> row3;
+  bool finite = true;
+  for (int i = 0; i < 4; ++i) {
+    row3(i) = minuend[i] - subtrahend[i];
+    finite &= std::abs(row3(i)) <= std::numeric_limits<T>::max();
+  }
+  // accept_row3():
+  if (!finite) {
+    out.status = Status::out_of_range;
+    out.detail = accept_row3_messages::not_finite;
+    return true;
+  }
+  // near_hat = scaled_by_power_of_two(near, -magnitude_exponent(near)), near = s M'_3 + t M_4.
+  Vector4<T> near_hat;
+  T largest = T(0);
+  for (int i = 0; i < 4; ++i) {
+    near_hat(i) = table.s * row3(i) + t_m4[i];
+    largest = std::max(largest, T(std::abs(near_hat(i))));
+  }
+  const int near_shift = largest > T(0) ? -frexp_exponent(largest) : 0;
+  if (normal_power_of_two<T>(near_shift)) {
+    const T near_factor = power_of_two<T>(near_shift);
+    for (int i = 0; i < 4; ++i) near_hat(i) *= near_factor;
+  } else {
+    for (int i = 0; i < 4; ++i) near_hat(i) = std::ldexp(near_hat(i), near_shift);
+  }
+  if (!(near_hat.dot(c_hat) > T(0))) {
+    out.status = Status::out_of_range;
+    out.detail = accept_row3_messages::near_plane_lost;
+    return true;
+  }
+  out.status = Status::ok;
+  out.row3 = row3;
+  return true;
 }
 
 /// The largest componentwise backward error the general method accepts from its refined solves
