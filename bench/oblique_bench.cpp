@@ -10,7 +10,7 @@
 // only, no checks) and oblique/naive (naive_closed_form below: every convention, no checks).
 // oblique_1m/<variant>/<scalar> processes one million matrices (the workload tiled, grouped by
 // convention) per iteration, items per second: copy_floor (copying the matrices), naive, and
-// closed_form (apply over the whole array, writing matrices and statuses).
+// closed_form (apply_batch over the whole array, writing matrices and statuses).
 // Compare figures as ratios within one run: the machine is shared and noisy.
 #include <benchmark/benchmark.h>
 
@@ -156,12 +156,10 @@ void million_closed_form(benchmark::State& state) {
   Million<T>& r = million_requests<T>();
   for (auto _ : state) {
     for (std::size_t ci = 0; ci < 3; ++ci) {
-      for (std::size_t i = r.begin[ci]; i < r.begin[ci + 1]; ++i) {
-        const auto result = oblique::apply<T>(r.matrices[i], r.planes[i],
-                                              oblique::all_conventions[ci], Method::closed_form);
-        r.out[i] = result.projection;
-        r.statuses[i] = result.status;
-      }
+      const std::size_t begin = r.begin[ci], count = r.begin[ci + 1] - begin;
+      oblique::apply_batch<T>(r.matrices.data() + begin, r.planes.data() + begin, count,
+                              oblique::all_conventions[ci], Method::closed_form,
+                              r.out.data() + begin, r.statuses.data() + begin);
     }
     benchmark::ClobberMemory();
   }

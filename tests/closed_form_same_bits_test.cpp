@@ -4,6 +4,7 @@
 // generated cases of every family and convention, on the generator's invalid inputs, and on
 // perspective cases with special values (zeros of both signs, subnormals, the extremes of the
 // range, infinities, NaN, planes scaled to the edges of the exponent range) put in their entries.
+// And apply_batch() gives what apply() gives, request by request.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -173,6 +174,50 @@ TYPED_TEST(ClosedFormSameBits, specialValuesInPerspectiveCases) {
     if (::testing::Test::HasFatalFailure()) return;
   }
   EXPECT_GT(tally.ok, 0);
+}
+
+// apply_batch, both forms and in place, against apply() request by request: valid and invalid
+// generated cases of every family, each method, each convention.
+TYPED_TEST(ClosedFormSameBits, batchGivesWhatApplyGives) {
+  using T = TypeParam;
+  const auto valid = generators::valid_case<T>();
+  const auto invalid = generators::invalid_case<T>();
+  rc::Random random(17004);
+  for (Convention convention : all_conventions) {
+    std::vector<Matrix4<T>> matrices;
+    std::vector<Vector4<T>> planes;
+    for (int i = 0; i < 600; ++i) {
+      const generators::Case<T> c = i % 3 == 2 ? invalid(random.split(), i % 101).value().base
+                                               : valid(random.split(), i % 101).value();
+      matrices.push_back(c.matrix);
+      planes.push_back(c.plane);
+    }
+    const std::size_t n = matrices.size();
+    for (Method method : all_methods) {
+      std::vector<Matrix4<T>> out(n);
+      std::vector<Status> statuses(n);
+      std::vector<ObliqueResult<T>> results(n);
+      std::vector<Matrix4<T>> in_place = matrices;
+      std::vector<Status> in_place_statuses(n);
+      apply_batch<T>(matrices.data(), planes.data(), n, convention, method, out.data(),
+                     statuses.data());
+      apply_batch<T>(matrices.data(), planes.data(), n, convention, method, results.data());
+      apply_batch<T>(in_place.data(), planes.data(), n, convention, method, in_place.data(),
+                     in_place_statuses.data());
+      for (std::size_t i = 0; i < n; ++i) {
+        const ObliqueResult<T> one = apply<T>(matrices[i], planes[i], convention, method);
+        ASSERT_EQ(statuses[i], one.status) << i << " " << method_name(method);
+        ASSERT_TRUE(same_bits(out[i], one.projection)) << i << " " << method_name(method);
+        ASSERT_EQ(in_place_statuses[i], one.status) << i << " " << method_name(method);
+        ASSERT_TRUE(same_bits(in_place[i], one.projection)) << i << " " << method_name(method);
+        ASSERT_EQ(results[i].status, one.status);
+        ASSERT_EQ(results[i].detail, one.detail);
+        ASSERT_EQ(results[i].method, one.method);
+        ASSERT_TRUE(same_bits(results[i].projection, one.projection));
+        ASSERT_TRUE(same_bits(results[i].far_corner, one.far_corner));
+      }
+    }
+  }
 }
 
 }  // namespace

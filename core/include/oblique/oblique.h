@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 
@@ -62,6 +63,45 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
       return answer.result(projection);
   }
   return detail::apply_checked(projection, plane, convention, method, input.ordinary);
+}
+
+/// apply() over `count` requests in one convention: for each i, out[i] and statuses[i] are the
+/// projection and status of apply(projections[i], planes[i], convention, method) (M' when ok,
+/// the input matrix otherwise), bit for bit. The closed form's ordinary requests are answered
+/// without building an ObliqueResult. `out` may be `projections` (in place); the arrays must
+/// otherwise not overlap.
+template <class T>
+void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::size_t count,
+                 Convention convention, Method method, Matrix4<T>* out, Status* statuses) {
+  const bool closed_form = method == Method::automatic || method == Method::closed_form;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Matrix4<T>& m = projections[i];
+    const Vector4<T>& plane = planes[i];
+    const detail::OrdinaryInput input = detail::ordinary_input(m, plane);
+    detail::ClosedFormAnswer<T> answer;
+    if (input.ordinary && closed_form &&
+        detail::closed_form_ordinary(m, plane, convention, input, answer)) {
+      if (&out[i] != &m) out[i] = m;
+      if (answer.status == Status::ok) {
+        for (int j = 0; j < 4; ++j) out[i](2, j) = answer.row3(j);
+      }
+      statuses[i] = answer.status;
+    } else {
+      const ObliqueResult<T> r =
+          detail::apply_checked(m, plane, convention, method, input.ordinary);
+      out[i] = r.projection;
+      statuses[i] = r.status;
+    }
+  }
+}
+
+/// apply() over `count` requests in one convention: results[i] = apply(projections[i], planes[i],
+/// convention, method).
+template <class T>
+void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::size_t count,
+                 Convention convention, Method method, ObliqueResult<T>* results) {
+  for (std::size_t i = 0; i < count; ++i)
+    results[i] = apply(projections[i], planes[i], convention, method);
 }
 
 namespace detail {
