@@ -233,7 +233,37 @@ struct ClosedFormAnswer {
   }
 };
 
-/// closed_form() for an input that passed ordinary_perspective_input(), in one function and
+/// accept_row3()'s test that the near plane a consumer extracts, near = s M'_3 + t M_4, keeps
+/// C's side (near_hat . c_hat > 0, near_hat = near 2^-E with 2^(E-1) <= max |near_i| < 2^E),
+/// decided by signs where that is provable; false where it is not (the caller then runs the
+/// test). For the perspective shape M_4 = (0, 0, K, 0), so near_i = a C_i in value for
+/// i = x, y, w (ac: those products, with a > 0), and each of those terms of the dot product
+/// is >= 0; if near_z and C_z do not have opposite signs, the z term is >= 0 too, and a
+/// rounded sum of terms >= 0 is > 0 exactly when one term is (terms < 1: no overflow). The w
+/// term is: with L(x) the frexp exponent (2^(L - 1) <= |x| < 2^L), |near_hat_w| >=
+/// 2^(L(a C_w) - 1 - E) and |c_hat_w| = |C_w| 2^-e >= 2^(L(C_w) - 1 - e), so where
+/// L(a C_w) + L(C_w) - E - e - 2 >= min_exponent - 1 both and their product are normal, the
+/// scaling is exact, and the product of two negatives rounds to a positive number.
+/// Preconditions: as closed_form_ordinary() at accept_row3(); e the frexp exponent of max |C_i|,
+/// near_z the z component of near.
+template <class T>
+OBLIQUE_ALWAYS_INLINE bool near_plane_kept_by_signs(const Vector4<T>& plane, const T (&ac)[4],
+                                                    T near_z, int e) {
+  if (sign(near_z) * sign(plane.z()) < T(0)) return false;
+  const T largest = std::max(std::max(std::abs(ac[0]), std::abs(ac[1])),
+                             std::max(std::abs(ac[3]), std::abs(near_z)));
+  constexpr unsigned all_ones = ExponentBits<T>::all_ones;
+  constexpr int offset = ExponentBits<T>::bias - 1;  // L(x) = field - offset for normal x
+  const unsigned f_largest = biased_exponent(largest), f_ac_w = biased_exponent(ac[3]);
+  // Normal (so L is read from the field), finite, nonzero: largest, a C_w, and C_w (ordinary).
+  if (f_largest - 1u >= all_ones - 1u || f_ac_w - 1u >= all_ones - 1u) return false;
+  const int l_ac_w = static_cast<int>(f_ac_w) - offset;
+  const int l_c_w = static_cast<int>(biased_exponent(plane.w())) - offset;
+  const int l_largest = static_cast<int>(f_largest) - offset;
+  return l_ac_w + l_c_w - l_largest - e - 2 >= std::numeric_limits<T>::min_exponent - 1;
+}
+
+/// closed_form() for an input that passed ordinary_input(), in one function and
 /// without libm calls: the same statuses, messages and bits, step for step (scale_plane(),
 /// finish() and accept_row3() with C's exponents read from its bits). Returns false, with `out`
 /// untouched, where closed_form() would scale C otherwise than by 2^-e (e the exponent of its
@@ -241,7 +271,7 @@ struct ClosedFormAnswer {
 /// largest component at or above 2^(max_exponent - 2)); closed_form() then answers (and hands a
 /// lossy scaling to the accurate method).
 ///
-/// Preconditions: ordinary_perspective_input(m, plane), so the entries of m and C are finite and
+/// Preconditions: ordinary_input(m, plane).ordinary, so the entries of m and C are finite and
 /// each is zero or normal.
 template <class T>
 OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vector4<T>& plane,
@@ -317,24 +347,26 @@ OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vecto
     out.detail = accept_row3_messages::not_finite;
     return true;
   }
-  // near_hat = scaled_by_power_of_two(near, -magnitude_exponent(near)), near = s M'_3 + t M_4.
-  Vector4<T> near_hat;
-  T largest = T(0);
-  for (int i = 0; i < 4; ++i) {
-    near_hat(i) = table.s * row3(i) + t_m4[i];
-    largest = std::max(largest, T(std::abs(near_hat(i))));
-  }
-  const int near_shift = largest > T(0) ? -frexp_exponent(largest) : 0;
-  if (normal_power_of_two<T>(near_shift)) {
-    const T near_factor = power_of_two<T>(near_shift);
-    for (int i = 0; i < 4; ++i) near_hat(i) *= near_factor;
-  } else {
-    for (int i = 0; i < 4; ++i) near_hat(i) = std::ldexp(near_hat(i), near_shift);
-  }
-  if (!(near_hat.dot(c_hat) > T(0))) {
-    out.status = Status::out_of_range;
-    out.detail = accept_row3_messages::near_plane_lost;
-    return true;
+  if (!near_plane_kept_by_signs(plane, ac, table.s * row3(2) + t_m4[2], e)) {
+    // near_hat = scaled_by_power_of_two(near, -magnitude_exponent(near)), near = s M'_3 + t M_4.
+    Vector4<T> near_hat;
+    T largest = T(0);
+    for (int i = 0; i < 4; ++i) {
+      near_hat(i) = table.s * row3(i) + t_m4[i];
+      largest = std::max(largest, T(std::abs(near_hat(i))));
+    }
+    const int near_shift = largest > T(0) ? -frexp_exponent(largest) : 0;
+    if (normal_power_of_two<T>(near_shift)) {
+      const T near_factor = power_of_two<T>(near_shift);
+      for (int i = 0; i < 4; ++i) near_hat(i) *= near_factor;
+    } else {
+      for (int i = 0; i < 4; ++i) near_hat(i) = std::ldexp(near_hat(i), near_shift);
+    }
+    if (!(near_hat.dot(c_hat) > T(0))) {
+      out.status = Status::out_of_range;
+      out.detail = accept_row3_messages::near_plane_lost;
+      return true;
+    }
   }
   out.status = Status::ok;
   out.row3 = row3;
