@@ -220,5 +220,33 @@ TYPED_TEST(ClosedFormSameBits, batchGivesWhatApplyGives) {
   }
 }
 
+// Far planes up to 2^(max_exponent - 1), so that a C nears the bottom of the range, and planes
+// whose components span the exponent range, where accept_row3's near-plane test is decided by
+// signs or in full. (This sweep does not reach that test's refusal; the fuzz regression
+// crash-near-plane-lost-to-rounding does, through fuzz_oblique's replay.)
+TYPED_TEST(ClosedFormSameBits, extremeFarPlanesAndWidePlanes) {
+  using T = TypeParam;
+  using limits = std::numeric_limits<T>;
+  Tally tally;
+  for (Convention convention : all_conventions) {
+    for (int far_exponent : {limits::max_exponent - 1, limits::max_exponent - 4,
+                             limits::max_exponent - limits::digits, limits::max_exponent / 2}) {
+      const T far = std::ldexp(T(1), far_exponent);
+      const Matrix4<T> m = frustum<T>(T(-1), T(1), T(-1), T(1), T(1), far, convention);
+      for (int j = 0; j < 2 * limits::digits + 8; j += 3) {
+        for (int i = 0; i < 4 * limits::digits; i += 5) {
+          for (const T z : {T(1), T(-1), T(0.75), T(-0.75)}) {
+            const Vector4<T> plane(std::ldexp(T(0.5), -i), std::ldexp(T(-0.25), -i / 2), z,
+                                   -std::ldexp(T(1), -j));
+            expect_same(m, plane, convention, tally, "extreme far plane");
+            if (::testing::Test::HasFatalFailure()) return;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(tally.ok, 0);
+}
+
 }  // namespace
 }  // namespace oblique
