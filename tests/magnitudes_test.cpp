@@ -1,11 +1,13 @@
 // magnitudes.h on hand-picked inputs, subnormals and extreme spreads included: exponents,
-// magnitude_spread and its fast test magnitude_spread_exceeds, scaling by 2^k, finiteness.
+// magnitude_spread and its fast test magnitude_spread_exceeds, scaling by 2^k, finiteness; the
+// exponent-bit helpers against the libm calls they replace.
 #include "oblique/magnitudes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "oblique/plane.h"
 
@@ -130,6 +132,92 @@ TYPED_TEST(Magnitudes, allFinite) {
   EXPECT_FALSE(all_finite(m));
   m(2, 1) = std::numeric_limits<T>::quiet_NaN();
   EXPECT_FALSE(all_finite(m));
+}
+
+/// Values across the whole range of T: every binade's power of two and a value inside it, both
+/// signs, the subnormals' binades, zero, the extremes.
+template <class T>
+std::vector<T> across_the_range() {
+  using limits = std::numeric_limits<T>;
+  std::vector<T> out{limits::max(),        -limits::max(),        limits::min(),
+                     limits::denorm_min(), -limits::denorm_min(), T(1) - limits::epsilon() / T(2)};
+  for (int k = limits::min_exponent - limits::digits; k < limits::max_exponent; ++k) {
+    const T p = std::ldexp(T(1), k);
+    out.push_back(p);
+    out.push_back(-p);
+    out.push_back(p * T(1.6180339887498949));
+    out.push_back(-p * (T(2) - limits::epsilon()));
+  }
+  return out;
+}
+
+TYPED_TEST(Magnitudes, frexpExponentIsFrexps) {
+  using T = TypeParam;
+  for (const T x : across_the_range<T>()) {
+    int expected = 0;
+    std::frexp(x, &expected);
+    ASSERT_EQ(frexp_exponent(x), expected) << static_cast<long double>(x);
+  }
+}
+
+TYPED_TEST(Magnitudes, powerOfTwoIsLdexpOfOne) {
+  using T = TypeParam;
+  using limits = std::numeric_limits<T>;
+  EXPECT_FALSE(normal_power_of_two<T>(limits::min_exponent - 2));
+  EXPECT_FALSE(normal_power_of_two<T>(limits::max_exponent));
+  for (int k = limits::min_exponent - 1; k < limits::max_exponent; ++k) {
+    ASSERT_TRUE(normal_power_of_two<T>(k));
+    const T expected = std::ldexp(T(1), k);
+    const T got = power_of_two<T>(k);
+    ASSERT_EQ(got, expected) << k;
+    ASSERT_EQ(std::signbit(got), false);
+  }
+}
+
+// times_power_of_two(x, k) is std::ldexp(x, k) everywhere: exact scalings, overflow to
+// infinity, gradual underflow with its rounding, and k beyond a normal 2^k.
+TYPED_TEST(Magnitudes, timesPowerOfTwoIsLdexp) {
+  using T = TypeParam;
+  using limits = std::numeric_limits<T>;
+  const std::vector<T> values = across_the_range<T>();
+  const int ks[] = {0,
+                    1,
+                    -1,
+                    limits::digits,
+                    -limits::digits - 1,
+                    limits::max_exponent - 1,
+                    limits::max_exponent,
+                    limits::min_exponent - 1,
+                    limits::min_exponent - 2,
+                    limits::min_exponent - limits::digits,
+                    2 * limits::max_exponent,
+                    2 * limits::min_exponent - limits::digits};
+  for (const int k : ks) {
+    for (std::size_t i = 0; i < values.size(); i += 3) {
+      const T expected = std::ldexp(values[i], k);
+      const T got = times_power_of_two(values[i], k);
+      ASSERT_TRUE(got == expected && std::signbit(got) == std::signbit(expected))
+          << static_cast<long double>(values[i]) << " k " << k;
+    }
+  }
+}
+
+TYPED_TEST(Magnitudes, biasedExponentReadsTheField) {
+  using T = TypeParam;
+  using limits = std::numeric_limits<T>;
+  if constexpr (ExponentBits<T>::known) {
+    constexpr unsigned all_ones = ExponentBits<T>::all_ones;
+    EXPECT_EQ(biased_exponent(T(1)), unsigned(ExponentBits<T>::bias));
+    EXPECT_EQ(biased_exponent(T(-0.75)), unsigned(ExponentBits<T>::bias - 1));
+    EXPECT_EQ(biased_exponent(T(0)), 0u);
+    EXPECT_EQ(biased_exponent(T(-0.0)), 0u);
+    EXPECT_EQ(biased_exponent(limits::denorm_min()), 0u);
+    EXPECT_EQ(biased_exponent(limits::min()), 1u);
+    EXPECT_EQ(biased_exponent(limits::max()), all_ones - 1);
+    EXPECT_EQ(biased_exponent(limits::infinity()), all_ones);
+    EXPECT_EQ(biased_exponent(-limits::infinity()), all_ones);
+    EXPECT_EQ(biased_exponent(limits::quiet_NaN()), all_ones);
+  }
 }
 
 }  // namespace

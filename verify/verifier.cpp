@@ -27,6 +27,7 @@
 
 #include "child_process.h"
 #include "oblique/properties/counterexample_report.h"
+#include "oblique/properties/filtered.h"
 #include "oblique/properties/judge.h"
 #include "oblique/properties/properties.h"
 #include "oblique/protocol/protocol.h"
@@ -153,8 +154,10 @@ struct Found {
 };
 
 /// The suite's judgement under the implementation's contract (the Checks from contract_checks()).
+/// `problem` is the filtered checker (properties/filtered.h: the exact checker's verdicts, most
+/// without GMP; each one used by one thread only).
 template <class T>
-std::optional<Found<T>> judge(const Problem<T>& problem, const Answered<T>& a,
+std::optional<Found<T>> judge(const properties::FilteredProblem<T>& problem, const Answered<T>& a,
                               const properties::Checks& checks) {
   const properties::Judgement judgement = properties::judge(problem, a.outcome, checks);
   const properties::Finding* violation = judgement.violation();
@@ -378,7 +381,8 @@ class Verifier {
     std::vector<rc::Shrinkable<VerifyCase<T>>> cases;
     std::vector<VerifyCase<T>> values;
     std::vector<std::string> requests;
-    std::vector<std::unique_ptr<Problem<T>>> problems;  ///< made when the contract needed them
+    std::vector<std::unique_ptr<properties::FilteredProblem<T>>>
+        problems;  ///< made when the contract needed them
   };
 
   bool contract_needs_status() const { return options_.answers_only || !options_.statuses.empty(); }
@@ -402,8 +406,8 @@ class Verifier {
       rc::Shrinkable<VerifyCase<T>> drawn = gen_(random.split(), static_cast<int>(draws % 101));
       VerifyCase<T> value = drawn.value();
       if (contract_needs_status()) {
-        auto problem =
-            std::make_unique<Problem<T>>(value.c.matrix, value.c.plane, value.c.convention);
+        auto problem = std::make_unique<properties::FilteredProblem<T>>(
+            value.c.matrix, value.c.plane, value.c.convention);
         if (const std::string why = left_out(problem->exact_status()); !why.empty()) {
           ++left_out_[why];
           continue;
@@ -441,7 +445,7 @@ class Verifier {
         if (b.problems[k]) {
           out[k].finding = judge(*b.problems[k], *answered, checks_);
         } else {
-          const Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+          const properties::FilteredProblem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
           out[k].finding = judge(problem, *answered, checks_);
         }
       }
@@ -597,7 +601,7 @@ class Verifier {
   /// Sends one case alone (restarting the implementation when it is not running).
   Evaluation evaluate(const VerifyCase<T>& v, Found<T>& finding) {
     if (Clock::now() >= deadline_) return Evaluation::out_of_time;
-    const Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+    const properties::FilteredProblem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
     if (contract_needs_status() && !left_out(problem.exact_status()).empty())
       return Evaluation::pass;  // not an input the implementation promises anything for
     std::string error;

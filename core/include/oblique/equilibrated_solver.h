@@ -68,7 +68,7 @@ class EquilibratedSolver {
         return;
       }
       const int e = magnitude_exponent(mt_.row(i));
-      row_scale_(i) = std::ldexp(T(1), -e);
+      row_scale_(i) = times_power_of_two(T(1), -e);
       mt_.row(i) = scaled_by_power_of_two(mt_.row(i), -e);
     }
     for (int j = 0; j < 4; ++j) {
@@ -77,7 +77,7 @@ class EquilibratedSolver {
         return;
       }
       const int e = magnitude_exponent(mt_.col(j));
-      col_scale_(j) = std::ldexp(T(1), -e);
+      col_scale_(j) = times_power_of_two(T(1), -e);
       mt_.col(j) = scaled_by_power_of_two(mt_.col(j), -e);
     }
     lu_.compute(mt_);

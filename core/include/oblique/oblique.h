@@ -3,11 +3,15 @@
 // possible by making it pass through Q, the view-volume corner farthest on C's positive side.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
 #include <limits>
 
 #include "oblique/accurate/accurate.h"
 #include "oblique/depth_convention.h"
 #include "oblique/detail/finish.h"
+#include "oblique/detail/input_checks.h"
 #include "oblique/equilibrated_solver.h"
 #include "oblique/magnitudes.h"
 #include "oblique/plane.h"
@@ -23,6 +27,15 @@ namespace detail {
 // The methods apply() chooses between, defined below (the accurate method in accurate/accurate.h).
 template <class T>
 ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention);
+template <class T>
+struct ClosedFormAnswer;
+template <class T>
+OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vector4<T>& plane,
+                                                Convention convention, const OrdinaryInput& input,
+                                                ClosedFormAnswer<T>& out);
+template <class T>
+ObliqueResult<T> apply_checked(const Matrix4<T>& projection, const Vector4<T>& plane,
+                               Convention convention, Method method, bool ordinary);
 template <class T, class CornerRule = TrustedCornerSigns>
 ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
                          const CornerRule& rule = CornerRule{});
@@ -41,6 +54,70 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
 template <class T>
 ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Convention convention,
                        Method method = Method::automatic) {
+  // The common request passes the first four checks at once (detail/input_checks.h); the closed
+  // form then answers it here, and every other request goes through detail::apply_checked().
+  const detail::OrdinaryInput input = detail::ordinary_input(projection, plane);
+  if (input.ordinary && (method == Method::automatic || method == Method::closed_form)) {
+    detail::ClosedFormAnswer<T> answer;
+    if (detail::closed_form_ordinary(projection, plane, convention, input, answer))
+      return answer.result(projection);
+  }
+  return detail::apply_checked(projection, plane, convention, method, input.ordinary);
+}
+
+/// apply() over `count` requests in one convention: for each i, out[i] and statuses[i] are the
+/// projection and status of apply(projections[i], planes[i], convention, method) (M' when ok,
+/// the input matrix otherwise), bit for bit. The closed form's ordinary requests are answered
+/// without building an ObliqueResult. `out` may be `projections` (in place); the arrays must
+/// otherwise not overlap.
+template <class T>
+void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::size_t count,
+                 Convention convention, Method method, Matrix4<T>* out, Status* statuses) {
+  const bool closed_form = method == Method::automatic || method == Method::closed_form;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Matrix4<T>& m = projections[i];
+    const Vector4<T>& plane = planes[i];
+    const detail::OrdinaryInput input = detail::ordinary_input(m, plane);
+    detail::ClosedFormAnswer<T> answer;
+    if (input.ordinary && closed_form &&
+        detail::closed_form_ordinary(m, plane, convention, input, answer)) {
+      if (&out[i] != &m) out[i] = m;
+      if (answer.status == Status::ok) {
+        for (int j = 0; j < 4; ++j) out[i](2, j) = answer.row3(j);
+      }
+      statuses[i] = answer.status;
+    } else {
+      const ObliqueResult<T> r =
+          detail::apply_checked(m, plane, convention, method, input.ordinary);
+      out[i] = r.projection;
+      statuses[i] = r.status;
+    }
+  }
+}
+
+/// apply() over `count` requests in one convention: results[i] = apply(projections[i], planes[i],
+/// convention, method).
+template <class T>
+void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::size_t count,
+                 Convention convention, Method method, ObliqueResult<T>* results) {
+  for (std::size_t i = 0; i < count; ++i)
+    results[i] = apply(projections[i], planes[i], convention, method);
+}
+
+namespace detail {
+
+/// apply()'s checks one by one, in the documented order, and the method; `ordinary`: the
+/// request passed ordinary_input() (so the first four checks pass).
+template <class T>
+OBLIQUE_NOINLINE ObliqueResult<T> apply_checked(const Matrix4<T>& projection,
+                                                const Vector4<T>& plane, Convention convention,
+                                                Method method, bool ordinary) {
+  if (ordinary) {
+    if (method == Method::automatic || method == Method::closed_form)
+      return detail::closed_form(projection, plane, convention);
+    if (method == Method::accurate) return detail::accurate(projection, plane, convention, true);
+    return detail::general(projection, plane, convention);
+  }
   if (!all_finite(projection)) {
     return detail::refuse(projection, method, Status::invalid_input,
                           "the projection matrix has a NaN or infinite entry");
@@ -72,6 +149,8 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
   return detail::general(projection, plane, convention);
 }
 
+}  // namespace detail
+
 namespace detail {
 
 /// Closed form for the standard perspective shape (see has_perspective_shape()):
@@ -96,6 +175,202 @@ ObliqueResult<T> closed_form(const Matrix4<T>& m, const Vector4<T>& plane, Conve
   const Vector4<T> q((corner.x() - B / K) / A, (corner.y() - E / K) / D, T(1) / K,
                      (corner.z() - G / K) / H);
   return finish(m, plane, q, convention, Method::closed_form, scaled.shift, scaled.c_hat);
+}
+
+/// A convention's constants as closed_form_ordinary() reads them, in T: corner_z = {z_low,
+/// (z_low + z_high) / 2, z_high} (clip_corner() for sgn C'_z = -1, 0, 1), depth_span =
+/// z_high - z_low, and the near plane s M_3 + t M_4 (near_rows()), with first = 0 for s = 1 and
+/// 1 for s = -1 (M'_3 = a C - t M_4, or t M_4 - a C).
+template <class T>
+struct ConventionTable {
+  T corner_z[3];
+  T depth_span;
+  T s, t;
+  int first;
+};
+
+template <class T>
+constexpr ConventionTable<T> make_convention_table(Convention convention) {
+  const DepthRange range = clip_depth_range(convention);
+  const RowCombination near_combination = near_rows(convention);
+  return {{T(range.z_low), T(range.z_low + range.z_high) / T(2), T(range.z_high)},
+          T(range.z_high - range.z_low),
+          T(near_combination.m3),
+          T(near_combination.m4),
+          near_combination.m3 > 0 ? 0 : 1};
+}
+
+/// The table for `convention` (gl, zero_one, reversed_z: the enumerators' order).
+template <class T>
+const ConventionTable<T>& convention_table(Convention convention) {
+  static constexpr ConventionTable<T> tables[] = {make_convention_table<T>(Convention::gl),
+                                                  make_convention_table<T>(Convention::zero_one),
+                                                  make_convention_table<T>(Convention::reversed_z)};
+  return tables[static_cast<int>(convention)];
+}
+
+/// closed_form()'s answer, without the matrix it modifies: the status (and message), row 3 of
+/// M' when ok, and Q when the computation got that far.
+template <class T>
+struct ClosedFormAnswer {
+  Status status = Status::ok;
+  std::string_view detail;
+  Vector4<T> row3 = Vector4<T>::Zero();
+  Vector4<T> far_corner = Vector4<T>::Zero();
+
+  /// The ObliqueResult closed_form() gives for projection m.
+  ObliqueResult<T> result(const Matrix4<T>& m) const {
+    ObliqueResult<T> r;
+    r.status = status;
+    r.detail = detail;
+    std::memcpy(r.projection.data(), m.data(), sizeof(T) * 16);
+    if (status == Status::ok) {
+      for (int j = 0; j < 4; ++j) r.projection(2, j) = row3(j);
+    }
+    r.far_corner = far_corner;
+    r.method = Method::closed_form;
+    return r;
+  }
+};
+
+/// accept_row3()'s test that the near plane a consumer extracts, near = s M'_3 + t M_4, keeps
+/// C's side (near_hat . c_hat > 0, near_hat = near 2^-E with 2^(E-1) <= max |near_i| < 2^E),
+/// decided by signs where that is provable; false where it is not (the caller then runs the
+/// test). For the perspective shape M_4 = (0, 0, K, 0), so near_i = a C_i in value for
+/// i = x, y, w (ac: those products, with a > 0), and each of those terms of the dot product
+/// is >= 0; if near_z and C_z do not have opposite signs, the z term is >= 0 too, and a
+/// rounded sum of terms >= 0 is > 0 exactly when one term is (terms < 1: no overflow). The w
+/// term is: with L(x) the frexp exponent (2^(L - 1) <= |x| < 2^L), |near_hat_w| >=
+/// 2^(L(a C_w) - 1 - E) and |c_hat_w| = |C_w| 2^-e >= 2^(L(C_w) - 1 - e), so where
+/// L(a C_w) + L(C_w) - E - e - 2 >= min_exponent - 1 both and their product are normal, the
+/// scaling is exact, and the product of two negatives rounds to a positive number.
+/// Preconditions: as closed_form_ordinary() at accept_row3(); e the frexp exponent of max |C_i|,
+/// near_z the z component of near.
+template <class T>
+OBLIQUE_ALWAYS_INLINE bool near_plane_kept_by_signs(const Vector4<T>& plane, const T (&ac)[4],
+                                                    T near_z, int e) {
+  if (sign(near_z) * sign(plane.z()) < T(0)) return false;
+  const T largest = std::max(std::max(std::abs(ac[0]), std::abs(ac[1])),
+                             std::max(std::abs(ac[3]), std::abs(near_z)));
+  constexpr unsigned all_ones = ExponentBits<T>::all_ones;
+  constexpr int offset = ExponentBits<T>::bias - 1;  // L(x) = field - offset for normal x
+  const unsigned f_largest = biased_exponent(largest), f_ac_w = biased_exponent(ac[3]);
+  // Normal (so L is read from the field), finite, nonzero: largest, a C_w, and C_w (ordinary).
+  if (f_largest - 1u >= all_ones - 1u || f_ac_w - 1u >= all_ones - 1u) return false;
+  const int l_ac_w = static_cast<int>(f_ac_w) - offset;
+  const int l_c_w = static_cast<int>(biased_exponent(plane.w())) - offset;
+  const int l_largest = static_cast<int>(f_largest) - offset;
+  return l_ac_w + l_c_w - l_largest - e - 2 >= std::numeric_limits<T>::min_exponent - 1;
+}
+
+/// closed_form() for an input that passed ordinary_input(), in one function and
+/// without libm calls: the same statuses, messages and bits, step for step (scale_plane(),
+/// finish() and accept_row3() with C's exponents read from its bits). Returns false, with `out`
+/// untouched, where closed_form() would scale C otherwise than by 2^-e (e the exponent of its
+/// largest component: a plane whose nonzero components span about min_exponent binades, or a
+/// largest component at or above 2^(max_exponent - 2)); closed_form() then answers (and hands a
+/// lossy scaling to the accurate method).
+///
+/// Preconditions: ordinary_input(m, plane).ordinary, so the entries of m and C are finite and
+/// each is zero or normal.
+template <class T>
+OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vector4<T>& plane,
+                                                Convention convention, const OrdinaryInput& input,
+                                                ClosedFormAnswer<T>& out) {
+  const T A = m(0, 0), B = m(0, 2), D = m(1, 1), E = m(1, 2), G = m(2, 2), H = m(2, 3), K = m(3, 2);
+  if (A == T(0) || D == T(0) || H == T(0)) {
+    out.status = Status::singular_projection;
+    out.detail = "the projection is singular: M11, M22 or M34 is zero";
+    return true;
+  }
+  if (!(plane.w() < T(0))) {
+    out.status = Status::camera_not_behind_plane;
+    return true;
+  }
+  // plane_scale(C): e = frexp exponent of max |C_i| (C_w != 0), low_exponent that of the
+  // smallest nonzero |C_i|, both (every component zero or normal) biased field - (bias - 1).
+  const unsigned high = input.plane_high, low = input.plane_low;
+  const int e = static_cast<int>(high) - (ExponentBits<T>::bias - 1);
+  const int low_exponent = static_cast<int>(low) - (ExponentBits<T>::bias - 1);
+  const int keep_normal = std::numeric_limits<T>::min_exponent - low_exponent;
+  // plane_scale() gives shift = -e, nothing below the normal range, exactly when -e >= keep_normal;
+  // scale_plane() then multiplies by 2^-e where that is normal (and so does finish()'s ldexp).
+  const int shift = -e;
+  if (shift < keep_normal || !normal_power_of_two<T>(shift)) return false;
+  const T factor = power_of_two<T>(shift);
+  const Vector4<T> c_hat = plane * factor;
+  // clip_corner(): z from a table by the sign of C'_z, not by a branch (the convention, and so
+  // the sign of H, changes from one request to the next).
+  const ConventionTable<T>& table = convention_table<T>(convention);
+  const T sign_z = sign(plane.w()) * sign(H);
+  const T corner_z = table.corner_z[(sign_z > T(0)) - (sign_z < T(0)) + 1];
+  const Vector4<T> q((sign(plane.x()) * sign(A) - B / K) / A,
+                     (sign(plane.y()) * sign(D) - E / K) / D, T(1) / K, (corner_z - G / K) / H);
+  // finish():
+  out.far_corner = q;
+  if (!all_finite(q)) {
+    out.status = Status::out_of_range;
+    out.detail = "the far corner Q = M^-1 Q' is beyond the range of the scalar type";
+    return true;
+  }
+  const T d = c_hat.dot(q);
+  if (!std::isfinite(d)) {
+    out.status = Status::out_of_range;
+    out.detail = "C . Q is beyond the range of the scalar type";
+    return true;
+  }
+  if (!(d > T(0))) {
+    out.status = Status::plane_misses_view_volume;
+    return true;
+  }
+  const T a_hat = table.depth_span / d;
+  const T a = a_hat * factor;  // std::ldexp(a_hat, shift): 2^shift is normal
+  // a C (or a_hat c_hat where a is not normal) and t M_4; M'_3 = a C - t M_4 for s = 1 and
+  // t M_4 - a C for s = -1, the operands chosen by pointer (a zero entry stays +0 either way).
+  const bool a_normal = std::isfinite(a) && std::abs(a) >= std::numeric_limits<T>::min();
+  T ac[4], t_m4[4];
+  for (int i = 0; i < 4; ++i) {
+    ac[i] = a_normal ? a * plane(i) : a_hat * c_hat(i);
+    t_m4[i] = table.t * m(3, i);
+  }
+  const T* const minuend = table.first == 0 ? ac : t_m4;
+  const T* const subtrahend = table.first == 0 ? t_m4 : ac;
+  Vector4<T> row3;
+  bool finite = true;
+  for (int i = 0; i < 4; ++i) {
+    row3(i) = minuend[i] - subtrahend[i];
+    finite &= std::abs(row3(i)) <= std::numeric_limits<T>::max();
+  }
+  // accept_row3():
+  if (!finite) {
+    out.status = Status::out_of_range;
+    out.detail = accept_row3_messages::not_finite;
+    return true;
+  }
+  if (!near_plane_kept_by_signs(plane, ac, table.s * row3(2) + t_m4[2], e)) {
+    // near_hat = scaled_by_power_of_two(near, -magnitude_exponent(near)), near = s M'_3 + t M_4.
+    Vector4<T> near_hat;
+    T largest = T(0);
+    for (int i = 0; i < 4; ++i) {
+      near_hat(i) = table.s * row3(i) + t_m4[i];
+      largest = std::max(largest, T(std::abs(near_hat(i))));
+    }
+    const int near_shift = largest > T(0) ? -frexp_exponent(largest) : 0;
+    if (normal_power_of_two<T>(near_shift)) {
+      const T near_factor = power_of_two<T>(near_shift);
+      for (int i = 0; i < 4; ++i) near_hat(i) *= near_factor;
+    } else {
+      for (int i = 0; i < 4; ++i) near_hat(i) = std::ldexp(near_hat(i), near_shift);
+    }
+    if (!(near_hat.dot(c_hat) > T(0))) {
+      out.status = Status::out_of_range;
+      out.detail = accept_row3_messages::near_plane_lost;
+      return true;
+    }
+  }
+  out.status = Status::ok;
+  out.row3 = row3;
+  return true;
 }
 
 /// The largest componentwise backward error the general method accepts from its refined solves

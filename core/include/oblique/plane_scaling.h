@@ -33,8 +33,7 @@ PlaneScale plane_scale(const Eigen::MatrixBase<Derived>& v) {
     if (v(i) != T(0)) low = std::min(low, T(std::abs(v(i))));
   }
   if (!(low < std::numeric_limits<T>::infinity())) return {-e, 0};
-  int low_exponent = 0;
-  std::frexp(low, &low_exponent);
+  const int low_exponent = frexp_exponent(low);
   const int keep_normal = std::numeric_limits<T>::min_exponent - low_exponent;
   if (-e < keep_normal && e + keep_normal <= std::numeric_limits<T>::max_exponent / 2)
     return {keep_normal, e - low_exponent, false};

@@ -55,6 +55,16 @@ Vector4<T> clip_corner(T sign_x, T sign_y, T sign_z, Convention convention) {
   return Vector4<T>(sign_x, sign_y, z, T(1));
 }
 
+/// accept_row3()'s refusals (closed_form_ordinary() gives the same ones).
+namespace accept_row3_messages {
+inline constexpr std::string_view not_finite =
+    "the oblique matrix exceeds the range of the scalar type: C passes within rounding "
+    "distance of the far corner Q";
+inline constexpr std::string_view near_plane_lost =
+    "the oblique near plane a C is lost to rounding against M_4 (|a C| is below the precision "
+    "of M_4's entries): the plane is too far from the view volume for this scalar type";
+}  // namespace accept_row3_messages
+
 /// r with row 3 of its projection set to row3, or out_of_range where row3 is not finite or the
 /// near plane a consumer extracts from it no longer keeps C's side (c_hat: C scaled by 2^k).
 template <class T>
@@ -64,9 +74,7 @@ ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const V
   const Vector4<T> t_m4 = T(near_combination.m4) * r.projection.row(3).transpose();
   if (!all_finite(row3)) {
     r.status = Status::out_of_range;
-    r.detail =
-        "the oblique matrix exceeds the range of the scalar type: C passes within rounding "
-        "distance of the far corner Q";
+    r.detail = accept_row3_messages::not_finite;
     return r;
   }
   // The near plane as a consumer extracts it from the rounded matrix must still keep C's side:
@@ -76,9 +84,7 @@ ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const V
       scaled_by_power_of_two(near_extracted, -magnitude_exponent(near_extracted));
   if (!(near_hat.dot(c_hat) > T(0))) {
     r.status = Status::out_of_range;
-    r.detail =
-        "the oblique near plane a C is lost to rounding against M_4 (|a C| is below the precision "
-        "of M_4's entries): the plane is too far from the view volume for this scalar type";
+    r.detail = accept_row3_messages::near_plane_lost;
     return r;
   }
   r.projection.row(2) = row3.transpose();
@@ -113,7 +119,7 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
   }
   const DepthRange range = clip_depth_range(convention);
   const T a_hat = T(range.z_high - range.z_low) / d;  // a * 2^-k
-  const T a = std::ldexp(a_hat, k);
+  const T a = times_power_of_two(a_hat, k);           // std::ldexp(a_hat, k)
   // a * C_i rounds once; fall back to a_hat * c_hat_i (the same value) when a itself is not normal.
   const Vector4<T> ac = (std::isfinite(a) && std::abs(a) >= std::numeric_limits<T>::min())
                             ? Vector4<T>(a * plane)
