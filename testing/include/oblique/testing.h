@@ -54,6 +54,7 @@ using properties::Finding;
 using properties::Implementation;
 using properties::Judgement;
 using properties::Outcome;
+using properties::FilteredProblem;
 using properties::Problem;
 using properties::Property;
 using properties::StatusContract;
