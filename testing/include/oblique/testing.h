@@ -50,11 +50,11 @@ namespace oblique::testing {
 
 using properties::Checks;
 using properties::Counterexample;
+using properties::FilteredProblem;
 using properties::Finding;
 using properties::Implementation;
 using properties::Judgement;
 using properties::Outcome;
-using properties::FilteredProblem;
 using properties::Problem;
 using properties::Property;
 using properties::StatusContract;

@@ -585,13 +585,12 @@ class FilteredProblem {
         if (bound > 0)
           p1_worst = std::max(p1_worst, std::fabs(cert::approx(near[i] - lambda * cx_[i])) / bound);
       }
-      // 2. Rows 1, 2, 4 bit for bit (a stricter test than any the exact checker may adopt: equal
-      //    bits are equal values of equal sign).
+      // 2. Rows 1, 2, 4 equal in value (-0 equals +0), as the exact checker has them; anything
+      //    else (a changed entry, a NaN) goes to the exact checker.
       for (int row : {0, 1, 3}) {
         for (int j = 0; j < 4 && wanted(Property::side_rows_unchanged); ++j) {
           const T before = m_(row, j), after = result(row, j);
-          if (!(before == after && std::signbit(before) == std::signbit(after)))
-            throw filtering::Undecided{__LINE__};
+          if (!(before == after)) throw filtering::Undecided{__LINE__};
         }
       }
       // Property 3 to 5's bounds.
@@ -649,8 +648,8 @@ class FilteredProblem {
                     std::min(p1_worst, 1.0));
             break;
           case Property::side_rows_unchanged:
-            holding(std::string(property_name(p)), "rows 1, 2, 4 of M' are those of M, bit for bit",
-                    0);
+            holding(std::string(property_name(p)),
+                    "rows 1, 2, 4 of M' are those of M (equal values; -0 equals +0)", 0);
             break;
           case Property::far_plane_through_corner:
             if (!corners_judged) break;
