@@ -105,9 +105,7 @@ class TreeBuilder final : public nlohmann::json_sax<json> {
   bool end_array() override { return close(); }
   bool parse_error(std::size_t, const std::string&,
                    const nlohmann::detail::exception& ex) override {
-    error = ex.what();
-    // Drop nlohmann's "[json.exception.parse_error.101] " prefix: the rest names line and column.
-    if (const auto pos = error.find("] "); pos != std::string::npos) error.erase(0, pos + 2);
+    error = json_error_text(ex.what());
     return false;
   }
 
@@ -435,6 +433,11 @@ std::string normalise_non_finite(std::string_view line) {
     }
   }
   return out;
+}
+
+std::string json_error_text(std::string_view what) {
+  const auto pos = what.find("] ");
+  return std::string(pos == std::string_view::npos ? what : what.substr(pos + 2));
 }
 
 }  // namespace oblique::protocol

@@ -105,8 +105,7 @@ class ScanningDom final : public nlohmann::json_sax<json> {
   bool end_array() override { return dom_.end_array(); }
   bool parse_error(std::size_t, const std::string&,
                    const nlohmann::detail::exception& ex) override {
-    error = ex.what();
-    if (const auto pos = error.find("] "); pos != std::string::npos) error.erase(0, pos + 2);
+    error = protocol::json_error_text(ex.what());
     return false;
   }
 

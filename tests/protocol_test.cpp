@@ -348,3 +348,18 @@ TEST(Serve, anOutputErrorEndsTheRunWithStatusTwo) {
 
 }  // namespace
 }  // namespace oblique::protocol
+
+namespace oblique::protocol {
+namespace {
+
+TEST(Protocol, jsonErrorsNameTheirPlaceWithoutTheParsersId) {
+  EXPECT_EQ(json_error_text("[json.exception.parse_error.101] parse error at line 1, column 2: x"),
+            "parse error at line 1, column 2: x");
+  EXPECT_EQ(json_error_text("no id here"), "no id here");
+  const ParsedLine parsed = parse_request("{\"projection\": [1,");
+  EXPECT_EQ(parsed.error.find("[json.exception"), std::string::npos) << parsed.error;
+  EXPECT_NE(parsed.error.find("line 1"), std::string::npos) << parsed.error;
+}
+
+}  // namespace
+}  // namespace oblique::protocol

@@ -34,6 +34,10 @@ struct JsonNumbers {
 std::optional<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t max_numbers,
                                              std::string* error);
 
+/// A JSON parser's error message for a person: nlohmann's "[json.exception.parse_error.101] "
+/// prefix dropped, so what remains names the line and column.
+std::string json_error_text(std::string_view what);
+
 /// A request as read, its numbers kept as text so each precision converts them exactly once.
 struct Request {
   std::array<std::string, 16> projection;  ///< row-major number tokens, for parse_number()
