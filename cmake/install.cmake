@@ -7,10 +7,8 @@ set(OBLIQUE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/oblique)
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ ${PROJECT_SOURCE_DIR}/protocol/include/
                   ${PROJECT_SOURCE_DIR}/properties/include/ ${PROJECT_SOURCE_DIR}/fuzzing/include/
+                  ${PROJECT_SOURCE_DIR}/report_files/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
-install(FILES ${PROJECT_SOURCE_DIR}/report/include/oblique/report/report_files.h
-              ${PROJECT_SOURCE_DIR}/report/include/oblique/report/views.h
-        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/oblique/report)
 set(OBLIQUE_EXPORTED oblique_core oblique_core_instances oblique_protocol oblique_properties
     oblique_report_files oblique_counterexample_reports oblique_fuzzing oblique_fuzzing_replay)
 if(TARGET oblique_testing)
