@@ -260,7 +260,9 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
   }
   if (q) include(*q);
   if (mark.point) include(*mark.point);
-  const double margin = 0.1 * std::max((hi - lo).maxCoeff(), 1e-300);
+  // (A volume that could not be drawn, a singular M, leaves the box empty: then a unit margin.)
+  const double size = (hi - lo).maxCoeff();
+  const double margin = size > 0 && std::isfinite(size) ? 0.1 * size : 1.0;
   views.lo = lo.array() - margin;
   views.hi = hi.array() + margin;
   return views;
