@@ -123,9 +123,10 @@ std::string point_text(const Eigen::Vector3d& p) {
          protocol::format_number(p.z()) + ")";
 }
 
-/// What the pictures mark, in words, and the point (when it has one on the picture).
+/// What the pictures mark: in words (the report), in the legend, and the point (when it has one
+/// on the picture).
 struct Mark {
-  std::string what;
+  std::string what, legend;
   std::optional<Eigen::Vector3d> point;
 };
 
@@ -137,24 +138,28 @@ Mark mark_of(const Counterexample& ce) {
     if (p)
       return {"the clipped point " + point_text(*p) +
                   ": a vertex of M's view volume on C's side that the answer's far plane cuts away",
-              p};
+              "marked: clipped point", p};
     return {"the clipped point is at infinity (direction " + point_text(v.clipped->head<3>()) +
                 "): not drawn",
-            std::nullopt};
+            "marked: nothing (the clipped point is at infinity)", std::nullopt};
   }
   if ((kind == "far_plane_through_corner" || kind == "infinite_edge_parallel") && v.far_corner) {
     const std::optional<Eigen::Vector3d> q = affine(*v.far_corner);
     if (q)
-      return {"the far corner Q " + point_text(*q) + ", which the answer's far plane misses", q};
+      return {"the far corner Q " + point_text(*q) + ", which the answer's far plane misses",
+              "marked: far corner Q", q};
     return {"the far corner Q is at infinity (direction " + point_text(v.far_corner->head<3>()) +
                 "): not drawn",
-            std::nullopt};
+            "marked: nothing (Q is at infinity)", std::nullopt};
   }
-  return {"nothing: " +
-              std::string(v.answer ? "the answer clips no point of M's view volume on "
-                                     "C's side"
-                                   : "no answer to draw") +
-              " (the finding is " + kind + ")",
+  const std::string why = !v.answer ? "no answer to draw"
+                          : !v.expected
+                              ? "the input has no answer, so nothing is judged clipped"
+                              : "the answer clips no point of M's view volume on C's side";
+  const std::string legend = !v.answer     ? "no answer"
+                             : !v.expected ? "the input has no answer"
+                                           : "the answer clips nothing";
+  return {"nothing: " + why + " (the finding is " + kind + ")", "marked: nothing (" + legend + ")",
           std::nullopt};
 }
 
@@ -243,11 +248,17 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
                         {},
                         q ? std::vector<Eigen::Vector3d>{*q} : std::vector<Eigen::Vector3d>{}});
   views.sets.push_back(
-      {mark.point ? "marked: clipped point" : "marked: " + mark.what,
-       "points pt 2 ps 3 lw 3 lc rgb '#e377c2'",
+      {mark.legend,
+       mark.point ? "points pt 2 ps 3 lw 3 lc rgb '#e377c2'" : "points ps 0",
        {},
        mark.point ? std::vector<Eigen::Vector3d>{*mark.point} : std::vector<Eigen::Vector3d>{}});
-  if (mark.point && !v.clipped) views.sets.back().title = "marked: far corner Q";
+  for (std::size_t i = 0; i < 4; ++i) {  // a volume (or cut) that has no edge to draw says so
+    report::Dataset& d = views.sets[i];
+    if (d.segments.empty() && d.title.find(": none") == std::string::npos)
+      d.title += ": nothing to draw";
+  }
+  // One legend entry a line, its sample first: the entries are long.
+  views.key = "below left Left reverse maxcols 1";
   // The box: the eye, M's volume, Q and the marked point, with a margin.
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
   auto include = [&](const Eigen::Vector3d& p) {

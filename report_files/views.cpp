@@ -127,7 +127,7 @@ void stage_views(ReportFiles& files, const Views& views, const std::filesystem::
        << "set title " << gnuplot_string(views.title + ": " + view + " view") << "\n"
        << "set xlabel '" << views.space << " " << names[axes[0]] << "'\nset ylabel '" << views.space
        << " " << names[axes[1]] << "'\n"
-       << "set size ratio -1\nset key below\nset grid\n"
+       << "set size ratio -1\nset key " << views.key << "\nset grid\n"
        << "set xrange [" << protocol::format_number(views.lo[axes[0]]) << ":"
        << protocol::format_number(views.hi[axes[0]]) << "]\n"
        << "set yrange [" << protocol::format_number(views.lo[axes[1]]) << ":"

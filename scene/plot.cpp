@@ -77,7 +77,15 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
     const double margin = 0.5 * std::max((hi - lo).maxCoeff(), 1.0);
     lo.array() -= margin;
     hi.array() += margin;
-    report::Views views{check.scene, "world", "scene.dat", "top", "side", lo, hi, std::move(sets)};
+    report::Views views;
+    views.title = check.scene;
+    views.space = "world";
+    views.data = "scene.dat";
+    views.top = "top";
+    views.side = "side";
+    views.lo = lo;
+    views.hi = hi;
+    views.sets = std::move(sets);
     report::stage_views(files, views, dir);
     // Every file whole in place (or none), then the pictures.
     std::ostringstream commit_log;

@@ -51,6 +51,7 @@ struct Views {
   std::string top, side;   ///< the scripts' and pictures' stems, e.g. "top" (top.gp, top.png)
   Eigen::Vector3d lo, hi;  ///< the box the pictures show
   std::vector<Dataset> sets;
+  std::string key = "below";  ///< gnuplot's `set key` options
 };
 
 /// Stages views.data, views.top + ".gp" and views.side + ".gp" in `files`. The scripts name the
