@@ -199,13 +199,18 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
   // How far an unbounded volume is drawn: three times the size of what is finite (the near face,
   // a finite far face, Q and the marked point).
   double extent = 0;
+  bool unbounded = false;  // a corner at infinity: the volume is cut where `reach` ends
   const Matrix4<double> inverse = v.projection.inverse();
   const DepthRange range = clip_depth_range(v.convention);
   for (int x : {-1, 1}) {
     for (int y : {-1, 1}) {
       for (int z : {range.z_low, range.z_high}) {
         const std::optional<Eigen::Vector3d> p = affine(inverse * Vector4<double>(x, y, z, 1));
-        if (p && p->norm() < 1e300) extent = std::max(extent, p->norm());
+        if (p && p->norm() < 1e300) {
+          extent = std::max(extent, p->norm());
+        } else {
+          unbounded = true;
+        }
       }
     }
   }
@@ -225,7 +230,11 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
   views.side = stem + ".side";
   const std::vector<report::Segment> original =
       report::volume_edges(eye, v.projection, v.convention, reach);
-  views.sets.push_back({"original view volume (M)", "lines lc rgb 'black' lw 2", original, {}});
+  views.sets.push_back({unbounded ? "original view volume (M; unbounded: cut at 3x the rest)"
+                                  : "original view volume (M)",
+                        "lines lc rgb 'black' lw 2",
+                        original,
+                        {}});
   views.sets.push_back({"plane C (where it cuts M's volume)",
                         "lines lc rgb '#1f77b4' lw 2 dt 3",
                         plane_cut(original, v.plane),

@@ -124,6 +124,8 @@ Json expect_marked_clipped_point(const fs::path& json_path) {
   const fs::path dir = json_path.parent_path();
   const std::vector<Dataset> sets = read_views(dir / pictures.at("data").get<std::string>());
   const Dataset* original = dataset(sets, "original view volume (M)");
+  if (!original)
+    original = dataset(sets, "original view volume (M; unbounded: cut at 3x the rest)");
   const Dataset* marked = dataset(sets, "marked: clipped point");
   EXPECT_NE(original, nullptr);
   if (original) {
@@ -299,6 +301,7 @@ TEST(SuiteReportViews, marksNothingWhenTheAnswerClipsNothing) {
   const std::vector<Dataset> sets =
       read_views(fs::path(context.directory) / j.at("pictures").at("data").get<std::string>());
   EXPECT_EQ(dataset(sets, "marked: clipped point"), nullptr);
+  EXPECT_NE(dataset(sets, "marked: nothing (the answer clips nothing)"), nullptr);
   EXPECT_NE(read_text(md).find("Marked: nothing"), std::string::npos);
 }
 
