@@ -355,35 +355,43 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   // failing leaves the data and scripts, and says so).
   report::ReportFiles files(context.directory);
   nlohmann::json pictures = nullptr;
+  std::vector<std::string> rendered_views;
   if (ce.views.set) {
     const Mark mark = mark_of(ce);
     report::stage_views(files, case_views(ce, stem, mark), "");
     std::ostringstream why;
-    bool rendered = true;
     for (const char* view : {"top", "side"}) {
       std::ostringstream log;
-      if (!files.plot_staged(stem + "." + view + ".gp", stem + "." + view + ".png", log)) {
-        rendered = false;
-        if (why.str().empty()) why << log.str();
+      if (files.plot_staged(stem + "." + view + ".gp", stem + "." + view + ".png", log)) {
+        rendered_views.push_back(view);
+      } else if (why.str().empty()) {
+        why << log.str();
       }
     }
+    const bool rendered = rendered_views.size() == 2;
+    auto has = [&](const char* view) {
+      return std::find(rendered_views.begin(), rendered_views.end(), view) != rendered_views.end();
+    };
     md << "## Pictures\n\nThe case in eye space (the space C is given in): a top view (x, z) and "
           "a side view (z, y) of M's view volume (black), C where it cuts it (blue, dotted), the "
           "expected oblique view volume (green), the implementation's (red, dashed), the far "
           "corner Q (circle) and the marked point (cross).\n\nMarked: "
        << mark.what << ".\n\n";
-    if (rendered) {
-      md << "![top view](" << stem << ".top.png)\n\n![side view](" << stem << ".side.png)\n\n";
-    } else {
-      md << "The pictures were not rendered: " << why.str() << ".\n\n";
+    for (const char* view : {"top", "side"}) {
+      if (has(view)) md << "![" << view << " view](" << stem << "." << view << ".png)\n\n";
+    }
+    if (!rendered) {
+      md << (rendered_views.empty() ? "The pictures were" : "A picture was")
+         << " not rendered: " << why.str() << ".\n\n";
     }
     md << "Data `" << stem << ".views.dat`, scripts `" << stem << ".top.gp` and `" << stem
        << ".side.gp` (in this folder: `gnuplot " << stem << ".top.gp` renders the top view).\n\n";
     pictures = nlohmann::json::object();
     pictures["rendered"] = rendered;
     pictures["error"] = why.str();
-    pictures["top"] = rendered ? nlohmann::json(stem + ".top.png") : nlohmann::json(nullptr);
-    pictures["side"] = rendered ? nlohmann::json(stem + ".side.png") : nlohmann::json(nullptr);
+    for (const char* view : {"top", "side"}) {
+      pictures[view] = has(view) ? nlohmann::json(stem + "." + view + ".png") : nullptr;
+    }
     pictures["data"] = stem + ".views.dat";
     pictures["scripts"] = {stem + ".top.gp", stem + ".side.gp"};
     pictures["marked"] = mark.what;
@@ -443,6 +451,14 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
     std::string why = log.str();
     while (!why.empty() && why.back() == '\n') why.pop_back();
     throw std::runtime_error(why);
+  }
+  // A picture of this name not rendered now is an earlier case's (the report it went with is
+  // replaced): it would show the wrong case beside this report.
+  for (const char* view : {"top", "side"}) {
+    if (std::find(rendered_views.begin(), rendered_views.end(), view) == rendered_views.end()) {
+      std::error_code ignored;
+      std::filesystem::remove(context.directory + "/" + stem + "." + view + ".png", ignored);
+    }
   }
   return md_path;
 }

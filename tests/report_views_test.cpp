@@ -305,5 +305,42 @@ TEST(SuiteReportViews, marksNothingWhenTheAnswerClipsNothing) {
   EXPECT_NE(read_text(md).find("Marked: nothing"), std::string::npos);
 }
 
+// The suite replaces a report of the same test and implementation: when the new one's pictures
+// cannot be rendered (no gnuplot on PATH), the replaced report's pictures go too (they show
+// another case), and the new report says why it has none.
+TEST(SuiteReportViews, aReplacedReportTakesItsPicturesAlong) {
+  if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot is not installed";
+  generators::Case<double> c;
+  c.matrix = frustum<double>(-1, 1, -1, 1, 1, 100, c.convention);
+  c.plane = Vector4<double>(0, 0.3, -1, -4);
+  const properties::Problem<double> problem(c.matrix, c.plane, c.convention);
+  properties::Counterexample ce = properties::make_counterexample(c.matrix, c.plane, c.convention);
+  ce.finding.kind = "status";
+  ce.implementation = "refuses";
+  properties::set_views(ce, problem, static_cast<const Matrix4<double>*>(nullptr));
+  properties::ReportContext context;
+  context.directory = ::testing::TempDir() + "oblique_suite_views_replaced";
+  context.test_id = "SuiteReportViews.replaced";
+  fs::remove_all(context.directory);
+  const fs::path md = properties::write_report(ce, context);
+  const fs::path top = fs::path(context.directory) / (md.stem().string() + ".top.png");
+  ASSERT_TRUE(fs::exists(top));
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  const std::string empty = ::testing::TempDir() + "oblique_empty_path";
+  fs::create_directories(empty);
+  setenv("PATH", empty.c_str(), 1);
+  std::string again;
+  try {
+    again = properties::write_report(ce, context);
+  } catch (...) {
+  }
+  setenv("PATH", path.c_str(), 1);
+  EXPECT_EQ(again, md.string());
+  EXPECT_FALSE(fs::exists(top)) << "the replaced report's picture is left beside the new one";
+  EXPECT_NE(read_text(md).find("The pictures were not rendered: gnuplot not found"),
+            std::string::npos)
+      << read_text(md);
+}
+
 }  // namespace
 }  // namespace oblique
