@@ -1,5 +1,5 @@
 # The installed package: headers, libraries, exported targets (oblique::core, ::protocol,
-# ::properties, ::counterexample_reports, ::testing, ::fuzzing, ::fuzzing_replay),
+# ::properties, ::report_files, ::counterexample_reports, ::testing, ::fuzzing, ::fuzzing_replay),
 # obliqueConfig.cmake with its version file, and the fuzz seed corpus and dictionary
 # (share/oblique/fuzz). oblique::warnings is build-only and never exported.
 include(CMakePackageConfigHelpers)
@@ -7,9 +7,10 @@ set(OBLIQUE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/oblique)
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ ${PROJECT_SOURCE_DIR}/protocol/include/
                   ${PROJECT_SOURCE_DIR}/properties/include/ ${PROJECT_SOURCE_DIR}/fuzzing/include/
+                  ${PROJECT_SOURCE_DIR}/report_files/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
 set(OBLIQUE_EXPORTED oblique_core oblique_core_instances oblique_protocol oblique_properties
-    oblique_counterexample_reports oblique_fuzzing oblique_fuzzing_replay)
+    oblique_report_files oblique_counterexample_reports oblique_fuzzing oblique_fuzzing_replay)
 if(TARGET oblique_testing)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/testing/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
           FILES_MATCHING PATTERN "*.h")

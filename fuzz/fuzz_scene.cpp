@@ -11,8 +11,8 @@
 #include <string>
 #include <string_view>
 
+#include "oblique/report/views.h"
 #include "oblique/scene/check.h"
-#include "oblique/scene/plot.h"
 #include "oblique/scene/scene.h"
 
 namespace {
@@ -26,6 +26,8 @@ namespace {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace oblique::scene;
+  using oblique::report::Segment;
+  using oblique::report::volume_edges;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   const ParsedScene parsed = parse_scene(text);
   if (!parsed.scene) {

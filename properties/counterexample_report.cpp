@@ -1,12 +1,16 @@
 #include "oblique/properties/counterexample_report.h"
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "oblique/protocol/protocol.h"
+#include "oblique/report/report_files.h"
+#include "oblique/report/views.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -47,10 +51,40 @@ void set_result(Counterexample& ce, const Matrix4<T>& result) {
     ce.result_decimal.push_back(protocol::format_number(result(i / 4, i % 4)));
 }
 
+template <class T>
+void set_views(Counterexample& ce, const Problem<T>& problem, const Matrix4<T>* answer) {
+  CaseViews& v = ce.views;
+  v = CaseViews{};
+  if (!problem.finite()) return;  // nothing to draw: M or C has a NaN or an infinity
+  v.set = true;
+  v.convention = problem.convention();
+  v.projection = problem.matrix().template cast<double>();
+  v.plane = problem.plane().template cast<double>();
+  auto to_double = [](const exact::Vec& p) {
+    return Vector4<double>(p[0].get_d(), p[1].get_d(), p[2].get_d(), p[3].get_d());
+  };
+  if (problem.invertible()) v.far_corner = to_double(problem.far_corner());
+  if (problem.exact_status() == Status::ok) {
+    Matrix4<double> expected = v.projection;
+    const exact::Vec row3 = problem.exact_row3();
+    for (int i = 0; i < 4; ++i) expected(2, i) = row3[i].get_d();
+    v.expected = expected;
+  }
+  if (answer && all_finite(*answer)) {
+    v.answer = answer->template cast<double>();
+    if (problem.exact_status() == Status::ok) {
+      const Verdicts verdicts = problem.check(*answer);
+      const Verdict& clipping = verdicts[Property::no_clipping];
+      if (!clipping.holds && clipping.point) v.clipped = to_double(*clipping.point);
+    }
+  }
+}
+
 #define OBLIQUE_COUNTEREXAMPLE(T)                                                      \
   template Counterexample make_counterexample<T>(const Matrix4<T>&, const Vector4<T>&, \
                                                  Convention);                          \
-  template void set_result<T>(Counterexample&, const Matrix4<T>&);
+  template void set_result<T>(Counterexample&, const Matrix4<T>&);                     \
+  template void set_views<T>(Counterexample&, const Problem<T>&, const Matrix4<T>*);
 OBLIQUE_COUNTEREXAMPLE(float)
 OBLIQUE_COUNTEREXAMPLE(double)
 OBLIQUE_COUNTEREXAMPLE(long double)
@@ -76,25 +110,187 @@ std::string core_method_of(const std::string& implementation) {
   return method;
 }
 
-/// Writes `text` to a temporary file beside `path`, then renames it into place.
-void write_file(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".partial";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file << text;
-    file.flush();
-    if (!file) {
-      std::filesystem::remove(temporary);
-      throw std::runtime_error("cannot write " + temporary);
+/// A homogeneous point as a point of the picture; empty at infinity (w = 0) or non-finite.
+std::optional<Eigen::Vector3d> affine(const Vector4<double>& p) {
+  if (!(std::abs(p.w()) > 0)) return std::nullopt;
+  const Eigen::Vector3d out = p.head<3>() / p.w();
+  if (!out.allFinite()) return std::nullopt;
+  return out;
+}
+
+std::string point_text(const Eigen::Vector3d& p) {
+  return "(" + protocol::format_number(p.x()) + ", " + protocol::format_number(p.y()) + ", " +
+         protocol::format_number(p.z()) + ")";
+}
+
+/// What the pictures mark: in words (the report), in the legend, and the point (when it has one
+/// on the picture).
+struct Mark {
+  std::string what, legend;
+  std::optional<Eigen::Vector3d> point;
+};
+
+Mark mark_of(const Counterexample& ce) {
+  const CaseViews& v = ce.views;
+  const std::string& kind = ce.finding.kind;
+  if (v.clipped) {
+    const std::optional<Eigen::Vector3d> p = affine(*v.clipped);
+    if (p)
+      return {"the clipped point " + point_text(*p) +
+                  ": a vertex of M's view volume on C's side that the answer's far plane cuts away",
+              "marked: clipped point", p};
+    return {"the clipped point is at infinity (direction " + point_text(v.clipped->head<3>()) +
+                "): not drawn",
+            "marked: nothing (the clipped point is at infinity)", std::nullopt};
+  }
+  if ((kind == "far_plane_through_corner" || kind == "infinite_edge_parallel") && v.far_corner) {
+    const std::optional<Eigen::Vector3d> q = affine(*v.far_corner);
+    if (q)
+      return {"the far corner Q " + point_text(*q) + ", which the answer's far plane misses",
+              "marked: far corner Q", q};
+    return {"the far corner Q is at infinity (direction " + point_text(v.far_corner->head<3>()) +
+                "): not drawn",
+            "marked: nothing (Q is at infinity)", std::nullopt};
+  }
+  const std::string why = !v.answer ? "no answer to draw"
+                          : !v.expected
+                              ? "the input has no answer, so nothing is judged clipped"
+                              : "the answer clips no point of M's view volume on C's side";
+  const std::string legend = !v.answer     ? "no answer"
+                             : !v.expected ? "the input has no answer"
+                                           : "the answer clips nothing";
+  return {"nothing: " + why + " (the finding is " + kind + ")", "marked: nothing (" + legend + ")",
+          std::nullopt};
+}
+
+/// C's crossing of the volume `edges` (each edge's point on C), in order around it.
+std::vector<report::Segment> plane_cut(const std::vector<report::Segment>& edges,
+                                       const Vector4<double>& c) {
+  std::vector<Eigen::Vector3d> points;
+  for (const report::Segment& e : edges) {
+    const double da = c.head<3>().dot(e.a) + c.w(), db = c.head<3>().dot(e.b) + c.w();
+    if (!(da * db <= 0) || da == db) continue;
+    points.push_back(e.a + da / (da - db) * (e.b - e.a));
+  }
+  std::vector<report::Segment> out;
+  if (points.size() < 2) return out;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) centre += p;
+  centre /= static_cast<double>(points.size());
+  const Eigen::Vector3d n = c.head<3>().normalized();
+  const Eigen::Vector3d u =
+      (std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY())
+          .cross(n)
+          .normalized();
+  const Eigen::Vector3d w = n.cross(u);
+  std::sort(points.begin(), points.end(), [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::atan2((a - centre).dot(w), (a - centre).dot(u)) <
+           std::atan2((b - centre).dot(w), (b - centre).dot(u));
+  });
+  for (std::size_t i = 0; i < points.size(); ++i)
+    out.push_back({points[i], points[(i + 1) % points.size()]});
+  return out;
+}
+
+/// The case's top and side views: M's view volume, the expected and the answered oblique
+/// volumes, C where it cuts M's volume, Q and the marked point.
+report::Views case_views(const Counterexample& ce, const std::string& stem, const Mark& mark) {
+  const CaseViews& v = ce.views;
+  // How far an unbounded volume is drawn: three times the size of what is finite (the near face,
+  // a finite far face, Q and the marked point).
+  double extent = 0;
+  bool unbounded = false;  // a corner at infinity: the volume is cut where `reach` ends
+  const Matrix4<double> inverse = v.projection.inverse();
+  const DepthRange range = clip_depth_range(v.convention);
+  for (int x : {-1, 1}) {
+    for (int y : {-1, 1}) {
+      for (int z : {range.z_low, range.z_high}) {
+        const std::optional<Eigen::Vector3d> p = affine(inverse * Vector4<double>(x, y, z, 1));
+        if (p && p->norm() < 1e300) {
+          extent = std::max(extent, p->norm());
+        } else {
+          unbounded = true;
+        }
+      }
     }
   }
-  std::filesystem::rename(temporary, path);
+  std::optional<Eigen::Vector3d> q;
+  if (v.far_corner) q = affine(*v.far_corner);
+  for (const auto& p : {q, mark.point}) {
+    if (p) extent = std::max(extent, p->norm());
+  }
+  if (!(extent > 0) || !std::isfinite(extent)) extent = 1;
+  const double reach = 3 * extent;
+  const Matrix4<double> eye = Matrix4<double>::Identity();
+  report::Views views;
+  views.title = ce.finding.kind + " (" + ce.implementation + ")";
+  views.space = "eye";
+  views.data = stem + ".views.dat";
+  views.top = stem + ".top";
+  views.side = stem + ".side";
+  const std::vector<report::Segment> original =
+      report::volume_edges(eye, v.projection, v.convention, reach);
+  views.sets.push_back({unbounded ? "original view volume (M; unbounded: cut at 3x the rest)"
+                                  : "original view volume (M)",
+                        "lines lc rgb 'black' lw 2",
+                        original,
+                        {}});
+  views.sets.push_back({"plane C (where it cuts M's volume)",
+                        "lines lc rgb '#1f77b4' lw 2 dt 3",
+                        plane_cut(original, v.plane),
+                        {}});
+  views.sets.push_back({v.expected
+                            ? "oblique view volume, expected (exact M')"
+                            : "oblique view volume, expected: none (the input has no answer)",
+                        "lines lc rgb '#2ca02c' lw 2",
+                        v.expected ? report::volume_edges(eye, *v.expected, v.convention, reach)
+                                   : std::vector<report::Segment>{},
+                        {}});
+  views.sets.push_back({v.answer ? "oblique view volume, answered (the implementation's M')"
+                                 : "oblique view volume, answered: none",
+                        "lines lc rgb '#d62728' lw 1.5 dt 2",
+                        v.answer ? report::volume_edges(eye, *v.answer, v.convention, reach)
+                                 : std::vector<report::Segment>{},
+                        {}});
+  views.sets.push_back({q ? "far corner Q" : "far corner Q: none drawn (none, or at infinity)",
+                        "points pt 6 ps 2 lw 2 lc rgb '#9467bd'",
+                        {},
+                        q ? std::vector<Eigen::Vector3d>{*q} : std::vector<Eigen::Vector3d>{}});
+  views.sets.push_back(
+      {mark.legend,
+       mark.point ? "points pt 2 ps 3 lw 3 lc rgb '#e377c2'" : "points ps 0",
+       {},
+       mark.point ? std::vector<Eigen::Vector3d>{*mark.point} : std::vector<Eigen::Vector3d>{}});
+  for (std::size_t i = 0; i < 4; ++i) {  // a volume (or cut) that has no edge to draw says so
+    report::Dataset& d = views.sets[i];
+    if (d.segments.empty() && d.title.find(": none") == std::string::npos)
+      d.title += ": nothing to draw";
+  }
+  // One legend entry a line, its sample first: the entries are long.
+  views.key = "below left Left reverse maxcols 1";
+  // The box: the eye, M's volume, Q and the marked point, with a margin.
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+  auto include = [&](const Eigen::Vector3d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  };
+  for (const report::Segment& e : original) {
+    include(e.a);
+    include(e.b);
+  }
+  if (q) include(*q);
+  if (mark.point) include(*mark.point);
+  // (A volume that could not be drawn, a singular M, leaves the box empty: then a unit margin.)
+  const double size = (hi - lo).maxCoeff();
+  const double margin = size > 0 && std::isfinite(size) ? 0.1 * size : 1.0;
+  views.lo = lo.array() - margin;
+  views.hi = hi.array() + margin;
+  return views;
 }
 
 }  // namespace
 
 std::string write_report(const Counterexample& ce, const ReportContext& context) {
-  std::filesystem::create_directories(context.directory);
   std::string stem =
       context.stem.empty() ? context.test_id + "." + ce.implementation : context.stem;
   for (char& ch : stem) {
@@ -103,12 +299,12 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   if (context.keep_existing) {
     const std::string base = stem;
     for (int n = 2; std::filesystem::exists(context.directory + "/" + stem + ".md") ||
-                    std::filesystem::exists(context.directory + "/" + stem + ".json");
+                    std::filesystem::exists(context.directory + "/" + stem + ".json") ||
+                    std::filesystem::exists(context.directory + "/" + stem + ".views.dat");
          ++n)
       stem = base + "-" + std::to_string(n);
   }
   const std::string md_path = context.directory + "/" + stem + ".md";
-  const std::string json_path = context.directory + "/" + stem + ".json";
   const std::string rc_params = "RC_PARAMS=\"seed=" + std::to_string(context.seed) +
                                 " max_success=" + std::to_string(context.max_success) + "\"";
   const std::string impl_env =
@@ -155,6 +351,63 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
     }
     md << "\n";
   }
+  // The pictures: staged with the rest, rendered in the staging folder (gnuplot missing or
+  // failing leaves the data and scripts, and says so).
+  report::ReportFiles files(context.directory);
+  nlohmann::json pictures = nullptr;
+  std::vector<std::string> rendered_views;
+  if (ce.views.set) {
+    const Mark mark = mark_of(ce);
+    report::stage_views(files, case_views(ce, stem, mark), "");
+    std::ostringstream why;
+    for (const char* view : {"top", "side"}) {
+      std::ostringstream log;
+      if (files.plot_staged(stem + "." + view + ".gp", stem + "." + view + ".png", log)) {
+        rendered_views.push_back(view);
+      } else if (why.str().empty()) {
+        why << log.str();
+      }
+    }
+    const bool rendered = rendered_views.size() == 2;
+    auto has = [&](const char* view) {
+      return std::find(rendered_views.begin(), rendered_views.end(), view) != rendered_views.end();
+    };
+    md << "## Pictures\n\nThe case in eye space (the space C is given in): a top view (x, z) and "
+          "a side view (z, y) of M's view volume (black), C where it cuts it (blue, dotted), the "
+          "expected oblique view volume (green), the implementation's (red, dashed), the far "
+          "corner Q (circle) and the marked point (cross).\n\nMarked: "
+       << mark.what << ".\n\n";
+    for (const char* view : {"top", "side"}) {
+      if (has(view)) md << "![" << view << " view](" << stem << "." << view << ".png)\n\n";
+    }
+    if (!rendered) {
+      md << (rendered_views.empty() ? "The pictures were" : "A picture was")
+         << " not rendered: " << why.str() << ".\n\n";
+    }
+    md << "Data `" << stem << ".views.dat`, scripts `" << stem << ".top.gp` and `" << stem
+       << ".side.gp` (in this folder: `gnuplot " << stem << ".top.gp` renders the top view).\n\n";
+    pictures = nlohmann::json::object();
+    pictures["rendered"] = rendered;
+    pictures["error"] = why.str();
+    for (const char* view : {"top", "side"}) {
+      pictures[view] = has(view) ? nlohmann::json(stem + "." + view + ".png") : nullptr;
+    }
+    pictures["data"] = stem + ".views.dat";
+    pictures["scripts"] = {stem + ".top.gp", stem + ".side.gp"};
+    pictures["marked"] = mark.what;
+    pictures["marked_point"] = nullptr;
+    if (mark.point) {
+      pictures["marked_point"] = {protocol::format_number(mark.point->x()),
+                                  protocol::format_number(mark.point->y()),
+                                  protocol::format_number(mark.point->z())};
+    }
+    pictures["clipped_point"] = nullptr;
+    if (ce.views.clipped) {
+      nlohmann::json p = nlohmann::json::array();
+      for (int i = 0; i < 4; ++i) p.push_back(protocol::format_number((*ce.views.clipped)(i)));
+      pictures["clipped_point"] = p;
+    }
+  }
   md << "## Replay\n\nThe whole run, shrinking included (seed " << context.seed << "):\n\n```sh\n"
      << replay_suite << "\n```\n\n";
   if (!replay_case.empty()) md << "This one case alone:\n\n```sh\n" << replay_case << "\n```\n\n";
@@ -188,9 +441,25 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   j["notes"] = notes;
   j["compiler"] = OBLIQUE_COMPILER;
   j["flags"] = OBLIQUE_CXX_FLAGS;
+  j["pictures"] = pictures;
   // Text from other programs may be any bytes: invalid UTF-8 becomes U+FFFD, never an abort.
-  write_file(json_path, j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-  write_file(md_path, md.str());
+  files.open(stem + ".json") << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+                             << "\n";
+  files.open(stem + ".md") << md.str();
+  std::ostringstream log;
+  if (!files.commit(log)) {
+    std::string why = log.str();
+    while (!why.empty() && why.back() == '\n') why.pop_back();
+    throw std::runtime_error(why);
+  }
+  // A picture of this name not rendered now is an earlier case's (the report it went with is
+  // replaced): it would show the wrong case beside this report.
+  for (const char* view : {"top", "side"}) {
+    if (std::find(rendered_views.begin(), rendered_views.end(), view) == rendered_views.end()) {
+      std::error_code ignored;
+      std::filesystem::remove(context.directory + "/" + stem + "." + view + ".png", ignored);
+    }
+  }
   return md_path;
 }
 

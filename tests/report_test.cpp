@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -14,6 +15,7 @@
 #include "oblique/properties/exact.h"
 #include "oblique/report/accuracy_report.h"
 #include "oblique/report/depth_report.h"
+#include "oblique/report/report_files.h"
 
 namespace oblique::report {
 namespace {
@@ -138,6 +140,46 @@ TEST(ReportFiles, aRunThatCannotWriteLeavesTheFolderAsItWas) {
   for (const auto& entry : std::filesystem::directory_iterator(options.out_dir))
     EXPECT_EQ(entry.path().filename().string().rfind(".oblique-staging", 0), std::string::npos)
         << entry.path();
+}
+
+// Pictures rendered in the staging folder (the counterexample reports' views) come with the
+// commit or not at all: none is in the folder before commit(); one that gnuplot fails on is never
+// moved in, and the failure says what gnuplot said; a folder that cannot be made renders nothing.
+TEST(ReportFiles, picturesRenderedBeforeTheCommitComeWithItOrNotAtAll) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "gnuplot is not installed (bash scripts/setup.sh installs it)";
+  const std::filesystem::path root =
+      std::filesystem::path(::testing::TempDir()) / "oblique_report_files_plot_test";
+  std::filesystem::remove_all(root);
+  {
+    ReportFiles files(root);
+    files.open("line.dat") << "0 0\n1 1\n";
+    files.open("good.gp") << "set terminal pngcairo\nset output 'good.png'\n"
+                             "plot 'line.dat' with lines\n";
+    files.open("bad.gp") << "set terminal pngcairo\nset output 'bad.png'\n"
+                            "plot no_such_function(x)\n";
+    std::ostringstream good_log, bad_log, commit_log;
+    EXPECT_TRUE(files.plot_staged("good.gp", "good.png", good_log)) << good_log.str();
+    EXPECT_FALSE(std::filesystem::exists(root / "good.png")) << "in place before the commit";
+    EXPECT_FALSE(files.plot_staged("bad.gp", "bad.png", bad_log));
+    EXPECT_NE(bad_log.str().find("gnuplot failed on bad.gp"), std::string::npos) << bad_log.str();
+    EXPECT_NE(bad_log.str().find("no_such_function"), std::string::npos) << bad_log.str();
+    ASSERT_TRUE(files.commit(commit_log)) << commit_log.str();
+  }
+  EXPECT_GT(std::filesystem::file_size(root / "good.png"), 0u);
+  EXPECT_TRUE(std::filesystem::exists(root / "bad.gp"));
+  EXPECT_FALSE(std::filesystem::exists(root / "bad.png"));
+  for (const auto& entry : std::filesystem::directory_iterator(root))
+    EXPECT_EQ(entry.path().filename().string().rfind(".oblique-staging", 0), std::string::npos)
+        << entry.path();
+
+  std::ofstream(root / "plain_file") << "not a folder";
+  ReportFiles nowhere(root / "plain_file" / "report");
+  nowhere.open("good.gp") << "plot x\n";
+  std::ostringstream log;
+  EXPECT_FALSE(nowhere.plot_staged("good.gp", "good.png", log));
+  EXPECT_NE(log.str().find("cannot create"), std::string::npos) << log.str();
+  EXPECT_FALSE(nowhere.commit(log));
 }
 
 }  // namespace

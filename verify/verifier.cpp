@@ -931,6 +931,7 @@ class Verifier {
                    ? std::string(generators::defect_name(v.defect)) + " (has an answer)"
                    : v.kind();
     if (found.result) properties::set_result(ce, *found.result);
+    properties::set_views(ce, problem, found.result ? &*found.result : nullptr);
     ce.notes.emplace_back("implementation", options_.command);
     ce.notes.emplace_back("exact status", std::string(status_code(problem.exact_status())));
     if (problem.exact_status() == Status::ok) {

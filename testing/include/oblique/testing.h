@@ -245,6 +245,9 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
   Counterexample ce = describe(c, impl);
   ce.finding = finding;
   if (outcome && outcome->status == Status::ok) properties::set_result(ce, outcome->projection);
+  // The report's pictures: the case's volumes and the point the answer clips (exact Problem).
+  properties::set_views(ce, Problem<T>(c.matrix, c.plane, c.convention),
+                        outcome && outcome->status == Status::ok ? &outcome->projection : nullptr);
   tally().failure = ce;
   if (finding.kind == "status")
     RC_FAIL(impl.name + " answered " + finding.got + ", expected " + finding.expected);

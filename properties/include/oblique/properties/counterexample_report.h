@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,8 +11,24 @@
 #include "oblique/depth_convention.h"
 #include "oblique/projection.h"
 #include "oblique/properties/judge.h"
+#include "oblique/properties/properties.h"
 
 namespace oblique::properties {
+
+/// The case in eye space (the space C is given in), for the report's top view (x, z) and side
+/// view (z, y): set by set_views(), drawn by write_report().
+struct CaseViews {
+  bool set = false;
+  Convention convention = Convention::gl;
+  Matrix4<double> projection = Matrix4<double>::Identity();  ///< M
+  Vector4<double> plane = Vector4<double>::Zero();           ///< C
+  std::optional<Matrix4<double>> expected;    ///< the exact M', rounded (an input with an answer)
+  std::optional<Matrix4<double>> answer;      ///< the implementation's M' (finite answers only)
+  std::optional<Vector4<double>> far_corner;  ///< Q, homogeneous (w = 0: a direction)
+  /// A vertex of M's view volume on C's positive side that the answer's far plane cuts away
+  /// (no_clipping's worst vertex, whatever the finding's kind), homogeneous.
+  std::optional<Vector4<double>> clipped;
+};
 
 struct Counterexample {
   Finding finding;             ///< what the answer violates (its kind names the property)
@@ -25,6 +42,7 @@ struct Counterexample {
   /// Further facts for the reader (the exact answer, what an external program printed...),
   /// shown as a table in the Markdown and as an object in the JSON.
   std::vector<std::pair<std::string, std::string>> notes;
+  CaseViews views;  ///< the pictures' case (none unless set_views() was called)
 };
 
 /// The input's part of a counterexample: the numbers (shortest decimal and exact hex), the
@@ -35,6 +53,12 @@ Counterexample make_counterexample(const Matrix4<T>& m, const Vector4<T>& c, Con
 /// Fills result_decimal from an answered M'.
 template <class T>
 void set_result(Counterexample& ce, const Matrix4<T>& result);
+
+/// Fills ce.views from the exact Problem of the case and the implementation's answer M' (null
+/// when it gave none): the expected M', the far corner Q and, when the answer clips the
+/// original view volume on C's side, the vertex it clips.
+template <class T>
+void set_views(Counterexample& ce, const Problem<T>& problem, const Matrix4<T>* answer);
 
 /// Where the report goes and how it is replayed.
 struct ReportContext {
@@ -52,9 +76,12 @@ struct ReportContext {
   bool keep_existing = false;
 };
 
-/// Writes NAME.md and NAME.json into the reports folder (each to a temporary file renamed into
-/// place, so a failed write leaves no empty report over an earlier one); returns the Markdown
-/// path. Throws std::runtime_error (or std::filesystem::filesystem_error) when it cannot.
+/// Writes NAME.md and NAME.json into the reports folder and, when ce.views is set, the case's
+/// top and side views: NAME.views.dat, NAME.top.gp, NAME.side.gp and (with gnuplot)
+/// NAME.top.png, NAME.side.png; the Markdown links the pictures, or says why they were not
+/// rendered. Every file is staged and moved into place only when all were written in full
+/// (report::ReportFiles), so a failed write leaves an earlier report as it was. Returns the
+/// Markdown path; throws std::runtime_error when it cannot write the report.
 std::string write_report(const Counterexample& ce, const ReportContext& context);
 
 }  // namespace oblique::properties

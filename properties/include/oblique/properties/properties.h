@@ -56,6 +56,10 @@ struct Verdict {
   std::string relation;  ///< what was compared, in words
   std::string lhs;       ///< the residual side
   std::string rhs;       ///< the bound side
+  /// The point the verdict is about, homogeneous, in the space C is given in (eye space): for a
+  /// violated no_clipping, the vertex of the view volume on C's positive side that far' cuts
+  /// away farthest beyond its bound (normalised so that M_4 . p = 1). Empty otherwise.
+  std::optional<exact::Vec> point;
 };
 
 struct Verdicts {
@@ -89,7 +93,7 @@ template <class T>
 class Problem {
  public:
   Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention)
-      : m_(m), convention_(convention) {
+      : m_(m), c_(c), convention_(convention) {
     finite_ = all_finite(m) && all_finite(c);
     if (!finite_) return;
     too_spread_ = magnitude_spread(m) > max_magnitude_spread<T>();
@@ -153,6 +157,7 @@ class Problem {
   }
   Convention convention() const { return convention_; }
   const Matrix4<T>& matrix() const { return m_; }
+  const Vector4<T>& plane() const { return c_; }
   const exact::Vec& far_corner() const { return q_; }
   const exact::Rational& corner_dot() const { return d_; }  ///< C . Q, the largest C . corner
 
@@ -528,6 +533,7 @@ class Problem {
           if (v.holds || ratio > worst) {
             v.lhs = std::string("far' . p = ") + format_number(value) + " at " + what;
             v.rhs = "-" + format_number(bound);
+            v.point = point;
           }
           v.holds = false;
         }
@@ -577,6 +583,7 @@ class Problem {
   }
 
   Matrix4<T> m_;
+  Vector4<T> c_;
   Convention convention_;
   bool finite_ = false, invertible_ = false, infinite_ = false, camera_behind_ = false;
   bool too_spread_ = false;  ///< beyond max_magnitude_spread(): the core may answer out_of_range

@@ -3,7 +3,6 @@
 // volume, cut by its oblique near plane and its tilted far plane.
 #pragma once
 
-#include <array>
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -14,18 +13,8 @@
 
 namespace oblique::scene {
 
-/// A line segment of the picture, world space.
-struct Segment {
-  Vector3 a, b;
-};
-
-/// The edges of the view volume of `projection` x `view` (a pass's oblique matrix, or the main
-/// camera's) within the NDC rectangle `rect` (x0, y0, x1, y1: a scissor): each side edge, the
-/// line x = x0|x1 w, y = y0|y1 w, cut by the other planes of the volume (w > 0); an unbounded
-/// volume (infinite far) is cut `reach` from the edge's near end.
-std::vector<Segment> volume_edges(const Matrix4<double>& view, const Matrix4<double>& projection,
-                                  Convention convention, double reach,
-                                  const std::array<double, 4>& rect = {-1, -1, 1, 1});
+// (The volumes' edges are traced by report::volume_edges, oblique/report/views.h, which the
+// counterexample reports' pictures share.)
 
 struct PlotResult {
   std::vector<std::filesystem::path> written;  ///< the data, scripts and PNGs

@@ -2,16 +2,22 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <ostream>
 #include <system_error>
 
 namespace oblique::report {
 
 ReportFiles::ReportFiles(std::filesystem::path dir) : dir_(std::move(dir)) {
-  staging_ = dir_ / (".oblique-staging-" + std::to_string(::getpid()));
+  // One folder per object: two reports staged at once in one folder never share one.
+  static std::atomic<unsigned> count{0};
+  staging_ =
+      dir_ / (".oblique-staging-" + std::to_string(::getpid()) + "-" + std::to_string(count++));
   std::error_code ec;
   std::filesystem::create_directories(staging_, ec);
   if (ec) error_ = "cannot create " + staging_.string() + ": " + ec.message();
@@ -24,7 +30,7 @@ ReportFiles::~ReportFiles() {
 }
 
 std::ostream& ReportFiles::open(const std::string& name) {
-  staged_.push_back(Staged{name, std::ofstream()});
+  staged_.push_back(Staged{name, std::ofstream(), false});
   Staged& s = staged_.back();
   if (error_.empty()) {
     errno = 0;
@@ -41,6 +47,7 @@ bool ReportFiles::commit(std::ostream& log) {
     return false;
   }
   for (Staged& s : staged_) {
+    if (s.external) continue;
     errno = 0;
     s.stream.flush();
     s.stream.close();
@@ -76,6 +83,41 @@ void ReportFiles::plot(const std::string& script, const std::string& png, std::o
   } else {
     log << "report: gnuplot failed on " << (dir_ / script).string() << "\n";
   }
+}
+
+bool ReportFiles::plot_staged(const std::string& script, const std::string& png,
+                              std::ostream& log) {
+  if (!error_.empty()) {
+    log << "report: " << error_ << "\n";
+    return false;
+  }
+  for (Staged& s : staged_) {
+    if (!s.external) s.stream.flush();  // the script and its data whole on disk for gnuplot
+  }
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+    log << "gnuplot not found (bash scripts/setup.sh installs it); " << script << " is written, "
+        << png << " is not";
+    return false;
+  }
+  const std::string errors = script + ".stderr";
+  const std::string command =
+      "cd '" + staging_.string() + "' && gnuplot '" + script + "' > /dev/null 2> '" + errors + "'";
+  const int status = std::system(command.c_str());
+  std::error_code ec;
+  if (status == 0 && std::filesystem::file_size(staging_ / png, ec) > 0 && !ec) {
+    staged_.push_back(Staged{png, std::ofstream(), true});
+    return true;
+  }
+  std::ifstream in(staging_ / errors);
+  std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  while (!said.empty() && (said.back() == '\n' || said.back() == ' ')) said.pop_back();
+  if (said.size() > 400) said = "..." + said.substr(said.size() - 400);
+  for (char& ch : said) {
+    if (ch == '\n') ch = ' ';
+  }
+  log << "gnuplot failed on " << script << " (" << png << " is not written)"
+      << (said.empty() ? "" : ": " + said);
+  return false;
 }
 
 }  // namespace oblique::report

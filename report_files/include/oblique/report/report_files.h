@@ -1,6 +1,7 @@
 // What the reports share: an output directory whose files are replaced only by a complete run
 // (each file is written into a staging folder inside it, checked, then renamed into place), and
-// gnuplot run on a script there when it is installed.
+// gnuplot run on a script there when it is installed (after the commit, or in the staging folder
+// before it, so the pictures come with the rest or not at all).
 #pragma once
 
 #include <filesystem>
@@ -33,6 +34,12 @@ class ReportFiles {
   /// else says why on `log`. After commit(): the script names the committed files.
   void plot(const std::string& script, const std::string& png, std::ostream& log);
 
+  /// Before commit(): runs gnuplot on the staged `script` inside the staging folder (so the
+  /// script names its data and `png` relative to the folder) and stages the PNG it writes, which
+  /// commit() then moves into dir with the rest. Returns whether the PNG was made; otherwise says
+  /// why on `log` (gnuplot missing or failing is no error of the report: its script is staged).
+  bool plot_staged(const std::string& script, const std::string& png, std::ostream& log);
+
   const std::filesystem::path& dir() const { return dir_; }
   const std::vector<std::filesystem::path>& written() const { return written_; }
 
@@ -40,6 +47,7 @@ class ReportFiles {
   struct Staged {
     std::string name;
     std::ofstream stream;
+    bool external = false;  ///< written by another program (gnuplot), not through `stream`
   };
   std::filesystem::path dir_, staging_;
   std::string error_;  ///< why the folders could not be made
