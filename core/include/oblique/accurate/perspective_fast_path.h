@@ -83,8 +83,13 @@ bool in_fast_range(const PerspectiveInput<W>& in) {
 /// and V are within 8u S; the entries then take up to three more roundings. Each entry is accepted
 /// only when its whole error interval rounds to one T value (so the answer is the correctly rounded
 /// one); std::nullopt otherwise, and the double-word path runs. The caller checks in_fast_range.
+/// Written without a branch on the convention (t, and so V's use, changes from one request to
+/// the next): V and both forms of the z entry are formed and one is chosen, and a single test
+/// rejects; the same values as a branch per case. Out of line, so that its callers (the
+/// accurate method's ordinary path, and perspective_row3() in its FMA clone, where the compiler
+/// may contract a b + c into one FMA) run the same code and certify the same requests.
 template <class T, class W>
-std::optional<Vector4<T>> perspective_row3_single(const PerspectiveInput<W>& in) {
+OBLIQUE_NOINLINE std::optional<Vector4<T>> perspective_row3_single(const PerspectiveInput<W>& in) {
   constexpr W u = std::numeric_limits<W>::epsilon() / W(2);
   W u_i[3];
   W magnitude = std::abs(in.c_z);
@@ -96,27 +101,30 @@ std::optional<Vector4<T>> perspective_row3_single(const PerspectiveInput<W>& in)
   const W big_n = sum + in.c_z;
   const W v = (in.k - in.t) * in.c_z - in.t * sum;
   const W error = W(8) * u * magnitude;
+  const bool has_v = in.t != W(0);
   // C . Q = N / K must be positive; N's doubt below 1 settles its sign. N and V within 1/64.
-  if ((big_n > W(0)) != (in.K > W(0)) || !(W(64) * error <= std::abs(big_n)) ||
-      (in.t != W(0) && !(W(64) * error <= std::abs(v))))
-    return std::nullopt;
+  const bool unresolved = ((big_n > W(0)) != (in.K > W(0))) | !(W(64) * error <= std::abs(big_n)) |
+                          (has_v & !(W(64) * error <= std::abs(v)));
+  if (unresolved) return std::nullopt;
   const W reciprocal_n = W(1) / big_n;
   const W g = in.k * in.K * reciprocal_n;  // a 2^-shift
-  Vector4<W> entries(g * in.c[0], g * in.c[1], g * in.c_z, g * in.c[2]);
-  if (in.t != W(0)) entries(2) = in.K * v * reciprocal_n;
+  const W z_entries[2] = {g * in.c_z, in.K * v * reciprocal_n};
+  const Vector4<W> entries(g * in.c[0], g * in.c[1], z_entries[has_v], g * in.c[2]);
   // Relative doubt per entry: N's (error / |N|, first order, doubled for its own second order
   // and for the rounding of 1 / N), three roundings, and room for the roundings of x -+ spread
   // below. The z entry K V / N also carries V's: error / |V| of |K V / N|, error |K / N|.
   const W doubt = W(2) * error * std::abs(reciprocal_n) + W(6) * u;
-  const W v_part = in.t != W(0) ? W(2) * error * std::abs(in.K * reciprocal_n) : W(0);
+  const W v_part = W(has_v) * (W(2) * error * std::abs(in.K * reciprocal_n));
   Vector4<T> row3;
+  bool certified = true;
   for (int i = 0; i < 4; ++i) {
     const W x = in.s * entries(i);
     const W spread = doubt * std::abs(x) + (i == 2 ? v_part : W(0));
     const T below = static_cast<T>(x - spread), above = static_cast<T>(x + spread);
-    if (below != above) return std::nullopt;
-    row3(i) = below == T(0) ? T(0) : below;  // +0, as the plain methods give
+    certified &= below == above;
+    row3(i) = below + T(0);  // +0 for a zero (as the plain methods give), below otherwise
   }
+  if (!certified) return std::nullopt;
   return row3;
 }
 
