@@ -78,8 +78,8 @@ OBLIQUE_ALWAYS_INLINE bool accurate_ordinary(const Matrix4<T>& m, const Vector4<
   const Vector4<W> corner = clip_corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
                                         W(sign(plane.w())) * sign(H), convention);
   if constexpr (std::is_same_v<T, float>) {
-    // perspective_row3<float, double>'s first step (plain double, perspective_row3_single()),
-    // inline; the double-word step after it is left to accurate().
+    // accurate()'s first step for float (plain double, perspective_row3_plain()), inline; the
+    // double-word pass after it is left to accurate().
     // in_fast_range(in) holds for every ordinary float request, so it is not tested: K, A_i and
     // B_i are zero (B_i only) or normal floats, within [2^-126, 2^128), and C scaled by 2^-e is
     // zero or within [2^-(spread + 1), 1) with spread <= max_magnitude_spread<double>() = 106;
@@ -90,14 +90,10 @@ OBLIQUE_ALWAYS_INLINE bool accurate_ordinary(const Matrix4<T>& m, const Vector4<
         max_magnitude_spread<W>() + 1 <= std::numeric_limits<W>::max_exponent / 8);
     const PerspectiveInput<W> in = perspective_input<W>(scaled.c_hat, m, corner, convention);
     if (in.t != W(0) && in.t != W(1)) return false;
-    const std::optional<Vector4<T>> row3 = perspective_row3_single<T>(in);
-    if (!row3) return false;
-    const W reciprocal_k = W(1) / in.K;
-    W r[3];
-    for (int i = 0; i < 3; ++i) r[i] = (in.q_clip[i] * in.K - in.b[i]) * in.reciprocal[i];
-    out.far_corner =
-        Vector4<W>(r[0] * reciprocal_k, r[1] * reciprocal_k, reciprocal_k, r[2] * reciprocal_k)
-            .template cast<T>();
+    const std::optional<PerspectiveAnswer<T, W>> fast = perspective_row3_plain<T>(in);
+    if (!fast) return false;
+    const Vector4<T>* const row3 = &fast->row3;
+    out.far_corner = fast->far_corner.template cast<T>();
     // accurate() ends in accept_row3(): a row that is not finite or loses the near plane is
     // refused there. The near plane's test by signs where it decides (near_plane_kept_by_signs():
     // its x, y and w components are s M'_3i = the correctly rounded a C_i, a > 0), in full

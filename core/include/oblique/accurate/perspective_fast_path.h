@@ -85,11 +85,13 @@ bool in_fast_range(const PerspectiveInput<W>& in) {
 /// one); std::nullopt otherwise, and the double-word path runs. The caller checks in_fast_range.
 /// Written without a branch on the convention (t, and so V's use, changes from one request to
 /// the next): V and both forms of the z entry are formed and one is chosen, and a single test
-/// rejects; the same values as a branch per case. Out of line, so that its callers (the
-/// accurate method's ordinary path, and perspective_row3() in its FMA clone, where the compiler
-/// may contract a b + c into one FMA) run the same code and certify the same requests.
+/// rejects; the same values as a branch per case. Its callers (accurate() and the accurate
+/// method's ordinary path) are compiled for the build's target: not in perspective_row3()'s FMA
+/// clone, where the compiler may contract a b + c into one FMA, so both run the same arithmetic
+/// and certify the same requests.
 template <class T, class W>
-OBLIQUE_NOINLINE std::optional<Vector4<T>> perspective_row3_single(const PerspectiveInput<W>& in) {
+OBLIQUE_EFT_INLINE std::optional<Vector4<T>> perspective_row3_single(
+    const PerspectiveInput<W>& in) {
   constexpr W u = std::numeric_limits<W>::epsilon() / W(2);
   W u_i[3];
   W magnitude = std::abs(in.c_z);
@@ -313,6 +315,23 @@ PerspectiveInput<V> perspective_input(const Vector4<W>& c, const Matrix4<M>& m,
           V(near_combination.m4)};
 }
 
+/// The fast path's first step where W is wider than T (float in double): perspective_row3_single()
+/// and the far corner Q = (r_x, r_y, 1, r_w) / K from the same plain r_i = n_i (1 / A_i);
+/// std::nullopt where an entry is not certified (perspective_row3() then runs its double-word
+/// pass). The input must pass in_fast_range, with t = 0 or 1.
+template <class T, class W>
+OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, W>> perspective_row3_plain(
+    const PerspectiveInput<W>& in) {
+  static_assert(std::numeric_limits<W>::digits > std::numeric_limits<T>::digits);
+  const std::optional<Vector4<T>> row3 = perspective_row3_single<T>(in);
+  if (!row3) return std::nullopt;
+  W r[3];
+  for (int i = 0; i < 3; ++i) r[i] = (in.q_clip[i] * in.K - in.b[i]) * in.reciprocal[i];
+  const W reciprocal_k = W(1) / in.K;
+  return PerspectiveAnswer<T, W>{*row3, Vector4<W>(r[0] * reciprocal_k, r[1] * reciprocal_k,
+                                                   reciprocal_k, r[2] * reciprocal_k)};
+}
+
 /// The accurate method for the standard perspective shape without refining Q, where one pass of
 /// double-word arithmetic resolves the answer. With Q' the clip-space corner, n_i = Q'_i K - B_i
 /// (exact: Q'_i is 0, +-1/2 or +-1), r_i = n_i / A_i and u_i = C_i r_i for i = x, y, w
@@ -348,16 +367,10 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, W>> perspective_row3(
     const W reciprocal_k = W(1) / in.K;
     return Vector4<W>(r[0] * reciprocal_k, r[1] * reciprocal_k, reciprocal_k, r[2] * reciprocal_k);
   };
-  // float computes in double: plain double arithmetic first (perspective_row3_single). (x87's
-  // long double for double was tried the same way: its 11 extra bits left a quarter of the
-  // benchmark's cases unresolved, and its arithmetic cost more than the double-word path.)
-  if constexpr (std::numeric_limits<W>::digits > std::numeric_limits<T>::digits) {
-    if (const auto row3 = perspective_row3_single<T>(in)) {
-      W r[3];
-      for (int i = 0; i < 3; ++i) r[i] = (in.q_clip[i] * in.K - in.b[i]) * in.reciprocal[i];
-      return PerspectiveAnswer<T, W>{*row3, far_corner(r)};
-    }
-  }
+  // float computes in double: the caller runs plain double arithmetic first
+  // (perspective_row3_plain()), and this pass where that is not certified. (x87's long double
+  // for double was tried the same way: its 11 extra bits left a quarter of the benchmark's cases
+  // unresolved, and its arithmetic cost more than the double-word path.)
   eft::Pair<W> r[3], u_i[3];
   W magnitude = std::abs(in.c_z);
   for (int i = 0; i < 3; ++i) {
