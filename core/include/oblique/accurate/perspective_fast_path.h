@@ -49,7 +49,7 @@ struct PerspectiveInput {
 /// transformation is exact and every rounding relative. Inputs outside (subnormal
 /// values, huge scales) take the refining path.
 template <class W>
-bool in_fast_range(const PerspectiveInput<W>& in) {
+OBLIQUE_EFT_INLINE bool in_fast_range(const PerspectiveInput<W>& in) {
   constexpr int e = std::numeric_limits<W>::max_exponent / 8;
   bool ok = true;
   // zero_ok: whether x may be 0 (B_i and C_i may; K and A_i may not).
@@ -141,7 +141,7 @@ inline constexpr bool kX87LongDouble = std::numeric_limits<long double>::digits 
 /// and for x87 long double whose half spacing is a normal double (the fast paths' entries); from
 /// the neighbours elsewhere.
 template <class W, class T>
-W half_spacing(T y) {
+OBLIQUE_EFT_INLINE W half_spacing(T y) {
   if constexpr (std::is_same_v<T, double> && std::numeric_limits<double>::is_iec559) {
     std::uint64_t bits;
     std::memcpy(&bits, &y, sizeof bits);
@@ -298,8 +298,9 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, T>> perspective_row3_in_do
 /// The fast path's input in V: A_i, B_i, K and C converted exactly (V holds W's values), and
 /// the reciprocals of the A_i.
 template <class V, class W, class M>
-PerspectiveInput<V> perspective_input(const Vector4<W>& c, const Matrix4<M>& m,
-                                      const Vector4<W>& corner, Convention convention) {
+OBLIQUE_EFT_INLINE PerspectiveInput<V> perspective_input(const Vector4<W>& c, const Matrix4<M>& m,
+                                                         const Vector4<W>& corner,
+                                                         Convention convention) {
   const DepthRange range = clip_depth_range(convention);
   const RowCombination near_combination = near_rows(convention);
   const V a_x = V(m(0, 0)), a_y = V(m(1, 1)), a_w = V(m(2, 3));
