@@ -75,8 +75,11 @@ OBLIQUE_ALWAYS_INLINE bool accurate_ordinary(const Matrix4<T>& m, const Vector4<
   scaled.c_hat = plane.template cast<W>() * power_of_two<W>(shift);
   scaled.shift = shift;
   scaled.lossy = false;
-  const Vector4<W> corner = clip_corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
-                                        W(sign(plane.w())) * sign(H), convention);
+  // clip_corner(), with z from the convention's table by the sign of C'_z (no branch).
+  const PerspectiveConstants<W>& constants = perspective_constants<W>(convention);
+  const W sign_z = W(sign(plane.w())) * sign(H);
+  const Vector4<W> corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
+                          constants.corner_z[(sign_z > W(0)) - (sign_z < W(0)) + 1], W(1));
   if constexpr (std::is_same_v<T, float>) {
     // accurate()'s first step for float (plain double, perspective_row3_plain()), inline; the
     // double-word pass after it is left to accurate().
@@ -99,10 +102,8 @@ OBLIQUE_ALWAYS_INLINE bool accurate_ordinary(const Matrix4<T>& m, const Vector4<
     // its x, y and w components are s M'_3i = the correctly rounded a C_i, a > 0), in full
     // otherwise.
     if (!all_finite(out.far_corner) || !all_finite(*row3)) return false;
-    const RowCombination near_combination = near_rows(convention);
     T near[4];
-    for (int i = 0; i < 4; ++i)
-      near[i] = T(near_combination.m3) * (*row3)(i) + T(near_combination.m4) * m(3, i);
+    for (int i = 0; i < 4; ++i) near[i] = T(constants.s) * (*row3)(i) + T(constants.t) * m(3, i);
     if (!near_plane_kept_by_signs(plane, near, near[2], e) &&
         !near_plane_kept(*row3, m.row(3), Vector4<T>(scaled.c_hat.template cast<T>()), convention))
       return false;
@@ -116,8 +117,7 @@ OBLIQUE_ALWAYS_INLINE bool accurate_ordinary(const Matrix4<T>& m, const Vector4<
     if (!all_finite(out.far_corner)) return false;
     // accurate()'s test by signs of the extracted near plane; where it does not decide,
     // accept_row3() does, in accurate().
-    const RowCombination near_combination = near_rows(convention);
-    const T near_z = T(near_combination.m3) * fast->row3(2) + T(near_combination.m4) * m(3, 2);
+    const T near_z = T(constants.s) * fast->row3(2) + T(constants.t) * m(3, 2);
     if (near_z * T(sign(plane.z())) < T(0)) return false;
     out.row3 = fast->row3;
     return true;
