@@ -274,7 +274,8 @@ OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vecto
   const int shift = -e;
   if (shift < keep_normal || !normal_power_of_two<T>(shift)) return false;
   const T factor = power_of_two<T>(shift);
-  const Vector4<T> c_hat = plane * factor;
+  Vector4<T> c_hat;  // plane * factor, in a loop: Eigen's assignment is a call for long double
+  for (int i = 0; i < 4; ++i) c_hat(i) = plane(i) * factor;
   // clip_corner(): z from a table by the sign of C'_z, not by a branch (the convention, and so
   // the sign of H, changes from one request to the next).
   const ConventionTable<T>& table = convention_table<T>(convention);

@@ -72,7 +72,8 @@ OBLIQUE_ALWAYS_INLINE bool accurate_ordinary(const Matrix4<T>& m, const Vector4<
     return false;
   // scale_plane(C in W, shift): 2^shift is normal in T, so in W, and the products are exact.
   ScaledPlane<W> scaled;
-  scaled.c_hat = plane.template cast<W>() * power_of_two<W>(shift);
+  const W factor = power_of_two<W>(shift);
+  for (int i = 0; i < 4; ++i) scaled.c_hat(i) = W(plane(i)) * factor;
   scaled.shift = shift;
   scaled.lossy = false;
   // clip_corner(), with z from the convention's table by the sign of C'_z (no branch).
