@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "oblique/accurate/accurate.h"
+#include "oblique/accurate/ordinary.h"
 #include "oblique/depth_convention.h"
 #include "oblique/detail/finish.h"
 #include "oblique/detail/input_checks.h"
@@ -56,10 +57,15 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
                        Method method = Method::automatic) {
   // The common request passes the first four checks at once (detail/input_checks.h); the closed
   // form then answers it here, and every other request goes through detail::apply_checked().
+  // The accurate method's common request likewise (accurate/ordinary.h).
   const detail::OrdinaryInput input = detail::ordinary_input(projection, plane);
   if (input.ordinary && (method == Method::automatic || method == Method::closed_form)) {
     detail::ClosedFormAnswer<T> answer;
     if (detail::closed_form_ordinary(projection, plane, convention, input, answer))
+      return answer.result(projection);
+  } else if (input.ordinary && method == Method::accurate) {
+    detail::AccurateAnswer<T> answer;
+    if (detail::accurate_ordinary(projection, plane, convention, input, answer))
       return answer.result(projection);
   }
   return detail::apply_checked(projection, plane, convention, method, input.ordinary);
@@ -233,36 +239,6 @@ struct ClosedFormAnswer {
   }
 };
 
-/// accept_row3()'s test that the near plane a consumer extracts, near = s M'_3 + t M_4, keeps
-/// C's side (near_hat . c_hat > 0, near_hat = near 2^-E with 2^(E-1) <= max |near_i| < 2^E),
-/// decided by signs where that is provable; false where it is not (the caller then runs the
-/// test). For the perspective shape M_4 = (0, 0, K, 0), so near_i = a C_i in value for
-/// i = x, y, w (ac: those products, with a > 0), and each of those terms of the dot product
-/// is >= 0; if near_z and C_z do not have opposite signs, the z term is >= 0 too, and a
-/// rounded sum of terms >= 0 is > 0 exactly when one term is (terms < 1: no overflow). The w
-/// term is: with L(x) the frexp exponent (2^(L - 1) <= |x| < 2^L), |near_hat_w| >=
-/// 2^(L(a C_w) - 1 - E) and |c_hat_w| = |C_w| 2^-e >= 2^(L(C_w) - 1 - e), so where
-/// L(a C_w) + L(C_w) - E - e - 2 >= min_exponent - 1 both and their product are normal, the
-/// scaling is exact, and the product of two negatives rounds to a positive number.
-/// Preconditions: as closed_form_ordinary() at accept_row3(); e the frexp exponent of max |C_i|,
-/// near_z the z component of near.
-template <class T>
-OBLIQUE_ALWAYS_INLINE bool near_plane_kept_by_signs(const Vector4<T>& plane, const T (&ac)[4],
-                                                    T near_z, int e) {
-  if (sign(near_z) * sign(plane.z()) < T(0)) return false;
-  const T largest = std::max(std::max(std::abs(ac[0]), std::abs(ac[1])),
-                             std::max(std::abs(ac[3]), std::abs(near_z)));
-  constexpr unsigned all_ones = ExponentBits<T>::all_ones;
-  constexpr int offset = ExponentBits<T>::bias - 1;  // L(x) = field - offset for normal x
-  const unsigned f_largest = biased_exponent(largest), f_ac_w = biased_exponent(ac[3]);
-  // Normal (so L is read from the field), finite, nonzero: largest, a C_w, and C_w (ordinary).
-  if (f_largest - 1u >= all_ones - 1u || f_ac_w - 1u >= all_ones - 1u) return false;
-  const int l_ac_w = static_cast<int>(f_ac_w) - offset;
-  const int l_c_w = static_cast<int>(biased_exponent(plane.w())) - offset;
-  const int l_largest = static_cast<int>(f_largest) - offset;
-  return l_ac_w + l_c_w - l_largest - e - 2 >= std::numeric_limits<T>::min_exponent - 1;
-}
-
 /// closed_form() for an input that passed ordinary_input(), in one function and
 /// without libm calls: the same statuses, messages and bits, step for step (scale_plane(),
 /// finish() and accept_row3() with C's exponents read from its bits). Returns false, with `out`
@@ -298,7 +274,8 @@ OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vecto
   const int shift = -e;
   if (shift < keep_normal || !normal_power_of_two<T>(shift)) return false;
   const T factor = power_of_two<T>(shift);
-  const Vector4<T> c_hat = plane * factor;
+  Vector4<T> c_hat;  // plane * factor, in a loop: Eigen's assignment is a call for long double
+  for (int i = 0; i < 4; ++i) c_hat(i) = plane(i) * factor;
   // clip_corner(): z from a table by the sign of C'_z, not by a branch (the convention, and so
   // the sign of H, changes from one request to the next).
   const ConventionTable<T>& table = convention_table<T>(convention);

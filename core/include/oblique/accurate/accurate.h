@@ -20,6 +20,7 @@
 #pragma once
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <type_traits>
 #include <utility>
 
@@ -158,7 +159,15 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
     const Vector4<W> corner =
         clip_corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
                     W(sign(plane.w())) * sign(H), convention);
-    if (const auto fast = perspective_row3_dispatched<T>(scaled, m, corner, convention)) {
+    std::optional<PerspectiveAnswer<T, W>> fast;
+    if constexpr (std::numeric_limits<W>::digits > std::numeric_limits<T>::digits) {
+      // float: plain double first, here (not in perspective_row3()'s FMA clone), as the
+      // ordinary path (ordinary.h) runs it; scaled is not lossy here (not stiff).
+      const PerspectiveInput<W> in = perspective_input<W>(c_hat, m, corner, convention);
+      if ((in.t == W(0) || in.t == W(1)) && in_fast_range(in)) fast = perspective_row3_plain<T>(in);
+    }
+    if (!fast) fast = perspective_row3_dispatched<T>(scaled, m, corner, convention);
+    if (fast) {
       ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
       r.far_corner = fast->far_corner.template cast<T>();
       if (all_finite(r.far_corner)) {

@@ -49,7 +49,7 @@ struct PerspectiveInput {
 /// transformation is exact and every rounding relative. Inputs outside (subnormal
 /// values, huge scales) take the refining path.
 template <class W>
-bool in_fast_range(const PerspectiveInput<W>& in) {
+OBLIQUE_EFT_INLINE bool in_fast_range(const PerspectiveInput<W>& in) {
   constexpr int e = std::numeric_limits<W>::max_exponent / 8;
   bool ok = true;
   // zero_ok: whether x may be 0 (B_i and C_i may; K and A_i may not).
@@ -83,8 +83,15 @@ bool in_fast_range(const PerspectiveInput<W>& in) {
 /// and V are within 8u S; the entries then take up to three more roundings. Each entry is accepted
 /// only when its whole error interval rounds to one T value (so the answer is the correctly rounded
 /// one); std::nullopt otherwise, and the double-word path runs. The caller checks in_fast_range.
+/// Written without a branch on the convention (t, and so V's use, changes from one request to
+/// the next): V and both forms of the z entry are formed and one is chosen, and a single test
+/// rejects; the same values as a branch per case. Its callers (accurate() and the accurate
+/// method's ordinary path) are compiled for the build's target: not in perspective_row3()'s FMA
+/// clone, where the compiler may contract a b + c into one FMA, so both run the same arithmetic
+/// and certify the same requests.
 template <class T, class W>
-std::optional<Vector4<T>> perspective_row3_single(const PerspectiveInput<W>& in) {
+OBLIQUE_EFT_INLINE std::optional<Vector4<T>> perspective_row3_single(
+    const PerspectiveInput<W>& in) {
   constexpr W u = std::numeric_limits<W>::epsilon() / W(2);
   W u_i[3];
   W magnitude = std::abs(in.c_z);
@@ -96,27 +103,30 @@ std::optional<Vector4<T>> perspective_row3_single(const PerspectiveInput<W>& in)
   const W big_n = sum + in.c_z;
   const W v = (in.k - in.t) * in.c_z - in.t * sum;
   const W error = W(8) * u * magnitude;
+  const bool has_v = in.t != W(0);
   // C . Q = N / K must be positive; N's doubt below 1 settles its sign. N and V within 1/64.
-  if ((big_n > W(0)) != (in.K > W(0)) || !(W(64) * error <= std::abs(big_n)) ||
-      (in.t != W(0) && !(W(64) * error <= std::abs(v))))
-    return std::nullopt;
+  const bool unresolved = ((big_n > W(0)) != (in.K > W(0))) | !(W(64) * error <= std::abs(big_n)) |
+                          (has_v & !(W(64) * error <= std::abs(v)));
+  if (unresolved) return std::nullopt;
   const W reciprocal_n = W(1) / big_n;
   const W g = in.k * in.K * reciprocal_n;  // a 2^-shift
-  Vector4<W> entries(g * in.c[0], g * in.c[1], g * in.c_z, g * in.c[2]);
-  if (in.t != W(0)) entries(2) = in.K * v * reciprocal_n;
+  const W z_entries[2] = {g * in.c_z, in.K * v * reciprocal_n};
+  const Vector4<W> entries(g * in.c[0], g * in.c[1], z_entries[has_v], g * in.c[2]);
   // Relative doubt per entry: N's (error / |N|, first order, doubled for its own second order
   // and for the rounding of 1 / N), three roundings, and room for the roundings of x -+ spread
   // below. The z entry K V / N also carries V's: error / |V| of |K V / N|, error |K / N|.
   const W doubt = W(2) * error * std::abs(reciprocal_n) + W(6) * u;
-  const W v_part = in.t != W(0) ? W(2) * error * std::abs(in.K * reciprocal_n) : W(0);
+  const W v_part = W(has_v) * (W(2) * error * std::abs(in.K * reciprocal_n));
   Vector4<T> row3;
+  bool certified = true;
   for (int i = 0; i < 4; ++i) {
     const W x = in.s * entries(i);
     const W spread = doubt * std::abs(x) + (i == 2 ? v_part : W(0));
     const T below = static_cast<T>(x - spread), above = static_cast<T>(x + spread);
-    if (below != above) return std::nullopt;
-    row3(i) = below == T(0) ? T(0) : below;  // +0, as the plain methods give
+    certified &= below == above;
+    row3(i) = below + T(0);  // +0 for a zero (as the plain methods give), below otherwise
   }
+  if (!certified) return std::nullopt;
   return row3;
 }
 
@@ -131,7 +141,7 @@ inline constexpr bool kX87LongDouble = std::numeric_limits<long double>::digits 
 /// and for x87 long double whose half spacing is a normal double (the fast paths' entries); from
 /// the neighbours elsewhere.
 template <class W, class T>
-W half_spacing(T y) {
+OBLIQUE_EFT_INLINE W half_spacing(T y) {
   if constexpr (std::is_same_v<T, double> && std::numeric_limits<double>::is_iec559) {
     std::uint64_t bits;
     std::memcpy(&bits, &y, sizeof bits);
@@ -285,13 +295,42 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, T>> perspective_row3_in_do
   return out;
 }
 
+/// A convention's constants as the fast paths read them, in V: k = z_high - z_low, near =
+/// s M_3 + t M_4 (near_rows()), and the z of the clip-space corner Q' for sgn C'_z = -1, 0, 1
+/// (clip_corner()). From a table, not from branches: the convention changes from one request to
+/// the next, and a mispredicted branch costs as much as a division.
+template <class V>
+struct PerspectiveConstants {
+  V k, s, t;
+  V corner_z[3];
+};
+
+template <class V>
+constexpr PerspectiveConstants<V> make_perspective_constants(Convention convention) {
+  const DepthRange range = clip_depth_range(convention);
+  const RowCombination near_combination = near_rows(convention);
+  return {V(range.z_high - range.z_low),
+          V(near_combination.m3),
+          V(near_combination.m4),
+          {V(range.z_low), V(range.z_low + range.z_high) / V(2), V(range.z_high)}};
+}
+
+template <class V>
+OBLIQUE_EFT_INLINE const PerspectiveConstants<V>& perspective_constants(Convention convention) {
+  static constexpr PerspectiveConstants<V> tables[] = {
+      make_perspective_constants<V>(Convention::gl),
+      make_perspective_constants<V>(Convention::zero_one),
+      make_perspective_constants<V>(Convention::reversed_z)};
+  return tables[static_cast<int>(convention)];
+}
+
 /// The fast path's input in V: A_i, B_i, K and C converted exactly (V holds W's values), and
 /// the reciprocals of the A_i.
 template <class V, class W, class M>
-PerspectiveInput<V> perspective_input(const Vector4<W>& c, const Matrix4<M>& m,
-                                      const Vector4<W>& corner, Convention convention) {
-  const DepthRange range = clip_depth_range(convention);
-  const RowCombination near_combination = near_rows(convention);
+OBLIQUE_EFT_INLINE PerspectiveInput<V> perspective_input(const Vector4<W>& c, const Matrix4<M>& m,
+                                                         const Vector4<W>& corner,
+                                                         Convention convention) {
+  const PerspectiveConstants<V>& constants = perspective_constants<V>(convention);
   const V a_x = V(m(0, 0)), a_y = V(m(1, 1)), a_w = V(m(2, 3));
   return {V(m(3, 2)),
           {a_x, a_y, a_w},
@@ -300,9 +339,26 @@ PerspectiveInput<V> perspective_input(const Vector4<W>& c, const Matrix4<M>& m,
           {V(c.x()), V(c.y()), V(c.w())},
           V(c.z()),
           {V(1) / a_x, V(1) / a_y, V(1) / a_w},
-          V(range.z_high - range.z_low),
-          V(near_combination.m3),
-          V(near_combination.m4)};
+          constants.k,
+          constants.s,
+          constants.t};
+}
+
+/// The fast path's first step where W is wider than T (float in double): perspective_row3_single()
+/// and the far corner Q = (r_x, r_y, 1, r_w) / K from the same plain r_i = n_i (1 / A_i);
+/// std::nullopt where an entry is not certified (perspective_row3() then runs its double-word
+/// pass). The input must pass in_fast_range, with t = 0 or 1.
+template <class T, class W>
+OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, W>> perspective_row3_plain(
+    const PerspectiveInput<W>& in) {
+  static_assert(std::numeric_limits<W>::digits > std::numeric_limits<T>::digits);
+  const std::optional<Vector4<T>> row3 = perspective_row3_single<T>(in);
+  if (!row3) return std::nullopt;
+  W r[3];
+  for (int i = 0; i < 3; ++i) r[i] = (in.q_clip[i] * in.K - in.b[i]) * in.reciprocal[i];
+  const W reciprocal_k = W(1) / in.K;
+  return PerspectiveAnswer<T, W>{*row3, Vector4<W>(r[0] * reciprocal_k, r[1] * reciprocal_k,
+                                                   reciprocal_k, r[2] * reciprocal_k)};
 }
 
 /// The accurate method for the standard perspective shape without refining Q, where one pass of
@@ -340,16 +396,10 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, W>> perspective_row3(
     const W reciprocal_k = W(1) / in.K;
     return Vector4<W>(r[0] * reciprocal_k, r[1] * reciprocal_k, reciprocal_k, r[2] * reciprocal_k);
   };
-  // float computes in double: plain double arithmetic first (perspective_row3_single). (x87's
-  // long double for double was tried the same way: its 11 extra bits left a quarter of the
-  // benchmark's cases unresolved, and its arithmetic cost more than the double-word path.)
-  if constexpr (std::numeric_limits<W>::digits > std::numeric_limits<T>::digits) {
-    if (const auto row3 = perspective_row3_single<T>(in)) {
-      W r[3];
-      for (int i = 0; i < 3; ++i) r[i] = (in.q_clip[i] * in.K - in.b[i]) * in.reciprocal[i];
-      return PerspectiveAnswer<T, W>{*row3, far_corner(r)};
-    }
-  }
+  // float computes in double: the caller runs plain double arithmetic first
+  // (perspective_row3_plain()), and this pass where that is not certified. (x87's long double
+  // for double was tried the same way: its 11 extra bits left a quarter of the benchmark's cases
+  // unresolved, and its arithmetic cost more than the double-word path.)
   eft::Pair<W> r[3], u_i[3];
   W magnitude = std::abs(in.c_z);
   for (int i = 0; i < 3; ++i) {

@@ -3,6 +3,7 @@
 // and the finish from a far corner Q to the oblique matrix M'.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -10,6 +11,7 @@
 #include <utility>
 
 #include "oblique/depth_convention.h"
+#include "oblique/detail/config.h"
 #include "oblique/equilibrated_solver.h"
 #include "oblique/magnitudes.h"
 #include "oblique/plane.h"
@@ -65,24 +67,63 @@ inline constexpr std::string_view near_plane_lost =
     "of M_4's entries): the plane is too far from the view volume for this scalar type";
 }  // namespace accept_row3_messages
 
+/// accept_row3()'s test that the near plane a consumer extracts from the rounded matrix,
+/// s row3 + t M_4 (m4: row 4 of M), still keeps C's side (c_hat: C scaled by 2^k): when a C is
+/// below the precision of M_4's entries, a C - M_4 rounds to -M_4 and it vanishes. Shared with
+/// the accurate method's ordinary path (accurate/ordinary.h), so both decide alike.
+template <class T, class Row>
+bool near_plane_kept(const Vector4<T>& row3, const Row& m4, const Vector4<T>& c_hat,
+                     Convention convention) {
+  const RowCombination near_combination = near_rows(convention);
+  const Vector4<T> t_m4 = T(near_combination.m4) * m4.transpose();
+  const Vector4<T> near_extracted = T(near_combination.m3) * row3 + t_m4;
+  const Vector4<T> near_hat =
+      scaled_by_power_of_two(near_extracted, -magnitude_exponent(near_extracted));
+  return near_hat.dot(c_hat) > T(0);
+}
+
+/// accept_row3()'s test that the near plane a consumer extracts, near = s M'_3 + t M_4, keeps
+/// C's side (near_hat . c_hat > 0, near_hat = near 2^-E with 2^(E-1) <= max |near_i| < 2^E),
+/// decided by signs where that is provable; false where it is not (the caller then runs the
+/// test). For the perspective shape M_4 = (0, 0, K, 0), so near_i = a C_i in value for
+/// i = x, y, w (ac: those products, with a > 0), and each of those terms of the dot product
+/// is >= 0; if near_z and C_z do not have opposite signs, the z term is >= 0 too, and a
+/// rounded sum of terms >= 0 is > 0 exactly when one term is (terms < 1: no overflow). The w
+/// term is: with L(x) the frexp exponent (2^(L - 1) <= |x| < 2^L), |near_hat_w| >=
+/// 2^(L(a C_w) - 1 - E) and |c_hat_w| = |C_w| 2^-e >= 2^(L(C_w) - 1 - e), so where
+/// L(a C_w) + L(C_w) - E - e - 2 >= min_exponent - 1 both and their product are normal, the
+/// scaling is exact, and the product of two negatives rounds to a positive number.
+/// Preconditions: as closed_form_ordinary() at accept_row3() (the accurate method's ordinary path
+/// meets them too: accurate/ordinary.h); e the frexp exponent of max |C_i|, near_z the z
+/// component of near.
+template <class T>
+OBLIQUE_ALWAYS_INLINE bool near_plane_kept_by_signs(const Vector4<T>& plane, const T (&ac)[4],
+                                                    T near_z, int e) {
+  if (sign(near_z) * sign(plane.z()) < T(0)) return false;
+  const T largest = std::max(std::max(std::abs(ac[0]), std::abs(ac[1])),
+                             std::max(std::abs(ac[3]), std::abs(near_z)));
+  constexpr unsigned all_ones = ExponentBits<T>::all_ones;
+  constexpr int offset = ExponentBits<T>::bias - 1;  // L(x) = field - offset for normal x
+  const unsigned f_largest = biased_exponent(largest), f_ac_w = biased_exponent(ac[3]);
+  // Normal (so L is read from the field), finite, nonzero: largest, a C_w, and C_w (ordinary).
+  if (f_largest - 1u >= all_ones - 1u || f_ac_w - 1u >= all_ones - 1u) return false;
+  const int l_ac_w = static_cast<int>(f_ac_w) - offset;
+  const int l_c_w = static_cast<int>(biased_exponent(plane.w())) - offset;
+  const int l_largest = static_cast<int>(f_largest) - offset;
+  return l_ac_w + l_c_w - l_largest - e - 2 >= std::numeric_limits<T>::min_exponent - 1;
+}
+
 /// r with row 3 of its projection set to row3, or out_of_range where row3 is not finite or the
 /// near plane a consumer extracts from it no longer keeps C's side (c_hat: C scaled by 2^k).
 template <class T>
 ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const Vector4<T>& c_hat,
                              Convention convention) {
-  const RowCombination near_combination = near_rows(convention);
-  const Vector4<T> t_m4 = T(near_combination.m4) * r.projection.row(3).transpose();
   if (!all_finite(row3)) {
     r.status = Status::out_of_range;
     r.detail = accept_row3_messages::not_finite;
     return r;
   }
-  // The near plane as a consumer extracts it from the rounded matrix must still keep C's side:
-  // when a C is below the precision of M_4's entries, a C - M_4 rounds to -M_4 and it vanishes.
-  const Vector4<T> near_extracted = T(near_combination.m3) * row3 + t_m4;
-  const Vector4<T> near_hat =
-      scaled_by_power_of_two(near_extracted, -magnitude_exponent(near_extracted));
-  if (!(near_hat.dot(c_hat) > T(0))) {
+  if (!near_plane_kept(row3, r.projection.row(3), c_hat, convention)) {
     r.status = Status::out_of_range;
     r.detail = accept_row3_messages::near_plane_lost;
     return r;

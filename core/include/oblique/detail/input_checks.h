@@ -81,27 +81,48 @@ OBLIQUE_ALWAYS_INLINE OrdinaryInput ordinary_input(const Matrix4<T>& m,
                    f_low != 0 && f_high - f_low <= unsigned(max_magnitude_spread<T>()) &&
                    out.plane_high != all_ones && out.plane_low != 0;
   } else if constexpr (ExponentBits<T>::known) {
+    // x87 long double, from the bytes in memory (no x87 loads): zero when the exponent field and
+    // the significand are both 0 (what x == 0 finds for every encoding: x87's unnormals, the
+    // only other ones with a zero significand, compare unordered), and the field as
+    // biased_exponent() gives it (0 where the integer bit is clear).
     constexpr unsigned all_ones = ExponentBits<T>::all_ones;
-    const bool shape = m(0, 1) == T(0) && m(0, 3) == T(0) && m(1, 0) == T(0) && m(1, 3) == T(0) &&
-                       m(2, 0) == T(0) && m(2, 1) == T(0) && m(3, 0) == T(0) && m(3, 1) == T(0) &&
-                       m(3, 3) == T(0) && m(3, 2) != T(0);
-    const T entries[7] = {m(0, 0), m(0, 2), m(1, 1), m(1, 2), m(2, 2), m(2, 3), m(3, 2)};
+    struct Fields {
+      unsigned field;      ///< biased_exponent(x)
+      bool zero;           ///< x == 0
+      std::uint64_t bits;  ///< 0 exactly when x == 0
+    };
+    const auto fields = [](const T& x) {
+      unsigned char bytes[10];
+      std::memcpy(bytes, &x, sizeof bytes);
+      std::uint64_t significand;
+      std::uint16_t sign_exponent;
+      std::memcpy(&significand, bytes, 8);
+      std::memcpy(&sign_exponent, bytes + 8, 2);
+      const unsigned raw = sign_exponent & 0x7fffu;
+      const bool integer_bit = (significand >> 63) != 0;
+      return Fields{raw == all_ones || integer_bit ? raw : 0u, (raw | significand) == 0,
+                    raw | significand};
+    };
+    const bool shape = (fields(m(0, 1)).bits | fields(m(0, 3)).bits | fields(m(1, 0)).bits |
+                        fields(m(1, 3)).bits | fields(m(2, 0)).bits | fields(m(2, 1)).bits |
+                        fields(m(3, 0)).bits | fields(m(3, 1)).bits | fields(m(3, 3)).bits) == 0 &&
+                       !fields(m(3, 2)).zero;
+    const T* const entries[7] = {&m(0, 0), &m(0, 2), &m(1, 1), &m(1, 2),
+                                 &m(2, 2), &m(2, 3), &m(3, 2)};
     unsigned high = 0, low = all_ones;
     bool ordinary = shape;
-    for (const T x : entries) {
-      const unsigned f = biased_exponent(x);
-      const bool zero = x == T(0);
-      ordinary &= zero | (f - 1u < all_ones - 1u);  // zero or normal
-      high = std::max(high, f);
-      low = std::min(low, zero ? all_ones : f);
+    for (const T* x : entries) {
+      const Fields f = fields(*x);
+      ordinary &= f.zero | (f.field - 1u < all_ones - 1u);  // zero or normal
+      high = std::max(high, f.field);
+      low = std::min(low, f.zero ? all_ones : f.field);
     }
     unsigned plane_high = 0, plane_low = all_ones;
     for (int i = 0; i < 4; ++i) {
-      const unsigned f = biased_exponent(plane(i));
-      const bool zero = plane(i) == T(0);
-      ordinary &= zero | (f - 1u < all_ones - 1u);
-      plane_high = std::max(plane_high, f);
-      plane_low = std::min(plane_low, zero ? all_ones : f);
+      const Fields f = fields(plane(i));
+      ordinary &= f.zero | (f.field - 1u < all_ones - 1u);
+      plane_high = std::max(plane_high, f.field);
+      plane_low = std::min(plane_low, f.zero ? all_ones : f.field);
     }
     out.plane_high = plane_high;
     out.plane_low = plane_low;
