@@ -1,0 +1,227 @@
+// apply_batch()'s closed form over a block of requests at once: the requests' entries gathered
+// into one array per entry (structure of arrays), every step of closed_form_ordinary() for the
+// common request written as one loop over the block with no branch, so that the compiler runs
+// it on packed registers (two doubles or four floats to an SSE2 instruction at the x86-64
+// baseline, the divisions included) and several requests' chains of divisions are in flight at
+// once. A request that passes every test of that loop is answered from it; every other one by
+// the one-request path, as before.
+#pragma once
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+
+#include "oblique/detail/config.h"
+#include "oblique/detail/finish.h"
+#include "oblique/magnitudes.h"
+#include "oblique/plane.h"
+
+namespace oblique::detail {
+
+/// Whether apply_batch() answers blocks of closed-form requests with closed_form_lanes(): for
+/// IEEE float and double where Eigen vectorises Vector4<T> with SSE (x86), whose C . Q adds the
+/// four products as (c_0 q_0 + c_2 q_2) + (c_1 q_1 + c_3 q_3) (a packet sum, then the sum of its
+/// halves: Eigen's redux and predux for Packet2d, Packet4d and Packet4f), the order the lanes
+/// use; and not where the compiler may contract a product and a sum into a fused multiply-add
+/// (FMA enabled), which it might do differently in the lanes and in closed_form_ordinary().
+/// Elsewhere apply_batch() answers request by request.
+template <class T>
+constexpr bool closed_form_lanes_available() noexcept {
+#if defined(EIGEN_VECTORIZE_SSE2) && !defined(EIGEN_DONT_VECTORIZE) && !defined(__FMA__)
+  return (std::is_same_v<T, float> || std::is_same_v<T, double>) && ExponentBits<T>::known;
+#else
+  return false;
+#endif
+}
+
+/// Requests per block: four SSE2 registers' worth.
+template <class T>
+inline constexpr int closed_form_lane_count = 64 / int(sizeof(T));
+
+/// sign(x) (detail/finish.h), the same value (+0 for zeros and NaN), from two comparisons both
+/// made, so that the compiler can run it on packed registers (it does not make a comparison
+/// that a branch skips, which may trap, unconditional).
+template <class T>
+OBLIQUE_ALWAYS_INLINE T lane_sign(T x) noexcept {
+  return T(x > T(0)) - T(x < T(0));
+}
+
+/// closed_form_lanes()'s answers for a block: fast[k] != 0 where request k is answered here
+/// (status ok, row 3 of M' row3[.][k], far corner q[.][k]); nothing else is meaningful. (fast is
+/// a T, 1 or 0: a select between two integers under a mask from comparing doubles has no SSE2
+/// instruction, and would keep the loop from being packed.)
+template <class T, int W>
+struct ClosedFormLanes {
+  T row3[4][W];
+  T q[4][W];
+  T fast[W];
+};
+
+/// 2^k as a T, for a k with a normal 2^k, in a constant expression.
+template <class T>
+constexpr T lane_power_of_two(int k) noexcept {
+  T x = T(1);
+  for (; k > 0; --k) x *= T(2);
+  for (; k < 0; ++k) x /= T(2);
+  return x;
+}
+
+/// closed_form_ordinary() for the W requests m[k], c[k] in the convention of `table` (a
+/// ConventionTable<T>, with AcFirst = table.first == 0: M'_3 = a C - t M_4, else t M_4 - a C; a
+/// template parameter, as a subtraction in each arm of a branch, which may trap, would keep the
+/// compiler from packing the loop), without a branch: every lane computes every step, and fast[k] is set
+/// only where request k passes tests that imply each of apply()'s and closed_form_ordinary()'s
+/// tests on its way to status ok, so that the lane's row3 and q are that path's, bit for bit
+/// (the same operations, in the same order, on the same operands). The tests, which may refuse
+/// more than that path does (those requests go to it) but never less:
+///
+/// - ordinary_input(): the nine entries outside the perspective shape compare equal to zero;
+///   A, D, H, K (M11, M22, M34, M43) are finite, normal and nonzero (also closed_form's
+///   singularity test), B, E, G zero or finite and normal; hi < lo 2^S, hi and lo the largest
+///   and the smallest nonzero |entry| of those seven, S = max_magnitude_spread<T>(), implies
+///   (floor log2 hi) - (floor log2 lo) <= S (a product overflowing to infinity only where lo >=
+///   2^(max_exponent - S), where the fields differ by less than S anyway); the plane's
+///   components zero or finite and normal, with C_w < 0 (the camera test).
+/// - the plane's scaling by 2^-e (e = frexp exponent of max |C_i|, built from its bits):
+///   max |C_i| < 2^(1 - min_exponent) gives a normal 2^-e, and max |C_i| < min nonzero |C_i|
+///   2^-min_exponent the exponents' difference that keeps every scaled component normal.
+/// - Q finite, C . Q finite and positive, a = a_hat 2^-e finite and normal (so a C is
+///   the operand), row 3 finite.
+/// - near_plane_kept_by_signs(): near_z and C_z not of opposite signs; with
+///   K = (1 - min_exponent) / 3, |a C_w| >= 2^-K, |c_hat_w| >= 2^-K and the largest of the
+///   near plane's |a C_x|, |a C_y|, |a C_w|, |near_z| below 2^K: all normal, and
+///   L(a C_w) + L(C_w) - L(largest) - e - 2 = L(a C_w) + L(c_hat_w) - L(largest) - 2
+///   >= (1 - K) + (1 - K) - K - 2 = -3K >= min_exponent - 1.
+template <class T, int W, bool AcFirst, class Table>
+OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const Matrix4<T>* m, const Vector4<T>* c,
+                                             const Table& table, ClosedFormLanes<T, W>& out) {
+  using Bits = typename ExponentBits<T>::Bits;
+  using limits = std::numeric_limits<T>;
+  constexpr int fraction_bits = ExponentBits<T>::fraction_bits;
+  constexpr Bits exponent_mask = Bits(ExponentBits<T>::all_ones) << fraction_bits;
+  // The bits of 2^-e are (2 bias - 1 - f) << fraction_bits for the field f of max |C_i|.
+  constexpr Bits factor_base = Bits(2 * ExponentBits<T>::bias - 1) << fraction_bits;
+  constexpr T lowest = limits::min(), highest = limits::max();
+  constexpr T spread_factor = lane_power_of_two<T>(max_magnitude_spread<T>());
+  constexpr T plane_high_limit = lane_power_of_two<T>(1 - limits::min_exponent);
+  constexpr T plane_spread_factor = lane_power_of_two<T>(-limits::min_exponent);
+  constexpr int sign_test_exponent = (1 - limits::min_exponent) / 3;
+  constexpr T sign_test_high = lane_power_of_two<T>(sign_test_exponent);
+  constexpr T sign_test_low = lane_power_of_two<T>(-sign_test_exponent);
+
+  // The entries, one array each.
+  T A[W], B[W], D[W], E[W], G[W], H[W], K[W], m30[W], m31[W], m33[W], outside[W];
+  T cx[W], cy[W], cz[W], cw[W];
+  for (int k = 0; k < W; ++k) {
+    const Matrix4<T>& mk = m[k];
+    A[k] = mk(0, 0), B[k] = mk(0, 2), D[k] = mk(1, 1), E[k] = mk(1, 2);
+    G[k] = mk(2, 2), H[k] = mk(2, 3), K[k] = mk(3, 2);
+    m30[k] = mk(3, 0), m31[k] = mk(3, 1), m33[k] = mk(3, 3);
+    // Zero exactly when the nine entries all are (a NaN, infinity or nonzero gives a nonzero
+    // sum: a sum of nonnegative numbers rounds to zero only when they are all zero).
+    outside[k] = std::abs(mk(0, 1)) + std::abs(mk(0, 3)) + std::abs(mk(1, 0)) +
+                 std::abs(mk(1, 3)) + std::abs(mk(2, 0)) + std::abs(mk(2, 1)) +
+                 std::abs(m30[k]) + std::abs(m31[k]) + std::abs(m33[k]);
+    cx[k] = c[k].x(), cy[k] = c[k].y(), cz[k] = c[k].z(), cw[k] = c[k].w();
+  }
+  const T z_low = table.corner_z[0], z_middle = table.corner_z[1], z_high = table.corner_z[2];
+  const T depth_span = table.depth_span, s = table.s, t = table.t;
+  for (int k = 0; k < W; ++k) {
+    const T a_abs = std::abs(A[k]), b_abs = std::abs(B[k]), d_abs = std::abs(D[k]),
+            e_abs = std::abs(E[k]), g_abs = std::abs(G[k]), h_abs = std::abs(H[k]),
+            k_abs = std::abs(K[k]);
+    const T x_abs = std::abs(cx[k]), y_abs = std::abs(cy[k]), z_abs = std::abs(cz[k]),
+            w_abs = std::abs(cw[k]);
+    // Finite, normal and nonzero; zero or that.
+    bool ok = (a_abs >= lowest) & (a_abs <= highest) & (d_abs >= lowest) & (d_abs <= highest) &
+              (h_abs >= lowest) & (h_abs <= highest) & (k_abs >= lowest) & (k_abs <= highest);
+    ok &= ((b_abs >= lowest) & (b_abs <= highest)) | (B[k] == T(0));
+    ok &= ((e_abs >= lowest) & (e_abs <= highest)) | (E[k] == T(0));
+    ok &= ((g_abs >= lowest) & (g_abs <= highest)) | (G[k] == T(0));
+    ok &= outside[k] == T(0);
+    const T infinity = limits::infinity();
+    const T hi = std::max(std::max(std::max(a_abs, d_abs), std::max(h_abs, k_abs)),
+                          std::max(std::max(b_abs, e_abs), g_abs));
+    const T lo = std::min(
+        std::min(std::min(a_abs, d_abs), std::min(h_abs, k_abs)),
+        std::min(std::min(B[k] == T(0) ? infinity : b_abs, E[k] == T(0) ? infinity : e_abs),
+                 G[k] == T(0) ? infinity : g_abs));
+    ok &= hi < lo * spread_factor;
+    ok &= ((x_abs >= lowest) & (x_abs <= highest)) | (cx[k] == T(0));
+    ok &= ((y_abs >= lowest) & (y_abs <= highest)) | (cy[k] == T(0));
+    ok &= ((z_abs >= lowest) & (z_abs <= highest)) | (cz[k] == T(0));
+    ok &= (cw[k] < T(0)) & (w_abs >= lowest) & (w_abs <= highest);
+    const T plane_high = std::max(std::max(x_abs, y_abs), std::max(z_abs, w_abs));
+    const T plane_low =
+        std::min(std::min(cx[k] == T(0) ? infinity : x_abs, cy[k] == T(0) ? infinity : y_abs),
+                 std::min(cz[k] == T(0) ? infinity : z_abs, w_abs));
+    ok &= (plane_high < plane_high_limit) & (plane_high < plane_low * plane_spread_factor);
+    Bits high_bits;
+    std::memcpy(&high_bits, &plane_high, sizeof high_bits);
+    const Bits factor_bits = factor_base - (high_bits & exponent_mask);
+    T factor;
+    std::memcpy(&factor, &factor_bits, sizeof factor);
+    // closed_form_ordinary() from here, step for step.
+    const T c_hat[4] = {cx[k] * factor, cy[k] * factor, cz[k] * factor, cw[k] * factor};
+    const T sign_z = lane_sign(cw[k]) * lane_sign(H[k]);
+    const bool z_positive = sign_z > T(0), z_negative = sign_z < T(0);
+    const T corner_z = z_positive ? z_high : (z_negative ? z_low : z_middle);
+    const T q[4] = {(lane_sign(cx[k]) * lane_sign(A[k]) - B[k] / K[k]) / A[k],
+                    (lane_sign(cy[k]) * lane_sign(D[k]) - E[k] / K[k]) / D[k], T(1) / K[k],
+                    (corner_z - G[k] / K[k]) / H[k]};
+    ok &= (std::abs(q[0]) <= highest) & (std::abs(q[1]) <= highest) &
+          (std::abs(q[2]) <= highest) & (std::abs(q[3]) <= highest);
+    const T d = (c_hat[0] * q[0] + c_hat[2] * q[2]) + (c_hat[1] * q[1] + c_hat[3] * q[3]);
+    ok &= (d > T(0)) & (d <= highest);
+    const T a_hat = depth_span / d;
+    const T a = a_hat * factor;
+    ok &= (std::abs(a) >= lowest) & (std::abs(a) <= highest);
+    const T ac[4] = {a * cx[k], a * cy[k], a * cz[k], a * cw[k]};
+    const T t_m4[4] = {t * m30[k], t * m31[k], t * K[k], t * m33[k]};
+    T row3[4];
+    for (int i = 0; i < 4; ++i) {
+      if constexpr (AcFirst) {
+        row3[i] = ac[i] - t_m4[i];
+      } else {
+        row3[i] = t_m4[i] - ac[i];
+      }
+      ok &= std::abs(row3[i]) <= highest;
+    }
+    const T near_z = s * row3[2] + t_m4[2];
+    ok &= !(((near_z < T(0)) & (cz[k] > T(0))) | ((near_z > T(0)) & (cz[k] < T(0))));
+    const T largest = std::max(std::max(std::abs(ac[0]), std::abs(ac[1])),
+                               std::max(std::abs(ac[3]), std::abs(near_z)));
+    ok &= (largest < sign_test_high) & (std::abs(ac[3]) >= sign_test_low) &
+          (std::abs(c_hat[3]) >= sign_test_low);
+    for (int i = 0; i < 4; ++i) {
+      out.row3[i][k] = row3[i];
+      out.q[i][k] = q[i];
+    }
+    out.fast[k] = ok ? T(1) : T(0);
+  }
+}
+
+/// The requests [0, count - count % W) in blocks of W through closed_form_lanes(), W =
+/// closed_form_lane_count<T>: answer(i, lanes, k) for request i, lane k of its block's `lanes`,
+/// after the whole block is read (so an answer may overwrite its own request). Returns the
+/// number of requests answered.
+template <class T, class Table, class Answer>
+std::size_t closed_form_blocks(const Matrix4<T>* m, const Vector4<T>* c, std::size_t count,
+                               const Table& table, Answer&& answer) {
+  constexpr int W = closed_form_lane_count<T>;
+  ClosedFormLanes<T, W> lanes;
+  std::size_t i = 0;
+  const bool ac_first = table.first == 0;
+  for (; count - i >= std::size_t(W); i += W) {
+    if (ac_first) {
+      closed_form_lanes<T, W, true>(m + i, c + i, table, lanes);
+    } else {
+      closed_form_lanes<T, W, false>(m + i, c + i, table, lanes);
+    }
+    for (int k = 0; k < W; ++k) answer(i + std::size_t(k), lanes, k);
+  }
+  return i;
+}
+
+}  // namespace oblique::detail
