@@ -66,6 +66,14 @@ OBLIQUE_ALWAYS_INLINE void batch_answer(const Matrix4<T>& m, const Vector4<T>& p
   }
 }
 
+/// batch_answer() kept out of its caller: the requests a block of closed_form_lanes() leaves.
+template <class T>
+OBLIQUE_NOINLINE void batch_answer_apart(const Matrix4<T>& m, const Vector4<T>& plane,
+                                         Convention convention, Method method, Matrix4<T>& out,
+                                         Status& status) {
+  batch_answer(m, plane, convention, method, out, status);
+}
+
 }  // namespace detail
 
 /// Makes the near plane of `projection` the camera-space plane `plane` (kept side positive),
@@ -101,21 +109,28 @@ void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::s
                  Convention convention, Method method, Matrix4<T>* out, Status* statuses) {
   std::size_t i = 0;
   if constexpr (detail::closed_form_lanes_available<T>()) {
-    // Blocks of closed-form requests through detail::closed_form_lanes() (detail/batch.h); the
-    // requests it does not answer, and the last few, one by one.
+    // Blocks of W closed-form requests through detail::closed_form_lanes() (detail/batch.h),
+    // each block read before it is answered; the requests it does not answer, and the last
+    // count % W, one by one.
     if (method == Method::automatic || method == Method::closed_form) {
-      i = detail::closed_form_blocks<T>(
-          projections, planes, count, detail::convention_table<T>(convention),
-          [&](std::size_t j, const auto& lanes, int k) {
-            const Matrix4<T>& m = projections[j];
-            if (lanes.fast[k] != T(0)) {
-              if (&out[j] != &m) out[j] = m;
-              for (int r = 0; r < 4; ++r) out[j](2, r) = lanes.row3[r][k];
-              statuses[j] = Status::ok;
-            } else {
-              detail::batch_answer(m, planes[j], convention, method, out[j], statuses[j]);
-            }
-          });
+      constexpr int W = detail::closed_form_lane_count<T>;
+      const detail::ConventionTable<T>& table = detail::convention_table<T>(convention);
+      detail::ClosedFormLanes<T, W> lanes;
+      for (; count - i >= std::size_t(W); i += W) {
+        detail::closed_form_block<T, W, false>(projections + i, planes + i, table, lanes);
+        for (int k = 0; k < W; ++k) {
+          const std::size_t j = i + std::size_t(k);
+          if (lanes.fast[k] != T(0)) {
+            if (&out[j] != &projections[j])
+              std::memcpy(out[j].data(), projections[j].data(), sizeof(T) * 16);
+            for (int e = 0; e < 4; ++e) out[j](2, e) = lanes.row3[e][k];
+            statuses[j] = Status::ok;
+          } else {
+            detail::batch_answer_apart(projections[j], planes[j], convention, method, out[j],
+                                       statuses[j]);
+          }
+        }
+      }
     }
   }
   for (; i < count; ++i)
@@ -130,23 +145,28 @@ void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::s
   std::size_t i = 0;
   if constexpr (detail::closed_form_lanes_available<T>()) {
     if (method == Method::automatic || method == Method::closed_form) {
-      i = detail::closed_form_blocks<T>(
-          projections, planes, count, detail::convention_table<T>(convention),
-          [&](std::size_t j, const auto& lanes, int k) {
-            ObliqueResult<T>& r = results[j];
-            if (lanes.fast[k] != T(0)) {
-              r.status = Status::ok;
-              r.detail = {};
-              r.projection = projections[j];
-              for (int e = 0; e < 4; ++e) {
-                r.projection(2, e) = lanes.row3[e][k];
-                r.far_corner(e) = lanes.q[e][k];
-              }
-              r.method = Method::closed_form;
-            } else {
-              r = apply(projections[j], planes[j], convention, method);
+      constexpr int W = detail::closed_form_lane_count<T>;
+      const detail::ConventionTable<T>& table = detail::convention_table<T>(convention);
+      detail::ClosedFormLanes<T, W> lanes;
+      for (; count - i >= std::size_t(W); i += W) {
+        detail::closed_form_block<T, W, true>(projections + i, planes + i, table, lanes);
+        for (int k = 0; k < W; ++k) {
+          const std::size_t j = i + std::size_t(k);
+          ObliqueResult<T>& r = results[j];
+          if (lanes.fast[k] != T(0)) {
+            r.status = Status::ok;
+            r.detail = {};
+            std::memcpy(r.projection.data(), projections[j].data(), sizeof(T) * 16);
+            for (int e = 0; e < 4; ++e) {
+              r.projection(2, e) = lanes.row3[e][k];
+              r.far_corner(e) = lanes.q[e][k];
             }
-          });
+            r.method = Method::closed_form;
+          } else {
+            r = apply(projections[j], planes[j], convention, method);
+          }
+        }
+      }
     }
   }
   for (; i < count; ++i) results[i] = apply(projections[i], planes[i], convention, method);

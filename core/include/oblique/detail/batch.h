@@ -48,7 +48,7 @@ OBLIQUE_ALWAYS_INLINE T lane_sign(T x) noexcept {
 }
 
 /// closed_form_lanes()'s answers for a block: fast[k] != 0 where request k is answered here
-/// (status ok, row 3 of M' row3[.][k], far corner q[.][k]); nothing else is meaningful. (fast is
+/// (status ok, row 3 of M' row3[.][k], far corner q[.][k] if asked for); nothing else is meaningful. (fast is
 /// a T, 1 or 0: a select between two integers under a mask from comparing doubles has no SSE2
 /// instruction, and would keep the loop from being packed.)
 template <class T, int W>
@@ -70,39 +70,47 @@ constexpr T lane_power_of_two(int k) noexcept {
 /// closed_form_ordinary() for the W requests m[k], c[k] in the convention of `table` (a
 /// ConventionTable<T>, with AcFirst = table.first == 0: M'_3 = a C - t M_4, else t M_4 - a C; a
 /// template parameter, as a subtraction in each arm of a branch, which may trap, would keep the
-/// compiler from packing the loop), without a branch: every lane computes every step, and fast[k] is set
-/// only where request k passes tests that imply each of apply()'s and closed_form_ordinary()'s
-/// tests on its way to status ok, so that the lane's row3 and q are that path's, bit for bit
-/// (the same operations, in the same order, on the same operands). The tests, which may refuse
-/// more than that path does (those requests go to it) but never less:
+/// compiler from packing the loop), without a branch: every lane computes every step, and
+/// fast[k] is set only where request k passes tests that imply each of apply()'s and
+/// closed_form_ordinary()'s tests on its way to status ok, so that the lane's row3 and q (q
+/// only with FarCorner) are that path's, bit for bit (the same operations, in the same order, on
+/// the same operands). The tests, which may refuse more than that path does (those requests go
+/// to it) but never less:
 ///
-/// - ordinary_input(): the nine entries outside the perspective shape compare equal to zero;
-///   A, D, H, K (M11, M22, M34, M43) are finite, normal and nonzero (also closed_form's
-///   singularity test), B, E, G zero or finite and normal; hi < lo 2^S, hi and lo the largest
-///   and the smallest nonzero |entry| of those seven, S = max_magnitude_spread<T>(), implies
-///   (floor log2 hi) - (floor log2 lo) <= S (a product overflowing to infinity only where lo >=
-///   2^(max_exponent - S), where the fields differ by less than S anyway); the plane's
-///   components zero or finite and normal, with C_w < 0 (the camera test).
+/// - ordinary_input(): the nine entries outside the perspective shape are zeros (their bits,
+///   sign cleared, or-ed together, are those of +0); the sum of the magnitudes of A, B, D, E, G,
+///   H, K (M11, M13, M22, M23, M33, M34, M43) and of C's components is at most the largest
+///   finite T (no NaN, no infinity); lo, the smallest of |A|, |D|, |H|, |K|, |C_w| and of the
+///   nonzero |B|, |E|, |G|, |C_x|, |C_y|, |C_z|, is normal (so A, D, H, K, C_w are nonzero: also
+///   closed_form's singularity test, and every nonzero entry is normal); hi < lo_m 2^S, hi and
+///   lo_m the largest and the smallest nonzero magnitude of the seven entries, S =
+///   max_magnitude_spread<T>(), implies (floor log2 hi) - (floor log2 lo_m) <= S (a product
+///   overflowing to infinity only where lo_m >= 2^(max_exponent - S), where the fields differ by
+///   less than S anyway); C_w < 0 (the camera test).
 /// - the plane's scaling by 2^-e (e = frexp exponent of max |C_i|, built from its bits):
 ///   max |C_i| < 2^(1 - min_exponent) gives a normal 2^-e, and max |C_i| < min nonzero |C_i|
 ///   2^-min_exponent the exponents' difference that keeps every scaled component normal.
 /// - Q finite, C . Q finite and positive, a = a_hat 2^-e finite and normal (so a C is
-///   the operand), row 3 finite.
+///   the operand), row 3 finite (each as a sum of magnitudes at most the largest finite T).
 /// - near_plane_kept_by_signs(): near_z and C_z not of opposite signs; with
 ///   K = (1 - min_exponent) / 3, |a C_w| >= 2^-K, |c_hat_w| >= 2^-K and the largest of the
 ///   near plane's |a C_x|, |a C_y|, |a C_w|, |near_z| below 2^K: all normal, and
 ///   L(a C_w) + L(C_w) - L(largest) - e - 2 = L(a C_w) + L(c_hat_w) - L(largest) - 2
 ///   >= (1 - K) + (1 - K) - K - 2 = -3K >= min_exponent - 1.
-template <class T, int W, bool AcFirst, class Table>
+///
+/// On those lanes A and C_w are nonzero and C_w < 0, so sgn A = copysign(1, A), and
+/// sgn C'_z = sgn C_w sgn H > 0 exactly when H < 0 (the corner's z is z_high, else z_low).
+template <class T, int W, bool AcFirst, bool FarCorner, class Table>
 OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const Matrix4<T>* m, const Vector4<T>* c,
                                              const Table& table, ClosedFormLanes<T, W>& out) {
   using Bits = typename ExponentBits<T>::Bits;
   using limits = std::numeric_limits<T>;
   constexpr int fraction_bits = ExponentBits<T>::fraction_bits;
   constexpr Bits exponent_mask = Bits(ExponentBits<T>::all_ones) << fraction_bits;
+  constexpr Bits magnitude_mask = ~Bits(0) >> 1;
   // The bits of 2^-e are (2 bias - 1 - f) << fraction_bits for the field f of max |C_i|.
   constexpr Bits factor_base = Bits(2 * ExponentBits<T>::bias - 1) << fraction_bits;
-  constexpr T lowest = limits::min(), highest = limits::max();
+  constexpr T lowest = limits::min(), highest = limits::max(), infinity = limits::infinity();
   constexpr T spread_factor = lane_power_of_two<T>(max_magnitude_spread<T>());
   constexpr T plane_high_limit = lane_power_of_two<T>(1 - limits::min_exponent);
   constexpr T plane_spread_factor = lane_power_of_two<T>(-limits::min_exponent);
@@ -118,14 +126,19 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const Matrix4<T>* m, const Vector4<
     A[k] = mk(0, 0), B[k] = mk(0, 2), D[k] = mk(1, 1), E[k] = mk(1, 2);
     G[k] = mk(2, 2), H[k] = mk(2, 3), K[k] = mk(3, 2);
     m30[k] = mk(3, 0), m31[k] = mk(3, 1), m33[k] = mk(3, 3);
-    // Zero exactly when the nine entries all are (a NaN, infinity or nonzero gives a nonzero
-    // sum: a sum of nonnegative numbers rounds to zero only when they are all zero).
-    outside[k] = std::abs(mk(0, 1)) + std::abs(mk(0, 3)) + std::abs(mk(1, 0)) +
-                 std::abs(mk(1, 3)) + std::abs(mk(2, 0)) + std::abs(mk(2, 1)) +
-                 std::abs(m30[k]) + std::abs(m31[k]) + std::abs(m33[k]);
+    const T nine[9] = {mk(0, 1), mk(0, 3), mk(1, 0), mk(1, 3), mk(2, 0),
+                       mk(2, 1), m30[k],   m31[k],   m33[k]};
+    Bits any = 0;
+    for (const T x : nine) {
+      Bits bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      any |= bits;
+    }
+    any &= magnitude_mask;
+    std::memcpy(&outside[k], &any, sizeof any);
     cx[k] = c[k].x(), cy[k] = c[k].y(), cz[k] = c[k].z(), cw[k] = c[k].w();
   }
-  const T z_low = table.corner_z[0], z_middle = table.corner_z[1], z_high = table.corner_z[2];
+  const T z_low = table.corner_z[0], z_high = table.corner_z[2];
   const T depth_span = table.depth_span, s = table.s, t = table.t;
   for (int k = 0; k < W; ++k) {
     const T a_abs = std::abs(A[k]), b_abs = std::abs(B[k]), d_abs = std::abs(D[k]),
@@ -133,30 +146,23 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const Matrix4<T>* m, const Vector4<
             k_abs = std::abs(K[k]);
     const T x_abs = std::abs(cx[k]), y_abs = std::abs(cy[k]), z_abs = std::abs(cz[k]),
             w_abs = std::abs(cw[k]);
-    // Finite, normal and nonzero; zero or that.
-    bool ok = (a_abs >= lowest) & (a_abs <= highest) & (d_abs >= lowest) & (d_abs <= highest) &
-              (h_abs >= lowest) & (h_abs <= highest) & (k_abs >= lowest) & (k_abs <= highest);
-    ok &= ((b_abs >= lowest) & (b_abs <= highest)) | (B[k] == T(0));
-    ok &= ((e_abs >= lowest) & (e_abs <= highest)) | (E[k] == T(0));
-    ok &= ((g_abs >= lowest) & (g_abs <= highest)) | (G[k] == T(0));
-    ok &= outside[k] == T(0);
-    const T infinity = limits::infinity();
+    const T total = ((a_abs + b_abs) + (d_abs + e_abs)) + ((g_abs + h_abs) + k_abs) +
+                    ((x_abs + y_abs) + (z_abs + w_abs));
+    const T b_nonzero = b_abs == T(0) ? infinity : b_abs;
+    const T e_nonzero = e_abs == T(0) ? infinity : e_abs;
+    const T g_nonzero = g_abs == T(0) ? infinity : g_abs;
+    const T x_nonzero = x_abs == T(0) ? infinity : x_abs;
+    const T y_nonzero = y_abs == T(0) ? infinity : y_abs;
+    const T z_nonzero = z_abs == T(0) ? infinity : z_abs;
     const T hi = std::max(std::max(std::max(a_abs, d_abs), std::max(h_abs, k_abs)),
                           std::max(std::max(b_abs, e_abs), g_abs));
-    const T lo = std::min(
-        std::min(std::min(a_abs, d_abs), std::min(h_abs, k_abs)),
-        std::min(std::min(B[k] == T(0) ? infinity : b_abs, E[k] == T(0) ? infinity : e_abs),
-                 G[k] == T(0) ? infinity : g_abs));
-    ok &= hi < lo * spread_factor;
-    ok &= ((x_abs >= lowest) & (x_abs <= highest)) | (cx[k] == T(0));
-    ok &= ((y_abs >= lowest) & (y_abs <= highest)) | (cy[k] == T(0));
-    ok &= ((z_abs >= lowest) & (z_abs <= highest)) | (cz[k] == T(0));
-    ok &= (cw[k] < T(0)) & (w_abs >= lowest) & (w_abs <= highest);
+    const T lo = std::min(std::min(std::min(a_abs, d_abs), std::min(h_abs, k_abs)),
+                          std::min(std::min(b_nonzero, e_nonzero), g_nonzero));
     const T plane_high = std::max(std::max(x_abs, y_abs), std::max(z_abs, w_abs));
-    const T plane_low =
-        std::min(std::min(cx[k] == T(0) ? infinity : x_abs, cy[k] == T(0) ? infinity : y_abs),
-                 std::min(cz[k] == T(0) ? infinity : z_abs, w_abs));
-    ok &= (plane_high < plane_high_limit) & (plane_high < plane_low * plane_spread_factor);
+    const T plane_low = std::min(std::min(x_nonzero, y_nonzero), std::min(z_nonzero, w_abs));
+    bool ok = (outside[k] == T(0)) & (total <= highest) & (std::min(lo, plane_low) >= lowest) &
+              (hi < lo * spread_factor) & (cw[k] < T(0)) & (plane_high < plane_high_limit) &
+              (plane_high < plane_low * plane_spread_factor);
     Bits high_bits;
     std::memcpy(&high_bits, &plane_high, sizeof high_bits);
     const Bits factor_bits = factor_base - (high_bits & exponent_mask);
@@ -164,19 +170,14 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const Matrix4<T>* m, const Vector4<
     std::memcpy(&factor, &factor_bits, sizeof factor);
     // closed_form_ordinary() from here, step for step.
     const T c_hat[4] = {cx[k] * factor, cy[k] * factor, cz[k] * factor, cw[k] * factor};
-    const T sign_z = lane_sign(cw[k]) * lane_sign(H[k]);
-    const bool z_positive = sign_z > T(0), z_negative = sign_z < T(0);
-    const T corner_z = z_positive ? z_high : (z_negative ? z_low : z_middle);
-    const T q[4] = {(lane_sign(cx[k]) * lane_sign(A[k]) - B[k] / K[k]) / A[k],
-                    (lane_sign(cy[k]) * lane_sign(D[k]) - E[k] / K[k]) / D[k], T(1) / K[k],
-                    (corner_z - G[k] / K[k]) / H[k]};
-    ok &= (std::abs(q[0]) <= highest) & (std::abs(q[1]) <= highest) &
-          (std::abs(q[2]) <= highest) & (std::abs(q[3]) <= highest);
+    const T corner_z = H[k] < T(0) ? z_high : z_low;
+    const T q[4] = {(lane_sign(cx[k]) * std::copysign(T(1), A[k]) - B[k] / K[k]) / A[k],
+                    (lane_sign(cy[k]) * std::copysign(T(1), D[k]) - E[k] / K[k]) / D[k],
+                    T(1) / K[k], (corner_z - G[k] / K[k]) / H[k]};
+    const T q_total = (std::abs(q[0]) + std::abs(q[1])) + (std::abs(q[2]) + std::abs(q[3]));
     const T d = (c_hat[0] * q[0] + c_hat[2] * q[2]) + (c_hat[1] * q[1] + c_hat[3] * q[3]);
-    ok &= (d > T(0)) & (d <= highest);
     const T a_hat = depth_span / d;
     const T a = a_hat * factor;
-    ok &= (std::abs(a) >= lowest) & (std::abs(a) <= highest);
     const T ac[4] = {a * cx[k], a * cy[k], a * cz[k], a * cw[k]};
     const T t_m4[4] = {t * m30[k], t * m31[k], t * K[k], t * m33[k]};
     T row3[4];
@@ -186,42 +187,34 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const Matrix4<T>* m, const Vector4<
       } else {
         row3[i] = t_m4[i] - ac[i];
       }
-      ok &= std::abs(row3[i]) <= highest;
     }
+    const T row3_total =
+        (std::abs(row3[0]) + std::abs(row3[1])) + (std::abs(row3[2]) + std::abs(row3[3]));
     const T near_z = s * row3[2] + t_m4[2];
-    ok &= !(((near_z < T(0)) & (cz[k] > T(0))) | ((near_z > T(0)) & (cz[k] < T(0))));
     const T largest = std::max(std::max(std::abs(ac[0]), std::abs(ac[1])),
                                std::max(std::abs(ac[3]), std::abs(near_z)));
-    ok &= (largest < sign_test_high) & (std::abs(ac[3]) >= sign_test_low) &
+    ok &= (q_total <= highest) & (d > T(0)) & (d <= highest) & (std::abs(a) >= lowest) &
+          (std::abs(a) <= highest) & (row3_total <= highest) &
+          !((std::min(near_z, cz[k]) < T(0)) & (std::max(near_z, cz[k]) > T(0))) &
+          (largest < sign_test_high) & (std::abs(ac[3]) >= sign_test_low) &
           (std::abs(c_hat[3]) >= sign_test_low);
     for (int i = 0; i < 4; ++i) {
       out.row3[i][k] = row3[i];
-      out.q[i][k] = q[i];
+      if constexpr (FarCorner) out.q[i][k] = q[i];
     }
     out.fast[k] = ok ? T(1) : T(0);
   }
 }
 
-/// The requests [0, count - count % W) in blocks of W through closed_form_lanes(), W =
-/// closed_form_lane_count<T>: answer(i, lanes, k) for request i, lane k of its block's `lanes`,
-/// after the whole block is read (so an answer may overwrite its own request). Returns the
-/// number of requests answered.
-template <class T, class Table, class Answer>
-std::size_t closed_form_blocks(const Matrix4<T>* m, const Vector4<T>* c, std::size_t count,
-                               const Table& table, Answer&& answer) {
-  constexpr int W = closed_form_lane_count<T>;
-  ClosedFormLanes<T, W> lanes;
-  std::size_t i = 0;
-  const bool ac_first = table.first == 0;
-  for (; count - i >= std::size_t(W); i += W) {
-    if (ac_first) {
-      closed_form_lanes<T, W, true>(m + i, c + i, table, lanes);
-    } else {
-      closed_form_lanes<T, W, false>(m + i, c + i, table, lanes);
-    }
-    for (int k = 0; k < W; ++k) answer(i + std::size_t(k), lanes, k);
+/// closed_form_lanes() for the convention of `table`.
+template <class T, int W, bool FarCorner, class Table>
+OBLIQUE_ALWAYS_INLINE void closed_form_block(const Matrix4<T>* m, const Vector4<T>* c,
+                                             const Table& table, ClosedFormLanes<T, W>& out) {
+  if (table.first == 0) {
+    closed_form_lanes<T, W, true, FarCorner>(m, c, table, out);
+  } else {
+    closed_form_lanes<T, W, false, FarCorner>(m, c, table, out);
   }
-  return i;
 }
 
 }  // namespace oblique::detail
