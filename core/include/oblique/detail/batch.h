@@ -67,7 +67,16 @@ constexpr T lane_power_of_two(int k) noexcept {
   return x;
 }
 
-/// closed_form_ordinary() for the W requests m[k], c[k] in the convention of `table` (a
+/// A block's entries, one array each (closed_form_lanes() reads them): A..K the perspective
+/// shape's entries M11, M13, M22, M23, M33, M34, M43, m3j = M4j, outside the bits of the nine
+/// entries outside the shape or-ed together, sign cleared, as a T; cx..cw the plane.
+template <class T, int W>
+struct LaneInputs {
+  T A[W], B[W], D[W], E[W], G[W], H[W], K[W], m30[W], m31[W], m33[W], outside[W];
+  T cx[W], cy[W], cz[W], cw[W];
+};
+
+/// closed_form_ordinary() for the W requests of `in` in the convention of `table` (a
 /// ConventionTable<T>, with AcFirst = table.first == 0: M'_3 = a C - t M_4, else t M_4 - a C; a
 /// template parameter, as a subtraction in each arm of a branch, which may trap, would keep the
 /// compiler from packing the loop), without a branch: every lane computes every step, and
@@ -100,14 +109,18 @@ constexpr T lane_power_of_two(int k) noexcept {
 ///
 /// On those lanes A and C_w are nonzero and C_w < 0, so sgn A = copysign(1, A), and
 /// sgn C'_z = sgn C_w sgn H > 0 exactly when H < 0 (the corner's z is z_high, else z_low).
-template <class T, int W, bool AcFirst, bool FarCorner, class Table>
-OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const Matrix4<T>* m, const Vector4<T>* c,
-                                             const Table& table, ClosedFormLanes<T, W>& out) {
+/// KPowerOfTwo: every K of the block is +-2^n with 2^-n normal (gather_lanes()).
+template <class T, int W, bool AcFirst, bool KPowerOfTwo, bool FarCorner, class Table>
+OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const LaneInputs<T, W>& in, const Table& table,
+                                             ClosedFormLanes<T, W>& out) {
   using Bits = typename ExponentBits<T>::Bits;
   using limits = std::numeric_limits<T>;
   constexpr int fraction_bits = ExponentBits<T>::fraction_bits;
   constexpr Bits exponent_mask = Bits(ExponentBits<T>::all_ones) << fraction_bits;
   constexpr Bits magnitude_mask = ~Bits(0) >> 1;
+  constexpr Bits sign_mask = ~magnitude_mask;
+  // The bits of 2^-n are (2 bias - f) << fraction_bits for the field f of 2^n.
+  constexpr Bits inverse_base = Bits(2 * ExponentBits<T>::bias) << fraction_bits;
   // The bits of 2^-e are (2 bias - 1 - f) << fraction_bits for the field f of max |C_i|.
   constexpr Bits factor_base = Bits(2 * ExponentBits<T>::bias - 1) << fraction_bits;
   constexpr T lowest = limits::min(), highest = limits::max(), infinity = limits::infinity();
@@ -118,26 +131,10 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const Matrix4<T>* m, const Vector4<
   constexpr T sign_test_high = lane_power_of_two<T>(sign_test_exponent);
   constexpr T sign_test_low = lane_power_of_two<T>(-sign_test_exponent);
 
-  // The entries, one array each.
-  T A[W], B[W], D[W], E[W], G[W], H[W], K[W], m30[W], m31[W], m33[W], outside[W];
-  T cx[W], cy[W], cz[W], cw[W];
-  for (int k = 0; k < W; ++k) {
-    const Matrix4<T>& mk = m[k];
-    A[k] = mk(0, 0), B[k] = mk(0, 2), D[k] = mk(1, 1), E[k] = mk(1, 2);
-    G[k] = mk(2, 2), H[k] = mk(2, 3), K[k] = mk(3, 2);
-    m30[k] = mk(3, 0), m31[k] = mk(3, 1), m33[k] = mk(3, 3);
-    const T nine[9] = {mk(0, 1), mk(0, 3), mk(1, 0), mk(1, 3), mk(2, 0),
-                       mk(2, 1), m30[k],   m31[k],   m33[k]};
-    Bits any = 0;
-    for (const T x : nine) {
-      Bits bits;
-      std::memcpy(&bits, &x, sizeof bits);
-      any |= bits;
-    }
-    any &= magnitude_mask;
-    std::memcpy(&outside[k], &any, sizeof any);
-    cx[k] = c[k].x(), cy[k] = c[k].y(), cz[k] = c[k].z(), cw[k] = c[k].w();
-  }
+  const T *const A = in.A, *const B = in.B, *const D = in.D, *const E = in.E, *const G = in.G,
+                *const H = in.H, *const K = in.K, *const m30 = in.m30, *const m31 = in.m31,
+                *const m33 = in.m33, *const outside = in.outside, *const cx = in.cx,
+                *const cy = in.cy, *const cz = in.cz, *const cw = in.cw;
   const T z_low = table.corner_z[0], z_high = table.corner_z[2];
   const T depth_span = table.depth_span, s = table.s, t = table.t;
   for (int k = 0; k < W; ++k) {
@@ -171,9 +168,23 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const Matrix4<T>* m, const Vector4<
     // closed_form_ordinary() from here, step for step.
     const T c_hat[4] = {cx[k] * factor, cy[k] * factor, cz[k] * factor, cw[k] * factor};
     const T corner_z = H[k] < T(0) ? z_high : z_low;
-    const T q[4] = {(lane_sign(cx[k]) * std::copysign(T(1), A[k]) - B[k] / K[k]) / A[k],
-                    (lane_sign(cy[k]) * std::copysign(T(1), D[k]) - E[k] / K[k]) / D[k],
-                    T(1) / K[k], (corner_z - G[k] / K[k]) / H[k]};
+    // B / K, E / K, G / K and 1 / K; for K = +-2^n (with 2^-n normal: KPowerOfTwo), 1 / K is
+    // +-2^-n exactly, built from K's bits, and x / K and x (1 / K) are the same exact number
+    // rounded once, so the same T: three divisions of eight fewer.
+    T b_k, e_k, g_k, k_inverse;
+    if constexpr (KPowerOfTwo) {
+      Bits k_bits;
+      std::memcpy(&k_bits, &K[k], sizeof k_bits);
+      const Bits inverse_bits = (k_bits & sign_mask) | (inverse_base - (k_bits & exponent_mask));
+      std::memcpy(&k_inverse, &inverse_bits, sizeof k_inverse);
+      b_k = B[k] * k_inverse, e_k = E[k] * k_inverse, g_k = G[k] * k_inverse;
+    } else {
+      k_inverse = T(1) / K[k];
+      b_k = B[k] / K[k], e_k = E[k] / K[k], g_k = G[k] / K[k];
+    }
+    const T q[4] = {(lane_sign(cx[k]) * std::copysign(T(1), A[k]) - b_k) / A[k],
+                    (lane_sign(cy[k]) * std::copysign(T(1), D[k]) - e_k) / D[k], k_inverse,
+                    (corner_z - g_k) / H[k]};
     const T q_total = (std::abs(q[0]) + std::abs(q[1])) + (std::abs(q[2]) + std::abs(q[3]));
     const T d = (c_hat[0] * q[0] + c_hat[2] * q[2]) + (c_hat[1] * q[1] + c_hat[3] * q[3]);
     const T a_hat = depth_span / d;
@@ -206,14 +217,65 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const Matrix4<T>* m, const Vector4<
   }
 }
 
-/// closed_form_lanes() for the convention of `table`.
+/// A block's entries from its requests, and whether every K is +-2^n with 2^-n normal
+/// (its fraction bits zero, |K| normal and at most 2^(max_exponent - 2)).
+template <class T, int W>
+OBLIQUE_ALWAYS_INLINE bool gather_lanes(const Matrix4<T>* m, const Vector4<T>* c,
+                                        LaneInputs<T, W>& in) {
+  using Bits = typename ExponentBits<T>::Bits;
+  constexpr Bits magnitude_mask = ~Bits(0) >> 1;
+  constexpr Bits fraction_mask = (Bits(1) << ExponentBits<T>::fraction_bits) - 1;
+  constexpr T k_high = lane_power_of_two<T>(std::numeric_limits<T>::max_exponent - 2);
+  T *const A = in.A, *const B = in.B, *const D = in.D, *const E = in.E, *const G = in.G,
+           *const H = in.H, *const K = in.K, *const m30 = in.m30, *const m31 = in.m31,
+           *const m33 = in.m33, *const outside = in.outside, *const cx = in.cx, *const cy = in.cy,
+           *const cz = in.cz, *const cw = in.cw;
+  for (int k = 0; k < W; ++k) {
+    const Matrix4<T>& mk = m[k];
+    A[k] = mk(0, 0), B[k] = mk(0, 2), D[k] = mk(1, 1), E[k] = mk(1, 2);
+    G[k] = mk(2, 2), H[k] = mk(2, 3), K[k] = mk(3, 2);
+    m30[k] = mk(3, 0), m31[k] = mk(3, 1), m33[k] = mk(3, 3);
+    const T nine[9] = {mk(0, 1), mk(0, 3), mk(1, 0), mk(1, 3), mk(2, 0),
+                       mk(2, 1), m30[k],   m31[k],   m33[k]};
+    Bits any = 0;
+    for (const T x : nine) {
+      Bits bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      any |= bits;
+    }
+    any &= magnitude_mask;
+    std::memcpy(&outside[k], &any, sizeof any);
+    cx[k] = c[k].x(), cy[k] = c[k].y(), cz[k] = c[k].z(), cw[k] = c[k].w();
+  }
+  Bits k_fraction = 0;
+  bool k_in_range = true;
+  for (int k = 0; k < W; ++k) {
+    Bits bits;
+    std::memcpy(&bits, &K[k], sizeof bits);
+    k_fraction |= bits & fraction_mask;
+    k_in_range &= (std::abs(K[k]) >= std::numeric_limits<T>::min()) & (std::abs(K[k]) <= k_high);
+  }
+  return k_fraction == 0 && k_in_range;
+}
+
+/// closed_form_lanes() for the W requests m[k], c[k] in the convention of `table`.
 template <class T, int W, bool FarCorner, class Table>
 OBLIQUE_ALWAYS_INLINE void closed_form_block(const Matrix4<T>* m, const Vector4<T>* c,
                                              const Table& table, ClosedFormLanes<T, W>& out) {
+  LaneInputs<T, W> in;
+  const bool k_power_of_two = gather_lanes<T, W>(m, c, in);
   if (table.first == 0) {
-    closed_form_lanes<T, W, true, FarCorner>(m, c, table, out);
+    if (k_power_of_two) {
+      closed_form_lanes<T, W, true, true, FarCorner>(in, table, out);
+    } else {
+      closed_form_lanes<T, W, true, false, FarCorner>(in, table, out);
+    }
   } else {
-    closed_form_lanes<T, W, false, FarCorner>(m, c, table, out);
+    if (k_power_of_two) {
+      closed_form_lanes<T, W, false, true, FarCorner>(in, table, out);
+    } else {
+      closed_form_lanes<T, W, false, false, FarCorner>(in, table, out);
+    }
   }
 }
 
