@@ -137,6 +137,10 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const LaneInputs<T, W>& in, const T
                 *const cy = in.cy, *const cz = in.cz, *const cw = in.cw;
   const T z_low = table.corner_z[0], z_high = table.corner_z[2];
   const T depth_span = table.depth_span, s = table.s, t = table.t;
+  // Three loops over the block, each packed by the compiler: the tests on the input and Q; then
+  // C . Q and a; then row 3 and the tests on it. (In one loop, a lane's chain of divisions,
+  // Q's and then a's, would hold back the lanes after it.)
+  T qs[4][W], c_hats[4][W], factors[W], as[W], oks[W];
   for (int k = 0; k < W; ++k) {
     const T a_abs = std::abs(A[k]), b_abs = std::abs(B[k]), d_abs = std::abs(D[k]),
             e_abs = std::abs(E[k]), g_abs = std::abs(G[k]), h_abs = std::abs(H[k]),
@@ -186,9 +190,25 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const LaneInputs<T, W>& in, const T
                     (lane_sign(cy[k]) * std::copysign(T(1), D[k]) - e_k) / D[k], k_inverse,
                     (corner_z - g_k) / H[k]};
     const T q_total = (std::abs(q[0]) + std::abs(q[1])) + (std::abs(q[2]) + std::abs(q[3]));
-    const T d = (c_hat[0] * q[0] + c_hat[2] * q[2]) + (c_hat[1] * q[1] + c_hat[3] * q[3]);
+    ok &= (q_total <= highest) & (std::abs(c_hat[3]) >= sign_test_low);
+    for (int i = 0; i < 4; ++i) {
+      qs[i][k] = q[i];
+      c_hats[i][k] = c_hat[i];
+    }
+    factors[k] = factor;
+    oks[k] = ok ? T(1) : T(0);
+  }
+  // C . Q and a, for every lane before any lane goes on (the divisions in flight together).
+  for (int k = 0; k < W; ++k) {
+    const T d = (c_hats[0][k] * qs[0][k] + c_hats[2][k] * qs[2][k]) +
+                (c_hats[1][k] * qs[1][k] + c_hats[3][k] * qs[3][k]);
     const T a_hat = depth_span / d;
-    const T a = a_hat * factor;
+    as[k] = a_hat * factors[k];
+    oks[k] = (oks[k] != T(0)) & (d > T(0)) & (d <= highest) ? T(1) : T(0);
+  }
+  for (int k = 0; k < W; ++k) {
+    const T a = as[k];
+    bool ok = oks[k] != T(0);
     const T ac[4] = {a * cx[k], a * cy[k], a * cz[k], a * cw[k]};
     const T t_m4[4] = {t * m30[k], t * m31[k], t * K[k], t * m33[k]};
     T row3[4];
@@ -204,14 +224,12 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const LaneInputs<T, W>& in, const T
     const T near_z = s * row3[2] + t_m4[2];
     const T largest = std::max(std::max(std::abs(ac[0]), std::abs(ac[1])),
                                std::max(std::abs(ac[3]), std::abs(near_z)));
-    ok &= (q_total <= highest) & (d > T(0)) & (d <= highest) & (std::abs(a) >= lowest) &
-          (std::abs(a) <= highest) & (row3_total <= highest) &
+    ok &= (std::abs(a) >= lowest) & (std::abs(a) <= highest) & (row3_total <= highest) &
           !((std::min(near_z, cz[k]) < T(0)) & (std::max(near_z, cz[k]) > T(0))) &
-          (largest < sign_test_high) & (std::abs(ac[3]) >= sign_test_low) &
-          (std::abs(c_hat[3]) >= sign_test_low);
+          (largest < sign_test_high) & (std::abs(ac[3]) >= sign_test_low);
     for (int i = 0; i < 4; ++i) {
       out.row3[i][k] = row3[i];
-      if constexpr (FarCorner) out.q[i][k] = q[i];
+      if constexpr (FarCorner) out.q[i][k] = qs[i][k];
     }
     out.fast[k] = ok ? T(1) : T(0);
   }
