@@ -116,8 +116,9 @@ void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::s
       constexpr int W = detail::closed_form_lane_count<T>;
       const detail::ConventionTable<T>& table = detail::convention_table<T>(convention);
       detail::ClosedFormLanes<T, W> lanes;
+      const bool avx2 = detail::closed_form_block_avx2_supported();
       for (; count - i >= std::size_t(W); i += W) {
-        detail::closed_form_block<T, W, false>(projections + i, planes + i, table, lanes);
+        detail::closed_form_block_on<T, W, false>(avx2, projections + i, planes + i, table, lanes);
         for (int k = 0; k < W; ++k) {
           const std::size_t j = i + std::size_t(k);
           if (lanes.fast[k] != T(0)) {
@@ -148,8 +149,9 @@ void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::s
       constexpr int W = detail::closed_form_lane_count<T>;
       const detail::ConventionTable<T>& table = detail::convention_table<T>(convention);
       detail::ClosedFormLanes<T, W> lanes;
+      const bool avx2 = detail::closed_form_block_avx2_supported();
       for (; count - i >= std::size_t(W); i += W) {
-        detail::closed_form_block<T, W, true>(projections + i, planes + i, table, lanes);
+        detail::closed_form_block_on<T, W, true>(avx2, projections + i, planes + i, table, lanes);
         for (int k = 0; k < W; ++k) {
           const std::size_t j = i + std::size_t(k);
           ObliqueResult<T>& r = results[j];

@@ -29,7 +29,8 @@ namespace oblique::detail {
 template <class T>
 constexpr bool closed_form_lanes_available() noexcept {
 #if defined(EIGEN_VECTORIZE_SSE2) && !defined(EIGEN_DONT_VECTORIZE) && !defined(__FMA__)
-  return (std::is_same_v<T, float> || std::is_same_v<T, double>) && ExponentBits<T>::known;
+  constexpr bool ieee_float_or_double = std::is_same_v<T, float> || std::is_same_v<T, double>;
+  return ieee_float_or_double && ExponentBits<T>::known;
 #else
   return false;
 #endif
@@ -48,9 +49,9 @@ OBLIQUE_ALWAYS_INLINE T lane_sign(T x) noexcept {
 }
 
 /// closed_form_lanes()'s answers for a block: fast[k] != 0 where request k is answered here
-/// (status ok, row 3 of M' row3[.][k], far corner q[.][k] if asked for); nothing else is meaningful. (fast is
-/// a T, 1 or 0: a select between two integers under a mask from comparing doubles has no SSE2
-/// instruction, and would keep the loop from being packed.)
+/// (status ok, row 3 of M' row3[.][k], far corner q[.][k] if asked for); nothing else is
+/// meaningful. (fast is a T, 1 or 0: a select between two integers under a mask from comparing
+/// doubles has no SSE2 instruction, and would keep the loop from being packed.)
 template <class T, int W>
 struct ClosedFormLanes {
   T row3[4][W];
@@ -132,15 +133,15 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const LaneInputs<T, W>& in, const T
   constexpr T sign_test_low = lane_power_of_two<T>(-sign_test_exponent);
 
   const T *const A = in.A, *const B = in.B, *const D = in.D, *const E = in.E, *const G = in.G,
-                *const H = in.H, *const K = in.K, *const m30 = in.m30, *const m31 = in.m31,
-                *const m33 = in.m33, *const outside = in.outside, *const cx = in.cx,
-                *const cy = in.cy, *const cz = in.cz, *const cw = in.cw;
+                 *const H = in.H, *const K = in.K, *const m30 = in.m30, *const m31 = in.m31,
+                 *const m33 = in.m33, *const outside = in.outside, *const cx = in.cx,
+                 *const cy = in.cy, *const cz = in.cz, *const cw = in.cw;
   const T z_low = table.corner_z[0], z_high = table.corner_z[2];
   const T depth_span = table.depth_span, s = table.s, t = table.t;
-  // Three loops over the block, each packed by the compiler: the tests on the input and Q; then
-  // C . Q and a; then row 3 and the tests on it. (In one loop, a lane's chain of divisions,
-  // Q's and then a's, would hold back the lanes after it.)
-  T qs[4][W], c_hats[4][W], factors[W], as[W], oks[W];
+  // Two loops over the block, each packed by the compiler: the tests on the input and Q; then
+  // C . Q, a, row 3 and the tests on them. (In one loop, a lane's chain of divisions, Q's and
+  // then a's, would hold back the lanes after it.)
+  T qs[4][W], c_hats[4][W], factors[W], oks[W];
   for (int k = 0; k < W; ++k) {
     const T a_abs = std::abs(A[k]), b_abs = std::abs(B[k]), d_abs = std::abs(D[k]),
             e_abs = std::abs(E[k]), g_abs = std::abs(G[k]), h_abs = std::abs(H[k]),
@@ -198,17 +199,12 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const LaneInputs<T, W>& in, const T
     factors[k] = factor;
     oks[k] = ok ? T(1) : T(0);
   }
-  // C . Q and a, for every lane before any lane goes on (the divisions in flight together).
   for (int k = 0; k < W; ++k) {
     const T d = (c_hats[0][k] * qs[0][k] + c_hats[2][k] * qs[2][k]) +
                 (c_hats[1][k] * qs[1][k] + c_hats[3][k] * qs[3][k]);
     const T a_hat = depth_span / d;
-    as[k] = a_hat * factors[k];
-    oks[k] = (oks[k] != T(0)) & (d > T(0)) & (d <= highest) ? T(1) : T(0);
-  }
-  for (int k = 0; k < W; ++k) {
-    const T a = as[k];
-    bool ok = oks[k] != T(0);
+    const T a = a_hat * factors[k];
+    bool ok = (oks[k] != T(0)) & (d > T(0)) & (d <= highest);
     const T ac[4] = {a * cx[k], a * cy[k], a * cz[k], a * cw[k]};
     const T t_m4[4] = {t * m30[k], t * m31[k], t * K[k], t * m33[k]};
     T row3[4];
@@ -295,6 +291,44 @@ OBLIQUE_ALWAYS_INLINE void closed_form_block(const Matrix4<T>* m, const Vector4<
       closed_form_lanes<T, W, false, false, FarCorner>(in, table, out);
     }
   }
+}
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__)) && !defined(__AVX2__)
+/// closed_form_block() built for AVX2 beside the baseline build (GCC and Clang on x86 without
+/// AVX2 at baseline): four doubles or eight floats to an instruction, the same operations and
+/// so the same roundings (AVX2 brings no fused multiply-add). apply_batch() runs it where the
+/// processor has AVX2 (closed_form_block_avx2_supported()).
+#define OBLIQUE_BATCH_AVX2 1
+template <class T, int W, bool FarCorner, class Table>
+__attribute__((target("avx2"))) void closed_form_block_avx2(const Matrix4<T>* m,
+                                                            const Vector4<T>* c, const Table& table,
+                                                            ClosedFormLanes<T, W>& out) {
+  closed_form_block<T, W, FarCorner>(m, c, table, out);
+}
+
+inline bool closed_form_block_avx2_supported() noexcept {
+  static const bool supported = __builtin_cpu_supports("avx2");
+  return supported;
+}
+#else
+inline bool closed_form_block_avx2_supported() noexcept {
+  return false;
+}
+#endif
+
+/// closed_form_block(), built for AVX2 where `avx2` (closed_form_block_avx2_supported()).
+template <class T, int W, bool FarCorner, class Table>
+OBLIQUE_ALWAYS_INLINE void closed_form_block_on(bool avx2, const Matrix4<T>* m, const Vector4<T>* c,
+                                                const Table& table, ClosedFormLanes<T, W>& out) {
+#ifdef OBLIQUE_BATCH_AVX2
+  if (avx2) {
+    closed_form_block_avx2<T, W, FarCorner>(m, c, table, out);
+    return;
+  }
+#else
+  (void)avx2;
+#endif
+  closed_form_block<T, W, FarCorner>(m, c, table, out);
 }
 
 }  // namespace oblique::detail
