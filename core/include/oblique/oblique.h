@@ -11,6 +11,7 @@
 #include "oblique/accurate/accurate.h"
 #include "oblique/accurate/ordinary.h"
 #include "oblique/depth_convention.h"
+#include "oblique/detail/batch.h"
 #include "oblique/detail/finish.h"
 #include "oblique/detail/input_checks.h"
 #include "oblique/equilibrated_solver.h"
@@ -40,6 +41,39 @@ ObliqueResult<T> apply_checked(const Matrix4<T>& projection, const Vector4<T>& p
 template <class T, class CornerRule = TrustedCornerSigns>
 ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
                          const CornerRule& rule = CornerRule{});
+template <class T>
+struct ConventionTable;
+template <class T>
+const ConventionTable<T>& convention_table(Convention convention);
+
+/// apply_batch()'s answer to request i, one request at a time.
+template <class T>
+OBLIQUE_ALWAYS_INLINE void batch_answer(const Matrix4<T>& m, const Vector4<T>& plane,
+                                        Convention convention, Method method, Matrix4<T>& out,
+                                        Status& status) {
+  const detail::OrdinaryInput input = detail::ordinary_input(m, plane);
+  detail::ClosedFormAnswer<T> answer;
+  if (input.ordinary && (method == Method::automatic || method == Method::closed_form) &&
+      detail::closed_form_ordinary(m, plane, convention, input, answer)) {
+    if (&out != &m) out = m;
+    if (answer.status == Status::ok) {
+      for (int j = 0; j < 4; ++j) out(2, j) = answer.row3(j);
+    }
+    status = answer.status;
+  } else {
+    const ObliqueResult<T> r = detail::apply_checked(m, plane, convention, method, input.ordinary);
+    out = r.projection;
+    status = r.status;
+  }
+}
+
+/// batch_answer() kept out of its caller: the requests a block of closed_form_lanes() leaves.
+template <class T>
+OBLIQUE_NOINLINE void batch_answer_apart(const Matrix4<T>& m, const Vector4<T>& plane,
+                                         Convention convention, Method method, Matrix4<T>& out,
+                                         Status& status) {
+  batch_answer(m, plane, convention, method, out, status);
+}
 
 }  // namespace detail
 
@@ -79,26 +113,35 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
 template <class T>
 void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::size_t count,
                  Convention convention, Method method, Matrix4<T>* out, Status* statuses) {
-  const bool closed_form = method == Method::automatic || method == Method::closed_form;
-  for (std::size_t i = 0; i < count; ++i) {
-    const Matrix4<T>& m = projections[i];
-    const Vector4<T>& plane = planes[i];
-    const detail::OrdinaryInput input = detail::ordinary_input(m, plane);
-    detail::ClosedFormAnswer<T> answer;
-    if (input.ordinary && closed_form &&
-        detail::closed_form_ordinary(m, plane, convention, input, answer)) {
-      if (&out[i] != &m) out[i] = m;
-      if (answer.status == Status::ok) {
-        for (int j = 0; j < 4; ++j) out[i](2, j) = answer.row3(j);
+  std::size_t i = 0;
+  if constexpr (detail::closed_form_lanes_available<T>()) {
+    // Blocks of W closed-form requests through detail::closed_form_lanes() (detail/batch.h),
+    // each block read before it is answered; the requests it does not answer, and the last
+    // count % W, one by one.
+    if (method == Method::automatic || method == Method::closed_form) {
+      constexpr int W = detail::closed_form_lane_count<T>;
+      const detail::ConventionTable<T>& table = detail::convention_table<T>(convention);
+      detail::ClosedFormLanes<T, W> lanes;
+      const bool avx2 = detail::closed_form_block_avx2_supported();
+      for (; count - i >= std::size_t(W); i += W) {
+        detail::closed_form_block_on<T, W, false>(avx2, projections + i, planes + i, table, lanes);
+        for (int k = 0; k < W; ++k) {
+          const std::size_t j = i + std::size_t(k);
+          if (lanes.fast[k] != T(0)) {
+            if (&out[j] != &projections[j])
+              std::memcpy(out[j].data(), projections[j].data(), sizeof(T) * 16);
+            for (int e = 0; e < 4; ++e) out[j](2, e) = lanes.row3[e][k];
+            statuses[j] = Status::ok;
+          } else {
+            detail::batch_answer_apart(projections[j], planes[j], convention, method, out[j],
+                                       statuses[j]);
+          }
+        }
       }
-      statuses[i] = answer.status;
-    } else {
-      const ObliqueResult<T> r =
-          detail::apply_checked(m, plane, convention, method, input.ordinary);
-      out[i] = r.projection;
-      statuses[i] = r.status;
     }
   }
+  for (; i < count; ++i)
+    detail::batch_answer(projections[i], planes[i], convention, method, out[i], statuses[i]);
 }
 
 /// apply() over `count` requests in one convention: results[i] = apply(projections[i], planes[i],
@@ -106,8 +149,35 @@ void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::s
 template <class T>
 void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::size_t count,
                  Convention convention, Method method, ObliqueResult<T>* results) {
-  for (std::size_t i = 0; i < count; ++i)
-    results[i] = apply(projections[i], planes[i], convention, method);
+  std::size_t i = 0;
+  if constexpr (detail::closed_form_lanes_available<T>()) {
+    if (method == Method::automatic || method == Method::closed_form) {
+      constexpr int W = detail::closed_form_lane_count<T>;
+      const detail::ConventionTable<T>& table = detail::convention_table<T>(convention);
+      detail::ClosedFormLanes<T, W> lanes;
+      const bool avx2 = detail::closed_form_block_avx2_supported();
+      for (; count - i >= std::size_t(W); i += W) {
+        detail::closed_form_block_on<T, W, true>(avx2, projections + i, planes + i, table, lanes);
+        for (int k = 0; k < W; ++k) {
+          const std::size_t j = i + std::size_t(k);
+          ObliqueResult<T>& r = results[j];
+          if (lanes.fast[k] != T(0)) {
+            r.status = Status::ok;
+            r.detail = {};
+            std::memcpy(r.projection.data(), projections[j].data(), sizeof(T) * 16);
+            for (int e = 0; e < 4; ++e) {
+              r.projection(2, e) = lanes.row3[e][k];
+              r.far_corner(e) = lanes.q[e][k];
+            }
+            r.method = Method::closed_form;
+          } else {
+            r = apply(projections[j], planes[j], convention, method);
+          }
+        }
+      }
+    }
+  }
+  for (; i < count; ++i) results[i] = apply(projections[i], planes[i], convention, method);
 }
 
 namespace detail {
