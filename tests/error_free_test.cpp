@@ -235,6 +235,34 @@ std::vector<std::pair<T, T>> edge_summands() {
           {T(3), std::ldexp(T(1), -2 * p)}};
 }
 
+#if defined(OBLIQUE_CONTRACTED_BUILD)
+// error_free_contracted_test: this file compiled with -mfma -ffp-contract=fast (tests/
+// CMakeLists.txt), as a user's -march=native build may compile the core. Its arithmetic runs FMA
+// instructions, so on a processor without them every test skips, and says so.
+class ProcessorHasFma : public ::testing::Environment {
+ public:
+  void SetUp() override {
+    if (!__builtin_cpu_supports("fma")) {
+      GTEST_SKIP() << "the processor has no FMA: the contracted build cannot run here";
+    }
+  }
+};
+::testing::Environment* const kProcessorHasFma =
+    ::testing::AddGlobalTestEnvironment(new ProcessorHasFma);
+
+/// a b + c as written, in a function of its own.
+__attribute__((noinline)) double product_plus(double a, double b, double c) {
+  return a * b + c;
+}
+
+// The other tests only mean something if this build does contract: (1 + 2^-30)(1 - 2^-30) - 1
+// is -2^-60 fused, and 0 when the product is rounded first.
+TEST(ContractedBuild, theCompilerFusesAProductAndASumIntoAnFma) {
+  volatile double a = 1 + std::ldexp(1.0, -30), b = 1 - std::ldexp(1.0, -30), c = -1;
+  EXPECT_EQ(product_plus(a, b, c), -std::ldexp(1.0, -60));
+}
+#endif
+
 template <class T>
 class ErrorFree : public ::testing::Test {};
 using Scalars = ::testing::Types<float, double, long double>;

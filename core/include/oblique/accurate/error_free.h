@@ -43,13 +43,37 @@ constexpr T power_of_two(int e) noexcept {
   return x;
 }
 
+/// x, as a value the compiler cannot see into: a product passed through it is rounded on its own
+/// and never contracted with a later addition or subtraction into an FMA (-ffp-contract=fast,
+/// GCC's default in gnu++ modes, wherever the target has one: -march=native, -mfma, AArch64, a
+/// target("fma") function). No instruction on x86-64 and AArch64 (the value stays in its
+/// register); x87's long double has no FMA to contract into; other targets go through memory.
+template <class T>
+OBLIQUE_EFT_INLINE T rounded(T x) noexcept {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__aarch64__))
+  if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>) {
+#if defined(__x86_64__)
+    __asm__("" : "+x"(x));
+#else
+    __asm__("" : "+w"(x));
+#endif
+  }
+#elif defined(__GNUC__)
+  __asm__("" : "+m"(x));
+#endif
+  return x;
+}
+
 /// hi + lo = a with hi holding the upper half of a's significand (Veltkamp's split), for
-/// |a| < 2^(max_exponent - p/2 - 1) (beyond, (2^(p/2) + 1) a overflows).
+/// |a| < 2^(max_exponent - p/2 - 1) (beyond, (2^(p/2) + 1) a overflows). The product c must be
+/// rounded by itself: contracted into c - a and c - (c - a), as GCC does with -ffp-contract=fast
+/// and an FMA, the split returns {a, 0}, and Dekker's product is then exact only by the accident
+/// of its own first product being fused too; hence rounded().
 template <class T>
 OBLIQUE_EFT_INLINE Pair<T> split(T a) noexcept {
   constexpr int half = (std::numeric_limits<T>::digits + 1) / 2;
   constexpr T factor = power_of_two<T>(half) + T(1);
-  const T c = factor * a;
+  const T c = rounded(factor * a);
   const T hi = c - (c - a);
   return {hi, a - hi};
 }
