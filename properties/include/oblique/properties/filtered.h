@@ -48,19 +48,19 @@ using certified::Undecided;
 template <class T>
 struct Constants {
   int p = tolerance::precision_bits<T>();
-  Num underflow_unit;  ///< denorm_min / 2 (for double and long double: an interval above 0)
   Num entry_gamma, scale_gamma;
   Num unit_roundoff;
 
   Constants() {
-    if constexpr (std::is_same_v<T, float>) {
-      underflow_unit = certified::constant(std::ldexp(1.0, -150));
-    } else {
-      underflow_unit = certified::between_zero_and(std::numeric_limits<double>::denorm_min());
-    }
     unit_roundoff = certified::constant(std::ldexp(1.0, -p));
     entry_gamma = gamma(tolerance::kEntryRoundings);
     scale_gamma = gamma(tolerance::kScaleRoundings);
+  }
+  /// The underflow unit (denorm_min / 2 of T: 2^-150, 2^-1075, 2^-16446) times 2^e, for a
+  /// quantity the filter holds scaled by 2^-e (an interval above 0 below double's range).
+  static Num underflow_unit(int e) {
+    return certified::power_of_two(std::numeric_limits<T>::min_exponent -
+                                   std::numeric_limits<T>::digits - 1 + e);
   }
   Num gamma(int n) const {
     const Num nu = certified::constant(n * std::ldexp(1.0, -p));
@@ -68,28 +68,24 @@ struct Constants {
   }
 };
 
-/// Whether x >= the largest finite T times `scale` (or the overflow threshold, the largest plus
-/// half an ulp), decided: beyond double's range (long double, and double's threshold) a finite
-/// interval is below it.
+/// Whether x 2^k >= the largest finite T (or the overflow threshold, the largest plus half an
+/// ulp), decided: L 2^-k = 2^top - 2^low, with L = 2^emax (1 - 2^-digits) or 2^emax (1 -
+/// 2^-(digits + 1)); beyond double's range a finite interval is below it.
 template <class T>
-bool at_least_largest(const Num& x, bool overflow_threshold) {
-  if constexpr (std::is_same_v<T, float>) {
-    const double largest = std::numeric_limits<float>::max();
-    const double threshold =
-        overflow_threshold ? largest + std::ldexp(1.0, std::numeric_limits<float>::max_exponent -
-                                                           std::numeric_limits<float>::digits - 1)
-                           : largest;
-    return certified::less_equal(certified::constant(threshold), x);
-  } else if constexpr (std::is_same_v<T, double>) {
-    if (!overflow_threshold)
-      return certified::less_equal(certified::constant(std::numeric_limits<double>::max()), x);
-    if (certified::upper(x) <= std::numeric_limits<double>::max()) return false;
-    throw Undecided{__LINE__};
-  } else {
-    (void)overflow_threshold;
-    if (std::isfinite(certified::upper(x))) return false;  // far below LDBL_MAX
+bool at_least_largest(const Num& x, bool overflow_threshold, int k) {
+  constexpr int digits = std::numeric_limits<T>::digits;
+  const int top = std::numeric_limits<T>::max_exponent - k;
+  const int low = top - digits - (overflow_threshold ? 1 : 0);
+  constexpr double dmax = std::numeric_limits<double>::max();  // 2^1024 - 2^971
+  if (top == 1024 && low >= 971)  // L 2^-k = DBL_MAX - (2^low - 2^971), a double
+    return certified::less_equal(
+        certified::constant(dmax) - (certified::power_of_two(low) - certified::power_of_two(971)),
+        x);
+  if (top >= 1024) {  // L 2^-k > DBL_MAX
+    if (certified::upper(x) <= dmax) return false;
     throw Undecided{__LINE__};
   }
+  return certified::less_equal(certified::power_of_two(top) - certified::power_of_two(low), x);
 }
 
 /// The integers behind M and C, and the determinants Cramer's rule needs, each computed once.
@@ -284,10 +280,16 @@ class FilteredProblem {
       return;
     }
     const bool too_spread = magnitude_spread(m_) > max_magnitude_spread<T>();
+    // M and C scaled by 2^-sm_ and 2^-sc_ (their largest entries in [1, 2)); see "Scaling" at
+    // the members.
+    sm_ = largest_exponent(m_);
+    sc_ = largest_exponent(c_);
     for (int i = 0; i < 4; ++i) {
-      cx_[i] = cert::exactly(c_(i));
-      for (int j = 0; j < 4; ++j) mx_[i][j] = cert::exactly(m_(i, j));
+      cx_[i] = cert::scaled(c_(i), -sc_);
+      for (int j = 0; j < 4; ++j) mx_[i][j] = cert::scaled(m_(i, j), -sm_);
     }
+    underflow_row_ = filtering::Constants<T>::underflow_unit(-sm_);
+    underflow_dot_ = filtering::Constants<T>::underflow_unit(sm_ - sc_);
     invertible_ = invert();
     if (!invertible_) {
       status_ = Status::singular_projection;
@@ -360,7 +362,12 @@ class FilteredProblem {
                      filtering::dot(filtering::magnitudes(c_clip_),
                                     filtering::mul(abs_m, filtering::mul(abs_inv, abs_q_clip))));
     const bool camera_behind = c_(3) < T(0);
-    d_positive_ = camera_behind && cert::positive(d_);
+    // The sign of C . Q = C' . Q' (exact from the integers where the interval holds 0).
+    if (camera_behind) {
+      const int d_sign = sign_or_exact(d_, [&] { return integers().dot_sign(q_clip2_); });
+      if (d_sign == 0) d_ = Num{};
+      d_positive_ = d_sign > 0;
+    }
     status_ = !camera_behind ? Status::camera_not_behind_plane
               : !d_positive_ ? Status::plane_misses_view_volume
                              : Status::ok;
@@ -389,7 +396,7 @@ class FilteredProblem {
     if (skeel_large) add(Status::singular_projection);
     if (!camera_behind) return;
     const Num d_error = constants_.scale_gamma * kappa_numerator_ +
-                        cert::constant(tolerance::kScaleRoundings) * constants_.underflow_unit;
+                        cert::constant(tolerance::kScaleRoundings) * underflow_dot_;
     const bool d_unresolved = cert::less_equal(cert::abs(d_), d_error);
     if (d_unresolved) {
       add(Status::plane_misses_view_volume);
@@ -401,17 +408,17 @@ class FilteredProblem {
     // candidate.
     const Num f256 = cert::constant(256);
     bool near_overflow = false;
-    auto big = [&](const Num& v) {
-      if (!near_overflow && filtering::at_least_largest<T>(cert::abs(v) * f256, false))
+    auto big = [&](const Num& v, int k) {
+      if (!near_overflow && filtering::at_least_largest<T>(cert::abs(v) * f256, false, k))
         near_overflow = true;
     };
-    for (const Num& v : q_) big(v);
+    for (const Num& v : q_) big(v, -sm_);
     if (d_positive_) {
-      for (const Num& v : row3_) big(v);
+      for (const Num& v : row3_) big(v, sm_);
     }
     for (int i = 0; i < 8; ++i) {
       if (!is_far_corner_candidate(i)) continue;
-      for (const Num& v : corners_[i]) big(v);
+      for (const Num& v : corners_[i]) big(v, -sm_);
     }
     if (near_overflow) add(Status::out_of_range);
     if (d_positive_) {
@@ -421,7 +428,7 @@ class FilteredProblem {
       for (int i = 0; i < 4; ++i) {
         noise = noise + (cert::constant(4) * constants_.unit_roundoff *
                              cert::abs(cert::constant(nr.m4) * mx_[3][i]) +
-                         cert::constant(4) * constants_.underflow_unit) *
+                         cert::constant(4) * underflow_row_) *
                             cert::abs(cx_[i]);
       }
       if (cert::less_equal(a * filtering::dot(cx_, cx_), noise)) add(Status::out_of_range);
@@ -429,9 +436,9 @@ class FilteredProblem {
     if (d_positive_ && !d_unresolved) {
       bool overflows = false;
       for (const Num& v : q_)
-        overflows = overflows || filtering::at_least_largest<T>(cert::abs(v), true);
+        overflows = overflows || filtering::at_least_largest<T>(cert::abs(v), true, -sm_);
       for (const Num& v : row3_)
-        overflows = overflows || filtering::at_least_largest<T>(cert::abs(v), true);
+        overflows = overflows || filtering::at_least_largest<T>(cert::abs(v), true, sm_);
       if (overflows)
         acceptable_.erase(std::remove(acceptable_.begin(), acceptable_.end(), Status::ok),
                           acceptable_.end());
@@ -476,11 +483,8 @@ class FilteredProblem {
 
   template <class Exact>
   static int sign_or_exact(const Num& x, Exact exact) {
-    try {
-      return certified::sign(x);
-    } catch (const filtering::Undecided&) {
-      return exact();
-    }
+    int s = 0;
+    return certified::sign_known(x, s) ? s : exact();
   }
 
   filtering::IntegerSigns<T>& integers() {
@@ -505,9 +509,8 @@ class FilteredProblem {
 
   /// scale_error(): empty when eps >= 1.
   std::optional<Num> scale_error() const {
-    const Num eps =
-        constants_.scale_gamma * (kappa_numerator_ / d_) +
-        certified::constant(tolerance::kScaleRoundings) * constants_.underflow_unit / d_;
+    const Num eps = constants_.scale_gamma * (kappa_numerator_ / d_) +
+                    certified::constant(tolerance::kScaleRoundings) * underflow_dot_ / d_;
     if (!certified::less(eps, certified::constant(1))) return std::nullopt;
     return eps / (certified::constant(1) - eps);
   }
@@ -535,7 +538,7 @@ class FilteredProblem {
     if (any_of_the_five) {
       std::array<NumVec, 4> r;
       for (int i = 0; i < 4; ++i) {
-        for (int j = 0; j < 4; ++j) r[i][j] = cert::exactly(result(i, j));
+        for (int j = 0; j < 4; ++j) r[i][j] = cert::scaled(result(i, j), -sm_);
       }
       const RowCombination nr = near_rows(convention_), fr = far_rows(convention_);
       const NumVec& m4 = mx_[3];
@@ -545,7 +548,7 @@ class FilteredProblem {
           filtering::combine(cert::constant(fr.m3), r[2], cert::constant(fr.m4), r[3]);
       const Num& g = constants_.entry_gamma;
       const Num t_near = cert::constant(std::abs(nr.m4));
-      const Num underflow = cert::constant(tolerance::kEntryRoundings) * constants_.underflow_unit;
+      const Num underflow = cert::constant(tolerance::kEntryRoundings) * underflow_row_;
       // 1. The interval test: every entry's lower bound on lambda below every upper bound, and
       //    every upper bound above 0 (there is one: C_w < 0).
       std::array<Num, 4> lows, highs;
@@ -682,7 +685,9 @@ class FilteredProblem {
       }
       if (!all_finite(after.near_plane)) throw filtering::Undecided{__LINE__};
       NumVec n;
-      for (int i = 0; i < 4; ++i) n[i] = cert::exactly(T(after.near_plane(i)));
+      // Only the sign of n . C counts: n scaled by its own power of two.
+      const int sn = largest_exponent(after.near_plane);
+      for (int i = 0; i < 4; ++i) n[i] = cert::scaled(T(after.near_plane(i)), -sn);
       if (!cert::positive(filtering::dot(n, cx_))) throw filtering::Undecided{__LINE__};
       holding("extracted_planes_match",
               "frustum_planes(M') has the side planes of M and a near plane n with n . C > 0", 0);
@@ -699,8 +704,8 @@ class FilteredProblem {
         for (int i = 0; i < 4; ++i) {
           const Num ac = cert::abs(a * cx_[i]);
           const Num bound = constants_.entry_gamma * (ac + cert::abs(mx_[3][i])) + ac * *scale +
-                            cert::constant(tolerance::kEntryRoundings) * constants_.underflow_unit;
-          const Num error = cert::abs(cert::exactly(result(2, i)) - row3_[i]);
+                            cert::constant(tolerance::kEntryRoundings) * underflow_row_;
+          const Num error = cert::abs(cert::scaled(result(2, i), -sm_) - row3_[i]);
           if (!cert::within(error, bound)) throw filtering::Undecided{__LINE__};
           if (cert::approx(bound) > 0)
             worst = std::max(worst, cert::approx(error) / cert::approx(bound));
@@ -721,15 +726,15 @@ class FilteredProblem {
       const double limit = std::nextafter(checks.max_ulps, std::numeric_limits<double>::infinity());
       double worst = 0;
       for (int j = 0; j < 4; ++j) {
-        const T rounded = rounding_of(row3_[j]);
+        const T rounded = rounding_of(row3_[j], sm_);
         if (result(2, j) == rounded) continue;  // 0 ulp
         constexpr int digits = std::numeric_limits<T>::digits;
         const int lowest = std::numeric_limits<T>::min_exponent - digits;
         const int quantum_exponent =
             rounded == T(0) ? lowest : std::max(std::ilogb(rounded) - digits + 1, lowest);
-        if (quantum_exponent < -1074) throw filtering::Undecided{__LINE__};
-        const Num quantum = cert::constant(std::ldexp(1.0, quantum_exponent));
-        const Num gap = cert::abs(cert::exactly(result(2, j)) - cert::exactly(rounded));
+        if (quantum_exponent - sm_ < -1074) throw filtering::Undecided{__LINE__};
+        const Num quantum = cert::power_of_two(quantum_exponent - sm_);
+        const Num gap = cert::abs(cert::scaled(result(2, j), -sm_) - cert::scaled(rounded, -sm_));
         if (!cert::less(gap, cert::constant(limit) * quantum)) throw filtering::Undecided{__LINE__};
         worst = std::max(worst, cert::approx(gap) / cert::approx(quantum));
       }
@@ -743,28 +748,35 @@ class FilteredProblem {
     return out;
   }
 
-  /// The exact value x stands for, rounded to nearest T; Undecided unless the whole interval
+  /// The exact value x 2^e stands for, rounded to nearest T; Undecided unless the whole interval
   /// rounds to it (strictly inside the midpoints to its neighbours).
-  static T rounding_of(const Num& x) {
+  static T rounding_of(const Num& x, int e) {
     namespace cert = certified;
     T candidate;
     if constexpr (std::is_same_v<T, long double>) {
-      candidate = static_cast<long double>(x.hi) + static_cast<long double>(x.lo);
+      candidate = std::ldexp(static_cast<long double>(x.hi) + static_cast<long double>(x.lo), e);
     } else {
-      candidate = static_cast<T>(x.hi);
+      candidate = static_cast<T>(std::ldexp(x.hi, e));
     }
-    if (x.err == 0 && cert::exactly(candidate).hi == x.hi && cert::exactly(candidate).lo == x.lo)
-      return candidate;  // exact
+    if (!std::isfinite(candidate)) throw filtering::Undecided{__LINE__};
+    const Num c = cert::scaled(candidate, -e);
+    if (x.err == 0 && c.err == 0 && c.hi == x.hi && c.lo == x.lo) return candidate;  // exact
     const T below = std::nextafter(candidate, -std::numeric_limits<T>::infinity());
     const T above = std::nextafter(candidate, std::numeric_limits<T>::infinity());
-    if (!std::isfinite(candidate) || !std::isfinite(below) || !std::isfinite(above) ||
-        candidate == T(0))
+    if (!std::isfinite(below) || !std::isfinite(above) || candidate == T(0))
       throw filtering::Undecided{__LINE__};
     const Num half = cert::constant(0.5);
-    const Num mid_low = (cert::exactly(below) + cert::exactly(candidate)) * half;
-    const Num mid_high = (cert::exactly(candidate) + cert::exactly(above)) * half;
+    const Num mid_low = (cert::scaled(below, -e) + c) * half;
+    const Num mid_high = (c + cert::scaled(above, -e)) * half;
     if (cert::less(mid_low, x) && cert::less(x, mid_high)) return candidate;
     throw filtering::Undecided{__LINE__};
+  }
+
+  /// The exponent of the largest |entry| (0 when all are 0): the power of two the filter scales by.
+  template <class V>
+  static int largest_exponent(const V& v) {
+    const T largest = v.cwiseAbs().maxCoeff();
+    return largest == T(0) ? 0 : std::ilogb(largest);
   }
 
   Matrix4<T> m_;
@@ -789,6 +801,18 @@ class FilteredProblem {
   std::array<Num, 8> corner_dots_{};
   std::array<int, 8> corner_sign_{};
   Num d_, kappa_numerator_;
+  // Scaling: the filter holds M 2^-sm_ and C 2^-sc_ (certified::scaled: exactly, or within
+  // 2^-1074 for an entry that lands below double's normal range), so every quantity is that of
+  // the scaled problem, which is the exact one's times a power of two: the inverse, the corners and
+  // Q times 2^sm_, C', C . Q (d_), its corner values and kappa's numerator times 2^(sm_ - sc_), the
+  // exact row 3 and every row of an answer (scaled alike) times 2^-sm_; lambda (property 1) times
+  // 2^(sc_ - sm_); ratios, Skeel's condition number and eps alike. Only the absolute terms (the
+  // underflow unit) and the overflow thresholds are not homogeneous: the underflow unit enters
+  // the bounds on entries of rows as underflow_row_ = u_min 2^-sm_ and those on C . Q as
+  // underflow_dot_ = u_min 2^(sm_ - sc_); at_least_largest() and rounding_of() take the exponent
+  // that brings their value back.
+  int sm_ = 0, sc_ = 0;
+  Num underflow_row_, underflow_dot_;
 };
 
 /// judge() on a FilteredProblem: the filter's judgement where it decides that every check holds,
