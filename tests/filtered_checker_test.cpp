@@ -7,17 +7,23 @@
 // refusal), one member of a wrong-answer class (wrong_answers.h) and one other implementation (a
 // printed recipe or a planted mutant: signs from C, the wrong face, ...), with both checkers, and
 // compares statuses, acceptable statuses and every finding (kind, holds, relation, statuses).
+// Every seventh case is first moved by powers of two to the ends of its type's range (and, for
+// long double, beyond double's), where the filter's scaling and its intervals for entries below
+// double's normal range are what decides.
 // Which cases: OBLIQUE_DIFFERENTIAL_SLICE (seed offset) and OBLIQUE_DIFFERENTIAL_CASES (count), set
 // by CTest per slice (tests/CMakeLists.txt).
 #include "oblique/properties/filtered.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
@@ -111,12 +117,51 @@ Outcome<T> perturbed(const Outcome<T>& answer, int which, const Matrix4<T>& m) {
   return out;
 }
 
+/// Every seventh case moved, by powers of two, to where the filter scales its inputs: M or C (or
+/// both, apart) with the largest entry near T's overflow or underflow, long doubles beyond double's
+/// range both ways. Entries pushed below T's range round (a different input, judged all the same).
+template <class T>
+void move_to_the_ends(Case<T>& c, std::uint64_t index) {
+  if (index % 7 != 3) return;
+  constexpr int emax = std::numeric_limits<T>::max_exponent;
+  constexpr int emin = std::numeric_limits<T>::min_exponent;
+  const int which = int(index / 7 % 6), jitter = int(index / 42 % 5);
+  auto top = [](const auto& v) {
+    const T largest = v.cwiseAbs().maxCoeff();
+    return largest == T(0) ? 0 : std::ilogb(largest);
+  };
+  // The exponent the largest entry gets: near overflow, near the smallest normal, and (long
+  // double) beyond double's range, above and below.
+  const bool wide = std::is_same_v<T, long double>;
+  const int high = emax - 2 - jitter, low = emin + 8 + jitter;
+  const int beyond_high = wide ? 1100 + 900 * jitter : high,
+            beyond_low = wide ? -1100 - 900 * jitter : low;
+  auto move = [&](auto& v, int exponent) {
+    const int shift = exponent - top(v);
+    for (Eigen::Index i = 0; i < v.size(); ++i) v.data()[i] = std::ldexp(v.data()[i], shift);
+  };
+  switch (which) {
+    case 0: move(c.matrix, high); break;
+    case 1: move(c.matrix, low); break;
+    case 2: move(c.plane, high); break;
+    case 3: move(c.plane, low); break;
+    case 4:
+      move(c.matrix, beyond_high);
+      move(c.plane, beyond_low);
+      break;
+    case 5:
+      move(c.matrix, beyond_low);
+      move(c.plane, beyond_high);
+      break;
+  }
+}
+
 template <class T>
 void one_case(std::uint64_t index, rc::Random& random, Tally& tally) {
   const bool invalid = index % 5 == 4;
-  const Case<T> c =
-      invalid ? generators::invalid_case<T>()(random.split(), int(index % 101)).value().base
-              : generators::valid_case<T>()(random.split(), int(index % 101)).value();
+  Case<T> c = invalid ? generators::invalid_case<T>()(random.split(), int(index % 101)).value().base
+                      : generators::valid_case<T>()(random.split(), int(index % 101)).value();
+  move_to_the_ends(c, index);
   ++tally.cases;
   const Problem<T> exact(c.matrix, c.plane, c.convention);
   const FilteredProblem<T> filtered(c.matrix, c.plane, c.convention);
