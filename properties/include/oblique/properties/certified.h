@@ -88,6 +88,10 @@ inline Num power_of_two(int e) {
   return constant(std::ldexp(1.0, e));
 }
 
+/// x 2^e for any e, in steps within double's exponent range (an overflow is Undecided, as in
+/// operator*; below the range the product is an interval holding it).
+inline Num times_power_of_two(Num x, int e);
+
 /// x 2^e: the filter works on inputs scaled by powers of two, so that magnitudes at the ends of
 /// each type's range, and long doubles beyond double's, stay within double's. Exact (err 0) where
 /// x 2^e is a double, or for long double a double-double hi + lo with lo 0 or normal (as
@@ -141,6 +145,13 @@ inline Num operator*(const Num& x, const Num& y) {
   const double propagated = mx * y.err + my * x.err + x.err * y.err;
   const double rounding = detail::kRelative * (std::fabs(p.hi) + std::fabs(p.lo));
   return detail::finish(p, propagated + rounding, true);
+}
+
+inline Num times_power_of_two(Num x, int e) {
+  constexpr int step = 1000;
+  for (; e > step; e -= step) x = x * power_of_two(step);
+  for (; e < -step; e += step) x = x * power_of_two(-step);
+  return e == 0 ? x : x * power_of_two(e);
 }
 
 /// x / y; throws Undecided unless y is certainly nonzero.
