@@ -251,6 +251,51 @@ TEST(Filtered, decidesTheCoresAnswerOnAPlainFrustum) {
   EXPECT_EQ(rejected.violation()->kind, "near_is_clip_plane");
 }
 
+// A plain frustum and plane moved by powers of two (M and C apart): far beyond double's range in
+// long double, to near double's overflow and underflow in double. The filter's scaling decides
+// the statuses and the core's answer alone, with the exact checker's findings.
+template <class T>
+void expect_decided_at_scale(int m_shift, int c_shift) {
+  SCOPED_TRACE(std::string(protocol::scalar_name<T>()) + " M 2^" + std::to_string(m_shift) +
+               ", C 2^" + std::to_string(c_shift));
+  const Matrix4<T> m = frustum(T(-1), T(1), T(-0.75), T(0.75), T(1), T(100), Convention::gl) *
+                       std::ldexp(T(1), m_shift);
+  const Vector4<T> c = Vector4<T>(T(0.25), T(0.5), T(-1), T(-2)) * std::ldexp(T(1), c_shift);
+  const Problem<T> exact(m, c, Convention::gl);
+  const FilteredProblem<T> filtered(m, c, Convention::gl);
+  ASSERT_TRUE(filtered.statuses_decided()) << "gave up at line " << filtered.undecided_at();
+  EXPECT_EQ(filtered.exact_status(), exact.exact_status());
+  EXPECT_EQ(filtered.acceptable_statuses(), exact.acceptable_statuses());
+  const ObliqueResult<T> r = apply<T>(m, c, Convention::gl);
+  ASSERT_EQ(r.status, Status::ok);
+  Checks checks;
+  checks.row3_accuracy = true;
+  checks.max_ulps = tolerance::kAccurateUlps;
+  const Outcome<T> outcome{r.status, r.projection};
+  const std::optional<Judgement> fast = filtered.filtered_judgement(outcome, checks);
+  ASSERT_TRUE(fast.has_value()) << "gave up at line " << filtered.undecided_at();
+  const Judgement expected = judge(exact, outcome, checks);
+  EXPECT_TRUE(same(expected, *fast)) << "exact:\n"
+                                     << describe(expected) << "filtered:\n"
+                                     << describe(*fast);
+}
+
+TEST(Filtered, decidesMagnitudesAtTheEndsOfTheRange) {
+  for (int shift : {3000, -3000, 12000, -12000}) {
+    expect_decided_at_scale<long double>(shift, 0);
+    expect_decided_at_scale<long double>(0, shift);
+  }
+  // (M 2^12000 with C 2^-12000 is left to GMP: the underflow unit's term in C . Q's bound, scaled
+  // alike, is beyond double's range.)
+  expect_decided_at_scale<long double>(3000, -3000);
+  expect_decided_at_scale<long double>(-3000, 3000);
+  for (int shift : {900, -900}) {
+    expect_decided_at_scale<double>(shift, 0);
+    expect_decided_at_scale<double>(0, shift);
+  }
+  expect_decided_at_scale<float>(100, -100);
+}
+
 TEST(Certified, exactZerosStayExactAndUndecidedSignsThrow) {
   using certified::Num;
   const Num a = certified::exactly(0.1), b = certified::exactly(-0.1);
