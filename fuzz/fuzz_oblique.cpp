@@ -12,9 +12,11 @@ namespace {
 template <class T>
 void check_all(const oblique::fuzzing::FuzzCase& c) {
   static const auto implementations = oblique::properties::selected_implementations<T>();
+  // One problem for the case, one judgement per distinct answer (the core's methods mostly agree).
+  oblique::fuzzing::CaseJudge<T> judge(c);
   for (const auto& impl : implementations) {
     const bool core = impl.name.rfind("core_", 0) == 0;
-    oblique::fuzzing::check<T>(c, impl, impl.checks(core));
+    oblique::fuzzing::check<T>(c, judge, impl, impl.checks(core));
   }
 }
 

@@ -7,17 +7,23 @@
 // refusal), one member of a wrong-answer class (wrong_answers.h) and one other implementation (a
 // printed recipe or a planted mutant: signs from C, the wrong face, ...), with both checkers, and
 // compares statuses, acceptable statuses and every finding (kind, holds, relation, statuses).
+// Every seventh case is first moved by powers of two to the ends of its type's range (and, for
+// long double, beyond double's), where the filter's scaling and its intervals for entries below
+// double's normal range are what decides.
 // Which cases: OBLIQUE_DIFFERENTIAL_SLICE (seed offset) and OBLIQUE_DIFFERENTIAL_CASES (count), set
 // by CTest per slice (tests/CMakeLists.txt).
 #include "oblique/properties/filtered.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
@@ -111,12 +117,51 @@ Outcome<T> perturbed(const Outcome<T>& answer, int which, const Matrix4<T>& m) {
   return out;
 }
 
+/// Every seventh case moved, by powers of two, to where the filter scales its inputs: M or C (or
+/// both, apart) with the largest entry near T's overflow or underflow, long doubles beyond double's
+/// range both ways. Entries pushed below T's range round (a different input, judged all the same).
+template <class T>
+void move_to_the_ends(Case<T>& c, std::uint64_t index) {
+  if (index % 7 != 3) return;
+  constexpr int emax = std::numeric_limits<T>::max_exponent;
+  constexpr int emin = std::numeric_limits<T>::min_exponent;
+  const int which = int(index / 7 % 6), jitter = int(index / 42 % 5);
+  auto top = [](const auto& v) {
+    const T largest = v.cwiseAbs().maxCoeff();
+    return largest == T(0) ? 0 : std::ilogb(largest);
+  };
+  // The exponent the largest entry gets: near overflow, near the smallest normal, and (long
+  // double) beyond double's range, above and below.
+  const bool wide = std::is_same_v<T, long double>;
+  const int high = emax - 2 - jitter, low = emin + 8 + jitter;
+  const int beyond_high = wide ? 1100 + 900 * jitter : high,
+            beyond_low = wide ? -1100 - 900 * jitter : low;
+  auto move = [&](auto& v, int exponent) {
+    const int shift = exponent - top(v);
+    for (Eigen::Index i = 0; i < v.size(); ++i) v.data()[i] = std::ldexp(v.data()[i], shift);
+  };
+  switch (which) {
+    case 0: move(c.matrix, high); break;
+    case 1: move(c.matrix, low); break;
+    case 2: move(c.plane, high); break;
+    case 3: move(c.plane, low); break;
+    case 4:
+      move(c.matrix, beyond_high);
+      move(c.plane, beyond_low);
+      break;
+    case 5:
+      move(c.matrix, beyond_low);
+      move(c.plane, beyond_high);
+      break;
+  }
+}
+
 template <class T>
 void one_case(std::uint64_t index, rc::Random& random, Tally& tally) {
   const bool invalid = index % 5 == 4;
-  const Case<T> c =
-      invalid ? generators::invalid_case<T>()(random.split(), int(index % 101)).value().base
-              : generators::valid_case<T>()(random.split(), int(index % 101)).value();
+  Case<T> c = invalid ? generators::invalid_case<T>()(random.split(), int(index % 101)).value().base
+                      : generators::valid_case<T>()(random.split(), int(index % 101)).value();
+  move_to_the_ends(c, index);
   ++tally.cases;
   const Problem<T> exact(c.matrix, c.plane, c.convention);
   const FilteredProblem<T> filtered(c.matrix, c.plane, c.convention);
@@ -204,6 +249,51 @@ TEST(Filtered, decidesTheCoresAnswerOnAPlainFrustum) {
   const Judgement rejected = judge(problem, Outcome<double>{Status::ok, wrong}, checks);
   ASSERT_NE(rejected.violation(), nullptr);
   EXPECT_EQ(rejected.violation()->kind, "near_is_clip_plane");
+}
+
+// A plain frustum and plane moved by powers of two (M and C apart): far beyond double's range in
+// long double, to near double's overflow and underflow in double. The filter's scaling decides
+// the statuses and the core's answer alone, with the exact checker's findings.
+template <class T>
+void expect_decided_at_scale(int m_shift, int c_shift) {
+  SCOPED_TRACE(std::string(protocol::scalar_name<T>()) + " M 2^" + std::to_string(m_shift) +
+               ", C 2^" + std::to_string(c_shift));
+  const Matrix4<T> m = frustum(T(-1), T(1), T(-0.75), T(0.75), T(1), T(100), Convention::gl) *
+                       std::ldexp(T(1), m_shift);
+  const Vector4<T> c = Vector4<T>(T(0.25), T(0.5), T(-1), T(-2)) * std::ldexp(T(1), c_shift);
+  const Problem<T> exact(m, c, Convention::gl);
+  const FilteredProblem<T> filtered(m, c, Convention::gl);
+  ASSERT_TRUE(filtered.statuses_decided()) << "gave up at line " << filtered.undecided_at();
+  EXPECT_EQ(filtered.exact_status(), exact.exact_status());
+  EXPECT_EQ(filtered.acceptable_statuses(), exact.acceptable_statuses());
+  const ObliqueResult<T> r = apply<T>(m, c, Convention::gl);
+  ASSERT_EQ(r.status, Status::ok);
+  Checks checks;
+  checks.row3_accuracy = true;
+  checks.max_ulps = tolerance::kAccurateUlps;
+  const Outcome<T> outcome{r.status, r.projection};
+  const std::optional<Judgement> fast = filtered.filtered_judgement(outcome, checks);
+  ASSERT_TRUE(fast.has_value()) << "gave up at line " << filtered.undecided_at();
+  const Judgement expected = judge(exact, outcome, checks);
+  EXPECT_TRUE(same(expected, *fast)) << "exact:\n"
+                                     << describe(expected) << "filtered:\n"
+                                     << describe(*fast);
+}
+
+TEST(Filtered, decidesMagnitudesAtTheEndsOfTheRange) {
+  for (int shift : {3000, -3000, 12000, -12000}) {
+    expect_decided_at_scale<long double>(shift, 0);
+    expect_decided_at_scale<long double>(0, shift);
+  }
+  // (M 2^12000 with C 2^-12000 is left to GMP: the underflow unit's term in C . Q's bound, scaled
+  // alike, is beyond double's range.)
+  expect_decided_at_scale<long double>(3000, -3000);
+  expect_decided_at_scale<long double>(-3000, 3000);
+  for (int shift : {900, -900}) {
+    expect_decided_at_scale<double>(shift, 0);
+    expect_decided_at_scale<double>(0, shift);
+  }
+  expect_decided_at_scale<float>(100, -100);
 }
 
 TEST(Certified, exactZerosStayExactAndUndecidedSignsThrow) {

@@ -262,33 +262,88 @@ void explain(const properties::Problem<T>& problem, const properties::Outcome<T>
   }
 }
 
+/// One decoded case in T, judged for any number of implementations: one FilteredProblem (its
+/// exact Problem, where needed, built once) and one judgement per distinct answer and checks
+/// (implementations often answer alike, bit for bit, and judge() depends on nothing else).
+template <class T>
+class CaseJudge {
+ public:
+  explicit CaseJudge(const FuzzCase& c) : convention_(c.convention) {
+    for (int i = 0; i < 16; ++i) m_(i / 4, i % 4) = narrow<T>(c.matrix(i / 4, i % 4));
+    for (int i = 0; i < 4; ++i) plane_(i) = narrow<T>(c.plane(i));
+  }
+  const Matrix4<T>& matrix() const { return m_; }
+  const Vector4<T>& plane() const { return plane_; }
+  Convention convention() const { return convention_; }
+  /// The filtered checker on the case (the exact one's verdicts, most without GMP; filtered.h).
+  const properties::FilteredProblem<T>& problem() {
+    if (!problem_) problem_.emplace(m_, plane_, convention_);
+    return *problem_;
+  }
+  properties::Judgement judge(const properties::Outcome<T>& outcome,
+                              const properties::Checks& checks) {
+    for (const Judged& j : judged_) {
+      if (j.outcome.status == outcome.status &&
+          std::memcmp(j.outcome.projection.data(), outcome.projection.data(), sizeof(T) * 16) ==
+              0 &&
+          same_checks(j.checks, checks))
+        return j.judgement;
+    }
+    judged_.push_back(Judged{outcome, checks, properties::judge(problem(), outcome, checks)});
+    return judged_.back().judgement;
+  }
+
+ private:
+  struct Judged {
+    properties::Outcome<T> outcome;
+    properties::Checks checks;
+    properties::Judgement judgement;
+  };
+  static bool same_checks(const properties::Checks& a, const properties::Checks& b) {
+    return a.statuses == b.statuses && a.properties == b.properties &&
+           a.row3_accuracy == b.row3_accuracy && a.every == b.every &&
+           std::memcmp(&a.max_ulps, &b.max_ulps, sizeof a.max_ulps) == 0;
+  }
+
+  Matrix4<T> m_;
+  Vector4<T> plane_;
+  Convention convention_;
+  std::optional<properties::FilteredProblem<T>> problem_;
+  std::vector<Judged> judged_;
+};
+
 /// Runs `impl` on the case (in T) when it accepts it, and judges the answer with `checks`.
 /// With `unanswerable` false, inputs without an exact answer are not given to it (a function
 /// without statuses has no way to refuse them). On a violation: prints the case, the checker's
-/// view and the property, then aborts.
+/// view and the property, then aborts. `judge` carries the case's problem and judgements from
+/// one implementation to the next.
 template <class T>
-void check(const FuzzCase& c, const properties::Implementation<T>& impl,
+void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementation<T>& impl,
            const properties::Checks& checks, bool unanswerable = true) {
-  Matrix4<T> m;
-  Vector4<T> plane;
-  for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = narrow<T>(c.matrix(i / 4, i % 4));
-  for (int i = 0; i < 4; ++i) plane(i) = narrow<T>(c.plane(i));
+  const Matrix4<T>& m = judge.matrix();
+  const Vector4<T>& plane = judge.plane();
   if (!impl.accepts(c.convention, m)) return;
-  // The filtered checker (the exact one's verdicts, most without GMP; filtered.h).
-  const properties::FilteredProblem<T> problem(m, plane, c.convention);
-  if (!unanswerable && problem.exact_status() != Status::ok) return;
+  if (!unanswerable && judge.problem().exact_status() != Status::ok) return;
   const properties::Outcome<T> outcome = impl.run(m, plane, c.convention);
-  const properties::Judgement judgement = properties::judge(problem, outcome, checks);
+  const properties::Judgement judgement = judge.judge(outcome, checks);
   const properties::Finding* violation = judgement.violation();
   if (!violation) return;
   if (!describing()) describe(c);
-  explain(problem.exact(), outcome);
+  explain(judge.problem().exact(), outcome);
   std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, family %s, status %s)\n",
                violation->kind.c_str(), impl.name.c_str(),
                std::string(protocol::scalar_name<T>()).c_str(),
                std::string(convention_name(c.convention)).c_str(), family_label(c.family),
                std::string(status_code(outcome.status)).c_str());
   std::abort();
+}
+
+/// check() for one implementation.
+template <class T>
+void check(const FuzzCase& c, const properties::Implementation<T>& impl,
+           const properties::Checks& checks, bool unanswerable = true) {
+  CaseJudge<T> judge(c);
+  check<T>(c, judge, impl, checks, unanswerable);
 }
 
 /// What the driver checks of your function.

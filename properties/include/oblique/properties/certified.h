@@ -79,6 +79,48 @@ inline Num between_zero_and(double upper) {
   return Num{upper, 0, upper};
 }
 
+/// 2^e: exact within double's range; below it (e < -1074) the interval [0, 2^-1073], which holds
+/// it; above it Undecided.
+inline Num power_of_two(int e) {
+  if (e > std::numeric_limits<double>::max_exponent - 1) throw Undecided{__LINE__};
+  if (e < std::numeric_limits<double>::min_exponent - std::numeric_limits<double>::digits)
+    return between_zero_and(std::numeric_limits<double>::denorm_min());
+  return constant(std::ldexp(1.0, e));
+}
+
+/// x 2^e for any e, in steps within double's exponent range (an overflow is Undecided, as in
+/// operator*; below the range the product is an interval holding it).
+inline Num times_power_of_two(Num x, int e);
+
+/// x 2^e: the filter works on inputs scaled by powers of two, so that magnitudes at the ends of
+/// each type's range, and long doubles beyond double's, stay within double's. Exact (err 0) where
+/// x 2^e is a double, or for long double a double-double hi + lo with lo 0 or normal (as
+/// exactly()); otherwise (a value scaled into double's subnormal range, or a long double whose
+/// rest below hi is that small) an interval around the nearest double hi that holds it (rounding
+/// to the subnormal grid loses at most 2^-1075). Undecided when x 2^e overflows double, or (long
+/// double) leaves long double's range, where scaling back by 2^-e no longer gives x.
+template <class T>
+Num scaled(T x, int e) {
+  constexpr double tiny = std::numeric_limits<double>::denorm_min();
+  if constexpr (std::is_same_v<T, long double>) {
+    const long double y = std::ldexp(x, e);
+    if (std::ldexp(y, -e) != x) throw Undecided{__LINE__};
+    const double hi = static_cast<double>(y);
+    if (!std::isfinite(hi)) throw Undecided{__LINE__};
+    const double lo = static_cast<double>(y - static_cast<long double>(hi));
+    const bool exact = static_cast<long double>(hi) + static_cast<long double>(lo) == y &&
+                       (lo == 0 || std::fabs(lo) >= std::numeric_limits<double>::min());
+    if (exact) return Num{hi, lo, 0};
+    // lo is the rest y - hi rounded (to the subnormal grid when it is that small): |y - hi| <=
+    // |lo| + 2^-1075.
+    return Num{hi, 0, std::fabs(lo) + tiny};
+  } else {
+    const double y = std::ldexp(static_cast<double>(x), e);
+    if (!std::isfinite(y)) throw Undecided{__LINE__};
+    return Num{y, 0, std::ldexp(y, -e) == static_cast<double>(x) ? 0.0 : tiny};
+  }
+}
+
 inline Num operator-(const Num& x) {
   return Num{-x.hi, -x.lo, x.err};
 }
@@ -103,6 +145,13 @@ inline Num operator*(const Num& x, const Num& y) {
   const double propagated = mx * y.err + my * x.err + x.err * y.err;
   const double rounding = detail::kRelative * (std::fabs(p.hi) + std::fabs(p.lo));
   return detail::finish(p, propagated + rounding, true);
+}
+
+inline Num times_power_of_two(Num x, int e) {
+  constexpr int step = 1000;
+  for (; e > step; e -= step) x = x * power_of_two(step);
+  for (; e < -step; e += step) x = x * power_of_two(-step);
+  return e == 0 ? x : x * power_of_two(e);
 }
 
 /// x / y; throws Undecided unless y is certainly nonzero.
@@ -143,12 +192,25 @@ inline bool is_exact_zero(const Num& x) {
 /// The sign of the exact value; throws Undecided when the interval holds zero and is not {0}.
 /// Decided in double-double where it can be (|lo| <= ulp(hi) / 2, so hi + lo - err keeps hi's
 /// sign while err <= |hi| / 4), else by the interval's ends.
+/// sign_known() sets s and returns true where sign() returns, false where it throws.
+inline bool sign_known(const Num& x, int& s) {
+  if (is_exact_zero(x)) {
+    s = 0;
+  } else if (x.err * 4 <= std::fabs(x.hi)) {
+    s = x.hi > 0 ? 1 : -1;
+  } else if (lower(x) > 0) {
+    s = 1;
+  } else if (upper(x) < 0) {
+    s = -1;
+  } else {
+    return false;
+  }
+  return true;
+}
 inline int sign(const Num& x) {
-  if (is_exact_zero(x)) return 0;
-  if (x.err * 4 <= std::fabs(x.hi)) return x.hi > 0 ? 1 : -1;
-  if (lower(x) > 0) return 1;
-  if (upper(x) < 0) return -1;
-  throw Undecided{__LINE__};
+  int s = 0;
+  if (!sign_known(x, s)) throw Undecided{__LINE__};
+  return s;
 }
 
 /// Whether the exact value is >= 0 (> 0), decided or Undecided.

@@ -48,19 +48,19 @@ using certified::Undecided;
 template <class T>
 struct Constants {
   int p = tolerance::precision_bits<T>();
-  Num underflow_unit;  ///< denorm_min / 2 (for double and long double: an interval above 0)
   Num entry_gamma, scale_gamma;
   Num unit_roundoff;
 
   Constants() {
-    if constexpr (std::is_same_v<T, float>) {
-      underflow_unit = certified::constant(std::ldexp(1.0, -150));
-    } else {
-      underflow_unit = certified::between_zero_and(std::numeric_limits<double>::denorm_min());
-    }
     unit_roundoff = certified::constant(std::ldexp(1.0, -p));
     entry_gamma = gamma(tolerance::kEntryRoundings);
     scale_gamma = gamma(tolerance::kScaleRoundings);
+  }
+  /// The underflow unit (denorm_min / 2 of T: 2^-150, 2^-1075, 2^-16446) times 2^e, for a
+  /// quantity the filter holds scaled by 2^-e (an interval above 0 below double's range).
+  static Num underflow_unit(int e) {
+    return certified::power_of_two(std::numeric_limits<T>::min_exponent -
+                                   std::numeric_limits<T>::digits - 1 + e);
   }
   Num gamma(int n) const {
     const Num nu = certified::constant(n * std::ldexp(1.0, -p));
@@ -68,28 +68,24 @@ struct Constants {
   }
 };
 
-/// Whether x >= the largest finite T times `scale` (or the overflow threshold, the largest plus
-/// half an ulp), decided: beyond double's range (long double, and double's threshold) a finite
-/// interval is below it.
+/// Whether x 2^k >= the largest finite T (or the overflow threshold, the largest plus half an
+/// ulp), decided: L 2^-k = 2^top - 2^low, with L = 2^emax (1 - 2^-digits) or 2^emax (1 -
+/// 2^-(digits + 1)); beyond double's range a finite interval is below it.
 template <class T>
-bool at_least_largest(const Num& x, bool overflow_threshold) {
-  if constexpr (std::is_same_v<T, float>) {
-    const double largest = std::numeric_limits<float>::max();
-    const double threshold =
-        overflow_threshold ? largest + std::ldexp(1.0, std::numeric_limits<float>::max_exponent -
-                                                           std::numeric_limits<float>::digits - 1)
-                           : largest;
-    return certified::less_equal(certified::constant(threshold), x);
-  } else if constexpr (std::is_same_v<T, double>) {
-    if (!overflow_threshold)
-      return certified::less_equal(certified::constant(std::numeric_limits<double>::max()), x);
-    if (certified::upper(x) <= std::numeric_limits<double>::max()) return false;
-    throw Undecided{__LINE__};
-  } else {
-    (void)overflow_threshold;
-    if (std::isfinite(certified::upper(x))) return false;  // far below LDBL_MAX
+bool at_least_largest(const Num& x, bool overflow_threshold, int k) {
+  constexpr int digits = std::numeric_limits<T>::digits;
+  const int top = std::numeric_limits<T>::max_exponent - k;
+  const int low = top - digits - (overflow_threshold ? 1 : 0);
+  constexpr double dmax = std::numeric_limits<double>::max();  // 2^1024 - 2^971
+  if (top == 1024 && low >= 971)  // L 2^-k = DBL_MAX - (2^low - 2^971), a double
+    return certified::less_equal(
+        certified::constant(dmax) - (certified::power_of_two(low) - certified::power_of_two(971)),
+        x);
+  if (top >= 1024) {  // L 2^-k > DBL_MAX
+    if (certified::upper(x) <= dmax) return false;
     throw Undecided{__LINE__};
   }
+  return certified::less_equal(certified::power_of_two(top) - certified::power_of_two(low), x);
 }
 
 /// The integers behind M and C, and the determinants Cramer's rule needs, each computed once.
@@ -101,16 +97,16 @@ class IntegerSigns {
   IntegerSigns(const Matrix4<T>& m, const Vector4<T>& c) {
     std::array<W, 16> entries;
     for (int i = 0; i < 16; ++i) entries[static_cast<std::size_t>(i)] = W(m(i / 4, i % 4));
-    int e_m = 0, e_c = 0;
-    const std::array<detail::BigInt, 16> mi = detail::to_integers(entries, e_m);
+    const std::array<detail::BigInt, 16> mi = detail::to_integers(entries, e_m_);
     for (int i = 0; i < 16; ++i) m_[i / 4][i % 4] = mi[static_cast<std::size_t>(i)];
-    c_ = detail::to_integers(std::array<W, 4>{W(c(0)), W(c(1)), W(c(2)), W(c(3))}, e_c);
+    c_ = detail::to_integers(std::array<W, 4>{W(c(0)), W(c(1)), W(c(2)), W(c(3))}, e_c_);
   }
 
-  int det_sign() {
+  const detail::BigInt& det() {
     if (!det_) det_ = detail::determinant(m_);
-    return det_->sign();
+    return *det_;
   }
+  int det_sign() { return det().sign(); }
   /// Y_k = det(M with row k replaced by C) (C' = (Y_0, .., Y_3) / D up to a positive factor).
   const detail::BigInt& y(int k) {
     if (!y_[k]) {
@@ -127,6 +123,39 @@ class IntegerSigns {
     detail::BigInt sum;
     for (int k = 0; k < 4; ++k) sum = sum + scaled(y(k), p[k]);
     return sum.sign() * det_sign();
+  }
+  /// C . Q times 2^scale, as a certified number: N / D 2^(e_c - 1 - e_m) (see row3()).
+  Num c_dot_q(const std::array<int, 4>& q_clip2, int scale) {
+    const detail::BigInt& n = cramer_n(q_clip2);
+    if (n.sign() == 0) return Num{};
+    int e_n = 0, e_d = 0;
+    const Num q = certified_top_bits(n, e_n) / certified_top_bits(det(), e_d);
+    return q * certified::power_of_two(e_n - e_d + e_c_ - 1 - e_m_ + scale);
+  }
+  /// Entry i of the exact row 3 times 2^-scale, as a certified number, by Cramer's rule as
+  /// exact_cramer.h's exact_oblique has it: M'_3i = sgn(m3) 2^e_m P_i / N with
+  /// P_i = 2 k D c_i - t m4_i N and N = sum_k (2 Q')_k Y_k (C . Q = N / D 2^(e_c - 1 - e_m)),
+  /// k = z_high - z_low, t = near_rows().m4, in the integer units of M (2^e_m) and C (2^e_c).
+  /// Precondition: C . Q > 0.
+  Num row3(int i, const std::array<int, 4>& q_clip2, int k, const RowCombination& nr, int scale) {
+    cramer_n(q_clip2);
+    if (!two_k_det_) two_k_det_ = scaled(det(), 2 * k);
+    detail::BigInt p = *two_k_det_ * c_[i];
+    if (nr.m4 != 0 && m_[3][i].sign() != 0) p = p - scaled(m_[3][i], nr.m4) * *n_;
+    if (nr.m3 < 0) p = -p;
+    if (p.sign() == 0) return Num{};
+    int e_p = 0, e_n = 0;
+    const Num q = certified_top_bits(p, e_p) / certified_top_bits(*n_, e_n);
+    return q * certified::power_of_two(e_p - e_n + e_m_ - scale);
+  }
+  /// N = sum_k (2 Q')_k Y_k.
+  const detail::BigInt& cramer_n(const std::array<int, 4>& q_clip2) {
+    if (!n_) {
+      detail::BigInt n;
+      for (int j = 0; j < 4; ++j) n = n + scaled(y(j), q_clip2[j]);
+      n_ = n;
+    }
+    return *n_;
   }
   /// sgn((M^-1 p')_w) for integer p'.
   int w_sign(const std::array<int, 4>& p) {
@@ -151,9 +180,21 @@ class IntegerSigns {
     return x * f;
   }
 
+  /// x = (hi + lo) 2^exponent as a certified number: top_bits keeps the top 128 bits (relative
+  /// error below 2^-127) and sums its four 32-bit words by error-free passes, leaving at most the
+  /// roundings of a plain sum of terms below 2^-32 of the value (under 2^-82 of it); 2^-80 of
+  /// |hi| + |lo| (>= 1/2 (1 - 2^-52)) covers both.
+  static Num certified_top_bits(const detail::BigInt& x, int& exponent) {
+    const eft::Pair<double> t = x.template top_bits<double>(exponent);
+    const double sign = x.sign();
+    const Num sum = certified::constant(sign * t.hi) + certified::constant(sign * t.lo);
+    return Num{sum.hi, sum.lo, sum.err + (std::fabs(t.hi) + std::fabs(t.lo)) * 0x1p-80};
+  }
+
   detail::BigMatrix4 m_;
   std::array<detail::BigInt, 4> c_;
-  std::optional<detail::BigInt> det_;
+  int e_m_ = 0, e_c_ = 0;
+  std::optional<detail::BigInt> det_, n_, two_k_det_;
   std::array<std::optional<detail::BigInt>, 4> y_, x_;
 };
 
@@ -284,10 +325,16 @@ class FilteredProblem {
       return;
     }
     const bool too_spread = magnitude_spread(m_) > max_magnitude_spread<T>();
+    // M and C scaled by 2^-sm_ and 2^-sc_ (their largest entries in [1, 2)); see "Scaling" at
+    // the members.
+    sm_ = largest_exponent(m_);
+    sc_ = largest_exponent(c_);
     for (int i = 0; i < 4; ++i) {
-      cx_[i] = cert::exactly(c_(i));
-      for (int j = 0; j < 4; ++j) mx_[i][j] = cert::exactly(m_(i, j));
+      cx_[i] = cert::scaled(c_(i), -sc_);
+      for (int j = 0; j < 4; ++j) mx_[i][j] = cert::scaled(m_(i, j), -sm_);
     }
+    underflow_row_ = filtering::Constants<T>::underflow_unit(-sm_);
+    underflow_dot_ = filtering::Constants<T>::underflow_unit(sm_ - sc_);
     invertible_ = invert();
     if (!invertible_) {
       status_ = Status::singular_projection;
@@ -360,7 +407,16 @@ class FilteredProblem {
                      filtering::dot(filtering::magnitudes(c_clip_),
                                     filtering::mul(abs_m, filtering::mul(abs_inv, abs_q_clip))));
     const bool camera_behind = c_(3) < T(0);
-    d_positive_ = camera_behind && cert::positive(d_);
+    // The sign of C . Q = C' . Q' (exact from the integers where the interval holds 0).
+    if (camera_behind) {
+      const int d_sign = sign_or_exact(d_, [&] { return integers().dot_sign(q_clip2_); });
+      if (d_sign == 0) d_ = Num{};
+      d_positive_ = d_sign > 0;
+      // Where the interval is too wide to divide by (C . Q cancelling), a tighter one from the
+      // integers (the same exact value, 2^(sm_ - sc_) C . Q).
+      if (d_positive_ && !(d_.err * 4 <= std::fabs(d_.hi)))
+        d_ = integers().c_dot_q(q_clip2_, sm_ - sc_);
+    }
     status_ = !camera_behind ? Status::camera_not_behind_plane
               : !d_positive_ ? Status::plane_misses_view_volume
                              : Status::ok;
@@ -389,7 +445,7 @@ class FilteredProblem {
     if (skeel_large) add(Status::singular_projection);
     if (!camera_behind) return;
     const Num d_error = constants_.scale_gamma * kappa_numerator_ +
-                        cert::constant(tolerance::kScaleRoundings) * constants_.underflow_unit;
+                        cert::constant(tolerance::kScaleRoundings) * underflow_dot_;
     const bool d_unresolved = cert::less_equal(cert::abs(d_), d_error);
     if (d_unresolved) {
       add(Status::plane_misses_view_volume);
@@ -401,17 +457,17 @@ class FilteredProblem {
     // candidate.
     const Num f256 = cert::constant(256);
     bool near_overflow = false;
-    auto big = [&](const Num& v) {
-      if (!near_overflow && filtering::at_least_largest<T>(cert::abs(v) * f256, false))
+    auto big = [&](const Num& v, int k) {
+      if (!near_overflow && filtering::at_least_largest<T>(cert::abs(v) * f256, false, k))
         near_overflow = true;
     };
-    for (const Num& v : q_) big(v);
+    for (const Num& v : q_) big(v, -sm_);
     if (d_positive_) {
-      for (const Num& v : row3_) big(v);
+      for (const Num& v : row3_) big(v, sm_);
     }
     for (int i = 0; i < 8; ++i) {
       if (!is_far_corner_candidate(i)) continue;
-      for (const Num& v : corners_[i]) big(v);
+      for (const Num& v : corners_[i]) big(v, -sm_);
     }
     if (near_overflow) add(Status::out_of_range);
     if (d_positive_) {
@@ -421,7 +477,7 @@ class FilteredProblem {
       for (int i = 0; i < 4; ++i) {
         noise = noise + (cert::constant(4) * constants_.unit_roundoff *
                              cert::abs(cert::constant(nr.m4) * mx_[3][i]) +
-                         cert::constant(4) * constants_.underflow_unit) *
+                         cert::constant(4) * underflow_row_) *
                             cert::abs(cx_[i]);
       }
       if (cert::less_equal(a * filtering::dot(cx_, cx_), noise)) add(Status::out_of_range);
@@ -429,9 +485,9 @@ class FilteredProblem {
     if (d_positive_ && !d_unresolved) {
       bool overflows = false;
       for (const Num& v : q_)
-        overflows = overflows || filtering::at_least_largest<T>(cert::abs(v), true);
+        overflows = overflows || filtering::at_least_largest<T>(cert::abs(v), true, -sm_);
       for (const Num& v : row3_)
-        overflows = overflows || filtering::at_least_largest<T>(cert::abs(v), true);
+        overflows = overflows || filtering::at_least_largest<T>(cert::abs(v), true, sm_);
       if (overflows)
         acceptable_.erase(std::remove(acceptable_.begin(), acceptable_.end(), Status::ok),
                           acceptable_.end());
@@ -476,14 +532,11 @@ class FilteredProblem {
 
   template <class Exact>
   static int sign_or_exact(const Num& x, Exact exact) {
-    try {
-      return certified::sign(x);
-    } catch (const filtering::Undecided&) {
-      return exact();
-    }
+    int s = 0;
+    return certified::sign_known(x, s) ? s : exact();
   }
 
-  filtering::IntegerSigns<T>& integers() {
+  filtering::IntegerSigns<T>& integers() const {
     if (!integers_) integers_.emplace(m_, c_);
     return *integers_;
   }
@@ -505,9 +558,8 @@ class FilteredProblem {
 
   /// scale_error(): empty when eps >= 1.
   std::optional<Num> scale_error() const {
-    const Num eps =
-        constants_.scale_gamma * (kappa_numerator_ / d_) +
-        certified::constant(tolerance::kScaleRoundings) * constants_.underflow_unit / d_;
+    const Num eps = constants_.scale_gamma * (kappa_numerator_ / d_) +
+                    certified::constant(tolerance::kScaleRoundings) * underflow_dot_ / d_;
     if (!certified::less(eps, certified::constant(1))) return std::nullopt;
     return eps / (certified::constant(1) - eps);
   }
@@ -535,7 +587,7 @@ class FilteredProblem {
     if (any_of_the_five) {
       std::array<NumVec, 4> r;
       for (int i = 0; i < 4; ++i) {
-        for (int j = 0; j < 4; ++j) r[i][j] = cert::exactly(result(i, j));
+        for (int j = 0; j < 4; ++j) r[i][j] = cert::scaled(result(i, j), -sm_);
       }
       const RowCombination nr = near_rows(convention_), fr = far_rows(convention_);
       const NumVec& m4 = mx_[3];
@@ -545,45 +597,77 @@ class FilteredProblem {
           filtering::combine(cert::constant(fr.m3), r[2], cert::constant(fr.m4), r[3]);
       const Num& g = constants_.entry_gamma;
       const Num t_near = cert::constant(std::abs(nr.m4));
-      const Num underflow = cert::constant(tolerance::kEntryRoundings) * constants_.underflow_unit;
+      const Num underflow = cert::constant(tolerance::kEntryRoundings) * underflow_row_;
       // 1. The interval test: every entry's lower bound on lambda below every upper bound, and
-      //    every upper bound above 0 (there is one: C_w < 0).
+      //    every upper bound above 0 (there is one: C_w < 0). Each entry's bounds are formed in
+      //    its own scale (near'_i and t M4_i by 2^-e_i, C_i by 2^-f_i, so an entry far below the
+      //    others keeps its bits): lows_i = low_i 2^k_i, k_i = e_i - f_i.
       std::array<Num, 4> lows, highs;
+      std::array<int, 4> k{};
       std::array<bool, 4> bounded{};
       for (int i = 0; i < 4; ++i) {
-        const Num b = g * t_near * cert::abs(m4[i]) + underflow;
+        const T entries[] = {result(2, i), result(3, i), m_(3, i)};
+        T largest = 0;
+        for (T x : entries) largest = std::max(largest, T(std::fabs(x)));
+        const int e = largest == T(0) ? 0 : std::ilogb(largest);
+        const Num y_i = cert::constant(nr.m3) * cert::scaled(result(2, i), -e) +
+                        cert::constant(nr.m4) * cert::scaled(result(3, i), -e);
+        const Num b = g * t_near * cert::abs(cert::scaled(m_(3, i), -e)) +
+                      cert::constant(tolerance::kEntryRoundings) *
+                          filtering::Constants<T>::underflow_unit(-e);
         if (c_(i) == T(0)) {
-          if (!cert::within(cert::abs(near[i]), b)) throw filtering::Undecided{__LINE__};
+          if (!cert::within(cert::abs(y_i), b)) throw filtering::Undecided{__LINE__};
           continue;
         }
-        const Num c = cert::abs(cx_[i]);
-        const Num y = c_(i) > T(0) ? near[i] : -near[i];
+        const int f = std::ilogb(c_(i));
+        const Num c = cert::abs(cert::scaled(c_(i), -f));
+        const Num y = c_(i) > T(0) ? y_i : -y_i;
         lows[i] = (y - b) / (c * (cert::constant(1) + g));
         highs[i] = (y + b) / (c * (cert::constant(1) - g));
+        k[i] = e - f;
         bounded[i] = true;
       }
-      Num lambda_low = Num{}, lambda_high;
-      bool has_high = false;
+      // x 2^kx <= y 2^ky, the one with the larger exponent scaled down to the other's.
+      auto less_equal_scaled = [](const Num& x, int kx, const Num& y, int ky) {
+        return kx >= ky ? cert::less_equal(x, cert::times_power_of_two(y, ky - kx))
+                        : cert::less_equal(cert::times_power_of_two(x, kx - ky), y);
+      };
+      int common = std::numeric_limits<int>::min();  // lambda's exponent: the largest k_j
       for (int j = 0; j < 4; ++j) {
         if (!bounded[j]) continue;
         if (!cert::positive(highs[j])) throw filtering::Undecided{__LINE__};
         for (int i = 0; i < 4; ++i) {
-          if (bounded[i] && !cert::less_equal(lows[i], highs[j]))
+          if (bounded[i] && !less_equal_scaled(lows[i], k[i], highs[j], k[j]))
             throw filtering::Undecided{__LINE__};
         }
-        lambda_low = cert::max(lambda_low, lows[j]);
-        lambda_high = has_high ? cert::min(lambda_high, highs[j]) : highs[j];
+        common = std::max(common, k[j]);
+      }
+      if (common == std::numeric_limits<int>::min()) throw filtering::Undecided{__LINE__};
+      Num lambda_low = Num{}, lambda_high;
+      bool has_high = false;
+      for (int j = 0; j < 4; ++j) {
+        if (!bounded[j]) continue;
+        const Num low = cert::times_power_of_two(lows[j], k[j] - common);
+        const Num high = cert::times_power_of_two(highs[j], k[j] - common);
+        lambda_low = cert::max(lambda_low, low);
+        lambda_high = has_high ? cert::min(lambda_high, high) : high;
         has_high = true;
       }
-      if (!has_high) throw filtering::Undecided{__LINE__};
+      // lambda 2^common; lambda C_i in the units of the rows (2^sm_).
       const Num lambda = (lambda_low + lambda_high) * cert::constant(0.5);
+      NumVec lambda_c;
+      for (int i = 0; i < 4; ++i) {
+        if (c_(i) == T(0)) continue;
+        const int f = std::ilogb(c_(i));
+        lambda_c[i] = cert::times_power_of_two(lambda * cert::scaled(c_(i), -f), common + f - sm_);
+      }
       NumVec entry_bound;
       double p1_worst = 0;
       for (int i = 0; i < 4; ++i) {
-        entry_bound[i] = g * (cert::abs(lambda * cx_[i]) + t_near * cert::abs(m4[i])) + underflow;
+        entry_bound[i] = g * (cert::abs(lambda_c[i]) + t_near * cert::abs(m4[i])) + underflow;
         const double bound = cert::approx(entry_bound[i]);
         if (bound > 0)
-          p1_worst = std::max(p1_worst, std::fabs(cert::approx(near[i] - lambda * cx_[i])) / bound);
+          p1_worst = std::max(p1_worst, std::fabs(cert::approx(near[i] - lambda_c[i])) / bound);
       }
       // 2. Rows 1, 2, 4 equal in value (-0 equals +0), as the exact checker has them; anything
       //    else (a changed entry, a NaN) goes to the exact checker.
@@ -682,7 +766,9 @@ class FilteredProblem {
       }
       if (!all_finite(after.near_plane)) throw filtering::Undecided{__LINE__};
       NumVec n;
-      for (int i = 0; i < 4; ++i) n[i] = cert::exactly(T(after.near_plane(i)));
+      // Only the sign of n . C counts: n scaled by its own power of two.
+      const int sn = largest_exponent(after.near_plane);
+      for (int i = 0; i < 4; ++i) n[i] = cert::scaled(T(after.near_plane(i)), -sn);
       if (!cert::positive(filtering::dot(n, cx_))) throw filtering::Undecided{__LINE__};
       holding("extracted_planes_match",
               "frustum_planes(M') has the side planes of M and a near plane n with n . C > 0", 0);
@@ -699,8 +785,8 @@ class FilteredProblem {
         for (int i = 0; i < 4; ++i) {
           const Num ac = cert::abs(a * cx_[i]);
           const Num bound = constants_.entry_gamma * (ac + cert::abs(mx_[3][i])) + ac * *scale +
-                            cert::constant(tolerance::kEntryRoundings) * constants_.underflow_unit;
-          const Num error = cert::abs(cert::exactly(result(2, i)) - row3_[i]);
+                            cert::constant(tolerance::kEntryRoundings) * underflow_row_;
+          const Num error = cert::abs(cert::scaled(result(2, i), -sm_) - row3_[i]);
           if (!cert::within(error, bound)) throw filtering::Undecided{__LINE__};
           if (cert::approx(bound) > 0)
             worst = std::max(worst, cert::approx(error) / cert::approx(bound));
@@ -710,7 +796,9 @@ class FilteredProblem {
     }
     if (checks.max_ulps < std::numeric_limits<double>::infinity()) {
       // Rows 1, 2, 4 are M's own (0 ulp when equal); row 3 against the exact value's rounding,
-      // known when the interval lies strictly between the midpoints around one T value. The
+      // known when the interval lies strictly between the midpoints around one T value, or one of
+      // two neighbours when it holds the midpoint between them (a tie, as simple inputs give):
+      // then the entry must be within max_ulps of both. The
       // checker's figure is the double of gap / quantum, truncated: it is <= max_ulps exactly when
       // gap < next(max_ulps) quantum.
       for (int row : {0, 1, 3}) {
@@ -721,17 +809,21 @@ class FilteredProblem {
       const double limit = std::nextafter(checks.max_ulps, std::numeric_limits<double>::infinity());
       double worst = 0;
       for (int j = 0; j < 4; ++j) {
-        const T rounded = rounding_of(row3_[j]);
-        if (result(2, j) == rounded) continue;  // 0 ulp
-        constexpr int digits = std::numeric_limits<T>::digits;
-        const int lowest = std::numeric_limits<T>::min_exponent - digits;
-        const int quantum_exponent =
-            rounded == T(0) ? lowest : std::max(std::ilogb(rounded) - digits + 1, lowest);
-        if (quantum_exponent < -1074) throw filtering::Undecided{__LINE__};
-        const Num quantum = cert::constant(std::ldexp(1.0, quantum_exponent));
-        const Num gap = cert::abs(cert::exactly(result(2, j)) - cert::exactly(rounded));
-        if (!cert::less(gap, cert::constant(limit) * quantum)) throw filtering::Undecided{__LINE__};
-        worst = std::max(worst, cert::approx(gap) / cert::approx(quantum));
+        const Roundings roundings = roundings_or_exact(j);
+        for (int k = 0; k < roundings.count; ++k) {
+          const T rounded = roundings.value[k];
+          if (result(2, j) == rounded) continue;  // 0 ulp
+          constexpr int digits = std::numeric_limits<T>::digits;
+          const int lowest = std::numeric_limits<T>::min_exponent - digits;
+          const int quantum_exponent =
+              rounded == T(0) ? lowest : std::max(std::ilogb(rounded) - digits + 1, lowest);
+          if (quantum_exponent - sm_ < -1074) throw filtering::Undecided{__LINE__};
+          const Num quantum = cert::power_of_two(quantum_exponent - sm_);
+          const Num gap = cert::abs(cert::scaled(result(2, j), -sm_) - cert::scaled(rounded, -sm_));
+          if (!cert::less(gap, cert::constant(limit) * quantum))
+            throw filtering::Undecided{__LINE__};
+          worst = std::max(worst, cert::approx(gap) / cert::approx(quantum));
+        }
       }
       holding("accurate_ulps",
               "every entry of M' within " + protocol::format_number(checks.max_ulps) +
@@ -743,28 +835,70 @@ class FilteredProblem {
     return out;
   }
 
-  /// The exact value x stands for, rounded to nearest T; Undecided unless the whole interval
-  /// rounds to it (strictly inside the midpoints to its neighbours).
-  static T rounding_of(const Num& x) {
+  /// What the exact value x 2^e stands for may round to (to nearest T, ties to even): one value
+  /// where the interval lies strictly between the midpoints around it; two neighbours where it
+  /// lies strictly between the midpoints around the pair (it holds, or may hold, the midpoint
+  /// between them); Undecided otherwise.
+  struct Roundings {
+    std::array<T, 2> value{};
+    int count = 0;
+  };
+  static Roundings roundings_of(const Num& x, int e) {
     namespace cert = certified;
     T candidate;
     if constexpr (std::is_same_v<T, long double>) {
-      candidate = static_cast<long double>(x.hi) + static_cast<long double>(x.lo);
+      candidate = std::ldexp(static_cast<long double>(x.hi) + static_cast<long double>(x.lo), e);
     } else {
-      candidate = static_cast<T>(x.hi);
+      candidate = static_cast<T>(std::ldexp(x.hi, e));
     }
-    if (x.err == 0 && cert::exactly(candidate).hi == x.hi && cert::exactly(candidate).lo == x.lo)
-      return candidate;  // exact
-    const T below = std::nextafter(candidate, -std::numeric_limits<T>::infinity());
-    const T above = std::nextafter(candidate, std::numeric_limits<T>::infinity());
-    if (!std::isfinite(candidate) || !std::isfinite(below) || !std::isfinite(above) ||
-        candidate == T(0))
+    if (!std::isfinite(candidate)) throw filtering::Undecided{__LINE__};
+    const Num c = cert::scaled(candidate, -e);
+    if (x.err == 0 && c.err == 0 && c.hi == x.hi && c.lo == x.lo)
+      return Roundings{{candidate, candidate}, 1};  // exact
+    constexpr T inf = std::numeric_limits<T>::infinity();
+    const T below = std::nextafter(candidate, -inf), above = std::nextafter(candidate, inf);
+    if (!std::isfinite(below) || !std::isfinite(above) || candidate == T(0))
       throw filtering::Undecided{__LINE__};
     const Num half = cert::constant(0.5);
-    const Num mid_low = (cert::exactly(below) + cert::exactly(candidate)) * half;
-    const Num mid_high = (cert::exactly(candidate) + cert::exactly(above)) * half;
-    if (cert::less(mid_low, x) && cert::less(x, mid_high)) return candidate;
+    auto midpoint = [&](T a, const Num& b) { return (cert::scaled(a, -e) + b) * half; };
+    // Whether y < z certainly (false where the intervals do not say).
+    auto certainly_less = [](const Num& y, const Num& z) {
+      int sign = 0;
+      return cert::sign_known(z - y, sign) && sign > 0;
+    };
+    const bool above_low = certainly_less(midpoint(below, c), x);
+    const bool below_high = certainly_less(x, midpoint(above, c));
+    if (above_low && below_high) return Roundings{{candidate, candidate}, 1};
+    if (above_low) {  // at or above the midpoint to `above`, below the one beyond
+      const T beyond = std::nextafter(above, inf);
+      if (std::isfinite(beyond) && certainly_less(x, midpoint(beyond, cert::scaled(above, -e))))
+        return Roundings{{candidate, above}, 2};
+    } else if (below_high) {
+      const T beyond = std::nextafter(below, -inf);
+      if (std::isfinite(beyond) && certainly_less(midpoint(beyond, cert::scaled(below, -e)), x))
+        return Roundings{{below, candidate}, 2};
+    }
     throw filtering::Undecided{__LINE__};
+  }
+
+  /// roundings_of(row 3's entry j), from the interval of row3_ or, where that is too wide (a
+  /// cancelling entry, a tie), from the integers (IntegerSigns::row3).
+  Roundings roundings_or_exact(int j) const {
+    try {
+      return roundings_of(row3_[j], sm_);
+    } catch (const filtering::Undecided&) {
+      const DepthRange range = clip_depth_range(convention_);
+      return roundings_of(
+          integers().row3(j, q_clip2_, range.z_high - range.z_low, near_rows(convention_), sm_),
+          sm_);
+    }
+  }
+
+  /// The exponent of the largest |entry| (0 when all are 0): the power of two the filter scales by.
+  template <class V>
+  static int largest_exponent(const V& v) {
+    const T largest = v.cwiseAbs().maxCoeff();
+    return largest == T(0) ? 0 : std::ilogb(largest);
   }
 
   Matrix4<T> m_;
@@ -775,7 +909,7 @@ class FilteredProblem {
   Status status_ = Status::invalid_input;
   std::vector<Status> acceptable_;
   mutable std::optional<Problem<T>> exact_;
-  std::optional<filtering::IntegerSigns<T>> integers_;
+  mutable std::optional<filtering::IntegerSigns<T>> integers_;
   filtering::Constants<T> constants_;
 
   bool finite_ = false, invertible_ = false, infinite_ = false, far_at_infinity_ = false;
@@ -789,6 +923,18 @@ class FilteredProblem {
   std::array<Num, 8> corner_dots_{};
   std::array<int, 8> corner_sign_{};
   Num d_, kappa_numerator_;
+  // Scaling: the filter holds M 2^-sm_ and C 2^-sc_ (certified::scaled: exactly, or within
+  // 2^-1074 for an entry that lands below double's normal range), so every quantity is that of
+  // the scaled problem, which is the exact one's times a power of two: the inverse, the corners and
+  // Q times 2^sm_, C', C . Q (d_), its corner values and kappa's numerator times 2^(sm_ - sc_), the
+  // exact row 3 and every row of an answer (scaled alike) times 2^-sm_; lambda (property 1) times
+  // 2^(sc_ - sm_); ratios, Skeel's condition number and eps alike. Only the absolute terms (the
+  // underflow unit) and the overflow thresholds are not homogeneous: the underflow unit enters
+  // the bounds on entries of rows as underflow_row_ = u_min 2^-sm_ and those on C . Q as
+  // underflow_dot_ = u_min 2^(sm_ - sc_); at_least_largest() and rounding_of() take the exponent
+  // that brings their value back.
+  int sm_ = 0, sc_ = 0;
+  Num underflow_row_, underflow_dot_;
 };
 
 /// judge() on a FilteredProblem: the filter's judgement where it decides that every check holds,
