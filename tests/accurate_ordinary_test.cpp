@@ -15,6 +15,7 @@
 #include "oblique/oblique.h"
 #include "oblique/properties/generators.h"
 #include "printers.h"
+#include "same_bits.h"
 
 namespace oblique {
 namespace {
@@ -24,20 +25,7 @@ class AccurateOrdinary : public ::testing::Test {};
 using Scalars = ::testing::Types<float, double, long double>;
 TYPED_TEST_SUITE(AccurateOrdinary, Scalars);
 
-/// The value bits of x (x87 long double: the 10 bytes that hold it, not the padding).
-template <class T>
-bool same_bits(T x, T y) {
-  constexpr std::size_t size = std::numeric_limits<T>::digits == 64 ? std::size_t(10) : sizeof(T);
-  return std::memcmp(&x, &y, size) == 0;
-}
-
-template <class T, int R, int C>
-bool same_bits(const Eigen::Matrix<T, R, C>& x, const Eigen::Matrix<T, R, C>& y) {
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    if (!same_bits(x.data()[i], y.data()[i])) return false;
-  }
-  return true;
-}
+using test::same_bits;
 
 struct Tally {
   long compared = 0;
