@@ -75,6 +75,39 @@ OBLIQUE_NOINLINE void batch_answer_apart(const Matrix4<T>& m, const Vector4<T>& 
   batch_answer(m, plane, convention, method, out, status);
 }
 
+/// apply_batch()'s blocks: W closed-form requests at a time through closed_form_lanes()
+/// (detail/batch.h), each block read before it is answered; `answered(j, lanes, k)` for request
+/// j answered by lane k, `apart(j)` for a request the block leaves. Returns how many requests the
+/// blocks covered (a multiple of W, 0 without a block path or for another method); the rest go
+/// one by one.
+template <class T, bool FarCorner, class Answered, class Apart>
+OBLIQUE_ALWAYS_INLINE std::size_t closed_form_blocks(const Matrix4<T>* projections,
+                                                     const Vector4<T>* planes, std::size_t count,
+                                                     Convention convention, Method method,
+                                                     Answered&& answered, Apart&& apart) {
+  std::size_t i = 0;
+  if constexpr (closed_form_lanes_available<T>()) {
+    if (method == Method::automatic || method == Method::closed_form) {
+      constexpr int W = closed_form_lane_count<T>;
+      const ConventionTable<T>& table = convention_table<T>(convention);
+      ClosedFormLanes<T, W> lanes;
+      const bool avx2 = closed_form_block_avx2_supported();
+      for (; count - i >= std::size_t(W); i += W) {
+        closed_form_block_on<T, W, FarCorner>(avx2, projections + i, planes + i, table, lanes);
+        for (int k = 0; k < W; ++k) {
+          const std::size_t j = i + std::size_t(k);
+          if (lanes.fast[k] != T(0)) {
+            answered(j, lanes, k);
+          } else {
+            apart(j);
+          }
+        }
+      }
+    }
+  }
+  return i;
+}
+
 }  // namespace detail
 
 /// Makes the near plane of `projection` the camera-space plane `plane` (kept side positive),
@@ -113,33 +146,18 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
 template <class T>
 void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::size_t count,
                  Convention convention, Method method, Matrix4<T>* out, Status* statuses) {
-  std::size_t i = 0;
-  if constexpr (detail::closed_form_lanes_available<T>()) {
-    // Blocks of W closed-form requests through detail::closed_form_lanes() (detail/batch.h),
-    // each block read before it is answered; the requests it does not answer, and the last
-    // count % W, one by one.
-    if (method == Method::automatic || method == Method::closed_form) {
-      constexpr int W = detail::closed_form_lane_count<T>;
-      const detail::ConventionTable<T>& table = detail::convention_table<T>(convention);
-      detail::ClosedFormLanes<T, W> lanes;
-      const bool avx2 = detail::closed_form_block_avx2_supported();
-      for (; count - i >= std::size_t(W); i += W) {
-        detail::closed_form_block_on<T, W, false>(avx2, projections + i, planes + i, table, lanes);
-        for (int k = 0; k < W; ++k) {
-          const std::size_t j = i + std::size_t(k);
-          if (lanes.fast[k] != T(0)) {
-            if (&out[j] != &projections[j])
-              std::memcpy(out[j].data(), projections[j].data(), sizeof(T) * 16);
-            for (int e = 0; e < 4; ++e) out[j](2, e) = lanes.row3[e][k];
-            statuses[j] = Status::ok;
-          } else {
-            detail::batch_answer_apart(projections[j], planes[j], convention, method, out[j],
-                                       statuses[j]);
-          }
-        }
-      }
-    }
-  }
+  std::size_t i = detail::closed_form_blocks<T, false>(
+      projections, planes, count, convention, method,
+      [&](std::size_t j, const auto& lanes, int k) {
+        if (&out[j] != &projections[j])
+          std::memcpy(out[j].data(), projections[j].data(), sizeof(T) * 16);
+        for (int e = 0; e < 4; ++e) out[j](2, e) = lanes.row3[e][k];
+        statuses[j] = Status::ok;
+      },
+      [&](std::size_t j) {
+        detail::batch_answer_apart(projections[j], planes[j], convention, method, out[j],
+                                   statuses[j]);
+      });
   for (; i < count; ++i)
     detail::batch_answer(projections[i], planes[i], convention, method, out[i], statuses[i]);
 }
@@ -149,34 +167,20 @@ void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::s
 template <class T>
 void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::size_t count,
                  Convention convention, Method method, ObliqueResult<T>* results) {
-  std::size_t i = 0;
-  if constexpr (detail::closed_form_lanes_available<T>()) {
-    if (method == Method::automatic || method == Method::closed_form) {
-      constexpr int W = detail::closed_form_lane_count<T>;
-      const detail::ConventionTable<T>& table = detail::convention_table<T>(convention);
-      detail::ClosedFormLanes<T, W> lanes;
-      const bool avx2 = detail::closed_form_block_avx2_supported();
-      for (; count - i >= std::size_t(W); i += W) {
-        detail::closed_form_block_on<T, W, true>(avx2, projections + i, planes + i, table, lanes);
-        for (int k = 0; k < W; ++k) {
-          const std::size_t j = i + std::size_t(k);
-          ObliqueResult<T>& r = results[j];
-          if (lanes.fast[k] != T(0)) {
-            r.status = Status::ok;
-            r.detail = {};
-            std::memcpy(r.projection.data(), projections[j].data(), sizeof(T) * 16);
-            for (int e = 0; e < 4; ++e) {
-              r.projection(2, e) = lanes.row3[e][k];
-              r.far_corner(e) = lanes.q[e][k];
-            }
-            r.method = Method::closed_form;
-          } else {
-            r = apply(projections[j], planes[j], convention, method);
-          }
+  std::size_t i = detail::closed_form_blocks<T, true>(
+      projections, planes, count, convention, method,
+      [&](std::size_t j, const auto& lanes, int k) {
+        ObliqueResult<T>& r = results[j];
+        r.status = Status::ok;
+        r.detail = {};
+        std::memcpy(r.projection.data(), projections[j].data(), sizeof(T) * 16);
+        for (int e = 0; e < 4; ++e) {
+          r.projection(2, e) = lanes.row3[e][k];
+          r.far_corner(e) = lanes.q[e][k];
         }
-      }
-    }
-  }
+        r.method = Method::closed_form;
+      },
+      [&](std::size_t j) { results[j] = apply(projections[j], planes[j], convention, method); });
   for (; i < count; ++i) results[i] = apply(projections[i], planes[i], convention, method);
 }
 
