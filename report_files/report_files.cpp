@@ -1,5 +1,6 @@
 #include "oblique/report/report_files.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <ostream>
+#include <string>
 #include <system_error>
 
 namespace oblique::report {
@@ -71,15 +73,46 @@ bool ReportFiles::commit(std::ostream& log) {
   return true;
 }
 
+namespace {
+
+/// How long gnuplot may take on one picture before it is stopped (coreutils' `timeout`, then
+/// SIGKILL 5 s later): a hung gnuplot must not hang the report. OBLIQUE_GNUPLOT_SECONDS (a
+/// positive integer) overrides it.
+int gnuplot_seconds() {
+  constexpr int fallback = 60;
+  const char* v = std::getenv("OBLIQUE_GNUPLOT_SECONDS");
+  if (v == nullptr) return fallback;
+  char* end = nullptr;
+  const long n = std::strtol(v, &end, 10);
+  return (end != v && *end == '\0' && n > 0 && n <= 86400) ? int(n) : fallback;
+}
+
+/// `gnuplot 'SCRIPT'` with the time limit.
+std::string gnuplot_command(const std::string& script) {
+  return "timeout -k 5 " + std::to_string(gnuplot_seconds()) + " gnuplot '" + script + "'";
+}
+
+/// Whether std::system's `status` is `timeout`'s "the time limit ran out" (124, or 137 after
+/// the SIGKILL).
+bool timed_out(int status) {
+  return WIFEXITED(status) && (WEXITSTATUS(status) == 124 || WEXITSTATUS(status) == 137);
+}
+
+}  // namespace
+
 void ReportFiles::plot(const std::string& script, const std::string& png, std::ostream& log) {
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
     log << "report: gnuplot not found (bash scripts/setup.sh installs it); " << script
         << " is written, " << png << " is not\n";
     return;
   }
-  const std::string command = "gnuplot '" + (dir_ / script).string() + "'";
-  if (std::system(command.c_str()) == 0) {
+  const std::string command = gnuplot_command((dir_ / script).string());
+  const int status = std::system(command.c_str());
+  if (status == 0) {
     written_.push_back(dir_ / png);
+  } else if (timed_out(status)) {
+    log << "report: gnuplot did not finish within " << gnuplot_seconds() << " s on "
+        << (dir_ / script).string() << " (stopped)\n";
   } else {
     log << "report: gnuplot failed on " << (dir_ / script).string() << "\n";
   }
@@ -100,9 +133,14 @@ bool ReportFiles::plot_staged(const std::string& script, const std::string& png,
     return false;
   }
   const std::string errors = script + ".stderr";
-  const std::string command =
-      "cd '" + staging_.string() + "' && gnuplot '" + script + "' > /dev/null 2> '" + errors + "'";
+  const std::string command = "cd '" + staging_.string() + "' && " + gnuplot_command(script) +
+                              " > /dev/null 2> '" + errors + "'";
   const int status = std::system(command.c_str());
+  if (timed_out(status)) {
+    log << "gnuplot did not finish within " << gnuplot_seconds() << " s on " << script
+        << " (stopped; " << png << " is not written)";
+    return false;
+  }
   std::error_code ec;
   if (status == 0 && std::filesystem::file_size(staging_ / png, ec) > 0 && !ec) {
     staged_.push_back(Staged{png, std::ofstream(), true});

@@ -182,5 +182,33 @@ TEST(ReportFiles, picturesRenderedBeforeTheCommitComeWithItOrNotAtAll) {
   EXPECT_FALSE(nowhere.commit(log));
 }
 
+TEST(ReportFiles, aHungGnuplotIsStoppedAndThePictureIsNotWritten) {
+  // A gnuplot that never ends, first on PATH; the limit set to 1 s.
+  const std::filesystem::path root =
+      std::filesystem::path(::testing::TempDir()) / "oblique_report_files_hung_gnuplot_test";
+  std::filesystem::remove_all(root);
+  std::filesystem::create_directories(root / "bin");
+  std::ofstream(root / "bin" / "gnuplot") << "#!/bin/sh\nexec sleep 1000\n";
+  std::filesystem::permissions(root / "bin" / "gnuplot", std::filesystem::perms::owner_all);
+  const std::string old_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  ::setenv("PATH", ((root / "bin").string() + ":" + old_path).c_str(), 1);
+  ::setenv("OBLIQUE_GNUPLOT_SECONDS", "1", 1);
+  std::ostringstream log, commit_log;
+  bool rendered = true;
+  {
+    ReportFiles files(root / "report");
+    files.open("line.dat") << "0 0\n1 1\n";
+    files.open("view.gp") << "plot 'line.dat'\n";
+    rendered = files.plot_staged("view.gp", "view.png", log);
+    EXPECT_TRUE(files.commit(commit_log)) << commit_log.str();
+  }
+  ::setenv("PATH", old_path.c_str(), 1);
+  ::unsetenv("OBLIQUE_GNUPLOT_SECONDS");
+  EXPECT_FALSE(rendered);
+  EXPECT_NE(log.str().find("did not finish within 1 s"), std::string::npos) << log.str();
+  EXPECT_TRUE(std::filesystem::exists(root / "report" / "view.gp"));
+  EXPECT_FALSE(std::filesystem::exists(root / "report" / "view.png"));
+}
+
 }  // namespace
 }  // namespace oblique::report
