@@ -29,6 +29,16 @@ bool make_oblique(float m[16], const float plane[4]) {
     if (!std::isfinite(plane[i])) return false;
   }
   if (!(plane[3] < 0.0f)) return false;  // the camera (the origin) must be behind the plane
+  // The answer does not change when C is scaled by a positive number: scale it by a power of two
+  // (exact) so that its largest component is in [0.5, 1), or C . Q and 2 / (C . Q) under- or
+  // overflow for planes at the ends of float's range.
+  float largest = 0.0f;
+  for (int i = 0; i < 4; ++i) largest = std::fmax(largest, std::fabs(plane[i]));
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  float c[4];
+  for (int i = 0; i < 4; ++i) c[i] = std::ldexp(plane[i], -exponent);
+  plane = c;
   if (m[0] == 0.0f || m[5] == 0.0f || m[11] == 0.0f || m[14] == 0.0f) return false;
     // C' = M^-T C: for the perspective shape, C'_x = C_x / m[0] and C'_y = C_y / m[5].
 #if ENGINE_FIXED
