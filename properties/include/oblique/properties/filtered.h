@@ -726,10 +726,7 @@ class FilteredProblem {
         if (!wanted(p)) continue;
         switch (p) {
           case Property::near_is_clip_plane:
-            holding(std::string(property_name(p)),
-                    "some lambda > 0 has |near'_i - lambda C_i| <= gamma(3) (lambda |C_i| + |t "
-                    "M4_i|) for every i",
-                    std::min(p1_worst, 1.0));
+            holding(std::string(property_name(p)), kNearRelation, std::min(p1_worst, 1.0));
             break;
           case Property::side_rows_unchanged:
             holding(std::string(property_name(p)),

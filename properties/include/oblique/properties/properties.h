@@ -83,6 +83,11 @@ struct Verdicts {
 /// The checker's numbers as text (protocol::format_number, the one number printer); a rational
 /// shows its double.
 using protocol::format_number;
+/// What property 1 compares, in words (the exact and the filtered checker say the same).
+inline constexpr const char* kNearRelation =
+    "some lambda > 0 has |near'_i - lambda C_i| <= gamma(3) (lambda |C_i| + |t M4_i|) for every "
+    "i (or, where that fails, within u lambda max|C_j| more: a change no rasterizer sees)";
+
 inline std::string format_number(const exact::Rational& x) {
   return protocol::format_number(x.get_d());
 }
@@ -404,45 +409,71 @@ class Problem {
     const exact::Rational t_near = exact::abs(exact::Rational(nr.m4));
 
     // 1. near' = lambda C for some lambda > 0, every entry within its own rounding:
-    //    |near'_i - lambda C_i| <= g (lambda |C_i| + |t M4_i|), g = gamma(kEntryRoundings).
-    //    Each entry bounds lambda to an interval; the property holds when they intersect above 0.
+    //    |near'_i - lambda C_i| <= g (lambda |C_i| + |t M4_i|) + w lambda, g = gamma(kEntryRoundings),
+    //    first with w = 0; an answer that fails so is tried again with the allowance for what no
+    //    rasterizer sees, w = kInvisiblePlaneUlps u max_j |C_j| (tolerance.h). Each entry bounds
+    //    lambda to an interval; the property holds when they intersect above 0.
     const exact::Rational& g = entry_gamma;
     const exact::Rational underflow = tolerance::kEntryRoundings * tolerance::underflow_unit<T>();
-    // Every entry with C_i != 0 bounds lambda from above; the first one sets the upper bound
-    // (a negative upper bound is an answer, not "none yet": it makes the test fail).
-    exact::Rational lambda_low = 0, lambda_high = 0;
-    bool has_high = false, feasible = true;
-    for (int i = 0; i < 4; ++i) {
-      const exact::Rational b = g * t_near * exact::abs(m4[i]) + underflow;
-      if (cx_[i] == 0) {
-        if (exact::abs(near[i]) > b) feasible = false;
-        continue;
-      }
-      const exact::Rational c = exact::abs(cx_[i]);
-      const exact::Rational y = cx_[i] > 0 ? near[i] : exact::Rational(-near[i]);
-      const exact::Rational low = (y - b) / (c * (1 + g)), high = (y + b) / (c * (1 - g));
-      lambda_low = std::max(lambda_low, low);
-      lambda_high = has_high ? std::min(lambda_high, high) : high;
-      has_high = true;
-    }
-    feasible = feasible && has_high && lambda_high > 0 && lambda_low <= lambda_high;
-    // For the reports and the bounds below: a feasible lambda, or the one the largest |C_k| gives.
-    int k = 0;
+    int k = 0;  // the largest |C_k|
     for (int i = 1; i < 4; ++i) {
       if (exact::abs(cx_[i]) > exact::abs(cx_[k])) k = i;
     }
+    exact::Rational lambda_low = 0, lambda_high = 0;
+    bool feasible = false;
+    auto fit = [&](const exact::Rational& w) {
+      // With y_i = sgn(C_i) near'_i, c_i = |C_i|, b_i = g |t M4_i| + underflow:
+      //   lambda >= (y_i - b_i) / (c_i (1 + g) + w), and lambda (c_i (1 - g) - w) <= y_i + b_i.
+      // The largest |C_k| always gives an upper bound (c_k (1 - g) > w); the first sets it (a
+      // negative upper bound is an answer, not "none yet": it makes the test fail).
+      lambda_low = 0;
+      bool has_high = false, ok = true;
+      for (int i = 0; i < 4; ++i) {
+        const exact::Rational b = g * t_near * exact::abs(m4[i]) + underflow;
+        const exact::Rational c = exact::abs(cx_[i]);
+        const exact::Rational y = cx_[i] >= 0 ? near[i] : exact::Rational(-near[i]);
+        if (c == 0 && w == 0) {
+          if (exact::abs(near[i]) > b) ok = false;
+          continue;
+        }
+        lambda_low = std::max(lambda_low, exact::Rational(
+                                              (c == 0 ? exact::abs(near[i]) - b : y - b) /
+                                              (c * (1 + g) + w)));
+        if (c == 0) continue;
+        const exact::Rational room = c * (1 - g) - w;
+        if (room > 0) {
+          const exact::Rational high = (y + b) / room;
+          lambda_high = has_high ? std::min(lambda_high, high) : high;
+          has_high = true;
+        } else if (y + b < 0) {
+          if (room == 0) ok = false;
+          else lambda_low = std::max(lambda_low, exact::Rational((y + b) / room));
+        }
+      }
+      return ok && has_high && lambda_high > 0 && lambda_low <= lambda_high;
+    };
+    exact::Rational invisible = 0;
+    feasible = fit(0);
+    if (!feasible) {
+      const exact::Rational w = tolerance::kInvisiblePlaneUlps * tolerance::unit_roundoff(p) *
+                                exact::abs(cx_[k]);
+      if (fit(w)) {
+        feasible = true;
+        invisible = w;
+      }
+    }
+    // For the reports and the bounds below: a feasible lambda, or the one the largest |C_k| gives.
     const exact::Rational lambda = feasible ? exact::Rational((lambda_low + lambda_high) / 2)
                                             : exact::Rational(near[k] / cx_[k]);
     exact::Vec entry_bound;  // what rounding may move one entry of M'_3 (and so of near', far')
     for (int i = 0; i < 4; ++i) {
-      entry_bound[i] = g * (exact::abs(lambda * cx_[i]) + t_near * exact::abs(m4[i])) + underflow;
+      entry_bound[i] = g * (exact::abs(lambda * cx_[i]) + t_near * exact::abs(m4[i])) +
+                       invisible * exact::abs(lambda) + underflow;
     }
     {
       Verdict v;
       v.property = Property::near_is_clip_plane;
-      v.relation =
-          "some lambda > 0 has |near'_i - lambda C_i| <= gamma(3) (lambda |C_i| + |t M4_i|) for "
-          "every i";
+      v.relation = kNearRelation;
       exact::Rational worst = 0;
       for (int i = 0; i < 4; ++i) {
         const exact::Rational residual = exact::abs(near[i] - lambda * cx_[i]);

@@ -38,6 +38,16 @@ constexpr int kScaleRoundings = 16;
 /// and one more for an implementation that forms k C_i / d instead of (k / d) C_i.
 constexpr int kEntryRoundings = 3;
 
+/// Property 1's allowance for what no rasterizer can see: a coefficient of near' may differ from
+/// lambda C_i by kInvisiblePlaneUlps u lambda max_j |C_j| beyond its own rounding. That is a
+/// normwise relative change of the plane below u, smaller than the rounding of its largest
+/// coefficient when M' is stored in T: it moves a clip distance near' . v by at most
+/// u lambda max|C| |v|_1, the size of the error a rasterizer evaluating near' . v in T makes at
+/// a point whose large components meet C's large ones. It lets an implementation drop (or lose
+/// to a power-of-two scaling) a component far below the plane's norm; a change of the plane a
+/// rasterizer sees, u max|C| or more in one coefficient, is still a violation.
+constexpr int kInvisiblePlaneUlps = 1;
+
 /// The accurate method's promise: every entry of M' within this many units in the last place of
 /// the correctly rounded exact answer (exact::ulp_distance).
 constexpr double kAccurateUlps = 2;

@@ -98,8 +98,16 @@ std::vector<Mutant<T>> mutants(const Problem<T>& problem, const Matrix4<T>& answ
   const exact::Rational g =
       tolerance::gamma(tolerance::kEntryRoundings, tolerance::precision_bits<T>());
   const exact::Rational underflow = tolerance::kEntryRoundings * tolerance::underflow_unit<T>();
+  // An entry far below the plane's norm may change by what no rasterizer sees
+  // (tolerance::kInvisiblePlaneUlps): its flip is a mutant only when it is visible.
+  exact::Rational largest = 0;
+  for (int i = 0; i < 4; ++i) largest = std::max(largest, exact::abs(exact::to_rational(c(i))));
+  const exact::Rational invisible = tolerance::kInvisiblePlaneUlps *
+                                    tolerance::unit_roundoff(tolerance::precision_bits<T>()) *
+                                    largest;
   for (int i = 0; i < 4; ++i) {
     if (c(i) == T(0)) continue;
+    if (exact::abs(exact::to_rational(c(i))) * (1 - g) <= invisible) continue;
     const exact::Rational r3 = exact::to_rational(answer(2, i));
     const exact::Rational m4 = exact::to_rational(m(3, i));
     Matrix4<T> mutant = answer;
