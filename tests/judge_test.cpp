@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "oblique/properties/filtered.h"
+
 #include <cmath>
 #include <limits>
 
@@ -204,6 +206,84 @@ TEST(Judge, rowThreeAccuracyAndTheUlpsPromiseAreCheckedWhenAsked) {
   const Judgement strict = judge(problem, one_ulp, ulps);
   ASSERT_NE(strict.violation(), nullptr);
   EXPECT_EQ(strict.violation()->kind, "accurate_ulps");
+}
+
+// properties::not_judged(): what the input is decides whether an implementation is judged on it.
+TEST(NotJudged, anInputWithinRoundingOfTheFarCornerIsLeftOutOnlyForWhatCannotRefuse) {
+  // The case a correct engine without statuses was flagged on (wrong side: C . Q rounds to < 0
+  // in its double arithmetic): C passes, within rounding, through the far corner of a frustum.
+  Matrix4<double> m;
+  m << 1.0 / 3, 0, 0, 0, 0, 2.0 / 3, 0, 0, 0, 0, -3, -4, 0, 0, -1, 0;
+  const Vector4<double> plane(0, 0.5547001962252291, 0.8320502943378437, -4.919510551012827e-17);
+  const Problem<double> problem(m, plane, Convention::gl);
+  const FilteredProblem<double> filtered(m, plane, Convention::gl);
+  ASSERT_EQ(problem.exact_status(), Status::ok);
+  const std::string why = "inputs undecidable in double (C . Q within rounding of 0)";
+  EXPECT_EQ(not_judged(problem, StatusContract::answers_only), why);
+  EXPECT_EQ(not_judged(filtered, StatusContract::answers_only), why);
+  EXPECT_EQ(not_judged(problem, StatusContract::any_refusal), "");
+  EXPECT_EQ(not_judged(problem, StatusContract::exact), "");
+  // A list of refusals: judged when one the input allows is in it.
+  EXPECT_EQ(not_judged(problem, StatusContract::exact, {Status::camera_not_behind_plane}), why);
+  EXPECT_EQ(not_judged(problem, StatusContract::exact, {Status::plane_misses_view_volume}), "");
+  // In long double the same input is decidable: the rule depends on the precision.
+  const Problem<long double> wide(m.cast<long double>(), plane.cast<long double>(),
+                                  Convention::gl);
+  EXPECT_EQ(not_judged(wide, StatusContract::answers_only), "");
+}
+
+TEST(NotJudged, inputsWithoutAnAnswerAreLeftOutWhereTheirStatusIsMissing) {
+  const Vector4<double> in_front(0.0, 0.0, -1.0, 2.0);  // camera_not_behind_plane
+  const Problem<double> problem(kFrustum, in_front, Convention::gl);
+  EXPECT_EQ(not_judged(problem, StatusContract::answers_only), "inputs without an answer");
+  EXPECT_EQ(not_judged(problem, StatusContract::exact, {Status::plane_misses_view_volume}),
+            "inputs needing status camera_not_behind_plane");
+  EXPECT_EQ(not_judged(problem, StatusContract::exact, {Status::camera_not_behind_plane}), "");
+  EXPECT_EQ(not_judged(problem, StatusContract::any_refusal), "");
+  // An ordinary input is judged under every contract.
+  const Problem<double> ordinary(kFrustum, kPlane, Convention::gl);
+  for (StatusContract contract :
+       {StatusContract::exact, StatusContract::any_refusal, StatusContract::answers_only})
+    EXPECT_EQ(not_judged(ordinary, contract), "");
+  EXPECT_EQ(not_judged(ordinary, StatusContract::exact, {Status::camera_not_behind_plane}), "");
+}
+
+// Property 1 and what no rasterizer sees: a component far below the plane's norm may be lost
+// (an implementation that scales C by a power of two loses it), a visible change may not.
+template <class T>
+void near_plane_allowance() {
+  const Matrix4<T> m = frustum<T>(-1, 1, -1, 1, 1, 10, Convention::gl);
+  const T tiny = std::numeric_limits<T>::min() * 64;  // a component ~1e-36 (float) of the plane
+  const Vector4<T> plane(tiny, T(0.5), T(-1), T(-2));
+  const ObliqueResult<T> r = apply<T>(m, plane, Convention::gl);
+  ASSERT_TRUE(r.ok()) << r.message();
+  const Problem<T> problem(m, plane, Convention::gl);
+  const FilteredProblem<T> filtered(m, plane, Convention::gl);
+  Checks near_only;
+  near_only.properties = {Property::near_is_clip_plane};
+  ASSERT_TRUE(judge(problem, Outcome<T>{r.status, r.projection}, near_only).holds());
+  // Dropped: near'_1 = M'_31 + M'_41 = 0 instead of lambda tiny.
+  Outcome<T> dropped{Status::ok, r.projection};
+  dropped.projection(2, 0) = T(0);
+  Checks all;
+  all.every = true;
+  for (const Judgement& j : {judge(problem, dropped, all), judge(filtered, dropped, all)}) {
+    for (const Finding& f : j.checks) EXPECT_TRUE(f.holds) << f.kind << ": " << f.lhs;
+  }
+  // A change of that coefficient a rasterizer sees, 8 u lambda max|C|: a violation.
+  const T lambda = r.projection(2, 1) / plane(1);  // near'_2 = M'_32 (M_42 = 0) = lambda C_2
+  Outcome<T> moved{Status::ok, r.projection};
+  moved.projection(2, 0) = 8 * std::numeric_limits<T>::epsilon() / 2 * lambda * T(2);
+  for (const Judgement& j : {judge(problem, moved, near_only), judge(filtered, moved, near_only)}) {
+    ASSERT_NE(j.violation(), nullptr);
+    EXPECT_EQ(j.violation()->kind, "near_is_clip_plane");
+  }
+}
+
+TEST(NearPlane, aComponentFarBelowThePlanesNormMayBeLostButNotVisiblyChanged) {
+  near_plane_allowance<float>();
+  near_plane_allowance<double>();
+  near_plane_allowance<long double>();
 }
 
 }  // namespace

@@ -387,14 +387,10 @@ class Verifier {
 
   bool contract_needs_status() const { return options_.answers_only || !options_.statuses.empty(); }
 
-  /// Why the contract leaves out an input of this exact status ("" when it is sent).
-  std::string left_out(Status exact) const {
-    if (exact == Status::ok) return "";
-    if (options_.answers_only) return "inputs without an answer (--answers-only)";
-    if (!options_.statuses.empty() && std::find(options_.statuses.begin(), options_.statuses.end(),
-                                                exact) == options_.statuses.end())
-      return "inputs needing status " + std::string(status_code(exact)) + " (--statuses)";
-    return "";
+  /// Why the contract leaves out this input ("" when it is sent): properties::not_judged(), the
+  /// rule every tool shares.
+  std::string left_out(const properties::FilteredProblem<T>& problem) const {
+    return properties::not_judged(problem, checks_.statuses, options_.statuses);
   }
 
   Batch next_batch(rc::Random& random, long& generated, std::size_t size) {
@@ -408,7 +404,7 @@ class Verifier {
       if (contract_needs_status()) {
         auto problem = std::make_unique<properties::FilteredProblem<T>>(
             value.c.matrix, value.c.plane, value.c.convention);
-        if (const std::string why = left_out(problem->exact_status()); !why.empty()) {
+        if (const std::string why = left_out(*problem); !why.empty()) {
           ++left_out_[why];
           continue;
         }
@@ -602,7 +598,7 @@ class Verifier {
   Evaluation evaluate(const VerifyCase<T>& v, Found<T>& finding) {
     if (Clock::now() >= deadline_) return Evaluation::out_of_time;
     const properties::FilteredProblem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
-    if (contract_needs_status() && !left_out(problem.exact_status()).empty())
+    if (contract_needs_status() && !left_out(problem).empty())
       return Evaluation::pass;  // not an input the implementation promises anything for
     std::string error;
     issue_ = Issue{};

@@ -32,6 +32,7 @@
 #include <cstring>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -312,18 +313,48 @@ class CaseJudge {
   std::vector<Judged> judged_;
 };
 
+/// Inputs left out of the judgement in this process, by properties::not_judged()'s reason, and
+/// those judged; printed to stderr at exit ("oblique: N inputs judged, ...").
+struct Counts {
+  long judged = 0;
+  std::map<std::string, long> left_out;
+};
+
+inline void print_counts();
+
+inline Counts& counts() {
+  static Counts* c = [] {
+    std::atexit(print_counts);
+    return new Counts;  // never destroyed: print_counts runs after static destructors may have
+  }();
+  return *c;
+}
+
+inline void print_counts() {
+  const Counts& c = counts();
+  std::string line = "oblique: " + std::to_string(c.judged) + " inputs judged";
+  for (const auto& [why, n] : c.left_out) line += ", " + std::to_string(n) + " left out: " + why;
+  std::fprintf(stderr, "%s\n", line.c_str());
+}
+
 /// Runs `impl` on the case (in T) when it accepts it, and judges the answer with `checks`.
-/// With `unanswerable` false, inputs without an exact answer are not given to it (a function
-/// without statuses has no way to refuse them). On a violation: prints the case, the checker's
-/// view and the property, then aborts. `judge` carries the case's problem and judgements from
-/// one implementation to the next.
+/// Inputs properties::not_judged() leaves out for `checks.statuses` are not given to it (and
+/// counted), except that with `unanswerable` inputs without an exact answer are (there an answer
+/// where none exists is the finding). On a violation: prints the case, the checker's view and the
+/// property, then aborts. `judge` carries the case's problem and judgements from one
+/// implementation to the next.
 template <class T>
 void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementation<T>& impl,
            const properties::Checks& checks, bool unanswerable = true) {
   const Matrix4<T>& m = judge.matrix();
   const Vector4<T>& plane = judge.plane();
   if (!impl.accepts(c.convention, m)) return;
-  if (!unanswerable && judge.problem().exact_status() != Status::ok) return;
+  if (const std::string why = properties::not_judged(judge.problem(), checks.statuses);
+      !why.empty() && !(unanswerable && judge.problem().exact_status() != Status::ok)) {
+    ++counts().left_out[why];
+    return;
+  }
+  ++counts().judged;
   const properties::Outcome<T> outcome = impl.run(m, plane, c.convention);
   const properties::Judgement judgement = judge.judge(outcome, checks);
   const properties::Finding* violation = judgement.violation();
@@ -366,7 +397,8 @@ int test_one_input(const std::uint8_t* data, std::size_t size,
   if (describing()) describe(c);
   properties::Checks checks = impl.checks(options.row3_accuracy);
   if (options.statuses) checks.statuses = *options.statuses;
-  // As in the property suite: a function without statuses is judged where an answer exists.
+  // As in the property suite: a function without statuses is judged where an answer exists and
+  // the input is decidable in T (properties::not_judged()).
   check<T>(c, impl, checks, checks.statuses != properties::StatusContract::answers_only);
   return 0;
 }

@@ -94,6 +94,7 @@ enum class Coverage { valid, places_only, perspective_shape, invalid, none };
 /// What the cases of one property run covered, and its last (so most shrunk) failure.
 struct Tally {
   std::map<std::string, int> families, conventions, places, defects, implementations, applied;
+  std::map<std::string, int> left_out;  ///< answers not judged, by properties::not_judged()
   std::optional<Counterexample> failure;
   std::string property;  ///< the RapidCheck test id of the run
 };
@@ -181,6 +182,7 @@ void run(Testable&& testable, Coverage coverage, const std::string& property = "
             << "\nconventions: " << summary(t.conventions) << "\nplaces: " << summary(t.places);
   if (!t.defects.empty()) std::cout << "\ndefects: " << summary(t.defects);
   if (!t.applied.empty()) std::cout << "\napplied: " << summary(t.applied);
+  if (!t.left_out.empty()) std::cout << "\nleft out: " << summary(t.left_out);
   std::cout << std::endl;
   if (!result.template is<rc::detail::SuccessResult>()) {
     std::string where;
@@ -256,8 +258,9 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
 
 /// Runs each implementation on the case and judges each answer (judge(), with `checks` and the
 /// implementation's status contract, or `statuses` when given); fails the case on the first
-/// violation. An implementation without statuses is judged on inputs without an answer only
-/// where invalid inputs are the point (judge_statuses), so its property failures are not masked.
+/// violation. Inputs properties::not_judged() leaves out for the contract are skipped and counted
+/// (Tally::left_out), except that inputs without an answer are judged where invalid inputs are
+/// the point (judge_statuses): there an answer to an input that allows none is the finding.
 /// `problem` is a Problem<T> or a FilteredProblem<T> (filtered.h: the same verdicts, most
 /// without GMP).
 template <class T, class AnyProblem>
@@ -268,8 +271,12 @@ void for_each_answer(const std::vector<Implementation<T>>& implementations,
   for (const Implementation<T>& impl : implementations) {
     if (!impl.accepts(c.convention, c.matrix)) continue;
     const StatusContract contract = statuses ? *statuses : impl.status_contract();
-    const bool refuses = contract != StatusContract::answers_only;
-    if (!refuses && !judge_statuses && problem.exact_status() != Status::ok) continue;
+    if (const std::string why = properties::not_judged(problem, contract); !why.empty()) {
+      if (!judge_statuses || problem.exact_status() == Status::ok) {
+        ++tally().left_out[why];
+        continue;
+      }
+    }
     ++tally().implementations[impl.name];
     const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
     checks.statuses = contract;

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "oblique/properties/properties.h"
@@ -83,6 +85,60 @@ inline std::string status_list(const std::vector<Status>& statuses) {
   std::string out;
   for (Status s : statuses) out += (out.empty() ? "" : " or ") + std::string(status_code(s));
   return out;
+}
+
+/// Why an implementation is not judged on an input, or "" when it is: the one rule every tool
+/// (the property suite, `oblique verify`, the fuzz driver) leaves inputs out by. An answer is
+/// judged only where some reply the implementation can give is right:
+///  - an input without an exact answer, when its status is not one the implementation has (it
+///    has none under answers_only; under exact, `refusals` lists the ones it has, empty: all);
+///  - an input *undecidable at the implementation's precision*: it has an exact answer, but it
+///    lies within rounding (in T) of a status boundary (C . Q of zero, a singular M, the end of
+///    T's range), so acceptable_statuses() holds a refusal besides ok. A computed C . Q there
+///    may have either sign or be zero, the answer may be anything, and only a refusal is right;
+///    left out when the implementation has none of the refusals allowed (answers_only: none).
+/// any_refusal has every refusal: nothing is left out. What the input is decides, never how it
+/// was generated.
+template <class T>
+std::string not_judged(Status exact, const std::vector<Status>& acceptable,
+                       StatusContract contract, const std::vector<Status>& refusals = {}) {
+  if (contract == StatusContract::any_refusal) return "";
+  if (contract == StatusContract::exact && refusals.empty()) return "";
+  auto has = [&](Status s) {
+    return contract == StatusContract::exact &&
+           std::find(refusals.begin(), refusals.end(), s) != refusals.end();
+  };
+  if (exact != Status::ok) {
+    if (has(exact)) return "";
+    return contract == StatusContract::answers_only
+               ? "inputs without an answer"
+               : "inputs needing status " + std::string(status_code(exact));
+  }
+  // The first allowed refusal names the boundary; the input is judged when any is the
+  // implementation's.
+  std::optional<Status> boundary;
+  for (Status s : acceptable) {
+    if (s == Status::ok) continue;
+    if (has(s)) return "";
+    if (!boundary) boundary = s;
+  }
+  if (!boundary) return "";
+  const std::string scalar(protocol::scalar_name<T>());
+  const std::string where = *boundary == Status::plane_misses_view_volume ? "C . Q within rounding of 0"
+                            : *boundary == Status::singular_projection
+                                ? "M within rounding of singular"
+                                : "rounding allows out_of_range";
+  return "inputs undecidable in " + scalar + " (" + where + ")";
+}
+
+/// not_judged() for `problem` (a Problem<T> or a FilteredProblem<T>).
+template <class AnyProblem>
+std::string not_judged(const AnyProblem& problem, StatusContract contract,
+                       const std::vector<Status>& refusals = {}) {
+  using T = typename std::decay_t<decltype(problem.matrix())>::Scalar;
+  if (contract == StatusContract::any_refusal) return "";  // (no status asked of the problem)
+  if (contract == StatusContract::exact && refusals.empty()) return "";
+  return not_judged<T>(problem.exact_status(), problem.acceptable_statuses(), contract, refusals);
 }
 
 namespace judging {
