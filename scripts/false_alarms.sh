@@ -1,0 +1,174 @@
+#!/usr/bin/env bash
+# The false-alarm campaign: correct implementations, run for a long time under every contract
+# they claim, must give no finding; every bundled buggy example must still be caught.
+#
+#   bash scripts/false_alarms.sh [--minutes M] [--jobs J] [--seed S] [--no-build]
+#
+# Each run below takes M minutes (default 10) of one job; J (default: the number of cores) run
+# at a time, so the whole takes about 6 M / J minutes, then the buggy examples (at most 7 min).
+# S (default: from the clock) is the first seed, each run gets its own. The runs:
+#   verify: the bundled `correct` (double and float, any refusal) and `engine_no_statuses` (double
+#           and float, examples/engine_contract.json: answers only, unit planes), every
+#           convention and family;
+#   testing: the float engine of false_alarms/ through oblique::testing (every family and place,
+#           each convention, answers only), RC_PARAMS max_success per property;
+#   fuzz driver: the same engine through oblique::fuzzing, on mutated fuzz_oblique corpus inputs.
+# Then each buggy example under verify (must be caught: exit 1), with its time to the finding.
+# Logs and a summary go to a new folder build/false-alarms/<UTC time>/ (nothing is overwritten);
+# the script exits 1 on any false alarm or missed bug, 2 when a run could not be made.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+minutes=10
+jobs=$(nproc)
+seed=$(date +%s)
+build=1
+while (($#)); do
+  case "$1" in
+    --minutes) minutes="$2"; shift 2 ;;
+    --seed) seed="$2"; shift 2 ;;
+    --jobs) jobs="$2"; shift 2 ;;
+    --no-build) build=0; shift ;;
+    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    *) echo "false_alarms.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
+  esac
+done
+[[ "$minutes" =~ ^[0-9]+$ && "$minutes" -gt 0 ]] || { echo "false_alarms.sh: --minutes takes a positive integer" >&2; exit 2; }
+[[ "$jobs" =~ ^[0-9]+$ && "$jobs" -gt 0 ]] || { echo "false_alarms.sh: --jobs takes a positive integer" >&2; exit 2; }
+[[ "$seed" =~ ^[0-9]+$ ]] || { echo "false_alarms.sh: --seed takes a non-negative integer" >&2; exit 2; }
+
+if ((build)); then
+  bash scripts/setup.sh
+  cmake --preset release > /dev/null
+  cmake --build --preset release --target oblique example_correct example_engine_no_statuses \
+    example_camera_space_signs example_zero_one_factor_on_gl example_no_camera_guard \
+    example_sign_by_division example_ignores_shift example_two_bugs float_engine_property_test \
+    float_engine_fuzz_replay > /dev/null
+fi
+bin=build/release
+oblique=$bin/cli/oblique
+ex=$bin/examples
+for f in "$oblique" "$ex/example_correct" "$ex/example_engine_no_statuses" \
+         "$bin/false_alarms/float_engine_property_test" "$bin/false_alarms/float_engine_fuzz_replay"; do
+  [[ -x "$f" ]] || { echo "false_alarms.sh: $f is not built (run without --no-build)" >&2; exit 2; }
+done
+
+out=build/false-alarms/$(date -u +%Y%m%dT%H%M%SZ)
+if [[ -e "$out" ]]; then echo "false_alarms.sh: $out exists; not overwriting it" >&2; exit 2; fi
+mkdir -p "$out" || { echo "false_alarms.sh: cannot create $out" >&2; exit 2; }
+summary="$out/summary.md"
+: > "$summary" || { echo "false_alarms.sh: cannot write $summary" >&2; exit 2; }
+say() { echo "$*" | tee -a "$summary"; }
+
+# name | kind | implementation | arguments
+runs=(
+  "correct, double, any refusal|verify|$ex/example_correct|--convention all"
+  "correct, float, any refusal|verify|$ex/example_correct --float|--precision float --convention all"
+  "engine_no_statuses, double, contract file|verify|$ex/example_engine_no_statuses|--contract examples/engine_contract.json"
+  "engine_no_statuses, float, contract file|verify|$ex/example_engine_no_statuses --float|--precision float --contract examples/engine_contract.json"
+  "float engine, oblique::testing|testing||"
+  "float engine, fuzz driver|fuzzing||"
+)
+secs=$((minutes * 60))
+
+# One run, in the background: its log, and its figures in run<n>.figures (judged, left out, rc).
+run_one() {
+  local n=$1 kind=$2 impl=$3 args=$4 s=$5
+  local log="$out/run$n.log" rc=0 judged=0 left=0
+  case "$kind" in
+    verify)
+      # shellcheck disable=SC2086
+      "$oblique" verify --impl "$impl" $args --seed "$s" --time-limit "$secs" \
+        --report-dir "$out/reports$n" > "$log" 2>&1 || rc=$?
+      judged=$(sed -n 's/^oblique verify: \([0-9]*\) cases, no violation.*/\1/p' "$log" | tail -1)
+      left=$(sed -n 's/^  left out by the contract: //p' "$log" | grep -o '[0-9]* drawn' |
+             awk '{s += $1} END {print s + 0}')
+      ;;
+    testing)
+      # RapidCheck runs each property to max_success; the six properties of one convention's test
+      # draw the same cases (one seed), so a case counts once, by its near_is_clip_plane run. About
+      # 3,000 cases per second per job (all six properties) set max_success from the time.
+      RC_PARAMS="max_success=$((secs * 1000)) seed=$s" OBLIQUE_REPORT_DIR="$out/reports$n" \
+        "$bin/false_alarms/float_engine_property_test" > "$log" 2>&1 || rc=$?
+      judged=$(grep -o '^near_is_clip_plane: OK, passed [0-9]* tests' "$log" |
+               awk '{s += $4} END {print s + 0}')
+      left=$(grep -A1 '^near_is_clip_plane: OK' "$log" | sed -n 's/^left out: //p' |
+             grep -o '[0-9][0-9]*\(,\|$\)' | tr -d ',' | awk '{s += $1} END {print s + 0}')
+      ;;
+    fuzzing)
+      # Inputs for the time, at about 60,000 per second per job (each decoded for the three
+      # conventions' functions; those without the perspective shape are not given to them).
+      "$bin/false_alarms/float_engine_fuzz_replay" --random "$((secs * 60000))" --seed "$s" \
+        fuzz/corpus/fuzz_oblique > "$log" 2>&1 || rc=$?
+      judged=$(sed -n 's/^oblique: \([0-9]*\) inputs judged.*/\1/p' "$log" | tail -1)
+      left=$(sed -n 's/^oblique: [0-9]* inputs judged//p' "$log" | grep -o '[0-9]* left out' |
+             grep -o '[0-9]*' | awk '{s += $1} END {print s + 0}')
+      ;;
+  esac
+  echo "${judged:-0} ${left:-0} $rc" > "$out/run$n.figures"
+}
+
+say "# False-alarm campaign $(date -u +%Y-%m-%dT%H:%M:%SZ)"
+say ""
+say "$minutes min per run, $jobs at a time, first seed $seed, logs in $out."
+say ""
+n=0
+for r in "${runs[@]}"; do
+  IFS='|' read -r name kind impl args <<< "$r"
+  n=$((n + 1))
+  while (($(jobs -rp | wc -l) >= jobs)); do wait -n || true; done
+  echo "started: $name (seed $((seed + n)))" >&2
+  run_one "$n" "$kind" "$impl" "$args" "$((seed + n))" &
+done
+wait
+say "| run | seed | judged cases | left out | findings |"
+say "|---|---|---|---|---|"
+total=0
+failures=0
+n=0
+for r in "${runs[@]}"; do
+  IFS='|' read -r name kind impl args <<< "$r"
+  n=$((n + 1))
+  read -r judged left rc < "$out/run$n.figures" || { judged=0; left=0; rc=2; }
+  findings=0
+  if ((rc != 0)); then
+    findings="exit $rc: see run$n.log"
+    failures=$((failures + 1))
+  fi
+  total=$((total + judged))
+  say "| $name | $((seed + n)) | $judged | $left | $findings |"
+done
+say ""
+say "Judged in all: $total cases, $failures runs with findings."
+say ""
+say "Buggy examples (verify, default contract, 60 s each): each must be caught."
+say ""
+say "| example | caught | seconds (with shrinking) | finding |"
+say "|---|---|---|---|"
+missed=0
+for bug in camera_space_signs zero_one_factor_on_gl no_camera_guard sign_by_division two_bugs; do
+  log="$out/bug_$bug.log"
+  start=$(date +%s.%N)
+  rc=0
+  "$oblique" verify --impl "$ex/example_$bug" --seed "$seed" --time-limit 60 \
+    --report-dir "$out/bug_reports_$bug" > "$log" 2>&1 || rc=$?
+  elapsed=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {printf "%.1f", b - a}')
+  kind=$(sed -n 's/^oblique verify: \([a-z_0-9]*\) violated after \([0-9]*\) cases.*/\1 after \2 cases/p' "$log" | head -1)
+  if ((rc == 1)); then
+    say "| $bug | yes | $elapsed | ${kind:-see log} |"
+  else
+    say "| $bug | NO (exit $rc) | $elapsed | |"
+    missed=$((missed + 1))
+  fi
+done
+# ignores_shift shows on the stereo_shift family only.
+log="$out/bug_ignores_shift.log"
+rc=0
+"$oblique" verify --impl "$ex/example_ignores_shift" --families stereo_shift --seed "$seed" \
+  --time-limit 60 --report-dir "$out/bug_reports_ignores_shift" > "$log" 2>&1 || rc=$?
+kind=$(sed -n 's/^oblique verify: \([a-z_0-9]*\) violated after \([0-9]*\) cases.*/\1 after \2 cases/p' "$log" | head -1)
+if ((rc == 1)); then say "| ignores_shift (stereo_shift) | yes | | ${kind:-see log} |"; else
+  say "| ignores_shift (stereo_shift) | NO (exit $rc) | | |"; missed=$((missed + 1)); fi
+say ""
+say "Summary: $total judged cases, $failures false-alarm runs, $missed buggy examples missed."
+if ((failures > 0 || missed > 0)); then exit 1; fi
