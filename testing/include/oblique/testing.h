@@ -65,8 +65,9 @@ struct Contract {
   std::vector<Convention> conventions = generators::every_convention();
   std::vector<generators::Place> places = {std::begin(generators::all_places),
                                            std::end(generators::all_places)};
-  /// answers_only: a function without statuses (only an answer to an input without one fails);
-  /// any_refusal: it refuses inputs without an answer, in its own words; exact: oblique::Status.
+  /// answers_only: a function without statuses (only an answer to an input without one fails;
+  /// inputs undecidable at its precision are left out, properties::not_judged()); any_refusal:
+  /// it refuses inputs without an answer, in its own words; exact: oblique::Status.
   /// Empty: from the adapter (void: answers_only, bool: any_refusal, Status: exact).
   std::optional<StatusContract> statuses;
   /// The properties judged (extracted_planes_match included).
