@@ -26,8 +26,7 @@ float sgn(float x) {
 
 void make_oblique(float m[16], const float plane[4], Depth depth) {
   // Column-major: m[4 * column + row].
-  const float m11 = m[0], m22 = m[5], m13 = m[8], m23 = m[9], m33 = m[10], m43 = m[11],
-              m34 = m[14];
+  const float m11 = m[0], m22 = m[5], m13 = m[8], m23 = m[9], m33 = m[10], m43 = m[11], m34 = m[14];
   float largest = 0.0f;
   for (int i = 0; i < 4; ++i) largest = std::fmax(largest, std::fabs(plane[i]));
   int exponent = 0;
@@ -40,7 +39,8 @@ void make_oblique(float m[16], const float plane[4], Depth depth) {
   const float sx = sgn(c[0]) * sgn(m11), sy = sgn(c[1]) * sgn(m22), sz = sgn(c[3]) * sgn(m34);
   const float corner_z = sz > 0 ? z_high : (sz < 0 ? z_low : (z_low + z_high) / 2);
   const float qz = 1.0f / m43;
-  const float q[4] = {(sx - m13 * qz) / m11, (sy - m23 * qz) / m22, qz, (corner_z - m33 * qz) / m34};
+  const float q[4] = {(sx - m13 * qz) / m11, (sy - m23 * qz) / m22, qz,
+                      (corner_z - m33 * qz) / m34};
   const float dot = c[0] * q[0] + c[1] * q[1] + c[2] * q[2] + c[3] * q[3];
   const float a = (z_high - z_low) / dot;
   for (int j = 0; j < 4; ++j) {

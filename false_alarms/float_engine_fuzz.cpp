@@ -10,9 +10,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using oblique::Layout;
   namespace fa = oblique::false_alarms;
   // The closed form is given the perspective-shape inputs only (the rest are skipped).
-  static const auto gl = oblique::adapt<float>("make_oblique_gl", Layout::column_major,
-                                               fa::make_oblique_gl,
-                                               oblique::perspective_shape_only<float>);
+  static const auto gl =
+      oblique::adapt<float>("make_oblique_gl", Layout::column_major, fa::make_oblique_gl,
+                            oblique::perspective_shape_only<float>);
   static const auto zero_one =
       oblique::adapt<float>("make_oblique_zero_one", Layout::column_major,
                             fa::make_oblique_zero_one, oblique::perspective_shape_only<float>);
@@ -24,9 +24,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     options.conventions = {convention};
     return options;
   };
-  static const oblique::fuzzing::Options options[] = {
-      for_convention(Convention::gl), for_convention(Convention::zero_one),
-      for_convention(Convention::reversed_z)};
+  static const oblique::fuzzing::Options options[] = {for_convention(Convention::gl),
+                                                      for_convention(Convention::zero_one),
+                                                      for_convention(Convention::reversed_z)};
   oblique::fuzzing::test_one_input(data, size, gl, options[0]);
   oblique::fuzzing::test_one_input(data, size, zero_one, options[1]);
   oblique::fuzzing::test_one_input(data, size, reversed_z, options[2]);

@@ -36,9 +36,7 @@ std::vector<std::uint8_t> mutated(std::vector<std::uint8_t> bytes, std::mt19937_
     const std::uint8_t value = static_cast<std::uint8_t>(random());
     const std::size_t at = bytes.empty() ? 0 : random() % bytes.size();
     switch (random() % 4) {
-      case 0:
-        bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at), value);
-        break;
+      case 0: bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at), value); break;
       case 1:
         if (!bytes.empty()) bytes.erase(bytes.begin() + static_cast<std::ptrdiff_t>(at));
         break;
@@ -111,9 +109,8 @@ int main(int argc, char** argv) {
   }
   std::mt19937_64 random(seed);
   for (unsigned long long n = 0; n < random_count; ++n) {
-    const std::vector<std::uint8_t> input =
-        mutated(inputs.empty() ? std::vector<std::uint8_t>{} : inputs[random() % inputs.size()],
-                random);
+    const std::vector<std::uint8_t> input = mutated(
+        inputs.empty() ? std::vector<std::uint8_t>{} : inputs[random() % inputs.size()], random);
     LLVMFuzzerTestOneInput(input.data(), input.size());
     if ((n + 1) % 100000 == 0) std::fprintf(stderr, "%llu random inputs run\n", n + 1);
   }

@@ -227,8 +227,7 @@ TEST(NotJudged, anInputWithinRoundingOfTheFarCornerIsLeftOutOnlyForWhatCannotRef
   EXPECT_EQ(not_judged(problem, StatusContract::exact, {Status::camera_not_behind_plane}), why);
   EXPECT_EQ(not_judged(problem, StatusContract::exact, {Status::plane_misses_view_volume}), "");
   // In long double the same input is decidable: the rule depends on the precision.
-  const Problem<long double> wide(m.cast<long double>(), plane.cast<long double>(),
-                                  Convention::gl);
+  const Problem<long double> wide(m.cast<long double>(), plane.cast<long double>(), Convention::gl);
   EXPECT_EQ(not_judged(wide, StatusContract::answers_only), "");
 }
 

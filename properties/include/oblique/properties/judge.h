@@ -100,8 +100,8 @@ inline std::string status_list(const std::vector<Status>& statuses) {
 /// any_refusal has every refusal: nothing is left out. What the input is decides, never how it
 /// was generated.
 template <class T>
-std::string not_judged(Status exact, const std::vector<Status>& acceptable,
-                       StatusContract contract, const std::vector<Status>& refusals = {}) {
+std::string not_judged(Status exact, const std::vector<Status>& acceptable, StatusContract contract,
+                       const std::vector<Status>& refusals = {}) {
   if (contract == StatusContract::any_refusal) return "";
   if (contract == StatusContract::exact && refusals.empty()) return "";
   auto has = [&](Status s) {
@@ -124,10 +124,10 @@ std::string not_judged(Status exact, const std::vector<Status>& acceptable,
   }
   if (!boundary) return "";
   const std::string scalar(protocol::scalar_name<T>());
-  const std::string where = *boundary == Status::plane_misses_view_volume ? "C . Q within rounding of 0"
-                            : *boundary == Status::singular_projection
-                                ? "M within rounding of singular"
-                                : "rounding allows out_of_range";
+  const std::string where =
+      *boundary == Status::plane_misses_view_volume ? "C . Q within rounding of 0"
+      : *boundary == Status::singular_projection    ? "M within rounding of singular"
+                                                    : "rounding allows out_of_range";
   return "inputs undecidable in " + scalar + " (" + where + ")";
 }
 

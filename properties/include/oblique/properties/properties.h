@@ -409,10 +409,11 @@ class Problem {
     const exact::Rational t_near = exact::abs(exact::Rational(nr.m4));
 
     // 1. near' = lambda C for some lambda > 0, every entry within its own rounding:
-    //    |near'_i - lambda C_i| <= g (lambda |C_i| + |t M4_i|) + w lambda, g = gamma(kEntryRoundings),
-    //    first with w = 0; an answer that fails so is tried again with the allowance for what no
-    //    rasterizer sees, w = kInvisiblePlaneUlps u max_j |C_j| (tolerance.h). Each entry bounds
-    //    lambda to an interval; the property holds when they intersect above 0.
+    //    |near'_i - lambda C_i| <= g (lambda |C_i| + |t M4_i|) + w lambda, g =
+    //    gamma(kEntryRoundings), first with w = 0; an answer that fails so is tried again with the
+    //    allowance for what no rasterizer sees, w = kInvisiblePlaneUlps u max_j |C_j|
+    //    (tolerance.h). Each entry bounds lambda to an interval; the property holds when they
+    //    intersect above 0.
     const exact::Rational& g = entry_gamma;
     const exact::Rational underflow = tolerance::kEntryRoundings * tolerance::underflow_unit<T>();
     int k = 0;  // the largest |C_k|
@@ -436,9 +437,9 @@ class Problem {
           if (exact::abs(near[i]) > b) ok = false;
           continue;
         }
-        lambda_low = std::max(lambda_low, exact::Rational(
-                                              (c == 0 ? exact::abs(near[i]) - b : y - b) /
-                                              (c * (1 + g) + w)));
+        lambda_low = std::max(
+            lambda_low,
+            exact::Rational((c == 0 ? exact::abs(near[i]) - b : y - b) / (c * (1 + g) + w)));
         if (c == 0) continue;
         const exact::Rational room = c * (1 - g) - w;
         if (room > 0) {
@@ -446,8 +447,10 @@ class Problem {
           lambda_high = has_high ? std::min(lambda_high, high) : high;
           has_high = true;
         } else if (y + b < 0) {
-          if (room == 0) ok = false;
-          else lambda_low = std::max(lambda_low, exact::Rational((y + b) / room));
+          if (room == 0)
+            ok = false;
+          else
+            lambda_low = std::max(lambda_low, exact::Rational((y + b) / room));
         }
       }
       return ok && has_high && lambda_high > 0 && lambda_low <= lambda_high;
@@ -455,8 +458,8 @@ class Problem {
     exact::Rational invisible = 0;
     feasible = fit(0);
     if (!feasible) {
-      const exact::Rational w = tolerance::kInvisiblePlaneUlps * tolerance::unit_roundoff(p) *
-                                exact::abs(cx_[k]);
+      const exact::Rational w =
+          tolerance::kInvisiblePlaneUlps * tolerance::unit_roundoff(p) * exact::abs(cx_[k]);
       if (fit(w)) {
         feasible = true;
         invisible = w;
