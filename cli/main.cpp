@@ -14,8 +14,10 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "oblique/properties/generators.h"
 #include "oblique/protocol/apply.h"
 #include "oblique/report/accuracy_report.h"
 #include "oblique/report/depth_report.h"
@@ -46,6 +48,22 @@ std::vector<std::string> split_list(const std::string& list) {
   return out;
 }
 
+/// "a, b, c": the names of a table's entries (the generators' own tables, so the help and the
+/// messages list every family and place there is).
+template <class E, std::size_t N>
+std::string names_of(const E (&all)[N], std::string_view (*name)(E) noexcept) {
+  std::string out;
+  for (E e : all) out += (out.empty() ? "" : ", ") + std::string(name(e));
+  return out;
+}
+
+std::string family_names() {
+  return names_of(oblique::generators::all_families, oblique::generators::family_name);
+}
+std::string place_names() {
+  return names_of(oblique::generators::all_places, oblique::generators::place_name);
+}
+
 /// Fills the conventions and families of `options` from their lists; false with a message.
 bool parse_lists(const std::string& conventions, const std::string& families,
                  oblique::verify::VerifyOptions& options) {
@@ -66,11 +84,7 @@ bool parse_lists(const std::string& conventions, const std::string& families,
     if (auto f = oblique::generators::parse_family(name)) {
       options.families.push_back(*f);
     } else {
-      std::cerr << "oblique verify: unknown family \"" << name << "\" (";
-      for (auto f : oblique::generators::all_families)
-        std::cerr << (f == oblique::generators::all_families[0] ? "" : ", ")
-                  << oblique::generators::family_name(f);
-      std::cerr << ")\n";
+      std::cerr << "oblique verify: unknown family \"" << name << "\" (" << family_names() << ")\n";
       return false;
     }
   }
@@ -233,8 +247,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                    "Conventions to request: gl, zero_one, reversed_z, a comma list, or all")
       ->capture_default_str();
   verify->add_option("--families", settings->families,
-                     "Comma list of projection families (default: all): perspective, off_axis, "
-                     "infinite, orthographic, y_flipped, jittered, rotated, general");
+                     "Comma list of projection families (default: all): " + family_names());
   verify->add_option("--precision", settings->precision, "Scalar type of inputs and bounds")
       ->check(CLI::IsMember({"float", "double"}))
       ->capture_default_str();
@@ -270,9 +283,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       ->check(CLI::IsMember({"unit", "any"}))
       ->capture_default_str();
   verify->add_option("--places", settings->places,
-                     "Comma list of hard places to send (default: all): typical, "
-                     "zero_in_clip_plane, near_eye, near_far_corner, along_axis, near_standard, "
-                     "scaled");
+                     "Comma list of hard places to send (default: all): " + place_names());
   verify->add_option("--exclude", settings->exclude,
                      "Comma list of families, hard places and kinds of input without an answer "
                      "to leave out");
@@ -316,7 +327,8 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
     for (const std::string& name : split_list(settings->places)) {
       const auto place = oblique::generators::parse_place(name);
       if (!place) {
-        std::cerr << "oblique verify: --places: unknown place \"" << name << "\"\n";
+        std::cerr << "oblique verify: --places: unknown place \"" << name << "\" (" << place_names()
+                  << ")\n";
         exit_code = 2;
         return;
       }
