@@ -91,9 +91,22 @@ bool parse_lists(const std::string& conventions, const std::string& families,
   return !options.conventions.empty();
 }
 
+/// --precision: the protocol's scalar names (float, double, long_double), the same option for
+/// apply, verify and check; `allowed` are those the subcommand computes or judges in.
+CLI::Option* add_precision_option(CLI::App* app, std::string& precision, const std::string& what,
+                                  std::vector<oblique::protocol::Precision> allowed) {
+  std::vector<std::string> names;
+  for (const oblique::protocol::Precision p : allowed)
+    names.emplace_back(oblique::protocol::precision_name(p));
+  return app->add_option("--precision", precision, what)
+      ->check(CLI::IsMember(names))
+      ->capture_default_str();
+}
+
 struct CheckSettings {
   std::string scene_path;
   bool as_json = false;
+  std::string precision = "double";  ///< --precision: of the requests --impl gets, and its bounds
   std::string impl;      ///< --impl CMD: the user's implementation, over the apply protocol
   std::string plot_dir;  ///< --plot DIR
   double timeout_seconds = 10;
@@ -109,7 +122,7 @@ bool judge_implementation(const CheckSettings& settings, const oblique::scene::S
   for (oblique::scene::SurfaceCheck& s : check.surfaces) {
     if (!s.render) continue;
     rendered.push_back(&s);
-    input += oblique::scene::impl_request(scene, s) + "\n";
+    input += oblique::scene::impl_request(scene, s, check.impl_precision) + "\n";
   }
   if (rendered.empty()) return true;
   // An implementation that exits early must not take us down with it: a write to its closed
@@ -139,7 +152,7 @@ bool judge_implementation(const CheckSettings& settings, const oblique::scene::S
     return false;
   }
   for (std::size_t i = 0; i < rendered.size(); ++i)
-    oblique::scene::judge_impl_answer(scene, *rendered[i], lines[i]);
+    oblique::scene::judge_impl_answer(scene, *rendered[i], lines[i], check.impl_precision);
   return true;
 }
 
@@ -151,6 +164,7 @@ int run_check(const CheckSettings& settings) {
     return 2;
   }
   oblique::scene::SceneCheck check = oblique::scene::check_scene(*parsed.scene);
+  check.impl_precision = *oblique::protocol::parse_precision(settings.precision);
   if (!settings.impl.empty() && !judge_implementation(settings, *parsed.scene, check)) return 2;
   std::cout << (settings.as_json ? oblique::scene::to_json(check) + "\n"
                                  : oblique::scene::to_text(check));
@@ -198,9 +212,9 @@ void setup_apply(CLI::App& app, int& exit_code) {
                    "entry within 2 ulp of the exact answer (measured: correctly rounded)")
       ->check(CLI::IsMember({"auto", "closed_form", "general", "accurate"}))
       ->capture_default_str();
-  apply->add_option("--precision", settings->precision, "Scalar type of the computation")
-      ->check(CLI::IsMember({"float", "double", "long_double"}))
-      ->capture_default_str();
+  add_precision_option(
+      apply, settings->precision, "Scalar type of the computation",
+      {std::begin(oblique::protocol::all_precisions), std::end(oblique::protocol::all_precisions)});
   apply->callback([settings, &exit_code] {
     oblique::protocol::ApplyOptions options;
     options.convention = *oblique::parse_convention(settings->convention);
@@ -248,9 +262,9 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       ->capture_default_str();
   verify->add_option("--families", settings->families,
                      "Comma list of projection families (default: all): " + family_names());
-  verify->add_option("--precision", settings->precision, "Scalar type of inputs and bounds")
-      ->check(CLI::IsMember({"float", "double"}))
-      ->capture_default_str();
+  add_precision_option(
+      verify, settings->precision, "Scalar type of inputs and bounds",
+      {oblique::protocol::Precision::float32, oblique::protocol::Precision::float64});
   verify
       ->add_option("--cases", options.cases,
                    "Number of generated requests (default: no limit, --time-limit ends the run)")
@@ -363,6 +377,12 @@ void setup_check(CLI::App& app, int& exit_code) {
   check->add_option("--impl", settings->impl,
                     "Send each rendered pass's request to this command (run by /bin/sh, speaking "
                     "the apply protocol) and judge its answers as oblique verify does");
+  add_precision_option(
+      check, settings->precision,
+      "With --impl: the scalar type the implementation computes in; its requests "
+      "are rounded to it and its answers judged with its bounds (as oblique "
+      "verify --precision)",
+      {std::begin(oblique::protocol::all_precisions), std::end(oblique::protocol::all_precisions)});
   check
       ->add_option("--timeout", settings->timeout_seconds,
                    "With --impl: seconds to wait for each answer")
