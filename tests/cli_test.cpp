@@ -38,17 +38,19 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
   std::uniform_real_distribution<double> unit(0, 1);
   auto log_uniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, unit(random)); };
   std::vector<Case> out;
-  const char* families[] = {"perspective", "off_axis", "infinite", "orthographic",
-                            "y_flipped",   "jittered", "rotated",  "general"};
+  const char* families[] = {"perspective", "off_axis", "infinite", "orthographic", "y_flipped",
+                            "jittered",    "rotated",  "general",  "x_flipped",    "xy_flipped"};
+  constexpr int kFamilies = sizeof families / sizeof families[0];
   for (int i = 0; i < count; ++i) {
     Case k;
-    k.family = families[i % 8];
-    k.convention = all_conventions[(i / 8) % 3];
+    k.family = families[i % kFamilies];
+    k.convention = all_conventions[(i / kFamilies) % 3];
     const double n = log_uniform(1e-6, 10), f = n * log_uniform(1.5, 1e12);
     const double top = n * log_uniform(0.05, 3), right = top * log_uniform(0.5, 3);
     const double shift = unit(random) - 0.5;
     if (k.family == "perspective" || k.family == "y_flipped" || k.family == "jittered" ||
-        k.family == "rotated" || k.family == "general") {
+        k.family == "rotated" || k.family == "general" || k.family == "x_flipped" ||
+        k.family == "xy_flipped") {
       k.m = frustum<double>(-right, right, -top, top, n, f, k.convention);
     } else if (k.family == "off_axis") {
       k.m = frustum<double>(-right + shift * right, right + shift * right, -top, top * 0.5, n, f,
@@ -58,7 +60,8 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
     } else {
       k.m = orthographic<double>(-right, right, -top, top, n, f, k.convention);
     }
-    if (k.family == "y_flipped") k.m.row(1) *= -1;
+    if (k.family == "y_flipped" || k.family == "xy_flipped") k.m.row(1) *= -1;
+    if (k.family == "x_flipped" || k.family == "xy_flipped") k.m.row(0) *= -1;
     if (k.family == "jittered") k.m.row(0) += (shift / 960) * k.m.row(3);
     if (k.family == "rotated" || k.family == "general") {
       Matrix4<double> r = Matrix4<double>::Identity();
