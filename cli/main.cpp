@@ -14,8 +14,10 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "oblique/properties/generators.h"
 #include "oblique/protocol/apply.h"
 #include "oblique/report/accuracy_report.h"
 #include "oblique/report/depth_report.h"
@@ -46,6 +48,22 @@ std::vector<std::string> split_list(const std::string& list) {
   return out;
 }
 
+/// "a, b, c": the names of a table's entries (the generators' own tables, so the help and the
+/// messages list every family and place there is).
+template <class E, std::size_t N>
+std::string names_of(const E (&all)[N], std::string_view (*name)(E) noexcept) {
+  std::string out;
+  for (E e : all) out += (out.empty() ? "" : ", ") + std::string(name(e));
+  return out;
+}
+
+std::string family_names() {
+  return names_of(oblique::generators::all_families, oblique::generators::family_name);
+}
+std::string place_names() {
+  return names_of(oblique::generators::all_places, oblique::generators::place_name);
+}
+
 /// Fills the conventions and families of `options` from their lists; false with a message.
 bool parse_lists(const std::string& conventions, const std::string& families,
                  oblique::verify::VerifyOptions& options) {
@@ -66,20 +84,29 @@ bool parse_lists(const std::string& conventions, const std::string& families,
     if (auto f = oblique::generators::parse_family(name)) {
       options.families.push_back(*f);
     } else {
-      std::cerr << "oblique verify: unknown family \"" << name << "\" (";
-      for (auto f : oblique::generators::all_families)
-        std::cerr << (f == oblique::generators::all_families[0] ? "" : ", ")
-                  << oblique::generators::family_name(f);
-      std::cerr << ")\n";
+      std::cerr << "oblique verify: unknown family \"" << name << "\" (" << family_names() << ")\n";
       return false;
     }
   }
   return !options.conventions.empty();
 }
 
+/// --precision: the protocol's scalar names (float, double, long_double), the same option for
+/// apply, verify and check; `allowed` are those the subcommand computes or judges in.
+CLI::Option* add_precision_option(CLI::App* app, std::string& precision, const std::string& what,
+                                  std::vector<oblique::protocol::Precision> allowed) {
+  std::vector<std::string> names;
+  for (const oblique::protocol::Precision p : allowed)
+    names.emplace_back(oblique::protocol::precision_name(p));
+  return app->add_option("--precision", precision, what)
+      ->check(CLI::IsMember(names))
+      ->capture_default_str();
+}
+
 struct CheckSettings {
   std::string scene_path;
   bool as_json = false;
+  std::string precision = "double";  ///< --precision: of the requests --impl gets, and its bounds
   std::string impl;      ///< --impl CMD: the user's implementation, over the apply protocol
   std::string plot_dir;  ///< --plot DIR
   double timeout_seconds = 10;
@@ -95,7 +122,7 @@ bool judge_implementation(const CheckSettings& settings, const oblique::scene::S
   for (oblique::scene::SurfaceCheck& s : check.surfaces) {
     if (!s.render) continue;
     rendered.push_back(&s);
-    input += oblique::scene::impl_request(scene, s) + "\n";
+    input += oblique::scene::impl_request(scene, s, check.impl_precision) + "\n";
   }
   if (rendered.empty()) return true;
   // An implementation that exits early must not take us down with it: a write to its closed
@@ -125,7 +152,7 @@ bool judge_implementation(const CheckSettings& settings, const oblique::scene::S
     return false;
   }
   for (std::size_t i = 0; i < rendered.size(); ++i)
-    oblique::scene::judge_impl_answer(scene, *rendered[i], lines[i]);
+    oblique::scene::judge_impl_answer(scene, *rendered[i], lines[i], check.impl_precision);
   return true;
 }
 
@@ -137,6 +164,7 @@ int run_check(const CheckSettings& settings) {
     return 2;
   }
   oblique::scene::SceneCheck check = oblique::scene::check_scene(*parsed.scene);
+  check.impl_precision = *oblique::protocol::parse_precision(settings.precision);
   if (!settings.impl.empty() && !judge_implementation(settings, *parsed.scene, check)) return 2;
   std::cout << (settings.as_json ? oblique::scene::to_json(check) + "\n"
                                  : oblique::scene::to_text(check));
@@ -184,9 +212,9 @@ void setup_apply(CLI::App& app, int& exit_code) {
                    "entry within 2 ulp of the exact answer (measured: correctly rounded)")
       ->check(CLI::IsMember({"auto", "closed_form", "general", "accurate"}))
       ->capture_default_str();
-  apply->add_option("--precision", settings->precision, "Scalar type of the computation")
-      ->check(CLI::IsMember({"float", "double", "long_double"}))
-      ->capture_default_str();
+  add_precision_option(
+      apply, settings->precision, "Scalar type of the computation",
+      {std::begin(oblique::protocol::all_precisions), std::end(oblique::protocol::all_precisions)});
   apply->callback([settings, &exit_code] {
     oblique::protocol::ApplyOptions options;
     options.convention = *oblique::parse_convention(settings->convention);
@@ -233,11 +261,10 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                    "Conventions to request: gl, zero_one, reversed_z, a comma list, or all")
       ->capture_default_str();
   verify->add_option("--families", settings->families,
-                     "Comma list of projection families (default: all): perspective, off_axis, "
-                     "infinite, orthographic, y_flipped, jittered, rotated, general");
-  verify->add_option("--precision", settings->precision, "Scalar type of inputs and bounds")
-      ->check(CLI::IsMember({"float", "double"}))
-      ->capture_default_str();
+                     "Comma list of projection families (default: all): " + family_names());
+  add_precision_option(
+      verify, settings->precision, "Scalar type of inputs and bounds",
+      {oblique::protocol::Precision::float32, oblique::protocol::Precision::float64});
   verify
       ->add_option("--cases", options.cases,
                    "Number of generated requests (default: no limit, --time-limit ends the run)")
@@ -270,9 +297,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       ->check(CLI::IsMember({"unit", "any"}))
       ->capture_default_str();
   verify->add_option("--places", settings->places,
-                     "Comma list of hard places to send (default: all): typical, "
-                     "zero_in_clip_plane, near_eye, near_far_corner, along_axis, near_standard, "
-                     "scaled");
+                     "Comma list of hard places to send (default: all): " + place_names());
   verify->add_option("--exclude", settings->exclude,
                      "Comma list of families, hard places and kinds of input without an answer "
                      "to leave out");
@@ -316,7 +341,8 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
     for (const std::string& name : split_list(settings->places)) {
       const auto place = oblique::generators::parse_place(name);
       if (!place) {
-        std::cerr << "oblique verify: --places: unknown place \"" << name << "\"\n";
+        std::cerr << "oblique verify: --places: unknown place \"" << name << "\" (" << place_names()
+                  << ")\n";
         exit_code = 2;
         return;
       }
@@ -351,6 +377,12 @@ void setup_check(CLI::App& app, int& exit_code) {
   check->add_option("--impl", settings->impl,
                     "Send each rendered pass's request to this command (run by /bin/sh, speaking "
                     "the apply protocol) and judge its answers as oblique verify does");
+  add_precision_option(
+      check, settings->precision,
+      "With --impl: the scalar type the implementation computes in; its requests "
+      "are rounded to it and its answers judged with its bounds (as oblique "
+      "verify --precision)",
+      {std::begin(oblique::protocol::all_precisions), std::end(oblique::protocol::all_precisions)});
   check
       ->add_option("--timeout", settings->timeout_seconds,
                    "With --impl: seconds to wait for each answer")

@@ -52,9 +52,9 @@ void invalid_inputs_get_their_status() {
 template <class T>
 rc::Gen<Case<T>> perspective_shape_case() {
   return rc::gen::exec([] {
-    const Family families[] = {Family::perspective, Family::off_axis, Family::infinite,
-                               Family::y_flipped, Family::jittered};
-    return *generators::valid_case_of<T>(families[*rc::gen::inRange(0, 5)]);
+    const auto& families = generators::perspective_shape_families;
+    return *generators::valid_case_of<T>(
+        families[*rc::gen::inRange<std::size_t>(0, std::size(families))]);
   });
 }
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -364,12 +365,21 @@ SceneCheck check_scene(const Scene& scene) {
   return out;
 }
 
-std::string impl_request(const Scene& scene, const SurfaceCheck& pass) {
-  return protocol::request_line<double>(scene.camera.projection, pass.plane_in_camera,
-                                        scene.convention);
+namespace {
+
+/// The request's M and C in T (Eigen's cast: IEEE rounding, an infinity beyond T's range).
+template <class T>
+Matrix4<T> request_projection(const Scene& scene) {
+  static_assert(std::numeric_limits<T>::is_iec559);
+  return scene.camera.projection.template cast<T>();
+}
+template <class T>
+Vector4<T> request_plane(const SurfaceCheck& pass) {
+  return pass.plane_in_camera.template cast<T>();
 }
 
-void judge_impl_answer(const Scene& scene, SurfaceCheck& pass, const std::string& line) {
+template <class T>
+void judge_answer_in(const Scene& scene, SurfaceCheck& pass, const std::string& line) {
   pass.impl_answer = line;
   pass.impl_findings.clear();
   auto protocol_error = [&](const std::string& why) {
@@ -385,30 +395,58 @@ void judge_impl_answer(const Scene& scene, SurfaceCheck& pass, const std::string
   if (!parsed.valid) return protocol_error(parsed.error);
   const std::optional<Status> status = parse_status(parsed.status);
   if (!status) return protocol_error("unknown status \"" + parsed.status + "\"");
-  properties::Outcome<double> outcome{*status, Matrix4<double>::Zero()};
+  properties::Outcome<T> outcome{*status, Matrix4<T>::Zero()};
   if (*status == Status::ok) {
     if (!parsed.projection) return protocol_error("an ok answer without a projection");
     for (int i = 0; i < 16; ++i) {
       const std::string& token = (*parsed.projection)[static_cast<std::size_t>(i)];
       std::string why;
-      std::optional<double> value = protocol::parse_number<double>(token, &why);
-      if (!value) {  // beyond double's range: an infinite entry to judge (as verify does)
+      std::optional<T> value = protocol::parse_number<T>(token, &why);
+      if (!value) {  // beyond T's range: an infinite entry to judge (as verify does)
         std::string wide_why;
         if (const auto wide = protocol::parse_number<long double>(token, &wide_why))
-          value = *wide < 0 ? -INFINITY : INFINITY;
+          value =
+              *wide < 0 ? -std::numeric_limits<T>::infinity() : std::numeric_limits<T>::infinity();
       }
       if (!value) return protocol_error("projection[" + std::to_string(i) + "]: " + why);
       outcome.projection(i / 4, i % 4) = *value;
     }
   }
-  const properties::Problem<double> problem(scene.camera.projection, pass.plane_in_camera,
-                                            scene.convention);
+  const properties::Problem<T> problem(request_projection<T>(scene), request_plane<T>(pass),
+                                       scene.convention);
   properties::Checks checks;
   checks.statuses = properties::StatusContract::any_refusal;
   checks.row3_accuracy = true;
   // As verify: the judgement stops at the first violation (every = true would go on to the
   // properties after a non-finite answer, whose exact arithmetic cannot take infinities).
   pass.impl_findings = properties::judge(problem, outcome, checks).checks;
+}
+
+}  // namespace
+
+std::string impl_request(const Scene& scene, const SurfaceCheck& pass,
+                         protocol::Precision precision) {
+  switch (precision) {
+    case protocol::Precision::float32:
+      return protocol::request_line<float>(request_projection<float>(scene),
+                                           request_plane<float>(pass), scene.convention);
+    case protocol::Precision::float64: break;
+    case protocol::Precision::long_double:
+      return protocol::request_line<long double>(request_projection<long double>(scene),
+                                                 request_plane<long double>(pass),
+                                                 scene.convention);
+  }
+  return protocol::request_line<double>(request_projection<double>(scene),
+                                        request_plane<double>(pass), scene.convention);
+}
+
+void judge_impl_answer(const Scene& scene, SurfaceCheck& pass, const std::string& line,
+                       protocol::Precision precision) {
+  switch (precision) {
+    case protocol::Precision::float32: return judge_answer_in<float>(scene, pass, line);
+    case protocol::Precision::float64: return judge_answer_in<double>(scene, pass, line);
+    case protocol::Precision::long_double: return judge_answer_in<long double>(scene, pass, line);
+  }
 }
 
 namespace {
@@ -485,7 +523,10 @@ std::string to_json(const SceneCheck& check) {
                             {"relation", f.relation},
                             {"residual", f.lhs},
                             {"bound", f.rhs}});
-      surfaces.back()["impl"] = {{"answer", *s.impl_answer}, {"findings", findings}};
+      surfaces.back()["impl"] = {
+          {"answer", *s.impl_answer},
+          {"precision", std::string(protocol::precision_name(check.impl_precision))},
+          {"findings", findings}};
     }
   }
   const json out = {{"scene", check.scene},
@@ -600,7 +641,8 @@ std::string to_text(const SceneCheck& check) {
   bool any_impl = false;
   for (const SurfaceCheck& s : check.surfaces) any_impl = any_impl || s.impl_answer.has_value();
   if (any_impl) {
-    out << "\nthe implementation's answers (--impl), judged as oblique verify judges:\n";
+    out << "\nthe implementation's answers (--impl), judged as oblique verify --precision "
+        << protocol::precision_name(check.impl_precision) << " judges:\n";
     for (const SurfaceCheck& s : check.surfaces) {
       if (!s.impl_answer) continue;
       bool holds = true;

@@ -127,7 +127,9 @@ class ScanningDom final : public nlohmann::json_sax<json> {
   std::size_t next_ = 0;
 };
 
-const char* type_of(const json& v) {
+/// What a value is, for messages: "a string", "an array of 2", ...
+std::string type_of(const json& v) {
+  if (v.is_array()) return "an array of " + std::to_string(v.size());
   switch (v.type()) {
     case json::value_t::null: return "null";
     case json::value_t::boolean: return "a boolean";
@@ -142,7 +144,9 @@ const char* type_of(const json& v) {
 }
 
 const json& member(const json& object, const std::string& path, const char* key) {
-  if (!object.is_object()) fail(path, std::string("must be an object, not ") + type_of(object));
+  if (!object.is_object())
+    fail(path.empty() ? "(top level)" : path,
+         std::string("must be an object, not ") + type_of(object));
   const auto it = object.find(key);
   if (it == object.end()) fail(path.empty() ? key : path + "." + key, "missing");
   return *it;
@@ -169,11 +173,14 @@ std::string text(const json& object, const std::string& path, const char* key) {
 Vector3 vector3(const json& object, const std::string& path, const char* key) {
   const json& v = member(object, path, key);
   const std::string where = join(path, key);
-  if (!v.is_array() || v.size() != 3) fail(where, "must be an array of 3 numbers");
+  if (!v.is_array() || v.size() != 3)
+    fail(where, std::string("must be an array of 3 numbers, not ") + type_of(v));
   Vector3 out;
   for (int i = 0; i < 3; ++i) {
-    if (!v[static_cast<std::size_t>(i)].is_number())
-      fail(where + "[" + std::to_string(i) + "]", "must be a number");
+    const json& x = v[static_cast<std::size_t>(i)];
+    if (!x.is_number())
+      fail(where + "[" + std::to_string(i) + "]",
+           std::string("must be a number, not ") + type_of(x));
     out(i) = v[static_cast<std::size_t>(i)].get<double>();
     if (!std::isfinite(out(i))) fail(where + "[" + std::to_string(i) + "]", kOutOfRange);
   }
@@ -206,9 +213,13 @@ void validate_camera(const Camera& c, const std::string& p) {
   }
 }
 
-/// Refuses any key of `object` not in `known`, naming its path.
+/// Refuses a value that is not an object, and any key of `object` not in `known`, naming its
+/// path (nlohmann's iterator key() throws on anything but an object).
 void only_keys(const json& object, const std::string& path,
                std::initializer_list<const char*> known) {
+  if (!object.is_object())
+    fail(path.empty() ? "(top level)" : path,
+         std::string("must be an object, not ") + type_of(object));
   for (auto it = object.begin(); it != object.end(); ++it) {
     bool ok = false;
     for (const char* k : known) ok = ok || it.key() == k;
@@ -233,7 +244,7 @@ bool boolean(const json& object, const std::string& path, const char* key) {
 
 /// An integer in [low, high].
 int integer(const json& v, const std::string& where, int low, int high) {
-  if (!v.is_number()) fail(where, std::string("must be an integer, not ") + type_of(v));
+  if (!v.is_number()) fail(where, "must be an integer, not " + type_of(v));
   const double x = v.get<double>();
   if (!(x >= low && x <= high) || x != std::floor(x))
     fail(where,
@@ -246,13 +257,16 @@ Matrix4<double> matrix16(const json& object, const std::string& path) {
   Matrix4<double> m;
   if (has(object, "rows")) {
     const json& rows = object.at("rows");
-    if (!rows.is_array() || rows.size() != 4) fail(path + ".rows", "must be 4 rows of 4 numbers");
+    if (!rows.is_array() || rows.size() != 4)
+      fail(path + ".rows", "must be 4 rows of 4 numbers, not " + type_of(rows));
     for (std::size_t i = 0; i < 4; ++i) {
       const std::string where = path + ".rows[" + std::to_string(i) + "]";
-      if (!rows[i].is_array() || rows[i].size() != 4) fail(where, "must be 4 numbers");
+      if (!rows[i].is_array() || rows[i].size() != 4)
+        fail(where, "must be 4 numbers, not " + type_of(rows[i]));
       for (std::size_t j = 0; j < 4; ++j) {
         if (!rows[i][j].is_number())
-          fail(where + "[" + std::to_string(j) + "]", "must be a number");
+          fail(where + "[" + std::to_string(j) + "]",
+               "must be a number, not " + type_of(rows[i][j]));
         const double x = rows[i][j].get<double>();
         if (!std::isfinite(x)) fail(where + "[" + std::to_string(j) + "]", kOutOfRange);
         m(static_cast<int>(i), static_cast<int>(j)) = x;
@@ -264,10 +278,11 @@ Matrix4<double> matrix16(const json& object, const std::string& path) {
   const std::string layout = text(object, path, "layout");
   if (layout != "row_major" && layout != "column_major")
     fail(path + ".layout", "unknown layout \"" + layout + "\" (row_major or column_major)");
-  if (!values.is_array() || values.size() != 16) fail(path + ".matrix", "must be 16 numbers");
+  if (!values.is_array() || values.size() != 16)
+    fail(path + ".matrix", "must be 16 numbers, not " + type_of(values));
   for (std::size_t k = 0; k < 16; ++k) {
     const std::string where = path + ".matrix[" + std::to_string(k) + "]";
-    if (!values[k].is_number()) fail(where, "must be a number");
+    if (!values[k].is_number()) fail(where, "must be a number, not " + type_of(values[k]));
     const double x = values[k].get<double>();
     if (!std::isfinite(x)) fail(where, kOutOfRange);
     const int a = static_cast<int>(k / 4), b = static_cast<int>(k % 4);
@@ -385,11 +400,11 @@ void read_view(const json& view, Camera& c) {
     c.eye = vector3(view, p, "position");
     const json& q = member(view, p, "quaternion_xyzw");
     if (!q.is_array() || q.size() != 4)
-      fail(p + ".quaternion_xyzw", "must be 4 numbers x, y, z, w");
+      fail(p + ".quaternion_xyzw", "must be 4 numbers x, y, z, w, not " + type_of(q));
     Vector4<double> v;
     for (std::size_t i = 0; i < 4; ++i) {
       const std::string where = p + ".quaternion_xyzw[" + std::to_string(i) + "]";
-      if (!q[i].is_number()) fail(where, "must be a number");
+      if (!q[i].is_number()) fail(where, "must be a number, not " + type_of(q[i]));
       v(static_cast<int>(i)) = q[i].get<double>();
       if (!std::isfinite(v(static_cast<int>(i)))) fail(where, kOutOfRange);
     }
@@ -436,17 +451,19 @@ Vector3 unit_normal(const Vector3& n, const std::string& where) {
 
 std::vector<Vector3> read_polygon(const json& vertices, const std::string& where) {
   if (!vertices.is_array() || vertices.size() < 3 || vertices.size() > kMaxPolygonVertices)
-    fail(where,
-         "must be an array of 3 to " + std::to_string(kMaxPolygonVertices) + " vertices [x, y, z]");
+    fail(where, "must be an array of 3 to " + std::to_string(kMaxPolygonVertices) +
+                    " vertices [x, y, z], not " + type_of(vertices));
   std::vector<Vector3> out;
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     const std::string at = where + "[" + std::to_string(i) + "]";
     const json& v = vertices[i];
-    if (!v.is_array() || v.size() != 3) fail(at, "must be an array of 3 numbers");
+    if (!v.is_array() || v.size() != 3)
+      fail(at, "must be an array of 3 numbers, not " + type_of(v));
     Vector3 p;
     for (int k = 0; k < 3; ++k) {
       if (!v[static_cast<std::size_t>(k)].is_number())
-        fail(at + "[" + std::to_string(k) + "]", "must be a number");
+        fail(at + "[" + std::to_string(k) + "]",
+             "must be a number, not " + type_of(v[static_cast<std::size_t>(k)]));
       p(k) = v[static_cast<std::size_t>(k)].get<double>();
       if (!std::isfinite(p(k))) fail(at + "[" + std::to_string(k) + "]", kOutOfRange);
     }
@@ -506,7 +523,7 @@ Surface read_surface(const json& s, const std::string& path) {
   std::optional<Matrix4<double>> frame;
   if (has(s, "plane")) {
     const json& plane = s.at("plane");
-    if (!plane.is_object()) fail(path + ".plane", "must be an object");
+    if (!plane.is_object()) fail(path + ".plane", "must be an object, not " + type_of(plane));
     only_keys(plane, path + ".plane", {"normal", "point"});
     out.normal = vector3(plane, path + ".plane", "normal");
     out.point = vector3(plane, path + ".plane", "point");
@@ -518,7 +535,8 @@ Surface read_surface(const json& s, const std::string& path) {
     if (std::abs(std::ilogb(largest)) > 64) out.normal = unit_direction(out.normal).normalized();
   } else if (has(s, "polygon")) {
     const json& polygon = s.at("polygon");
-    if (!polygon.is_object()) fail(path + ".polygon", "must be an object {\"vertices\": [...]}");
+    if (!polygon.is_object())
+      fail(path + ".polygon", "must be an object {\"vertices\": [...]}, not " + type_of(polygon));
     only_keys(polygon, path + ".polygon", {"vertices"});
     out.polygon =
         read_polygon(member(polygon, path + ".polygon", "vertices"), path + ".polygon.vertices");
@@ -526,14 +544,19 @@ Surface read_surface(const json& s, const std::string& path) {
   } else {
     const std::string r = path + ".rectangle";
     const json& rect = s.at("rectangle");
-    if (!rect.is_object()) fail(r, "must be an object");
+    if (!rect.is_object()) fail(r, "must be an object, not " + type_of(rect));
     only_keys(rect, r, {"center", "normal", "up", "size"});
     const Vector3 center = vector3(rect, r, "center");
     const Vector3 normal = unit_normal(vector3(rect, r, "normal"), r + ".normal");
     const Vector3 up = vector3(rect, r, "up");
     const json& size = member(rect, r, "size");
-    if (!size.is_array() || size.size() != 2 || !size[0].is_number() || !size[1].is_number())
-      fail(r + ".size", "must be [width, height]");
+    if (!size.is_array() || size.size() != 2)
+      fail(r + ".size", std::string("must be [width, height], not ") + type_of(size));
+    for (std::size_t i = 0; i < 2; ++i) {
+      if (!size[i].is_number())
+        fail(r + ".size[" + std::to_string(i) + "]",
+             std::string("must be a number, not ") + type_of(size[i]));
+    }
     const double w = size[0].get<double>(), h = size[1].get<double>();
     if (!(w > 0 && h > 0) || !std::isfinite(w) || !std::isfinite(h))
       fail(r + ".size", "width and height must be finite and > 0");
@@ -551,7 +574,8 @@ Surface read_surface(const json& s, const std::string& path) {
     if (!frame) fail(path + ".rectangle", "a portal is a rectangle (its frame places the view)");
     const std::string l = path + ".linked";
     const json& linked = member(s, path, "linked");
-    if (!linked.is_object()) fail(l, "must be an object {center, normal, up}");
+    if (!linked.is_object())
+      fail(l, "must be an object {center, normal, up}, not " + type_of(linked));
     only_keys(linked, l, {"center", "normal", "up"});
     const auto other = rectangle_frame(vector3(linked, l, "center"),
                                        unit_normal(vector3(linked, l, "normal"), l + ".normal"),
@@ -670,7 +694,8 @@ ParsedScene parse_scene(std::string_view text_in) {
       scene.max_depth = integer(root.at("max_depth"), "max_depth", 1, kMaxDepth);
     if (has(root, "viewport")) {
       const json& v = root.at("viewport");
-      if (!v.is_array() || v.size() != 2) fail("viewport", "must be [width, height] in pixels");
+      if (!v.is_array() || v.size() != 2)
+        fail("viewport", "must be [width, height] in pixels, not " + type_of(v));
       scene.viewport = std::array<int, 2>{integer(v[0], "viewport[0]", 1, 1 << 16),
                                           integer(v[1], "viewport[1]", 1, 1 << 16)};
     }
@@ -683,6 +708,10 @@ ParsedScene parse_scene(std::string_view text_in) {
     out.scene = std::move(scene);
   } catch (const FieldError& e) {
     out.error = e.what();
+  } catch (const json::exception& e) {
+    // Every access above checks its value's type first; should one not, the scene is still
+    // refused with a message (exit 2), never an abort.
+    out.error = std::string("internal error reading the scene (please report it): ") + e.what();
   }
   return out;
 }

@@ -4,15 +4,18 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "oblique/oblique.h"
+#include "oblique/properties/generators.h"
 #include "oblique/properties/properties.h"
 #include "oblique/properties/tolerance.h"
 #include "oblique/protocol/protocol.h"
@@ -35,17 +38,19 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
   std::uniform_real_distribution<double> unit(0, 1);
   auto log_uniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, unit(random)); };
   std::vector<Case> out;
-  const char* families[] = {"perspective", "off_axis", "infinite", "orthographic",
-                            "y_flipped",   "jittered", "rotated",  "general"};
+  const char* families[] = {"perspective", "off_axis", "infinite", "orthographic", "y_flipped",
+                            "jittered",    "rotated",  "general",  "x_flipped",    "xy_flipped"};
+  constexpr int kFamilies = sizeof families / sizeof families[0];
   for (int i = 0; i < count; ++i) {
     Case k;
-    k.family = families[i % 8];
-    k.convention = all_conventions[(i / 8) % 3];
+    k.family = families[i % kFamilies];
+    k.convention = all_conventions[(i / kFamilies) % 3];
     const double n = log_uniform(1e-6, 10), f = n * log_uniform(1.5, 1e12);
     const double top = n * log_uniform(0.05, 3), right = top * log_uniform(0.5, 3);
     const double shift = unit(random) - 0.5;
     if (k.family == "perspective" || k.family == "y_flipped" || k.family == "jittered" ||
-        k.family == "rotated" || k.family == "general") {
+        k.family == "rotated" || k.family == "general" || k.family == "x_flipped" ||
+        k.family == "xy_flipped") {
       k.m = frustum<double>(-right, right, -top, top, n, f, k.convention);
     } else if (k.family == "off_axis") {
       k.m = frustum<double>(-right + shift * right, right + shift * right, -top, top * 0.5, n, f,
@@ -55,7 +60,8 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
     } else {
       k.m = orthographic<double>(-right, right, -top, top, n, f, k.convention);
     }
-    if (k.family == "y_flipped") k.m.row(1) *= -1;
+    if (k.family == "y_flipped" || k.family == "xy_flipped") k.m.row(1) *= -1;
+    if (k.family == "x_flipped" || k.family == "xy_flipped") k.m.row(0) *= -1;
     if (k.family == "jittered") k.m.row(0) += (shift / 960) * k.m.row(3);
     if (k.family == "rotated" || k.family == "general") {
       Matrix4<double> r = Matrix4<double>::Identity();
@@ -199,6 +205,36 @@ int shell(const std::string& command, std::string* out) {
   text << file.rdbuf();
   *out = text.str();
   return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+// The help names every family and every place of the generators' tables (stereo_shift was
+// once missing from a hand-written list).
+TEST(Cli, verifyHelpListsEveryFamilyAndPlace) {
+  std::string help;
+  ASSERT_EQ(shell(std::string(OBLIQUE_CLI) + " verify --help", &help), 0);
+  const auto names_after = [&](const std::string& option) {
+    const auto at = help.find(option);
+    EXPECT_NE(at, std::string::npos) << option << "\n" << help;
+    return at == std::string::npos ? std::string() : help.substr(at, help.find("\n  -", at) - at);
+  };
+  const std::string families = names_after("--families"), places = names_after("--places");
+  const auto listed = [](const std::string& text, std::string_view name) {
+    for (auto at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
+      const auto is_name = [](char ch) {
+        return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+      };
+      const bool starts = at == 0 || !is_name(text[at - 1]);
+      const bool ends = at + name.size() == text.size() || !is_name(text[at + name.size()]);
+      if (starts && ends) return true;
+    }
+    return false;
+  };
+  for (auto f : generators::all_families)
+    EXPECT_TRUE(listed(families, generators::family_name(f))) << generators::family_name(f) << "\n"
+                                                              << families;
+  for (auto p : generators::all_places)
+    EXPECT_TRUE(listed(places, generators::place_name(p))) << generators::place_name(p) << "\n"
+                                                           << places;
 }
 
 TEST(Cli, applyOnAFullDiskExitsTwoAndSaysSo) {

@@ -122,11 +122,9 @@ std::vector<T> special_values() {
 
 TYPED_TEST(ClosedFormSameBits, specialValuesInPerspectiveCases) {
   using T = TypeParam;
-  using generators::Family;
-  const auto gen =
-      generators::valid_case_in<T>({Family::perspective, Family::off_axis, Family::infinite,
-                                    Family::y_flipped, Family::jittered},
-                                   generators::every_convention());
+  const auto gen = generators::valid_case_in<T>({std::begin(generators::perspective_shape_families),
+                                                 std::end(generators::perspective_shape_families)},
+                                                generators::every_convention());
   const std::vector<T> specials = special_values<T>();
   const int exponent_edges[] = {
       std::numeric_limits<T>::max_exponent - 1,
@@ -218,11 +216,10 @@ TYPED_TEST(ClosedFormSameBits, batchGivesWhatApplyGives) {
 /// zeros of both signs in the entries outside the shape, in M13, M23, M33 and in the plane.
 template <class T>
 std::vector<generators::Case<T>> batch_pool(int size, std::uint64_t seed) {
-  using generators::Family;
   using limits = std::numeric_limits<T>;
   const auto valid =
-      generators::valid_case_in<T>({Family::perspective, Family::off_axis, Family::infinite,
-                                    Family::y_flipped, Family::jittered},
+      generators::valid_case_in<T>({std::begin(generators::perspective_shape_families),
+                                    std::end(generators::perspective_shape_families)},
                                    generators::every_convention());
   const auto invalid = generators::invalid_case<T>();
   const std::vector<T> specials = special_values<T>();

@@ -34,6 +34,12 @@ std::vector<NamedProjection<T>> fixed_families(Convention convention) {
   jittered(0, 2) += T(0.3) / T(1920);  // a sub-pixel offset in NDC x, as TAA does: M_1 += j M_4
   jittered(1, 2) -= T(0.7) / T(1080);
   out.push_back({"jittered", jittered, tilted});
+  // A mirror camera: clip x negated (M11 < 0), alone and on a y-flipped projection.
+  Matrix4<T> mirrored = frustum<T>(T(-1), T(1), T(-0.75), T(0.75), T(1), T(50), convention);
+  mirrored.row(0) *= T(-1);
+  out.push_back({"x_flipped", mirrored, tilted});
+  mirrored.row(1) *= T(-1);
+  out.push_back({"xy_flipped", mirrored, tilted});
   const Matrix4<T> p = frustum<T>(T(-1), T(1), T(-0.75), T(0.75), T(1), T(50), convention);
   Matrix4<T> r = Matrix4<T>::Identity();
   r.template topLeftCorner<3, 3>() =

@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -722,7 +725,124 @@ TEST(EngineScenes, unknownKeysAndBadShapesAreRefusedWithTheirPath) {
   }
 }
 
+/// A value of a bundled scene, by the path the scene reader names it with
+/// ("camera.view.eye[1]", "surfaces[0].plane"; the root is "(top level)").
+struct Located {
+  std::string path;
+  nlohmann::json::json_pointer pointer;
+};
+
+void every_value(const nlohmann::json& v, const std::string& path,
+                 const nlohmann::json::json_pointer& pointer, std::vector<Located>& out) {
+  out.push_back({path.empty() ? "(top level)" : path, pointer});
+  if (v.is_object()) {
+    for (const auto& item : v.items())
+      every_value(item.value(), path.empty() ? item.key() : path + "." + item.key(),
+                  pointer / item.key(), out);
+  } else if (v.is_array()) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      every_value(v[i], path + "[" + std::to_string(i) + "]", pointer / i, out);
+  }
+}
+
+/// JSON's six kinds of value (numbers are one kind).
+int kind_of(const nlohmann::json& v) {
+  if (v.is_null()) return 0;
+  if (v.is_boolean()) return 1;
+  if (v.is_number()) return 2;
+  if (v.is_string()) return 3;
+  if (v.is_array()) return 4;
+  return 5;
+}
+
+/// One value of each kind, in kind_of()'s order.
+std::vector<nlohmann::json> one_of_each_kind() {
+  return {nullptr, true, 1, "x", nlohmann::json::array({1}), nlohmann::json::object()};
+}
+
+/// Every bundled scene with one value replaced by a value of another kind: the scene's path,
+/// the path of the value, the kind it got, and the text.
+struct Mistyped {
+  std::string scene, path, replaced_by, text;
+};
+
+std::vector<Mistyped> every_mistyped_bundled_scene() {
+  std::vector<Mistyped> out;
+  for (const auto& entry : std::filesystem::directory_iterator(OBLIQUE_SCENES_DIR)) {
+    if (entry.path().extension() != ".json") continue;
+    const nlohmann::json scene = nlohmann::json::parse(read_file(entry.path().string()));
+    std::vector<Located> values;
+    every_value(scene, "", nlohmann::json::json_pointer(), values);
+    for (const Located& at : values) {
+      for (const nlohmann::json& wrong : one_of_each_kind()) {
+        if (kind_of(wrong) == kind_of(scene.at(at.pointer))) continue;
+        nlohmann::json broken = scene;
+        broken.at(at.pointer) = wrong;
+        out.push_back({entry.path().string(), at.path, wrong.dump(), broken.dump()});
+      }
+    }
+  }
+  return out;
+}
+
+// Every value of every bundled scene, replaced by a value of each other kind (array for object,
+// string for number, null, ...): refused with a message that starts with that value's path.
+TEST(Scenes, aValueOfTheWrongKindAnywhereIsRefusedWithItsPath) {
+  const std::vector<Mistyped> cases = every_mistyped_bundled_scene();
+  EXPECT_GT(cases.size(), 2000u);  // 8 scenes, hundreds of values each
+  for (const Mistyped& c : cases) {
+    const ParsedScene parsed = parse_scene(c.text);
+    EXPECT_FALSE(parsed.scene) << c.scene << ": " << c.path << " = " << c.replaced_by;
+    EXPECT_EQ(parsed.error.rfind(c.path + ": ", 0), 0u)
+        << c.scene << ": " << c.path << " = " << c.replaced_by << "\n  got: " << parsed.error;
+  }
+  // fuzz_scene's find (an uncaught nlohmann::invalid_iterator from the key check).
+  const ParsedScene found =
+      parse_scene(R"({"name": "x", "convention": "gl", "camera": [1], "surfaces": []})");
+  EXPECT_EQ(found.error, "camera: must be an object, not an array of 1");
+}
+
 #ifdef OBLIQUE_CLI
+/// `oblique check ARGUMENTS`: its exit status (-1 when it did not exit, e.g. an abort) and what
+/// it wrote to standard output and error.
+int run_check_capturing(const std::string& arguments, std::string& output) {
+  output.clear();
+  FILE* pipe = popen((std::string(OBLIQUE_CLI) + " check " + arguments + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+    output.append(buffer, n);
+  const int raw = pclose(pipe);
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+// The same through the command: exit 2 (never an abort) with the file and the value's path.
+// Every value of every bundled scene, each with one wrong kind (taking turns), and the 60-byte
+// scene fuzz_scene found aborting `oblique check` (exit 134).
+TEST(Scenes, cliRefusesAValueOfTheWrongKindAnywhereWithItsPath) {
+  const std::string file = ::testing::TempDir() + "oblique_mistyped_scene.json";
+  std::string output;
+  std::ofstream(file) << R"({"name": "x", "convention": "gl", "camera": [1], "surfaces": []})";
+  EXPECT_EQ(run_check_capturing(file, output), 2) << output;
+  EXPECT_NE(output.find(file + ": camera: must be an object, not an array"), std::string::npos)
+      << output;
+  std::string previous;
+  std::size_t values = 0, position = 0;
+  for (const Mistyped& c : every_mistyped_bundled_scene()) {
+    // One of the five wrong kinds per value here, the next one for the next value.
+    if (c.scene + c.path != previous) ++values, position = 0;
+    previous = c.scene + c.path;
+    if (position++ != values % 5) continue;
+    std::ofstream(file, std::ios::trunc) << c.text;
+    EXPECT_EQ(run_check_capturing(file, output), 2)
+        << c.scene << ": " << c.path << " = " << c.replaced_by << "\n"
+        << output;
+    EXPECT_NE(output.find(file + ": " + c.path + ": "), std::string::npos)
+        << c.scene << ": " << c.path << " = " << c.replaced_by << "\n"
+        << output;
+  }
+}
+
 int run_check(const std::string& arguments) {
   const int raw =
       std::system((std::string(OBLIQUE_CLI) + " check " + arguments + " > /dev/null 2>&1").c_str());

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <iostream>
 #include <limits>
 #include <string>
@@ -30,11 +31,25 @@ enum class Mistake {
   two_bugs,               ///< no_camera_guard and sign_by_division together
   ignores_shift,          ///< C' and Q from M without its stereo / lens shift (M14 = M24 = 0)
   no_statuses,            ///< no guards, no refusals: every input gets a matrix, as in engines
+  /// on the perspective shape, the far corner's x sign from C_x (C'_x = C_x / M11: the sign of
+  /// M11 ignored), wrong for a mirror camera made by negating M11
+  ignores_m11_sign,
 };
 
 inline bool has_sign_by_division(Mistake m) {
   return m == Mistake::sign_by_division || m == Mistake::two_bugs;
 }
+/// M12 = M14 = M21 = M24 = M31 = M32 = M41 = M42 = M44 = 0, M43 != 0 (row-major): the matrices
+/// glFrustum and its [0, 1] and reversed-Z variants make, flipped or not. There C' = M^-T C has
+/// C'_x = C_x / M11 and C'_y = C_y / M22.
+template <class T>
+bool perspective_shape(const T (&m)[16]) {
+  for (int i : {1, 3, 4, 7, 8, 9, 12, 13, 15}) {
+    if (m[i] != T(0)) return false;
+  }
+  return m[14] != T(0);
+}
+
 inline bool has_no_camera_guard(Mistake m) {
   return m == Mistake::no_camera_guard || m == Mistake::two_bugs || m == Mistake::no_statuses;
 }
@@ -157,7 +172,11 @@ std::string oblique(const T (&m)[16], const T (&c_in)[4], const std::string& con
       convention == "zero_one" || (convention == "gl" && mistake == Mistake::zero_one_factor_on_gl);
   const T z_low = convention == "gl" && !as_zero_one ? T(-1) : T(0), z_high = 1;
   const T sz = sgn(c_clip[2], mistake);
-  const T sx = sgn(mistake == Mistake::camera_space_signs ? c[0] : c_clip[0], mistake);
+  // The mistake ignores_m11_sign: the engine's fast path for its perspective matrices writes
+  // sgn(C'_x) as sgn(C_x), true while M11 > 0 (it knew of Vulkan's y flip, so y is right).
+  const bool x_from_c = mistake == Mistake::camera_space_signs ||
+                        (mistake == Mistake::ignores_m11_sign && perspective_shape(m));
+  const T sx = sgn(x_from_c ? c[0] : c_clip[0], mistake);
   const T sy = sgn(mistake == Mistake::camera_space_signs ? c[1] : c_clip[1], mistake);
   const T corner[4] = {sx, sy, sz > 0 ? z_high : (sz < 0 ? z_low : (z_low + z_high) / 2), 1};
   if (!solve(solved, false, corner, q)) return guards ? "singular_projection" : "ok";

@@ -128,19 +128,21 @@ struct FuzzCase {
   Method method = Method::automatic;
   /// 0..4 built (frustum, infinite, orthographic, y-flipped frustum, rotated), 5 raw, 6 a
   /// frustum or infinite frustum times a camera shift T(tx, ty, 0): M14, M24 != 0 (stereo, lens
-  /// shift; generators::Family::stereo_shift).
+  /// shift; generators::Family::stereo_shift), 7 an x-flipped frustum (M11 < 0, a mirror camera;
+  /// generators::Family::x_flipped), 8 an x- and y-flipped one (generators::Family::xy_flipped).
   int family = 0;
   Matrix4<double> matrix = Matrix4<double>::Identity();
   Vector4<double> plane = Vector4<double>::Zero();
 };
 
 inline const char* family_label(int family) {
-  const char* names[] = {"frustum", "infinite", "orthographic", "y_flipped",
-                         "rotated", "raw",      "stereo_shift"};
-  return names[family % 7];
+  const char* names[] = {"frustum", "infinite",     "orthographic", "y_flipped", "rotated",
+                         "raw",     "stereo_shift", "x_flipped",    "xy_flipped"};
+  return names[family % 9];
 }
 
 inline constexpr std::uint8_t kShiftMarker = 0x53;  // 'S'
+inline constexpr std::uint8_t kFlipXMarker = 0x58;  // 'X'
 
 /// Builds the case; builder parameters that break a builder's preconditions fall back to raw.
 /// With `conventions` (non-empty), the convention byte picks one of them instead of any of the
@@ -184,8 +186,15 @@ inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
   }
   for (int i = 0; i < 4; ++i) c.plane(i) = number(in);
   // After the plane, the byte kShiftMarker shifts a frustum or infinite frustum by (tx, ty, 0)
-  // (two more numbers). Inputs that end earlier, or go on with another byte, decode as before.
-  if ((c.family == 0 || c.family == 1) && in.byte() == kShiftMarker) {
+  // (two more numbers); kFlipXMarker negates row 1 of a frustum or y-flipped frustum (M11 < 0).
+  // Inputs that end earlier, or go on with another byte, decode as before (the family byte
+  // keeps its meaning: new families come behind markers, not from a larger modulus).
+  const bool shiftable = c.family == 0 || c.family == 1, flippable = c.family == 0 || c.family == 3;
+  const int marker = shiftable || flippable ? in.byte() : -1;
+  if (flippable && marker == kFlipXMarker) {
+    c.matrix.row(0) *= -1;
+    c.family = c.family == 0 ? 7 : 8;
+  } else if (shiftable && marker == kShiftMarker) {
     Matrix4<double> shift = Matrix4<double>::Identity();
     shift(0, 3) = number(in);
     shift(1, 3) = number(in);

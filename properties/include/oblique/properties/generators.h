@@ -37,11 +37,25 @@ enum class Family {
   /// M14 is m(0, 3)). Engines whose portal math ignores the shift clip a sliver of the far
   /// corner; the core takes these to the general method (not the perspective shape).
   stereo_shift,
+  /// A mirror camera: the symmetric frustum with clip x negated (row 1 of M, so M11 < 0), as
+  /// engines make a mirror pass's camera by negating M11. The perspective shape, so
+  /// C'_x = C_x / M11 has the sign opposite to C_x's: code that takes the far corner's x sign
+  /// from C (or from |M11|) is wrong only here.
+  x_flipped,
+  /// Both axes flipped (M11 < 0 and M22 < 0): a mirror camera's x flip on a y-flipped (Vulkan)
+  /// projection.
+  xy_flipped,
 };
 inline constexpr Family all_families[] = {
-    Family::perspective,  Family::off_axis,  Family::infinite,
-    Family::orthographic, Family::y_flipped, Family::jittered,
-    Family::rotated,      Family::general,   Family::stereo_shift};
+    Family::perspective,  Family::off_axis,  Family::infinite,  Family::orthographic,
+    Family::y_flipped,    Family::jittered,  Family::rotated,   Family::general,
+    Family::stereo_shift, Family::x_flipped, Family::xy_flipped};
+
+/// The families whose matrices have the perspective shape (has_perspective_shape()): the inputs
+/// of the closed form.
+inline constexpr Family perspective_shape_families[] = {
+    Family::perspective, Family::off_axis,  Family::infinite,  Family::y_flipped,
+    Family::jittered,    Family::x_flipped, Family::xy_flipped};
 
 constexpr std::string_view family_name(Family f) noexcept {
   switch (f) {
@@ -54,6 +68,8 @@ constexpr std::string_view family_name(Family f) noexcept {
     case Family::rotated: return "rotated";
     case Family::general: return "general";
     case Family::stereo_shift: return "stereo_shift";
+    case Family::x_flipped: return "x_flipped";
+    case Family::xy_flipped: return "xy_flipped";
   }
   return "unknown";
 }
@@ -242,9 +258,12 @@ rc::Gen<Matrix4<T>> projection(Family family, Convention convention) {
         return orthographic<T>(-half * T(1.5), half, -half, half * T(0.75), near_o, near_o + depth,
                                convention);
       }
-      case Family::y_flipped: {
+      case Family::y_flipped:
+      case Family::x_flipped:
+      case Family::xy_flipped: {
         Matrix4<T> m = frustum<T>(-right, right, -top, top, n, f, convention);
-        m.row(1) *= T(-1);
+        if (family != Family::y_flipped) m.row(0) *= T(-1);
+        if (family != Family::x_flipped) m.row(1) *= T(-1);
         return m;
       }
       case Family::jittered: {

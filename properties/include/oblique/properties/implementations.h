@@ -59,6 +59,9 @@ enum class Fault {
   wrong_face,        ///< the far corner on the wrong depth face
   sign_by_division,  ///< sgn(x) computed as x / |x|, NaN at 0
   no_camera_check,   ///< no C_w < 0 check
+  /// The corner's x sign from C (y's from C'): on the perspective shape C'_x = C_x / M11, so this
+  /// is sgn(C'_x) with the sign of M11 ignored, wrong only for a mirror camera (M11 < 0).
+  x_sign_from_c,
 };
 
 /// detail::TrustedCornerSigns with `fault` planted: the same trusted components of C' (a rounded
@@ -79,9 +82,10 @@ struct PlantedCornerRule {
       return fault == Fault::sign_by_division ? x / std::abs(x) : detail::sign(x);
     };
     const bool from_c = fault == Fault::signs_from_c;
+    const bool x_from_c = from_c || fault == Fault::x_sign_from_c;
     const T z_sign = fault == Fault::wrong_face ? -sgn(trusted.z()) : sgn(trusted.z());
-    return Vector4<T>(sgn(from_c ? plane.x() : trusted.x()), sgn(from_c ? plane.y() : trusted.y()),
-                      z_sign, T(0));
+    return Vector4<T>(sgn(x_from_c ? plane.x() : trusted.x()),
+                      sgn(from_c ? plane.y() : trusted.y()), z_sign, T(0));
   }
 };
 
@@ -169,6 +173,14 @@ std::vector<Implementation<T>> known_implementations() {
   out.push_back(planted_mutant<T>("mutant_wrong_face", Fault::wrong_face));
   out.push_back(planted_mutant<T>("mutant_sign_by_division", Fault::sign_by_division));
   out.push_back(planted_mutant<T>("mutant_no_camera_check", Fault::no_camera_check));
+  {
+    // An engine's closed form for the perspective matrices its cameras make, its far corner's x
+    // sign taken as sgn(C_x): right while M11 > 0 (C'_x = C_x / M11), wrong for a mirror camera
+    // made by negating M11 (generators::Family::x_flipped, xy_flipped).
+    Implementation<T> impl = planted_mutant<T>("mutant_ignores_m11_sign", Fault::x_sign_from_c);
+    impl.accepts = [](Convention, const Matrix4<T>& m) { return has_perspective_shape(m); };
+    out.push_back(impl);
+  }
   {
     Implementation<T> impl;  // the [0, 1] factor (a = 1 / C.Q, M'_3 = a C) applied to gl matrices
     impl.name = "mutant_zero_one_factor";

@@ -11,6 +11,7 @@
 
 #include "oblique/oblique.h"
 #include "oblique/properties/judge.h"
+#include "oblique/protocol/numbers.h"
 #include "oblique/scene/scene.h"
 
 namespace oblique::scene {
@@ -72,6 +73,9 @@ struct SceneCheck {
   int max_depth = 1;
   std::vector<SurfaceCheck> surfaces;  ///< every pass, depth first: a pass, then those within it
   bool truncated = false;              ///< more than kMaxPasses passes: the rest not looked at
+  /// `--impl --precision`: the scalar type of the requests sent and of the bounds the answers
+  /// are judged with (as `oblique verify --precision`).
+  protocol::Precision impl_precision = protocol::Precision::float64;
   bool passes() const;
 };
 
@@ -79,13 +83,19 @@ inline constexpr std::size_t kMaxPasses = 512;
 
 SceneCheck check_scene(const Scene& scene);
 
-/// The request line `oblique check --impl` sends for a rendered pass (the protocol's writer).
-std::string impl_request(const Scene& scene, const SurfaceCheck& pass);
+/// The request line `oblique check --impl` sends for a rendered pass (the protocol's writer): the
+/// scene camera's projection and the pass's plane rounded to `precision` (IEEE: a value beyond
+/// its range becomes an infinity, which the implementation should refuse).
+std::string impl_request(const Scene& scene, const SurfaceCheck& pass,
+                         protocol::Precision precision = protocol::Precision::float64);
 
-/// Judges the user's answer line to impl_request() as `oblique verify` does
-/// (StatusContract::any_refusal, row 3's accuracy; the checks up to the first violation); a line
-/// that is not an answer is one failing finding "protocol". Stores them in pass.impl_findings.
-void judge_impl_answer(const Scene& scene, SurfaceCheck& pass, const std::string& line);
+/// Judges the user's answer line to impl_request(scene, pass, precision) as `oblique verify
+/// --precision` does: the problem is the request's rounded M and C, the bounds those of
+/// `precision` (StatusContract::any_refusal, row 3's accuracy; the checks up to the first
+/// violation); a line that is not an answer is one failing finding "protocol". Stores them in
+/// pass.impl_findings.
+void judge_impl_answer(const Scene& scene, SurfaceCheck& pass, const std::string& line,
+                       protocol::Precision precision = protocol::Precision::float64);
 
 /// {"scene": ..., "surfaces": [{"name", "action", "reason", "view", "projection", "method",
 /// "properties": {name: bool}, "depth_bits_lost", ...}]}; numbers round-trip.
