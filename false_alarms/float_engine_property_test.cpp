@@ -19,11 +19,10 @@ const auto reversed_z = adapt<float>("make_oblique_reversed_z", Layout::column_m
 
 // Every family of the perspective shape and every place; answers only (from the void adapter).
 testing::Contract only(Convention convention) {
-  using generators::Family;
   testing::Contract contract;
   contract.conventions = {convention};
-  contract.families = {Family::perspective, Family::off_axis, Family::infinite, Family::y_flipped,
-                       Family::jittered};
+  contract.families = {std::begin(generators::perspective_shape_families),
+                       std::end(generators::perspective_shape_families)};
   return contract;
 }
 

@@ -42,8 +42,8 @@ if ((build)); then
   cmake --preset release > /dev/null
   cmake --build --preset release --target oblique example_correct example_engine_no_statuses \
     example_camera_space_signs example_zero_one_factor_on_gl example_no_camera_guard \
-    example_sign_by_division example_ignores_shift example_two_bugs float_engine_property_test \
-    float_engine_fuzz_replay > /dev/null
+    example_sign_by_division example_ignores_shift example_two_bugs example_ignores_m11_sign \
+    float_engine_property_test float_engine_fuzz_replay > /dev/null
 fi
 bin=build/release
 oblique=$bin/cli/oblique
@@ -146,7 +146,8 @@ say ""
 say "| example | caught | seconds (with shrinking) | finding |"
 say "|---|---|---|---|"
 missed=0
-for bug in camera_space_signs zero_one_factor_on_gl no_camera_guard sign_by_division two_bugs; do
+for bug in camera_space_signs zero_one_factor_on_gl no_camera_guard sign_by_division two_bugs \
+           ignores_m11_sign; do
   log="$out/bug_$bug.log"
   start=$(date +%s.%N)
   rc=0
