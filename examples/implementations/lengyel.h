@@ -194,6 +194,16 @@ std::string oblique(const T (&m)[16], const T (&c_in)[4], const std::string& con
     for (T v : out) {
       if (!std::isfinite(v)) return "out_of_range";
     }
+    // The near plane the rasterizer will extract from M' (gl M'_4 + M'_3, zero_one M'_3,
+    // reversed_z M'_4 - M'_3) must still keep C's side: where a C is lost against M_4 in the
+    // subtraction (it is below M_4's rounding) it vanishes, and nothing would be clipped.
+    T kept = 0;
+    for (int j = 0; j < 4; ++j) {
+      const T m3 = out[8 + j], m4 = out[12 + j];
+      const T n = convention == "reversed_z" ? m4 - m3 : (as_zero_one ? m3 : m4 + m3);
+      kept += n * c[j];
+    }
+    if (!(kept > 0)) return "out_of_range";
   }
   return "ok";
 }
