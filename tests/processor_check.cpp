@@ -12,7 +12,7 @@ namespace {
 
 #if defined(__x86_64__) && defined(__GNUC__)
 __attribute__((constructor(101), target("no-avx,no-sse4.2"))) void require_targeted_instructions() {
-  __builtin_cpu_init();  // before __builtin_cpu_supports in a constructor
+  __builtin_cpu_init();    // before __builtin_cpu_supports in a constructor
   char missing[128] = "";  // no std::string: its out-of-line code is compiled for the target
 #define OBLIQUE_REQUIRE(feature) \
   if (!__builtin_cpu_supports(feature)) std::strcat(missing, " " feature);
