@@ -6,8 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <random>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -139,6 +142,93 @@ TYPED_TEST(AccurateMethod, generalMatricesWithinPromisedUlps) {
       }
     }
   }
+}
+
+/// A general matrix whose far corner Q is dominated by one component j: rows 2 to 4 share the
+/// entry v in column j, so where rows 2 to 4 of the corner Q' are 1 (as in every case the filter
+/// below keeps), Q_j = 1 / v and the other components come only from row 1, whose huge
+/// M11 = 2^e makes Q_x tiny, and through column x the others (`fuzz_oblique`'s find, kept as
+/// fuzz/regressions/fuzz_oblique/crash-accurate-small-corner-components, is one). Then C . Q and
+/// M4 . Q = 1 are both nearly C_j Q_j, so the entry M4_j - a C_j of row 3 cancels down to what
+/// Q's small components contribute, weighted by C (one of whose components is large) and M4.
+/// Each solve of the refinement is accurate relative to Q's largest component (componentwise to
+/// |M^-1| |M| |x|), not to the small ones, so those converge far slower than Q as a whole.
+template <class T>
+struct SmallCornerComponents {
+  Matrix4<T> m;
+  Vector4<T> c;
+  Convention convention;
+  int j;  ///< the dominant component
+};
+
+template <class T>
+std::vector<SmallCornerComponents<T>> small_corner_component_cases(int count) {
+  constexpr int p = std::numeric_limits<T>::digits;
+  std::mt19937_64 random(23);
+  const auto pick = [&random](int low, int high) {
+    return std::uniform_int_distribution<int>(low, high)(random);
+  };
+  const auto dyadic = [&pick](int low_eighths, int high_eighths) {  // k / 8, nonzero
+    int k = 0;
+    while (k == 0) k = pick(low_eighths, high_eighths);
+    return T(k) / T(8);
+  };
+  std::vector<SmallCornerComponents<T>> out;
+  while (static_cast<int>(out.size()) < count) {
+    SmallCornerComponents<T> s;
+    s.convention = all_conventions[pick(0, 2)];
+    s.j = pick(1, 3);
+    const T v = (s.j == 3 ? T(-1) : T(pick(0, 1) ? 1 : -1)) * dyadic(8, 64);
+    // M11 = 2^e (1 + k / 16) with e up to 2p - 8: within the core's magnitude spread of 2p binades.
+    s.m(0, 0) = std::ldexp(T(16 + pick(0, 15)) / T(16), pick(p / 2, 2 * p - 8));
+    for (int col = 1; col < 4; ++col) s.m(0, col) = dyadic(-64, 64);
+    for (int row = 1; row < 4; ++row) {
+      for (int col = 0; col < 4; ++col) s.m(row, col) = col == s.j ? v : dyadic(-64, 64);
+    }
+    // C_j of v's sign (C_j Q_j > 0), or (a quarter of the cases, j = y or z) zero, so that C . Q
+    // itself rests on the small components (fuzz_oblique's second find,
+    // crash-accurate-corner-dot-on-small-components); C_w < 0; one other component huge.
+    for (int i = 0; i < 4; ++i) s.c(i) = dyadic(-64, 64);
+    s.c(s.j) = (v > T(0) ? T(1) : T(-1)) * dyadic(8, 64);
+    const bool dot_on_small = s.j != 3 && pick(0, 3) == 0;
+    if (dot_on_small) s.c(s.j) = T(0);
+    s.c(3) = -std::abs(s.c(3));
+    // ... on a small component of Q that M11 does not make smaller still: y, z or w.
+    const int big = 1 + (s.j + pick(0, 1)) % 3;
+    s.c(big) = std::ldexp(s.c(big), pick(p / 4, 2 * p - 16));
+    const properties::Problem<T> problem(s.m, s.c, s.convention);
+    if (problem.exact_status() != Status::ok) continue;
+    // Of the class: the entry cancels by 2^20 or more, or C . Q rests on the small components.
+    const exact::Rational entry = exact::abs(problem.exact_row3()[s.j]);
+    if (!dot_on_small &&
+        !(entry * exact::power_of_two(20) < exact::abs(exact::to_rational(s.m(3, s.j)))))
+      continue;
+    out.push_back(s);
+  }
+  return out;
+}
+
+// The class above: the accurate method must not take the error of Q's small components to be
+// as small as the refinement's progress on Q as a whole.
+TYPED_TEST(AccurateMethod, smallComponentsOfTheFarCornerAreResolved) {
+  using T = TypeParam;
+  int answered = 0;
+  for (const auto& s : small_corner_component_cases<T>(200)) {
+    const properties::Problem<T> problem(s.m, s.c, s.convention);
+    const ObliqueResult<T> r = apply<T>(s.m, s.c, s.convention, Method::accurate);
+    if (!r.ok()) {  // a refusal rounding allows (a numerically singular M)
+      const std::vector<Status> acceptable = problem.acceptable_statuses();
+      EXPECT_NE(std::find(acceptable.begin(), acceptable.end(), r.status), acceptable.end())
+          << r.message();
+      continue;
+    }
+    ++answered;
+    EXPECT_LE(problem.ulps_from_exact(r.projection), tolerance::kAccurateUlps)
+        << std::setprecision(std::numeric_limits<T>::max_digits10) << convention_name(s.convention)
+        << " j " << s.j << "\nM =\n"
+        << s.m << "\nC = " << s.c.transpose();
+  }
+  EXPECT_GE(answered, 150);
 }
 
 // A stiff plane (components spanning more than 2p binades): the general method hands it to the

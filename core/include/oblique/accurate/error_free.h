@@ -19,30 +19,6 @@ struct Pair {
   T lo;
 };
 
-/// s + e = a + b exactly, s = fl(a + b) (Knuth's TwoSum; no condition on a and b).
-template <class T>
-OBLIQUE_EFT_INLINE Pair<T> two_sum(T a, T b) noexcept {
-  const T s = a + b;
-  const T z = s - a;
-  return {s, (a - (s - z)) + (b - z)};
-}
-
-/// s + e = a + b exactly when |a| >= |b| or a = 0 (Dekker's FastTwoSum).
-template <class T>
-OBLIQUE_EFT_INLINE Pair<T> fast_two_sum(T a, T b) noexcept {
-  const T s = a + b;
-  return {s, b - (s - a)};
-}
-
-/// 2^e as a constant expression.
-template <class T>
-constexpr T power_of_two(int e) noexcept {
-  T x = T(1);
-  for (; e > 0; --e) x *= T(2);
-  for (; e < 0; ++e) x /= T(2);
-  return x;
-}
-
 /// x, as a value the compiler cannot see into: a product passed through it is rounded on its own
 /// and never contracted with a later addition or subtraction into an FMA (-ffp-contract=fast,
 /// GCC's default in gnu++ modes, wherever the target has one: -march=native, -mfma, AArch64, a
@@ -61,6 +37,43 @@ OBLIQUE_EFT_INLINE T rounded(T x) noexcept {
 #elif defined(__GNUC__)
   __asm__("" : "+m"(x));
 #endif
+  return x;
+}
+
+/// s + e = a + b exactly, s = fl(a + b) (Knuth's TwoSum; no condition on a and b).
+/// a and b are taken through rounded(): the sum is exact only for the values the caller names,
+/// and a product the caller passes (or one its argument was computed from) must not be fused
+/// into s = a + b while e is formed from its rounded value (see fast_two_sum).
+template <class T>
+OBLIQUE_EFT_INLINE Pair<T> two_sum(T a, T b) noexcept {
+  a = rounded(a);
+  b = rounded(b);
+  const T s = a + b;
+  const T z = s - a;
+  return {s, (a - (s - z)) + (b - z)};
+}
+
+/// s + e = a + b exactly when |a| >= |b| or a = 0 (Dekker's FastTwoSum).
+/// a and b are taken through rounded(), as in two_sum: divide() passes q1 = a.hi r and the
+/// correction rem r, both products, and GCC 12's SLP vectoriser (-O3 with -march=znver3's cost
+/// model) packed s = q1 + c and e = c - (s - q1) into one vector multiply and add-subtract,
+/// which it then fused into vfmsubadd132pd even under -ffp-contract=off: s came from the exact
+/// a.hi r, e from the rounded q1, and the pair was off by up to an ulp of s (design.md,
+/// "Contraction").
+template <class T>
+OBLIQUE_EFT_INLINE Pair<T> fast_two_sum(T a, T b) noexcept {
+  a = rounded(a);
+  b = rounded(b);
+  const T s = a + b;
+  return {s, b - (s - a)};
+}
+
+/// 2^e as a constant expression.
+template <class T>
+constexpr T power_of_two(int e) noexcept {
+  T x = T(1);
+  for (; e > 0; --e) x *= T(2);
+  for (; e < 0; ++e) x /= T(2);
   return x;
 }
 
@@ -91,7 +104,9 @@ enum class Fma { portable, hardware };
 /// x.hi y.hi exceeds |a b| by up to 2^(1 - p/2)). Both give the same, exact, pair.
 template <class T, Fma F = Fma::portable>
 OBLIQUE_EFT_INLINE Pair<T> two_prod(T a, T b) noexcept {
-  const T p = a * b;
+  // p through rounded(): the callers' a - p (divide's remainder) must see the rounded product,
+  // not a * b fused into it.
+  const T p = rounded(a * b);
   if constexpr (F == Fma::hardware && (std::is_same_v<T, double> || std::is_same_v<T, float>)) {
     return {p, std::fma(a, b, -p)};
   }

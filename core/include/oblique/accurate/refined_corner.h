@@ -54,16 +54,7 @@ class RefinedCorner {
   bool add_word() {
     if (count_ == kMaxWords) return false;
     Vector4<W> residual;
-    for (int i = 0; i < 4; ++i) {
-      eft::Terms<W, 1 + 2 * 4 * kMaxWords> terms;
-      terms.add(rhs_(i));
-      for (int k = 0; k < count_; ++k) {
-        for (int j = 0; j < nonzero_[i]; ++j) {
-          terms.add_product(negated_[i][j], words_[k](columns_[i][j]));
-        }
-      }
-      residual(i) = terms.sum(count_ + 1);
-    }
+    for (int i = 0; i < 4; ++i) residual(i) = residual_terms(i).sum(count_ + 1);
     const Vector4<W> next = solve_(residual);
     if (!all_finite(next)) return false;
     words_[count_++] = next;
@@ -71,17 +62,23 @@ class RefinedCorner {
   }
 
   /// An estimate of |w| . |Q - (x_0 + ... + x_{n-1})|, the error left in the words weighted by
-  /// w: the last word's weighted size times the contraction per refinement step, measured from
-  /// the last two words but never below `contraction_floor` (a bound the solve's conditioning
-  /// gives); the floor times the weighted size of Q while there is one word; 0 when the last
-  /// correction is exactly zero (Q is then exact).
+  /// w: the larger of two.
+  ///  - From the refinement's progress: the last word's weighted size times the contraction per
+  ///    step, measured from the last two words but never below `contraction_floor` (a bound the
+  ///    solve's conditioning gives); the floor times the weighted size of Q while there is one
+  ///    word; 0 when the last correction is exactly zero (Q is then exact).
+  ///  - From the residual: the error is e = M^-1 r, r = rhs - M (x_0 + ... + x_{n-1}) summed
+  ///    exactly, so |w| . |e| <= |w| . |M^-1| |r|, taken twice for the computed inverse.
+  /// The first alone misjudges a component of Q far smaller than the others it is coupled with
+  /// through M: each solve is accurate relative to |M^-1| |M| |x|, so such a component converges
+  /// at the pace of the largest (its error after a step is eps times the largest one's, not its
+  /// own), while the weighted progress measured is the largest one's. Where C weighs that
+  /// component heavily, C . Q (or a row-3 entry cancelling beyond it) was taken as resolved with
+  /// thousands of ulps of error (fuzz_oblique's find, accurate_test's
+  /// smallComponentsOfTheFarCornerAreResolved).
   W remaining_error(const Vector4<W>& weights, W contraction_floor) const {
-    const W last = weights.cwiseAbs().dot(words_[count_ - 1].cwiseAbs());
-    if (!(last > W(0))) return W(0);
-    if (count_ < 2) return last * contraction_floor;  // the first solve's own error
-    const W before = weights.cwiseAbs().dot(words_[count_ - 2].cwiseAbs());
-    const W measured = before > W(0) ? last / before : W(1);
-    return last * std::min(W(1), std::max(measured, contraction_floor));
+    const Vector4<W> w = weights.cwiseAbs();
+    return std::max(progress_error(w, contraction_floor), residual_error(w));
   }
 
   /// The sum of the words, rounded.
@@ -92,8 +89,53 @@ class RefinedCorner {
   }
 
  private:
+  /// The terms of rhs_i - M_i (x_0 + ... + x_{n-1}), each exact.
+  eft::Terms<W, 1 + 2 * 4 * kMaxWords> residual_terms(int i) const {
+    eft::Terms<W, 1 + 2 * 4 * kMaxWords> terms;
+    terms.add(rhs_(i));
+    for (int k = 0; k < count_; ++k) {
+      for (int j = 0; j < nonzero_[i]; ++j) {
+        terms.add_product(negated_[i][j], words_[k](columns_[i][j]));
+      }
+    }
+    return terms;
+  }
+
+  W progress_error(const Vector4<W>& w, W contraction_floor) const {
+    const W last = w.dot(words_[count_ - 1].cwiseAbs());
+    if (!(last > W(0))) return W(0);
+    if (count_ < 2) return last * contraction_floor;  // the first solve's own error
+    const W before = w.dot(words_[count_ - 2].cwiseAbs());
+    const W measured = before > W(0) ? last / before : W(1);
+    return last * std::min(W(1), std::max(measured, contraction_floor));
+  }
+
+  /// 2 |w| . |M^-1| |r|, |r| bounded from its distilled terms (eps |lo| beyond hi + lo; SumK's
+  /// bound for eight passes where they do not settle). M^-1 from the solve of each unit vector,
+  /// once; not finite where M^-1 overflows (nothing is then resolved from the words).
+  W residual_error(const Vector4<W>& w) const {
+    constexpr W eps = std::numeric_limits<W>::epsilon();
+    if (!inverse_known_) {
+      for (int j = 0; j < 4; ++j) abs_inverse_.col(j) = solve_(Vector4<W>::Unit(j)).cwiseAbs();
+      inverse_known_ = true;
+    }
+    Vector4<W> r;
+    for (int i = 0; i < 4; ++i) {
+      eft::Terms<W, 1 + 2 * 4 * kMaxWords> terms = residual_terms(i);
+      const std::size_t size = terms.size();
+      const W magnitude = terms.magnitude();
+      bool exact = false;
+      const eft::Pair<W> sum = terms.distil(exact);
+      const W slack = exact ? W(0) : magnitude * std::pow(W(size) * eps, 8);
+      r(i) = std::abs(sum.hi) + (W(1) + eps) * std::abs(sum.lo) + slack;
+    }
+    return W(2) * w.dot(abs_inverse_ * r);
+  }
+
   Vector4<W> rhs_;
   Solve solve_;
+  mutable Matrix4<W> abs_inverse_;  ///< |M^-1|, once residual_error() has needed it
+  mutable bool inverse_known_ = false;
   std::array<std::array<W, 4>, 4> negated_{};  ///< -M_i,col for the nonzero entries of row i
   std::array<std::array<int, 4>, 4> columns_{};
   std::array<int, 4> nonzero_{};
