@@ -2,9 +2,9 @@
 // engine-style float function, exactly as README's "Fuzz target" example writes it. The function
 // is examples/downstream's engine::make_oblique (column-major, OpenGL, refuses by returning
 // false), the fixed one (ENGINE_FIXED=1), so a violation here is the harness's false alarm. It is
-// not one of scripts/fuzz.sh's targets (it fuzzes an example, not the project); it is here to
-// measure what the driver costs a user (docs/fuzzing.md), and CTest replays the fuzz_oblique
-// corpus through it (fuzz_engine_replay).
+// not one of scripts/fuzz.sh's targets (fuzz_*.cpp: it fuzzes an example, not the project); it is
+// here to measure what the driver costs a user (docs/fuzzing.md), and CTest replays the
+// fuzz_oblique corpus through it (engine_driver_replay).
 #include <oblique/fuzzing.h>
 
 #include "engine.h"
