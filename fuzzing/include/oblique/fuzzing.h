@@ -343,7 +343,7 @@ inline void print_counts();
 inline Counts& counts() {
   static Counts* c = [] {
     std::atexit(print_counts);
-    return new Counts;  // never destroyed: print_counts runs after static destructors may have
+    return new Counts;  // never destroyed: print_counts may run after static destructors
   }();
   return *c;
 }

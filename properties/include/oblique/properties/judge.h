@@ -99,11 +99,16 @@ inline std::string status_list(const std::vector<Status>& statuses) {
 ///    left out when the implementation has none of the refusals allowed (answers_only: none).
 /// any_refusal has every refusal: nothing is left out. What the input is decides, never how it
 /// was generated.
+/// Whether an implementation under `contract` has every refusal (nothing is left out for it).
+inline bool has_every_refusal(StatusContract contract, const std::vector<Status>& refusals) {
+  return contract == StatusContract::any_refusal ||
+         (contract == StatusContract::exact && refusals.empty());
+}
+
 template <class T>
 std::string not_judged(Status exact, const std::vector<Status>& acceptable, StatusContract contract,
                        const std::vector<Status>& refusals = {}) {
-  if (contract == StatusContract::any_refusal) return "";
-  if (contract == StatusContract::exact && refusals.empty()) return "";
+  if (has_every_refusal(contract, refusals)) return "";
   auto has = [&](Status s) {
     return contract == StatusContract::exact &&
            std::find(refusals.begin(), refusals.end(), s) != refusals.end();
@@ -136,8 +141,7 @@ template <class AnyProblem>
 std::string not_judged(const AnyProblem& problem, StatusContract contract,
                        const std::vector<Status>& refusals = {}) {
   using T = typename std::decay_t<decltype(problem.matrix())>::Scalar;
-  if (contract == StatusContract::any_refusal) return "";  // (no status asked of the problem)
-  if (contract == StatusContract::exact && refusals.empty()) return "";
+  if (has_every_refusal(contract, refusals)) return "";  // (no status asked of the problem)
   return not_judged<T>(problem.exact_status(), problem.acceptable_statuses(), contract, refusals);
 }
 
