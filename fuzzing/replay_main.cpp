@@ -50,6 +50,15 @@ std::vector<std::uint8_t> mutated(std::vector<std::uint8_t> bytes, std::mt19937_
   return bytes;
 }
 
+/// The exit status after the summary line: 2 when standard output could not take it.
+int written(int status) {
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::fprintf(stderr, "cannot write to standard output\n");
+    return 2;
+  }
+  return status;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -105,7 +114,7 @@ int main(int argc, char** argv) {
   }
   if (!random_mode) {
     std::printf("replayed %zu inputs\n", files.size());
-    return files.empty() ? 1 : 0;
+    return written(files.empty() ? 1 : 0);
   }
   std::mt19937_64 random(seed);
   for (unsigned long long n = 0; n < random_count; ++n) {
@@ -116,5 +125,5 @@ int main(int argc, char** argv) {
   }
   std::printf("ran %llu random inputs (seed %llu, mutated from %zu named)\n", random_count, seed,
               inputs.size());
-  return 0;
+  return written(0);
 }
