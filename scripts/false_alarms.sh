@@ -25,9 +25,9 @@ seed=$(date +%s)
 build=1
 while (($#)); do
   case "$1" in
-    --minutes) minutes="$2"; shift 2 ;;
-    --seed) seed="$2"; shift 2 ;;
-    --jobs) jobs="$2"; shift 2 ;;
+    --minutes) minutes="${2:-}"; shift $(($# > 1 ? 2 : 1)) ;;
+    --seed) seed="${2:-}"; shift $(($# > 1 ? 2 : 1)) ;;
+    --jobs) jobs="${2:-}"; shift $(($# > 1 ? 2 : 1)) ;;
     --no-build) build=0; shift ;;
     -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
     *) echo "false_alarms.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
@@ -110,6 +110,21 @@ run_one() {
   esac
   echo "${judged:-0} ${left:-0} $rc" > "$out/run$n.figures"
 }
+
+# Ctrl-C (or SIGTERM): the runs under way are stopped; what they wrote stays in $out.
+kill_tree() {
+  local child
+  for child in $(pgrep -P "$1"); do kill_tree "$child"; done
+  kill "$1" 2> /dev/null || true
+}
+stop() {
+  trap - INT TERM
+  for job in $(jobs -p); do kill_tree "$job"; done
+  wait
+  echo "false_alarms.sh: interrupted; the logs so far are in $out" >&2
+  exit 130
+}
+trap stop INT TERM
 
 say "# False-alarm campaign $(date -u +%Y-%m-%dT%H:%M:%SZ)"
 say ""
