@@ -303,8 +303,7 @@ TEST(GeneralMethod, settlesSignsItsBoundCannotVouchFor) {
     for (Method method : {Method::automatic, Method::general}) {
       const ObliqueResult<T> result = apply<T>(s.m, s.c, s.convention, method);
       if (!result.ok()) {  // a refusal rounding allows (a numerically singular M)
-        EXPECT_NE(std::find(acceptable.begin(), acceptable.end(), result.status),
-                  acceptable.end())
+        EXPECT_NE(std::find(acceptable.begin(), acceptable.end(), result.status), acceptable.end())
             << method_name(method) << ": " << result.message();
         continue;
       }
