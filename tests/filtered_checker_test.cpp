@@ -16,11 +16,13 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -305,6 +307,68 @@ TEST(Certified, exactZerosStayExactAndUndecidedSignsThrow) {
                certified::Undecided);
   EXPECT_LT(certified::lower(third), 1.0 / 3);
   EXPECT_GT(certified::upper(third), 1.0 / 3);
+}
+
+// The integers behind the filter's exact signs (exact.h): each entry is its integer times
+// 2^exponent exactly, and the Laplace determinant equals the product of the pivots of an exact
+// elimination, on entries from 2^-1074 to 2^1023 and on singular matrices.
+template <class T>
+exact::Rational elimination_determinant(exact::Mat m) {
+  exact::Rational det = 1;
+  for (int col = 0; col < 4; ++col) {
+    int pivot = col;
+    while (pivot < 4 && m[pivot][col] == 0) ++pivot;
+    if (pivot == 4) return 0;
+    if (pivot != col) {
+      std::swap(m[pivot], m[col]);
+      det = -det;
+    }
+    det *= m[col][col];
+    for (int row = col + 1; row < 4; ++row) {
+      const exact::Rational f = m[row][col] / m[col][col];
+      for (int j = col; j < 4; ++j) m[row][j] -= f * m[col][j];
+    }
+  }
+  return det;
+}
+
+template <class T>
+void expect_integers_and_determinant(const Matrix4<T>& m) {
+  std::array<T, 16> entries;
+  for (int i = 0; i < 16; ++i) entries[static_cast<std::size_t>(i)] = m(i / 4, i % 4);
+  int e = 0;
+  const std::array<exact::Integer, 16> integers = exact::to_integers(entries, e);
+  exact::IntegerMat a;
+  for (int i = 0; i < 16; ++i) {
+    EXPECT_EQ(exact::Rational(integers[static_cast<std::size_t>(i)]) * exact::power_of_two(e),
+              exact::to_rational(entries[static_cast<std::size_t>(i)]))
+        << i;
+    a[i / 4][i % 4] = integers[static_cast<std::size_t>(i)];
+  }
+  const exact::Rational expected = elimination_determinant<T>(exact::to_rational(m));
+  EXPECT_EQ(exact::Rational(exact::determinant(a)) * exact::power_of_two(4L * e), expected);
+}
+
+TEST(ExactIntegers, entriesAndDeterminantsAreExact) {
+  std::mt19937_64 random(5);
+  const auto pick = [&random](int low, int high) {
+    return std::uniform_int_distribution<int>(low, high)(random);
+  };
+  for (int n = 0; n < 200; ++n) {
+    Matrix4<double> d;
+    Matrix4<long double> l;
+    Matrix4<float> f;
+    for (int i = 0; i < 16; ++i) {
+      const int k = pick(-1000, 1000);
+      d(i / 4, i % 4) = pick(0, 5) == 0 ? 0.0 : std::ldexp(k, pick(-1074, 1000));
+      l(i / 4, i % 4) = std::ldexp(static_cast<long double>(k) / 3, pick(-200, 200));
+      f(i / 4, i % 4) = std::ldexp(static_cast<float>(k) / 7, pick(-140, 100));
+    }
+    if (n % 4 == 0) d.row(3) = d.row(1) * 2.0;  // singular: determinant 0
+    expect_integers_and_determinant(d);
+    expect_integers_and_determinant(l);
+    expect_integers_and_determinant(f);
+  }
 }
 
 }  // namespace

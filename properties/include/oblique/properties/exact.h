@@ -192,4 +192,61 @@ inline std::optional<Mat> inverse(Mat m) {
   return inv;
 }
 
+/// Integers (GMP) for exact signs where rationals would cost a gcd per operation: a float, double
+/// or long double is an integer times a power of two, and a vector or matrix of them is integers
+/// in units of the lowest power of two any of its nonzero entries needs.
+using Integer = mpz_class;
+using IntegerMat = std::array<std::array<Integer, 4>, 4>;  // rows
+
+/// The entries of v as integers in units of 2^exponent (the lowest such exponent of a nonzero
+/// entry; 0 when all are zero). Precondition: every entry finite.
+template <class T, std::size_t N>
+std::array<Integer, N> to_integers(const std::array<T, N>& v, int& exponent) {
+  static_assert(std::numeric_limits<T>::digits <= 64, "the significand must fit in 64 bits");
+  static_assert(sizeof(unsigned long) * 8 >= 64, "needs a 64-bit unsigned long");
+  std::array<unsigned long, N> significand{};
+  std::array<int, N> own{};
+  exponent = std::numeric_limits<int>::max();
+  for (std::size_t i = 0; i < N; ++i) {
+    if (v[i] == T(0)) continue;
+    int e = 0;
+    const T fraction = std::frexp(std::fabs(v[i]), &e);  // [1/2, 1)
+    significand[i] =
+        static_cast<unsigned long>(std::ldexp(fraction, std::numeric_limits<T>::digits));
+    own[i] = e - std::numeric_limits<T>::digits;
+    for (; (significand[i] & 1u) == 0; significand[i] >>= 1) ++own[i];  // trailing zeros
+    exponent = std::min(exponent, own[i]);
+  }
+  if (exponent == std::numeric_limits<int>::max()) exponent = 0;
+  std::array<Integer, N> out;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (significand[i] == 0) continue;
+    out[i] = significand[i];
+    mpz_mul_2exp(out[i].get_mpz_t(), out[i].get_mpz_t(),
+                 static_cast<mp_bitcnt_t>(own[i] - exponent));
+    if (v[i] < T(0)) out[i] = -out[i];
+  }
+  return out;
+}
+
+/// det a by the Laplace expansion along the first two rows (six 2 x 2 minors each side).
+inline Integer determinant(const IntegerMat& a) {
+  const auto minor = [](int r, int i, int j, const IntegerMat& m) {
+    return Integer(m[r][i] * m[r + 1][j] - m[r][j] * m[r + 1][i]);
+  };
+  Integer det;
+  // Pairs of columns (i, j) for rows 1-2 and their complements (k, l) for rows 3-4, each with
+  // the sign of the permutation (i, j, k, l).
+  constexpr int pairs[6][5] = {{0, 1, 2, 3, 1}, {0, 2, 1, 3, -1}, {0, 3, 1, 2, 1},
+                               {1, 2, 0, 3, 1}, {1, 3, 0, 2, -1}, {2, 3, 0, 1, 1}};
+  for (const auto& p : pairs) {
+    const Integer term = minor(0, p[0], p[1], a) * minor(2, p[2], p[3], a);
+    if (p[4] > 0)
+      det += term;
+    else
+      det -= term;
+  }
+  return det;
+}
+
 }  // namespace oblique::exact

@@ -6,7 +6,7 @@
 // FilteredProblem<T> mirrors Problem<T>'s quantities (the inverse by Gauss-Jordan with partial
 // pivoting, C' = M^-T C, the eight corners, Q, C . Q, kappa, the Skeel condition number, the exact
 // row 3) as certified intervals. Signs that may be exactly zero are settled by Cramer's rule on
-// the integers behind M and C (oblique::detail::determinant, exact_cramer.h):
+// the integers behind M and C (GMP, exact.h's to_integers and determinant):
 //   sgn C'_k = sgn(Y_k) sgn(D),  sgn C . p = sgn(C' . p') = sgn(sum_k p'_k Y_k) sgn(D),
 //   (M^-1 p')_w = sum_j p'_j X_j / D,
 // with D = det M, Y_k = det(M with row k replaced by C), X_j = det(M with column 4 replaced by
@@ -31,9 +31,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "oblique/accurate/exact_cramer.h"
 #include "oblique/magnitudes.h"
 #include "oblique/properties/certified.h"
+#include "oblique/properties/exact.h"
 #include "oblique/properties/judge.h"
 #include "oblique/properties/properties.h"
 
@@ -88,114 +88,115 @@ bool at_least_largest(const Num& x, bool overflow_threshold, int k) {
   return certified::less_equal(certified::power_of_two(top) - certified::power_of_two(low), x);
 }
 
-/// The integers behind M and C, and the determinants Cramer's rule needs, each computed once.
+/// The integers behind M and C (GMP: exact.h), and the determinants Cramer's rule needs, each
+/// computed once.
 template <class T>
 class IntegerSigns {
  public:
-  using W = std::conditional_t<std::is_same_v<T, float>, double, T>;
-
   IntegerSigns(const Matrix4<T>& m, const Vector4<T>& c) {
-    std::array<W, 16> entries;
-    for (int i = 0; i < 16; ++i) entries[static_cast<std::size_t>(i)] = W(m(i / 4, i % 4));
-    const std::array<detail::BigInt, 16> mi = detail::to_integers(entries, e_m_);
+    std::array<T, 16> entries;
+    for (int i = 0; i < 16; ++i) entries[static_cast<std::size_t>(i)] = m(i / 4, i % 4);
+    const std::array<exact::Integer, 16> mi = exact::to_integers(entries, e_m_);
     for (int i = 0; i < 16; ++i) m_[i / 4][i % 4] = mi[static_cast<std::size_t>(i)];
-    c_ = detail::to_integers(std::array<W, 4>{W(c(0)), W(c(1)), W(c(2)), W(c(3))}, e_c_);
+    c_ = exact::to_integers(std::array<T, 4>{c(0), c(1), c(2), c(3)}, e_c_);
   }
 
-  const detail::BigInt& det() {
-    if (!det_) det_ = detail::determinant(m_);
+  const exact::Integer& det() {
+    if (!det_) det_ = exact::determinant(m_);
     return *det_;
   }
-  int det_sign() { return det().sign(); }
+  int det_sign() { return sgn(det()); }
   /// Y_k = det(M with row k replaced by C) (C' = (Y_0, .., Y_3) / D up to a positive factor).
-  const detail::BigInt& y(int k) {
+  const exact::Integer& y(int k) {
     if (!y_[k]) {
-      detail::BigMatrix4 replaced = m_;
+      exact::IntegerMat replaced = m_;
       replaced[k] = c_;
-      y_[k] = detail::determinant(replaced);
+      y_[k] = exact::determinant(replaced);
     }
     return *y_[k];
   }
   /// sgn(C'_k).
-  int c_clip_sign(int k) { return y(k).sign() * det_sign(); }
+  int c_clip_sign(int k) { return sgn(y(k)) * det_sign(); }
   /// sgn(C' . p') for integer p'.
   int dot_sign(const std::array<int, 4>& p) {
-    detail::BigInt sum;
-    for (int k = 0; k < 4; ++k) sum = sum + scaled(y(k), p[k]);
-    return sum.sign() * det_sign();
+    exact::Integer sum;
+    for (int k = 0; k < 4; ++k) sum += y(k) * p[k];
+    return sgn(sum) * det_sign();
   }
   /// C . Q times 2^scale, as a certified number: N / D 2^(e_c - 1 - e_m) (see row3()).
   Num c_dot_q(const std::array<int, 4>& q_clip2, int scale) {
-    const detail::BigInt& n = cramer_n(q_clip2);
-    if (n.sign() == 0) return Num{};
+    const exact::Integer& n = cramer_n(q_clip2);
+    if (sgn(n) == 0) return Num{};
     int e_n = 0, e_d = 0;
     const Num q = certified_top_bits(n, e_n) / certified_top_bits(det(), e_d);
     return q * certified::power_of_two(e_n - e_d + e_c_ - 1 - e_m_ + scale);
   }
-  /// Entry i of the exact row 3 times 2^-scale, as a certified number, by Cramer's rule as
-  /// exact_cramer.h's exact_oblique has it: M'_3i = sgn(m3) 2^e_m P_i / N with
-  /// P_i = 2 k D c_i - t m4_i N and N = sum_k (2 Q')_k Y_k (C . Q = N / D 2^(e_c - 1 - e_m)),
-  /// k = z_high - z_low, t = near_rows().m4, in the integer units of M (2^e_m) and C (2^e_c).
-  /// Precondition: C . Q > 0.
+  /// Entry i of the exact row 3 times 2^-scale, as a certified number, by Cramer's rule:
+  /// M'_3i = sgn(m3) 2^e_m P_i / N with P_i = 2 k D c_i - t m4_i N and N = sum_k (2 Q')_k Y_k
+  /// (C . Q = N / D 2^(e_c - 1 - e_m)), k = z_high - z_low, t = near_rows().m4, in the integer
+  /// units of M (2^e_m) and C (2^e_c). Precondition: C . Q > 0.
   Num row3(int i, const std::array<int, 4>& q_clip2, int k, const RowCombination& nr, int scale) {
     cramer_n(q_clip2);
-    if (!two_k_det_) two_k_det_ = scaled(det(), 2 * k);
-    detail::BigInt p = *two_k_det_ * c_[i];
-    if (nr.m4 != 0 && m_[3][i].sign() != 0) p = p - scaled(m_[3][i], nr.m4) * *n_;
+    if (!two_k_det_) two_k_det_ = det() * (2 * k);
+    exact::Integer p = *two_k_det_ * c_[i];
+    if (nr.m4 != 0 && sgn(m_[3][i]) != 0) p -= m_[3][i] * nr.m4 * *n_;
     if (nr.m3 < 0) p = -p;
-    if (p.sign() == 0) return Num{};
+    if (sgn(p) == 0) return Num{};
     int e_p = 0, e_n = 0;
     const Num q = certified_top_bits(p, e_p) / certified_top_bits(*n_, e_n);
     return q * certified::power_of_two(e_p - e_n + e_m_ - scale);
   }
   /// N = sum_k (2 Q')_k Y_k.
-  const detail::BigInt& cramer_n(const std::array<int, 4>& q_clip2) {
+  const exact::Integer& cramer_n(const std::array<int, 4>& q_clip2) {
     if (!n_) {
-      detail::BigInt n;
-      for (int j = 0; j < 4; ++j) n = n + scaled(y(j), q_clip2[j]);
+      exact::Integer n;
+      for (int j = 0; j < 4; ++j) n += y(j) * q_clip2[j];
       n_ = n;
     }
     return *n_;
   }
   /// sgn((M^-1 p')_w) for integer p'.
   int w_sign(const std::array<int, 4>& p) {
-    detail::BigInt sum;
+    exact::Integer sum;
     for (int j = 0; j < 4; ++j) {
       if (!x_[j]) {
-        detail::BigMatrix4 replaced = m_;
-        for (int i = 0; i < 4; ++i)
-          replaced[i][3] = detail::BigInt::from_magnitude(i == j ? 1 : 0, false, 0);
-        x_[j] = detail::determinant(replaced);
+        exact::IntegerMat replaced = m_;
+        for (int i = 0; i < 4; ++i) replaced[i][3] = i == j ? 1 : 0;
+        x_[j] = exact::determinant(replaced);
       }
-      sum = sum + scaled(*x_[j], p[j]);
+      sum += *x_[j] * p[j];
     }
-    return sum.sign() * det_sign();
+    return sgn(sum) * det_sign();
   }
 
  private:
-  static detail::BigInt scaled(const detail::BigInt& x, int factor) {
-    if (factor == 0) return detail::BigInt();
-    const detail::BigInt f =
-        detail::BigInt::from_magnitude(static_cast<std::uint64_t>(std::abs(factor)), factor < 0, 0);
-    return x * f;
+  /// |x| = (hi + lo) 2^exponent with hi + lo in [1/2, 1), as a certified number with x's sign:
+  /// the top 106 bits t of |x| (truncated: the rest is below 2^-106 on this scale) are hi + lo
+  /// exactly, hi the top 53 bits of t and lo the rest (both doubles, GMP's conversions truncate).
+  /// Precondition: x != 0.
+  static Num certified_top_bits(const exact::Integer& x, int& exponent) {
+    constexpr int kBits = 106;
+    const int length = static_cast<int>(mpz_sizeinbase(x.get_mpz_t(), 2));
+    exponent = length;
+    exact::Integer t;
+    mpz_abs(t.get_mpz_t(), x.get_mpz_t());
+    const int drop = std::max(0, length - kBits);
+    mpz_fdiv_q_2exp(t.get_mpz_t(), t.get_mpz_t(), static_cast<mp_bitcnt_t>(drop));
+    const double hi = t.get_d();  // truncated toward zero: t - hi is exact and below 2^53
+    const exact::Integer rest = t - exact::Integer(hi);
+    const double lo = rest.get_d();
+    const int shift = drop - length;  // the scale of t's unit
+    const double sign = sgn(x);
+    const Num sum = certified::constant(sign * std::ldexp(hi, shift)) +
+                    certified::constant(sign * std::ldexp(lo, shift));
+    return Num{sum.hi, sum.lo, sum.err + (drop > 0 ? std::ldexp(1.0, -kBits) : 0.0)};
   }
 
-  /// x = (hi + lo) 2^exponent as a certified number: top_bits keeps the top 128 bits (relative
-  /// error below 2^-127) and sums its four 32-bit words by error-free passes, leaving at most the
-  /// roundings of a plain sum of terms below 2^-32 of the value (under 2^-82 of it); 2^-80 of
-  /// |hi| + |lo| (>= 1/2 (1 - 2^-52)) covers both.
-  static Num certified_top_bits(const detail::BigInt& x, int& exponent) {
-    const eft::Pair<double> t = x.template top_bits<double>(exponent);
-    const double sign = x.sign();
-    const Num sum = certified::constant(sign * t.hi) + certified::constant(sign * t.lo);
-    return Num{sum.hi, sum.lo, sum.err + (std::fabs(t.hi) + std::fabs(t.lo)) * 0x1p-80};
-  }
-
-  detail::BigMatrix4 m_;
-  std::array<detail::BigInt, 4> c_;
+  exact::IntegerMat m_;
+  std::array<exact::Integer, 4> c_;
   int e_m_ = 0, e_c_ = 0;
-  std::optional<detail::BigInt> det_, n_, two_k_det_;
-  std::array<std::optional<detail::BigInt>, 4> y_, x_;
+  std::optional<exact::Integer> det_, n_, two_k_det_;
+  std::array<std::optional<exact::Integer>, 4> y_, x_;
 };
 
 using NumVec = std::array<Num, 4>;
