@@ -56,6 +56,15 @@ T componentwise_backward_error(const Matrix4<T>& a, const Vector4<T>& x, const V
   return worst;
 }
 
+/// The largest componentwise backward error of a refined solve that the error bounds built on it
+/// accept (transposed_error_bound(), the checker's): the refinement stops at eps, and beyond this
+/// it has stalled. The general method hands such inputs to the accurate method, which settles
+/// them exactly.
+template <class T>
+constexpr T backward_error_limit() noexcept {
+  return T(8) * std::numeric_limits<T>::epsilon();
+}
+
 template <class T>
 class EquilibratedSolver {
  public:

@@ -424,14 +424,6 @@ OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vecto
   return true;
 }
 
-/// The largest componentwise backward error the general method accepts from its refined solves
-/// (the refinement stops at eps; beyond this it has stalled, and the answer goes to the accurate
-/// method).
-template <class T>
-constexpr T general_backward_error_limit() noexcept {
-  return T(8) * std::numeric_limits<T>::epsilon();
-}
-
 /// General method for any invertible M, through EquilibratedSolver (equilibration by powers of
 /// two, one LU factorisation for both solves):
 ///   C' = M^-T C   has the signs of   R^-1 C',
@@ -473,8 +465,8 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   const Vector4<T> q = solver.solve(corner, &corner_error);
   // A refinement that stalled short of a small componentwise backward error: the error bounds
   // (the signs' and the checker's) assume one.
-  if (all_finite(q) && (transposed_error > general_backward_error_limit<T>() ||
-                        corner_error > general_backward_error_limit<T>()))
+  if (all_finite(q) && (transposed_error > backward_error_limit<T>() ||
+                        corner_error > backward_error_limit<T>()))
     return handed_to_accurate(m, plane, convention);
   return finish(m, plane, q, convention, Method::general, scaled.shift, scaled.c_hat);
 }
