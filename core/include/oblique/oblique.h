@@ -465,8 +465,8 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
   const Vector4<T> q = solver.solve(corner, &corner_error);
   // A refinement that stalled short of a small componentwise backward error: the error bounds
   // (the signs' and the checker's) assume one.
-  if (all_finite(q) && (transposed_error > backward_error_limit<T>() ||
-                        corner_error > backward_error_limit<T>()))
+  if (all_finite(q) &&
+      (transposed_error > backward_error_limit<T>() || corner_error > backward_error_limit<T>()))
     return handed_to_accurate(m, plane, convention);
   return finish(m, plane, q, convention, Method::general, scaled.shift, scaled.c_hat);
 }
