@@ -87,6 +87,12 @@ inline std::string status_list(const std::vector<Status>& statuses) {
   return out;
 }
 
+/// Whether an implementation under `contract` has every refusal (nothing is left out for it).
+inline bool has_every_refusal(StatusContract contract, const std::vector<Status>& refusals) {
+  return contract == StatusContract::any_refusal ||
+         (contract == StatusContract::exact && refusals.empty());
+}
+
 /// Why an implementation is not judged on an input, or "" when it is: the one rule every tool
 /// (the property suite, `oblique verify`, the fuzz driver) leaves inputs out by. An answer is
 /// judged only where some reply the implementation can give is right:
@@ -99,12 +105,6 @@ inline std::string status_list(const std::vector<Status>& statuses) {
 ///    left out when the implementation has none of the refusals allowed (answers_only: none).
 /// any_refusal has every refusal: nothing is left out. What the input is decides, never how it
 /// was generated.
-/// Whether an implementation under `contract` has every refusal (nothing is left out for it).
-inline bool has_every_refusal(StatusContract contract, const std::vector<Status>& refusals) {
-  return contract == StatusContract::any_refusal ||
-         (contract == StatusContract::exact && refusals.empty());
-}
-
 template <class T>
 std::string not_judged(Status exact, const std::vector<Status>& acceptable, StatusContract contract,
                        const std::vector<Status>& refusals = {}) {
