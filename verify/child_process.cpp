@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -30,6 +31,45 @@ void close_fd(int& fd) {
 bool set_nonblocking(int fd) {
   const int flags = ::fcntl(fd, F_GETFL);
   return flags >= 0 && ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) == 0;
+}
+
+/// The process groups of the implementations running now, for the interrupt handler below (a
+/// fixed table of lock-free atomics: all a signal handler may read).
+constexpr int kMaxRunning = 16;
+std::atomic<pid_t> running_groups[kMaxRunning];
+
+void remember_group(pid_t pid, bool running) {
+  for (auto& g : running_groups) {
+    pid_t expected = running ? 0 : pid;
+    if (g.compare_exchange_strong(expected, running ? pid : 0)) return;
+  }
+}
+
+/// Each implementation runs in a process group of its own, so a Ctrl-C at the terminal does not
+/// reach it: on SIGINT, SIGTERM or SIGHUP, end those groups, then die of the signal as before.
+void end_groups_and_die(int sig) {
+  for (auto& g : running_groups) {
+    const pid_t pid = g.load();
+    if (pid > 0) ::kill(-pid, SIGKILL);
+  }
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+/// Installs end_groups_and_die for the signals the program has not taken itself.
+void handle_interrupts() {
+  static const bool installed = [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction old {};
+      if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;
+      struct sigaction action {};
+      action.sa_handler = end_groups_and_die;
+      sigemptyset(&action.sa_mask);
+      ::sigaction(sig, &action, nullptr);
+    }
+    return true;
+  }();
+  (void)installed;
 }
 
 /// Our children (processes whose parent we are), from /proc: the implementation's descendants
@@ -118,6 +158,7 @@ bool ChildProcess::start(std::string* error) {
   // can still end them.
   static const bool subreaper = ::prctl(PR_SET_CHILD_SUBREAPER, 1) == 0;
   (void)subreaper;
+  handle_interrupts();
   int in[2], out[2], err[2];
   if (::pipe2(in, O_CLOEXEC) != 0 || ::pipe2(out, O_CLOEXEC) != 0 || ::pipe2(err, O_CLOEXEC) != 0) {
     *error = std::string("cannot create pipes: ") + std::strerror(errno);
@@ -147,6 +188,7 @@ bool ChildProcess::start(std::string* error) {
     ::_exit(127);
   }
   ::setpgid(pid, pid);  // also done by the child; whichever runs first wins the race harmlessly
+  remember_group(pid, true);
   ::close(in[0]);
   ::close(out[1]);
   ::close(err[1]);
@@ -331,6 +373,7 @@ void ChildProcess::stop() {
     }
   }
   close_fds();
+  remember_group(pid_, false);
   pid_ = -1;
   unwritten_.clear();
   written_ = 0;
