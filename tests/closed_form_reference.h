@@ -3,7 +3,8 @@
 // ldexp and ilogb where the core now reads and writes exponent bits. Not for use outside tests:
 // closed_form_same_bits_test compares the core with it, bit for bit. The pieces issue 17 left
 // unchanged (has_perspective_shape, magnitude_spread_exceeds, clip_corner, sign, the accurate
-// method the closed form hands stiff planes to) are the core's own.
+// method the closed form hands stiff planes to, and dot_lost_to_underflow(), the hand-off that
+// issue 23 added to finish() for a C . Q lost to underflow) are the core's own.
 #pragma once
 
 #include <cmath>
@@ -106,6 +107,8 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
     r.detail = "C . Q is beyond the range of the scalar type";
     return r;
   }
+  if (detail::dot_lost_to_underflow(d, c_hat, q))  // since issue 23's fix, the core's own test
+    return detail::handed_to_accurate(m, plane, convention);
   if (!(d > T(0))) {
     r.status = Status::plane_misses_view_volume;
     return r;

@@ -320,6 +320,75 @@ TEST(GeneralMethod, settlesSignsItsBoundCannotVouchFor) {
   EXPECT_GE(answered, 150);
 }
 
+// Infinite perspective matrices whose far corner Q = (Q_x, Q_y, -1, 0) has tiny x and y (M11,
+// M22 about 2^s) and planes whose C . Q = C_x Q_x + C_y Q_y rests on x and y components far
+// smaller than C_w (fuzz/regressions/fuzz_oblique/crash-closed-form-dot-product-underflows is
+// one): with C scaled so that C_w is about 1, the products c_hat_i Q_i fall below the normal
+// range and the rounded C . Q keeps little or nothing of them (0: "the plane misses the view
+// volume" for a plane that cuts it). Such a C . Q must be settled exactly, not taken as it came.
+template <class T>
+void expect_underflowing_dot_products_settled() {
+  using limits = std::numeric_limits<T>;
+  constexpr int p = limits::digits;
+  std::mt19937_64 random(41);
+  const auto pick = [&random](int low, int high) {
+    return std::uniform_int_distribution<int>(low, high)(random);
+  };
+  int answered = 0, judged = 0;
+  while (judged < 300) {
+    const Convention convention = all_conventions[pick(0, 2)];
+    const int s = pick(p + 4, 2 * p - 8);  // the matrix spans s binades (refused above 2p)
+    const T half_width = std::ldexp(T(pick(8, 15)) / T(8), -s);
+    const T shift_x = half_width * T(pick(-8, 8)) / T(8),
+            shift_y = half_width * T(pick(-8, 8)) / T(8);
+    const Matrix4<T> m =
+        infinite_frustum<T>(shift_x - half_width, shift_x + half_width, shift_y - half_width,
+                            shift_y + half_width, T(pick(1, 8)) / T(4), convention);
+    // C_w = -2^kw; C_x, C_y about 2^(kw + e) so that C scaled by 2^-kw has them about 2^e and
+    // C . Q is about 2^(e - s) after the scaling, below the normal range. Half the cases put 2^e
+    // at the bottom of the normal range (the answer a C_w, about 2^(s - e), then overflows: only
+    // out_of_range is right, as for the fuzz find), half where a C_w is representable.
+    const int kw = pick(0, limits::max_exponent - 2);
+    const int e = pick(0, 1) ? pick(limits::min_exponent - 1, limits::min_exponent + p)
+                             : s + pick(2 - limits::max_exponent, limits::min_exponent + p - 1);
+    const auto small = [&] { return std::ldexp(T(pick(-16, 16)) / T(8), kw + e); };
+    const Vector4<T> c(small(), small(), T(0), -std::ldexp(T(pick(8, 15)) / T(8), kw));
+    const properties::Problem<T> problem(m, c, convention);
+    if (problem.exact_status() != Status::ok) continue;
+    ++judged;
+    const std::vector<Status> acceptable = problem.acceptable_statuses();
+    for (Method method : {Method::automatic, Method::closed_form, Method::general}) {
+      const ObliqueResult<T> result = apply<T>(m, c, convention, method);
+      if (!result.ok()) {  // a refusal rounding allows (an answer beyond the range)
+        EXPECT_NE(std::find(acceptable.begin(), acceptable.end(), result.status), acceptable.end())
+            << convention_name(convention) << " " << method_name(method) << ": " << result.message()
+            << std::setprecision(limits::max_digits10) << "\nM =\n"
+            << m << "\nC = " << c.transpose();
+        continue;
+      }
+      ++answered;
+      for (const auto& v : problem.check(result.projection).items) {
+        EXPECT_TRUE(!v.applies || v.holds)
+            << convention_name(convention) << " " << method_name(method) << ": "
+            << properties::property_name(v.property) << " " << v.lhs << " vs " << v.rhs
+            << std::setprecision(limits::max_digits10) << "\nM =\n"
+            << m << "\nC = " << c.transpose();
+      }
+    }
+  }
+  EXPECT_GT(answered, 0);
+}
+
+TEST(ClosedForm, settlesADotProductBelowTheNormalRangeFloat) {
+  expect_underflowing_dot_products_settled<float>();
+}
+TEST(ClosedForm, settlesADotProductBelowTheNormalRangeDouble) {
+  expect_underflowing_dot_products_settled<double>();
+}
+TEST(ClosedForm, settlesADotProductBelowTheNormalRangeLongDouble) {
+  expect_underflowing_dot_products_settled<long double>();
+}
+
 }  // namespace
 }  // namespace oblique
 

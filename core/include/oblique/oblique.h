@@ -315,11 +315,12 @@ struct ClosedFormAnswer {
 
 /// closed_form() for an input that passed ordinary_input(), in one function and
 /// without libm calls: the same statuses, messages and bits, step for step (scale_plane(),
-/// finish() and accept_row3() with C's exponents read from its bits). Returns false, with `out`
-/// untouched, where closed_form() would scale C otherwise than by 2^-e (e the exponent of its
+/// finish() and accept_row3() with C's exponents read from its bits). Returns false (`out` then
+/// means nothing) where closed_form() would scale C otherwise than by 2^-e (e the exponent of its
 /// largest component: a plane whose nonzero components span about min_exponent binades, or a
-/// largest component at or above 2^(max_exponent - 2)); closed_form() then answers (and hands a
-/// lossy scaling to the accurate method).
+/// largest component at or above 2^(max_exponent - 2)), or where C . Q was lost to underflow
+/// (dot_lost_to_underflow()); closed_form() then answers (and hands a lossy scaling, or such a
+/// C . Q, to the accurate method).
 ///
 /// Preconditions: ordinary_input(m, plane).ordinary, so the entries of m and C are finite and
 /// each is zero or normal.
@@ -370,6 +371,7 @@ OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vecto
     out.detail = "C . Q is beyond the range of the scalar type";
     return true;
   }
+  if (dot_lost_to_underflow(d, c_hat, q)) return false;  // finish() hands it on
   if (!(d > T(0))) {
     out.status = Status::plane_misses_view_volume;
     return true;

@@ -204,7 +204,9 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const LaneInputs<T, W>& in, const T
                 (c_hats[1][k] * qs[1][k] + c_hats[3][k] * qs[3][k]);
     const T a_hat = depth_span / d;
     const T a = a_hat * factors[k];
-    bool ok = (oks[k] != T(0)) & (d > T(0)) & (d <= highest);
+    // A C . Q below min_settled_dot() goes apart, to the one-request path, which hands it to the
+    // accurate method where underflow took it (dot_lost_to_underflow()).
+    bool ok = (oks[k] != T(0)) & (d >= min_settled_dot<T>()) & (d <= highest);
     const T ac[4] = {a * cx[k], a * cy[k], a * cz[k], a * cw[k]};
     const T t_m4[4] = {t * m30[k], t * m31[k], t * K[k], t * m33[k]};
     T row3[4];

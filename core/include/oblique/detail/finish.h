@@ -29,6 +29,39 @@ constexpr T singular_rcond_threshold() noexcept {
 
 namespace detail {
 
+/// The smallest |C . Q| the core's dot product of c_hat (C scaled so that its largest component
+/// is about 1) and Q settles whatever its products lost to underflow: min / epsilon =
+/// 2^(min_exponent - 2 + digits) (2^-970 in double). A product c_hat_i Q_i below the normal range
+/// loses up to half a subnormal ulp; at this size four such losses are below 2^-100 of the sum,
+/// but a smaller C . Q may rest on them, or be 0 because of them (fuzz_oblique: C = (-0.25, 3.25,
+/// 0, -1.8e308) on an infinite reversed-Z matrix, C . Q = 5.7e-30 of which c_hat . Q kept
+/// nothing).
+template <class T>
+constexpr T min_settled_dot() noexcept {
+  return std::numeric_limits<T>::min() / std::numeric_limits<T>::epsilon();
+}
+
+/// Whether the rounded c_hat . q = d cannot be trusted for underflow: |d| below
+/// min_settled_dot() and a product of nonzero factors below the normal range. The closed form
+/// and the general method hand such a C . Q to the accurate method. (A d that small from normal
+/// products alone is cancellation, which the rounding bounds cover.)
+template <class T>
+bool dot_lost_to_underflow(T d, const Vector4<T>& c_hat, const Vector4<T>& q) noexcept {
+  if (!(std::abs(d) < min_settled_dot<T>())) return false;
+  for (int i = 0; i < 4; ++i) {
+    if (c_hat(i) != T(0) && q(i) != T(0) &&
+        std::abs(c_hat(i) * q(i)) < std::numeric_limits<T>::min())
+      return true;
+  }
+  return false;
+}
+
+/// The accurate method on an input the closed form or the general method cannot settle in T
+/// (accurate/accurate.h).
+template <class T>
+ObliqueResult<T> handed_to_accurate(const Matrix4<T>& m, const Vector4<T>& plane,
+                                    Convention convention);
+
 template <class T>
 T sign(T x) noexcept {
   return x > T(0) ? T(1) : (x < T(0) ? T(-1) : T(0));
@@ -137,7 +170,8 @@ ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const V
 ///   near' = s M'_3 + t M_4 = a C,   far' . Q = 0,   so   a = (z_high - z_low) / (C . Q).
 /// `c_hat` is C scaled by 2^k (plane_scale_shift()) so that C . Q neither overflows nor
 /// underflows; a C is unchanged by it. The core's callers hand a plane whose scaling loses bits
-/// to the accurate method instead.
+/// to the accurate method instead; a C . Q lost to underflow (dot_lost_to_underflow()) goes there
+/// from here.
 template <class T>
 ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vector4<T>& q,
                         Convention convention, Method method, int k, const Vector4<T>& c_hat) {
@@ -154,6 +188,7 @@ ObliqueResult<T> finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vect
     r.detail = "C . Q is beyond the range of the scalar type";
     return r;
   }
+  if (dot_lost_to_underflow(d, c_hat, q)) return handed_to_accurate(m, plane, convention);
   if (!(d > T(0))) {
     r.status = Status::plane_misses_view_volume;
     return r;
