@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(cmake g++ make libeigen3-dev nlohmann-json3-dev libcli11-dev libgtest-dev
-          libgmock-dev librapidcheck-dev libgmp-dev libbenchmark-dev gnuplot-nox)
+          libgmock-dev librapidcheck-dev libgmp-dev libbenchmark-dev gnuplot-nox time)
 if [[ "${1:-}" == "--fuzz" ]]; then
   packages+=(clang-14 libclang-rt-14-dev)
 fi

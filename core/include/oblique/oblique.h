@@ -38,9 +38,8 @@ OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vecto
 template <class T>
 ObliqueResult<T> apply_checked(const Matrix4<T>& projection, const Vector4<T>& plane,
                                Convention convention, Method method, bool ordinary);
-template <class T, class CornerRule = TrustedCornerSigns>
-ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
-                         const CornerRule& rule = CornerRule{});
+template <class T>
+ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention);
 template <class T>
 struct ConventionTable;
 template <class T>
@@ -430,13 +429,12 @@ OBLIQUE_ALWAYS_INLINE bool closed_form_ordinary(const Matrix4<T>& m, const Vecto
 /// two, one LU factorisation for both solves):
 ///   C' = M^-T C   has the signs of   R^-1 C',
 ///   Q  = M^-1 Q',
-/// with the signs of Q' from `rule` (TrustedCornerSigns: the trusted signs of C').
-template <class T, class CornerRule>
-ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
-                         const CornerRule& rule) {
+/// with the signs of Q' those of C' (each one outside C'_k's error bound, or C'_k exactly 0).
+template <class T>
+ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention) {
   const EquilibratedSolver<T> solver(m);
   if (auto refusal = solver_refusal(m, solver, Method::general)) return *refusal;
-  if (rule.checks_camera() && !(plane.w() < T(0))) {
+  if (!(plane.w() < T(0))) {
     return refuse(m, Method::general, Status::camera_not_behind_plane);
   }
   const PlaneScale scale = plane_scale(plane);
@@ -461,8 +459,8 @@ ObliqueResult<T> general(const Matrix4<T>& m, const Vector4<T>& plane, Conventio
     if (c_clip(i) != T(0) && std::abs(c_clip(i)) <= bound(i))
       return handed_to_accurate(m, plane, convention);
   }
-  const Vector4<T> signs = rule.corner_signs(plane, c_clip, bound);
-  const Vector4<T> corner = clip_corner(signs.x(), signs.y(), signs.z(), convention);
+  const Vector4<T> corner =
+      clip_corner(sign(c_clip.x()), sign(c_clip.y()), sign(c_clip.z()), convention);
   T corner_error = T(0);
   const Vector4<T> q = solver.solve(corner, &corner_error);
   // A refinement that stalled short of a small componentwise backward error: the error bounds

@@ -220,20 +220,6 @@ Vector4<T> trusted_signs(const Vector4<T>& c_clip, const Vector4<T>& error_bound
   return signs;
 }
 
-/// The general method's rule for the signs of the clip-space corner Q' (the seam the property
-/// suite's planted mutants perturb): corner_signs(C, C', bound) gives the x, y and z signs that
-/// clip_corner() takes (w unused), and checks_camera() whether C_w < 0 is required. This default
-/// is the method itself: trusted_signs(C', bound), and the check. A rule is any type with these
-/// two members; the general method takes it by template parameter, so this one costs nothing.
-struct TrustedCornerSigns {
-  static constexpr bool checks_camera() noexcept { return true; }
-  template <class T>
-  static Vector4<T> corner_signs(const Vector4<T>& /*plane*/, const Vector4<T>& c_clip,
-                                 const Vector4<T>& error_bound) {
-    return trusted_signs(c_clip, error_bound);
-  }
-};
-
 /// The refusal for a matrix the equilibrated solver cannot be trusted with, if any.
 template <class T, class W>
 std::optional<ObliqueResult<T>> solver_refusal(const Matrix4<T>& m,

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include <Eigen/LU>
+
 #include "oblique/oblique.h"
 #include "oblique/properties/judge.h"
 #include "oblique/properties/seeded_recipes.h"
@@ -52,8 +54,9 @@ struct Implementation {
 
 namespace mutants {
 
-/// The core's general method with one planted fault, through its corner-sign seam
-/// (detail::general's CornerRule).
+/// A fault planted in the general method. Each mutant is apply()'s general method, wrapped: where
+/// its fault changes nothing (the signs it would take are sgn(C')), it answers what apply()
+/// answers; elsewhere it answers the textbook modification on the corner its fault picks.
 enum class Fault {
   signs_from_c,      ///< the corner's x, y signs from C instead of C' (Listing 5.1's shortcut)
   wrong_face,        ///< the far corner on the wrong depth face
@@ -64,40 +67,60 @@ enum class Fault {
   x_sign_from_c,
 };
 
-/// detail::TrustedCornerSigns with `fault` planted: the same trusted components of C' (a rounded
-/// zero counts as zero), then their signs taken wrongly.
-struct PlantedCornerRule {
-  Fault fault;
+/// The clip-space corner's x, y, z signs the faulty method takes, from C' = M^-T C and C.
+template <class T>
+Vector4<T> planted_signs(const Vector4<T>& plane, const Vector4<T>& c_clip, Fault fault) {
+  const auto sgn = [fault](T x) {
+    return fault == Fault::sign_by_division ? x / std::abs(x) : seeded::sgn(x);
+  };
+  const bool from_c = fault == Fault::signs_from_c;
+  const bool x_from_c = from_c || fault == Fault::x_sign_from_c;
+  const T z = fault == Fault::wrong_face ? -sgn(c_clip.z()) : sgn(c_clip.z());
+  return Vector4<T>(sgn(x_from_c ? plane.x() : c_clip.x()), sgn(from_c ? plane.y() : c_clip.y()), z,
+                    T(0));
+}
 
-  bool checks_camera() const noexcept { return fault != Fault::no_camera_check; }
-
-  template <class T>
-  Vector4<T> corner_signs(const Vector4<T>& plane, const Vector4<T>& c_clip,
-                          const Vector4<T>& error_bound) const {
-    // C'_i where its sign is trusted, else 0.
-    const Vector4<T> trusted = detail::TrustedCornerSigns::corner_signs(plane, c_clip, error_bound)
-                                   .cwiseAbs()
-                                   .cwiseProduct(c_clip);
-    const auto sgn = [this](T x) {
-      return fault == Fault::sign_by_division ? x / std::abs(x) : detail::sign(x);
-    };
-    const bool from_c = fault == Fault::signs_from_c;
-    const bool x_from_c = from_c || fault == Fault::x_sign_from_c;
-    const T z_sign = fault == Fault::wrong_face ? -sgn(trusted.z()) : sgn(trusted.z());
-    return Vector4<T>(sgn(x_from_c ? plane.x() : trusted.x()),
-                      sgn(from_c ? plane.y() : trusted.y()), z_sign, T(0));
-  }
-};
-
-/// The general method with `fault` planted, behind apply()'s input checks.
+/// The general method with `fault` planted. Where the fault matters (apply() answers or refuses
+/// with plane_misses_view_volume and the planted signs differ from sgn(C'), C' solved by
+/// partial-pivoting LU in T as an engine solves it; or C_w >= 0 for no_camera_check) the answer
+/// is the modification on the planted corner, as an engine writes it:
+///   Q = M^-1 Q', a = (z_high - z_low) / (C . Q), M'_3 = s (a C - t M_4)
+/// (near_rows(convention): near = s M_3 + t M_4, s = +-1), refused as plane_misses_view_volume
+/// when C . Q <= 0; a NaN C . Q (sign_by_division's corner) goes through, as in an engine.
 template <class T>
 ObliqueResult<T> with_fault(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
                             Fault fault) {
-  if (!all_finite(m) || !all_finite(c))
-    return detail::refuse(m, Method::general, Status::invalid_input);
-  if (magnitude_spread(m) > max_magnitude_spread<T>())
-    return detail::refuse(m, Method::general, Status::out_of_range);
-  return detail::general(m, c, convention, PlantedCornerRule{fault});
+  ObliqueResult<T> r = apply<T>(m, c, convention, Method::general);
+  const bool unchecked_camera =
+      fault == Fault::no_camera_check && r.status == Status::camera_not_behind_plane;
+  // The statuses that depend on the corner (C . Q > 0) are the fault's to change, too.
+  if (r.status != Status::ok && r.status != Status::plane_misses_view_volume && !unchecked_camera)
+    return r;
+  const Eigen::PartialPivLU<Matrix4<T>> lu(m);
+  const Vector4<T> c_clip = lu.transpose().solve(c);
+  const Vector4<T> signs = planted_signs(c, c_clip, fault);
+  const bool as_apply = signs.x() == seeded::sgn(c_clip.x()) &&
+                        signs.y() == seeded::sgn(c_clip.y()) &&
+                        signs.z() == seeded::sgn(c_clip.z());
+  if (as_apply && !unchecked_camera) return r;
+  const DepthRange range = clip_depth_range(convention);
+  const T z = signs.z() > T(0)   ? T(range.z_high)
+              : signs.z() < T(0) ? T(range.z_low)
+                                 : T(range.z_low + range.z_high) / T(2);
+  const Vector4<T> q = lu.solve(Vector4<T>(signs.x(), signs.y(), z, T(1)));
+  const T d = c.dot(q);
+  r.projection = m;
+  r.far_corner = q;
+  if (d <= T(0)) {
+    r.status = Status::plane_misses_view_volume;
+    return r;
+  }
+  const RowCombination near = near_rows(convention);
+  const T a = T(range.z_high - range.z_low) / d;
+  const Vector4<T> m4 = m.row(3).transpose();
+  r.projection.row(2) = (T(near.m3) * (a * c - T(near.m4) * m4)).transpose();
+  r.status = Status::ok;
+  return r;
 }
 
 }  // namespace mutants
@@ -117,7 +140,7 @@ Implementation<T> core_method(Method method) {
   return impl;
 }
 
-/// The core's general method with one planted fault, as an implementation named NAME.
+/// The general method with one planted fault (mutants::with_fault), as the implementation NAME.
 template <class T>
 Implementation<T> planted_mutant(std::string name, mutants::Fault fault) {
   Implementation<T> impl;

@@ -9,7 +9,7 @@
 // about the core's own methods: they skip, saying so, unless OBLIQUE_IMPL selects them.
 // Answers are judged by the filtered checker (properties/filtered.h), which hands every violation
 // and every close call to the exact one.
-#include "harness.h"
+#include "property_suite.h"
 
 namespace oblique::properties::suite {
 namespace {
