@@ -11,7 +11,7 @@
 
 #include "oblique/properties/filtered.h"
 #include "oblique/properties/implementations.h"
-#include "oblique/testing.h"
+#include "oblique/testing/harness.h"
 
 namespace oblique::properties::suite {
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "oblique/oblique.h"
-#include "oblique/testing.h"
+#include "oblique/testing/harness.h"
 
 namespace oblique {
 namespace {

@@ -17,9 +17,9 @@
 #include <type_traits>
 #include <utility>
 
-#include "oblique/oblique.h"
 #include "oblique/projection.h"
-#include "oblique/properties/implementations.h"
+#include "oblique/properties/implementation.h"
+#include "oblique/result.h"
 
 namespace oblique {
 

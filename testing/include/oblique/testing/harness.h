@@ -1,0 +1,146 @@
+// The harness under oblique::testing, for the project's own property suite and tests: one
+// RapidCheck run per property with its tally of what the cases covered, and the judging of each
+// answer of a generated case. Users include oblique/testing.h, not this.
+#pragma once
+
+#include <rapidcheck.h>
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "oblique/properties/counterexample_report.h"
+#include "oblique/properties/filtered.h"
+#include "oblique/properties/generators.h"
+#include "oblique/properties/judge.h"
+#include "oblique/properties/properties.h"
+#include "oblique/testing.h"
+
+namespace oblique::testing {
+
+using properties::Counterexample;
+using properties::FilteredProblem;
+using properties::Finding;
+using properties::Judgement;
+using properties::Problem;
+
+/// Which kinds of case a run must have covered.
+enum class Coverage { valid, places_only, perspective_shape, invalid, none };
+
+/// What the cases of one property run covered, and its last (so most shrunk) failure.
+struct Tally {
+  std::map<std::string, int> families, conventions, places, defects, implementations, applied;
+  std::map<std::string, int> left_out;  ///< answers not judged, by properties::not_judged()
+  std::optional<Counterexample> failure;
+  std::string property;  ///< the RapidCheck test id of the run
+};
+
+/// The tally of the property run under way.
+Tally& tally();
+
+/// "name count, name count, ..." of `counts`.
+std::string summary(const std::map<std::string, int>& counts);
+
+/// The current GoogleTest test as "Suite<separator>Name".
+std::string current_test_id(char separator);
+
+/// Where the current test's reports go and the commands that replay them (`property`: the run).
+properties::ReportContext report_context(const std::string& property);
+
+/// The RapidCheck test id of one property run of the current test: "Suite/Name" or
+/// "Suite/Name/property". RC_PARAMS="reproduce=..." names runs by these ids.
+std::string run_id(const std::string& property);
+
+/// Whether RC_PARAMS="reproduce=..." is set and leaves out the run `id`.
+bool left_out_by_reproduce(const std::string& id);
+
+/// Runs `testable` (RC_ macros and generators inside) as a RapidCheck property of the current test
+/// (RapidCheck id run_id(property)); fails the test with the report's path on a counterexample, and
+/// when the cases missed a family, convention or hard place the contract names (the `require_*`
+/// lists).
+void run(const std::function<void()>& testable, Coverage coverage, const std::string& property = "",
+         const Contract& require = Contract{});
+
+template <class T>
+void count_case(const generators::Case<T>& c) {
+  Tally& t = tally();
+  ++t.families[std::string(generators::family_name(c.family))];
+  ++t.conventions[std::string(convention_name(c.convention))];
+  ++t.places[std::string(generators::place_name(c.place))];
+  RC_TAG(std::string(generators::family_name(c.family)), std::string(convention_name(c.convention)),
+         std::string(generators::place_name(c.place)));
+}
+
+template <class T>
+Counterexample describe(const generators::Case<T>& c, const Implementation<T>& impl) {
+  Counterexample ce = properties::make_counterexample(c.matrix, c.plane, c.convention);
+  ce.implementation = impl.name;
+  ce.family = std::string(generators::family_name(c.family));
+  ce.place = std::string(generators::place_name(c.place));
+  return ce;
+}
+
+/// Fails the current RapidCheck case with `finding` as its report.
+template <class T>
+void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, const Finding& finding,
+               const Outcome<T>* outcome = nullptr) {
+  Counterexample ce = describe(c, impl);
+  ce.finding = finding;
+  if (outcome && outcome->status == Status::ok) properties::set_result(ce, outcome->projection);
+  // The report's pictures: the case's volumes and the point the answer clips (exact Problem).
+  properties::set_views(ce, Problem<T>(c.matrix, c.plane, c.convention),
+                        outcome && outcome->status == Status::ok ? &outcome->projection : nullptr);
+  tally().failure = ce;
+  if (finding.kind == "status")
+    RC_FAIL(impl.name + " answered " + finding.got + ", expected " + finding.expected);
+  RC_FAIL(impl.name + " violates " + finding.kind + ": " + finding.lhs + " against " + finding.rhs);
+}
+
+/// Runs each implementation on the case and judges each answer (judge(), with `checks` and the
+/// implementation's status contract, or `statuses` when given); fails the case on the first
+/// violation. Inputs properties::not_judged() leaves out for the contract are skipped and counted
+/// (Tally::left_out), except that inputs without an answer are judged where invalid inputs are
+/// the point (judge_statuses): there an answer to an input that allows none is the finding.
+/// `problem` is a Problem<T> or a FilteredProblem<T> (filtered.h: the same verdicts, most
+/// without GMP).
+template <class T, class AnyProblem>
+void for_each_answer(const std::vector<Implementation<T>>& implementations,
+                     const generators::Case<T>& c, const AnyProblem& problem, Checks checks,
+                     bool judge_statuses = false,
+                     std::optional<StatusContract> statuses = std::nullopt) {
+  for (const Implementation<T>& impl : implementations) {
+    if (!impl.accepts(c.convention, c.matrix)) continue;
+    const StatusContract contract = statuses ? *statuses : impl.status_contract();
+    if (const std::string why = properties::not_judged(problem, contract); !why.empty()) {
+      if (!judge_statuses || problem.exact_status() == Status::ok) {
+        ++tally().left_out[why];
+        continue;
+      }
+    }
+    ++tally().implementations[impl.name];
+    const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
+    checks.statuses = contract;
+    const Judgement judgement = judge(problem, outcome, checks);
+    for (const Finding& f : judgement.checks) {
+      if (f.kind != "status" && f.kind != "finite_result") ++tally().applied[f.kind];
+    }
+    if (const Finding* violation = judgement.violation()) fail_with(c, impl, *violation, &outcome);
+  }
+}
+
+/// A valid case of the contract's families, conventions and places.
+template <class T>
+rc::Gen<generators::Case<T>> valid_case(const Contract& contract) {
+  return rc::gen::exec([contract] {
+    const generators::Case<T> c =
+        *generators::valid_case_in<T>(contract.families, contract.conventions);
+    RC_PRE(std::find(contract.places.begin(), contract.places.end(), c.place) !=
+           contract.places.end());
+    return c;
+  });
+}
+
+}  // namespace oblique::testing

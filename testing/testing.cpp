@@ -1,0 +1,192 @@
+// oblique::testing's bodies: RapidCheck's runner (its rc::detail interface stays here, out of the
+// headers users include), the run's tally and reports, check_properties() for the three scalars.
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+
+#include "oblique/testing/harness.h"
+
+namespace oblique::testing {
+
+Settings& settings() {
+  static Settings s;
+  return s;
+}
+
+Tally& tally() {
+  static Tally t;
+  return t;
+}
+
+std::string summary(const std::map<std::string, int>& counts) {
+  std::string out;
+  for (const auto& [name, count] : counts)
+    out += (out.empty() ? "" : ", ") + name + " " + std::to_string(count);
+  return out;
+}
+
+std::string current_test_id(char separator) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  return std::string(info->test_suite_name()) + separator + info->name();
+}
+
+properties::ReportContext report_context(const std::string& property) {
+  const Settings& s = settings();
+  properties::ReportContext context;
+  const char* dir = std::getenv("OBLIQUE_REPORT_DIR");
+  context.directory = dir && *dir                   ? std::string(dir)
+                      : !s.report_directory.empty() ? s.report_directory
+                                                    : std::string("oblique-reports");
+  context.test_id = current_test_id('.');
+  if (!property.empty()) context.stem = context.test_id + "." + property;
+  context.seed = rc::detail::configuration().testParams.seed;
+  context.max_success = rc::detail::configuration().testParams.maxSuccess;
+  context.binary = s.binary;
+  if (context.binary.empty()) {
+    std::error_code error;
+    const auto self = std::filesystem::read_symlink("/proc/self/exe", error);
+    context.binary = error ? std::string("<this test executable>") : self.string();
+  }
+  context.cli = s.cli;
+  if (!s.replay_names_implementation) {
+    context.replay_run = "RC_PARAMS=\"seed=" + std::to_string(context.seed) +
+                         " max_success=" + std::to_string(context.max_success) + "\" " +
+                         context.binary + " --gtest_filter='" + context.test_id + "'";
+  }
+  return context;
+}
+
+std::string run_id(const std::string& property) {
+  const std::string id = current_test_id('/');
+  return property.empty() ? id : id + "/" + property;
+}
+
+bool left_out_by_reproduce(const std::string& id) {
+  const auto& reproduce = rc::detail::configuration().reproduce;
+  return !reproduce.empty() && reproduce.count(id) == 0;
+}
+
+void run(const std::function<void()>& testable, Coverage coverage, const std::string& property,
+         const Contract& require) {
+  tally() = Tally{};
+  const std::string id = run_id(property);
+  tally().property = property;
+  if (left_out_by_reproduce(id)) {
+    if (property.empty()) GTEST_SKIP() << id << ": not named by RC_PARAMS reproduce=..., skipped";
+    std::cout << id << ": not named by RC_PARAMS reproduce=..., skipped" << std::endl;
+    return;
+  }
+  const bool reproducing = !rc::detail::configuration().reproduce.empty();
+  rc::detail::TestMetadata metadata;
+  metadata.id = id;
+  metadata.description = property.empty() ? current_test_id('.') : property;
+  const auto result = rc::detail::checkTestable(testable, metadata);
+  std::ostringstream message;
+  rc::detail::printResultMessage(result, message);
+  const Tally& t = tally();
+  std::cout << (property.empty() ? "" : property + ": ") << message.str()
+            << "\nran: " << summary(t.implementations) << "\nfamilies: " << summary(t.families)
+            << "\nconventions: " << summary(t.conventions) << "\nplaces: " << summary(t.places);
+  if (!t.defects.empty()) std::cout << "\ndefects: " << summary(t.defects);
+  if (!t.applied.empty()) std::cout << "\napplied: " << summary(t.applied);
+  if (!t.left_out.empty()) std::cout << "\nleft out: " << summary(t.left_out);
+  std::cout << std::endl;
+  if (!result.is<rc::detail::SuccessResult>()) {
+    std::string where;
+    if (t.failure) where = "\nreport: " + write_report(*t.failure, report_context(property));
+    ADD_FAILURE() << (property.empty() ? "" : property + ": ") << message.str() << where;
+    return;
+  }
+  if (t.implementations.empty()) {
+    ADD_FAILURE() << id
+                  << ": no implementation ran: check OBLIQUE_IMPL and the contract (or the "
+                     "generator discarded every case)";
+    return;
+  }
+  if (reproducing || coverage == Coverage::none) return;  // one case: nothing to cover
+  auto needs = [&](const std::map<std::string, int>& counts, auto names, const char* what) {
+    for (const auto& name : names) {
+      EXPECT_GT(counts.count(std::string(name)) ? counts.at(std::string(name)) : 0, 0)
+          << id << ": no case covered " << what << " " << name << ": raise max_success";
+    }
+  };
+  std::vector<std::string_view> families, conventions, places, defects;
+  for (auto f : require.families) families.push_back(generators::family_name(f));
+  for (auto c : require.conventions) conventions.push_back(convention_name(c));
+  for (auto p : require.places) places.push_back(generators::place_name(p));
+  for (auto d : generators::all_defects) defects.push_back(generators::defect_name(d));
+  needs(t.conventions, conventions, "convention");
+  switch (coverage) {
+    case Coverage::valid:
+      needs(t.families, families, "family");
+      needs(t.places, places, "hard place");
+      break;
+    case Coverage::places_only:
+    case Coverage::perspective_shape: needs(t.places, places, "hard place"); break;
+    case Coverage::invalid: needs(t.defects, defects, "defect"); break;
+    case Coverage::none: break;
+  }
+}
+
+template <class T>
+void check_properties(const Implementation<T>& impl, const Contract& contract) {
+  if (contract.families.empty() || contract.conventions.empty() || contract.places.empty()) {
+    ADD_FAILURE() << "oblique::testing: the contract names no family, convention or place";
+    return;
+  }
+  const auto& reproduce = rc::detail::configuration().reproduce;
+  const std::string prefix = run_id("") + "/";
+  if (!reproduce.empty() &&
+      std::none_of(reproduce.begin(), reproduce.end(),
+                   [&](const auto& entry) { return entry.first.rfind(prefix, 0) == 0; }))
+    GTEST_SKIP() << run_id("") << ": not named by RC_PARAMS reproduce=..., skipped";
+  const std::vector<Implementation<T>> implementations{impl};
+  for (Property p : contract.properties) {
+    if (p == Property::infinite_edge_parallel &&
+        std::find(contract.families.begin(), contract.families.end(),
+                  generators::Family::infinite) == contract.families.end())
+      continue;
+    Contract require = contract;
+    Coverage coverage = Coverage::valid;
+    Contract generate = contract;
+    if (p == Property::infinite_edge_parallel) {
+      generate.families = {generators::Family::infinite};
+      coverage = Coverage::places_only;
+    }
+    run(
+        [=] {
+          const generators::Case<T> c = *valid_case<T>(generate);
+          const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
+          if (problem.exact_status() == Status::ok) count_case(c);
+          Checks checks;
+          checks.properties = {p};
+          for_each_answer(implementations, c, problem, checks, false, contract.statuses);
+        },
+        coverage, std::string(properties::property_name(p)), require);
+  }
+  const StatusContract statuses = contract.statuses ? *contract.statuses : impl.status_contract();
+  if (statuses == StatusContract::answers_only) return;
+  run(
+      [=] {
+        const generators::InvalidCase<T> ic =
+            *generators::invalid_case_in<T>(contract.families, contract.conventions);
+        const generators::Case<T>& c = ic.base;
+        const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
+        ++tally().defects[std::string(generators::defect_name(ic.defect))];
+        ++tally().conventions[std::string(convention_name(c.convention))];
+        RC_TAG(std::string(generators::defect_name(ic.defect)));
+        Checks checks;  // an ok answer is allowed only in a gray zone, and then has every property
+        checks.properties = contract.properties;
+        for_each_answer(implementations, c, problem, checks, true, contract.statuses);
+      },
+      Coverage::invalid, "invalid_inputs_get_their_status", contract);
+}
+
+template void check_properties<float>(const Implementation<float>&, const Contract&);
+template void check_properties<double>(const Implementation<double>&, const Contract&);
+template void check_properties<long double>(const Implementation<long double>&, const Contract&);
+
+}  // namespace oblique::testing
