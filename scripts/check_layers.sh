@@ -6,11 +6,16 @@
 #     files is declared in a `namespace detail` block of that same library; a third-party one's
 #     (`rc::detail`, `nlohmann::detail`) appears only in compiled sources, never in a header.
 # Usage: bash scripts/check_layers.sh [ROOT]   (ROOT: the source tree, default the repository)
-# Prints each violation as FILE:LINE: what; exits 1 when there is one, 0 when there is none.
+# Prints each violation as FILE:LINE: what; exits 1 when there is one, 0 when there is none, 2
+# when ROOT is not a directory.
 # Tests (files named *_test.cpp, and the tests/, bench/, examples/ and fuzz/ folders) are users of
 # the libraries, not layers, and are not checked.
 set -euo pipefail
 root="${1:-$(cd "$(dirname "$0")/.." && pwd)}"
+if [[ ! -d "$root" ]]; then
+  echo "check_layers: $root is not a directory (give the source tree's root)" >&2
+  exit 2
+fi
 cd "$root"
 
 # Each library, its folder, and the libraries it may include (besides itself).
@@ -65,7 +70,7 @@ for lib in "${libraries[@]}"; do
     elif [[ "$lib" == core && ! "$header" =~ ^Eigen/ && "$header" == *.* ]]; then
       violation "$file:$line: core includes $header (the core uses only Eigen and the standard library)"
     fi
-  done < <(grep -nE '^[[:space:]]*#[[:space:]]*include' $files /dev/null | cut -d: -f1-3)
+  done < <(grep -anE '^[[:space:]]*#[[:space:]]*include' $files /dev/null | cut -d: -f1-3)
 
   # The names the library declares in its own detail namespaces (top-level declarations of
   # `namespace ...detail {` blocks: types, aliases, functions, variables).
@@ -108,7 +113,7 @@ for lib in "${libraries[@]}"; do
         violation "$file:$line: $lib uses detail::$name, which it does not declare (another library's detail namespace)"
       fi
     done < <(grep -oE '([A-Za-z_][A-Za-z0-9_]*::)?detail::[A-Za-z_][A-Za-z0-9_]*' <<< "$text" || true)
-  done < <(grep -nE 'detail::' $files /dev/null | sed -E 's://.*$::' || true)
+  done < <(grep -anE 'detail::' $files /dev/null | sed -E 's://.*$::' || true)
 done
 if ((status == 0)); then echo "check_layers: every library keeps to its layer"; fi
 exit $status

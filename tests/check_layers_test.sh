@@ -97,4 +97,13 @@ make_tree
 echo 'void g(const nlohmann::detail::exception&);' >> "$work/tree/protocol/include/oblique/protocol/wire.h"
 expect "a third-party detail in a header" 1 "protocol uses nlohmann::detail::exception in a header"
 
+make_tree
+printf '// a stray \0 byte\n#include <gmpxx.h>\n' > "$work/tree/core/include/oblique/detail/stray.h"
+expect "a header with a NUL byte is still read" 1 "core includes gmpxx.h"
+
+code=0
+bash "$check" "$work/no-such-tree" > /dev/null 2>&1 || code=$?
+if [[ "$code" == 2 ]]; then echo "ok: a missing tree"; else
+  echo "FAIL: a missing tree: exit $code (expected 2)"; failures=$((failures + 1)); fi
+
 ((failures == 0)) || { echo "$failures case(s) failed"; exit 1; }
