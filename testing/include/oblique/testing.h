@@ -78,11 +78,6 @@ Settings& settings();
 template <class T>
 void check_properties(const Implementation<T>& impl, const Contract& contract = Contract{});
 
-extern template void check_properties<float>(const Implementation<float>&, const Contract&);
-extern template void check_properties<double>(const Implementation<double>&, const Contract&);
-extern template void check_properties<long double>(const Implementation<long double>&,
-                                                   const Contract&);
-
 }  // namespace oblique::testing
 
 /// A GoogleTest test that checks `implementation` (oblique::adapt()) against `contract`
