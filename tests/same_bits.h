@@ -1,5 +1,5 @@
 // Bit-for-bit comparison of scalars and Eigen matrices, for the tests that promise the same bits
-// as a reference (closed_form_same_bits_test, accurate_ordinary_test).
+// as a reference (closed_form_bits_test, apply_batch_test, accurate_ordinary_test).
 #pragma once
 
 #include <Eigen/Core>
