@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "oblique/batch.h"
 #include "oblique/oblique.h"
 #include "oblique/properties/generators.h"
 #include "oblique/properties/seeded_recipes.h"

@@ -3,6 +3,7 @@
 // certifies it, within tolerance::kAccurateUlps everywhere; the fast path and the refining path
 // give the same matrix; the closed form and the general method hand it what they cannot settle.
 #include "oblique/accurate/accurate.h"
+#include "oblique/definitions.h"  // apply() compiled here, with this file's flags (accuracy_*)
 
 #include <gtest/gtest.h>
 
@@ -24,6 +25,13 @@
 
 namespace oblique {
 namespace {
+
+/// The accurate method on its own (detail::accurate()), scaled as apply() scales the plane.
+template <class T>
+ObliqueResult<T> accurate_method(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                                 bool perspective_shape) {
+  return detail::accurate(m, c, convention, perspective_shape, plane_scale(c), false);
+}
 
 template <class T>
 class AccurateMethod : public ::testing::Test {};
@@ -88,7 +96,7 @@ TYPED_TEST(AccurateMethod, fastPathIsCorrectlyRounded) {
               << describe(convention, int(i), int(j)) << " entry " << k;
         }
         // And the accurate method returns it.
-        const ObliqueResult<T> r = detail::accurate(m, c, convention, true);
+        const ObliqueResult<T> r = accurate_method(m, c, convention, true);
         ASSERT_TRUE(r.ok()) << r.message();
         EXPECT_EQ(Vector4<T>(r.projection.row(2).transpose()), fast->row3)
             << describe(convention, int(i), int(j));
@@ -108,8 +116,8 @@ TYPED_TEST(AccurateMethod, fastPathAndRefiningPathAgree) {
     const auto cs = planes<T>();
     for (std::size_t i = 0; i < matrices.size(); ++i) {
       for (std::size_t j = 0; j < cs.size(); ++j) {
-        const ObliqueResult<T> fast = detail::accurate(matrices[i], cs[j], convention, true);
-        const ObliqueResult<T> refined = detail::accurate(matrices[i], cs[j], convention, false);
+        const ObliqueResult<T> fast = accurate_method(matrices[i], cs[j], convention, true);
+        const ObliqueResult<T> refined = accurate_method(matrices[i], cs[j], convention, false);
         ASSERT_EQ(fast.status, refined.status) << describe(convention, int(i), int(j));
         EXPECT_EQ(fast.method, Method::accurate);
         EXPECT_EQ(refined.method, Method::accurate);
@@ -135,7 +143,7 @@ TYPED_TEST(AccurateMethod, generalMatricesWithinPromisedUlps) {
     for (std::size_t i = 0; i < matrices.size(); ++i) {
       for (std::size_t j = 0; j < cs.size(); ++j) {
         const properties::Problem<T> problem(matrices[i], cs[j], convention);
-        const ObliqueResult<T> r = detail::accurate(matrices[i], cs[j], convention, false);
+        const ObliqueResult<T> r = accurate_method(matrices[i], cs[j], convention, false);
         ASSERT_EQ(r.status, problem.exact_status()) << describe(convention, int(i), int(j));
         if (!r.ok()) continue;
         EXPECT_LE(problem.ulps_from_exact(r.projection), tolerance::kAccurateUlps)
@@ -305,19 +313,19 @@ TYPED_TEST(AccurateMethod, refusals) {
   using T = TypeParam;
   const Matrix4<T> m = perspective<T>(T(kFovy), T(1.5), T(0.1), T(100), Convention::gl);
   const ObliqueResult<T> in_front =
-      detail::accurate(m, Vector4<T>(T(0), T(0), T(-1), T(0.5)), Convention::gl, true);
+      accurate_method(m, Vector4<T>(T(0), T(0), T(-1), T(0.5)), Convention::gl, true);
   EXPECT_EQ(in_front.status, Status::camera_not_behind_plane);
   EXPECT_EQ(in_front.method, Method::accurate);
   EXPECT_EQ(in_front.projection, m);
   Matrix4<T> singular = m;
   singular.row(1).setZero();
   const ObliqueResult<T> zero_row =
-      detail::accurate(singular, Vector4<T>(T(0), T(0), T(-1), T(-0.5)), Convention::gl, false);
+      accurate_method(singular, Vector4<T>(T(0), T(0), T(-1), T(-0.5)), Convention::gl, false);
   EXPECT_EQ(zero_row.status, Status::singular_projection);
   EXPECT_EQ(zero_row.projection, singular);
   // The plane behind the view volume: C . Q <= 0.
   const ObliqueResult<T> misses =
-      detail::accurate(m, Vector4<T>(T(0), T(0), T(1), T(-1000)), Convention::gl, true);
+      accurate_method(m, Vector4<T>(T(0), T(0), T(1), T(-1000)), Convention::gl, true);
   EXPECT_EQ(misses.status, Status::plane_misses_view_volume);
 }
 

@@ -11,6 +11,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "oblique/batch.h"
+#include "oblique/detail/batch.h"
 #include "oblique/oblique.h"
 #include "oblique/properties/generators.h"
 #include "printers.h"

@@ -71,15 +71,14 @@ bool compare_line(std::istringstream& in, int scalar, Tally& tally, std::string&
   tally.ok[scalar] += *status == Status::ok;
   EXPECT_TRUE(r.status == *status && r.detail == detail && r.method == *ran &&
               same_bits(r.projection, expected) && same_bits(r.far_corner, q))
-      << test::scalar_token<T>() << ", " << convention_token << ", " << method_token
-      << ": now " << status_code(r.status) << " (" << r.message() << ", "
-      << method_name(r.method) << "), expected " << status_token << " ("
+      << test::scalar_token<T>() << ", " << convention_token << ", " << method_token << ": now "
+      << status_code(r.status) << " (" << r.message() << ", " << method_name(r.method)
+      << "), expected " << status_token << " ("
       << (detail.empty() ? std::string(status_message(*status)) : detail) << ", " << ran_token
       << ")\nM =\n"
       << m << "\nC = " << c.transpose() << "\nnow M' =\n"
       << r.projection << "\nexpected M' =\n"
-      << expected << "\nnow Q = " << r.far_corner.transpose() << "\nexpected Q = "
-      << q.transpose();
+      << expected << "\nnow Q = " << r.far_corner.transpose() << "\nexpected Q = " << q.transpose();
   return true;
 }
 
@@ -120,8 +119,8 @@ TEST(ClosedFormBits, applyGivesTheKeptAnswers) {
 // The tokens read back what was written, NaN's sign and payload included, and a token that
 // bits_token() cannot have written (not a number, a number that is not a T) is refused.
 TEST(ClosedFormBits, tokensRoundTripAndRefuseWhatTheyCannotHold) {
-  const double values[] = {0.0, -0.0, 0.1, -1e-310, 1.7976931348623157e308,
-                           std::numeric_limits<double>::infinity()};
+  const double values[] = {
+      0.0, -0.0, 0.1, -1e-310, 1.7976931348623157e308, std::numeric_limits<double>::infinity()};
   for (double x : values) EXPECT_TRUE(same_bits(*parse_bits_token<double>(test::bits_token(x)), x));
   const double negative_nan = -std::numeric_limits<double>::quiet_NaN();
   EXPECT_TRUE(same_bits(*parse_bits_token<double>(test::bits_token(negative_nan)), negative_nan));

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "closed_form_bits.h"
-#include "special_values.h"
 #include "oblique/oblique.h"
 #include "oblique/properties/generators.h"
+#include "special_values.h"
 
 namespace oblique {
 namespace {

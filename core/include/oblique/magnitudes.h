@@ -10,8 +10,6 @@
 #include <limits>
 #include <type_traits>
 
-#include "oblique/accurate/error_free.h"
-
 namespace oblique {
 
 /// Where T's exponent can be read from its bits: IEEE binary32 and binary64, and x87's 80-bit
@@ -83,6 +81,15 @@ inline int frexp_exponent(T x) noexcept {
   int e = 0;
   std::frexp(x, &e);
   return e;
+}
+
+/// 2^k as a constant expression (exact for any k whose 2^k is representable in T).
+template <class T>
+constexpr T constant_power_of_two(int k) noexcept {
+  T x = T(1);
+  for (; k > 0; --k) x *= T(2);
+  for (; k < 0; ++k) x /= T(2);
+  return x;
 }
 
 /// Whether 2^k is a normal number of T.
@@ -190,7 +197,7 @@ bool magnitude_spread_exceeds(const Eigen::MatrixBase<Derived>& v) {
   const auto [high, low] = magnitude_range(v);
   if (!(high > T(0))) return false;
   // Multiplying by a power of two is exact (an overflow to infinity keeps the comparisons right).
-  constexpr T factor = eft::power_of_two<T>(Limit);
+  constexpr T factor = constant_power_of_two<T>(Limit);
   if (high < low * factor) return false;
   if (high >= low * factor * T(2)) return true;
   return std::ilogb(high) - std::ilogb(low) > Limit;

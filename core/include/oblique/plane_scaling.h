@@ -18,7 +18,30 @@ struct PlaneScale {
   /// Whether the smallest nonzero component, scaled by 2^shift, is below the normal range (and
   /// may have lost bits).
   bool below_normal = false;
+  /// The frexp exponent e of the largest component (2^(e-1) <= max |C_i| < 2^e; 0 for a zero
+  /// plane).
+  int top = 0;
 };
+
+/// plane_scale() from the frexp exponents of the largest component (e) and of the smallest
+/// nonzero one (low_exponent).
+template <class T>
+OBLIQUE_ALWAYS_INLINE PlaneScale plane_scale_of_exponents(int e, int low_exponent) noexcept {
+  const int keep_normal = std::numeric_limits<T>::min_exponent - low_exponent;
+  if (-e < keep_normal && e + keep_normal <= std::numeric_limits<T>::max_exponent / 2)
+    return {keep_normal, e - low_exponent, false, e};
+  return {-e, e - low_exponent, -e < keep_normal, e};
+}
+
+/// plane_scale() of a plane whose components are zero or normal, not all zero, from the biased
+/// exponent fields (biased_exponent()) of its largest component and of its smallest nonzero
+/// one, as ordinary_input() reads them: no libm call.
+template <class T>
+OBLIQUE_ALWAYS_INLINE PlaneScale plane_scale_of_fields(unsigned high, unsigned low) noexcept {
+  constexpr int offset = ExponentBits<T>::bias - 1;  // frexp exponent = field - offset, normal
+  return plane_scale_of_exponents<T>(static_cast<int>(high) - offset,
+                                     static_cast<int>(low) - offset);
+}
 
 /// The power of two k by which the core scales a plane before C . Q: k = -e brings the largest
 /// component to [1/2, 1), unless that would push the smallest nonzero component below the normal
@@ -32,12 +55,8 @@ PlaneScale plane_scale(const Eigen::MatrixBase<Derived>& v) {
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (v(i) != T(0)) low = std::min(low, T(std::abs(v(i))));
   }
-  if (!(low < std::numeric_limits<T>::infinity())) return {-e, 0};
-  const int low_exponent = frexp_exponent(low);
-  const int keep_normal = std::numeric_limits<T>::min_exponent - low_exponent;
-  if (-e < keep_normal && e + keep_normal <= std::numeric_limits<T>::max_exponent / 2)
-    return {keep_normal, e - low_exponent, false};
-  return {-e, e - low_exponent, -e < keep_normal};
+  if (!(low < std::numeric_limits<T>::infinity())) return {-e, 0, false, e};
+  return plane_scale_of_exponents<T>(e, frexp_exponent(low));
 }
 
 template <class Derived>

@@ -29,9 +29,10 @@
 #include "oblique/accurate/perspective_fast_path.h"
 #include "oblique/accurate/refined_corner.h"
 #include "oblique/depth_convention.h"
+#include "oblique/detail/closed_form_steps.h"
 #include "oblique/detail/config.h"
-#include "oblique/detail/finish.h"
 #include "oblique/equilibrated_solver.h"
+#include "oblique/general_method.h"
 #include "oblique/magnitudes.h"
 #include "oblique/plane.h"
 #include "oblique/plane_scaling.h"
@@ -131,13 +132,13 @@ ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw,
 /// Q, C . Q and a carried to about twice the working precision and each entry rounded once.
 /// For the perspective shape the solves are the closed form's, and C' has exact signs. Stiff
 /// planes (stiff_plane()), and signs of C' within their error bound of zero, are settled in
-/// exact arithmetic (exact_cramer.h).
+/// exact arithmetic (exact_cramer.h). `scale`: plane_scale(plane); `ordinary`: every entry of M
+/// and C is zero or normal (ordinary_input(); the near plane's test may then be decided by signs).
 template <class T>
 ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
-                          bool perspective_shape) {
+                          bool perspective_shape, const PlaneScale& scale, bool ordinary) {
   using W = typename AccurateWorkingType<T>::type;
   const Vector4<W> plane_w = plane.template cast<W>();
-  const PlaneScale scale = plane_scale(plane);
   const ScaledPlane<W> scaled = scale_plane(plane_w, scale);
   const Vector4<W>& c_hat = scaled.c_hat;
   // C' and C . Q may rest on components below the others' rounding, or lost to the scaling.
@@ -149,45 +150,53 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   if (perspective_shape) {
     const W A = W(m(0, 0)), B = W(m(0, 2)), D = W(m(1, 1)), E = W(m(1, 2)), G = W(m(2, 2)),
             H = W(m(2, 3)), K = W(m(3, 2));
+    Answer<T> answer;
     if (A == W(0) || D == W(0) || H == W(0)) {
-      return refuse(m, Method::accurate, Status::singular_projection,
+      answer.refuse(Status::singular_projection,
                     "the projection is singular: M11, M22 or M34 is zero");
+      return answer.result(m, Method::accurate);
     }
-    if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
+    if (!(plane.w() < T(0))) {
+      answer.refuse(Status::camera_not_behind_plane);
+      return answer.result(m, Method::accurate);
+    }
     if (stiff) return exact_answer();
-    // Signs from C itself, exact.
-    const Vector4<W> corner =
-        clip_corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
-                    W(sign(plane.w())) * sign(H), convention);
+    // Signs from C itself, exact; Q'_z from the convention's table by the sign of C'_z.
+    const PerspectiveConstants<W>& constants = perspective_constants<W>(convention);
+    const W sign_z = W(sign(plane.w())) * sign(H);
+    const Vector4<W> corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
+                            constants.corner_z[(sign_z > W(0)) - (sign_z < W(0)) + 1], W(1));
     std::optional<PerspectiveAnswer<T, W>> fast;
     if constexpr (std::numeric_limits<W>::digits > std::numeric_limits<T>::digits) {
-      // float: plain double first, here (not in perspective_row3()'s FMA clone), as the
-      // ordinary path (ordinary.h) runs it; scaled is not lossy here (not stiff).
+      // float: plain double first, here (not in perspective_row3()'s FMA clone); scaled is not
+      // lossy here (not stiff).
       const PerspectiveInput<W> in = perspective_input<W>(c_hat, m, corner, convention);
       if ((in.t == W(0) || in.t == W(1)) && in_fast_range(in)) fast = perspective_row3_plain<T>(in);
     }
     if (!fast) fast = perspective_row3_dispatched<T>(scaled, m, corner, convention);
     if (fast) {
-      ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
-      r.far_corner = fast->far_corner.template cast<T>();
-      if (all_finite(r.far_corner)) {
-        // accept_row3's test that the extracted near plane keeps C's side, decided by signs:
-        // its x, y and w components are the correctly rounded a C_i (M_4 = (0, 0, K, 0)), so
-        // their terms of the dot product with C are >= 0, and the w term > 0 (C_w < 0, and in
-        // the fast path's range a C_w and its scaled product stay normal in double and long
-        // double); a z term >= 0 then makes the sum positive, as accept_row3 would find.
-        // (float's fast-path values can underflow in float: accept_row3 decides.)
-        if constexpr (!std::is_same_v<T, float>) {
-          const RowCombination near_combination = near_rows(convention);
-          const T near_z =
-              T(near_combination.m3) * fast->row3(2) + T(near_combination.m4) * m(3, 2);
-          if (!(near_z * T(sign(plane.z())) < T(0))) {
-            r.projection.row(2) = fast->row3.transpose();
-            return r;
-          }
+      answer.far_corner = fast->far_corner.template cast<T>();
+      if (all_finite(answer.far_corner)) {
+        // accept_row3's test that the extracted near plane keeps C's side, decided by signs
+        // where that is provable. Its x, y and w components are the correctly rounded a C_i
+        // (M_4 = (0, 0, K, 0)), so their terms of the dot product with C are >= 0. In double
+        // and long double the w term is > 0 (C_w < 0, and in the fast path's range a C_w and its
+        // scaled product stay normal), and a z term >= 0 makes the sum positive. float's values
+        // can underflow in float: near_plane_kept_by_signs() decides where its proof applies,
+        // the full test elsewhere.
+        const ConventionTable<T>& table = convention_table<T>(convention);
+        T near[4];
+        for (int i = 0; i < 4; ++i) near[i] = table.s * fast->row3(i) + table.t * m(3, i);
+        bool kept_by_signs;
+        if constexpr (std::is_same_v<T, float>) {
+          kept_by_signs = ordinary && scale.shift == -scale.top && all_finite(fast->row3) &&
+                          near_plane_kept_by_signs(plane, near, near[2], scale.top);
+        } else {
+          kept_by_signs = !(near[2] * T(sign(plane.z())) < T(0));
         }
-        return accept_row3(std::move(r), fast->row3, Vector4<T>(c_hat.template cast<T>()),
-                           convention);
+        accept_row3(fast->row3, m, Vector4<T>(c_hat.template cast<T>()), table, kept_by_signs,
+                    answer);
+        return answer.result(m, Method::accurate);
       }
     }
     const Matrix4<W> mw = m.template cast<W>();
@@ -203,14 +212,18 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   }
   const Matrix4<W> mw = m.template cast<W>();
   const EquilibratedSolver<W> solver(mw);
-  if (auto refusal = solver_refusal(m, solver, Method::accurate)) return *refusal;
-  if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
+  Answer<T> refusal;
+  if (solver_refused(solver, refusal)) return refusal.result(m, Method::accurate);
+  if (!(plane.w() < T(0))) {
+    refusal.refuse(Status::camera_not_behind_plane);
+    return refusal.result(m, Method::accurate);
+  }
   if (stiff) return exact_answer();
   W transposed_error = W(0);
   const Vector4<W> c_clip = solver.solve_transposed_unscaled(c_hat, &transposed_error);
   if (!all_finite(c_clip)) {
-    return refuse(m, Method::accurate, Status::out_of_range,
-                  "C' = M^-T C is beyond the range of the scalar type");
+    refusal.refuse(Status::out_of_range, "C' = M^-T C is beyond the range of the scalar type");
+    return refusal.result(m, Method::accurate);
   }
   // The bound below assumes a componentwise backward stable solve; where the refinement stalled
   // short of one, the exact signs settle it (fuzz_oblique: a backward error of 0.27 in long double
@@ -241,7 +254,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
 template <class T>
 OBLIQUE_NOINLINE ObliqueResult<T> handed_to_accurate(const Matrix4<T>& m, const Vector4<T>& plane,
                                                      Convention convention) {
-  return accurate(m, plane, convention, has_perspective_shape(m));
+  return accurate(m, plane, convention, has_perspective_shape(m), plane_scale(plane), false);
 }
 
 }  // namespace oblique::detail

@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "oblique/detail/config.h"
+#include "oblique/magnitudes.h"
 
 namespace oblique::eft {
 
@@ -68,15 +69,6 @@ OBLIQUE_EFT_INLINE Pair<T> fast_two_sum(T a, T b) noexcept {
   return {s, b - (s - a)};
 }
 
-/// 2^e as a constant expression.
-template <class T>
-constexpr T power_of_two(int e) noexcept {
-  T x = T(1);
-  for (; e > 0; --e) x *= T(2);
-  for (; e < 0; ++e) x /= T(2);
-  return x;
-}
-
 /// hi + lo = a with hi holding the upper half of a's significand (Veltkamp's split), for
 /// |a| < 2^(max_exponent - p/2 - 1) (beyond, (2^(p/2) + 1) a overflows). The product c must be
 /// rounded by itself: contracted into c - a and c - (c - a), as GCC does with -ffp-contract=fast
@@ -85,7 +77,7 @@ constexpr T power_of_two(int e) noexcept {
 template <class T>
 OBLIQUE_EFT_INLINE Pair<T> split(T a) noexcept {
   constexpr int half = (std::numeric_limits<T>::digits + 1) / 2;
-  constexpr T factor = power_of_two<T>(half) + T(1);
+  constexpr T factor = constant_power_of_two<T>(half) + T(1);
   const T c = rounded(factor * a);
   const T hi = c - (c - a);
   return {hi, a - hi};
@@ -116,9 +108,9 @@ OBLIQUE_EFT_INLINE Pair<T> two_prod(T a, T b) noexcept {
 #if defined(FP_FAST_FMAF)
   if constexpr (std::is_same_v<T, float>) return {p, std::fma(a, b, -p)};
 #endif
-  constexpr T large = power_of_two<T>(std::numeric_limits<T>::max_exponent -
-                                      (std::numeric_limits<T>::digits + 1) / 2 - 2);
-  constexpr T large_product = power_of_two<T>(std::numeric_limits<T>::max_exponent - 1);
+  constexpr T large = constant_power_of_two<T>(std::numeric_limits<T>::max_exponent -
+                                               (std::numeric_limits<T>::digits + 1) / 2 - 2);
+  constexpr T large_product = constant_power_of_two<T>(std::numeric_limits<T>::max_exponent - 1);
   if (std::fabs(a) < large && std::fabs(b) < large && std::fabs(p) < large_product) {
     const Pair<T> x = split(a), y = split(b);
     return {p, ((x.hi * y.hi - p) + x.hi * y.lo + x.lo * y.hi) + x.lo * y.lo};
@@ -353,8 +345,9 @@ N round_pair(Pair<T> x) noexcept {
       // hi at the midpoint between N's largest value and 2^max_exponent rounds to infinity as
       // a tie (to even); hi + lo with lo towards zero lies below it and rounds to the largest.
       constexpr T largest = static_cast<T>(std::numeric_limits<N>::max());
-      constexpr T midpoint = largest + power_of_two<T>(std::numeric_limits<N>::max_exponent -
-                                                       std::numeric_limits<N>::digits - 1);
+      constexpr T midpoint =
+          largest + constant_power_of_two<T>(std::numeric_limits<N>::max_exponent -
+                                             std::numeric_limits<N>::digits - 1);
       const bool below = x.lo != T(0) && (x.lo > T(0)) != (x.hi > T(0));
       if (std::fabs(x.hi) == midpoint && below) {
         return static_cast<N>(x.hi > T(0) ? largest : -largest);

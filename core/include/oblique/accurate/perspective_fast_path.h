@@ -62,7 +62,7 @@ OBLIQUE_EFT_INLINE bool in_fast_range(const PerspectiveInput<W>& in) {
       const std::uint64_t offset = (bits >> 52) - std::uint64_t(1023 - e);
       ok &= (zero_ok & (bits == 0)) | (offset <= std::uint64_t(2 * e));
     } else {
-      constexpr W low = eft::power_of_two<W>(-e), high = eft::power_of_two<W>(e);
+      constexpr W low = constant_power_of_two<W>(-e), high = constant_power_of_two<W>(e);
       const W size = std::abs(x);
       ok &= (zero_ok & (x == W(0))) | ((size >= low) & (size <= high));
     }
@@ -216,7 +216,8 @@ OBLIQUE_EFT_INLINE std::optional<Vector4<T>> certified_row3(const eft::Pair<W> (
 /// x as hi + lo in doubles, exactly (hi the rounding of x, lo the at most 11 bits left), when
 /// x is 0 or 2^+-E of 1, E = 128 (in_fast_range's for double); ok is cleared otherwise.
 inline eft::Pair<double> long_double_pair(long double x, bool& ok) {
-  constexpr double low = eft::power_of_two<double>(-128), high = eft::power_of_two<double>(128);
+  constexpr double low = constant_power_of_two<double>(-128),
+                   high = constant_power_of_two<double>(128);
   const double hi = static_cast<double>(x);
   const double size = std::abs(hi);
   if (hi != 0.0) {

@@ -1,10 +1,10 @@
 // apply_batch()'s closed form over a block of requests at once: the requests' entries gathered
-// into one array per entry (structure of arrays), every step of closed_form_ordinary() for the
-// common request written as one loop over the block with no branch, so that the compiler runs
-// it on packed registers (two doubles or four floats to an SSE2 instruction at the x86-64
-// baseline, the divisions included) and several requests' chains of divisions are in flight at
-// once. A request that passes every test of that loop is answered from it; every other one by
-// the one-request path, as before.
+// into one array per entry (structure of arrays), every step of the closed form
+// (detail::closed_form(), oblique.h) for the common request written as one loop over the block with
+// no branch, so that the compiler runs it on packed registers (two doubles or four floats to an
+// SSE2 instruction at the x86-64 baseline, the divisions included) and several requests' chains of
+// divisions are in flight at once. A request that passes every test of that loop is answered from
+// it; every other one by the one-request path, as before.
 #pragma once
 
 #include <cmath>
@@ -12,8 +12,8 @@
 #include <limits>
 #include <type_traits>
 
+#include "oblique/detail/closed_form_steps.h"
 #include "oblique/detail/config.h"
-#include "oblique/detail/finish.h"
 #include "oblique/magnitudes.h"
 #include "oblique/plane.h"
 
@@ -24,8 +24,8 @@ namespace oblique::detail {
 /// four products as (c_0 q_0 + c_2 q_2) + (c_1 q_1 + c_3 q_3) (a packet sum, then the sum of its
 /// halves: Eigen's redux and predux for Packet2d, Packet4d and Packet4f), the order the lanes
 /// use; and not where the compiler may contract a product and a sum into a fused multiply-add
-/// (FMA enabled), which it might do differently in the lanes and in closed_form_ordinary().
-/// Elsewhere apply_batch() answers request by request.
+/// (FMA enabled), which it might do differently in the lanes and in the closed form
+/// (detail::closed_form(), oblique.h). Elsewhere apply_batch() answers request by request.
 template <class T>
 constexpr bool closed_form_lanes_available() noexcept {
 #if defined(EIGEN_VECTORIZE_SSE2) && !defined(EIGEN_DONT_VECTORIZE) && !defined(__FMA__)
@@ -59,15 +59,6 @@ struct ClosedFormLanes {
   T fast[W];
 };
 
-/// 2^k as a T, for a k with a normal 2^k, in a constant expression.
-template <class T>
-constexpr T lane_power_of_two(int k) noexcept {
-  T x = T(1);
-  for (; k > 0; --k) x *= T(2);
-  for (; k < 0; ++k) x /= T(2);
-  return x;
-}
-
 /// A block's entries, one array each (closed_form_lanes() reads them): A..K the perspective
 /// shape's entries M11, M13, M22, M23, M33, M34, M43, m3j = M4j, outside the bits of the nine
 /// entries outside the shape or-ed together, sign cleared, as a T; cx..cw the plane.
@@ -77,15 +68,15 @@ struct LaneInputs {
   T cx[W], cy[W], cz[W], cw[W];
 };
 
-/// closed_form_ordinary() for the W requests of `in` in the convention of `table` (a
-/// ConventionTable<T>, with AcFirst = table.first == 0: M'_3 = a C - t M_4, else t M_4 - a C; a
-/// template parameter, as a subtraction in each arm of a branch, which may trap, would keep the
-/// compiler from packing the loop), without a branch: every lane computes every step, and
+/// the closed form (detail::closed_form(), oblique.h) for the W requests of `in` in the convention
+/// of `table` (a ConventionTable<T>, with AcFirst = table.first == 0: M'_3 = a C - t M_4, else t
+/// M_4 - a C; a template parameter, as a subtraction in each arm of a branch, which may trap, would
+/// keep the compiler from packing the loop), without a branch: every lane computes every step, and
 /// fast[k] is set only where request k passes tests that imply each of apply()'s and
-/// closed_form_ordinary()'s tests on its way to status ok, so that the lane's row3 and q (q
-/// only with FarCorner) are that path's, bit for bit (the same operations, in the same order, on
-/// the same operands). The tests, which may refuse more than that path does (those requests go
-/// to it) but never less:
+/// the closed form (detail::closed_form(), oblique.h)'s tests on its way to status ok, so that the
+/// lane's row3 and q (q only with FarCorner) are that path's, bit for bit (the same operations, in
+/// the same order, on the same operands). The tests, which may refuse more than that path does
+/// (those requests go to it) but never less:
 ///
 /// - ordinary_input(): the nine entries outside the perspective shape are zeros (their bits,
 ///   sign cleared, or-ed together, are those of +0); the sum of the magnitudes of A, B, D, E, G,
@@ -125,12 +116,12 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const LaneInputs<T, W>& in, const T
   // The bits of 2^-e are (2 bias - 1 - f) << fraction_bits for the field f of max |C_i|.
   constexpr Bits factor_base = Bits(2 * ExponentBits<T>::bias - 1) << fraction_bits;
   constexpr T lowest = limits::min(), highest = limits::max(), infinity = limits::infinity();
-  constexpr T spread_factor = lane_power_of_two<T>(max_magnitude_spread<T>());
-  constexpr T plane_high_limit = lane_power_of_two<T>(1 - limits::min_exponent);
-  constexpr T plane_spread_factor = lane_power_of_two<T>(-limits::min_exponent);
+  constexpr T spread_factor = constant_power_of_two<T>(max_magnitude_spread<T>());
+  constexpr T plane_high_limit = constant_power_of_two<T>(1 - limits::min_exponent);
+  constexpr T plane_spread_factor = constant_power_of_two<T>(-limits::min_exponent);
   constexpr int sign_test_exponent = (1 - limits::min_exponent) / 3;
-  constexpr T sign_test_high = lane_power_of_two<T>(sign_test_exponent);
-  constexpr T sign_test_low = lane_power_of_two<T>(-sign_test_exponent);
+  constexpr T sign_test_high = constant_power_of_two<T>(sign_test_exponent);
+  constexpr T sign_test_low = constant_power_of_two<T>(-sign_test_exponent);
 
   const T *const A = in.A, *const B = in.B, *const D = in.D, *const E = in.E, *const G = in.G,
                  *const H = in.H, *const K = in.K, *const m30 = in.m30, *const m31 = in.m31,
@@ -170,7 +161,7 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const LaneInputs<T, W>& in, const T
     const Bits factor_bits = factor_base - (high_bits & exponent_mask);
     T factor;
     std::memcpy(&factor, &factor_bits, sizeof factor);
-    // closed_form_ordinary() from here, step for step.
+    // the closed form (detail::closed_form(), oblique.h) from here, step for step.
     const T c_hat[4] = {cx[k] * factor, cy[k] * factor, cz[k] * factor, cw[k] * factor};
     const T corner_z = H[k] < T(0) ? z_high : z_low;
     // B / K, E / K, G / K and 1 / K; for K = +-2^n (with 2^-n normal: KPowerOfTwo), 1 / K is
@@ -241,7 +232,7 @@ OBLIQUE_ALWAYS_INLINE bool gather_lanes(const Matrix4<T>* m, const Vector4<T>* c
   using Bits = typename ExponentBits<T>::Bits;
   constexpr Bits magnitude_mask = ~Bits(0) >> 1;
   constexpr Bits fraction_mask = (Bits(1) << ExponentBits<T>::fraction_bits) - 1;
-  constexpr T k_high = lane_power_of_two<T>(std::numeric_limits<T>::max_exponent - 2);
+  constexpr T k_high = constant_power_of_two<T>(std::numeric_limits<T>::max_exponent - 2);
   T *const A = in.A, *const B = in.B, *const D = in.D, *const E = in.E, *const G = in.G,
            *const H = in.H, *const K = in.K, *const m30 = in.m30, *const m31 = in.m31,
            *const m33 = in.m33, *const outside = in.outside, *const cx = in.cx, *const cy = in.cy,
