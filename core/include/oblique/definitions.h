@@ -37,8 +37,10 @@ OBLIQUE_ALWAYS_INLINE PlaneScale ordinary_plane_scale(const Vector4<T>& plane,
 
 /// The closed form's answer as apply() gives it: the hand-offs to the accurate method taken.
 template <class T>
-ObliqueResult<T> closed_form_result(const Matrix4<T>& m, const Vector4<T>& plane,
-                                    Convention convention, const PlaneScale& scale, bool ordinary) {
+OBLIQUE_ALWAYS_INLINE ObliqueResult<T> closed_form_result(const Matrix4<T>& m,
+                                                          const Vector4<T>& plane,
+                                                          Convention convention,
+                                                          const PlaneScale& scale, bool ordinary) {
   Answer<T> answer;
   if (closed_form(m, plane, convention, scale, ordinary, answer))
     return answer.result(m, Method::closed_form);
@@ -149,6 +151,14 @@ OBLIQUE_ALWAYS_INLINE std::size_t closed_form_blocks(const Matrix4<T>* projectio
   return i;
 }
 
+/// The accurate method for an ordinary request, out of apply()'s line: its frame is large, and
+/// apply()'s closed-form path should not pay for it.
+template <class T>
+OBLIQUE_NOINLINE ObliqueResult<T> accurate_ordinary(const Matrix4<T>& m, const Vector4<T>& plane,
+                                                    Convention convention, PlaneScale scale) {
+  return accurate(m, plane, convention, true, scale, true);
+}
+
 }  // namespace detail
 
 template <class T>
@@ -160,8 +170,8 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
                                       detail::ordinary_plane_scale(plane, input), true);
   }
   if (input.ordinary && method == Method::accurate) {
-    return detail::accurate(projection, plane, convention, true,
-                            detail::ordinary_plane_scale(plane, input), true);
+    return detail::accurate_ordinary(projection, plane, convention,
+                                     detail::ordinary_plane_scale(plane, input));
   }
   return detail::apply_checked(projection, plane, convention, method, input.ordinary);
 }

@@ -98,7 +98,7 @@ OBLIQUE_ALWAYS_INLINE bool finish(const Matrix4<T>& m, const Vector4<T>& plane, 
   for (int i = 0; i < 4; ++i) row3(i) = minuend[i] - subtrahend[i];  // M'_3 = a C - t M_4
   bool kept_by_signs = false;
   if constexpr (ExponentBits<T>::known) {
-    kept_by_signs = perspective_ordinary && scale.shift == -scale.top && all_finite(row3) &&
+    kept_by_signs = perspective_ordinary && scale.shift == -scale.top &&
                     near_plane_kept_by_signs(plane, ac, table.s * row3(2) + t_m4[2], scale.top);
   }
   return accept_row3(row3, m, c_hat, table, kept_by_signs, out);

@@ -90,8 +90,16 @@ OBLIQUE_NOINLINE bool scaled_components_inexact(const Vector4<T>& c, const Vecto
 /// still tells when to look). No work beyond the scaling unless the smallest nonzero component
 /// went below the normal range.
 template <class T>
-ScaledPlane<T> scale_plane(const Vector4<T>& c, const PlaneScale& scale) {
-  ScaledPlane<T> out{scaled_by_power_of_two(c, scale.shift), scale.shift, false};
+OBLIQUE_ALWAYS_INLINE ScaledPlane<T> scale_plane(const Vector4<T>& c, const PlaneScale& scale) {
+  // Entry by entry (Eigen's assignment is a call for long double), as scaled_by_power_of_two().
+  ScaledPlane<T> out;
+  out.shift = scale.shift;
+  if (normal_power_of_two<T>(scale.shift)) {
+    const T factor = power_of_two<T>(scale.shift);
+    for (int i = 0; i < 4; ++i) out.c_hat(i) = c(i) * factor;
+  } else {
+    for (int i = 0; i < 4; ++i) out.c_hat(i) = std::ldexp(c(i), scale.shift);
+  }
   out.lossy = scale.below_normal && scaled_components_inexact(c, out.c_hat, scale.shift);
   return out;
 }
