@@ -162,7 +162,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
     }
     if (stiff) return exact_answer();
     // Signs from C itself, exact; Q'_z from the convention's table by the sign of C'_z.
-    const PerspectiveConstants<W>& constants = perspective_constants<W>(convention);
+    const ConventionTable<W>& constants = convention_table<W>(convention);
     const W sign_z = W(sign(plane.w())) * sign(H);
     const Vector4<W> corner(W(sign(plane.x())) * sign(A), W(sign(plane.y())) * sign(D),
                             constants.corner_z[(sign_z > W(0)) - (sign_z < W(0)) + 1], W(1));

@@ -14,6 +14,7 @@
 
 #include "oblique/accurate/error_free.h"
 #include "oblique/depth_convention.h"
+#include "oblique/detail/closed_form_steps.h"
 #include "oblique/detail/config.h"
 #include "oblique/magnitudes.h"
 #include "oblique/plane.h"
@@ -296,42 +297,13 @@ OBLIQUE_EFT_INLINE std::optional<PerspectiveAnswer<T, T>> perspective_row3_in_do
   return out;
 }
 
-/// A convention's constants as the fast paths read them, in V: k = z_high - z_low, near =
-/// s M_3 + t M_4 (near_rows()), and the z of the clip-space corner Q' for sgn C'_z = -1, 0, 1
-/// (clip_corner()). From a table, not from branches: the convention changes from one request to
-/// the next, and a mispredicted branch costs as much as a division.
-template <class V>
-struct PerspectiveConstants {
-  V k, s, t;
-  V corner_z[3];
-};
-
-template <class V>
-constexpr PerspectiveConstants<V> make_perspective_constants(Convention convention) {
-  const DepthRange range = clip_depth_range(convention);
-  const RowCombination near_combination = near_rows(convention);
-  return {V(range.z_high - range.z_low),
-          V(near_combination.m3),
-          V(near_combination.m4),
-          {V(range.z_low), V(range.z_low + range.z_high) / V(2), V(range.z_high)}};
-}
-
-template <class V>
-OBLIQUE_EFT_INLINE const PerspectiveConstants<V>& perspective_constants(Convention convention) {
-  static constexpr PerspectiveConstants<V> tables[] = {
-      make_perspective_constants<V>(Convention::gl),
-      make_perspective_constants<V>(Convention::zero_one),
-      make_perspective_constants<V>(Convention::reversed_z)};
-  return tables[static_cast<int>(convention)];
-}
-
 /// The fast path's input in V: A_i, B_i, K and C converted exactly (V holds W's values), and
 /// the reciprocals of the A_i.
 template <class V, class W, class M>
 OBLIQUE_EFT_INLINE PerspectiveInput<V> perspective_input(const Vector4<W>& c, const Matrix4<M>& m,
                                                          const Vector4<W>& corner,
                                                          Convention convention) {
-  const PerspectiveConstants<V>& constants = perspective_constants<V>(convention);
+  const ConventionTable<V>& constants = convention_table<V>(convention);  // oblique.h's
   const V a_x = V(m(0, 0)), a_y = V(m(1, 1)), a_w = V(m(2, 3));
   return {V(m(3, 2)),
           {a_x, a_y, a_w},
@@ -340,7 +312,7 @@ OBLIQUE_EFT_INLINE PerspectiveInput<V> perspective_input(const Vector4<W>& c, co
           {V(c.x()), V(c.y()), V(c.w())},
           V(c.z()),
           {V(1) / a_x, V(1) / a_y, V(1) / a_w},
-          constants.k,
+          constants.depth_span,
           constants.s,
           constants.t};
 }
