@@ -104,7 +104,7 @@ OBLIQUE_ALWAYS_INLINE void batch_answer(const Matrix4<T>& m, const Vector4<T>& p
     }
     status = answer.status;
   } else {
-    const ObliqueResult<T> r = apply(m, plane, convention, method);
+    const ObliqueResult<T> r = apply_checked(m, plane, convention, method, input.ordinary);
     out = r.projection;
     status = r.status;
   }

@@ -58,7 +58,7 @@ OBLIQUE_ALWAYS_INLINE bool closed_form(const Matrix4<T>& m, const Vector4<T>& pl
   const T corner_z = table.corner_z[(sign_z > T(0)) - (sign_z < T(0)) + 1];
   const Vector4<T> q((sign(plane.x()) * sign(A) - B / K) / A,
                      (sign(plane.y()) * sign(D) - E / K) / D, T(1) / K, (corner_z - G / K) / H);
-  return finish(m, plane, q, table, scale, scaled, ordinary && ExponentBits<T>::known, out);
+  return finish(m, plane, q, table, scale, scaled, ordinary, out);
 }
 
 /// From a far corner Q (M_4 . Q = 1) to M'_3 (paper Eqs. 9, 10, 20, every convention):
@@ -96,11 +96,8 @@ OBLIQUE_ALWAYS_INLINE bool finish(const Matrix4<T>& m, const Vector4<T>& plane, 
   const T* const subtrahend = table.first == 0 ? t_m4 : ac;
   Vector4<T> row3;
   for (int i = 0; i < 4; ++i) row3(i) = minuend[i] - subtrahend[i];  // M'_3 = a C - t M_4
-  bool kept_by_signs = false;
-  if constexpr (ExponentBits<T>::known) {
-    kept_by_signs = perspective_ordinary && scale.shift == -scale.top &&
-                    near_plane_kept_by_signs(plane, ac, table.s * row3(2) + t_m4[2], scale.top);
-  }
+  const bool kept_by_signs =
+      near_plane_proved_kept(plane, ac, table.s * row3(2) + t_m4[2], scale, perspective_ordinary);
   return accept_row3(row3, m, c_hat, table, kept_by_signs, out);
 }
 

@@ -150,16 +150,11 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   if (perspective_shape) {
     const W A = W(m(0, 0)), B = W(m(0, 2)), D = W(m(1, 1)), E = W(m(1, 2)), G = W(m(2, 2)),
             H = W(m(2, 3)), K = W(m(3, 2));
-    Answer<T> answer;
     if (A == W(0) || D == W(0) || H == W(0)) {
-      answer.refuse(Status::singular_projection,
+      return refuse(m, Method::accurate, Status::singular_projection,
                     "the projection is singular: M11, M22 or M34 is zero");
-      return answer.result(m, Method::accurate);
     }
-    if (!(plane.w() < T(0))) {
-      answer.refuse(Status::camera_not_behind_plane);
-      return answer.result(m, Method::accurate);
-    }
+    if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
     if (stiff) return exact_answer();
     // Signs from C itself, exact; Q'_z from the convention's table by the sign of C'_z.
     const ConventionTable<W>& constants = convention_table<W>(convention);
@@ -175,6 +170,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
     }
     if (!fast) fast = perspective_row3_dispatched<T>(scaled, m, corner, convention);
     if (fast) {
+      Answer<T> answer;
       answer.far_corner = fast->far_corner.template cast<T>();
       if (all_finite(answer.far_corner)) {
         // accept_row3's test that the extracted near plane keeps C's side, decided by signs
@@ -189,8 +185,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
         for (int i = 0; i < 4; ++i) near[i] = table.s * fast->row3(i) + table.t * m(3, i);
         bool kept_by_signs;
         if constexpr (std::is_same_v<T, float>) {
-          kept_by_signs = ordinary && scale.shift == -scale.top && all_finite(fast->row3) &&
-                          near_plane_kept_by_signs(plane, near, near[2], scale.top);
+          kept_by_signs = near_plane_proved_kept(plane, near, near[2], scale, ordinary);
         } else {
           kept_by_signs = !(near[2] * T(sign(plane.z())) < T(0));
         }
@@ -214,16 +209,13 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   const EquilibratedSolver<W> solver(mw);
   Answer<T> refusal;
   if (solver_refused(solver, refusal)) return refusal.result(m, Method::accurate);
-  if (!(plane.w() < T(0))) {
-    refusal.refuse(Status::camera_not_behind_plane);
-    return refusal.result(m, Method::accurate);
-  }
+  if (!(plane.w() < T(0))) return refuse(m, Method::accurate, Status::camera_not_behind_plane);
   if (stiff) return exact_answer();
   W transposed_error = W(0);
   const Vector4<W> c_clip = solver.solve_transposed_unscaled(c_hat, &transposed_error);
   if (!all_finite(c_clip)) {
-    refusal.refuse(Status::out_of_range, "C' = M^-T C is beyond the range of the scalar type");
-    return refusal.result(m, Method::accurate);
+    return refuse(m, Method::accurate, Status::out_of_range,
+                  "C' = M^-T C is beyond the range of the scalar type");
   }
   // The bound below assumes a componentwise backward stable solve; where the refinement stalled
   // short of one, the exact signs settle it (fuzz_oblique: a backward error of 0.27 in long double

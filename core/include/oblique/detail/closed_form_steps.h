@@ -126,6 +126,21 @@ OBLIQUE_ALWAYS_INLINE bool near_plane_kept_by_signs(const Vector4<T>& plane, con
   return l_ac_w + l_c_w - l_largest - e - 2 >= std::numeric_limits<T>::min_exponent - 1;
 }
 
+/// near_plane_kept_by_signs() where its preconditions are known to hold (`perspective_ordinary`:
+/// M of the perspective shape, every entry of M and C zero or normal; C scaled by 2^-e), false
+/// elsewhere: the caller then runs the full test. ac as there, near_z = s M'_3z + t M_4z.
+template <class T>
+OBLIQUE_ALWAYS_INLINE bool near_plane_proved_kept(const Vector4<T>& plane, const T (&ac)[4],
+                                                  T near_z, const PlaneScale& scale,
+                                                  bool perspective_ordinary) {
+  if constexpr (ExponentBits<T>::known) {
+    return perspective_ordinary && scale.shift == -scale.top &&
+           near_plane_kept_by_signs(plane, ac, near_z, scale.top);
+  } else {
+    return false;
+  }
+}
+
 /// A convention's constants as the closed form reads them, in T: corner_z = {z_low,
 /// (z_low + z_high) / 2, z_high} (clip_corner() for sgn C'_z = -1, 0, 1), depth_span =
 /// z_high - z_low, and the near plane s M_3 + t M_4 (near_rows()), with first = 0 for s = 1 and
