@@ -1,5 +1,5 @@
 # The installed package: headers, libraries, exported targets (oblique::core, ::protocol,
-# ::properties, ::report_files, ::counterexample_reports, ::testing, ::fuzzing, ::fuzzing_replay),
+# ::properties, ::generators, ::report_files, ::counterexample_reports, ::testing, ::fuzzing, ::fuzzing_replay),
 # obliqueConfig.cmake with its version file, and the fuzz seed corpus and dictionary
 # (share/oblique/fuzz). oblique::warnings is build-only and never exported.
 include(CMakePackageConfigHelpers)
@@ -11,6 +11,9 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ ${PROJECT_SOURCE_DIR}/prot
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
 set(OBLIQUE_EXPORTED oblique_core oblique_protocol oblique_properties
     oblique_report_files oblique_counterexample_reports oblique_fuzzing oblique_fuzzing_replay)
+if(TARGET oblique_generators)
+  list(APPEND OBLIQUE_EXPORTED oblique_generators)
+endif()
 if(TARGET oblique_testing)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/testing/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
           FILES_MATCHING PATTERN "*.h")
@@ -24,6 +27,10 @@ install(EXPORT obliqueTargets NAMESPACE oblique:: DESTINATION ${OBLIQUE_CMAKE_DI
 set(OBLIQUE_PACKAGE_HAS_TESTING OFF)
 if(TARGET oblique_testing)
   set(OBLIQUE_PACKAGE_HAS_TESTING ON)
+endif()
+set(OBLIQUE_PACKAGE_HAS_GENERATORS OFF)
+if(TARGET oblique_generators)
+  set(OBLIQUE_PACKAGE_HAS_GENERATORS ON)
 endif()
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/obliqueConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/obliqueConfig.cmake

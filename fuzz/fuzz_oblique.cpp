@@ -1,11 +1,12 @@
 // libFuzzer target: the core (or the implementations OBLIQUE_IMPL names) on decoded projections
-// and planes, through oblique/fuzzing.h like any user's target. Aborts, naming the property, when
-// an answer breaks the status contract, a property, or (for the core) row 3's accuracy bound and
-// its ulps promise. An unknown OBLIQUE_IMPL name is an error (exit 2), never a silent pass.
+// and planes, through the fuzz driver's parts (oblique/fuzzing/driver.h), one case judged for
+// several implementations. Aborts, naming the property, when an answer breaks the status
+// contract, a property, or (for the core) row 3's accuracy bound and its ulps promise. An unknown
+// OBLIQUE_IMPL name is an error (exit 2), never a silent pass.
 #include <cstdio>
 #include <cstdlib>
 
-#include "oblique/fuzzing.h"
+#include "oblique/fuzzing/driver.h"
 
 namespace {
 

@@ -5,6 +5,8 @@
 #   one_test.cpp          the README's one-test file (oblique/testing.h, one OBLIQUE_PROPERTY_TEST)
 #   calls_apply.cpp       a function calling oblique::apply<double> (linking oblique::core)
 #   includes_oblique.cpp  #include <oblique/oblique.h> alone
+#   fuzz_target.cpp       the README's fuzz target (oblique/fuzzing.h; held to the one-test target)
+#   judges.cpp            a test judging an answer with oblique/properties/checker.h (the same)
 # Usage: bash scripts/compile_times.sh [--build DIR] [--runs N] [--fresh-clone]
 #   --build DIR    the configured and built tree to install from (default build/release)
 #   --runs N       compiles per file (default 3); the fastest is reported, with its peak memory
@@ -49,6 +51,10 @@ add_library(calls_apply OBJECT calls_apply.cpp)
 target_link_libraries(calls_apply PRIVATE oblique::core)
 add_library(includes_oblique OBJECT includes_oblique.cpp)
 target_link_libraries(includes_oblique PRIVATE oblique::core)
+add_library(fuzz_target OBJECT fuzz_target.cpp)
+target_link_libraries(fuzz_target PRIVATE oblique::fuzzing)
+add_library(judges OBJECT judges.cpp)
+target_link_libraries(judges PRIVATE oblique::properties)
 EOF
 # The README's file, as printed there.
 cat > "$work/project/one_test.cpp" <<'EOF'
@@ -72,6 +78,27 @@ oblique::ObliqueResult<double> mirror(const oblique::Matrix4<double>& m,
 }
 EOF
 echo '#include <oblique/oblique.h>' > "$work/project/includes_oblique.cpp"
+cat > "$work/project/fuzz_target.cpp" <<'EOF'
+#include <oblique/fuzzing.h>
+void make_oblique(float m[16], const float plane[4]);  // yours
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const auto mine = oblique::adapt<float>("make_oblique", oblique::Layout::column_major,
+                                                 make_oblique);
+  oblique::fuzzing::Options options;
+  options.conventions = {oblique::Convention::gl};
+  return oblique::fuzzing::test_one_input(data, size, mine, options);
+}
+EOF
+cat > "$work/project/judges.cpp" <<'EOF'
+#include <oblique/oblique.h>
+#include <oblique/properties/checker.h>
+bool holds(const oblique::Matrix4<float>& m, const oblique::Vector4<float>& plane,
+           const oblique::Matrix4<float>& mine) {
+  const oblique::properties::Checker<float> checker(m, plane, oblique::Convention::gl);
+  return checker.judge(oblique::properties::Outcome<float>{oblique::Status::ok, mine}).holds();
+}
+EOF
 
 # Each compile runs under GNU time (seconds, peak KB), appended to one log.
 log="$work/times.log"
@@ -106,6 +133,8 @@ report() {  # file, target seconds, target MB (0: none)
 report one_test.cpp 3 400
 report calls_apply.cpp 2 0
 report includes_oblique.cpp 1.5 0
+report fuzz_target.cpp 3 400
+report judges.cpp 3 400
 
 if ((fresh_clone)); then
   git clone --quiet . "$work/clone"

@@ -14,7 +14,7 @@
 #include <limits>
 #include <vector>
 
-#include "oblique/definitions.h"  // apply() compiled here, with this file's flags (accuracy_*)
+#include "oblique/definitions.h"  // detail::apply_checked(), detail::accurate() (declared compiled)
 #include "oblique/oblique.h"
 #include "oblique/properties/generators.h"
 #include "printers.h"

@@ -3,7 +3,7 @@
 // certifies it, within tolerance::kAccurateUlps everywhere; the fast path and the refining path
 // give the same matrix; the closed form and the general method hand it what they cannot settle.
 #include "oblique/accurate/accurate.h"
-#include "oblique/definitions.h"  // apply() compiled here, with this file's flags (accuracy_*)
+#include "oblique/definitions.h"  // detail::apply_checked(), detail::accurate() (declared compiled)
 
 #include <gtest/gtest.h>
 

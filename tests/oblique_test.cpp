@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "families.h"
-#include "oblique/definitions.h"  // apply() compiled here, with this file's flags (accuracy_*)
 #include "oblique/equilibrated_solver.h"
 #include "oblique/properties/properties.h"
 #include "printers.h"

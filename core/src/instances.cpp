@@ -1,19 +1,14 @@
-// oblique::core: apply() and apply_batch() compiled once, for float, double and long double.
+// oblique::core: apply() and apply_batch() compiled once per scalar type (float, double, long
+// double; CMake's oblique_add_instances), with the two entry points the core's white-box tests
+// call: detail::apply_checked(), detail::accurate().
 #include "oblique/definitions.h"
+
+#ifndef OBLIQUE_SCALAR
+#error "compiled once per scalar type, with OBLIQUE_SCALAR defined (oblique_add_instances)"
+#endif
 
 namespace oblique {
 
-#define OBLIQUE_INSTANTIATE(T)                                                                  \
-  template ObliqueResult<T> apply<T>(const Matrix4<T>&, const Vector4<T>&, Convention, Method); \
-  template void apply_batch<T>(const Matrix4<T>*, const Vector4<T>*, std::size_t, Convention,   \
-                               Method, Matrix4<T>*, Status*);                                   \
-  template void apply_batch<T>(const Matrix4<T>*, const Vector4<T>*, std::size_t, Convention,   \
-                               Method, ObliqueResult<T>*);
-
-OBLIQUE_INSTANTIATE(float)
-OBLIQUE_INSTANTIATE(double)
-OBLIQUE_INSTANTIATE(long double)
-
-#undef OBLIQUE_INSTANTIATE
+OBLIQUE_CORE_INSTANCES(template, OBLIQUE_SCALAR)
 
 }  // namespace oblique

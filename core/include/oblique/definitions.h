@@ -222,4 +222,26 @@ void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::s
   for (; i < count; ++i) results[i] = apply(projections[i], planes[i], convention, method);
 }
 
+/// The instances oblique::core compiles (core/src/instances.cpp), for T = float, double and long
+/// double: `declare` is `template` there and `extern template` where OBLIQUE_LINKED_INSTANCES is
+/// defined: a program that links oblique::core and includes this header for its declarations
+/// (the core's white-box tests do) then compiles none of them again. Without it, a file including
+/// this header compiles apply() with its own flags, and its copies come first at link.
+#define OBLIQUE_CORE_INSTANCES(declare, T)                                                       \
+  declare ObliqueResult<T> apply<T>(const Matrix4<T>&, const Vector4<T>&, Convention, Method);   \
+  declare void apply_batch<T>(const Matrix4<T>*, const Vector4<T>*, std::size_t, Convention,     \
+                              Method, Matrix4<T>*, Status*);                                     \
+  declare void apply_batch<T>(const Matrix4<T>*, const Vector4<T>*, std::size_t, Convention,     \
+                              Method, ObliqueResult<T>*);                                        \
+  declare ObliqueResult<T> detail::apply_checked<T>(const Matrix4<T>&, const Vector4<T>&,        \
+                                                    Convention, Method, bool);                   \
+  declare ObliqueResult<T> detail::accurate<T>(const Matrix4<T>&, const Vector4<T>&, Convention, \
+                                               bool, const PlaneScale&, bool);
+
+#if defined(OBLIQUE_LINKED_INSTANCES)
+OBLIQUE_CORE_INSTANCES(extern template, float)
+OBLIQUE_CORE_INSTANCES(extern template, double)
+OBLIQUE_CORE_INSTANCES(extern template, long double)
+#endif
+
 }  // namespace oblique

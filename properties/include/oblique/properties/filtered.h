@@ -265,16 +265,9 @@ inline NumVec integers(const std::array<int, 4>& p) {
 template <class T>
 class FilteredProblem {
  public:
-  FilteredProblem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention)
-      : m_(m), c_(c), convention_(convention) {
-    try {
-      build();
-      decided_ = true;
-    } catch (const filtering::Undecided& u) {
-      decided_ = false;
-      undecided_at_ = u.line;
-    }
-  }
+  /// Runs the filter on (M, C) in `convention` (out of the class: compiled once in
+  /// oblique::properties, OBLIQUE_CHECKER_INSTANCES).
+  FilteredProblem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention);
 
   /// The exact Problem (built now if not yet).
   const Problem<T>& exact() const {
@@ -935,6 +928,18 @@ class FilteredProblem {
   Num underflow_row_, underflow_dot_;
 };
 
+template <class T>
+FilteredProblem<T>::FilteredProblem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention)
+    : m_(m), c_(c), convention_(convention) {
+  try {
+    build();
+    decided_ = true;
+  } catch (const filtering::Undecided& u) {
+    decided_ = false;
+    undecided_at_ = u.line;
+  }
+}
+
 /// judge() on a FilteredProblem: the filter's judgement where it decides that every check holds,
 /// otherwise the exact checker's.
 template <class T>
@@ -943,5 +948,25 @@ Judgement judge(const FilteredProblem<T>& problem, const Outcome<T>& outcome,
   if (std::optional<Judgement> j = problem.filtered_judgement(outcome, checks)) return *j;
   return judge(problem.exact(), outcome, checks);
 }
+
+/// The checker's constructors and judgements oblique::properties compiles
+/// (properties/instances.cpp), for T = float, double and long double: `declare` is `template` there
+/// and `extern template` in a program that links them (OBLIQUE_LINKED_CHECKER, which the
+/// oblique::properties target sets), so that a file judging answers does not compile the checker
+/// again. OBLIQUE_CHECKER_HEADER_ONLY turns that off (for generators.h too): a file compiled with
+/// other SIMD flags than the library (-mavx2, -march=native) lays Eigen's fixed-size members out
+/// with another alignment, so the cases and answers it would pass across differ from the
+/// library's; it compiles its own copies, which come first at link.
+#define OBLIQUE_CHECKER_INSTANCES(declare, T)                                                    \
+  declare Problem<T>::Problem(const Matrix4<T>&, const Vector4<T>&, Convention);                 \
+  declare FilteredProblem<T>::FilteredProblem(const Matrix4<T>&, const Vector4<T>&, Convention); \
+  declare Judgement judge<T>(const Problem<T>&, const Outcome<T>&, const Checks&);               \
+  declare Judgement judge<T>(const FilteredProblem<T>&, const Outcome<T>&, const Checks&);
+
+#if defined(OBLIQUE_LINKED_CHECKER) && !defined(OBLIQUE_CHECKER_HEADER_ONLY)
+OBLIQUE_CHECKER_INSTANCES(extern template, float)
+OBLIQUE_CHECKER_INSTANCES(extern template, double)
+OBLIQUE_CHECKER_INSTANCES(extern template, long double)
+#endif
 
 }  // namespace oblique::properties

@@ -420,6 +420,26 @@ rc::Gen<InvalidCase<T>> invalid_case() {
   return invalid_case_in<T>(every_family(), every_convention());
 }
 
+/// The generators oblique::generators compiles (properties/generators.cpp), for T = float, double
+/// and long double: `declare` is `template` there and `extern template` in a program that links
+/// them (OBLIQUE_LINKED_GENERATORS, which the oblique::generators target sets).
+#define OBLIQUE_GENERATOR_INSTANCES(declare, T)                                                    \
+  declare rc::Gen<Matrix4<T>> projection<T>(Family, Convention);                                   \
+  declare rc::Gen<Vector4<T>> plane<T>(const Matrix4<T>&, Convention, Place);                      \
+  declare rc::Gen<Case<T>> valid_case_in<T>(std::vector<Family>, std::vector<Convention>,          \
+                                            std::vector<Place>);                                   \
+  declare rc::Gen<Case<T>> valid_case_of<T>(Family);                                               \
+  declare rc::Gen<Case<T>> valid_case<T>();                                                        \
+  declare rc::Gen<InvalidCase<T>> invalid_case_in<T>(std::vector<Family>, std::vector<Convention>, \
+                                                     std::vector<Place>, std::vector<Defect>);     \
+  declare rc::Gen<InvalidCase<T>> invalid_case<T>();
+
+#if defined(OBLIQUE_LINKED_GENERATORS) && !defined(OBLIQUE_CHECKER_HEADER_ONLY)
+OBLIQUE_GENERATOR_INSTANCES(extern template, float)
+OBLIQUE_GENERATOR_INSTANCES(extern template, double)
+OBLIQUE_GENERATOR_INSTANCES(extern template, long double)
+#endif
+
 }  // namespace oblique::generators
 
 namespace oblique::generators {

@@ -73,58 +73,9 @@ inline std::string format_number(const exact::Rational& x) {
 template <class T>
 class Problem {
  public:
-  Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention)
-      : m_(m), c_(c), convention_(convention) {
-    finite_ = all_finite(m) && all_finite(c);
-    if (!finite_) return;
-    too_spread_ = magnitude_spread(m) > max_magnitude_spread<T>();
-    mx_ = exact::to_rational(m);
-    cx_ = exact::to_rational(c);
-    auto inverse = exact::inverse(mx_);
-    invertible_ = inverse.has_value();
-    if (!invertible_) return;
-    inverse_ = *inverse;
-    c_clip_ = exact::mul(exact::transpose(inverse_), cx_);  // C' = M^-T C
-    const DepthRange range = clip_depth_range(convention);
-    int index = 0;
-    for (int x : {-1, 1}) {
-      for (int y : {-1, 1}) {
-        for (int z : {range.z_low, range.z_high}) {
-          clip_corners_[index] = {x, y, z, 1};
-          corners_[index] = exact::mul(inverse_, clip_corners_[index]);
-          corner_dots_[index] = exact::dot(cx_, corners_[index]);
-          ++index;
-        }
-      }
-    }
-    // The far corner by the sign rule (a zero sign gives the middle of the edge: equally far).
-    const int sz = exact::sign(c_clip_[2]);
-    const exact::Rational z_mid = exact::Rational(range.z_low + range.z_high) / 2;
-    q_clip_ = {
-        exact::sign(c_clip_[0]), exact::sign(c_clip_[1]),
-        sz > 0 ? exact::Rational(range.z_high) : (sz < 0 ? exact::Rational(range.z_low) : z_mid),
-        1};
-    q_ = exact::mul(inverse_, q_clip_);
-    d_ = exact::dot(cx_, q_);
-    // Infinite: the far face (z_high, or z_low for reversed Z) maps to the plane at infinity.
-    const int far_z = convention == Convention::reversed_z ? range.z_low : range.z_high;
-    infinite_ = true;
-    for (int i = 0; i < 8; ++i) {
-      if (clip_corners_[i][2] == far_z && corners_[i][3] != 0) infinite_ = false;
-    }
-    const exact::Mat abs_m = exact::abs(mx_), abs_inv = exact::abs(inverse_);
-    const exact::Vec abs_c = exact::abs(cx_), abs_q = exact::abs(q_);
-    kappa_numerator_ = exact::dot(abs_c, abs_q) +
-                       exact::dot(abs_c, exact::mul(abs_inv, exact::mul(abs_m, abs_q))) +
-                       exact::dot(exact::abs(c_clip_),
-                                  exact::mul(abs_m, exact::mul(abs_inv, exact::abs(q_clip_))));
-    camera_behind_ = cx_[3] < 0;
-    // Skeel's condition number || |M^-1| |M| ||_inf, for the singularity gray zone.
-    const exact::Vec ones{1, 1, 1, 1};
-    const exact::Vec row_sums = exact::mul(abs_inv, exact::mul(abs_m, ones));
-    skeel_condition_ = 0;
-    for (const auto& v : row_sums) skeel_condition_ = std::max(skeel_condition_, v.get_d());
-  }
+  /// Builds everything exact about (M, C) in `convention` (out of the class: compiled once in
+  /// oblique::properties, OBLIQUE_CHECKER_INSTANCES).
+  Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention);
 
   bool finite() const { return finite_; }
   bool invertible() const { return invertible_; }
@@ -604,5 +555,57 @@ class Problem {
   exact::Rational d_ = 0, kappa_numerator_ = 0;
   double skeel_condition_ = 0;
 };
+
+template <class T>
+Problem<T>::Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention)
+    : m_(m), c_(c), convention_(convention) {
+  finite_ = all_finite(m) && all_finite(c);
+  if (!finite_) return;
+  too_spread_ = magnitude_spread(m) > max_magnitude_spread<T>();
+  mx_ = exact::to_rational(m);
+  cx_ = exact::to_rational(c);
+  auto inverse = exact::inverse(mx_);
+  invertible_ = inverse.has_value();
+  if (!invertible_) return;
+  inverse_ = *inverse;
+  c_clip_ = exact::mul(exact::transpose(inverse_), cx_);  // C' = M^-T C
+  const DepthRange range = clip_depth_range(convention);
+  int index = 0;
+  for (int x : {-1, 1}) {
+    for (int y : {-1, 1}) {
+      for (int z : {range.z_low, range.z_high}) {
+        clip_corners_[index] = {x, y, z, 1};
+        corners_[index] = exact::mul(inverse_, clip_corners_[index]);
+        corner_dots_[index] = exact::dot(cx_, corners_[index]);
+        ++index;
+      }
+    }
+  }
+  // The far corner by the sign rule (a zero sign gives the middle of the edge: equally far).
+  const int sz = exact::sign(c_clip_[2]);
+  const exact::Rational z_mid = exact::Rational(range.z_low + range.z_high) / 2;
+  q_clip_ = {
+      exact::sign(c_clip_[0]), exact::sign(c_clip_[1]),
+      sz > 0 ? exact::Rational(range.z_high) : (sz < 0 ? exact::Rational(range.z_low) : z_mid), 1};
+  q_ = exact::mul(inverse_, q_clip_);
+  d_ = exact::dot(cx_, q_);
+  // Infinite: the far face (z_high, or z_low for reversed Z) maps to the plane at infinity.
+  const int far_z = convention == Convention::reversed_z ? range.z_low : range.z_high;
+  infinite_ = true;
+  for (int i = 0; i < 8; ++i) {
+    if (clip_corners_[i][2] == far_z && corners_[i][3] != 0) infinite_ = false;
+  }
+  const exact::Mat abs_m = exact::abs(mx_), abs_inv = exact::abs(inverse_);
+  const exact::Vec abs_c = exact::abs(cx_), abs_q = exact::abs(q_);
+  kappa_numerator_ =
+      exact::dot(abs_c, abs_q) + exact::dot(abs_c, exact::mul(abs_inv, exact::mul(abs_m, abs_q))) +
+      exact::dot(exact::abs(c_clip_), exact::mul(abs_m, exact::mul(abs_inv, exact::abs(q_clip_))));
+  camera_behind_ = cx_[3] < 0;
+  // Skeel's condition number || |M^-1| |M| ||_inf, for the singularity gray zone.
+  const exact::Vec ones{1, 1, 1, 1};
+  const exact::Vec row_sums = exact::mul(abs_inv, exact::mul(abs_m, ones));
+  skeel_condition_ = 0;
+  for (const auto& v : row_sums) skeel_condition_ = std::max(skeel_condition_, v.get_d());
+}
 
 }  // namespace oblique::properties

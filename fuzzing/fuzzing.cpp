@@ -1,0 +1,30 @@
+// oblique::fuzzing: test_one_input() (oblique/fuzzing.h) over the driver's decoder and the case's
+// judge (oblique/fuzzing/driver.h), compiled once for float, double and long double.
+#include "oblique/fuzzing.h"
+
+#include "oblique/fuzzing/driver.h"
+
+namespace oblique::fuzzing {
+
+template <class T>
+int test_one_input(const std::uint8_t* data, std::size_t size,
+                   const properties::Implementation<T>& impl, const Options& options) {
+  const FuzzCase c = decode(data, size, options.conventions);
+  if (describing()) describe(c);
+  properties::Checks checks = impl.checks(options.row3_accuracy);
+  if (options.statuses) checks.statuses = *options.statuses;
+  // As in the property suite: a function without statuses is judged where an answer exists and
+  // the input is decidable in T (properties::not_judged()).
+  check<T>(c, impl, checks, checks.statuses != properties::StatusContract::answers_only);
+  return 0;
+}
+
+#define OBLIQUE_FUZZING_INSTANCE(T)                                \
+  template int test_one_input<T>(const std::uint8_t*, std::size_t, \
+                                 const properties::Implementation<T>&, const Options&);
+OBLIQUE_FUZZING_INSTANCE(float)
+OBLIQUE_FUZZING_INSTANCE(double)
+OBLIQUE_FUZZING_INSTANCE(long double)
+#undef OBLIQUE_FUZZING_INSTANCE
+
+}  // namespace oblique::fuzzing

@@ -1,0 +1,384 @@
+// The fuzz driver's parts (oblique/fuzzing.h is its front): the input decoder (scalar type,
+// convention, method, a projection of a family built from decoded parameters or 16 raw numbers,
+// and a plane), the case's judge (one filtered checker per case, one judgement per distinct
+// answer) and check(), which runs an implementation on a case and aborts on a violation. The
+// project's own fuzz target (fuzz/fuzz_oblique.cpp) uses them directly, to judge several
+// implementations per case; fuzzing/fuzzing.cpp builds test_one_input() from them.
+//
+// Special values: libFuzzer's comparison tracing does not see double compares, so 0, -0,
+// subnormals, DBL_MIN, DBL_MAX, powers of two and ties are picked by index.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "oblique/fuzzing.h"
+#include "oblique/oblique.h"
+#include "oblique/projection.h"
+#include "oblique/properties/adapter.h"
+#include "oblique/properties/filtered.h"
+#include "oblique/properties/implementations.h"
+#include "oblique/properties/judge.h"
+#include "oblique/protocol/numbers.h"
+
+namespace oblique::fuzzing {
+
+/// Reads bytes front to back; past the end it yields zeros.
+class ByteReader {
+ public:
+  ByteReader(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
+  std::uint8_t byte() { return pos_ < size_ ? data_[pos_++] : 0; }
+  double raw_double() {
+    std::uint8_t bytes[8] = {};
+    for (auto& b : bytes) b = byte();
+    double d;
+    std::memcpy(&d, bytes, sizeof d);
+    return d;
+  }
+
+ private:
+  const std::uint8_t* data_;
+  std::size_t size_;
+  std::size_t pos_ = 0;
+};
+
+/// The special values, by index. A selector byte below kSpecialCount picks one; 255 reads 8 raw
+/// bytes; anything else gives a small dyadic (selector - kSpecialCount - 64) / 8.
+inline double special_value(int index) {
+  constexpr double dmax = std::numeric_limits<double>::max();
+  constexpr double dmin = std::numeric_limits<double>::min();
+  constexpr double denorm = std::numeric_limits<double>::denorm_min();
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const double table[] = {0.0,
+                          -0.0,
+                          1.0,
+                          -1.0,
+                          2.0,
+                          0.5,
+                          -2.0,
+                          -0.5,
+                          dmin,
+                          -dmin,
+                          denorm,
+                          -denorm,
+                          dmax,
+                          -dmax,
+                          eps,
+                          1.0 + eps,
+                          1.0 - eps / 2,
+                          1e-6,
+                          1e12,
+                          1e-12,
+                          1e6,
+                          0.1,
+                          3.0,
+                          0.25,
+                          -0.25,
+                          1e-300,
+                          1e300,
+                          std::ldexp(1.0, -1074 + 52),
+                          0.75,
+                          1.5,
+                          4.0,
+                          -4.0,
+                          1.0 / 3,
+                          std::ldexp(1.0, 1023),
+                          std::numeric_limits<double>::infinity(),
+                          -std::numeric_limits<double>::infinity(),
+                          std::numeric_limits<double>::quiet_NaN()};
+  constexpr int count = sizeof(table) / sizeof(table[0]);
+  return table[index % count];
+}
+constexpr int kSpecialCount = 37;
+
+inline double number(ByteReader& in) {
+  const int selector = in.byte();
+  if (selector < kSpecialCount) return special_value(selector);
+  if (selector == 255) return in.raw_double();
+  return (selector - kSpecialCount - 64) / 8.0;
+}
+
+struct FuzzCase {
+  protocol::Precision scalar = protocol::Precision::float64;
+  Convention convention = Convention::gl;
+  Method method = Method::automatic;
+  /// 0..4 built (frustum, infinite, orthographic, y-flipped frustum, rotated), 5 raw, 6 a
+  /// frustum or infinite frustum times a camera shift T(tx, ty, 0): M14, M24 != 0 (stereo, lens
+  /// shift; generators::Family::stereo_shift), 7 an x-flipped frustum (M11 < 0, a mirror camera;
+  /// generators::Family::x_flipped), 8 an x- and y-flipped one (generators::Family::xy_flipped).
+  int family = 0;
+  Matrix4<double> matrix = Matrix4<double>::Identity();
+  Vector4<double> plane = Vector4<double>::Zero();
+};
+
+inline const char* family_label(int family) {
+  const char* names[] = {"frustum", "infinite",     "orthographic", "y_flipped", "rotated",
+                         "raw",     "stereo_shift", "x_flipped",    "xy_flipped"};
+  return names[family % 9];
+}
+
+inline constexpr std::uint8_t kShiftMarker = 0x53;  // 'S'
+inline constexpr std::uint8_t kFlipXMarker = 0x58;  // 'X'
+
+/// Builds the case; builder parameters that break a builder's preconditions fall back to raw.
+/// With `conventions` (non-empty), the convention byte picks one of them instead of any of the
+/// three, so a function for one convention is given only inputs of it.
+inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
+                       const std::vector<Convention>& conventions = {}) {
+  ByteReader in(data, size);
+  FuzzCase c;
+  c.scalar = protocol::all_precisions[in.byte() % 3];
+  const int convention_byte = in.byte();
+  c.convention = conventions.empty() ? all_conventions[convention_byte % 3]
+                                     : conventions[convention_byte % conventions.size()];
+  c.method = all_methods[in.byte() % std::size(all_methods)];
+  c.family = in.byte() % 6;
+  if (c.family == 5) {
+    for (int i = 0; i < 16; ++i) c.matrix(i / 4, i % 4) = number(in);
+  } else {
+    const double l = number(in), r = number(in), b = number(in), t = number(in);
+    const double n = number(in), f = number(in);
+    const bool finite = std::isfinite(l) && std::isfinite(r) && std::isfinite(b) &&
+                        std::isfinite(t) && std::isfinite(n) && std::isfinite(f);
+    const bool sides = finite && l != r && b != t;
+    if (c.family == 2 && sides && n != f) {
+      c.matrix = orthographic(l, r, b, t, n, f, c.convention);
+    } else if (c.family == 1 && sides && n > 0) {
+      c.matrix = infinite_frustum(l, r, b, t, n, c.convention);
+    } else if (sides && n > 0 && f > n) {
+      c.matrix = frustum(l, r, b, t, n, f, c.convention);
+      if (c.family == 3) c.matrix.row(1) *= -1;
+      if (c.family == 4) {
+        const double angle = number(in);
+        const double ca = std::cos(angle), sa = std::sin(angle);
+        Matrix4<double> rot = Matrix4<double>::Identity();
+        rot(0, 0) = ca, rot(0, 2) = sa, rot(2, 0) = -sa, rot(2, 2) = ca;
+        if (std::isfinite(ca) && std::isfinite(sa)) c.matrix = c.matrix * rot;
+      }
+    } else {
+      c.family = 5;
+      for (int i = 0; i < 16; ++i) c.matrix(i / 4, i % 4) = number(in);
+    }
+  }
+  for (int i = 0; i < 4; ++i) c.plane(i) = number(in);
+  // After the plane, the byte kShiftMarker shifts a frustum or infinite frustum by (tx, ty, 0)
+  // (two more numbers); kFlipXMarker negates row 1 of a frustum or y-flipped frustum (M11 < 0).
+  // Inputs that end earlier, or go on with another byte, decode as before (the family byte
+  // keeps its meaning: new families come behind markers, not from a larger modulus).
+  const bool shiftable = c.family == 0 || c.family == 1, flippable = c.family == 0 || c.family == 3;
+  const int marker = shiftable || flippable ? in.byte() : -1;
+  if (flippable && marker == kFlipXMarker) {
+    c.matrix.row(0) *= -1;
+    c.family = c.family == 0 ? 7 : 8;
+  } else if (shiftable && marker == kShiftMarker) {
+    Matrix4<double> shift = Matrix4<double>::Identity();
+    shift(0, 3) = number(in);
+    shift(1, 3) = number(in);
+    if (std::isfinite(shift(0, 3)) && std::isfinite(shift(1, 3))) {
+      c.matrix = c.matrix * shift;
+      c.family = 6;
+    }
+  }
+  return c;
+}
+
+/// double -> T without undefined behaviour: out-of-range finite values become +-infinity.
+template <class T>
+T narrow(double x) {
+  if (std::isfinite(x) && std::abs(x) > static_cast<double>(std::numeric_limits<T>::max())) {
+    return std::signbit(x) ? -std::numeric_limits<T>::infinity()
+                           : std::numeric_limits<T>::infinity();
+  }
+  return static_cast<T>(x);
+}
+
+/// Whether OBLIQUE_FUZZ_DESCRIBE is set: then every case is printed before it is checked.
+inline bool describing() {
+  static const bool enabled = std::getenv("OBLIQUE_FUZZ_DESCRIBE") != nullptr;
+  return enabled;
+}
+
+/// Prints the decoded case: every number in shortest decimal and exact hex.
+inline void describe(const FuzzCase& c, std::FILE* out = stderr) {
+  std::fprintf(out, "scalar %s, convention %s, method %s, family %s\n",
+               std::string(protocol::precision_name(c.scalar)).c_str(),
+               std::string(convention_name(c.convention)).c_str(),
+               std::string(method_name(c.method)).c_str(), family_label(c.family));
+  using protocol::format_number;
+  using protocol::Notation;
+  for (int i = 0; i < 5; ++i) {
+    std::string decimal, hex;
+    for (int j = 0; j < 4; ++j) {
+      const double x = i < 4 ? c.matrix(i, j) : c.plane(j);
+      decimal += " " + format_number(x);
+      hex += (j ? " " : "") + format_number(x, Notation::hex);
+    }
+    if (i < 4)
+      std::fprintf(out, "M row %d:%s  (%s)\n", i + 1, decimal.c_str(), hex.c_str());
+    else
+      std::fprintf(out, "C:%s  (%s)\n", decimal.c_str(), hex.c_str());
+  }
+}
+
+/// Prints what the checker knows of the case and the answer, and every check that fails.
+template <class T>
+void explain(const properties::Problem<T>& problem, const properties::Outcome<T>& outcome,
+             std::FILE* out = stderr) {
+  using protocol::format_number;
+  std::fprintf(out, "exact status %s; acceptable: %s; Skeel condition %s; kappa %s\n",
+               std::string(status_code(problem.exact_status())).c_str(),
+               properties::status_list(problem.acceptable_statuses()).c_str(),
+               format_number(problem.skeel_condition()).c_str(),
+               format_number(problem.kappa().get_d()).c_str());
+  if (outcome.status != Status::ok || problem.exact_status() != Status::ok) return;
+  for (int i = 0; i < 4; ++i) {
+    std::string row;
+    for (int j = 0; j < 4; ++j) row += " " + format_number(outcome.projection(i, j));
+    std::fprintf(out, "M' row %d:%s\n", i + 1, row.c_str());
+  }
+  std::string row;
+  for (const auto& v : problem.exact_row3()) row += " " + format_number(v.get_d());
+  std::fprintf(out, "exact row 3:%s\n", row.c_str());
+  properties::Checks every;
+  every.every = true;
+  for (const auto& f : properties::judge(problem, outcome, every).checks) {
+    if (!f.holds)
+      std::fprintf(out, "%s: %s; residual %s, bound %s\n", f.kind.c_str(), f.relation.c_str(),
+                   f.lhs.c_str(), f.rhs.c_str());
+  }
+}
+
+/// One decoded case in T, judged for any number of implementations: one FilteredProblem (its
+/// exact Problem, where needed, built once) and one judgement per distinct answer and checks
+/// (implementations often answer alike, bit for bit, and judge() depends on nothing else).
+template <class T>
+class CaseJudge {
+ public:
+  explicit CaseJudge(const FuzzCase& c) : convention_(c.convention) {
+    for (int i = 0; i < 16; ++i) m_(i / 4, i % 4) = narrow<T>(c.matrix(i / 4, i % 4));
+    for (int i = 0; i < 4; ++i) plane_(i) = narrow<T>(c.plane(i));
+  }
+  const Matrix4<T>& matrix() const { return m_; }
+  const Vector4<T>& plane() const { return plane_; }
+  Convention convention() const { return convention_; }
+  /// The filtered checker on the case (the exact one's verdicts, most without GMP; filtered.h).
+  const properties::FilteredProblem<T>& problem() {
+    if (!problem_) problem_.emplace(m_, plane_, convention_);
+    return *problem_;
+  }
+  properties::Judgement judge(const properties::Outcome<T>& outcome,
+                              const properties::Checks& checks) {
+    for (const Judged& j : judged_) {
+      if (j.outcome.status == outcome.status &&
+          same_bits(j.outcome.projection, outcome.projection) && same_checks(j.checks, checks))
+        return j.judgement;
+    }
+    judged_.push_back(Judged{outcome, checks, properties::judge(problem(), outcome, checks)});
+    return judged_.back().judgement;
+  }
+
+ private:
+  struct Judged {
+    properties::Outcome<T> outcome;
+    properties::Checks checks;
+    properties::Judgement judgement;
+  };
+  /// Bit for bit, the value bits only: x87's long double holds 10 bytes of value in 16, and the
+  /// other 6 are whatever the memory held (comparing them made equal answers count as distinct,
+  /// and the count of judgements vary from run to run).
+  static bool same_bits(const Matrix4<T>& a, const Matrix4<T>& b) {
+    constexpr std::size_t value_bytes =
+        std::numeric_limits<T>::digits == 64 && sizeof(T) > 10 ? 10 : sizeof(T);
+    for (int i = 0; i < 16; ++i) {
+      if (std::memcmp(a.data() + i, b.data() + i, value_bytes) != 0) return false;
+    }
+    return true;
+  }
+  static bool same_checks(const properties::Checks& a, const properties::Checks& b) {
+    return a.statuses == b.statuses && a.properties == b.properties &&
+           a.row3_accuracy == b.row3_accuracy && a.every == b.every &&
+           std::memcmp(&a.max_ulps, &b.max_ulps, sizeof a.max_ulps) == 0;
+  }
+
+  Matrix4<T> m_;
+  Vector4<T> plane_;
+  Convention convention_;
+  std::optional<properties::FilteredProblem<T>> problem_;
+  std::vector<Judged> judged_;
+};
+
+/// Inputs left out of the judgement in this process, by properties::not_judged()'s reason, and
+/// those judged; printed to stderr at exit ("oblique: N inputs judged, ...").
+struct Counts {
+  long judged = 0;
+  std::map<std::string, long> left_out;
+};
+
+inline void print_counts();
+
+inline Counts& counts() {
+  static Counts* c = [] {
+    std::atexit(print_counts);
+    return new Counts;  // never destroyed: print_counts may run after static destructors
+  }();
+  return *c;
+}
+
+inline void print_counts() {
+  const Counts& c = counts();
+  std::string line = "oblique: " + std::to_string(c.judged) + " inputs judged";
+  for (const auto& [why, n] : c.left_out) line += ", " + std::to_string(n) + " left out: " + why;
+  std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+/// Runs `impl` on the case (in T) when it accepts it, and judges the answer with `checks`.
+/// Inputs properties::not_judged() leaves out for `checks.statuses` are not given to it (and
+/// counted), except that with `unanswerable` inputs without an exact answer are (there an answer
+/// where none exists is the finding). On a violation: prints the case, the checker's view and the
+/// property, then aborts. `judge` carries the case's problem and judgements from one
+/// implementation to the next.
+template <class T>
+void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementation<T>& impl,
+           const properties::Checks& checks, bool unanswerable = true) {
+  const Matrix4<T>& m = judge.matrix();
+  const Vector4<T>& plane = judge.plane();
+  if (!impl.accepts(c.convention, m)) return;
+  if (const std::string why = properties::not_judged(judge.problem(), checks.statuses);
+      !why.empty() && !(unanswerable && judge.problem().exact_status() != Status::ok)) {
+    ++counts().left_out[why];
+    return;
+  }
+  ++counts().judged;
+  const properties::Outcome<T> outcome = impl.run(m, plane, c.convention);
+  const properties::Judgement judgement = judge.judge(outcome, checks);
+  const properties::Finding* violation = judgement.violation();
+  if (!violation) return;
+  if (!describing()) describe(c);
+  explain(judge.problem().exact(), outcome);
+  std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, family %s, status %s)\n",
+               violation->kind.c_str(), impl.name.c_str(),
+               std::string(protocol::scalar_name<T>()).c_str(),
+               std::string(convention_name(c.convention)).c_str(), family_label(c.family),
+               std::string(status_code(outcome.status)).c_str());
+  std::abort();
+}
+
+/// check() for one implementation.
+template <class T>
+void check(const FuzzCase& c, const properties::Implementation<T>& impl,
+           const properties::Checks& checks, bool unanswerable = true) {
+  CaseJudge<T> judge(c);
+  check<T>(c, judge, impl, checks, unanswerable);
+}
+
+}  // namespace oblique::fuzzing
