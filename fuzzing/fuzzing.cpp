@@ -5,6 +5,7 @@
 #include "oblique/fuzzing/driver.h"
 
 namespace oblique::fuzzing {
+inline namespace OBLIQUE_EIGEN_LAYOUT {
 
 template <class T>
 int test_one_input(const std::uint8_t* data, std::size_t size,
@@ -27,4 +28,5 @@ OBLIQUE_FUZZING_INSTANCE(double)
 OBLIQUE_FUZZING_INSTANCE(long double)
 #undef OBLIQUE_FUZZING_INSTANCE
 
+}  // namespace OBLIQUE_EIGEN_LAYOUT
 }  // namespace oblique::fuzzing

@@ -131,6 +131,8 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   }
 }
 
+inline namespace OBLIQUE_EIGEN_LAYOUT {
+
 template <class T>
 void check_properties(const Implementation<T>& impl, const Contract& contract) {
   if (contract.families.empty() || contract.conventions.empty() || contract.places.empty()) {
@@ -188,5 +190,7 @@ void check_properties(const Implementation<T>& impl, const Contract& contract) {
 template void check_properties<float>(const Implementation<float>&, const Contract&);
 template void check_properties<double>(const Implementation<double>&, const Contract&);
 template void check_properties<long double>(const Implementation<long double>&, const Contract&);
+
+}  // namespace OBLIQUE_EIGEN_LAYOUT
 
 }  // namespace oblique::testing

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
+#include "oblique/eigen_layout.h"
 #include "oblique/properties/adapter.h"
 #include "oblique/properties/checks.h"
 
@@ -47,9 +48,11 @@ struct Options {
 /// The body of a libFuzzer target for one function: decodes the input (in the function's scalar
 /// type, whatever the scalar byte says), runs the function and judges its answer; aborts on a
 /// violation. Returns 0, as LLVMFuzzerTestOneInput does. Compiled in oblique::fuzzing for float,
-/// double and long double.
+/// double and long double (in a namespace named by Eigen's layout: oblique/eigen_layout.h).
+inline namespace OBLIQUE_EIGEN_LAYOUT {
 template <class T>
 int test_one_input(const std::uint8_t* data, std::size_t size,
                    const properties::Implementation<T>& impl, const Options& options = {});
+}  // namespace OBLIQUE_EIGEN_LAYOUT
 
 }  // namespace oblique::fuzzing

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "oblique/eigen_layout.h"
 #include "oblique/properties/adapter.h"
 #include "oblique/properties/case_kinds.h"
 #include "oblique/properties/checks.h"
@@ -74,9 +75,12 @@ Settings& settings();
 /// status of inputs without an answer. Fails the current GoogleTest test on a violation, with a
 /// report, or when the contract is empty.
 ///
-/// Compiled in oblique::testing for float, double and long double.
+/// Compiled in oblique::testing for float, double and long double (in a namespace named by
+/// Eigen's layout: oblique/eigen_layout.h).
+inline namespace OBLIQUE_EIGEN_LAYOUT {
 template <class T>
 void check_properties(const Implementation<T>& impl, const Contract& contract = Contract{});
+}  // namespace OBLIQUE_EIGEN_LAYOUT
 
 }  // namespace oblique::testing
 

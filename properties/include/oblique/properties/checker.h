@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
+#include "oblique/eigen_layout.h"
 #include "oblique/plane.h"
 #include "oblique/properties/checks.h"
 #include "oblique/properties/finding.h"
@@ -28,6 +29,8 @@ namespace oblique::properties {
 
 template <class T>
 class FilteredProblem;
+
+inline namespace OBLIQUE_EIGEN_LAYOUT {  // (oblique/eigen_layout.h)
 
 /// Everything the checker knows of one input (M, C, convention), and its judgement of answers to
 /// it: the status contract first, then the properties Checks selects, then (when asked) row 3's
@@ -58,5 +61,7 @@ class Checker {
  private:
   std::unique_ptr<FilteredProblem<T>> problem_;
 };
+
+}  // namespace OBLIQUE_EIGEN_LAYOUT
 
 }  // namespace oblique::properties
