@@ -3,6 +3,7 @@
 // checks the mirrors and clip planes of a scene file.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -17,14 +18,16 @@
 #include <string_view>
 #include <vector>
 
-#include "oblique/properties/generators.h"
+#include "oblique/properties/contract.h"
 #include "oblique/protocol/apply.h"
+#include "oblique/protocol/names.h"
 #include "oblique/report/accuracy_report.h"
 #include "oblique/report/depth_report.h"
 #include "oblique/scene/check.h"
 #include "oblique/scene/plot.h"
 #include "oblique/verify/child_process.h"
 #include "oblique/verify/verifier.h"
+#include "oblique_version.h"
 
 namespace {
 
@@ -46,49 +49,6 @@ std::vector<std::string> split_list(const std::string& list) {
     if (!item.empty()) out.push_back(item);
   }
   return out;
-}
-
-/// "a, b, c": the names of a table's entries (the generators' own tables, so the help and the
-/// messages list every family and place there is).
-template <class E, std::size_t N>
-std::string names_of(const E (&all)[N], std::string_view (*name)(E) noexcept) {
-  std::string out;
-  for (E e : all) out += (out.empty() ? "" : ", ") + std::string(name(e));
-  return out;
-}
-
-std::string family_names() {
-  return names_of(oblique::generators::all_families, oblique::generators::family_name);
-}
-std::string place_names() {
-  return names_of(oblique::generators::all_places, oblique::generators::place_name);
-}
-
-/// Fills the conventions and families of `options` from their lists; false with a message.
-bool parse_lists(const std::string& conventions, const std::string& families,
-                 oblique::verify::VerifyOptions& options) {
-  options.conventions.clear();
-  for (const std::string& name : split_list(conventions)) {
-    if (name == "all") {
-      options.conventions.assign(std::begin(oblique::all_conventions),
-                                 std::end(oblique::all_conventions));
-    } else if (auto c = oblique::parse_convention(name)) {
-      options.conventions.push_back(*c);
-    } else {
-      std::cerr << "oblique verify: unknown convention \"" << name
-                << "\" (gl, zero_one, reversed_z or all)\n";
-      return false;
-    }
-  }
-  for (const std::string& name : split_list(families)) {
-    if (auto f = oblique::generators::parse_family(name)) {
-      options.families.push_back(*f);
-    } else {
-      std::cerr << "oblique verify: unknown family \"" << name << "\" (" << family_names() << ")\n";
-      return false;
-    }
-  }
-  return !options.conventions.empty();
 }
 
 /// --precision: the protocol's scalar names (float, double, long_double), the same option for
@@ -235,8 +195,13 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
   const char* self = argv[0];
   struct Settings {
     oblique::verify::VerifyOptions options;
-    std::string conventions = "gl", families, precision = "double";
-    std::string statuses, planes = "any", places, exclude, contract;
+    std::string precision = "double", contract;
+    /// The contract's fields given as flags: the JSON field's name, the flag, its list.
+    struct Field {
+      std::string name, flag, list;
+    };
+    std::vector<Field> fields;
+    bool answers_only = false;
     std::vector<std::string> arguments;  // after "verify", for the replay command
     bool quiet = false;
   };
@@ -256,12 +221,23 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       "written); 2: usage or protocol error.");
   verify->add_option("--impl", options.command, "The implementation's command (run by sh)")
       ->required();
-  verify
-      ->add_option("--convention", settings->conventions,
-                   "Conventions to request: gl, zero_one, reversed_z, a comma list, or all")
-      ->capture_default_str();
-  verify->add_option("--families", settings->families,
-                     "Comma list of projection families (default: all): " + family_names());
+  // The contract's fields, each a flag taking a comma list of the names its JSON field takes.
+  auto contract_flag = [&](const std::string& flag, const std::string& field,
+                           const std::string& what) {
+    verify->add_option_function<std::string>(
+        flag,
+        [settings, field, flag](const std::string& list) {
+          settings->fields.push_back({field, flag, list});
+        },
+        what);
+  };
+  using oblique::protocol::name_list;
+  contract_flag("--convention", "conventions",
+                "Conventions to request, a comma list or all (default gl): " +
+                    name_list(oblique::convention_names()));
+  contract_flag(
+      "--families", "families",
+      "Comma list of projection families (default: all): " + name_list(oblique::family_names()));
   add_precision_option(
       verify, settings->precision, "Scalar type of inputs and bounds",
       {oblique::protocol::Precision::float32, oblique::protocol::Precision::float64});
@@ -287,23 +263,32 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       ->add_option("--threads", options.threads,
                    "Threads that judge the answers (default: the machine's hardware threads)")
       ->capture_default_str();
-  // The contract: what the implementation promises.
-  verify->add_flag("--answers-only", options.answers_only,
-                   "Send only inputs with an exact answer (an implementation without statuses)");
-  verify->add_option("--statuses", settings->statuses,
-                     "Comma list of the refusal codes it implements: inputs needing others are "
-                     "not sent, these must be exact");
-  verify->add_option("--planes", settings->planes, "unit: planes with a unit normal; any")
-      ->check(CLI::IsMember({"unit", "any"}))
-      ->capture_default_str();
-  verify->add_option("--places", settings->places,
-                     "Comma list of hard places to send (default: all): " + place_names());
-  verify->add_option("--exclude", settings->exclude,
-                     "Comma list of families, hard places and kinds of input without an answer "
-                     "to leave out");
+  // The rest of the contract: what the implementation promises.
+  verify->add_flag("--answers-only", settings->answers_only,
+                   "Send only inputs with an exact answer (an implementation without statuses; "
+                   "the same as --statuses answers_only)");
+  contract_flag("--statuses", "statuses",
+                "How its statuses are judged: " + name_list(oblique::status_contract_names()) +
+                    " (default any_refusal), or a comma list of the refusal codes it implements "
+                    "(inputs needing others are not sent, these must be exact): " +
+                    name_list(oblique::refusal_names()));
+  contract_flag("--planes", "planes", "unit: planes with a unit normal; any (default)");
+  contract_flag(
+      "--places", "places",
+      "Comma list of hard places to send (default: all): " + name_list(oblique::place_names()));
+  contract_flag("--defects", "defects",
+                "Comma list of kinds of input without an answer to send (default: all): " +
+                    name_list(oblique::defect_names()));
+  contract_flag("--properties", "properties",
+                "Comma list of the properties judged (default: all): " +
+                    name_list(oblique::property_names()));
+  contract_flag("--exclude", "exclude",
+                "Comma list of families, hard places and kinds of input without an answer to "
+                "leave out");
   verify->add_option("--contract", settings->contract,
-                     "A JSON contract file: answers_only, statuses, planes, places, exclude, "
-                     "families, conventions (flags add to it)");
+                     "A JSON contract file (fields: families, conventions, places, planes, "
+                     "statuses, defects, properties, row3_accuracy, exclude; see the README); "
+                     "flags replace the fields they name");
   verify->add_flag("--keep-going", options.keep_going,
                    "Go on after a finding; report each kind (property x family x place) once");
   verify->add_option("--replay", options.replay,
@@ -314,45 +299,30 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                      "Keep each new shrunk case's report in this folder too");
   verify->callback([settings, &exit_code, self] {
     oblique::verify::VerifyOptions& options = settings->options;
-    std::string error;
-    if (!settings->contract.empty() &&
-        !oblique::verify::read_contract(settings->contract, options, &error)) {
-      std::cerr << "oblique verify: " << error << "\n";
-      exit_code = 2;
-      return;
-    }
-    const std::vector<oblique::Convention> from_contract = options.conventions;
-    if (!parse_lists(settings->conventions, settings->families, options)) {
-      exit_code = 2;
-      return;
-    }
-    if (!settings->contract.empty() && settings->conventions == "gl" && !from_contract.empty())
-      options.conventions = from_contract;  // the default flag does not override the file
-    for (const std::string& name : split_list(settings->statuses)) {
-      const auto status = oblique::parse_status(name);
-      if (!status || *status == oblique::Status::ok) {
-        std::cerr << "oblique verify: --statuses: \"" << name << "\" is not a refusal status\n";
-        exit_code = 2;
-        return;
+    oblique::Expected<oblique::Contract> contract = oblique::Contract{};
+    if (!settings->contract.empty()) contract = oblique::read_contract_file(settings->contract);
+    if (contract && settings->answers_only)
+      contract = oblique::with_field(std::move(*contract), "statuses", {"answers_only"});
+    for (const auto& field : settings->fields) {
+      if (!contract) break;
+      contract = oblique::with_field(std::move(*contract), field.name, split_list(field.list));
+      if (!contract) {  // say it in the flag's words, not the JSON field's
+        std::string error = contract.error();
+        for (const std::string& json_name : {"\"" + field.name + "\"", field.name}) {
+          if (error.rfind(json_name + ": ", 0) == 0) {
+            error = field.flag + error.substr(json_name.size());
+            break;
+          }
+        }
+        contract = oblique::Expected<oblique::Contract>::failure(error);
       }
-      options.statuses.push_back(*status);
     }
-    if (settings->planes == "unit") options.unit_planes = true;
-    for (const std::string& name : split_list(settings->places)) {
-      const auto place = oblique::generators::parse_place(name);
-      if (!place) {
-        std::cerr << "oblique verify: --places: unknown place \"" << name << "\" (" << place_names()
-                  << ")\n";
-        exit_code = 2;
-        return;
-      }
-      options.places.push_back(*place);
-    }
-    if (!oblique::verify::exclude_names(split_list(settings->exclude), options, &error)) {
-      std::cerr << "oblique verify: " << error << "\n";
+    if (!contract) {
+      std::cerr << "oblique verify: " << contract.error() << "\n";
       exit_code = 2;
       return;
     }
+    options.contract = std::move(*contract);
     options.precision = *oblique::protocol::parse_precision(settings->precision);
     options.progress = !settings->quiet;
     options.self = self;
@@ -450,19 +420,71 @@ void setup_report(CLI::App& app, int& exit_code) {
   });
 }
 
+/// The deepest subcommand the parse reached (`report accuracy`), or the app.
+CLI::App* deepest(CLI::App* app) {
+  while (!app->get_subcommands().empty()) app = app->get_subcommands().front();
+  return app;
+}
+
+/// Says what was not understood, with the closest known name: a word where a subcommand goes
+/// (`oblique verfy`: "did you mean verify?"), a flag the subcommand does not have.
+void explain_unknown(CLI::App* where, const std::vector<std::string>& unexpected) {
+  std::vector<std::string> subcommands, flags;
+  for (const CLI::App* sub : where->get_subcommands([](CLI::App*) { return true; }))
+    subcommands.push_back(sub->get_name());
+  for (const CLI::Option* option : where->get_options()) {
+    for (const std::string& name : option->get_lnames()) flags.push_back("--" + name);
+  }
+  const std::string who =
+      where->get_parent() ? "oblique " + where->get_name() : std::string("oblique");
+  // A flag's value follows it: with an unknown flag, only the flags are named.
+  const bool any_flag = std::any_of(unexpected.begin(), unexpected.end(),
+                                    [](const std::string& a) { return a.rfind("-", 0) == 0; });
+  for (const std::string& arg : unexpected) {
+    const bool is_flag = arg.rfind("-", 0) == 0;
+    if (any_flag && !is_flag) continue;
+    const std::string name = is_flag ? arg.substr(0, arg.find('=')) : arg;
+    if (!is_flag && subcommands.empty()) {
+      std::cerr << who << ": unexpected argument \"" << arg << "\"\n";
+      continue;
+    }
+    std::cerr << who << ": "
+              << oblique::protocol::unknown_name(is_flag ? "flag" : "subcommand", name,
+                                                 is_flag ? flags : subcommands)
+              << "\n";
+  }
+  std::cerr << "Run " << who << " --help for the usage.\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"oblique: oblique near-plane clipping, verified"};
+  app.set_version_flag(
+      "--version", std::string("oblique ") + OBLIQUE_VERSION + " (commit " + OBLIQUE_COMMIT + ")",
+      "Print the version and the commit it was built from");
   app.require_subcommand(1);
   int exit_code = 2;
   setup_apply(app, exit_code);
   setup_verify(app, exit_code, argc, argv);
   setup_check(app, exit_code);
   setup_report(app, exit_code);
+  // A first word that is no subcommand: say so, with the closest, before CLI11 asks for one.
+  const std::string first = argc > 1 ? argv[1] : "";
+  if (!first.empty() && first[0] != '-' &&
+      app.get_subcommands([&](CLI::App* s) { return s->get_name() == first; }).empty()) {
+    explain_unknown(&app, {first});
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // What was left unparsed (a mistyped flag or subcommand): named, with the closest.
+    CLI::App* where = deepest(&app);
+    if (e.get_exit_code() != 0 && !where->remaining().empty()) {
+      explain_unknown(where, where->remaining());
+      return 2;
+    }
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;  // --help exits 0; every usage error exits 2
   }

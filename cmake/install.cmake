@@ -45,3 +45,23 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/fuzz/corpus/fuzz_oblique/
         DESTINATION ${CMAKE_INSTALL_DATADIR}/oblique/fuzz/corpus)
 install(FILES ${PROJECT_SOURCE_DIR}/fuzz/fuzz_oblique.dict
         DESTINATION ${CMAKE_INSTALL_DATADIR}/oblique/fuzz RENAME oblique.dict)
+
+# pkg-config files beside the CMake package (lib/pkgconfig): oblique (core and protocol),
+# oblique-testing and oblique-fuzzing, relocatable (the prefix is found from the file's place).
+file(RELATIVE_PATH OBLIQUE_PC_UP "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+string(REGEX REPLACE "/$" "" OBLIQUE_PC_UP "${OBLIQUE_PC_UP}")
+set(OBLIQUE_PC_FILES oblique oblique-fuzzing)
+if(TARGET oblique_testing)
+  list(APPEND OBLIQUE_PC_FILES oblique-testing)
+endif()
+foreach(pc IN LISTS OBLIQUE_PC_FILES)
+  configure_file(${CMAKE_CURRENT_LIST_DIR}/pkgconfig/${pc}.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/${pc}.pc
+                 @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/${pc}.pc
+          DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+endforeach()
+
+# The command-line tool (bin/oblique).
+if(TARGET oblique)
+  install(TARGETS oblique RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()

@@ -9,20 +9,23 @@ inline namespace OBLIQUE_EIGEN_LAYOUT {
 
 template <class T>
 int test_one_input(const std::uint8_t* data, std::size_t size,
-                   const properties::Implementation<T>& impl, const Options& options) {
-  const FuzzCase c = decode(data, size, options.conventions);
+                   const properties::Implementation<T>& impl, const Contract& given) {
+  const Contract contract = resolved(given, impl.conventions, impl.status_contract(), false);
+  const FuzzCase c = decode(data, size, contract.conventions);
   if (describing()) describe(c);
-  properties::Checks checks = impl.checks(options.row3_accuracy);
-  if (options.statuses) checks.statuses = *options.statuses;
+  properties::Checks checks = impl.checks(*contract.row3_accuracy);
+  checks.statuses = *contract.statuses;
+  checks.properties = contract.properties;
   // As in the property suite: a function without statuses is judged where an answer exists and
   // the input is decidable in T (properties::not_judged()).
-  check<T>(c, impl, checks, checks.statuses != properties::StatusContract::answers_only);
+  check<T>(c, impl, checks, checks.statuses != properties::StatusContract::answers_only,
+           contract.refusals);
   return 0;
 }
 
 #define OBLIQUE_FUZZING_INSTANCE(T)                                \
   template int test_one_input<T>(const std::uint8_t*, std::size_t, \
-                                 const properties::Implementation<T>&, const Options&);
+                                 const properties::Implementation<T>&, const Contract&);
 OBLIQUE_FUZZING_INSTANCE(float)
 OBLIQUE_FUZZING_INSTANCE(double)
 OBLIQUE_FUZZING_INSTANCE(long double)

@@ -411,6 +411,11 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   md << "## Replay\n\nThe whole run, shrinking included (seed " << context.seed << "):\n\n```sh\n"
      << replay_suite << "\n```\n\n";
   if (!replay_case.empty()) md << "This one case alone:\n\n```sh\n" << replay_case << "\n```\n\n";
+  if (!context.contract.empty()) {
+    md << "## Contract\n\nWhat the run held the implementation to, for a `--contract` file or a "
+          "test (`oblique::read_contract(R\"(...)\").value()`):\n\n```json\n"
+       << context.contract << "\n```\n\n";
+  }
   md << "Built with " << OBLIQUE_COMPILER << ", flags `" << OBLIQUE_CXX_FLAGS << "`.\n";
 
   nlohmann::json j;
@@ -434,6 +439,8 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   j["seed"] = context.seed;
   j["replay"] = replay_suite;
   j["replay_case"] = replay_case;
+  if (!context.contract.empty())
+    j["contract"] = nlohmann::json::parse(context.contract, nullptr, /*allow_exceptions=*/false);
   j["request"] = ce.request;
   j["request_decimal"] = ce.request_decimal;
   nlohmann::json notes = nlohmann::json::object();

@@ -1,7 +1,5 @@
 #include "oblique/protocol/protocol.h"
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -17,166 +15,17 @@ namespace oblique::protocol {
 
 namespace {
 
-using json = nlohmann::json;
-
-/// A parsed JSON value that keeps the text of its numbers.
-struct Value {
-  enum class Kind { null, boolean, number, string, array, object };
-  Kind kind = Kind::null;
-  std::string text;  // a number's text, a string's contents
-  std::vector<Value> items;
-  std::vector<std::pair<std::string, Value>> members;
-};
-
-const char* kind_name(Value::Kind kind) {
-  switch (kind) {
-    case Value::Kind::null: return "null";
-    case Value::Kind::boolean: return "a boolean";
-    case Value::Kind::number: return "a number";
-    case Value::Kind::string: return "a string";
-    case Value::Kind::array: return "an array";
-    case Value::Kind::object: return "an object";
-  }
-  return "a value";
-}
-
-bool is_json_number(std::string_view s) {
-  std::size_t i = 0;
-  auto digits = [&] {
-    const std::size_t from = i;
-    while (i < s.size() && s[i] >= '0' && s[i] <= '9') ++i;
-    return i - from;
-  };
-  if (i < s.size() && s[i] == '-') ++i;
-  if (i < s.size() && s[i] == '0') {
-    ++i;
-  } else if (digits() == 0) {
-    return false;
-  }
-  if (i < s.size() && s[i] == '.') {
-    ++i;
-    if (digits() == 0) return false;
-  }
-  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
-    ++i;
-    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
-    if (digits() == 0) return false;
-  }
-  return i == s.size();
-}
-
-/// Builds a Value tree from nlohmann's SAX events (run on JsonNumbers::masked); refuses nesting
-/// deeper than a request needs and more than kMaxValuesPerLine values. Numbers take their text
-/// from scan_json_numbers(): SAX gives the text of floats only, reports the integer -0 as 0, and
-/// refuses a number beyond double's range even when the request asks for long double.
-class TreeBuilder final : public nlohmann::json_sax<json> {
- public:
-  static constexpr std::size_t kMaxDepth = 8;
-
-  explicit TreeBuilder(const std::vector<std::string_view>& numbers) : numbers_(numbers) {}
-
-  Value root;
-  std::string error;
-
-  bool null() override { return add(Value{}); }
-  bool boolean(bool b) override {
-    Value v;
-    v.kind = Value::Kind::boolean;
-    v.text = b ? "true" : "false";
-    return add(std::move(v));
-  }
-  bool number_integer(number_integer_t) override { return add_number(); }
-  bool number_unsigned(number_unsigned_t) override { return add_number(); }
-  bool number_float(number_float_t, const string_t&) override { return add_number(); }
-  bool string(string_t& s) override {
-    Value v;
-    v.kind = Value::Kind::string;
-    v.text = s;
-    return add(std::move(v));
-  }
-  bool binary(binary_t&) override { return add(Value{}); }
-  bool start_object(std::size_t) override { return open(Value::Kind::object); }
-  bool key(string_t& k) override {
-    pending_key_ = k;
-    return true;
-  }
-  bool end_object() override { return close(); }
-  bool start_array(std::size_t) override { return open(Value::Kind::array); }
-  bool end_array() override { return close(); }
-  bool parse_error(std::size_t, const std::string&,
-                   const nlohmann::detail::exception& ex) override {
-    error = json_error_text(ex.what());
-    return false;
-  }
-
- private:
-  bool add_number() {
-    if (next_number_ >= numbers_.size()) {  // cannot happen for text the parser accepted
-      error = "internal error: number tokens out of step";
-      return false;
-    }
-    Value v;
-    v.kind = Value::Kind::number;
-    v.text = std::string(numbers_[next_number_++]);
-    return add(std::move(v));
-  }
-  Value* place(Value v) {
-    if (stack_.empty()) {
-      root = std::move(v);
-      return &root;
-    }
-    Value& parent = *stack_.back();
-    if (parent.kind == Value::Kind::array) {
-      parent.items.push_back(std::move(v));
-      return &parent.items.back();
-    }
-    parent.members.emplace_back(pending_key_, std::move(v));
-    return &parent.members.back().second;
-  }
-  bool count_value() {
-    if (++values_ <= kMaxValuesPerLine) return true;
-    error = "more than " + std::to_string(kMaxValuesPerLine) + " JSON values in a line";
-    return false;
-  }
-  bool add(Value v) {
-    if (!count_value()) return false;
-    place(std::move(v));
-    return true;
-  }
-  bool open(Value::Kind kind) {
-    if (!count_value()) return false;
-    if (stack_.size() >= kMaxDepth) {
-      error = "JSON nested deeper than " + std::to_string(kMaxDepth) + " levels";
-      return false;
-    }
-    Value v;
-    v.kind = kind;
-    stack_.push_back(place(std::move(v)));
-    return true;
-  }
-  bool close() {
-    stack_.pop_back();
-    return true;
-  }
-
-  std::vector<Value*> stack_;
-  std::string pending_key_;
-  const std::vector<std::string_view>& numbers_;
-  std::size_t next_number_ = 0;
-  std::size_t values_ = 0;
-};
-
 /// A number token: a JSON number's text, or a string (marked by a leading '"' here).
-std::optional<std::string> number_token(const Value& v) {
-  if (v.kind == Value::Kind::number) return v.text;
-  if (v.kind == Value::Kind::string) return "\"" + v.text;
+std::optional<std::string> number_token(const JsonValue& v) {
+  if (v.kind == JsonValue::Kind::number) return v.text;
+  if (v.kind == JsonValue::Kind::string) return "\"" + v.text;
   return std::nullopt;
 }
 
 template <std::size_t N>
-bool read_numbers(const Value& v, const char* field, std::array<std::string, N>& out,
+bool read_numbers(const JsonValue& v, const char* field, std::array<std::string, N>& out,
                   std::string& error) {
-  if (v.kind != Value::Kind::array) {
+  if (v.kind != JsonValue::Kind::array) {
     error = std::string("\"") + field + "\" must be an array of " + std::to_string(N) +
             " numbers, not " + kind_name(v.kind);
     return false;
@@ -198,85 +47,30 @@ bool read_numbers(const Value& v, const char* field, std::array<std::string, N>&
   return true;
 }
 
-std::string quoted(std::string_view s) {
-  return json(std::string(s)).dump(-1, ' ', false, json::error_handler_t::replace);
-}
-
-}  // namespace
-
-std::optional<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t max_numbers,
-                                             std::string* error) {
-  JsonNumbers out;
-  out.masked.assign(text);
-  bool in_string = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char ch = text[i];
-    if (in_string) {
-      if (ch == '\\')
-        ++i;
-      else if (ch == '"')
-        in_string = false;
-    } else if (ch == '"') {
-      in_string = true;
-    } else if (ch == '-' || (ch >= '0' && ch <= '9')) {
-      std::size_t end = i + 1;
-      while (end < text.size() && std::strchr("0123456789.eE+-", text[end]) != nullptr) ++end;
-      if (out.texts.size() == max_numbers) {
-        *error = "more than " + std::to_string(max_numbers) + " numbers";
-        return std::nullopt;
-      }
-      const std::string_view token = text.substr(i, end - i);
-      out.texts.push_back(token);
-      if (is_json_number(token)) {  // an invalid token is left for the parser to report
-        out.masked[i] = '0';
-        std::fill(out.masked.begin() + static_cast<std::ptrdiff_t>(i) + 1,
-                  out.masked.begin() + static_cast<std::ptrdiff_t>(end), ' ');
-      }
-      i = end - 1;
-    }
-  }
-  return out;
-}
-
-namespace {
-
-/// Parses one line into a Value tree, or says why it is not JSON.
-std::optional<Value> parse_tree(std::string_view line, std::string& error) {
-  if (const auto nul = line.find('\0'); nul != std::string_view::npos) {
-    error = "a NUL byte at column " + std::to_string(nul + 1) + " (a line is JSON text)";
+/// One line's tree, or why it is not a JSON line of the protocol.
+std::optional<JsonValue> parse_line(std::string_view line, std::string& error) {
+  Expected<JsonValue> tree = parse_json(line, JsonLimits{kMaxValuesPerLine, 8});
+  if (!tree) {
+    error = tree.error();
     return std::nullopt;
   }
-  const std::optional<JsonNumbers> numbers = scan_json_numbers(line, kMaxValuesPerLine, &error);
-  if (!numbers) return std::nullopt;
-  TreeBuilder builder(numbers->texts);
-  if (!json::sax_parse(numbers->masked.begin(), numbers->masked.end(), &builder,
-                       json::input_format_t::json, true, false)) {
-    error = builder.error.empty() ? "not valid JSON" : builder.error;
-    return std::nullopt;
-  }
-  return std::move(builder.root);
+  return std::move(*tree);
 }
 
 }  // namespace
 
 ParsedLine parse_request(std::string_view line) {
   ParsedLine out;
-  const std::optional<Value> tree = parse_tree(line, out.error);
+  const std::optional<JsonValue> tree = parse_line(line, out.error);
   if (!tree) return out;
-  const Value& root = *tree;
-  if (root.kind != Value::Kind::object) {
+  const JsonValue& root = *tree;
+  if (root.kind != JsonValue::Kind::object) {
     out.error = std::string("a request must be a JSON object, not ") + kind_name(root.kind);
     return out;
   }
   Request request;
-  bool has_projection = false, has_plane = false, has_convention = false;
+  bool has_projection = false, has_plane = false;
   for (const auto& [key, value] : root.members) {
-    const bool repeated = (key == "projection" && has_projection) ||
-                          (key == "plane" && has_plane) || (key == "convention" && has_convention);
-    if (repeated) {
-      out.error = "field \"" + key + "\" given twice";
-      return out;
-    }
     if (key == "projection") {
       if (!read_numbers(value, "projection", request.projection, out.error)) return out;
       has_projection = true;
@@ -284,11 +78,10 @@ ParsedLine parse_request(std::string_view line) {
       if (!read_numbers(value, "plane", request.plane, out.error)) return out;
       has_plane = true;
     } else if (key == "convention") {
-      if (value.kind != Value::Kind::string) {
+      if (value.kind != JsonValue::Kind::string) {
         out.error = std::string("\"convention\" must be a string, not ") + kind_name(value.kind);
         return out;
       }
-      has_convention = true;
       request.convention = parse_convention(value.text);
       if (!request.convention) {
         out.error = "unknown convention \"" + value.text + "\" (gl, zero_one or reversed_z)";
@@ -310,16 +103,16 @@ ParsedLine parse_request(std::string_view line) {
 
 ParsedAnswer parse_answer(std::string_view line) {
   ParsedAnswer out;
-  const std::optional<Value> tree = parse_tree(line, out.error);
+  const std::optional<JsonValue> tree = parse_line(line, out.error);
   if (!tree) return out;
-  if (tree->kind != Value::Kind::object) {
+  if (tree->kind != JsonValue::Kind::object) {
     out.error = std::string("an answer must be a JSON object, not ") + kind_name(tree->kind);
     return out;
   }
   bool has_status = false;
   for (const auto& [key, value] : tree->members) {
     if (key == "status") {
-      if (value.kind != Value::Kind::string) {
+      if (value.kind != JsonValue::Kind::string) {
         out.error = std::string("\"status\" must be a string, not ") + kind_name(value.kind);
         return out;
       }
@@ -330,7 +123,7 @@ ParsedAnswer parse_answer(std::string_view line) {
       if (!read_numbers(value, "projection", numbers, out.error)) return out;
       out.projection = std::move(numbers);
     } else if (key == "message") {
-      if (value.kind == Value::Kind::string) out.message = value.text;
+      if (value.kind == JsonValue::Kind::string) out.message = value.text;
     }
   }
   if (!has_status) {
@@ -376,7 +169,8 @@ std::string ok_answer_line(const Matrix4<T>& projection) {
 }
 
 std::string refusal_line(Status status, std::string_view message) {
-  return "{\"status\": " + quoted(status_code(status)) + ", \"message\": " + quoted(message) + "}";
+  return "{\"status\": " + json_string(status_code(status)) +
+         ", \"message\": " + json_string(message) + "}";
 }
 
 #define OBLIQUE_PROTOCOL_MESSAGES(T)                                         \
@@ -433,11 +227,6 @@ std::string normalise_non_finite(std::string_view line) {
     }
   }
   return out;
-}
-
-std::string json_error_text(std::string_view what) {
-  const auto pos = what.find("] ");
-  return std::string(pos == std::string_view::npos ? what : what.substr(pos + 2));
 }
 
 }  // namespace oblique::protocol

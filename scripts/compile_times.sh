@@ -61,14 +61,13 @@ cat > "$work/project/one_test.cpp" <<'EOF'
 #include <oblique/testing.h>
 bool make_oblique(float m[16], const float plane[4]);  // yours: column-major, false = refused
 
+// It takes no convention, so it says which it serves; the default contract checks that one,
+// every family, place and property, and (from the bool) accepts any refusal of an input
+// without an answer.
 const auto mine = oblique::adapt<float>("make_oblique", oblique::Layout::column_major,
-                                        make_oblique, oblique::perspective_shape_only<float>);
-oblique::testing::Contract gl_only() {
-  oblique::testing::Contract contract;  // families, conventions, places; statuses from the bool
-  contract.conventions = {oblique::Convention::gl};
-  return contract;
-}
-OBLIQUE_PROPERTY_TEST(MyEngine, makeObliqueHasEveryProperty, mine, gl_only())
+                                        oblique::Convention::gl, make_oblique,
+                                        oblique::perspective_shape_only<float>);
+OBLIQUE_PROPERTY_TEST(MyEngine, makeObliqueHasEveryProperty, mine, oblique::Contract{})
 EOF
 cat > "$work/project/calls_apply.cpp" <<'EOF'
 #include <oblique/oblique.h>
@@ -84,10 +83,9 @@ void make_oblique(float m[16], const float plane[4]);  // yours
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const auto mine = oblique::adapt<float>("make_oblique", oblique::Layout::column_major,
-                                                 make_oblique);
-  oblique::fuzzing::Options options;
-  options.conventions = {oblique::Convention::gl};
-  return oblique::fuzzing::test_one_input(data, size, mine, options);
+                                                 oblique::Convention::gl, make_oblique,
+                                                 oblique::perspective_shape_only<float>);
+  return oblique::fuzzing::test_one_input(data, size, mine);  // or a Contract as third argument
 }
 EOF
 cat > "$work/project/judges.cpp" <<'EOF'

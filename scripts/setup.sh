@@ -3,7 +3,7 @@
 # Usage: bash scripts/setup.sh [--fuzz]   (--fuzz adds clang-14 and its sanitizer runtimes)
 set -euo pipefail
 
-packages=(cmake g++ make libeigen3-dev nlohmann-json3-dev libcli11-dev libgtest-dev
+packages=(cmake g++ make pkgconf libeigen3-dev nlohmann-json3-dev libcli11-dev libgtest-dev
           libgmock-dev librapidcheck-dev libgmp-dev libbenchmark-dev gnuplot-nox time)
 if [[ "${1:-}" == "--fuzz" ]]; then
   packages+=(clang-14 libclang-rt-14-dev)

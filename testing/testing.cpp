@@ -21,6 +21,14 @@ Tally& tally() {
   return t;
 }
 
+namespace {
+/// The JSON form of the contract check_properties() is judging by (for its reports).
+std::string& current_contract() {
+  static std::string json;
+  return json;
+}
+}  // namespace
+
 std::string summary(const std::map<std::string, int>& counts) {
   std::string out;
   for (const auto& [name, count] : counts)
@@ -51,6 +59,7 @@ properties::ReportContext report_context(const std::string& property) {
     context.binary = error ? std::string("<this test executable>") : self.string();
   }
   context.cli = s.cli;
+  context.contract = current_contract();
   if (!s.replay_names_implementation) {
     context.replay_run = "RC_PARAMS=\"seed=" + std::to_string(context.seed) +
                          " max_success=" + std::to_string(context.max_success) + "\" " +
@@ -70,7 +79,9 @@ bool left_out_by_reproduce(const std::string& id) {
 }
 
 void run(const std::function<void()>& testable, Coverage coverage, const std::string& property,
-         const Contract& require) {
+         const Contract& given) {
+  const Contract require =
+      resolved(given, generators::every_convention(), properties::StatusContract::exact, false);
   tally() = Tally{};
   const std::string id = run_id(property);
   tally().property = property;
@@ -117,7 +128,7 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   for (auto f : require.families) families.push_back(generators::family_name(f));
   for (auto c : require.conventions) conventions.push_back(convention_name(c));
   for (auto p : require.places) places.push_back(generators::place_name(p));
-  for (auto d : generators::all_defects) defects.push_back(generators::defect_name(d));
+  for (auto d : require.defects) defects.push_back(generators::defect_name(d));
   needs(t.conventions, conventions, "convention");
   switch (coverage) {
     case Coverage::valid:
@@ -134,10 +145,19 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
 inline namespace OBLIQUE_EIGEN_LAYOUT {
 
 template <class T>
-void check_properties(const Implementation<T>& impl, const Contract& contract) {
-  if (contract.families.empty() || contract.conventions.empty() || contract.places.empty()) {
-    ADD_FAILURE() << "oblique::testing: the contract names no family, convention or place";
-    return;
+void check_properties(const Implementation<T>& impl, const Contract& given) {
+  const Contract contract = resolved(given, impl.conventions, impl.status_contract(), false);
+  current_contract() = contract_json(contract);
+  struct Forget {
+    ~Forget() { current_contract().clear(); }
+  } forget;
+  for (Convention c : contract.conventions) {
+    if (std::find(impl.conventions.begin(), impl.conventions.end(), c) == impl.conventions.end()) {
+      ADD_FAILURE() << "oblique::testing: the contract names convention " << convention_name(c)
+                    << ", which " << impl.name << " does not serve (adapt() was told "
+                    << convention_name(impl.conventions.front()) << ")";
+      return;
+    }
   }
   const auto& reproduce = rc::detail::configuration().reproduce;
   const std::string prefix = run_id("") + "/";
@@ -146,35 +166,41 @@ void check_properties(const Implementation<T>& impl, const Contract& contract) {
                    [&](const auto& entry) { return entry.first.rfind(prefix, 0) == 0; }))
     GTEST_SKIP() << run_id("") << ": not named by RC_PARAMS reproduce=..., skipped";
   const std::vector<Implementation<T>> implementations{impl};
+  auto judge_valid = [&](Contract generate, Checks checks, Coverage coverage,
+                         const std::string& name) {
+    run(
+        [=] {
+          const generators::Case<T> c = *generators::valid_case_for<T>(generate);
+          const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
+          if (problem.exact_status() == Status::ok) count_case(c);
+          for_each_answer(implementations, c, problem, checks, false, &contract);
+        },
+        coverage, name, generate);
+  };
   for (Property p : contract.properties) {
-    if (p == Property::infinite_edge_parallel &&
-        std::find(contract.families.begin(), contract.families.end(),
-                  generators::Family::infinite) == contract.families.end())
-      continue;
-    Contract require = contract;
-    Coverage coverage = Coverage::valid;
+    const bool infinite = std::find(contract.families.begin(), contract.families.end(),
+                                    generators::Family::infinite) != contract.families.end();
+    if (p == Property::infinite_edge_parallel && !infinite) continue;
     Contract generate = contract;
+    Coverage coverage = Coverage::valid;
     if (p == Property::infinite_edge_parallel) {
       generate.families = {generators::Family::infinite};
       coverage = Coverage::places_only;
     }
-    run(
-        [=] {
-          const generators::Case<T> c = *valid_case<T>(generate);
-          const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-          if (problem.exact_status() == Status::ok) count_case(c);
-          Checks checks;
-          checks.properties = {p};
-          for_each_answer(implementations, c, problem, checks, false, contract.statuses);
-        },
-        coverage, std::string(properties::property_name(p)), require);
+    Checks checks;
+    checks.properties = {p};
+    judge_valid(generate, checks, coverage, std::string(properties::property_name(p)));
   }
-  const StatusContract statuses = contract.statuses ? *contract.statuses : impl.status_contract();
-  if (statuses == StatusContract::answers_only) return;
+  if (*contract.row3_accuracy) {
+    Checks checks;  // row 3 within the bound of careful arithmetic, and no property
+    checks.properties = {};
+    checks.row3_accuracy = true;
+    judge_valid(contract, checks, Coverage::valid, "row3_accuracy");
+  }
+  if (*contract.statuses == StatusContract::answers_only) return;
   run(
       [=] {
-        const generators::InvalidCase<T> ic =
-            *generators::invalid_case_in<T>(contract.families, contract.conventions);
+        const generators::InvalidCase<T> ic = *generators::invalid_case_for<T>(contract);
         const generators::Case<T>& c = ic.base;
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
         ++tally().defects[std::string(generators::defect_name(ic.defect))];
@@ -182,7 +208,8 @@ void check_properties(const Implementation<T>& impl, const Contract& contract) {
         RC_TAG(std::string(generators::defect_name(ic.defect)));
         Checks checks;  // an ok answer is allowed only in a gray zone, and then has every property
         checks.properties = contract.properties;
-        for_each_answer(implementations, c, problem, checks, true, contract.statuses);
+        checks.row3_accuracy = *contract.row3_accuracy;
+        for_each_answer(implementations, c, problem, checks, true, &contract);
       },
       Coverage::invalid, "invalid_inputs_get_their_status", contract);
 }

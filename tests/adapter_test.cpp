@@ -47,15 +47,16 @@ void expect_same_as_core(const properties::Implementation<T>& impl, bool refusal
 
 TEST(Adapt, inPlaceColumnMajorFloatWithoutStatuses) {
   const auto impl = adapt<float>(
-      "void_column_major", Layout::column_major,
+      "void_column_major", Layout::column_major, Convention::gl,
       [](float* m, const float* c) { core_in_place<float>(m, c, Layout::column_major); });
   EXPECT_EQ(impl.status_contract(), StatusContract::answers_only);
+  EXPECT_EQ(impl.conventions, std::vector<Convention>{Convention::gl});
   expect_same_as_core(impl, /*refusal_too=*/false);
 }
 
 TEST(Adapt, inPlaceRowMajorDoubleWithABool) {
-  const auto impl =
-      adapt<double>("bool_row_major", Layout::row_major, [](double* m, const double* c) {
+  const auto impl = adapt<double>(
+      "bool_row_major", Layout::row_major, Convention::gl, [](double* m, const double* c) {
         return core_in_place<double>(m, c, Layout::row_major) == Status::ok;
       });
   EXPECT_EQ(impl.status_contract(), StatusContract::any_refusal);
@@ -63,7 +64,7 @@ TEST(Adapt, inPlaceRowMajorDoubleWithABool) {
 }
 
 TEST(Adapt, outOfPlaceWithStatuses) {
-  const auto impl = adapt<double>("status_out_of_place", Layout::column_major,
+  const auto impl = adapt<double>("status_out_of_place", Layout::column_major, Convention::gl,
                                   [](const double* m, const double* c, double* out) {
                                     double copy[16];
                                     for (int i = 0; i < 16; ++i) copy[i] = m[i];
@@ -83,6 +84,7 @@ TEST(Adapt, matrixShapedFunctions) {
                      return apply<float>(m, c, convention);
                    });
   EXPECT_EQ(impl.status_contract(), StatusContract::exact);
+  EXPECT_EQ(impl.conventions.size(), std::size(all_conventions));  // it takes the convention
   expect_same_as_core(impl);
 }
 
@@ -99,7 +101,8 @@ TEST(Adapt, layoutsStoreTheTransposeOfEachOther) {
 
 TEST(Adapt, perspectiveShapeOnlyAcceptsThatShape) {
   const auto impl = adapt<double>(
-      "closed", Layout::row_major, [](double*, const double*) {}, perspective_shape_only<double>);
+      "closed", Layout::row_major, Convention::gl, [](double*, const double*) {},
+      perspective_shape_only<double>);
   EXPECT_TRUE(impl.accepts(Convention::gl, frustum_matrix<double>()));
   EXPECT_FALSE(
       impl.accepts(Convention::gl, orthographic<double>(-1, 1, -1, 1, 1, 10, Convention::gl)));

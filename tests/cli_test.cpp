@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "oblique/oblique.h"
+#include "oblique/properties/contract.h"
 #include "oblique/properties/generators.h"
 #include "oblique/properties/properties.h"
 #include "oblique/properties/tolerance.h"
@@ -235,6 +236,51 @@ TEST(Cli, verifyHelpListsEveryFamilyAndPlace) {
   for (auto p : generators::all_places)
     EXPECT_TRUE(listed(places, generators::place_name(p))) << generators::place_name(p) << "\n"
                                                            << places;
+}
+
+// The help of every contract flag lists the names its JSON field takes (the contract's tables).
+TEST(Cli, verifyHelpListsEveryNameOfTheContract) {
+  std::string help;
+  ASSERT_EQ(shell(std::string(OBLIQUE_CLI) + " verify --help", &help), 0);
+  for (const auto& names : {convention_names(), family_names(), place_names(), defect_names(),
+                            property_names(), refusal_names(), status_contract_names()}) {
+    for (const std::string& name : names)
+      EXPECT_NE(help.find(name), std::string::npos) << name << "\n" << help;
+  }
+}
+
+TEST(Cli, versionNamesTheReleaseAndTheCommit) {
+  std::string out;
+  ASSERT_EQ(shell(std::string(OBLIQUE_CLI) + " --version", &out), 0);
+  EXPECT_EQ(out.rfind("oblique 0.", 0), 0u) << out;
+  EXPECT_NE(out.find("(commit "), std::string::npos) << out;
+  EXPECT_EQ(out.find("subcommand"), std::string::npos) << out;
+}
+
+TEST(Cli, aMistypedSubcommandFlagOrNameGetsTheClosest) {
+  const struct {
+    std::string arguments, says;
+  } cases[] = {
+      {"verfy", "unknown subcommand \"verfy\" (did you mean verify?"},
+      {"chekc scene.json", "did you mean check?"},
+      {"report acuracy", "unknown subcommand \"acuracy\" (did you mean accuracy?"},
+      {"verify --impl cat --cses 3", "unknown flag \"--cses\" (did you mean --cases?"},
+      {"apply --methd auto", "unknown flag \"--methd\" (did you mean --method?"},
+      {"verify --impl cat --families perspectve",
+       "unknown family \"perspectve\" (did you mean perspective?"},
+      {"verify --impl cat --statuses answer_only",
+       "unknown status contract or refusal \"answer_only\" (did you mean answers_only?"},
+      {"verify --impl cat --exclude infinte", "did you mean infinite?"},
+  };
+  for (const auto& c : cases) {
+    std::string err;
+    // Standard error into the captured output: the group's redirection is set up first.
+    EXPECT_EQ(
+        shell("{ " + std::string(OBLIQUE_CLI) + " " + c.arguments + " < /dev/null 2>&1; }", &err),
+        2)
+        << c.arguments;
+    EXPECT_NE(err.find(c.says), std::string::npos) << c.arguments << " said:\n" << err;
+  }
 }
 
 TEST(Cli, applyOnAFullDiskExitsTwoAndSaysSo) {

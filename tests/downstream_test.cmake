@@ -58,6 +58,31 @@ if(NOT output MATCHES "oblique property violated: [a-z_]+ by make_oblique")
 endif()
 message(STATUS "the engine as shipped is caught (${report}); the fixed one passes")
 
+# Without CMake: the installed pkg-config file builds the fixed engine's property test, and the
+# installed tool says its version.
+find_program(PKG_CONFIG NAMES pkg-config pkgconf)
+if(NOT PKG_CONFIG)
+  message(FATAL_ERROR "pkg-config not found (scripts/setup.sh installs pkgconf)")
+endif()
+file(GLOB_RECURSE pc_file "${prefix}/*/oblique-testing.pc")
+if(NOT pc_file)
+  message(FATAL_ERROR "no oblique-testing.pc installed under ${prefix}")
+endif()
+get_filename_component(pc_dir "${pc_file}" DIRECTORY)
+set(ENV{PKG_CONFIG_PATH} "${pc_dir}")
+run(EXPECT ok OUTPUT flags COMMAND ${PKG_CONFIG} --cflags --libs oblique-testing gtest_main)
+string(STRIP "${flags}" flags)
+separate_arguments(flags UNIX_COMMAND "${flags}")
+run(EXPECT ok COMMAND c++ -O1 -DENGINE_FIXED=1 "${SOURCE}/examples/downstream/engine_property_test.cpp"
+                      "${SOURCE}/examples/downstream/engine.cpp" ${flags} -pthread
+                      -o "${WORK}/engine_property_test_pkg_config")
+run(EXPECT ok COMMAND "${WORK}/engine_property_test_pkg_config")
+run(EXPECT ok OUTPUT version COMMAND "${prefix}/bin/oblique" --version)
+if(NOT version MATCHES "^oblique [0-9]+\\.[0-9]+\\.[0-9]+ \\(commit [^)]+\\)")
+  message(FATAL_ERROR "the installed bin/oblique --version said: ${version}")
+endif()
+message(STATUS "pkg-config builds the test (${flags}); ${version}")
+
 if(CLANGXX)
   run(EXPECT ok COMMAND ${CMAKE_COMMAND} -S "${SOURCE}/examples/downstream" -B "${WORK}/clang"
                         -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release

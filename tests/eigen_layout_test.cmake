@@ -11,7 +11,7 @@ file(WRITE ${WORK}/uses_libraries.cpp [=[
 void make_oblique(float m[16], const float plane[4]);
 int fuzz_one(const std::uint8_t* data, std::size_t size) {
   static const auto mine =
-      oblique::adapt<float>("make_oblique", oblique::Layout::column_major, make_oblique);
+      oblique::adapt<float>("make_oblique", oblique::Layout::column_major, oblique::Convention::gl, make_oblique);
   return oblique::fuzzing::test_one_input(data, size, mine);
 }
 bool holds(const oblique::Matrix4<float>& m, const oblique::Vector4<float>& c) {

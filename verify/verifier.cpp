@@ -28,6 +28,7 @@
 #include "child_process.h"
 #include "oblique/properties/counterexample_report.h"
 #include "oblique/properties/filtered.h"
+#include "oblique/properties/generators.h"
 #include "oblique/properties/judge.h"
 #include "oblique/properties/properties.h"
 #include "oblique/protocol/protocol.h"
@@ -54,41 +55,22 @@ struct VerifyCase {
   }
 };
 
-/// What the generator draws from: the options' lists, each filled with every value when empty.
-struct Draw {
-  std::vector<Family> families;
-  std::vector<Convention> conventions;
-  std::vector<generators::Place> places;
-  std::vector<Defect> defects;  ///< empty: no input without an answer
-  bool unit_planes = false;
-};
-
-/// C scaled to a unit normal (in long double, rounded once), as engines build planes; a plane
-/// with a non-finite entry or a zero normal is left as it is.
+/// A case of the resolved contract (oblique::resolved()): four in five have an answer (the pick
+/// shrinks toward those), the others one of its defects when its statuses are judged.
 template <class T>
-Vector4<T> unit_normal(const Vector4<T>& c) {
-  if (!all_finite(c)) return c;
-  const Vector4<long double> wide = c.template cast<long double>();
-  const long double norm = wide.template head<3>().norm();
-  if (!(norm > 0) || !std::isfinite(norm)) return c;
-  return (wide / norm).template cast<T>();
-}
-
-template <class T>
-rc::Gen<VerifyCase<T>> verify_case(Draw draw) {
-  return rc::gen::exec([draw] {
+rc::Gen<VerifyCase<T>> verify_case(const Contract& contract) {
+  const bool defects =
+      contract.statuses && *contract.statuses != properties::StatusContract::answers_only;
+  return rc::gen::exec([contract, defects] {
     VerifyCase<T> v;
-    // Four in five have an answer; the pick shrinks toward those.
-    if (draw.defects.empty() || *rc::gen::resize(100, rc::gen::inRange(0, 5)) < 4) {
-      v.c = *generators::valid_case_in<T>(draw.families, draw.conventions, draw.places);
+    if (!defects || *rc::gen::resize(100, rc::gen::inRange(0, 5)) < 4) {
+      v.c = *generators::valid_case_for<T>(contract);
     } else {
-      const generators::InvalidCase<T> ic = *generators::invalid_case_in<T>(
-          draw.families, draw.conventions, draw.places, draw.defects);
+      const generators::InvalidCase<T> ic = *generators::invalid_case_for<T>(contract);
       v.c = ic.base;
       v.has_defect = true;
       v.defect = ic.defect;
     }
-    if (draw.unit_planes) v.c.plane = unit_normal(v.c.plane);
     return v;
   });
 }
@@ -188,46 +170,33 @@ class Verifier {
  public:
   Verifier(const VerifyOptions& options, std::ostream& out, std::ostream& err)
       : options_(options), out_(out), err_(err), child_(options.command) {
-    families_ = options.families.empty() ? generators::every_family() : options.families;
-    Draw draw;
-    draw.families = families_;
-    draw.conventions = options.conventions;
-    draw.places = options.places.empty() ? generators::every_place() : options.places;
-    if (options.unit_planes) {
-      // A unit normal undoes the scaling: the `scaled` place is the typical one again.
-      const auto scaled =
-          std::find(draw.places.begin(), draw.places.end(), generators::Place::scaled);
-      if (scaled != draw.places.end() && draw.places.size() > 1) {
-        draw.places.erase(scaled);
-        left_out_note_.push_back("place scaled (unit-normal planes)");
-      }
-    }
-    draw.defects = options.defects.empty()
-                       ? std::vector<Defect>(std::begin(generators::all_defects),
-                                             std::end(generators::all_defects))
-                       : options.defects;
-    if (options.answers_only) {
-      draw.defects.clear();
-      left_out_note_.push_back("every input without an exact answer (--answers-only)");
-    } else if (!options.statuses.empty()) {
-      left_out_note_.push_back("inputs needing a status not in --statuses");
-    }
-    draw.unit_planes = options.unit_planes;
+    contract_ =
+        resolved(options.contract, {Convention::gl}, properties::StatusContract::any_refusal,
+                 /*own_row3_accuracy=*/true);
+    const bool answers_only = *contract_.statuses == properties::StatusContract::answers_only;
+    if (options.contract.planes == Planes::unit &&
+        std::find(contract_.places.begin(), contract_.places.end(), generators::Place::scaled) ==
+            contract_.places.end())
+      left_out_note_.push_back("place scaled (unit-normal planes)");
+    if (answers_only)
+      left_out_note_.push_back("every input without an exact answer (statuses answers_only)");
+    else if (!contract_.refusals.empty())
+      left_out_note_.push_back("inputs needing a refusal the contract does not list");
     for (generators::Place p : generators::all_places) {
-      if (std::find(draw.places.begin(), draw.places.end(), p) == draw.places.end() &&
-          !(options.unit_planes && p == generators::Place::scaled))
+      if (std::find(contract_.places.begin(), contract_.places.end(), p) ==
+              contract_.places.end() &&
+          !(options.contract.planes == Planes::unit && p == generators::Place::scaled))
         left_out_note_.push_back("place " + std::string(generators::place_name(p)));
     }
     for (Defect d : generators::all_defects) {
-      if (!options.answers_only &&
-          std::find(draw.defects.begin(), draw.defects.end(), d) == draw.defects.end())
+      if (!answers_only && std::find(contract_.defects.begin(), contract_.defects.end(), d) ==
+                               contract_.defects.end())
         left_out_note_.push_back("no answer: " + std::string(generators::defect_name(d)));
     }
-    gen_ = verify_case<T>(draw);
-    checks_.row3_accuracy = true;
-    checks_.statuses = options.answers_only        ? properties::StatusContract::answers_only
-                       : !options.statuses.empty() ? properties::StatusContract::exact
-                                                   : properties::StatusContract::any_refusal;
+    gen_ = verify_case<T>(contract_);
+    checks_.row3_accuracy = *contract_.row3_accuracy;
+    checks_.properties = contract_.properties;
+    checks_.statuses = *contract_.statuses;
     idle_ = std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000));
   }
 
@@ -385,12 +354,14 @@ class Verifier {
         problems;  ///< made when the contract needed them
   };
 
-  bool contract_needs_status() const { return options_.answers_only || !options_.statuses.empty(); }
+  bool contract_needs_status() const {
+    return !properties::has_every_refusal(*contract_.statuses, contract_.refusals);
+  }
 
   /// Why the contract leaves out this input ("" when it is sent): properties::not_judged(), the
   /// rule every tool shares.
   std::string left_out(const properties::FilteredProblem<T>& problem) const {
-    return properties::not_judged(problem, checks_.statuses, options_.statuses);
+    return properties::not_judged(problem, checks_.statuses, contract_.refusals);
   }
 
   Batch next_batch(rc::Random& random, long& generated, std::size_t size) {
@@ -486,6 +457,7 @@ class Verifier {
          << " requests per second)\n";
     out_.unsetf(std::ios::floatfield);
     out_.precision(6);
+    out_ << "  contract: " << contract_json(contract_) << "\n";
     out_ << "  families: " << summary(families_seen_)
          << "\n  conventions: " << summary(conventions_seen_)
          << "\n  places (with an answer): " << summary(places_seen_)
@@ -954,6 +926,7 @@ class Verifier {
     context.seed = options_.seed;
     context.replay_run = replay_run_command();
     context.replay_case = "echo " + shell_quote(request) + " | " + options_.command;
+    context.contract = contract_json(contract_);
     context.keep_existing = true;
     std::string path;
     try {
@@ -1048,8 +1021,8 @@ class Verifier {
   std::ostream& out_;
   std::ostream& err_;
   ChildProcess child_;
-  std::vector<Family> families_;
-  rc::Gen<VerifyCase<T>> gen_ = verify_case<T>(Draw{});
+  Contract contract_;  ///< options_.contract resolved: every list filled
+  rc::Gen<VerifyCase<T>> gen_ = verify_case<T>(Contract{});
   std::chrono::milliseconds idle_{10000};
   Clock::time_point start_, deadline_;
   std::map<std::string, long> families_seen_, conventions_seen_, places_seen_, defects_seen_;
@@ -1107,127 +1080,6 @@ std::string check_report_directory(const std::string& directory) {
 
 }  // namespace
 
-bool exclude_names(const std::vector<std::string>& names, VerifyOptions& options,
-                   std::string* error) {
-  auto drop = [](auto& list, auto value, const auto& every) {
-    if (list.empty()) list.assign(std::begin(every), std::end(every));
-    list.erase(std::remove(list.begin(), list.end(), value), list.end());
-  };
-  for (const std::string& name : names) {
-    if (auto f = generators::parse_family(name)) {
-      drop(options.families, *f, generators::all_families);
-    } else if (auto p = generators::parse_place(name)) {
-      drop(options.places, *p, generators::all_places);
-    } else if (auto d = generators::parse_defect(name)) {
-      drop(options.defects, *d, generators::all_defects);
-    } else {
-      *error = "--exclude: \"" + name +
-               "\" is not a family, a hard place or a kind of input "
-               "without an answer";
-      return false;
-    }
-  }
-  if (options.families.empty() && !names.empty() &&
-      std::any_of(names.begin(), names.end(),
-                  [](const std::string& n) { return generators::parse_family(n).has_value(); })) {
-    *error = "--exclude leaves no family";
-    return false;
-  }
-  return true;
-}
-
-bool read_contract(const std::string& path, VerifyOptions& options, std::string* error) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    *error = "cannot read the contract file " + path;
-    return false;
-  }
-  std::ostringstream text;
-  text << file.rdbuf();
-  const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
-  if (j.is_discarded() || !j.is_object()) {
-    *error = path + ": not a JSON object";
-    return false;
-  }
-  const std::vector<std::string> known = {"answers_only", "statuses", "planes",     "places",
-                                          "exclude",      "families", "conventions"};
-  for (const auto& item : j.items()) {
-    if (std::find(known.begin(), known.end(), item.key()) == known.end()) {
-      *error = path + ": unknown field \"" + item.key() + "\"";
-      return false;
-    }
-  }
-  auto names = [&](const char* key, std::vector<std::string>& out) {
-    if (!j.contains(key)) return true;
-    const nlohmann::json& v = j[key];
-    if (!v.is_array()) return false;
-    for (const auto& item : v) {
-      if (!item.is_string()) return false;
-      out.push_back(item.get<std::string>());
-    }
-    return true;
-  };
-  std::vector<std::string> statuses, places, exclude, families, conventions;
-  if (!names("statuses", statuses) || !names("places", places) || !names("exclude", exclude) ||
-      !names("families", families) || !names("conventions", conventions)) {
-    *error = path + ": statuses, places, exclude, families and conventions are lists of names";
-    return false;
-  }
-  if (j.contains("answers_only")) {
-    if (!j["answers_only"].is_boolean()) {
-      *error = path + ": answers_only is true or false";
-      return false;
-    }
-    options.answers_only = j["answers_only"].get<bool>();
-  }
-  if (j.contains("planes")) {
-    const nlohmann::json& planes = j["planes"];
-    if (!planes.is_string() || (planes != "unit" && planes != "any")) {
-      *error = path + ": planes is \"unit\" or \"any\"";
-      return false;
-    }
-    options.unit_planes = planes == "unit";
-  }
-  for (const std::string& name : statuses) {
-    const auto status = parse_status(name);
-    if (!status || *status == Status::ok) {
-      *error = path + ": \"" + name + "\" is not a refusal status";
-      return false;
-    }
-    options.statuses.push_back(*status);
-  }
-  for (const std::string& name : places) {
-    const auto place = generators::parse_place(name);
-    if (!place) {
-      *error = path + ": \"" + name + "\" is not a hard place";
-      return false;
-    }
-    options.places.push_back(*place);
-  }
-  for (const std::string& name : families) {
-    const auto family = generators::parse_family(name);
-    if (!family) {
-      *error = path + ": \"" + name + "\" is not a family";
-      return false;
-    }
-    options.families.push_back(*family);
-  }
-  if (!conventions.empty()) options.conventions.clear();
-  for (const std::string& name : conventions) {
-    if (name == "all") {
-      options.conventions.assign(std::begin(all_conventions), std::end(all_conventions));
-      continue;
-    }
-    const auto convention = parse_convention(name);
-    if (!convention) {
-      *error = path + ": \"" + name + "\" is not a convention";
-      return false;
-    }
-    options.conventions.push_back(*convention);
-  }
-  return exclude_names(exclude, options, error);
-}
-
 int default_threads() {
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
@@ -1237,10 +1089,6 @@ int run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err)
   VerifyOptions options = given;
   if (options.command.empty()) {
     err << "oblique verify: --impl needs a command\n";
-    return 2;
-  }
-  if (options.conventions.empty()) {
-    err << "oblique verify: no convention to check\n";
     return 2;
   }
   // Range checks: durations must fit the clock's arithmetic (and NaN is no duration).

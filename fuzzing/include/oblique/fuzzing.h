@@ -8,10 +8,8 @@
 //
 //   extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
 //     static const auto mine = oblique::adapt<float>("make_oblique", oblique::Layout::column_major,
-//                                                     make_oblique);
-//     oblique::fuzzing::Options options;
-//     options.conventions = {oblique::Convention::gl};
-//     return oblique::fuzzing::test_one_input(data, size, mine, options);
+//                                                     oblique::Convention::gl, make_oblique);
+//     return oblique::fuzzing::test_one_input(data, size, mine);
 //   }
 //
 // Build it with clang++ -fsanitize=fuzzer,address and link oblique::fuzzing (the decoder and the
@@ -25,34 +23,25 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <optional>
-#include <vector>
 
 #include "oblique/depth_convention.h"
 #include "oblique/eigen_layout.h"
 #include "oblique/properties/adapter.h"
-#include "oblique/properties/checks.h"
+#include "oblique/properties/contract.h"
 
 namespace oblique::fuzzing {
 
-/// What the driver checks of your function.
-struct Options {
-  /// The conventions your function is for (empty: all three).
-  std::vector<Convention> conventions;
-  /// How its statuses are judged (empty: from the adapter; see oblique/properties/adapter.h).
-  std::optional<properties::StatusContract> statuses;
-  /// Also row 3 within the accuracy careful arithmetic achieves (the core's promise).
-  bool row3_accuracy = false;
-};
-
 /// The body of a libFuzzer target for one function: decodes the input (in the function's scalar
-/// type, whatever the scalar byte says), runs the function and judges its answer; aborts on a
-/// violation. Returns 0, as LLVMFuzzerTestOneInput does. Compiled in oblique::fuzzing for float,
-/// double and long double (in a namespace named by Eigen's layout: oblique/eigen_layout.h).
+/// type, whatever the scalar byte says, in one of the contract's conventions), runs the function
+/// and judges its answer under the contract (oblique/properties/contract.h: its conventions,
+/// statuses, refusals, properties and row3_accuracy; the decoder makes its own projections and
+/// planes, so families, places, planes and defects do not apply); aborts on a violation. Returns 0,
+/// as LLVMFuzzerTestOneInput does. Compiled in oblique::fuzzing for float, double and long double
+/// (in a namespace named by Eigen's layout: oblique/eigen_layout.h).
 inline namespace OBLIQUE_EIGEN_LAYOUT {
 template <class T>
 int test_one_input(const std::uint8_t* data, std::size_t size,
-                   const properties::Implementation<T>& impl, const Options& options = {});
+                   const properties::Implementation<T>& impl, const Contract& contract = {});
 }  // namespace OBLIQUE_EIGEN_LAYOUT
 
 }  // namespace oblique::fuzzing

@@ -4,16 +4,13 @@
 //   void make_oblique(float m[16], const float plane[4]);   // yours: column-major, in place
 //
 //   const auto mine = oblique::adapt<float>("make_oblique", oblique::Layout::column_major,
-//                                            make_oblique, oblique::perspective_shape_only<float>);
-//   oblique::testing::Contract gl_only() {
-//     oblique::testing::Contract c;
-//     c.conventions = {oblique::Convention::gl};
-//     return c;
-//   }
-//   OBLIQUE_PROPERTY_TEST(MakeOblique, hasEveryProperty, mine, gl_only())
+//                                            oblique::Convention::gl, make_oblique);
+//   OBLIQUE_PROPERTY_TEST(MakeOblique, hasEveryProperty, mine, oblique::Contract{})
 //
-// Each property of the contract is a RapidCheck run over the project's generators (every family,
-// convention and hard place the contract names), shrunk on failure to a small counterexample
+// The contract (oblique/properties/contract.h) says what the function promises; its empty lists
+// mean every family, place and property, and the conventions stated to adapt(). Each property
+// of the contract is a RapidCheck run over the project's generators (every family, convention
+// and hard place the contract names), shrunk on failure to a small counterexample
 // written as Markdown + JSON (OBLIQUE_REPORT_DIR, default ./oblique-reports) with the command
 // that replays it. The statistics (families, conventions, places, checks applied) are printed,
 // and a run that missed a family, convention or hard place of the contract fails.
@@ -33,6 +30,7 @@
 #include "oblique/properties/adapter.h"
 #include "oblique/properties/case_kinds.h"
 #include "oblique/properties/checks.h"
+#include "oblique/properties/contract.h"
 
 namespace oblique::testing {
 
@@ -41,21 +39,6 @@ using properties::Implementation;
 using properties::Outcome;
 using properties::Property;
 using properties::StatusContract;
-
-/// What your function promises: the inputs it is for and how its statuses are judged.
-struct Contract {
-  std::vector<generators::Family> families = generators::every_family();
-  std::vector<Convention> conventions = generators::every_convention();
-  std::vector<generators::Place> places = {std::begin(generators::all_places),
-                                           std::end(generators::all_places)};
-  /// answers_only: a function without statuses (only an answer to an input without one fails;
-  /// inputs undecidable at its precision are left out, properties::not_judged()); any_refusal:
-  /// it refuses inputs without an answer, in its own words; exact: oblique::Status.
-  /// Empty: from the adapter (void: answers_only, bool: any_refusal, Status: exact).
-  std::optional<StatusContract> statuses;
-  /// The properties judged (extracted_planes_match included).
-  std::vector<Property> properties = Checks{}.properties;
-};
 
 /// Where reports go and what their replay commands name.
 struct Settings {
@@ -71,9 +54,10 @@ struct Settings {
 Settings& settings();
 
 /// Checks `impl` against every property of `contract`, one RapidCheck run each (named by the
-/// property; RC_PARAMS="reproduce=..." names them so), and, when the contract has statuses, the
-/// status of inputs without an answer. Fails the current GoogleTest test on a violation, with a
-/// report, or when the contract is empty.
+/// property; RC_PARAMS="reproduce=..." names them so), row 3's accuracy when the contract says
+/// so, and, when the contract has statuses, the status of inputs without an answer. Fails the
+/// current GoogleTest test on a violation, with a report, or when the contract names a
+/// convention the implementation does not serve.
 ///
 /// Compiled in oblique::testing for float, double and long double (in a namespace named by
 /// Eigen's layout: oblique/eigen_layout.h).
@@ -85,7 +69,7 @@ void check_properties(const Implementation<T>& impl, const Contract& contract = 
 }  // namespace oblique::testing
 
 /// A GoogleTest test that checks `implementation` (oblique::adapt()) against `contract`
-/// (oblique::testing::Contract), in the spirit of RC_GTEST_PROP.
+/// (oblique::Contract), in the spirit of RC_GTEST_PROP.
 #define OBLIQUE_PROPERTY_TEST(Suite, Name, implementation, contract)    \
   TEST(Suite, Name) {                                                   \
     ::oblique::testing::check_properties((implementation), (contract)); \

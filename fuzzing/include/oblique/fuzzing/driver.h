@@ -342,18 +342,20 @@ inline void print_counts() {
 }
 
 /// Runs `impl` on the case (in T) when it accepts it, and judges the answer with `checks`.
-/// Inputs properties::not_judged() leaves out for `checks.statuses` are not given to it (and
+/// Inputs properties::not_judged() leaves out for `checks.statuses` and `refusals` (under exact:
+/// the refusals it implements, empty: all) are not given to it (and
 /// counted), except that with `unanswerable` inputs without an exact answer are (there an answer
 /// where none exists is the finding). On a violation: prints the case, the checker's view and the
 /// property, then aborts. `judge` carries the case's problem and judgements from one
 /// implementation to the next.
 template <class T>
 void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementation<T>& impl,
-           const properties::Checks& checks, bool unanswerable = true) {
+           const properties::Checks& checks, bool unanswerable = true,
+           const std::vector<Status>& refusals = {}) {
   const Matrix4<T>& m = judge.matrix();
   const Vector4<T>& plane = judge.plane();
   if (!impl.accepts(c.convention, m)) return;
-  if (const std::string why = properties::not_judged(judge.problem(), checks.statuses);
+  if (const std::string why = properties::not_judged(judge.problem(), checks.statuses, refusals);
       !why.empty() && !(unanswerable && judge.problem().exact_status() != Status::ok)) {
     ++counts().left_out[why];
     return;
@@ -376,9 +378,10 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
 /// check() for one implementation.
 template <class T>
 void check(const FuzzCase& c, const properties::Implementation<T>& impl,
-           const properties::Checks& checks, bool unanswerable = true) {
+           const properties::Checks& checks, bool unanswerable = true,
+           const std::vector<Status>& refusals = {}) {
   CaseJudge<T> judge(c);
-  check<T>(c, judge, impl, checks, unanswerable);
+  check<T>(c, judge, impl, checks, unanswerable, refusals);
 }
 
 }  // namespace oblique::fuzzing

@@ -10,6 +10,12 @@
 // with the 16 numbers in `Layout::row_major` (m[4 * row + column]) or `Layout::column_major`
 // (m[4 * column + row], OpenGL's and Listing 5.1's) order. The plane is (a, b, c, d) in camera
 // space, the side seen and kept where a x + b y + c z + d > 0.
+//
+// A function that takes no convention serves one, and says which:
+//   adapt<float>("make_oblique", Layout::column_major, Convention::gl, make_oblique)
+// and a test's default contract (oblique/properties/contract.h) checks it in that convention
+// only. A function that takes the convention serves all three:
+//   adapt<double>("mine", Layout::row_major, mine)
 #pragma once
 
 #include <functional>
@@ -61,13 +67,11 @@ constexpr bool kOwnRefusals = std::is_same_v<R, bool>;
 
 }  // namespace adapting
 
-/// Wraps `function` (see the shapes above) as an implementation named `name` for
-/// oblique::testing and oblique::fuzzing. `accepts` limits the inputs it is given (e.g.
-/// perspective_shape_only for a closed form); by default it is given every input.
+namespace adapting {
+
 template <class T, class F>
-properties::Implementation<T> adapt(
-    std::string name, Layout layout, F function,
-    std::function<bool(Convention, const Matrix4<T>&)> accepts = nullptr) {
+properties::Implementation<T> wrap(std::string name, Layout layout, F function,
+                                   std::function<bool(Convention, const Matrix4<T>&)> accepts) {
   properties::Implementation<T> impl;
   impl.name = std::move(name);
   impl.accepts = accepts ? std::move(accepts) : [](Convention, const Matrix4<T>&) { return true; };
@@ -117,6 +121,34 @@ properties::Implementation<T> adapt(
     };
   }
   return impl;
+}
+
+}  // namespace adapting
+
+/// Wraps `function` (see the shapes above), which serves `convention` only, as an implementation
+/// named `name` for oblique::testing and oblique::fuzzing. `accepts` limits the inputs it is
+/// given (e.g. perspective_shape_only for a closed form); by default it is given every input of
+/// its convention.
+template <class T, class F>
+properties::Implementation<T> adapt(
+    std::string name, Layout layout, Convention convention, F function,
+    std::function<bool(Convention, const Matrix4<T>&)> accepts = nullptr) {
+  properties::Implementation<T> impl =
+      adapting::wrap<T>(std::move(name), layout, std::move(function), std::move(accepts));
+  impl.conventions = {convention};
+  return impl;
+}
+
+/// Wraps a function that takes the convention (ObliqueResult<T> or Outcome<T> f(const
+/// Matrix4<T>&, const Vector4<T>&, Convention)): it serves every convention.
+template <class T, class F>
+properties::Implementation<T> adapt(
+    std::string name, Layout layout, F function,
+    std::function<bool(Convention, const Matrix4<T>&)> accepts = nullptr) {
+  static_assert(std::is_invocable_v<F&, const Matrix4<T>&, const Vector4<T>&, Convention>,
+                "adapt(): a function that takes no convention serves one; say which: "
+                "adapt<T>(name, layout, Convention::gl, function)");
+  return adapting::wrap<T>(std::move(name), layout, std::move(function), std::move(accepts));
 }
 
 /// For `adapt`'s `accepts`: only matrices of the standard perspective shape (a closed form such

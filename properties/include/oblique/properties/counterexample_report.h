@@ -72,6 +72,8 @@ struct ReportContext {
   std::string stem;         ///< the report's file name without extension (default: test id.impl)
   std::string replay_run;   ///< the command that repeats the whole run, instead of the suite's
   std::string replay_case;  ///< the command that replays this one case, instead of `oblique apply`
+  /// The contract the run judged by (oblique::contract_json()), printed for pasting.
+  std::string contract;
   /// Never replace an earlier report: a taken stem gets "-2", "-3", ... (oblique verify).
   bool keep_existing = false;
 };

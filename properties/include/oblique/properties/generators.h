@@ -21,6 +21,7 @@
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
 #include "oblique/properties/case_kinds.h"
+#include "oblique/properties/contract.h"
 #include "oblique/protocol/numbers.h"
 
 namespace oblique::generators {
@@ -420,6 +421,40 @@ rc::Gen<InvalidCase<T>> invalid_case() {
   return invalid_case_in<T>(every_family(), every_convention());
 }
 
+/// C scaled to a unit normal (in long double, rounded once), as engines build planes; a plane
+/// with a non-finite entry or a zero normal is left as it is.
+template <class T>
+Vector4<T> unit_normal(const Vector4<T>& c) {
+  if (!all_finite(c)) return c;
+  const Vector4<long double> wide = c.template cast<long double>();
+  const long double norm = wide.template head<3>().norm();
+  if (!(norm > 0) || !std::isfinite(norm)) return c;
+  return (wide / norm).template cast<T>();
+}
+
+/// A valid-looking case of a resolved contract (oblique::resolved()): its families, conventions
+/// and places, the plane scaled to a unit normal when its planes are unit.
+template <class T>
+rc::Gen<Case<T>> valid_case_for(const Contract& contract) {
+  return rc::gen::map(valid_case_in<T>(contract.families, contract.conventions, contract.places),
+                      [unit = contract.planes == Planes::unit](Case<T> c) {
+                        if (unit) c.plane = unit_normal(c.plane);
+                        return c;
+                      });
+}
+
+/// An input without an answer (or next to one) of a resolved contract: one of its defects on a
+/// case of valid_case_for().
+template <class T>
+rc::Gen<InvalidCase<T>> invalid_case_for(const Contract& contract) {
+  return rc::gen::map(invalid_case_in<T>(contract.families, contract.conventions, contract.places,
+                                         contract.defects),
+                      [unit = contract.planes == Planes::unit](InvalidCase<T> ic) {
+                        if (unit) ic.base.plane = unit_normal(ic.base.plane);
+                        return ic;
+                      });
+}
+
 /// The generators oblique::generators compiles (properties/generators.cpp), for T = float, double
 /// and long double: `declare` is `template` there and `extern template` in a program that links
 /// them (OBLIQUE_LINKED_GENERATORS, which the oblique::generators target sets).
@@ -432,7 +467,9 @@ rc::Gen<InvalidCase<T>> invalid_case() {
   declare rc::Gen<Case<T>> valid_case<T>();                                                        \
   declare rc::Gen<InvalidCase<T>> invalid_case_in<T>(std::vector<Family>, std::vector<Convention>, \
                                                      std::vector<Place>, std::vector<Defect>);     \
-  declare rc::Gen<InvalidCase<T>> invalid_case<T>();
+  declare rc::Gen<InvalidCase<T>> invalid_case<T>();                                               \
+  declare rc::Gen<Case<T>> valid_case_for<T>(const Contract&);                                     \
+  declare rc::Gen<InvalidCase<T>> invalid_case_for<T>(const Contract&);
 
 #if defined(OBLIQUE_LINKED_GENERATORS) && !defined(OBLIQUE_CHECKER_HEADER_ONLY)
 OBLIQUE_GENERATOR_INSTANCES(extern template, float)

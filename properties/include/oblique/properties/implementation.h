@@ -3,8 +3,10 @@
 #pragma once
 
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "oblique/depth_convention.h"
 #include "oblique/plane.h"
@@ -20,6 +22,9 @@ struct Implementation {
   /// Whether it refuses in its own words (a bool "no"): any refusal of an input without an answer
   /// is then right (StatusContract::any_refusal).
   bool own_refusals = false;
+  /// The depth conventions it serves: a function that takes no convention serves the one stated
+  /// to adapt(); the default contract's conventions are these.
+  std::vector<Convention> conventions{std::begin(all_conventions), std::end(all_conventions)};
   /// The inputs it is meant for; others are not given to it.
   std::function<bool(Convention, const Matrix4<T>&)> accepts;
   std::function<Outcome<T>(const Matrix4<T>&, const Vector4<T>&, Convention)> run;

@@ -14,29 +14,11 @@
 
 #include "oblique/depth_convention.h"
 #include "oblique/projection.h"
+#include "oblique/protocol/json.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/status.h"
 
 namespace oblique::protocol {
-
-/// The JSON number tokens of a text, for readers that need a number's text rather than the double
-/// a JSON parser makes of it (a long double beyond double's range, the integer -0, an overflow
-/// named by its field): `masked` is the text with each token that is a valid JSON number replaced
-/// by "0" and spaces (same length, so a parser's line and column still hold, and no number can
-/// overflow it), and `texts` holds every number-like token's text, in order, viewing `text`.
-/// Outside strings, a number is the only JSON token that starts with '-' or a digit.
-struct JsonNumbers {
-  std::string masked;
-  std::vector<std::string_view> texts;
-};
-
-/// Empty, with `error` set, when the text holds more than `max_numbers` number tokens.
-std::optional<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t max_numbers,
-                                             std::string* error);
-
-/// A JSON parser's error message for a person: nlohmann's "[json.exception.parse_error.101] "
-/// prefix dropped, so what remains names the line and column.
-std::string json_error_text(std::string_view what);
 
 /// A request as read, its numbers kept as text so each precision converts them exactly once.
 struct Request {

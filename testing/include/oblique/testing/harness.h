@@ -59,8 +59,8 @@ bool left_out_by_reproduce(const std::string& id);
 
 /// Runs `testable` (RC_ macros and generators inside) as a RapidCheck property of the current test
 /// (RapidCheck id run_id(property)); fails the test with the report's path on a counterexample, and
-/// when the cases missed a family, convention or hard place the contract names (the `require_*`
-/// lists).
+/// when the cases missed a family, convention or hard place `require` names (its empty lists:
+/// every one).
 void run(const std::function<void()>& testable, Coverage coverage, const std::string& property = "",
          const Contract& require = Contract{});
 
@@ -100,21 +100,22 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
 }
 
 /// Runs each implementation on the case and judges each answer (judge(), with `checks` and the
-/// implementation's status contract, or `statuses` when given); fails the case on the first
-/// violation. Inputs properties::not_judged() leaves out for the contract are skipped and counted
-/// (Tally::left_out), except that inputs without an answer are judged where invalid inputs are
-/// the point (judge_statuses): there an answer to an input that allows none is the finding.
-/// `problem` is a Problem<T> or a FilteredProblem<T> (filtered.h: the same verdicts, most
-/// without GMP).
+/// implementation's status contract, or the statuses and refusals of `contract` when given);
+/// fails the case on the first violation. Inputs properties::not_judged() leaves out for the
+/// contract are skipped and counted (Tally::left_out), except that inputs without an answer are
+/// judged where invalid inputs are the point (judge_statuses): there an answer to an input that
+/// allows none is the finding. `problem` is a Problem<T> or a FilteredProblem<T> (filtered.h:
+/// the same verdicts, most without GMP).
 template <class T, class AnyProblem>
 void for_each_answer(const std::vector<Implementation<T>>& implementations,
                      const generators::Case<T>& c, const AnyProblem& problem, Checks checks,
-                     bool judge_statuses = false,
-                     std::optional<StatusContract> statuses = std::nullopt) {
+                     bool judge_statuses = false, const Contract* contract = nullptr) {
   for (const Implementation<T>& impl : implementations) {
     if (!impl.accepts(c.convention, c.matrix)) continue;
-    const StatusContract contract = statuses ? *statuses : impl.status_contract();
-    if (const std::string why = properties::not_judged(problem, contract); !why.empty()) {
+    const StatusContract statuses =
+        contract && contract->statuses ? *contract->statuses : impl.status_contract();
+    const std::vector<Status> refusals = contract ? contract->refusals : std::vector<Status>{};
+    if (const std::string why = properties::not_judged(problem, statuses, refusals); !why.empty()) {
       if (!judge_statuses || problem.exact_status() == Status::ok) {
         ++tally().left_out[why];
         continue;
@@ -122,25 +123,13 @@ void for_each_answer(const std::vector<Implementation<T>>& implementations,
     }
     ++tally().implementations[impl.name];
     const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
-    checks.statuses = contract;
+    checks.statuses = statuses;
     const Judgement judgement = judge(problem, outcome, checks);
     for (const Finding& f : judgement.checks) {
       if (f.kind != "status" && f.kind != "finite_result") ++tally().applied[f.kind];
     }
     if (const Finding* violation = judgement.violation()) fail_with(c, impl, *violation, &outcome);
   }
-}
-
-/// A valid case of the contract's families, conventions and places.
-template <class T>
-rc::Gen<generators::Case<T>> valid_case(const Contract& contract) {
-  return rc::gen::exec([contract] {
-    const generators::Case<T> c =
-        *generators::valid_case_in<T>(contract.families, contract.conventions);
-    RC_PRE(std::find(contract.places.begin(), contract.places.end(), c.place) !=
-           contract.places.end());
-    return c;
-  });
 }
 
 }  // namespace oblique::testing

@@ -8,8 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "oblique/depth_convention.h"
-#include "oblique/properties/generators.h"
+#include "oblique/properties/contract.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/status.h"
 
@@ -20,8 +19,10 @@ int default_threads();
 
 struct VerifyOptions {
   std::string command;  ///< the implementation, run under /bin/sh -c
-  std::vector<Convention> conventions{Convention::gl};
-  std::vector<generators::Family> families;  ///< empty: every family
+  /// What the implementation promises, and so which inputs it is sent and how its answers are
+  /// judged (the summary says what was left out). Its empty conventions mean gl (the protocol's
+  /// default), its unset statuses any_refusal (a program need not name our refusals).
+  Contract contract;
   protocol::Precision precision = protocol::Precision::float64;
   long cases = 0;                       ///< 0: no limit (the time limit ends the run)
   std::uint64_t seed = 0;               ///< 0: a fresh one (printed, so the run can be repeated)
@@ -35,19 +36,6 @@ struct VerifyOptions {
   /// Threads that judge answers (default: the machine's hardware threads).
   int threads = default_threads();
 
-  // The contract: what the implementation promises, and so which inputs it is sent and how its
-  // statuses are judged (the summary says what was left out).
-  /// Only inputs with an exact answer; refusals are not judged (StatusContract::answers_only).
-  bool answers_only = false;
-  /// The refusal codes it implements: inputs whose status is another are not sent, and the
-  /// others must get their exact status (StatusContract::exact). Empty: any refusal for any
-  /// input without an answer (StatusContract::any_refusal).
-  std::vector<Status> statuses;
-  /// Planes with a unit normal, as engines build them (the `scaled` place is then left out).
-  bool unit_planes = false;
-  std::vector<generators::Place> places;    ///< hard places sent (empty: every place)
-  std::vector<generators::Defect> defects;  ///< kinds of input without an answer (empty: all)
-
   /// Go on after a finding: each distinct kind (property x family x place) is shrunk once and
   /// reported, plus an index; the exit status is 1 if any was found.
   bool keep_going = false;
@@ -56,15 +44,6 @@ struct VerifyOptions {
   std::string regressions;       ///< replay every report kept here before the run
   std::string save_regressions;  ///< keep each new shrunk case here
 };
-
-/// Reads a contract file (JSON: "answers_only", "statuses", "planes", "places", "exclude",
-/// "families", "conventions") into `options`; false with `error`.
-bool read_contract(const std::string& path, VerifyOptions& options, std::string* error);
-
-/// Applies an --exclude list: family, place and defect names, removed from the options' lists
-/// (filled with every value first when empty); false with `error` for an unknown name.
-bool exclude_names(const std::vector<std::string>& names, VerifyOptions& options,
-                   std::string* error);
 
 /// Exit codes: 0 no violation within the budget, 1 a violation (or a crash or hang of the
 /// implementation) with a report written, 2 usage or protocol errors.

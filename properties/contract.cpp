@@ -1,0 +1,322 @@
+// The contract's JSON reader and writer, its name tables and its resolution.
+#include "oblique/properties/contract.h"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "oblique/protocol/json.h"
+#include "oblique/protocol/names.h"
+
+namespace oblique {
+
+namespace {
+
+using properties::Property;
+using properties::StatusContract;
+using protocol::JsonValue;
+
+constexpr StatusContract kStatusContracts[] = {StatusContract::exact, StatusContract::any_refusal,
+                                               StatusContract::answers_only};
+
+template <class E>
+bool contains(const std::vector<E>& list, E value) {
+  return std::find(list.begin(), list.end(), value) != list.end();
+}
+
+/// The JSON fields of a contract, in the writer's order.
+const std::vector<std::string>& field_names() {
+  static const std::vector<std::string> names = {"families",   "conventions",   "places",
+                                                 "planes",     "statuses",      "defects",
+                                                 "properties", "row3_accuracy", "exclude"};
+  return names;
+}
+
+/// Reads a list of names into `out` with `parse`; false with `error`.
+template <class E, class Parse>
+bool read_names(const JsonValue& v, const char* field, const char* what, Parse parse,
+                const std::vector<std::string>& known, std::vector<E>& out, std::string& error) {
+  if (!v.is(JsonValue::Kind::array)) {
+    error = std::string("\"") + field + "\" is a list of names, not " + protocol::kind_name(v.kind);
+    return false;
+  }
+  for (const JsonValue& item : v.items) {
+    if (!item.is(JsonValue::Kind::string)) {
+      error = std::string("\"") + field + "\" holds names, not " + protocol::kind_name(item.kind);
+      return false;
+    }
+    const auto value = parse(item.text);
+    if (!value) {
+      error = "\"" + std::string(field) + "\": " + protocol::unknown_name(what, item.text, known);
+      return false;
+    }
+    if (!contains(out, *value)) out.push_back(*value);
+  }
+  return true;
+}
+
+template <class E, class Name>
+std::string json_names(const std::vector<E>& list, Name name) {
+  std::string out = "[";
+  for (const E& e : list) out += (out.size() > 1 ? ", " : "") + protocol::json_string(name(e));
+  return out + "]";
+}
+
+std::optional<Status> parse_refusal(std::string_view name) {
+  const auto status = parse_status(name);
+  if (!status || *status == Status::ok) return std::nullopt;
+  return status;
+}
+
+}  // namespace
+
+std::string_view status_contract_name(StatusContract s) noexcept {
+  switch (s) {
+    case StatusContract::exact: return "exact";
+    case StatusContract::any_refusal: return "any_refusal";
+    case StatusContract::answers_only: return "answers_only";
+  }
+  return "unknown";
+}
+
+std::optional<StatusContract> parse_status_contract(std::string_view name) noexcept {
+  for (StatusContract s : kStatusContracts) {
+    if (status_contract_name(s) == name) return s;
+  }
+  return std::nullopt;
+}
+
+std::optional<Property> parse_property(std::string_view name) noexcept {
+  for (Property p : properties::Checks{}.properties) {
+    if (properties::property_name(p) == name) return p;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> family_names() {
+  return protocol::names_of<generators::Family>(generators::all_families, generators::family_name);
+}
+std::vector<std::string> convention_names() {
+  return protocol::names_of<Convention>(all_conventions, convention_name);
+}
+std::vector<std::string> place_names() {
+  return protocol::names_of<generators::Place>(generators::all_places, generators::place_name);
+}
+std::vector<std::string> defect_names() {
+  return protocol::names_of<generators::Defect>(generators::all_defects, generators::defect_name);
+}
+std::vector<std::string> property_names() {
+  return protocol::names_of<Property>(properties::Checks{}.properties, properties::property_name);
+}
+std::vector<std::string> refusal_names() {
+  std::vector<std::string> out;
+  for (Status s : all_statuses) {
+    if (s != Status::ok) out.emplace_back(status_code(s));
+  }
+  return out;
+}
+std::vector<std::string> status_contract_names() {
+  return protocol::names_of<StatusContract>(kStatusContracts, status_contract_name);
+}
+
+Contract resolved(Contract c, const std::vector<Convention>& own_conventions,
+                  StatusContract own_statuses, bool own_row3_accuracy) {
+  if (!c.row3_accuracy) c.row3_accuracy = own_row3_accuracy;
+  if (c.families.empty()) c.families = generators::every_family();
+  if (c.conventions.empty()) c.conventions = own_conventions;
+  if (c.places.empty()) c.places = generators::every_place();
+  if (c.planes == Planes::unit && c.places.size() > 1)
+    c.places.erase(std::remove(c.places.begin(), c.places.end(), generators::Place::scaled),
+                   c.places.end());
+  if (!c.statuses) c.statuses = own_statuses;
+  if (c.defects.empty())
+    c.defects.assign(std::begin(generators::all_defects), std::end(generators::all_defects));
+  if (c.properties.empty()) c.properties = properties::Checks{}.properties;
+  return c;
+}
+
+Expected<Contract> exclude(Contract c, const std::vector<std::string>& names) {
+  auto drop = [](auto& list, auto value, const auto& every) {
+    if (list.empty()) list.assign(std::begin(every), std::end(every));
+    list.erase(std::remove(list.begin(), list.end(), value), list.end());
+  };
+  bool families_named = false, places_named = false, defects_named = false;
+  for (const std::string& name : names) {
+    if (auto f = generators::parse_family(name)) {
+      drop(c.families, *f, generators::all_families);
+      families_named = true;
+    } else if (auto p = generators::parse_place(name)) {
+      drop(c.places, *p, generators::all_places);
+      places_named = true;
+    } else if (auto d = generators::parse_defect(name)) {
+      drop(c.defects, *d, generators::all_defects);
+      defects_named = true;
+    } else {
+      std::vector<std::string> known = family_names();
+      for (auto* more : {place_names, defect_names}) {
+        const std::vector<std::string> m = more();
+        known.insert(known.end(), m.begin(), m.end());
+      }
+      return Expected<Contract>::failure(
+          "exclude: " + protocol::unknown_name(
+                            "family, hard place or kind of input without an answer", name, known));
+    }
+  }
+  if (families_named && c.families.empty())
+    return Expected<Contract>::failure("exclude leaves no family");
+  if (places_named && c.places.empty())
+    return Expected<Contract>::failure("exclude leaves no hard place");
+  if (defects_named && c.defects.empty())
+    return Expected<Contract>::failure(
+        "exclude leaves no kind of input without an answer (say \"statuses\": \"answers_only\")");
+  return c;
+}
+
+namespace {
+
+/// Reads one field of a contract's JSON form into `c` ("exclude" into `excluded`); "" or why not.
+std::string read_field(Contract& c, const std::string& key, const JsonValue& value,
+                       std::vector<std::string>& excluded) {
+  std::string error;
+  if (key == "families") {
+    read_names(value, "families", "family", generators::parse_family, family_names(), c.families,
+               error);
+  } else if (key == "conventions") {
+    const bool all = value.is(JsonValue::Kind::array) && value.items.size() == 1 &&
+                     value.items[0].is(JsonValue::Kind::string) && value.items[0].text == "all";
+    if (all)
+      c.conventions.assign(std::begin(all_conventions), std::end(all_conventions));
+    else
+      read_names(value, "conventions", "convention", parse_convention, convention_names(),
+                 c.conventions, error);
+  } else if (key == "places") {
+    read_names(value, "places", "hard place", generators::parse_place, place_names(), c.places,
+               error);
+  } else if (key == "defects") {
+    read_names(value, "defects", "kind of input without an answer", generators::parse_defect,
+               defect_names(), c.defects, error);
+  } else if (key == "properties") {
+    read_names(value, "properties", "property", parse_property, property_names(), c.properties,
+               error);
+  } else if (key == "planes") {
+    if (!value.is(JsonValue::Kind::string) || (value.text != "unit" && value.text != "any"))
+      return "\"planes\" is \"unit\" or \"any\"";
+    c.planes = value.text == "unit" ? Planes::unit : Planes::any;
+  } else if (key == "statuses") {
+    if (value.is(JsonValue::Kind::string)) {
+      c.statuses = parse_status_contract(value.text);
+      if (!c.statuses)
+        return "\"statuses\": " +
+               protocol::unknown_name("status contract", value.text, status_contract_names()) +
+               ", or a list of refusal codes";
+      c.refusals.clear();
+    } else if (read_names(value, "statuses", "refusal status", parse_refusal, refusal_names(),
+                          c.refusals, error)) {
+      c.statuses = StatusContract::exact;
+    }
+  } else if (key == "row3_accuracy") {
+    if (!value.is(JsonValue::Kind::boolean)) return "\"row3_accuracy\" is true or false";
+    c.row3_accuracy = value.text == "true";
+  } else if (key == "exclude") {
+    if (!value.is(JsonValue::Kind::array)) return "\"exclude\" is a list of names";
+    for (const JsonValue& item : value.items) {
+      if (!item.is(JsonValue::Kind::string)) return "\"exclude\" holds names";
+      excluded.push_back(item.text);
+    }
+  } else if (key == "answers_only") {
+    return "\"answers_only\": true is said \"statuses\": \"answers_only\" in a contract";
+  } else {
+    return protocol::unknown_name("field", key, field_names());
+  }
+  return error;
+}
+
+}  // namespace
+
+Expected<Contract> read_contract(std::string_view text) {
+  Expected<JsonValue> tree = protocol::parse_json(text, protocol::JsonLimits{4096, 4});
+  if (!tree) return Expected<Contract>::failure(tree.error());
+  if (!tree->is(JsonValue::Kind::object))
+    return Expected<Contract>::failure(std::string("a contract is a JSON object, not ") +
+                                       protocol::kind_name(tree->kind));
+  Contract c;
+  std::vector<std::string> excluded;
+  for (const auto& [key, value] : tree->members) {
+    if (std::string error = read_field(c, key, value, excluded); !error.empty())
+      return Expected<Contract>::failure(error);
+  }
+  return exclude(std::move(c), excluded);
+}
+
+Expected<Contract> with_field(Contract c, const std::string& field,
+                              const std::vector<std::string>& names) {
+  if (field == "statuses" && names.size() == 1 && !parse_status_contract(names.front()) &&
+      !parse_refusal(names.front())) {
+    std::vector<std::string> known = status_contract_names();
+    for (const std::string& r : refusal_names()) known.push_back(r);
+    return Expected<Contract>::failure(
+        "statuses: " + protocol::unknown_name("status contract or refusal", names.front(), known));
+  }
+  JsonValue value;
+  const bool one_word = field == "planes" || (field == "statuses" && names.size() == 1 &&
+                                              parse_status_contract(names.front()).has_value());
+  if (one_word && names.size() == 1) {
+    value.kind = JsonValue::Kind::string;
+    value.text = names.front();
+  } else {
+    value.kind = JsonValue::Kind::array;
+    for (const std::string& name : names) {
+      JsonValue item;
+      item.kind = JsonValue::Kind::string;
+      item.text = name;
+      value.items.push_back(std::move(item));
+    }
+  }
+  if (field == "families") c.families.clear();
+  if (field == "conventions") c.conventions.clear();
+  if (field == "places") c.places.clear();
+  if (field == "defects") c.defects.clear();
+  if (field == "properties") c.properties.clear();
+  if (field == "statuses") c.refusals.clear();
+  std::vector<std::string> excluded;
+  if (std::string error = read_field(c, field, value, excluded); !error.empty())
+    return Expected<Contract>::failure(error);
+  return exclude(std::move(c), excluded);
+}
+
+Expected<Contract> read_contract_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return Expected<Contract>::failure("cannot read the contract file " + path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (!file.good() && !file.eof())
+    return Expected<Contract>::failure("cannot read the contract file " + path);
+  Expected<Contract> c = read_contract(text.str());
+  if (!c) return Expected<Contract>::failure(path + ": " + c.error());
+  return c;
+}
+
+std::string contract_json(const Contract& c) {
+  std::string out;
+  auto field = [&](const char* name, const std::string& value) {
+    out += std::string(out.empty() ? "{" : ", ") + "\"" + name + "\": " + value;
+  };
+  if (!c.families.empty()) field("families", json_names(c.families, generators::family_name));
+  if (!c.conventions.empty()) field("conventions", json_names(c.conventions, convention_name));
+  if (!c.places.empty()) field("places", json_names(c.places, generators::place_name));
+  if (c.planes == Planes::unit) field("planes", "\"unit\"");
+  if (c.statuses) {
+    if (*c.statuses == StatusContract::exact && !c.refusals.empty())
+      field("statuses", json_names(c.refusals, status_code));
+    else
+      field("statuses", protocol::json_string(status_contract_name(*c.statuses)));
+  }
+  if (!c.defects.empty()) field("defects", json_names(c.defects, generators::defect_name));
+  if (!c.properties.empty())
+    field("properties", json_names(c.properties, properties::property_name));
+  if (c.row3_accuracy) field("row3_accuracy", *c.row3_accuracy ? "true" : "false");
+  return out.empty() ? "{}" : out + "}";
+}
+
+}  // namespace oblique
