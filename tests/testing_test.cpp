@@ -3,7 +3,12 @@
 
 #include <gtest/gtest-spi.h>
 
+#include <algorithm>
+#include <iterator>
+
 #include "oblique/oblique.h"
+#include "oblique/properties/generators.h"
+#include "oblique/properties/seeded_recipes.h"
 
 namespace oblique {
 namespace {
@@ -44,6 +49,60 @@ TEST(Testing, theGlFunctionJudgedInAnotherConventionFails) {
   zero_one.statuses = properties::StatusContract::answers_only;  // one run, so one failure
   EXPECT_NONFATAL_FAILURE(testing::check_properties(claims_all, zero_one),
                           "violates far_plane_through_corner");
+}
+
+// The presets admit what adapter.h's table says, family by family, in every convention.
+TEST(Presets, admitTheFamiliesTheirTableLists) {
+  using generators::Family;
+  const Family engine[] = {Family::perspective, Family::off_axis, Family::jittered,
+                           Family::infinite};
+  const Family shape_only[] = {Family::y_flipped, Family::x_flipped, Family::xy_flipped};
+  rc::Random random(20261203);
+  for (Family f : generators::all_families) {
+    const bool in_engine = std::find(std::begin(engine), std::end(engine), f) != std::end(engine);
+    const bool in_shape = in_engine || std::find(std::begin(shape_only), std::end(shape_only), f) !=
+                                           std::end(shape_only);
+    for (int i = 0; i < 60; ++i) {
+      const generators::Case<double> c =
+          generators::valid_case_of<double>(f)(random.split(), i % 101).value();
+      EXPECT_EQ(perspective_shape_only<double>(c.convention, c.matrix), in_shape)
+          << generators::family_name(f) << " " << convention_name(c.convention);
+      EXPECT_EQ(engine_perspective_only<double>(c.convention, c.matrix), in_engine)
+          << generators::family_name(f) << " " << convention_name(c.convention);
+    }
+  }
+  Matrix4<double> left_handed = frustum<double>(-1, 1, -1, 1, 1, 10, Convention::gl);
+  left_handed.col(2) *= -1;  // M43 = +1
+  EXPECT_TRUE(perspective_shape_only<double>(Convention::gl, left_handed));
+  EXPECT_FALSE(engine_perspective_only<double>(Convention::gl, left_handed));
+}
+
+/// Lengyel's Listing 5.1 as printed (GL, no guards), pointer-style.
+void listing_5_1(double m[16], const double plane[4]) {
+  const Matrix4<double> result =
+      seeded::listing_5_1<double>(adapting::load(m, Layout::column_major),
+                                  Vector4<double>(plane[0], plane[1], plane[2], plane[3]));
+  adapting::store(result, Layout::column_major, m);
+}
+
+// What the presets are for: the printed closed form holds on the matrices an engine builds, and
+// is caught on the rest of the perspective shape.
+const auto listing_on_engine_matrices =
+    adapt<double>("listing_5_1", Layout::column_major, Convention::gl, listing_5_1,
+                  engine_perspective_only<double>);
+OBLIQUE_PROPERTY_TEST(Presets, listing51HoldsOnTheMatricesAnEngineBuilds,
+                      listing_on_engine_matrices, Contract{})
+
+TEST(Presets, listing51IsCaughtOnTheRestOfThePerspectiveShape) {
+  const auto on_every_shape = adapt<double>("listing_5_1", Layout::column_major, Convention::gl,
+                                            listing_5_1, perspective_shape_only<double>);
+  ::testing::TestPartResultArray failures;
+  {
+    ::testing::ScopedFakeTestPartResultReporter reporter(
+        ::testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &failures);
+    testing::check_properties(on_every_shape, Contract{});
+  }
+  EXPECT_GT(failures.size(), 0) << "Listing 5.1 passed on flipped matrices";
 }
 
 }  // namespace

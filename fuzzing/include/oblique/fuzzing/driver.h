@@ -230,14 +230,58 @@ inline void describe(const FuzzCase& c, std::FILE* out = stderr) {
   }
 }
 
+/// Prints the input as the function was given it: in its scalar type T (the decoder's scalar byte
+/// picks T only for the project's own target), each number in shortest decimal and exact hex.
+template <class T>
+void describe_input(const FuzzCase& c, const Matrix4<T>& m, const Vector4<T>& plane,
+                    std::FILE* out = stderr) {
+  using protocol::format_number;
+  using protocol::Notation;
+  std::fprintf(out, "input (%s, %s convention, %s projection):\n",
+               std::string(protocol::scalar_name<T>()).c_str(),
+               std::string(convention_name(c.convention)).c_str(), family_label(c.family));
+  for (int i = 0; i < 5; ++i) {
+    std::string decimal, hex;
+    for (int j = 0; j < 4; ++j) {
+      const T x = i < 4 ? m(i, j) : plane(j);
+      decimal += " " + format_number<T>(x);
+      hex += (j ? " " : "") + format_number<T>(x, Notation::hex);
+    }
+    if (i < 4)
+      std::fprintf(out, "  M row %d:%s  (%s)\n", i + 1, decimal.c_str(), hex.c_str());
+    else
+      std::fprintf(out, "  C:%s  (%s)\n", decimal.c_str(), hex.c_str());
+  }
+}
+
+/// What the input allows, in words: an answer, no answer (its status), or an answer that lies
+/// within rounding in T of a status boundary, where a refusal is right too.
+template <class AnyProblem>
+std::string allowed_words(const AnyProblem& problem, const char* scalar) {
+  const Status exact = problem.exact_status();
+  std::vector<Status> refusals;
+  for (Status s : problem.acceptable_statuses()) {
+    if (s != Status::ok && s != exact) refusals.push_back(s);
+  }
+  std::string out = exact == Status::ok
+                        ? "the input has an answer"
+                        : "the input has no answer: " + std::string(status_code(exact));
+  if (!refusals.empty()) {
+    out += exact == Status::ok ? "; it lies within rounding in " + std::string(scalar) +
+                                     " of a boundary, so a refusal is right too: "
+                               : "; right too: ";
+    out += properties::status_list(refusals);
+  }
+  return out;
+}
+
 /// Prints what the checker knows of the case and the answer, and every check that fails.
 template <class T>
 void explain(const properties::Problem<T>& problem, const properties::Outcome<T>& outcome,
              std::FILE* out = stderr) {
   using protocol::format_number;
-  std::fprintf(out, "exact status %s; acceptable: %s; Skeel condition %s; kappa %s\n",
-               std::string(status_code(problem.exact_status())).c_str(),
-               properties::status_list(problem.acceptable_statuses()).c_str(),
+  std::fprintf(out, "%s (Skeel condition %s, kappa %s)\n",
+               allowed_words(problem, std::string(protocol::scalar_name<T>()).c_str()).c_str(),
                format_number(problem.skeel_condition()).c_str(),
                format_number(problem.kappa().get_d()).c_str());
   if (outcome.status != Status::ok || problem.exact_status() != Status::ok) return;
@@ -365,13 +409,13 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
   const properties::Judgement judgement = judge.judge(outcome, checks);
   const properties::Finding* violation = judgement.violation();
   if (!violation) return;
-  if (!describing()) describe(c);
+  describe_input<T>(c, m, plane);
   explain(judge.problem().exact(), outcome);
-  std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, family %s, status %s)\n",
+  std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, %s projection): it %s\n",
                violation->kind.c_str(), impl.name.c_str(),
                std::string(protocol::scalar_name<T>()).c_str(),
                std::string(convention_name(c.convention)).c_str(), family_label(c.family),
-               std::string(status_code(outcome.status)).c_str());
+               impl.answer_words(outcome.status).c_str());
   std::abort();
 }
 

@@ -151,11 +151,35 @@ properties::Implementation<T> adapt(
   return adapting::wrap<T>(std::move(name), layout, std::move(function), std::move(accepts));
 }
 
-/// For `adapt`'s `accepts`: only matrices of the standard perspective shape (a closed form such
-/// as Listing 5.1 reads only the entries that shape has).
+// Presets for `adapt`'s `accepts`, the inputs a closed form is meant for. What each admits, by
+// generator family (oblique/properties/case_kinds.h):
+//
+//   preset                   perspective off_axis jittered infinite y_flipped x_flipped xy_flipped
+//   perspective_shape_only        yes       yes      yes      yes       yes       yes       yes
+//   engine_perspective_only       yes       yes      yes      yes        -         -          -
+//
+// and neither admits orthographic, rotated, general or stereo_shift matrices.
+// perspective_shape_only also admits a left-handed M43 = +1 and any sign of M34, so a closed form
+// written for the matrix an engine builds (Lengyel's Listing 5.1 assumes M43 = -1 and positive
+// M11, M22) fails there: give it engine_perspective_only.
+
+/// Only matrices of the standard perspective shape (projection.h's has_perspective_shape(): the
+/// entries a closed form reads, whatever their signs).
 template <class T>
 bool perspective_shape_only(Convention, const Matrix4<T>& m) {
   return has_perspective_shape(m);
+}
+
+/// Only the perspective matrix an engine's builder makes (glFrustum, glm::perspective, a
+/// right-handed Direct3D or Vulkan projection before any flip): the perspective shape with
+/// M43 = -1, M11 > 0, M22 > 0 and the near plane in front of the camera (M34 < 0; reversed Z,
+/// where depth runs the other way: M34 > 0). Jittered and off-axis (M13, M23) and infinite ones
+/// included.
+template <class T>
+bool engine_perspective_only(Convention convention, const Matrix4<T>& m) {
+  const bool near_in_front = convention == Convention::reversed_z ? m(2, 3) > T(0) : m(2, 3) < T(0);
+  return has_perspective_shape(m) && m(3, 2) == T(-1) && m(0, 0) > T(0) && m(1, 1) > T(0) &&
+         near_in_front;
 }
 
 }  // namespace oblique

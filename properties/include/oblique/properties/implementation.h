@@ -32,6 +32,14 @@ struct Implementation {
   /// infinity for none beyond the conditioning-aware bounds.
   double max_ulps = std::numeric_limits<double>::infinity();
 
+  /// What it answered, in its own words: a void function answers, a bool one refuses by
+  /// returning false, a Status one names the status.
+  std::string answer_words(Status status) const {
+    if (status == Status::ok) return reports_statuses ? "answered ok" : "answered";
+    if (own_refusals) return "refused (returned false)";
+    return "answered " + std::string(status_code(status));
+  }
+
   /// How judge() treats its statuses.
   StatusContract status_contract() const {
     if (!reports_statuses) return StatusContract::answers_only;

@@ -95,7 +95,8 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
                         outcome && outcome->status == Status::ok ? &outcome->projection : nullptr);
   tally().failure = ce;
   if (finding.kind == "status")
-    RC_FAIL(impl.name + " answered " + finding.got + ", expected " + finding.expected);
+    RC_FAIL(impl.name + " " + impl.answer_words(outcome ? outcome->status : Status::ok) +
+            "; right: " + finding.expected);
   RC_FAIL(impl.name + " violates " + finding.kind + ": " + finding.lhs + " against " + finding.rhs);
 }
 
