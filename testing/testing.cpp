@@ -1,6 +1,9 @@
 // oblique::testing's bodies: RapidCheck's runner (its rc::detail interface stays here, out of the
 // headers users include), the run's tally and reports, check_properties() for the three scalars.
+#include <unistd.h>
+
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -12,7 +15,12 @@
 namespace oblique::testing {
 
 Settings& settings() {
-  static Settings s;
+  static Settings s = [] {
+    Settings initial;
+    const char* statistics = std::getenv("OBLIQUE_STATISTICS");
+    initial.statistics = statistics && *statistics && std::string(statistics) != "0";
+    return initial;
+  }();
   return s;
 }
 
@@ -73,6 +81,43 @@ std::string run_id(const std::string& property) {
   return property.empty() ? id : id + "/" + property;
 }
 
+namespace {
+
+/// After a passing run of a property: the report an earlier run wrote for it (every file named
+/// STEM.*) is moved, never deleted, to DIR/earlier/<UTC time>-<pid>/, so the reports folder shows
+/// what the last runs found. A move that fails is said and the files stay.
+void move_earlier_reports(const properties::ReportContext& context) {
+  namespace fs = std::filesystem;
+  if (context.stem.empty()) return;
+  std::error_code error;
+  const fs::path directory = context.directory;
+  const std::string prefix = context.stem + ".";
+  std::vector<fs::path> found;
+  for (fs::directory_iterator it(directory, error), end; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(prefix, 0) == 0 && it->is_regular_file(error)) found.push_back(it->path());
+  }
+  if (found.empty()) return;
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", std::gmtime(&now));
+  const fs::path target =
+      directory / "earlier" / (std::string(stamp) + "-" + std::to_string(::getpid()));
+  fs::create_directories(target, error);
+  for (const fs::path& file : found) {
+    if (!error) fs::rename(file, target / file.filename(), error);
+  }
+  if (error) {
+    std::cout << "note: could not move the earlier report " << prefix << "md to " << target.string()
+              << " (" << error.message() << "); it is left where it was\n";
+    return;
+  }
+  std::cout << "passes now: the earlier report " << prefix << "md was moved to " << target.string()
+            << "\n";
+}
+
+}  // namespace
+
 bool left_out_by_reproduce(const std::string& id) {
   const auto& reproduce = rc::detail::configuration().reproduce;
   return !reproduce.empty() && reproduce.count(id) == 0;
@@ -98,19 +143,28 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   std::ostringstream message;
   rc::detail::printResultMessage(result, message);
   const Tally& t = tally();
-  std::cout << (property.empty() ? "" : property + ": ") << message.str()
-            << "\nran: " << summary(t.implementations) << "\nfamilies: " << summary(t.families)
-            << "\nconventions: " << summary(t.conventions) << "\nplaces: " << summary(t.places);
-  if (!t.defects.empty()) std::cout << "\ndefects: " << summary(t.defects);
-  if (!t.applied.empty()) std::cout << "\napplied: " << summary(t.applied);
-  if (!t.left_out.empty()) std::cout << "\nleft out: " << summary(t.left_out);
-  std::cout << std::endl;
-  if (!result.is<rc::detail::SuccessResult>()) {
+  std::ostringstream statistics;
+  statistics << "ran: " << summary(t.implementations) << "\nfamilies: " << summary(t.families)
+             << "\nconventions: " << summary(t.conventions) << "\nplaces: " << summary(t.places);
+  if (!t.defects.empty()) statistics << "\ndefects: " << summary(t.defects);
+  if (!t.applied.empty()) statistics << "\napplied: " << summary(t.applied);
+  if (!t.left_out.empty()) statistics << "\nleft out: " << summary(t.left_out);
+  const std::string name = property.empty() ? "" : property + ": ";
+  rc::detail::SuccessResult success;
+  if (!result.match(success)) {
+    // Printed once, as the test's failure: RapidCheck's message, the statistics, the report.
     std::string where;
     if (t.failure) where = "\nreport: " + write_report(*t.failure, report_context(property));
-    ADD_FAILURE() << (property.empty() ? "" : property + ": ") << message.str() << where;
+    ADD_FAILURE() << name << message.str() << "\n" << statistics.str() << where;
     return;
   }
+  // A pass is one line; the tag table and the statistics with OBLIQUE_STATISTICS=1.
+  std::cout << name << "OK, passed " << success.numSuccess << " tests";
+  if (!t.left_out.empty()) std::cout << " (left out: " << summary(t.left_out) << ")";
+  std::cout << "\n";
+  if (settings().statistics) std::cout << message.str() << "\n" << statistics.str() << "\n";
+  if (!property.empty() && !reproducing) move_earlier_reports(report_context(property));
+  std::cout << std::flush;
   if (t.implementations.empty()) {
     ADD_FAILURE() << id
                   << ": no implementation ran: check OBLIQUE_IMPL and the contract (or the "

@@ -3,7 +3,11 @@
 
 #include <gtest/gtest-spi.h>
 
+#include <stdlib.h>
+
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <iterator>
 
 #include "oblique/oblique.h"
@@ -49,6 +53,37 @@ TEST(Testing, theGlFunctionJudgedInAnotherConventionFails) {
   zero_one.statuses = properties::StatusContract::answers_only;  // one run, so one failure
   EXPECT_NONFATAL_FAILURE(testing::check_properties(claims_all, zero_one),
                           "violates far_plane_through_corner");
+}
+
+// A pass is one line per property, and a report an earlier run left for a property that passes
+// now is moved to earlier/ (kept, not deleted); other reports stay where they are.
+TEST(Testing, aPassIsOneLineAndEarlierReportsAreMovedAside) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "oblique_testing_earlier_reports";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string id = "Testing.aPassIsOneLineAndEarlierReportsAreMovedAside";
+  std::ofstream(dir / (id + ".near_is_clip_plane.md")) << "an earlier failure\n";
+  std::ofstream(dir / (id + ".near_is_clip_plane.json")) << "{}\n";
+  std::ofstream(dir / (id + ".no_clipping.md")) << "another property's\n";
+  ASSERT_EQ(::setenv("OBLIQUE_REPORT_DIR", dir.c_str(), 1), 0);
+  Contract one;
+  one.properties = {properties::Property::near_is_clip_plane};
+  one.statuses = properties::StatusContract::answers_only;
+  ::testing::internal::CaptureStdout();
+  testing::check_properties(gl_only, one);
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  ::unsetenv("OBLIQUE_REPORT_DIR");
+  EXPECT_EQ(out.find("families:"), std::string::npos) << out;
+  EXPECT_EQ(out.rfind("near_is_clip_plane: OK, passed 100 tests", 0), 0u) << out;
+  EXPECT_FALSE(fs::exists(dir / (id + ".near_is_clip_plane.md")));
+  EXPECT_TRUE(fs::exists(dir / (id + ".no_clipping.md")));
+  int moved = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "earlier")) {
+    const std::string name = entry.path().filename().string();
+    moved += name == id + ".near_is_clip_plane.md" || name == id + ".near_is_clip_plane.json";
+  }
+  EXPECT_EQ(moved, 2);
 }
 
 // The presets admit what adapter.h's table says, family by family, in every convention.

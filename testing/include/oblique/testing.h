@@ -12,8 +12,11 @@
 // of the contract is a RapidCheck run over the project's generators (every family, convention
 // and hard place the contract names), shrunk on failure to a small counterexample
 // written as Markdown + JSON (OBLIQUE_REPORT_DIR, default ./oblique-reports) with the command
-// that replays it. The statistics (families, conventions, places, checks applied) are printed,
-// and a run that missed a family, convention or hard place of the contract fails.
+// that replays it. A passing run prints one line (OBLIQUE_STATISTICS=1 adds the families,
+// conventions, places and checks applied), a failure is printed once, and a run that missed a
+// family, convention or hard place of the contract fails. A report an earlier run wrote for a
+// property that now passes is moved to OBLIQUE_REPORT_DIR/earlier/, so the folder shows what the
+// last runs found.
 //
 // RC_PARAMS works as RapidCheck documents it: "seed=S max_success=N" and, pasted from a failure,
 // "reproduce=..." (tests and properties it does not name are skipped, with a message).
@@ -48,6 +51,9 @@ struct Settings {
   /// The replay command repeats the run with OBLIQUE_IMPL=<implementation> (the project's own
   /// suite, which picks implementations by name); otherwise with the seed alone.
   bool replay_names_implementation = false;
+  /// Print each passing run's case statistics (families, conventions, places, checks applied,
+  /// RapidCheck's tags) too; a pass is otherwise one line. Set by OBLIQUE_STATISTICS=1.
+  bool statistics = false;
 };
 
 /// The settings of this test program (set them before the tests run).
