@@ -1,0 +1,89 @@
+#include "batches.h"
+
+#include <algorithm>
+#include <future>
+
+namespace oblique::verify {
+
+template <class T>
+std::string Batch<T>::text() const {
+  std::string out;
+  for (const std::string& r : requests) {
+    out += r;
+    out += '\n';
+  }
+  return out;
+}
+
+template <class T>
+Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
+                    std::map<std::string, long>& left_out) {
+  Batch<T> b;
+  for (std::size_t k = 0, tries = 0; k < size && tries < 64 * size + 64; ++tries) {
+    rc::Shrinkable<VerifyCase<T>> drawn =
+        draws.generator()(random.split(), static_cast<int>(tries % 101));
+    VerifyCase<T> value = drawn.value();
+    if (draws.needs_status()) {
+      auto problem = std::make_unique<properties::FilteredProblem<T>>(value.c.matrix, value.c.plane,
+                                                                      value.c.convention);
+      if (const std::string why = draws.left_out(*problem); !why.empty()) {
+        ++left_out[why];
+        continue;
+      }
+      b.problems.push_back(std::move(problem));
+    } else {
+      b.problems.push_back(nullptr);
+    }
+    ++k;
+    b.cases.push_back(std::move(drawn));
+    b.values.push_back(std::move(value));
+    b.requests.push_back(request_text(b.values.back().c));
+  }
+  return b;
+}
+
+template <class T>
+std::vector<Judged<T>> judge_batch(const Draws<T>& draws, const Batch<T>& b,
+                                   const std::vector<std::string>& answers, int threads) {
+  std::vector<Judged<T>> out(answers.size());
+  auto judge_range = [&](std::size_t from, std::size_t to) {
+    for (std::size_t k = from; k < to; ++k) {
+      const Expected<Answered<T>> answered = read_answer<T>(answers[k]);
+      if (!answered) {
+        out[k].protocol_error = answered.error();
+        continue;
+      }
+      const VerifyCase<T>& v = b.values[k];
+      if (b.problems[k]) {
+        out[k].finding = judge(*b.problems[k], *answered, draws.checks());
+      } else {
+        const properties::FilteredProblem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+        out[k].finding = judge(problem, *answered, draws.checks());
+      }
+    }
+  };
+  constexpr std::size_t kMinSlice = 8;  // below this a thread costs more than it saves
+  const std::size_t slices = std::max<std::size_t>(
+      1, std::min<std::size_t>(static_cast<std::size_t>(threads), answers.size() / kMinSlice));
+  const std::size_t size = (answers.size() + slices - 1) / slices;
+  std::vector<std::future<void>> others;
+  for (std::size_t i = 1; i < slices; ++i) {
+    others.push_back(std::async(std::launch::async, judge_range, i * size,
+                                std::min(answers.size(), (i + 1) * size)));
+  }
+  judge_range(0, std::min(answers.size(), size));
+  for (auto& other : others) other.get();
+  return out;
+}
+
+#define OBLIQUE_VERIFY_BATCHES(T)                                                  \
+  template struct Batch<T>;                                                        \
+  template Batch<T> draw_batch<T>(const Draws<T>&, rc::Random&, std::size_t,       \
+                                  std::map<std::string, long>&);                   \
+  template std::vector<Judged<T>> judge_batch<T>(const Draws<T>&, const Batch<T>&, \
+                                                 const std::vector<std::string>&, int);
+OBLIQUE_VERIFY_BATCHES(float)
+OBLIQUE_VERIFY_BATCHES(double)
+#undef OBLIQUE_VERIFY_BATCHES
+
+}  // namespace oblique::verify

@@ -1,0 +1,98 @@
+// oblique verify's cases: the contract into draws (the generator, the checks, what it leaves
+// out), an answer line read back, and its judgement. Internal to oblique::verify.
+#pragma once
+
+#include <rapidcheck.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "oblique/expected.h"
+#include "oblique/properties/checks.h"
+#include "oblique/properties/contract.h"
+#include "oblique/properties/filtered.h"
+#include "oblique/properties/finding.h"
+#include "oblique/properties/generators.h"
+
+namespace oblique::verify {
+
+/// One generated input: a valid-looking case, or one spoiled by a defect.
+template <class T>
+struct VerifyCase {
+  generators::Case<T> c;
+  bool has_defect = false;
+  generators::Defect defect = generators::Defect::camera_in_front;
+
+  /// The hard place, or "no answer: DEFECT".
+  std::string kind() const;
+};
+
+/// An answer as read back: the outcome judge() takes, and the message of a refusal.
+template <class T>
+struct Answered {
+  properties::Outcome<T> outcome{Status::ok, Matrix4<T>::Zero()};
+  std::string message;
+};
+
+/// What went wrong with one answer (or with the process while it was answering): the finding
+/// and its evidence.
+template <class T>
+struct Found {
+  properties::Finding finding;  ///< kind: "status", a property, ..., or "crash", "timeout"
+  std::optional<Matrix4<T>> result;
+  std::string answer_line, process;
+};
+
+/// The run's contract, resolved for a program (conventions gl, statuses any_refusal and row 3's
+/// accuracy unless it says otherwise), and what follows from it: the generator of cases, the
+/// checks of each answer, and which inputs are not sent.
+template <class T>
+class Draws {
+ public:
+  explicit Draws(const Contract& given);
+
+  const Contract& contract() const { return contract_; }
+  const properties::Checks& checks() const { return checks_; }
+  const rc::Gen<VerifyCase<T>>& generator() const { return generator_; }
+  /// What the contract leaves out whatever is drawn ("place scaled (unit-normal planes)", ...).
+  const std::vector<std::string>& notes() const { return notes_; }
+  /// Whether some inputs are left out by their status (the contract lacks a refusal).
+  bool needs_status() const;
+  /// Why the contract leaves out this input ("" when it is sent): properties::not_judged(), the
+  /// rule every tool shares.
+  std::string left_out(const properties::FilteredProblem<T>& problem) const;
+
+ private:
+  Contract contract_;
+  properties::Checks checks_;
+  rc::Gen<VerifyCase<T>> generator_;
+  std::vector<std::string> notes_;
+};
+
+/// The request line of a case.
+template <class T>
+std::string request_text(const generators::Case<T>& c);
+
+/// One answer line read back in T, or why it is not an answer of the protocol.
+template <class T>
+Expected<Answered<T>> read_answer(const std::string& line);
+
+/// The suite's judgement under the run's checks: the first violation, or none. `problem` is the
+/// filtered checker (the exact checker's verdicts, most without GMP; used by one thread only).
+template <class T>
+std::optional<Found<T>> judge(const properties::FilteredProblem<T>& problem, const Answered<T>& a,
+                              const properties::Checks& checks);
+
+/// What the judged cases covered, for the summary of a passing run.
+struct Seen {
+  std::map<std::string, long> families, conventions, places, defects;
+
+  template <class T>
+  void count(const VerifyCase<T>& v);
+  /// "name count, ..." or "none".
+  static std::string summary(const std::map<std::string, long>& counts);
+};
+
+}  // namespace oblique::verify

@@ -1,0 +1,179 @@
+#include "failure_database.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+#include <vector>
+
+#include "oblique/protocol/json.h"
+#include "oblique/protocol/protocol.h"
+
+namespace oblique::verify {
+
+namespace {
+
+/// A report's JSON, or why it cannot be read (reports hold pictures' data: generous limits).
+Expected<protocol::JsonValue> read_report(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return Expected<protocol::JsonValue>::failure("cannot read " + path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  Expected<protocol::JsonValue> j = protocol::parse_json(text.str(), {1u << 22, 32});
+  if (!j || !j->is(protocol::JsonValue::Kind::object))
+    return Expected<protocol::JsonValue>::failure(
+        path + " is not a report of oblique verify (" +
+        (j ? std::string("not a JSON object") : j.error()) + ")");
+  return j;
+}
+
+}  // namespace
+
+Expected<std::optional<protocol::Precision>> report_precision(const std::string& path) {
+  const Expected<protocol::JsonValue> j = read_report(path);
+  if (!j) return Expected<std::optional<protocol::Precision>>::failure(j.error());
+  const protocol::JsonValue* precision = j->find("precision");
+  if (!precision || !precision->is(protocol::JsonValue::Kind::string))
+    return std::optional<protocol::Precision>{};
+  return protocol::parse_precision(precision->text);
+}
+
+template <class T>
+Expected<VerifyCase<T>> read_report_case(const std::string& path) {
+  using Result = Expected<VerifyCase<T>>;
+  const Expected<protocol::JsonValue> j = read_report(path);
+  if (!j) return Result::failure(j.error());
+  const protocol::JsonValue* request = j->find("request");
+  if (!request || !request->is(protocol::JsonValue::Kind::string))
+    return Result::failure(path + " is not a report of oblique verify (no \"request\")");
+  const protocol::JsonValue* precision = j->find("precision");
+  if (precision && precision->text != protocol::scalar_name<T>()) {
+    return Result::failure(path + " is a \"" + precision->text + "\" case, not " +
+                           std::string(protocol::scalar_name<T>()));
+  }
+  const protocol::ParsedLine parsed = protocol::parse_request(request->text);
+  if (!parsed.request) return Result::failure(path + ": " + parsed.error);
+  VerifyCase<T> v;
+  std::string error;
+  for (int i = 0; i < 16; ++i) {
+    const auto value = protocol::parse_number<T>(parsed.request->projection[i], &error);
+    if (!value) return Result::failure(path + ": " + error);
+    v.c.matrix(i / 4, i % 4) = *value;
+  }
+  for (int i = 0; i < 4; ++i) {
+    const auto value = protocol::parse_number<T>(parsed.request->plane[i], &error);
+    if (!value) return Result::failure(path + ": " + error);
+    v.c.plane(i) = *value;
+  }
+  v.c.convention = parsed.request->convention.value_or(Convention::gl);
+  if (const protocol::JsonValue* family = j->find("family");
+      family && family->is(protocol::JsonValue::Kind::string)) {
+    if (auto f = generators::parse_family(family->text)) v.c.family = *f;
+  }
+  return v;
+}
+
+void save_regression(const std::string& json_path, const std::string& folder, std::ostream& out,
+                     std::ostream& err) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  const fs::path from(json_path);
+  fs::path to = fs::path(folder) / from.filename();
+  for (int n = 2; fs::exists(to, ec); ++n)
+    to = fs::path(folder) / (from.stem().string() + "-" + std::to_string(n) + ".json");
+  fs::copy_file(from, to, ec);
+  if (ec) {
+    err << "oblique verify: cannot save the regression to " << to.string() << ": " << ec.message()
+        << "\n";
+  } else {
+    out << "  kept as a regression: " << to.string() << "\n";
+  }
+}
+
+template <class T>
+int FailureDatabase<T>::replay(const std::string& path, bool verbose) {
+  const Expected<VerifyCase<T>> v = read_report_case<T>(path);
+  if (!v) {
+    err_ << "oblique verify: --replay: " << v.error() << "\n";
+    return 2;
+  }
+  Found<T> found;
+  using Evaluation = typename Session<T>::Evaluation;
+  switch (session_.evaluate(*v, found)) {
+    case Evaluation::pass:
+      if (verbose) {
+        out_ << "oblique verify: " << path << ": holds (" << protocol::scalar_name<T>() << ", "
+             << convention_name(v->c.convention) << ")\n";
+      }
+      return 0;
+    case Evaluation::finding: {
+      const properties::Finding& f = found.finding;
+      out_ << "oblique verify: " << path << ": violated: " << f.kind << ": " << f.relation << "\n";
+      if (!f.expected.empty()) {
+        out_ << "  expected: " << f.expected << "\n  got:      " << f.got << "\n";
+      } else {
+        out_ << "  residual: " << f.lhs << "\n  bound:    " << f.rhs << "\n";
+      }
+      if (!found.answer_line.empty())
+        out_ << "  answer: " << escape_bytes(found.answer_line.substr(0, 400)) << "\n";
+      return 1;
+    }
+    case Evaluation::protocol_error:
+      session_.child().stop();
+      return reporter_.issue(session_.issue());
+    case Evaluation::out_of_time:
+      err_ << "oblique verify: --replay: out of time before the answer\n";
+      return 2;
+  }
+  return 2;
+}
+
+template <class T>
+int FailureDatabase<T>::replay_all(const std::string& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<std::string> paths;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().extension() == ".json") paths.push_back(it->path().string());
+  }
+  if (ec && ec != std::errc::no_such_file_or_directory) {
+    err_ << "oblique verify: --regressions " << folder << ": " << ec.message() << "\n";
+    return 2;
+  }
+  std::sort(paths.begin(), paths.end());
+  long replayed = 0, other_precision = 0;
+  for (const std::string& path : paths) {
+    const Expected<VerifyCase<T>> v = read_report_case<T>(path);
+    if (!v) {
+      if (v.error().find(" case, not ") != std::string::npos) {
+        ++other_precision;
+        continue;
+      }
+      err_ << "oblique verify: --regressions: " << v.error() << "\n";
+      return 2;
+    }
+    const int result = replay(path, /*verbose=*/false);
+    if (result != 0) {
+      session_.child().stop();
+      if (result == 1) out_ << "  (a kept regression fails again; the run is not started)\n";
+      return result;
+    }
+    ++replayed;
+  }
+  session_.child().stop();
+  out_ << "oblique verify: regressions: " << replayed << " kept cases hold"
+       << (other_precision
+               ? " (" + std::to_string(other_precision) + " of another precision not replayed)"
+               : "")
+       << "\n";
+  return 0;
+}
+
+template Expected<VerifyCase<float>> read_report_case<float>(const std::string&);
+template Expected<VerifyCase<double>> read_report_case<double>(const std::string&);
+template class FailureDatabase<float>;
+template class FailureDatabase<double>;
+
+}  // namespace oblique::verify

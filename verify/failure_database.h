@@ -1,0 +1,48 @@
+// oblique verify's failure database: the cases of earlier reports, replayed one (--replay) or a
+// folder of them (--regressions) before a run, and new findings kept there (--save-regressions).
+// Internal to oblique::verify.
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "cases.h"
+#include "oblique/expected.h"
+#include "oblique/protocol/numbers.h"
+#include "reporter.h"
+#include "session.h"
+
+namespace oblique::verify {
+
+/// The precision a report names ("precision"), if any; an error when it is not a report.
+Expected<std::optional<protocol::Precision>> report_precision(const std::string& path);
+
+/// The case of a report (its JSON sidecar): the request, and the family named there.
+template <class T>
+Expected<VerifyCase<T>> read_report_case(const std::string& path);
+
+/// Copies a report's JSON into `folder` (created if missing), never over a file already there.
+void save_regression(const std::string& json_path, const std::string& folder, std::ostream& out,
+                     std::ostream& err);
+
+template <class T>
+class FailureDatabase {
+ public:
+  FailureDatabase(Session<T>& session, Reporter<T>& reporter, std::ostream& out, std::ostream& err)
+      : session_(session), reporter_(reporter), out_(out), err_(err) {}
+
+  /// Sends one report's case and judges the answer: 0 holds, 1 violated, 2 cannot.
+  int replay(const std::string& report_json, bool verbose);
+  /// Every report (.json) in `folder`, in name order; the first that fails again ends it (its
+  /// exit status); reports of another precision are counted and skipped.
+  int replay_all(const std::string& folder);
+
+ private:
+  Session<T>& session_;
+  Reporter<T>& reporter_;
+  std::ostream& out_;
+  std::ostream& err_;
+};
+
+}  // namespace oblique::verify

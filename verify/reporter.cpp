@@ -1,0 +1,262 @@
+#include "reporter.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+#include "failure_database.h"
+#include "oblique/properties/counterexample_report.h"
+#include "oblique/properties/properties.h"
+#include "oblique/protocol/numbers.h"
+
+namespace oblique::verify {
+
+namespace {
+
+std::string seconds_text(double seconds) {
+  std::ostringstream text;
+  text.setf(std::ios::fixed);
+  text.precision(2);
+  text << seconds;
+  return text.str();
+}
+
+}  // namespace
+
+std::string shell_quote(const std::string& s) {
+  const bool plain = !s.empty() && std::all_of(s.begin(), s.end(), [](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) || std::strchr("_./=,:+-@%", ch);
+  });
+  if (plain) return s;
+  std::string out = "'";
+  for (char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return out + "'";
+}
+
+template <class T>
+Reporter<T>::Reporter(const VerifyOptions& options, const Draws<T>& draws, std::ostream& out,
+                      std::ostream& err)
+    : options_(options), draws_(draws), out_(out), err_(err) {}
+
+template <class T>
+int Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int steps, bool out_of_time,
+                         long found_after_cases, double found_after_seconds) {
+  const properties::Finding& f = found.finding;
+  properties::Counterexample ce =
+      properties::make_counterexample(v.c.matrix, v.c.plane, v.c.convention);
+  ce.finding = f;
+  ce.implementation = options_.command;
+  ce.family = std::string(generators::family_name(v.c.family));
+  const properties::Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+  // "no answer: DEFECT" only where the input has none (a near_singular one may well have one).
+  ce.place = v.has_defect && problem.exact_status() == Status::ok
+                 ? std::string(generators::defect_name(v.defect)) + " (has an answer)"
+                 : v.kind();
+  if (found.result) properties::set_result(ce, *found.result);
+  properties::set_views(ce, problem, found.result ? &*found.result : nullptr);
+  ce.notes.emplace_back("implementation", options_.command);
+  ce.notes.emplace_back("exact status", std::string(status_code(problem.exact_status())));
+  if (problem.exact_status() == Status::ok) {
+    std::string row;
+    const exact::Vec exact_row = problem.exact_row3();
+    for (int i = 0; i < 4; ++i) {
+      T rounded = static_cast<T>(exact_row[i].get_d());
+      row += (i ? ", " : "") + protocol::format_number(rounded);
+    }
+    ce.notes.emplace_back("exact third row (rounded)", "(" + row + ")");
+  }
+  if (!found.answer_line.empty())
+    ce.notes.emplace_back("answer", escape_bytes(found.answer_line.substr(0, 2000)));
+  if (!found.process.empty()) ce.notes.emplace_back("process", found.process);
+  ce.notes.emplace_back("shrinking", std::to_string(steps) + " steps" +
+                                         (out_of_time ? ", stopped by the time limit" : ""));
+  ce.notes.emplace_back("found after", std::to_string(found_after_cases) + " cases, " +
+                                           seconds_text(found_after_seconds) + " s");
+
+  const std::string request = request_text(v.c);
+  properties::ReportContext context;
+  context.directory = options_.report_dir;
+  context.stem = "verify-" + f.kind;
+  context.seed = options_.seed;
+  context.replay_run = replay_run_command();
+  context.replay_case = "echo " + shell_quote(request) + " | " + options_.command;
+  context.contract = contract_json(draws_.contract());
+  context.keep_existing = true;
+  std::string path;
+  try {
+    path = properties::write_report(ce, context);
+  } catch (const std::exception& e) {
+    path = "(not written: " + std::string(e.what()) + ")";
+  }
+  last_report_ = path;
+  last_kind_ = f.kind;
+  const std::string json_path = path.size() > 3 && path.compare(path.size() - 3, 3, ".md") == 0
+                                    ? path.substr(0, path.size() - 3) + ".json"
+                                    : "";
+  if (!json_path.empty() && !options_.save_regressions.empty())
+    save_regression(json_path, options_.save_regressions, out_, err_);
+
+  out_ << "  " << f.kind << ": " << f.relation << "\n";
+  if (!f.expected.empty()) {
+    out_ << "  expected: " << f.expected << "\n  got:      " << f.got << "\n";
+  } else {
+    out_ << "  residual: " << f.lhs << "\n  bound:    " << f.rhs << "\n";
+  }
+  out_ << "  input (" << ce.family << ", " << ce.convention << ", " << ce.place << "): " << request
+       << "\n  found after " << found_after_cases << " cases, " << seconds_text(found_after_seconds)
+       << " s\n";
+  if (!found.answer_line.empty())
+    out_ << "  answer: " << escape_bytes(found.answer_line.substr(0, 400)) << "\n";
+  out_ << "  report: " << path << "\n  replay: " << context.replay_case << "\n";
+  if (!json_path.empty()) out_ << "  re-judge: " << replay_case_command(json_path) << "\n";
+  return 1;
+}
+
+template <class T>
+int Reporter<T>::passed(long done, double elapsed, const Seen& seen,
+                        const std::map<std::string, long>& left_out, bool stopped_by_time,
+                        long dropped) {
+  out_ << "oblique verify: " << done << " cases, no violation (" << protocol::scalar_name<T>()
+       << ", seed " << options_.seed << ", " << std::fixed;
+  out_.precision(1);
+  out_ << elapsed << " s, " << static_cast<long>(elapsed > 0 ? done / elapsed : 0)
+       << " requests per second)\n";
+  out_.unsetf(std::ios::floatfield);
+  out_.precision(6);
+  out_ << "  contract: " << contract_json(draws_.contract()) << "\n";
+  out_ << "  families: " << Seen::summary(seen.families)
+       << "\n  conventions: " << Seen::summary(seen.conventions)
+       << "\n  places (with an answer): " << Seen::summary(seen.places)
+       << "\n  inputs without an answer: " << Seen::summary(seen.defects) << "\n";
+  if (!left_out.empty() || !draws_.notes().empty()) {
+    out_ << "  left out by the contract:";
+    std::string sep = " ";
+    for (const std::string& note : draws_.notes()) {
+      out_ << sep << note;
+      sep = ", ";
+    }
+    for (const auto& [why, n] : left_out) {
+      out_ << sep << why << " " << n << " drawn";
+      sep = ", ";
+    }
+    out_ << "\n";
+  }
+  const long limit = options_.cases > 0 ? options_.cases : std::numeric_limits<long>::max();
+  if (stopped_by_time || done < limit)
+    out_ << "  stopped by the time limit (" << options_.time_limit_seconds << " s)"
+         << (options_.cases > 0 ? " before " + std::to_string(options_.cases) + " cases" : "")
+         << (dropped > 0 ? "; the implementation was still answering (" + std::to_string(dropped) +
+                               " requests in flight not judged)"
+                         : "")
+         << "\n";
+  return 0;
+}
+
+template <class T>
+int Reporter<T>::index(const std::map<std::string, Kind>& kinds, long done) {
+  std::ostringstream index;
+  index << "# oblique verify: " << kinds.size() << " kinds of finding\n\n"
+        << "Implementation `" << options_.command << "`, " << protocol::scalar_name<T>()
+        << ", seed " << options_.seed << ", " << done << " cases judged.\n\n"
+        << "| kind (property x family x place) | cases | report |\n|---|---|---|\n";
+  for (const auto& [key, kind] : kinds)
+    index << "| " << key << " | " << kind.repeats << " | " << kind.report << " |\n";
+  index << "\nThe whole run again:\n\n```sh\n" << replay_run_command() << "\n```\n";
+  namespace fs = std::filesystem;
+  std::string path = options_.report_dir + "/verify-index.md";
+  for (int n = 2; fs::exists(path); ++n)
+    path = options_.report_dir + "/verify-index-" + std::to_string(n) + ".md";
+  std::ofstream(path) << index.str();
+  out_ << "oblique verify: " << kinds.size() << " kinds of finding in " << done
+       << " cases (--keep-going); index: " << path << "\n";
+  for (const auto& [key, kind] : kinds)
+    out_ << "  " << key << ": " << kind.repeats << " cases, report " << kind.report << "\n";
+  return 1;
+}
+
+template <class T>
+int Reporter<T>::protocol_error(const std::string& request, const std::string& answer,
+                                const std::string& why) {
+  err_ << "oblique verify: protocol error: the implementation's answer is not an answer of the "
+          "protocol ("
+       << escape_bytes(why) << ")\n  request: " << request
+       << "\n  answer:  " << escape_bytes(answer.substr(0, 400))
+       << (answer.size() > 400 ? "..." : "") << "\n";
+  return 2;
+}
+
+template <class T>
+int Reporter<T>::count_error(const std::string& what, const std::vector<std::string>& requests,
+                             const std::vector<std::string>& lines) {
+  err_ << "oblique verify: protocol error: " << what << "\n";
+  for (const std::string& r : requests) err_ << "  request: " << r << "\n";
+  for (const std::string& l : lines)
+    err_ << "  line:    " << escape_bytes(l.substr(0, 400)) << (l.size() > 400 ? "..." : "")
+         << "\n";
+  err_ << "  (each request gets exactly one answer line, in order)\n";
+  return 2;
+}
+
+template <class T>
+int Reporter<T>::overlong_line(const std::string& request, const std::string& line_start) {
+  err_ << "oblique verify: protocol error: an answer line longer than "
+       << ChildProcess::kMaxLineBytes << " bytes (1 MiB, not read further)\n  request: " << request
+       << "\n  line starts: " << escape_bytes(line_start) << "...\n";
+  return 2;
+}
+
+template <class T>
+int Reporter<T>::issue(const Issue& issue) {
+  const std::string what =
+      issue.what.empty() ? "the implementation could not be restarted" : issue.what;
+  return count_error(
+      what,
+      issue.request.empty() ? std::vector<std::string>{} : std::vector<std::string>{issue.request},
+      issue.lines);
+}
+
+template <class T>
+std::string Reporter<T>::replay_run_command() const {
+  std::string command = options_.self + " verify";
+  bool has_seed = false;
+  for (const std::string& a : options_.arguments) {
+    if (a == "--seed" || a.rfind("--seed=", 0) == 0) has_seed = true;
+    command += " " + shell_quote(a);
+  }
+  if (options_.arguments.empty()) command += " --impl " + shell_quote(options_.command);
+  if (!has_seed) command += " --seed " + std::to_string(options_.seed);
+  return command;
+}
+
+template <class T>
+std::string Reporter<T>::replay_case_command(const std::string& report_json) const {
+  std::string command = options_.self + " verify --replay " + shell_quote(report_json) +
+                        " --impl " + shell_quote(options_.command);
+  // The flags that decide how one case is judged (which properties, which statuses are right,
+  // whether it is sent at all); those that only steer what is drawn do not matter here.
+  static const char* const kept[] = {"--answers-only", "--statuses", "--planes",   "--properties",
+                                     "--contract",     "--timeout",  "--precision"};
+  const auto& args = options_.arguments;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    for (const char* flag : kept) {
+      if (args[i] == flag) {
+        command += " " + args[i];
+        if (std::string(flag) != "--answers-only" && i + 1 < args.size())
+          command += " " + shell_quote(args[++i]);
+      } else if (args[i].rfind(std::string(flag) + "=", 0) == 0) {
+        command += " " + shell_quote(args[i]);
+      }
+    }
+  }
+  return command;
+}
+
+template class Reporter<float>;
+template class Reporter<double>;
+
+}  // namespace oblique::verify

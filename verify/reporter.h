@@ -1,0 +1,66 @@
+// oblique verify's words: the report of a shrunk finding (Markdown + JSON, with the commands that
+// replay it), the summary of a passing run, the index of a --keep-going run, and the messages of
+// protocol problems. Internal to oblique::verify.
+#pragma once
+
+#include <iosfwd>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cases.h"
+#include "oblique/verify/verifier.h"
+#include "session.h"
+
+namespace oblique::verify {
+
+/// `s` quoted for /bin/sh when it needs it.
+std::string shell_quote(const std::string& s);
+
+/// --keep-going: one report per kind of finding (property x family x place).
+struct Kind {
+  std::string report;
+  long repeats = 0;  ///< cases of this kind found (the first one shrunk and reported)
+};
+
+template <class T>
+class Reporter {
+ public:
+  Reporter(const VerifyOptions& options, const Draws<T>& draws, std::ostream& out,
+           std::ostream& err);
+
+  /// Writes the report of a (shrunk) finding, keeps it as a regression when asked, and prints
+  /// it: exit status 1.
+  int finding(const VerifyCase<T>& v, const Found<T>& found, int steps, bool out_of_time,
+              long found_after_cases, double found_after_seconds);
+  const std::string& last_report() const { return last_report_; }
+  const std::string& last_kind() const { return last_kind_; }
+
+  /// The summary of a run without a finding: exit status 0.
+  int passed(long done, double elapsed, const Seen& seen,
+             const std::map<std::string, long>& left_out, bool stopped_by_time, long dropped);
+  /// The index of a --keep-going run's findings: exit status 1.
+  int index(const std::map<std::string, Kind>& kinds, long done);
+
+  // Protocol problems (the implementation is stopped first): exit status 2.
+  int protocol_error(const std::string& request, const std::string& answer, const std::string& why);
+  /// Answers out of step with requests: lines beyond one per request, or one missing.
+  int count_error(const std::string& what, const std::vector<std::string>& requests,
+                  const std::vector<std::string>& lines);
+  int overlong_line(const std::string& request, const std::string& line_start);
+  int issue(const Issue& issue);
+
+  /// The whole run again: this run's own flags (every one of them), with its seed.
+  std::string replay_run_command() const;
+  /// This case alone, judged: the run's contract and bounds flags, with --replay.
+  std::string replay_case_command(const std::string& report_json) const;
+
+ private:
+  const VerifyOptions& options_;
+  const Draws<T>& draws_;
+  std::ostream& out_;
+  std::ostream& err_;
+  std::string last_report_, last_kind_;
+};
+
+}  // namespace oblique::verify

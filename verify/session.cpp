@@ -1,0 +1,111 @@
+#include "session.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace oblique::verify {
+
+template <class T>
+Session<T>::Session(const VerifyOptions& options, const Draws<T>& draws)
+    : options_(options),
+      draws_(draws),
+      child_(options.command),
+      idle_(static_cast<long>(options.request_timeout_seconds * 1000)) {
+  start_clock();
+}
+
+template <class T>
+void Session<T>::start_clock() {
+  start_ = Clock::now();
+  deadline_ = start_ + std::chrono::milliseconds(
+                           static_cast<long>(std::max(0.0, options_.time_limit_seconds) * 1000));
+}
+
+template <class T>
+double Session<T>::seconds_since_start() const {
+  return std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
+template <class T>
+typename Session<T>::Evaluation Session<T>::evaluate(const VerifyCase<T>& v, Found<T>& finding) {
+  if (out_of_time()) return Evaluation::out_of_time;
+  const properties::FilteredProblem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+  if (draws_.needs_status() && !draws_.left_out(problem).empty())
+    return Evaluation::pass;  // not an input the implementation promises anything for
+  std::string error;
+  issue_ = Issue{};
+  if (!child_.running() && !child_.start(&error)) {
+    issue_.what = "the implementation could not be restarted: " + error;
+    return Evaluation::protocol_error;
+  }
+  // The count check of one evaluation: nothing left over before the request, one line after.
+  if (std::vector<std::string> left = child_.unasked_output(); !left.empty()) {
+    issue_ = Issue{"lines beyond the one answer to this request", last_request_, left};
+    return Evaluation::protocol_error;
+  }
+  const std::string request = request_text(v.c);
+  last_request_ = request;
+  std::vector<std::string> answers;
+  const auto outcome = child_.exchange(request + "\n", 1, answers, idle_, deadline_);
+  if (outcome == ChildProcess::Outcome::too_long) {
+    issue_ = Issue{"an answer line longer than 1 MiB (not read further)",
+                   request,
+                   {child_.overlong_start() + "..."}};
+    return Evaluation::protocol_error;
+  }
+  if (outcome != ChildProcess::Outcome::done) {
+    if (out_of_time()) return Evaluation::out_of_time;
+    finding = lost_finding(outcome);
+    child_.stop();
+    return Evaluation::finding;
+  }
+  if (std::vector<std::string> extra = child_.unasked_output(); !extra.empty()) {
+    extra.insert(extra.begin(), answers[0]);
+    issue_ = Issue{"lines beyond the one answer to this request", request, extra};
+    return Evaluation::protocol_error;
+  }
+  const Expected<Answered<T>> answered = read_answer<T>(answers[0]);
+  if (!answered) {
+    issue_ = Issue{"an answer that is not an answer of the protocol (" + answered.error() + ")",
+                   request,
+                   {answers[0]}};
+    return Evaluation::protocol_error;
+  }
+  auto judged = judge(problem, *answered, draws_.checks());
+  if (!judged) return Evaluation::pass;
+  finding = *judged;
+  finding.answer_line = answers[0];
+  return Evaluation::finding;
+}
+
+template <class T>
+Found<T> Session<T>::lost_finding(ChildProcess::Outcome outcome) {
+  Found<T> found;
+  properties::Finding& f = found.finding;
+  f.ratio = 1e300;
+  if (outcome == ChildProcess::Outcome::exited) {
+    f.kind = "crash";
+    f.relation = "the implementation answers every request and keeps running";
+    found.process = child_.end_description();
+    f.lhs = "it " + found.process + " before answering";
+    f.rhs = "an answer line";
+  } else {
+    f.kind = "timeout";
+    std::ostringstream relation;
+    relation << "an answer within " << options_.request_timeout_seconds << " s (--timeout)";
+    f.relation = relation.str();
+    found.process = "no answer line";
+    f.lhs =
+        "no answer within the timeout: it hangs on this request, or does not flush its "
+        "standard output after each answer line";
+    f.rhs = "an answer line";
+  }
+  found.answer_line =
+      child_.stderr_tail().empty() ? "" : "(stderr) " + escape_bytes(child_.stderr_tail());
+  return found;
+}
+
+template class Session<float>;
+template class Session<double>;
+
+}  // namespace oblique::verify

@@ -1,0 +1,133 @@
+#include "shrinker.h"
+
+#include <algorithm>
+#include <ostream>
+
+namespace oblique::verify {
+
+template <class T>
+int Shrinker<T>::confirm(const Batch<T>& batch, std::size_t k,
+                         const std::vector<std::string>& answers, Found<T> finding,
+                         long cases_run) {
+  using Evaluation = typename Session<T>::Evaluation;
+  session_.child().stop();
+  Found<T> alone;
+  switch (session_.evaluate(batch.values[k], alone)) {
+    case Evaluation::finding: finding = alone; break;
+    case Evaluation::out_of_time: break;  // reported as found in the batch
+    case Evaluation::protocol_error:
+      session_.child().stop();
+      return reporter_.issue(session_.issue());
+    case Evaluation::pass: {
+      std::vector<std::string> lines;
+      const std::size_t from = k >= 2 ? k - 2 : 0;
+      for (std::size_t i = from; i < std::min(answers.size(), k + 3); ++i)
+        lines.push_back("answer " + std::to_string(i + 1) + (i == k ? " (judged)" : "") + ": " +
+                        answers[i]);
+      session_.child().stop();
+      return reporter_.count_error(
+          "answer " + std::to_string(k + 1) + " of a batch violates " + finding.finding.kind +
+              ", but the same request sent alone is answered without a violation: the answers "
+              "are out of step with the requests (an extra or a missing answer line before "
+              "it), or an answer depends on earlier requests",
+          {batch.requests[k]}, lines);
+    }
+  }
+  return shrink(batch.cases[k], finding, cases_run);
+}
+
+template <class T>
+int Shrinker<T>::shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<T> finding,
+                        long cases_run) {
+  using Evaluation = typename Session<T>::Evaluation;
+  const long found_after_cases = cases_run;
+  const double found_after_seconds = session_.seconds_since_start();
+  session_.child().stop();  // it may still be working on the next batch; shrinking restarts it
+  out_ << "oblique verify: " << finding.finding.kind << " violated after " << cases_run
+       << " cases; shrinking";
+  out_.flush();
+  rc::Shrinkable<VerifyCase<T>> current = failing;
+  int steps = 0, tries = 0;
+  bool out_of_time = false;
+  // Timeouts cost the whole timeout per try: the case is reported as found.
+  bool progress = finding.finding.kind != "timeout";
+  while (progress && !out_of_time) {
+    progress = false;
+    auto shrinks = current.shrinks();
+    while (auto next = shrinks.next()) {
+      Found<T> candidate;
+      ++tries;
+      const Evaluation e = session_.evaluate(next->value(), candidate);
+      if (e == Evaluation::out_of_time) {
+        out_of_time = true;
+        break;
+      }
+      if (e == Evaluation::protocol_error) {
+        out_ << "\n";
+        session_.child().stop();
+        return reporter_.issue(session_.issue());
+      }
+      if (e == Evaluation::finding && candidate.finding.kind == finding.finding.kind) {
+        current = *next;
+        finding = candidate;
+        ++steps;
+        progress = true;
+        if (steps % 10 == 0) (out_ << ".").flush();
+        break;
+      }
+    }
+  }
+  session_.child().stop();
+  out_ << " " << steps << " steps (" << tries << " tries)"
+       << (out_of_time ? ", stopped by the time limit" : "") << "\n";
+  return reporter_.finding(current.value(), finding, steps, out_of_time, found_after_cases,
+                           found_after_seconds);
+}
+
+template <class T>
+int Shrinker<T>::isolate(const std::vector<rc::Shrinkable<VerifyCase<T>>>& cases,
+                         std::size_t answered, long done, ChildProcess::Outcome outcome) {
+  using Evaluation = typename Session<T>::Evaluation;
+  Found<T> in_batch = session_.lost_finding(outcome);
+  const bool hung = outcome == ChildProcess::Outcome::timed_out;
+  const std::string description = hung ? "gave no answer within --timeout" : in_batch.process;
+  const std::string tail = escape_bytes(session_.child().stderr_tail());
+  session_.child().stop();
+  bool every_one_answered = true;
+  for (std::size_t k = answered; k < cases.size(); ++k) {
+    Found<T> finding;
+    switch (session_.evaluate(cases[k].value(), finding)) {
+      case Evaluation::pass: continue;
+      case Evaluation::finding: return shrink(cases[k], finding, done + 1);
+      case Evaluation::protocol_error:
+        session_.child().stop();
+        return reporter_.issue(session_.issue());
+      case Evaluation::out_of_time:
+        if (k == answered) {
+          in_batch.process += " (in a batch; not repeated alone within the time limit)";
+          return shrink(cases[answered], in_batch, done + 1);
+        }
+        every_one_answered = false;
+        k = cases.size();
+        break;
+    }
+  }
+  if (every_one_answered && hung) {
+    session_.child().stop();
+    return reporter_.count_error(
+        "the implementation answered " + std::to_string(answered) + " of a batch's " +
+            std::to_string(cases.size()) +
+            " requests and then nothing within --timeout, yet each unanswered request alone gets "
+            "its answer: an answer line is missing",
+        {}, {});
+  }
+  err_ << "oblique verify: the implementation stopped answering after " << done << " cases (it "
+       << description << "), and no single request of the batch repeats it"
+       << (tail.empty() ? "" : "\n  its standard error ended with:\n" + tail) << "\n";
+  return 1;
+}
+
+template class Shrinker<float>;
+template class Shrinker<double>;
+
+}  // namespace oblique::verify
