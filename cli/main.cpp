@@ -5,8 +5,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
-#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -25,7 +23,6 @@
 #include "oblique/report/depth_report.h"
 #include "oblique/scene/check.h"
 #include "oblique/scene/plot.h"
-#include "oblique/verify/child_process.h"
 #include "oblique/verify/verifier.h"
 #include "oblique_version.h"
 
@@ -72,50 +69,6 @@ struct CheckSettings {
   double timeout_seconds = 10;
 };
 
-/// Sends every rendered pass's request to the implementation and judges its answers; false (with
-/// a message on `err`) when the implementation cannot be started or does not answer every line.
-bool judge_implementation(const CheckSettings& settings, const oblique::scene::Scene& scene,
-                          oblique::scene::SceneCheck& check) {
-  using oblique::verify::ChildProcess;
-  std::vector<oblique::scene::SurfaceCheck*> rendered;
-  std::string input;
-  for (oblique::scene::SurfaceCheck& s : check.surfaces) {
-    if (!s.render) continue;
-    rendered.push_back(&s);
-    input += oblique::scene::impl_request(scene, s, check.impl_precision) + "\n";
-  }
-  if (rendered.empty()) return true;
-  // An implementation that exits early must not take us down with it: a write to its closed
-  // input fails with EPIPE instead.
-  std::signal(SIGPIPE, SIG_IGN);
-  ChildProcess child(settings.impl);
-  std::string error;
-  if (!child.start(&error)) {
-    std::cerr << "oblique check: cannot start the implementation: " << error << "\n";
-    return false;
-  }
-  std::vector<std::string> lines;
-  const auto idle = std::chrono::milliseconds(static_cast<long>(settings.timeout_seconds * 1000));
-  const auto outcome =
-      child.exchange(input, rendered.size(), lines, idle, oblique::verify::Clock::now() + 4 * idle);
-  std::string end = outcome == ChildProcess::Outcome::exited ? child.end_description() : "";
-  if (end.empty() || end == "not running") end = "it closed its output or exited";
-  child.stop();
-  if (outcome != ChildProcess::Outcome::done || lines.size() < rendered.size()) {
-    std::cerr << "oblique check: the implementation answered " << lines.size() << " of "
-              << rendered.size() << " requests ("
-              << (outcome == ChildProcess::Outcome::timed_out ? "timed out"
-                                                              : child.end_description())
-              << ")";
-    if (!child.stderr_tail().empty()) std::cerr << "; its standard error:\n" << child.stderr_tail();
-    std::cerr << "\n";
-    return false;
-  }
-  for (std::size_t i = 0; i < rendered.size(); ++i)
-    oblique::scene::judge_impl_answer(scene, *rendered[i], lines[i], check.impl_precision);
-  return true;
-}
-
 int run_check(const CheckSettings& settings) {
   const std::string& path = settings.scene_path;
   const oblique::scene::ParsedScene parsed = oblique::scene::read_scene_file(path);
@@ -125,7 +78,14 @@ int run_check(const CheckSettings& settings) {
   }
   oblique::scene::SceneCheck check = oblique::scene::check_scene(*parsed.scene);
   check.impl_precision = *oblique::protocol::parse_precision(settings.precision);
-  if (!settings.impl.empty() && !judge_implementation(settings, *parsed.scene, check)) return 2;
+  if (!settings.impl.empty()) {
+    const oblique::Expected<std::size_t> judged = oblique::scene::judge_implementation(
+        *parsed.scene, check, settings.impl, settings.timeout_seconds);
+    if (!judged) {
+      std::cerr << "oblique check: " << judged.error() << "\n";
+      return 2;
+    }
+  }
   std::cout << (settings.as_json ? oblique::scene::to_json(check) + "\n"
                                  : oblique::scene::to_text(check));
   if (!settings.plot_dir.empty()) {

@@ -207,7 +207,8 @@ Expected<JsonValue> parse_json(std::string_view text, JsonLimits limits) {
                                         " (JSON is text)");
   }
   std::string error;
-  const std::optional<JsonNumbers> numbers = scan_json_numbers(text, limits.max_values, &error);
+  const std::optional<JsonNumbers> numbers =
+      scan_json_numbers(text, std::min(limits.max_values, limits.max_numbers), &error);
   if (!numbers) return Expected<JsonValue>::failure(error);
   TreeBuilder builder(numbers->texts, limits);
   if (!json::sax_parse(numbers->masked.begin(), numbers->masked.end(), &builder,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -173,10 +174,38 @@ std::string refusal_line(Status status, std::string_view message) {
          ", \"message\": " + json_string(message) + "}";
 }
 
+template <class T>
+Expected<TypedAnswer<T>> read_answer(std::string_view line) {
+  using Result = Expected<TypedAnswer<T>>;
+  const ParsedAnswer parsed = parse_answer(normalise_non_finite(line));
+  if (!parsed.valid) return Result::failure(parsed.error);
+  TypedAnswer<T> a;
+  a.message = parsed.message;
+  const std::optional<Status> status = parse_status(parsed.status);
+  if (!status) return Result::failure("unknown status \"" + parsed.status + "\"");
+  a.status = *status;
+  if (a.status != Status::ok) return a;
+  for (int i = 0; i < 16; ++i) {
+    std::string why;
+    const std::string& token = (*parsed.projection)[static_cast<std::size_t>(i)];
+    std::optional<T> value = parse_number<T>(token, &why);
+    if (!value) {  // a number beyond T's range is an infinite entry to judge
+      std::string wide_why;
+      if (const auto wide = parse_number<long double>(token, &wide_why))
+        value =
+            *wide < 0 ? -std::numeric_limits<T>::infinity() : std::numeric_limits<T>::infinity();
+    }
+    if (!value) return Result::failure("projection[" + std::to_string(i) + "]: " + why);
+    a.projection(i / 4, i % 4) = *value;
+  }
+  return a;
+}
+
 #define OBLIQUE_PROTOCOL_MESSAGES(T)                                         \
   template std::string request_line<T>(const Matrix4<T>&, const Vector4<T>&, \
                                        std::optional<Convention>, Notation); \
-  template std::string ok_answer_line<T>(const Matrix4<T>&);
+  template std::string ok_answer_line<T>(const Matrix4<T>&);                 \
+  template Expected<TypedAnswer<T>> read_answer<T>(std::string_view);
 OBLIQUE_PROTOCOL_MESSAGES(float)
 OBLIQUE_PROTOCOL_MESSAGES(double)
 OBLIQUE_PROTOCOL_MESSAGES(long double)

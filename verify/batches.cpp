@@ -48,7 +48,7 @@ std::vector<Judged<T>> judge_batch(const Draws<T>& draws, const Batch<T>& b,
   std::vector<Judged<T>> out(answers.size());
   auto judge_range = [&](std::size_t from, std::size_t to) {
     for (std::size_t k = from; k < to; ++k) {
-      const Expected<Answered<T>> answered = read_answer<T>(answers[k]);
+      const Expected<protocol::TypedAnswer<T>> answered = protocol::read_answer<T>(answers[k]);
       if (!answered) {
         out[k].protocol_error = answered.error();
         continue;

@@ -1,7 +1,6 @@
 #include "cases.h"
 
 #include <algorithm>
-#include <limits>
 
 #include "oblique/properties/judge.h"
 #include "oblique/protocol/protocol.h"
@@ -86,44 +85,16 @@ std::string request_text(const generators::Case<T>& c) {
 }
 
 template <class T>
-Expected<Answered<T>> read_answer(const std::string& line) {
-  using Result = Expected<Answered<T>>;
-  const protocol::ParsedAnswer parsed =
-      protocol::parse_answer(protocol::normalise_non_finite(line));
-  if (!parsed.valid) return Result::failure(parsed.error);
-  Answered<T> a;
-  a.message = parsed.message;
-  if (parsed.status != "ok") {
-    const std::optional<Status> status = parse_status(parsed.status);
-    if (!status) return Result::failure("unknown status \"" + parsed.status + "\"");
-    a.outcome.status = *status;
-    return a;
-  }
-  for (int i = 0; i < 16; ++i) {
-    std::string why;
-    const std::string& token = (*parsed.projection)[static_cast<std::size_t>(i)];
-    std::optional<T> value = protocol::parse_number<T>(token, &why);
-    if (!value) {  // a number beyond T's range is an infinite entry to judge, not a protocol error
-      std::string wide_why;
-      if (const auto wide = protocol::parse_number<long double>(token, &wide_why))
-        value =
-            *wide < 0 ? -std::numeric_limits<T>::infinity() : std::numeric_limits<T>::infinity();
-    }
-    if (!value) return Result::failure("projection[" + std::to_string(i) + "]: " + why);
-    a.outcome.projection(i / 4, i % 4) = *value;
-  }
-  return a;
-}
-
-template <class T>
-std::optional<Found<T>> judge(const properties::FilteredProblem<T>& problem, const Answered<T>& a,
+std::optional<Found<T>> judge(const properties::FilteredProblem<T>& problem,
+                              const protocol::TypedAnswer<T>& answer,
                               const properties::Checks& checks) {
-  const properties::Judgement judgement = properties::judge(problem, a.outcome, checks);
+  const properties::Outcome<T> outcome{answer.status, answer.projection};
+  const properties::Judgement judgement = properties::judge(problem, outcome, checks);
   const properties::Finding* violation = judgement.violation();
   if (!violation) return std::nullopt;
   Found<T> f;
   f.finding = *violation;
-  if (a.outcome.status == Status::ok) f.result = a.outcome.projection;
+  if (answer.status == Status::ok) f.result = answer.projection;
   return f;
 }
 
@@ -144,13 +115,13 @@ std::string Seen::summary(const std::map<std::string, long>& counts) {
   return out.empty() ? "none" : out;
 }
 
-#define OBLIQUE_VERIFY_CASES(T)                                                             \
-  template struct VerifyCase<T>;                                                            \
-  template class Draws<T>;                                                                  \
-  template std::string request_text<T>(const generators::Case<T>&);                         \
-  template Expected<Answered<T>> read_answer<T>(const std::string&);                        \
-  template std::optional<Found<T>> judge<T>(const properties::FilteredProblem<T>&,          \
-                                            const Answered<T>&, const properties::Checks&); \
+#define OBLIQUE_VERIFY_CASES(T)                                                    \
+  template struct VerifyCase<T>;                                                   \
+  template class Draws<T>;                                                         \
+  template std::string request_text<T>(const generators::Case<T>&);                \
+  template std::optional<Found<T>> judge<T>(const properties::FilteredProblem<T>&, \
+                                            const protocol::TypedAnswer<T>&,       \
+                                            const properties::Checks&);            \
   template void Seen::count<T>(const VerifyCase<T>&);
 OBLIQUE_VERIFY_CASES(float)
 OBLIQUE_VERIFY_CASES(double)

@@ -15,6 +15,7 @@
 #include "oblique/properties/filtered.h"
 #include "oblique/properties/finding.h"
 #include "oblique/properties/generators.h"
+#include "oblique/protocol/protocol.h"
 
 namespace oblique::verify {
 
@@ -27,13 +28,6 @@ struct VerifyCase {
 
   /// The hard place, or "no answer: DEFECT".
   std::string kind() const;
-};
-
-/// An answer as read back: the outcome judge() takes, and the message of a refusal.
-template <class T>
-struct Answered {
-  properties::Outcome<T> outcome{Status::ok, Matrix4<T>::Zero()};
-  std::string message;
 };
 
 /// What went wrong with one answer (or with the process while it was answering): the finding
@@ -75,14 +69,11 @@ class Draws {
 template <class T>
 std::string request_text(const generators::Case<T>& c);
 
-/// One answer line read back in T, or why it is not an answer of the protocol.
-template <class T>
-Expected<Answered<T>> read_answer(const std::string& line);
-
 /// The suite's judgement under the run's checks: the first violation, or none. `problem` is the
 /// filtered checker (the exact checker's verdicts, most without GMP; used by one thread only).
 template <class T>
-std::optional<Found<T>> judge(const properties::FilteredProblem<T>& problem, const Answered<T>& a,
+std::optional<Found<T>> judge(const properties::FilteredProblem<T>& problem,
+                              const protocol::TypedAnswer<T>& answer,
                               const properties::Checks& checks);
 
 /// What the judged cases covered, for the summary of a passing run.

@@ -64,7 +64,7 @@ typename Session<T>::Evaluation Session<T>::evaluate(const VerifyCase<T>& v, Fou
     issue_ = Issue{"lines beyond the one answer to this request", request, extra};
     return Evaluation::protocol_error;
   }
-  const Expected<Answered<T>> answered = read_answer<T>(answers[0]);
+  const Expected<protocol::TypedAnswer<T>> answered = protocol::read_answer<T>(answers[0]);
   if (!answered) {
     issue_ = Issue{"an answer that is not an answer of the protocol (" + answered.error() + ")",
                    request,

@@ -8,10 +8,14 @@
 #include <vector>
 
 #include "cases.h"
-#include "oblique/verify/child_process.h"
+#include "oblique/protocol/child_process.h"
 #include "oblique/verify/verifier.h"
 
 namespace oblique::verify {
+
+using protocol::ChildProcess;
+using protocol::Clock;
+using protocol::escape_bytes;
 
 /// A protocol problem found while evaluating: what, the request, the lines read.
 struct Issue {

@@ -25,7 +25,18 @@ struct JsonValue {
 
   /// The member named `key`, or nullptr.
   const JsonValue* find(std::string_view key) const;
+  /// The member named `key`; precondition: find(key) is not nullptr.
+  const JsonValue& at(std::string_view key) const { return *find(key); }
   bool is(Kind k) const { return kind == k; }
+  bool is_object() const { return kind == Kind::object; }
+  bool is_array() const { return kind == Kind::array; }
+  bool is_number() const { return kind == Kind::number; }
+  bool is_string() const { return kind == Kind::string; }
+  bool is_boolean() const { return kind == Kind::boolean; }
+  /// Items of an array, members of an object, 0 otherwise.
+  std::size_t size() const { return kind == Kind::object ? members.size() : items.size(); }
+  /// Item i of an array; precondition: i < size().
+  const JsonValue& operator[](std::size_t i) const { return items[i]; }
 };
 
 /// "a number", "an array", ...: for messages.
@@ -34,6 +45,7 @@ const char* kind_name(JsonValue::Kind kind);
 struct JsonLimits {
   std::size_t max_values = 256;  ///< numbers, strings, arrays, ... in the whole text
   std::size_t max_depth = 8;
+  std::size_t max_numbers = static_cast<std::size_t>(-1);  ///< numbers alone (max_values too)
 };
 
 /// The tree of `text`, or why it is not JSON within `limits` (with the line and column).

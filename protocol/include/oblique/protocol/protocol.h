@@ -66,6 +66,20 @@ struct ParsedAnswer {
 
 ParsedAnswer parse_answer(std::string_view line);
 
+/// An answer line read in T: the status, the matrix of an ok answer, the message of a refusal.
+template <class T>
+struct TypedAnswer {
+  Status status = Status::ok;
+  Matrix4<T> projection = Matrix4<T>::Zero();
+  std::string message;
+};
+
+/// The one reader of another program's answers (oblique verify, oblique check --impl): the line
+/// made strict JSON first (normalise_non_finite()), then parsed; an entry beyond T's range is an
+/// infinity to judge, not a protocol error. Fails, saying why, on a line that is no answer.
+template <class T>
+Expected<TypedAnswer<T>> read_answer(std::string_view line);
+
 /// The answer line of an ok result: each entry the shortest text that reads back as it in T.
 template <class T>
 std::string ok_answer_line(const Matrix4<T>& projection);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "oblique/expected.h"
 #include "oblique/oblique.h"
 #include "oblique/properties/judge.h"
 #include "oblique/protocol/numbers.h"
@@ -96,6 +97,13 @@ std::string impl_request(const Scene& scene, const SurfaceCheck& pass,
 /// pass.impl_findings.
 void judge_impl_answer(const Scene& scene, SurfaceCheck& pass, const std::string& line,
                        protocol::Precision precision = protocol::Precision::float64);
+
+/// `oblique check --impl`: starts `command` (run by /bin/sh), sends it every rendered pass's
+/// request (in check.impl_precision), and judges each answer (judge_impl_answer()). The number of
+/// passes judged, or why none were: the program could not be started, or did not answer every
+/// request within 4 x `timeout_seconds` (what it wrote on standard error included).
+Expected<std::size_t> judge_implementation(const Scene& scene, SceneCheck& check,
+                                           const std::string& command, double timeout_seconds);
 
 /// {"scene": ..., "surfaces": [{"name", "action", "reason", "view", "projection", "method",
 /// "properties": {name: bool}, "depth_bits_lost", ...}]}; numbers round-trip.

@@ -1,4 +1,4 @@
-#include "oblique/verify/child_process.h"
+#include "oblique/protocol/child_process.h"
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -17,7 +17,7 @@
 #include <sstream>
 #include <thread>
 
-namespace oblique::verify {
+namespace oblique::protocol {
 
 namespace {
 
@@ -398,4 +398,4 @@ std::string ChildProcess::end_description() {
   return "ended";
 }
 
-}  // namespace oblique::verify
+}  // namespace oblique::protocol

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-namespace oblique::verify {
+namespace oblique::protocol {
 
 using Clock = std::chrono::steady_clock;
 
@@ -94,4 +94,4 @@ class ChildProcess {
   bool reaped_ = false;
 };
 
-}  // namespace oblique::verify
+}  // namespace oblique::protocol

@@ -1,0 +1,117 @@
+// oblique check --impl: each rendered pass's request sent to the user's program (the apply
+// protocol), and its answers judged as oblique verify judges them.
+#include <csignal>
+#include <limits>
+
+#include "oblique/properties/judge.h"
+#include "oblique/properties/properties.h"
+#include "oblique/protocol/child_process.h"
+#include "oblique/protocol/protocol.h"
+#include "oblique/scene/check.h"
+
+namespace oblique::scene {
+
+namespace {
+
+/// The request's M and C in T (Eigen's cast: IEEE rounding, an infinity beyond T's range).
+template <class T>
+Matrix4<T> request_projection(const Scene& scene) {
+  static_assert(std::numeric_limits<T>::is_iec559);
+  return scene.camera.projection.template cast<T>();
+}
+template <class T>
+Vector4<T> request_plane(const SurfaceCheck& pass) {
+  return pass.plane_in_camera.template cast<T>();
+}
+
+template <class T>
+void judge_answer_in(const Scene& scene, SurfaceCheck& pass, const std::string& line) {
+  pass.impl_answer = line;
+  pass.impl_findings.clear();
+  auto protocol_error = [&](const std::string& why) {
+    properties::Finding f;
+    f.kind = "protocol";
+    f.relation = "the answer is a protocol answer line";
+    f.lhs = why;
+    f.rhs = "{\"status\": ..., \"projection\": [16 numbers]}";
+    f.ratio = 1e300;
+    pass.impl_findings.push_back(f);
+  };
+  const Expected<protocol::TypedAnswer<T>> answer = protocol::read_answer<T>(line);
+  if (!answer) return protocol_error(answer.error());
+  const properties::Outcome<T> outcome{answer->status, answer->projection};
+  const properties::Problem<T> problem(request_projection<T>(scene), request_plane<T>(pass),
+                                       scene.convention);
+  properties::Checks checks;
+  checks.statuses = properties::StatusContract::any_refusal;
+  checks.row3_accuracy = true;
+  // As verify: the judgement stops at the first violation (every = true would go on to the
+  // properties after a non-finite answer, whose exact arithmetic cannot take infinities).
+  pass.impl_findings = properties::judge(problem, outcome, checks).checks;
+}
+
+}  // namespace
+
+std::string impl_request(const Scene& scene, const SurfaceCheck& pass,
+                         protocol::Precision precision) {
+  switch (precision) {
+    case protocol::Precision::float32:
+      return protocol::request_line<float>(request_projection<float>(scene),
+                                           request_plane<float>(pass), scene.convention);
+    case protocol::Precision::float64: break;
+    case protocol::Precision::long_double:
+      return protocol::request_line<long double>(request_projection<long double>(scene),
+                                                 request_plane<long double>(pass),
+                                                 scene.convention);
+  }
+  return protocol::request_line<double>(request_projection<double>(scene),
+                                        request_plane<double>(pass), scene.convention);
+}
+
+void judge_impl_answer(const Scene& scene, SurfaceCheck& pass, const std::string& line,
+                       protocol::Precision precision) {
+  switch (precision) {
+    case protocol::Precision::float32: return judge_answer_in<float>(scene, pass, line);
+    case protocol::Precision::float64: return judge_answer_in<double>(scene, pass, line);
+    case protocol::Precision::long_double: return judge_answer_in<long double>(scene, pass, line);
+  }
+}
+
+Expected<std::size_t> judge_implementation(const Scene& scene, SceneCheck& check,
+                                           const std::string& command, double timeout_seconds) {
+  using protocol::ChildProcess;
+  std::vector<SurfaceCheck*> rendered;
+  std::string input;
+  for (SurfaceCheck& s : check.surfaces) {
+    if (!s.render) continue;
+    rendered.push_back(&s);
+    input += impl_request(scene, s, check.impl_precision) + "\n";
+  }
+  if (rendered.empty()) return std::size_t{0};
+  // An implementation that exits early must not take us down with it: a write to its closed
+  // input fails with EPIPE instead.
+  std::signal(SIGPIPE, SIG_IGN);
+  ChildProcess child(command);
+  std::string error;
+  if (!child.start(&error))
+    return Expected<std::size_t>::failure("cannot start the implementation: " + error);
+  std::vector<std::string> lines;
+  const auto idle = std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000));
+  const auto outcome =
+      child.exchange(input, rendered.size(), lines, idle, protocol::Clock::now() + 4 * idle);
+  child.stop();
+  if (outcome != ChildProcess::Outcome::done || lines.size() < rendered.size()) {
+    std::string why = "the implementation answered " + std::to_string(lines.size()) + " of " +
+                      std::to_string(rendered.size()) + " requests (" +
+                      (outcome == ChildProcess::Outcome::timed_out ? std::string("timed out")
+                                                                   : child.end_description()) +
+                      ")";
+    if (!child.stderr_tail().empty()) why += "; its standard error:\n" + child.stderr_tail();
+    return Expected<std::size_t>::failure(why);
+  }
+  for (std::size_t i = 0; i < rendered.size(); ++i)
+    judge_impl_answer(scene, *rendered[i], lines[i], check.impl_precision);
+  return rendered.size();
+}
+
+}  // namespace oblique::scene

@@ -1,0 +1,228 @@
+// oblique check's output: the table a person reads and the JSON object a program reads.
+#include <nlohmann/json.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+#include <string_view>
+
+#include "oblique/protocol/numbers.h"
+#include "oblique/scene/check.h"
+
+namespace oblique::scene {
+
+namespace {
+
+std::string number(double x) {
+  return protocol::format_number<double>(x);
+}
+
+const char* kind_name(SurfaceKind k) {
+  switch (k) {
+    case SurfaceKind::mirror: return "mirror";
+    case SurfaceKind::clip: return "clip";
+    case SurfaceKind::portal: return "portal";
+  }
+  return "?";
+}
+
+const char* buffer_name(DepthBuffer b) {
+  return b == DepthBuffer::fixed24 ? "fixed24" : "float32";
+}
+
+std::string fixed2(double x) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.2f", x);
+  return buffer;
+}
+
+nlohmann::ordered_json matrix_json(const Matrix4<double>& m) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (int i = 0; i < 16; ++i) out.push_back(m(i / 4, i % 4));
+  return out;
+}
+
+}  // namespace
+
+std::string to_json(const SceneCheck& check) {
+  using json = nlohmann::ordered_json;  // fields in the documented order; non-finite -> null
+  json surfaces = json::array();
+  for (const SurfaceCheck& s : check.surfaces) {
+    json properties = json::object(), residuals = json::object();
+    for (const properties::Finding& p : s.properties) {
+      properties[p.kind] = p.holds;
+      residuals[p.kind] = p.ratio;
+    }
+    surfaces.push_back({
+        {"name", s.name},
+        {"kind", kind_name(s.kind)},
+        {"path", s.path},
+        {"level", s.level},
+        {"action", s.render ? "render" : "skip"},
+        {"reason", s.render ? json(nullptr) : json(s.reason)},
+        {"status", std::string(status_code(s.status))},
+        {"view", matrix_json(s.view)},
+        {"projection", s.projection ? matrix_json(*s.projection) : json(nullptr)},
+        {"method", s.render ? json(std::string(method_name(s.method))) : json(nullptr)},
+        {"properties", properties},
+        {"residuals", residuals},
+        {"max_depth", s.depth ? json(s.depth->far_depth) : json(nullptr)},
+        {"depth_fraction", s.depth ? json(s.depth->fraction) : json(nullptr)},
+        {"depth_bits_lost", s.depth ? json(s.depth->bits_lost) : json(nullptr)},
+        {"scissor_ndc", s.scissor
+                            ? json({s.scissor->x0, s.scissor->y0, s.scissor->x1, s.scissor->y1})
+                            : json(nullptr)},
+        {"scissor_pixels",
+         s.scissor && s.scissor->pixels ? json(*s.scissor->pixels) : json(nullptr)},
+        {"covered_pixels",
+         s.scissor && s.scissor->covered_pixels ? json(*s.scissor->covered_pixels) : json(nullptr)},
+    });
+    if (s.impl_answer) {
+      json findings = json::array();
+      for (const properties::Finding& f : s.impl_findings)
+        findings.push_back({{"property", f.kind},
+                            {"holds", f.holds},
+                            {"relation", f.relation},
+                            {"residual", f.lhs},
+                            {"bound", f.rhs}});
+      surfaces.back()["impl"] = {
+          {"answer", *s.impl_answer},
+          {"precision", std::string(protocol::precision_name(check.impl_precision))},
+          {"findings", findings}};
+    }
+  }
+  const json out = {{"scene", check.scene},
+                    {"convention", std::string(convention_name(check.convention))},
+                    {"depth_buffer", buffer_name(check.depth_buffer)},
+                    {"max_depth", check.max_depth},
+                    {"truncated", check.truncated},
+                    {"surfaces", surfaces}};
+  return out.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+namespace {
+
+/// A name as printed in the table: control characters and DEL escaped (\n, \t, \x1b, ...), so a
+/// name cannot move the cursor or forge rows.
+std::string printable(std::string_view name) {
+  std::string out;
+  for (const char ch : name) {
+    const auto byte = static_cast<unsigned char>(ch);
+    if (ch == '\n') {
+      out += "\\n";
+    } else if (ch == '\t') {
+      out += "\\t";
+    } else if (ch == '\r') {
+      out += "\\r";
+    } else if (ch == '\\') {
+      out += "\\\\";
+    } else if (byte < 0x20 || byte == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", byte);
+      out += hex;
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string to_text(const SceneCheck& check) {
+  std::ostringstream out;
+  out << "scene " << printable(check.scene) << " (" << convention_name(check.convention) << ", "
+      << buffer_name(check.depth_buffer) << " depth buffer, max_depth " << check.max_depth
+      << ")\n\n";
+  // The summary table, then the details of each rendered pass. The name column is as wide as the
+  // longest name up to kNameColumn; a longer name has a line of its own above its row.
+  constexpr std::size_t kNameColumn = 32;
+  std::vector<std::string> names;
+  std::size_t width = 7;
+  for (const SurfaceCheck& s : check.surfaces) {
+    names.push_back(printable(s.name));
+    if (names.back().size() <= kNameColumn) width = std::max(width, names.back().size());
+  }
+  auto cell = [](std::string text, std::size_t w) {
+    text.resize(std::max(w, text.size()), ' ');
+    return text;
+  };
+  out << cell("surface", width) << "  kind    action  properties  depth bits lost  reason\n";
+  for (std::size_t i = 0; i < check.surfaces.size(); ++i) {
+    const SurfaceCheck& s = check.surfaces[i];
+    const bool own_line = names[i].size() > width;
+    if (own_line) out << names[i] << "\n";
+    out << cell(own_line ? "" : names[i], width) << "  " << cell(kind_name(s.kind), 6) << "  "
+        << cell(s.render ? "render" : "skip", 6) << "  "
+        << cell(s.render ? (s.properties_hold() ? "pass" : "FAIL") : "-", 10) << "  "
+        << cell(s.depth ? fixed2(s.depth->bits_lost) : "-", 15) << "  " << s.reason << "\n";
+  }
+  for (const SurfaceCheck& s : check.surfaces) {
+    if (!s.render) continue;
+    out << "\n" << printable(s.name) << " (" << kind_name(s.kind) << "): ";
+    out << "render, " << method_name(s.method) << " method, "
+        << (s.properties_hold() ? "every property holds" : "A PROPERTY FAILS") << "\n";
+    out << "  view:       ";
+    for (int i = 0; i < 4; ++i) {
+      out << (i ? "              " : "") << "[";
+      for (int j = 0; j < 4; ++j) out << (j ? ", " : "") << number(s.view(i, j));
+      out << "]\n";
+    }
+    out << "  projection: ";
+    for (int i = 0; i < 4; ++i) {
+      out << (i ? "              " : "") << "[";
+      for (int j = 0; j < 4; ++j) out << (j ? ", " : "") << number((*s.projection)(i, j));
+      out << "]\n";
+    }
+    for (const properties::Finding& p : s.properties) {
+      out << "  " << (p.holds ? "ok   " : "FAIL ") << p.kind;
+      if (p.ratio > 0) out << "  (residual / bound " << number(p.ratio) << ")";
+      out << "\n";
+    }
+    if (s.depth) {
+      out << "  depth along the view axis: reaches " << number(s.depth->far_depth) << ", spans "
+          << number(s.depth->fraction) << " of the range: " << number(s.depth->bits_lost)
+          << " bits of the "
+          << (s.depth->buffer == DepthBuffer::fixed24 ? "24-bit fixed-point" : "32-bit float")
+          << " buffer lost\n";
+    } else {
+      out << "  depth along the view axis: the axis does not pass through the kept region\n";
+    }
+    if (s.scissor) {
+      out << "  scissor (NDC): [" << number(s.scissor->x0) << ", " << number(s.scissor->x1)
+          << "] x [" << number(s.scissor->y0) << ", " << number(s.scissor->y1) << "]";
+      if (s.scissor->pixels) {
+        const auto& px = *s.scissor->pixels;
+        out << "; pixels x " << px[0] << ", y " << px[1] << ", " << px[2] << " x " << px[3] << " ("
+            << static_cast<long long>(px[2]) * px[3] << " pixels), the surface covers "
+            << number(std::round(*s.scissor->covered_pixels)) << " pixels";
+      }
+      out << "\n";
+    }
+  }
+  bool any_impl = false;
+  for (const SurfaceCheck& s : check.surfaces) any_impl = any_impl || s.impl_answer.has_value();
+  if (any_impl) {
+    out << "\nthe implementation's answers (--impl), judged as oblique verify --precision "
+        << protocol::precision_name(check.impl_precision) << " judges:\n";
+    for (const SurfaceCheck& s : check.surfaces) {
+      if (!s.impl_answer) continue;
+      bool holds = true;
+      for (const properties::Finding& f : s.impl_findings) holds = holds && f.holds;
+      out << "  " << printable(s.name) << ": " << (holds ? "pass" : "FAIL") << "\n";
+      for (const properties::Finding& f : s.impl_findings) {
+        if (f.holds) continue;
+        out << "    FAIL " << f.kind << ": " << f.relation << "\n      " << printable(f.lhs)
+            << "\n      bound: " << printable(f.rhs) << "\n";
+      }
+    }
+  }
+  if (check.truncated)
+    out << "\nmore than " << kMaxPasses << " passes: the rest were not looked at\n";
+  return out.str();
+}
+
+}  // namespace oblique::scene
