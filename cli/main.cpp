@@ -48,6 +48,18 @@ std::vector<std::string> split_list(const std::string& list) {
   return out;
 }
 
+/// A check that the value is one of `names` (a name table's), saying otherwise which is closest:
+/// `unknown convention "opengl" (known: gl, zero_one, reversed_z)`. Its description in the help
+/// lists the names.
+CLI::Validator one_of(const std::vector<std::string>& names, const std::string& what) {
+  return CLI::Validator(
+      [names, what](std::string& value) {
+        if (std::find(names.begin(), names.end(), value) != names.end()) return std::string();
+        return oblique::protocol::unknown_name(what, value, names);
+      },
+      "{" + oblique::protocol::name_list(names) + "}");
+}
+
 /// --precision: the protocol's scalar names (float, double, long_double), the same option for
 /// apply, verify and check; `allowed` are those the subcommand computes or judges in.
 CLI::Option* add_precision_option(CLI::App* app, std::string& precision, const std::string& what,
@@ -56,7 +68,7 @@ CLI::Option* add_precision_option(CLI::App* app, std::string& precision, const s
   for (const oblique::protocol::Precision p : allowed)
     names.emplace_back(oblique::protocol::precision_name(p));
   return app->add_option("--precision", precision, what)
-      ->check(CLI::IsMember(names))
+      ->check(one_of(names, "precision"))
       ->capture_default_str();
 }
 
@@ -124,13 +136,15 @@ void setup_apply(CLI::App& app, int& exit_code) {
   apply
       ->add_option("--convention", settings->convention,
                    "Depth convention of requests that name none")
-      ->check(CLI::IsMember({"gl", "zero_one", "reversed_z"}))
+      ->check(one_of(oblique::convention_names(), "convention"))
       ->capture_default_str();
   apply
       ->add_option("--method", settings->method,
                    "auto: closed form for the perspective shape, else general; accurate: every "
                    "entry within 2 ulp of the exact answer (measured: correctly rounded)")
-      ->check(CLI::IsMember({"auto", "closed_form", "general", "accurate"}))
+      ->check(one_of(
+          oblique::protocol::names_of<oblique::Method>(oblique::all_methods, oblique::method_name),
+          "method"))
       ->capture_default_str();
   add_precision_option(
       apply, settings->precision, "Scalar type of the computation",

@@ -266,6 +266,8 @@ TEST(Cli, aMistypedSubcommandFlagOrNameGetsTheClosest) {
       {"report acuracy", "unknown subcommand \"acuracy\" (did you mean accuracy?"},
       {"verify --impl cat --cses 3", "unknown flag \"--cses\" (did you mean --cases?"},
       {"apply --methd auto", "unknown flag \"--methd\" (did you mean --method?"},
+      {"apply --method acurate", "unknown method \"acurate\" (did you mean accurate?"},
+      {"apply --convention opengl", "unknown convention \"opengl\" (known: gl, zero_one"},
       {"verify --impl cat --families perspectve",
        "unknown family \"perspectve\" (did you mean perspective?"},
       {"verify --impl cat --statuses answer_only",
