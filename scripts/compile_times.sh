@@ -66,7 +66,7 @@ bool make_oblique(float m[16], const float plane[4]);  // yours: column-major, f
 // without an answer.
 const auto mine = oblique::adapt<float>("make_oblique", oblique::Layout::column_major,
                                         oblique::Convention::gl, make_oblique,
-                                        oblique::perspective_shape_only<float>);
+                                        oblique::engine_perspective_only<float>);
 OBLIQUE_PROPERTY_TEST(MyEngine, makeObliqueHasEveryProperty, mine, oblique::Contract{})
 EOF
 cat > "$work/project/calls_apply.cpp" <<'EOF'
@@ -84,7 +84,7 @@ void make_oblique(float m[16], const float plane[4]);  // yours
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const auto mine = oblique::adapt<float>("make_oblique", oblique::Layout::column_major,
                                                  oblique::Convention::gl, make_oblique,
-                                                 oblique::perspective_shape_only<float>);
+                                                 oblique::engine_perspective_only<float>);
   return oblique::fuzzing::test_one_input(data, size, mine);  // or a Contract as third argument
 }
 EOF
