@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "oblique/fuzzing/fuzz_report.h"
 #include "oblique/properties/contract.h"
 #include "oblique/protocol/apply.h"
 #include "oblique/protocol/names.h"
@@ -111,8 +112,12 @@ int run_check(const CheckSettings& settings) {
     // With --json, standard output stays one JSON object: the paths go to standard error.
     std::ostream& paths = settings.as_json ? std::cerr : std::cout;
     if (!settings.as_json) paths << "\n";
+    // The view across the first mirror or portal first: it shows the pass.
+    if (!plot.across.empty())
+      paths << "picture: " << plot.across.string() << " (across " << plot.across_surface << ")\n";
     for (const auto& file : plot.written) {
-      if (file.extension() == ".png") paths << "picture: " << file.string() << "\n";
+      if (file.extension() == ".png" && file != plot.across)
+        paths << "picture: " << file.string() << "\n";
     }
   }
   return check.passes() ? 0 : 1;
@@ -336,6 +341,45 @@ void setup_check(CLI::App& app, int& exit_code) {
   check->callback([settings, &exit_code] { exit_code = run_check(*settings); });
 }
 
+void setup_fuzz_report(CLI::App& app, int& exit_code, const char* self) {
+  auto options = std::make_shared<oblique::fuzzing::FuzzReportOptions>();
+  options->self = self;
+  CLI::App* sub = app.add_subcommand(
+      "fuzz-report",
+      "Run each input (crash files of a fuzz target; directories are walked) alone through the "
+      "target and write one report per distinct finding: a property (by property, "
+      "implementation, projection family and convention, with the report verify writes), a "
+      "sanitizer's error (by kind and function), a crash or a hang; and an index. Exit 0: no "
+      "input fails now; 1: findings (reports written); 2: the target or the inputs cannot be "
+      "run, or the reports cannot be written.");
+  sub->add_option("--target", options->target,
+                  "The fuzz target's command (its libFuzzer binary or replay build), run by sh "
+                  "with one input file")
+      ->required();
+  sub->add_option("INPUTS", options->inputs, "Input files or directories")->required();
+  sub->add_option("--report-dir", options->report_dir, "Where the reports go")
+      ->capture_default_str();
+  sub->add_option("--timeout", options->timeout_seconds, "Seconds one input may take")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->callback([options, &exit_code] {
+    const oblique::Expected<oblique::fuzzing::FuzzReport> report =
+        oblique::fuzzing::fuzz_report(*options);
+    if (!report) {
+      std::cerr << "oblique fuzz-report: " << report.error() << "\n";
+      exit_code = 2;
+      return;
+    }
+    std::cout << "oblique fuzz-report: " << report->inputs << " inputs, " << report->findings.size()
+              << " distinct findings, " << report->holds << " run without a finding now"
+              << (report->index.empty() ? "" : "; index: " + report->index) << "\n";
+    for (const auto& f : report->findings)
+      std::cout << "  " << f.key << ": " << f.inputs.size() << " inputs, report " << f.report
+                << "\n";
+    exit_code = report->findings.empty() ? 0 : 1;
+  });
+}
+
 void setup_report(CLI::App& app, int& exit_code) {
   struct Settings {
     oblique::report::AccuracyOptions accuracy;
@@ -442,6 +486,7 @@ int main(int argc, char** argv) {
   setup_apply(app, exit_code);
   setup_verify(app, exit_code, argc, argv);
   setup_check(app, exit_code);
+  setup_fuzz_report(app, exit_code, argv[0]);
   setup_report(app, exit_code);
   // A first word that is no subcommand: say so, with the closest, before CLI11 asks for one.
   const std::string first = argc > 1 ? argv[1] : "";

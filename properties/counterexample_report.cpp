@@ -408,7 +408,9 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
       pictures["clipped_point"] = p;
     }
   }
-  md << "## Replay\n\nThe whole run, shrinking included (seed " << context.seed << "):\n\n```sh\n"
+  md << "## Replay\n\nThe whole run"
+     << (context.seed ? ", shrinking included (seed " + std::to_string(context.seed) + ")" : "")
+     << ":\n\n```sh\n"
      << replay_suite << "\n```\n\n";
   if (!replay_case.empty()) md << "This one case alone:\n\n```sh\n" << replay_case << "\n```\n\n";
   if (!context.contract.empty()) {

@@ -131,8 +131,30 @@ void stage_views(ReportFiles& files, const Views& views, const std::filesystem::
        << "set xrange [" << protocol::format_number(views.lo[axes[0]]) << ":"
        << protocol::format_number(views.hi[axes[0]]) << "]\n"
        << "set yrange [" << protocol::format_number(views.lo[axes[1]]) << ":"
-       << protocol::format_number(views.hi[axes[1]]) << "]\n"
-       << "plot \\\n";
+       << protocol::format_number(views.hi[axes[1]]) << "]\n";
+    // Labels that fall on one spot of this view share one text; a label in the right half is
+    // written to the left of its point, so it stays inside the picture.
+    const double width = views.hi[axes[0]] - views.lo[axes[0]];
+    const double height = views.hi[axes[1]] - views.lo[axes[1]];
+    std::vector<std::pair<Eigen::Vector2d, std::string>> spots;
+    for (const Label& label : views.labels) {
+      const Eigen::Vector2d at(label.at[axes[0]], label.at[axes[1]]);
+      auto same = std::find_if(spots.begin(), spots.end(), [&](const auto& spot) {
+        return std::abs(spot.first.x() - at.x()) <= 0.02 * width &&
+               std::abs(spot.first.y() - at.y()) <= 0.02 * height;
+      });
+      if (same == spots.end())
+        spots.emplace_back(at, label.text);
+      else
+        same->second += ", " + label.text;
+    }
+    for (const auto& [at, text] : spots) {
+      const bool right_half = at.x() > views.lo[axes[0]] + width / 2;
+      gp << "set label " << gnuplot_string(text) << " at " << protocol::format_number(at.x()) << ","
+         << protocol::format_number(at.y())
+         << (right_half ? " right offset -1,1" : " left offset 1,1") << " front\n";
+    }
+    gp << "plot \\\n";
     for (std::size_t i = 0; i < views.sets.size(); ++i) {
       gp << "  " << gnuplot_string(data_path) << " index " << i << " using " << columns << " with "
          << views.sets[i].style << " title " << gnuplot_string(views.sets[i].title)

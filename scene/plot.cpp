@@ -18,6 +18,33 @@ using report::Dataset;
 using report::Segment;
 using report::volume_edges;
 
+namespace {
+
+/// Where the eye of a camera with this view matrix (world -> camera) is.
+Vector3 eye_of(const Matrix4<double>& view) {
+  const Vector4<double> e = view.inverse() * Vector4<double>(0, 0, 0, 1);
+  return e.head<3>() / e.w();
+}
+
+/// The box the pictures show: the eyes, the surfaces and where the main camera's view axis meets
+/// them, with a margin, every side at least a third of the longest (so neither view is a strip).
+std::pair<Vector3, Vector3> frame(const std::vector<Vector3>& points) {
+  Vector3 lo = points.front(), hi = points.front();
+  for (const Vector3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double longest = std::max((hi - lo).maxCoeff(), 1.0);
+  for (int i = 0; i < 3; ++i) {
+    const double grow = std::max(0.0, longest / 3 - (hi(i) - lo(i))) / 2 + 0.1 * longest;
+    lo(i) -= grow;
+    hi(i) += grow;
+  }
+  return {lo, hi};
+}
+
+}  // namespace
+
 PlotResult write_plot(const Scene& scene, const SceneCheck& check,
                       const std::filesystem::path& dir) {
   PlotResult result;
@@ -51,32 +78,57 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
   }
   const char* colors[] = {"#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
                           "#8c564b", "#e377c2", "#17becf", "#bcbd22"};
+  std::vector<report::Label> labels = {{eye, "camera"}};
+  sets.push_back({"camera", "points pt 7 ps 1.5 lc rgb 'black'", {}, {eye}});
+  // What the pictures frame: the eyes, the surfaces, and where the view axis meets a surface.
+  std::vector<Vector3> framed = {eye};
+  const Vector3 axis = (scene.camera.target - eye).normalized();
+  for (const Surface& s : scene.surfaces) {
+    const Vector3 at = s.polygon.empty() ? s.point : Vector3::Zero();
+    Vector3 centroid = at;
+    for (const Vector3& v : s.polygon) centroid += v / static_cast<double>(s.polygon.size());
+    labels.push_back({centroid, s.name});
+    framed.push_back(centroid);
+    for (const Vector3& v : s.polygon) framed.push_back(v);
+    const double facing = s.normal.dot(axis);
+    if (facing != 0) {
+      const double t = s.normal.dot(s.point - eye) / facing;
+      if (t > 0 && t < reach) framed.push_back(eye + t * axis);
+    }
+  }
   std::size_t color = 0;
+  const SurfaceCheck* first_virtual = nullptr;
   for (const SurfaceCheck& s : check.surfaces) {
     if (!s.render || !s.projection) continue;
-    // The virtual volume in the pass's world (the pass camera's view), within its scissor.
+    // The virtual volume in the pass's world (the pass camera's view), within its scissor, from
+    // its oblique near plane (the surface) to its tilted far plane; and the pass's camera.
     std::array<double, 4> rect = {-1, -1, 1, 1};
     if (s.scissor) rect = {s.scissor->x0, s.scissor->y0, s.scissor->x1, s.scissor->y1};
+    const std::string rgb = colors[color++ % 8];
     sets.push_back({s.name + (s.scissor ? " (pass, scissored)" : " (pass)"),
-                    "lines lc rgb '" + std::string(colors[color++ % 8]) + "' dt 2 lw 1.5",
+                    "lines lc rgb '" + rgb + "' dt 2 lw 1.5",
                     volume_edges(s.view, *s.projection, scene.convention, reach, rect),
                     {}});
+    // The virtual camera of a pass seen from the main camera (deeper ones would crowd it).
+    const Vector3 pass_eye = eye_of(s.view);
+    if (s.level != 1 || !pass_eye.allFinite() || (pass_eye - eye).norm() < 1e-9 * (1 + eye.norm()))
+      continue;
+    // What the virtual camera would draw without the oblique near plane: everything behind the
+    // surface too.
+    sets.push_back({s.name + ": virtual volume without the oblique near plane",
+                    "lines lc rgb '#999999' dt 3 lw 1",
+                    volume_edges(s.view, scene.camera.projection, scene.convention, reach, rect),
+                    {}});
+    sets.push_back(
+        {s.name + ": virtual camera", "points pt 7 ps 1.5 lc rgb '" + rgb + "'", {}, {pass_eye}});
+    if (color <= 4) labels.push_back({pass_eye, "virtual camera (" + s.name + ")"});
+    if (!first_virtual) first_virtual = &s;
+    framed.push_back(pass_eye);
   }
   try {
     report::ReportFiles files(dir);
-    // The picture shows the eye and the surfaces with a margin (volumes are cut at its edge).
-    Vector3 lo = eye, hi = eye;
-    for (const Surface& s : scene.surfaces) {
-      lo = lo.cwiseMin(s.point);
-      hi = hi.cwiseMax(s.point);
-      for (const Vector3& v : s.polygon) {
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
-      }
-    }
-    const double margin = 0.5 * std::max((hi - lo).maxCoeff(), 1.0);
-    lo.array() -= margin;
-    hi.array() += margin;
+    // The picture frames what matters (volumes are cut at its edge).
+    const auto [lo, hi] = frame(framed);
     report::Views views;
     views.title = check.scene;
     views.space = "world";
@@ -86,6 +138,7 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
     views.lo = lo;
     views.hi = hi;
     views.sets = std::move(sets);
+    views.labels = std::move(labels);
     report::stage_views(files, views, dir);
     // Every file whole in place (or none), then the pictures.
     std::ostringstream commit_log;
@@ -105,6 +158,16 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
       }
     }
     result.written = files.written();
+    if (first_virtual) {
+      // Top (x, z) or side (z, y): the one whose axes hold more of the surface's normal.
+      const Vector3& n = scene.surfaces[first_virtual->path.back()].normal;
+      const bool side = std::abs(n.y()) > std::abs(n.x());  // a wall facing z: the floor plan
+      const std::filesystem::path png = dir / (side ? "side.png" : "top.png");
+      if (std::find(result.written.begin(), result.written.end(), png) != result.written.end()) {
+        result.across = png;
+        result.across_surface = first_virtual->name;
+      }
+    }
   } catch (const std::exception& e) {
     result.error = e.what();
   }

@@ -29,7 +29,7 @@ declare -A below=(
   [verify]="core protocol report_files properties"
   [scene]="core protocol report_files properties"
   [report]="core protocol report_files properties"
-  [cli]="core protocol report_files properties verify scene report"
+  [cli]="core protocol report_files properties fuzzing verify scene report"
 )
 libraries=(core protocol report_files properties testing fuzzing verify scene report cli)
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the main job on the bundled default scene:
 # `oblique check examples/scenes/lake.json` (a camera over a lake, its reflection and refraction
-# passes), with its picture in build/demo-picture/. Another scene:
+# passes), with its pictures in build/demo-picture/ (the view across the water first). Another
+# scene:
 # bash scripts/demo.sh examples/scenes/hall_of_mirrors.json
 set -euo pipefail
 cd "$(dirname "$0")/.."

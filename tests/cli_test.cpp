@@ -4,14 +4,18 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "oblique/oblique.h"
@@ -283,6 +287,83 @@ TEST(Cli, aMistypedSubcommandFlagOrNameGetsTheClosest) {
         << c.arguments;
     EXPECT_NE(err.find(c.says), std::string::npos) << c.arguments << " said:\n" << err;
   }
+}
+
+// Many failing inputs of a fuzz target, one report per distinct finding: the printed Listing 5.1
+// through the project's own target on 40 corpus inputs. Each report's one-case command fails
+// again; the index lists every finding.
+TEST(Cli, fuzzReportGivesOneReportPerDistinctFinding) {
+  namespace fs = std::filesystem;
+  const fs::path work = fs::path(::testing::TempDir()) / "oblique_fuzz_report";
+  fs::remove_all(work);
+  fs::create_directories(work / "inputs");
+  std::vector<fs::path> corpus;
+  for (const auto& entry : fs::directory_iterator(OBLIQUE_FUZZ_CORPUS)) corpus.push_back(entry);
+  std::sort(corpus.begin(), corpus.end());
+  for (std::size_t i = 0; i < 40 && i < corpus.size(); ++i)
+    fs::copy_file(corpus[i], work / "inputs" / corpus[i].filename());
+  const std::string target = std::string("env OBLIQUE_IMPL=listing_5_1 ") + OBLIQUE_FUZZ_REPLAY;
+  std::string out;
+  ASSERT_EQ(
+      shell(std::string(OBLIQUE_CLI) + " fuzz-report --report-dir " + (work / "reports").string() +
+                " --target '" + target + "' " + (work / "inputs").string(),
+            &out),
+      1)
+      << out;
+  EXPECT_NE(out.find("oblique fuzz-report: 40 inputs, "), std::string::npos) << out;
+  std::vector<std::string> reports;
+  for (std::size_t at = out.find(", report "); at != std::string::npos;
+       at = out.find(", report ", at + 1))
+    reports.push_back(out.substr(at + 9, out.find('\n', at) - at - 9));
+  ASSERT_GE(reports.size(), 2u) << out;
+  std::set<std::string> distinct(reports.begin(), reports.end());
+  EXPECT_EQ(distinct.size(), reports.size()) << out;
+  for (const std::string& report : reports) {
+    std::ifstream file(report);
+    std::ostringstream text;
+    text << file.rdbuf();
+    const std::string md = text.str();
+    const auto alone = md.find("This one case alone:\n\n```sh\n");
+    ASSERT_NE(alone, std::string::npos) << report << "\n" << md;
+    const auto start = alone + std::string("This one case alone:\n\n```sh\n").size();
+    const std::string replay = md.substr(start, md.find('\n', start) - start);
+    std::string ignored;
+    EXPECT_NE(shell(replay + " 2>/dev/null", &ignored), 0) << replay;
+  }
+  EXPECT_TRUE(fs::exists(work / "reports" / "fuzz-index.md"));
+}
+
+// Other findings group by what ended the run: a sanitizer's error (by kind and function), a
+// signal; an input that runs through is counted, not reported.
+TEST(Cli, fuzzReportGroupsSanitizerErrorsAndCrashes) {
+  namespace fs = std::filesystem;
+  const fs::path work = fs::path(::testing::TempDir()) / "oblique_fuzz_report_crashes";
+  fs::remove_all(work);
+  fs::create_directories(work / "inputs");
+  std::ofstream(work / "target.sh")
+      << "case $(cat \"$1\") in\n"
+      << "  asan*) echo '==7==ERROR: AddressSanitizer: heap-buffer-overflow on address 0x60'\n"
+      << "         echo '    #0 0x4f5 in make_oblique engine.cpp:12'; exit 1;;\n"
+      << "  segv) kill -SEGV $$;;\n"
+      << "  *) exit 0;;\n"
+      << "esac\n";
+  for (const auto& [name, text] : {std::pair{"a", "asan one"}, std::pair{"b", "asan two"},
+                                   std::pair{"c", "segv"}, std::pair{"d", "fine"}})
+    std::ofstream(work / "inputs" / name) << text;
+  std::string out;
+  ASSERT_EQ(shell(std::string(OBLIQUE_CLI) + " fuzz-report --report-dir " +
+                      (work / "reports").string() + " --target 'sh " +
+                      (work / "target.sh").string() + "' " + (work / "inputs").string(),
+                  &out),
+            1)
+      << out;
+  EXPECT_NE(out.find("4 inputs, 2 distinct findings, 1 run without a finding now"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("AddressSanitizer heap-buffer-overflow in make_oblique: 2 inputs"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("crash: signal 11: 1 inputs"), std::string::npos) << out;
 }
 
 TEST(Cli, applyOnAFullDiskExitsTwoAndSaysSo) {

@@ -900,6 +900,50 @@ TEST(Scenes, cliPlotWritesTwoViewsOrSaysWhyNot) {
   // A directory that cannot be made (under a regular file): exit 2, with a message.
   EXPECT_EQ(run_check(dir + "/lake.json --plot " + dir + "/lake.json/pictures"), 2);
 }
+
+// The picture explains the pass: the view across the water comes first, its camera and the
+// mirrored one are labelled, the mirrored camera's volume is drawn with and without the oblique
+// near plane, and the frame reaches where the view axis meets the water (z = -20), not the
+// 500 m far plane, nor only the 10 m around the eye.
+TEST(Scenes, cliPlotShowsTheCameraTheMirroredCameraAndTheObliqueVolume) {
+  const std::string dir = OBLIQUE_SCENES_DIR;
+  const std::string plot = ::testing::TempDir() + "oblique_check_plot_lake";
+  std::filesystem::remove_all(plot);
+  std::string output;
+  ASSERT_EQ(run_check_capturing(dir + "/lake.json --plot " + plot, output), 0) << output;
+  EXPECT_NE(output.find("picture: " + plot + "/side.png (across water reflection)"),
+            std::string::npos)
+      << output;
+  const std::string side = read_file(plot + "/side.gp");
+  for (const char* expected :
+       {"title 'water reflection (pass)'",
+        "title 'water reflection: virtual volume without the oblique near plane'"})
+    EXPECT_NE(side.find(expected), std::string::npos) << expected << "\n" << side;
+  // The eye (0, 2, 10) and the mirrored one (0, -2, 10), at (z, y) in the side view.
+  const auto label_at = [&](const std::string& text, double z, double y) {
+    const std::string start = "set label '" + text + "' at ";
+    const auto at = side.find(start);
+    ASSERT_NE(at, std::string::npos) << text << "\n" << side;
+    double got_z = 0, got_y = 0;
+    ASSERT_EQ(std::sscanf(side.c_str() + at + start.size(), "%lf,%lf", &got_z, &got_y), 2);
+    EXPECT_NEAR(got_z, z, 1e-9) << text;
+    EXPECT_NEAR(got_y, y, 1e-9) << text;
+  };
+  label_at("camera", 10, 2);
+  label_at("virtual camera (water reflection)", 10, -2);
+  const auto range = [&](const std::string& axis) {
+    const auto at = side.find("set " + axis + "range [");
+    EXPECT_NE(at, std::string::npos) << side;
+    double lo = 0, hi = 0;
+    std::sscanf(side.c_str() + at + 12, "%lf:%lf", &lo, &hi);
+    return std::pair{lo, hi};
+  };
+  const auto [z_lo, z_hi] = range("x");  // the side view's x axis is world z
+  EXPECT_LT(z_lo, -20);
+  EXPECT_GT(z_lo, -40);
+  EXPECT_GT(z_hi, 10);
+  EXPECT_LT(z_hi, 20);
+}
 #endif  // OBLIQUE_CLI
 
 }  // namespace

@@ -28,16 +28,6 @@ std::string seconds_text(double seconds) {
 
 }  // namespace
 
-std::string shell_quote(const std::string& s) {
-  const bool plain = !s.empty() && std::all_of(s.begin(), s.end(), [](char ch) {
-    return std::isalnum(static_cast<unsigned char>(ch)) || std::strchr("_./=,:+-@%", ch);
-  });
-  if (plain) return s;
-  std::string out = "'";
-  for (char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return out + "'";
-}
-
 template <class T>
 Reporter<T>::Reporter(const VerifyOptions& options, const Draws<T>& draws, std::ostream& out,
                       std::ostream& err)

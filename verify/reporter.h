@@ -14,9 +14,6 @@
 
 namespace oblique::verify {
 
-/// `s` quoted for /bin/sh when it needs it.
-std::string shell_quote(const std::string& s);
-
 /// --keep-going: one report per kind of finding (property x family x place).
 struct Kind {
   std::string report;

@@ -16,6 +16,7 @@ namespace oblique::verify {
 using protocol::ChildProcess;
 using protocol::Clock;
 using protocol::escape_bytes;
+using protocol::shell_quote;
 
 /// A protocol problem found while evaluating: what, the request, the lines read.
 struct Issue {

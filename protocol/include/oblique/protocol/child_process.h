@@ -18,6 +18,9 @@ using Clock = std::chrono::steady_clock;
 /// every other byte (invalid or cut UTF-8, control characters) as \xNN.
 std::string escape_bytes(std::string_view bytes);
 
+/// `s` quoted for /bin/sh when it needs it (a word of letters, digits and _./=,:+-@% as it is).
+std::string shell_quote(const std::string& s);
+
 class ChildProcess {
  public:
   /// `command` runs under /bin/sh -c, in its own process group.

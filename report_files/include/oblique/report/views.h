@@ -43,6 +43,12 @@ struct Dataset {
   std::vector<Eigen::Vector3d> points;
 };
 
+/// A text placed at a point of the pictures (beside it, in front of every line).
+struct Label {
+  Eigen::Vector3d at;
+  std::string text;
+};
+
 /// What the two views show.
 struct Views {
   std::string title;       ///< the pictures' title ("top view" / "side view" is appended)
@@ -51,6 +57,7 @@ struct Views {
   std::string top, side;   ///< the scripts' and pictures' stems, e.g. "top" (top.gp, top.png)
   Eigen::Vector3d lo, hi;  ///< the box the pictures show
   std::vector<Dataset> sets;
+  std::vector<Label> labels;
   std::string key = "below";  ///< gnuplot's `set key` options
 };
 

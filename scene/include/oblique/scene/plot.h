@@ -19,9 +19,17 @@ namespace oblique::scene {
 struct PlotResult {
   std::vector<std::filesystem::path> written;  ///< the data, scripts and PNGs
   std::string error;                           ///< empty when both PNGs were written
+  /// The view that shows the first rendered mirror or portal pass across its surface (the one
+  /// whose axes hold most of the surface's normal), and that surface's name; empty without one.
+  std::filesystem::path across;
+  std::string across_surface;
 };
 
-/// Writes DIR/scene.dat, DIR/top.gp, DIR/side.gp and (with gnuplot) DIR/top.png, DIR/side.png.
+/// Writes DIR/scene.dat, DIR/top.gp, DIR/side.gp and (with gnuplot) DIR/top.png, DIR/side.png:
+/// the camera and each rendered pass's virtual camera (labelled), the surfaces, the main view
+/// volume, each pass's oblique volume (dashed) and what its camera would draw without the
+/// oblique near plane (dotted), framed to the eyes, the surfaces and where the view axis meets
+/// them.
 PlotResult write_plot(const Scene& scene, const SceneCheck& check,
                       const std::filesystem::path& dir);
 

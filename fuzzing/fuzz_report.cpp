@@ -1,0 +1,338 @@
+#include "oblique/fuzzing/fuzz_report.h"
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "oblique/properties/counterexample_report.h"
+#include "oblique/properties/properties.h"
+#include "oblique/protocol/child_process.h"
+#include "oblique/protocol/numbers.h"
+#include "oblique/report/report_files.h"
+
+namespace oblique::fuzzing {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// What one input did: its output (at most 64 KiB) and how the target ended.
+struct Run {
+  std::string output;
+  int status = 0;  ///< the shell's exit status; 124: the time ran out
+};
+
+Run run(const FuzzReportOptions& options, const std::string& input) {
+  // coreutils' timeout ends a hang; the target gets the file as its one argument.
+  const std::string command = "timeout -k 2 " + std::to_string(options.timeout_seconds) +
+                              " /bin/sh -c " + protocol::shell_quote(options.target + " \"$1\"") +
+                              " sh " + protocol::shell_quote(input) + " 2>&1 < /dev/null";
+  Run r;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) {
+    r.status = -1;
+    return r;
+  }
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) {
+    if (r.output.size() < (64u << 10)) r.output.append(buffer, n);
+  }
+  const int raw = ::pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
+  return r;
+}
+
+/// The line of `text` that contains `marker`, from the marker on ("" when none does).
+std::string line_from(const std::string& text, const std::string& marker) {
+  const auto at = text.find(marker);
+  if (at == std::string::npos) return "";
+  const auto end = text.find('\n', at + 1);  // a marker may start with the newline before it
+  return text.substr(at, end == std::string::npos ? std::string::npos : end - at);
+}
+
+/// The words between `open` and `close` after position `from` of `line`.
+std::string between(const std::string& line, const std::string& open, const std::string& close,
+                    std::size_t from = 0) {
+  const auto a = line.find(open, from);
+  if (a == std::string::npos) return "";
+  const auto b = line.find(close, a + open.size());
+  return line.substr(a + open.size(),
+                     b == std::string::npos ? std::string::npos : b - a - open.size());
+}
+
+/// A property violation as the fuzz driver prints it.
+struct Violation {
+  std::string property, implementation, scalar, convention, family, answered;
+};
+
+std::optional<Violation> violation_of(const std::string& output) {
+  const std::string line = line_from(output, "oblique property violated: ");
+  if (line.empty()) return std::nullopt;
+  Violation v;
+  v.property = between(line, "violated: ", " by ");
+  const auto by = line.find(" by ");
+  const auto open = by == std::string::npos ? by : line.find(" (", by);
+  if (by == std::string::npos || open == std::string::npos || open < by) return std::nullopt;
+  v.implementation = line.substr(by + 4, open - by - 4);
+  std::istringstream words(between(line, " (", ")", open));
+  std::getline(words, v.scalar, ',');
+  words >> std::ws;
+  std::getline(words, v.convention, ',');
+  words >> std::ws >> v.family;
+  v.answered = between(line, "): it ", "\n");
+  return v;
+}
+
+/// What an input found, as the key its group goes by; empty when it holds.
+std::string key_of(const Run& r) {
+  if (r.status == 0) return "";
+  if (const auto v = violation_of(r.output))
+    return v->property + " x " + v->implementation + " x " + v->family + " x " + v->convention;
+  if (const std::string asan = line_from(r.output, "ERROR: AddressSanitizer: "); !asan.empty()) {
+    std::istringstream words(asan.substr(std::string("ERROR: AddressSanitizer: ").size()));
+    std::string kind;
+    words >> kind;
+    // The first frame of the program's own code: not the sanitizer's interceptors.
+    std::string where;
+    for (std::size_t at = r.output.find(" in "); at != std::string::npos && where.empty();
+         at = r.output.find(" in ", at + 4)) {
+      std::istringstream frame(r.output.substr(at + 4, 200));
+      std::string function;
+      frame >> function;
+      if (function.rfind("__", 0) != 0 && function.find("asan") == std::string::npos)
+        where = function;
+    }
+    return "AddressSanitizer " + kind + (where.empty() ? "" : " in " + where);
+  }
+  if (const std::string ubsan = line_from(r.output, "runtime error: "); !ubsan.empty()) {
+    const auto start = r.output.rfind('\n', r.output.find("runtime error: "));
+    const std::string place = r.output.substr(
+        start == std::string::npos ? 0 : start + 1,
+        r.output.find(": runtime error") - (start == std::string::npos ? 0 : start + 1));
+    return "UndefinedBehaviorSanitizer at " + place;
+  }
+  if (r.status == 124) return "timeout";
+  if (const std::string fuzzer = line_from(r.output, "ERROR: libFuzzer: "); !fuzzer.empty())
+    return "libFuzzer " + fuzzer.substr(std::string("ERROR: libFuzzer: ").size());
+  return r.status > 128 ? "crash: signal " + std::to_string(r.status - 128)
+                        : "crash: exit status " + std::to_string(r.status);
+}
+
+/// A file name from a key: letters, digits and _ kept, the rest one '-'.
+std::string stem_of(const std::string& key) {
+  std::string out;
+  for (char ch : key) {
+    const bool plain = std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+    if (plain)
+      out += ch;
+    else if (!out.empty() && out.back() != '-')
+      out += '-';
+  }
+  while (!out.empty() && out.back() == '-') out.pop_back();
+  return out.substr(0, 80);
+}
+
+/// The numbers in parentheses after `label` on the line that starts with it (the exact hex the
+/// driver prints), or the decimals after it when there are none.
+template <class T>
+std::optional<std::vector<T>> numbers_after(const std::string& output, const std::string& label,
+                                            std::size_t count) {
+  const auto at = output.find("\n" + label);
+  if (at == std::string::npos) return std::nullopt;
+  const std::string line =
+      output.substr(at + 1 + label.size(), output.find('\n', at + 1) - at - 1 - label.size());
+  const auto paren = line.find('(');
+  std::istringstream tokens(paren == std::string::npos ? line : between(line, "(", ")"));
+  std::vector<T> out;
+  for (std::string token; tokens >> token && out.size() < count;) {
+    std::string error;
+    const std::optional<T> value = protocol::parse_number<T>(token, &error);
+    if (!value) return std::nullopt;
+    out.push_back(*value);
+  }
+  if (out.size() != count) return std::nullopt;
+  return out;
+}
+
+/// The report of a property violation: the input in its scalar type, the answer, the property's
+/// relation, pictures and the command that replays it; "" when the output cannot be read back.
+template <class T>
+std::string violation_report(const FuzzReportOptions& options, const Violation& v,
+                             const FuzzFinding& finding, const std::string& output) {
+  Matrix4<T> m;
+  Vector4<T> c;
+  for (int i = 0; i < 4; ++i) {
+    const auto row = numbers_after<T>(output, "  M row " + std::to_string(i + 1) + ":", 4);
+    if (!row) return "";
+    for (int j = 0; j < 4; ++j) m(i, j) = (*row)[static_cast<std::size_t>(j)];
+  }
+  const auto plane = numbers_after<T>(output, "  C:", 4);
+  const auto convention = parse_convention(v.convention);
+  if (!plane || !convention) return "";
+  for (int i = 0; i < 4; ++i) c(i) = (*plane)[static_cast<std::size_t>(i)];
+  properties::Counterexample ce = properties::make_counterexample(m, c, *convention);
+  ce.implementation = v.implementation;
+  ce.family = v.family;
+  ce.place = "fuzz input";
+  ce.finding.kind = v.property;
+  ce.finding.relation = "the answer has " + v.property;
+  // The driver's line for the failing check: "KIND: relation; residual R, bound B".
+  if (const std::string check = line_from(output, "\n" + v.property + ": "); !check.empty()) {
+    ce.finding.relation = between(check, ": ", "; residual ");
+    ce.finding.lhs = between(check, "; residual ", ", bound ");
+    ce.finding.rhs = between(check, ", bound ", "\n");
+    char* end = nullptr;
+    const double residual = std::strtod(ce.finding.lhs.c_str(), &end);
+    const double bound = std::strtod(ce.finding.rhs.c_str(), nullptr);
+    if (end != ce.finding.lhs.c_str() && bound > 0) ce.finding.ratio = std::abs(residual) / bound;
+  } else {  // a status finding: what the input allows, and what came
+    ce.finding.relation = "an answer the input allows";
+    ce.finding.expected = line_from(output, "the input has");
+    ce.finding.got = "it " + v.answered;
+  }
+  std::optional<Matrix4<T>> answer;
+  Matrix4<T> rows;
+  bool all_rows = true;
+  for (int i = 0; i < 4 && all_rows; ++i) {
+    const auto row = numbers_after<T>(output, "M' row " + std::to_string(i + 1) + ":", 4);
+    all_rows = row.has_value();
+    if (row)
+      for (int j = 0; j < 4; ++j) rows(i, j) = (*row)[static_cast<std::size_t>(j)];
+  }
+  if (all_rows) {
+    answer = rows;
+    properties::set_result(ce, rows);
+  }
+  properties::set_views(ce, properties::Problem<T>(m, c, *convention), answer ? &*answer : nullptr);
+  ce.notes.emplace_back("fuzz input", finding.inputs.front());
+  ce.notes.emplace_back("inputs with this finding", std::to_string(finding.inputs.size()));
+  ce.notes.emplace_back("what it did", "it " + v.answered);
+  ce.notes.emplace_back("what the input allows", line_from(output, "the input has"));
+  ce.notes.emplace_back("output", protocol::escape_bytes(output.substr(0, 2000)));
+  properties::ReportContext context;
+  context.directory = options.report_dir;
+  context.stem = "fuzz-" + stem_of(v.property + " " + v.family + " " + v.convention);
+  context.replay_case = options.target + " " + protocol::shell_quote(finding.inputs.front());
+  context.replay_run = options.self + " fuzz-report --target " +
+                       protocol::shell_quote(options.target) + " " +
+                       protocol::shell_quote(finding.inputs.front());
+  context.keep_existing = true;
+  return properties::write_report(ce, context);
+}
+
+/// A name in `dir` not taken yet: STEM.md, STEM-2.md, ...
+std::string free_name(const std::string& dir, const std::string& stem) {
+  std::string name = stem + ".md";
+  std::error_code ec;
+  for (int n = 2; fs::exists(fs::path(dir) / name, ec); ++n)
+    name = stem + "-" + std::to_string(n) + ".md";
+  return name;
+}
+
+/// The report of any other finding (a sanitizer's error, a crash, a hang): the target's output
+/// and the command that replays it.
+Expected<std::string> plain_report(const FuzzReportOptions& options, const FuzzFinding& finding,
+                                   const std::string& output) {
+  report::ReportFiles files(options.report_dir);
+  const std::string name = free_name(options.report_dir, "fuzz-" + stem_of(finding.key));
+  std::ostream& md = files.open(name);
+  md << "# Fuzz finding: " << finding.key << "\n\n"
+     << finding.inputs.size() << " input(s); the smallest, `" << finding.inputs.front()
+     << "`, replayed:\n\n```sh\n"
+     << options.target << " " << protocol::shell_quote(finding.inputs.front())
+     << "\n```\n\nIts output:\n\n```\n"
+     << protocol::escape_bytes(output.substr(0, 8000)) << "\n```\n\nEvery input:\n\n";
+  for (const std::string& input : finding.inputs) md << "- `" << input << "`\n";
+  std::ostringstream log;
+  if (!files.commit(log)) return Expected<std::string>::failure(log.str());
+  return (fs::path(options.report_dir) / name).string();
+}
+
+}  // namespace
+
+Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
+  using Result = Expected<FuzzReport>;
+  if (options.target.empty()) return Result::failure("no target command");
+  if (!(options.timeout_seconds > 0 && options.timeout_seconds <= 1e6))
+    return Result::failure("the timeout must be more than 0 and at most 1e6 seconds");
+  std::vector<std::pair<std::uintmax_t, std::string>> files;
+  for (const std::string& input : options.inputs) {
+    std::error_code ec;
+    if (fs::is_directory(input, ec)) {
+      for (const auto& entry : fs::directory_iterator(input, ec)) {
+        if (entry.is_regular_file(ec))
+          files.emplace_back(entry.file_size(ec), entry.path().string());
+      }
+    } else if (fs::is_regular_file(input, ec)) {
+      files.emplace_back(fs::file_size(input, ec), input);
+    } else {
+      return Result::failure("cannot read the input " + input);
+    }
+  }
+  if (files.empty()) return Result::failure("no input to run");
+  std::sort(files.begin(), files.end());  // smallest first: each group's report is its smallest
+  FuzzReport out;
+  std::map<std::string, std::size_t> group;
+  std::map<std::string, std::string> first_output;
+  for (const auto& [size, path] : files) {
+    const Run r = run(options, path);
+    ++out.inputs;
+    if (r.status == 127 || r.status == 126)
+      return Result::failure("cannot run the target (" + options.target + "): " + r.output);
+    const std::string key = key_of(r);
+    if (key.empty()) {
+      ++out.holds;
+      continue;
+    }
+    if (!group.count(key)) {
+      group[key] = out.findings.size();
+      out.findings.push_back(FuzzFinding{key, {}, ""});
+      first_output[key] = r.output;
+    }
+    out.findings[group[key]].inputs.push_back(path);
+  }
+  for (FuzzFinding& f : out.findings) {
+    const std::string& output = first_output[f.key];
+    std::string path;
+    try {
+      if (const auto v = violation_of(output)) {
+        if (v->scalar == "float") path = violation_report<float>(options, *v, f, output);
+        if (v->scalar == "double") path = violation_report<double>(options, *v, f, output);
+        if (v->scalar == "long_double")
+          path = violation_report<long double>(options, *v, f, output);
+      }
+    } catch (const std::exception& e) {
+      return Result::failure(e.what());
+    }
+    if (path.empty()) {
+      const Expected<std::string> plain = plain_report(options, f, output);
+      if (!plain) return Result::failure(plain.error());
+      path = *plain;
+    }
+    f.report = path;
+  }
+  if (out.findings.empty()) return out;
+  report::ReportFiles files_out(options.report_dir);
+  const std::string name = free_name(options.report_dir, "fuzz-index");
+  std::ostream& index = files_out.open(name);
+  index << "# Fuzz findings: " << out.findings.size() << " distinct, in " << out.inputs
+        << " inputs\n\nTarget `" << options.target << "`; " << out.holds
+        << " inputs run without a finding now.\n\n| finding | inputs | report |\n|---|---|---|\n";
+  for (const FuzzFinding& f : out.findings)
+    index << "| " << f.key << " | " << f.inputs.size() << " | " << f.report << " |\n";
+  std::ostringstream log;
+  if (!files_out.commit(log)) return Result::failure(log.str());
+  out.index = (fs::path(options.report_dir) / name).string();
+  return out;
+}
+
+}  // namespace oblique::fuzzing
