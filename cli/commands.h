@@ -1,0 +1,42 @@
+// The `oblique` executable's subcommands, one file each (apply_command.cpp, verify_command.cpp,
+// check_command.cpp, fuzz_report_command.cpp, report_commands.cpp): each sets up its options and
+// what it runs once parsed (CLI11's callbacks), storing its exit status in `exit_code`; and the
+// options they share (common_options.cpp).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "oblique/protocol/numbers.h"
+
+namespace oblique::cli {
+
+void setup_apply(CLI::App& app, int& exit_code);
+/// `argv` gives verify's own arguments, for the replay commands in its reports.
+void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv);
+void setup_check(CLI::App& app, int& exit_code);
+void setup_fuzz_report(CLI::App& app, int& exit_code, const char* self);
+void setup_report(CLI::App& app, int& exit_code);
+
+/// Prints the files a report wrote, one per line: exit status 0; 2 when it could not write them
+/// (the reason is on standard error already).
+int print_paths(const std::optional<std::vector<std::filesystem::path>>& paths);
+
+/// Splits "a,b,c" (spaces ignored).
+std::vector<std::string> split_list(const std::string& list);
+
+/// A check that the value is one of `names` (a name table's), saying otherwise which is closest:
+/// `unknown convention "opengl" (known: gl, zero_one, reversed_z)`. Its description in the help
+/// lists the names.
+CLI::Validator one_of(const std::vector<std::string>& names, const std::string& what);
+
+/// --precision: the protocol's scalar names (float, double, long_double), the same option for
+/// apply, verify and check; `allowed` are those the subcommand computes or judges in.
+CLI::Option* add_precision_option(CLI::App* app, std::string& precision, const std::string& what,
+                                  std::vector<protocol::Precision> allowed);
+
+}  // namespace oblique::cli

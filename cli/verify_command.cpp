@@ -1,0 +1,153 @@
+// `oblique verify`: another implementation, over the apply protocol; the contract from its file
+// and flags.
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "oblique/properties/contract.h"
+#include "oblique/protocol/names.h"
+#include "oblique/verify/verifier.h"
+
+namespace oblique::cli {
+
+void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
+  const char* self = argv[0];
+  struct Settings {
+    oblique::verify::VerifyOptions options;
+    std::string precision = "double", contract;
+    /// The contract's fields given as flags: the JSON field's name, the flag, its list.
+    struct Field {
+      std::string name, flag, list;
+    };
+    std::vector<Field> fields;
+    bool answers_only = false;
+    std::vector<std::string> arguments;  // after "verify", for the replay command
+    bool quiet = false;
+  };
+  auto settings = std::make_shared<Settings>();
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) != "verify") continue;
+    settings->arguments.assign(argv + i + 1, argv + argc);
+    break;
+  }
+  oblique::verify::VerifyOptions& options = settings->options;
+  CLI::App* verify = app.add_subcommand(
+      "verify",
+      "Check another implementation of the oblique modification: start COMMAND once, send it "
+      "generated requests in the protocol of `oblique apply` (one JSON line each on its standard "
+      "input; it answers one line each, flushed), judge every answer with the property suite, and "
+      "shrink the first violation to a report. Exit 0: no violation; 1: a violation (report "
+      "written); 2: usage or protocol error.");
+  verify->add_option("--impl", options.command, "The implementation's command (run by sh)")
+      ->required();
+  // The contract's fields, each a flag taking a comma list of the names its JSON field takes.
+  auto contract_flag = [&](const std::string& flag, const std::string& field,
+                           const std::string& what) {
+    verify->add_option_function<std::string>(
+        flag,
+        [settings, field, flag](const std::string& list) {
+          settings->fields.push_back({field, flag, list});
+        },
+        what);
+  };
+  using oblique::protocol::name_list;
+  contract_flag("--convention", "conventions",
+                "Conventions to request, a comma list or all (default gl): " +
+                    name_list(oblique::convention_names()));
+  contract_flag(
+      "--families", "families",
+      "Comma list of projection families (default: all): " + name_list(oblique::family_names()));
+  add_precision_option(
+      verify, settings->precision, "Scalar type of inputs and bounds",
+      {oblique::protocol::Precision::float32, oblique::protocol::Precision::float64});
+  verify
+      ->add_option("--cases", options.cases,
+                   "Number of generated requests (default: no limit, --time-limit ends the run)")
+      ->check(CLI::PositiveNumber);
+  verify->add_option("--seed", options.seed, "Random seed (default: a fresh one, printed)");
+  verify
+      ->add_option("--time-limit", options.time_limit_seconds,
+                   "Stop after this many seconds, shrinking included")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  verify
+      ->add_option("--timeout", options.request_timeout_seconds,
+                   "Seconds to wait for one answer before calling the implementation hung")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  verify->add_option("--report-dir", options.report_dir, "Where the counterexample report goes")
+      ->capture_default_str();
+  verify->add_flag("--quiet", settings->quiet, "No progress lines on standard error");
+  verify
+      ->add_option("--threads", options.threads,
+                   "Threads that judge the answers (default: the machine's hardware threads)")
+      ->capture_default_str();
+  // The rest of the contract: what the implementation promises.
+  verify->add_flag("--answers-only", settings->answers_only,
+                   "Send only inputs with an exact answer (an implementation without statuses; "
+                   "the same as --statuses answers_only)");
+  contract_flag("--statuses", "statuses",
+                "How its statuses are judged: " + name_list(oblique::status_contract_names()) +
+                    " (default any_refusal), or a comma list of the refusal codes it implements "
+                    "(inputs needing others are not sent, these must be exact): " +
+                    name_list(oblique::refusal_names()));
+  contract_flag("--planes", "planes", "unit: planes with a unit normal; any (default)");
+  contract_flag(
+      "--places", "places",
+      "Comma list of hard places to send (default: all): " + name_list(oblique::place_names()));
+  contract_flag("--defects", "defects",
+                "Comma list of kinds of input without an answer to send (default: all): " +
+                    name_list(oblique::defect_names()));
+  contract_flag("--properties", "properties",
+                "Comma list of the properties judged (default: all): " +
+                    name_list(oblique::property_names()));
+  contract_flag("--exclude", "exclude",
+                "Comma list of families, hard places and kinds of input without an answer to "
+                "leave out");
+  verify->add_option("--contract", settings->contract,
+                     "A JSON contract file (fields: families, conventions, places, planes, "
+                     "statuses, defects, properties, row3_accuracy, exclude; see the README); "
+                     "flags replace the fields they name");
+  verify->add_flag("--keep-going", options.keep_going,
+                   "Go on after a finding; report each kind (property x family x place) once");
+  verify->add_option("--replay", options.replay,
+                     "Re-judge the case of a report (its .json) with --impl: exit 0 or 1");
+  verify->add_option("--regressions", options.regressions,
+                     "Replay every report (.json) in this folder before the run");
+  verify->add_option("--save-regressions", options.save_regressions,
+                     "Keep each new shrunk case's report in this folder too");
+  verify->callback([settings, &exit_code, self] {
+    oblique::verify::VerifyOptions& options = settings->options;
+    oblique::Expected<oblique::Contract> contract = oblique::Contract{};
+    if (!settings->contract.empty()) contract = oblique::read_contract_file(settings->contract);
+    if (contract && settings->answers_only)
+      contract = oblique::with_field(std::move(*contract), "statuses", {"answers_only"});
+    for (const auto& field : settings->fields) {
+      if (!contract) break;
+      contract = oblique::with_field(std::move(*contract), field.name, split_list(field.list));
+      if (!contract) {  // say it in the flag's words, not the JSON field's
+        std::string error = contract.error();
+        for (const std::string& json_name : {"\"" + field.name + "\"", field.name}) {
+          if (error.rfind(json_name + ": ", 0) == 0) {
+            error = field.flag + error.substr(json_name.size());
+            break;
+          }
+        }
+        contract = oblique::Expected<oblique::Contract>::failure(error);
+      }
+    }
+    if (!contract) {
+      std::cerr << "oblique verify: " << contract.error() << "\n";
+      exit_code = 2;
+      return;
+    }
+    options.contract = std::move(*contract);
+    options.precision = *oblique::protocol::parse_precision(settings->precision);
+    options.progress = !settings->quiet;
+    options.self = self;
+    options.arguments = settings->arguments;
+    exit_code = oblique::verify::run_verify(options, std::cout, std::cerr);
+  });
+}
+
+}  // namespace oblique::cli
