@@ -23,7 +23,7 @@ constexpr std::size_t kFuzzMaxLineBytes = 4096;
 }
 
 template <class T>
-void numbers_read_back(const oblique::protocol::ParsedAnswer& answer, std::string_view line) {
+void numbers_read_back(const oblique::protocol::AnswerText& answer, std::string_view line) {
   std::string error;
   for (const std::string& token : *answer.projection) {
     const auto value = oblique::protocol::parse_number<T>(token, &error);
@@ -59,8 +59,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::string_view line = rest.substr(0, end);
     std::string answer_line;
     if (!std::getline(answers, answer_line)) fail("an input line without an answer", line);
-    const ParsedAnswer back = parse_answer(answer_line);
-    if (!back.valid) fail("the answer is not a valid answer line", answer_line);
+    const oblique::Expected<AnswerText> parsed = parse_answer(answer_line);
+    if (!parsed) fail("the answer is not a valid answer line", answer_line);
+    const AnswerText& back = *parsed;
     all_ok = all_ok && back.status == "ok";
     if (line.size() > options.max_line_bytes) {
       if (back.status != "invalid_input" || back.message.find("line longer than") != 0)

@@ -37,13 +37,12 @@ Answer run(const Request& request, const ApplyOptions& options) {
 }  // namespace
 
 Answer answer_request(std::string_view line, const ApplyOptions& options) {
-  ParsedLine parsed = parse_request(line);
-  if (!parsed.request)
-    return refusal(Status::invalid_input, "not a valid request: " + parsed.error);
+  const Expected<Request> parsed = parse_request(line);
+  if (!parsed) return refusal(Status::invalid_input, "not a valid request: " + parsed.error());
   switch (options.precision) {
-    case Precision::float32: return run<float>(*parsed.request, options);
-    case Precision::float64: return run<double>(*parsed.request, options);
-    case Precision::long_double: return run<long double>(*parsed.request, options);
+    case Precision::float32: return run<float>(*parsed, options);
+    case Precision::float64: return run<double>(*parsed, options);
+    case Precision::long_double: return run<long double>(*parsed, options);
   }
   return refusal(Status::invalid_input, "unknown precision");
 }

@@ -48,92 +48,73 @@ bool read_numbers(const JsonValue& v, const char* field, std::array<std::string,
   return true;
 }
 
-/// One line's tree, or why it is not a JSON line of the protocol.
-std::optional<JsonValue> parse_line(std::string_view line, std::string& error) {
-  Expected<JsonValue> tree = parse_json(line, JsonLimits{kMaxValuesPerLine, 8});
-  if (!tree) {
-    error = tree.error();
-    return std::nullopt;
-  }
-  return std::move(*tree);
-}
-
 }  // namespace
 
-ParsedLine parse_request(std::string_view line) {
-  ParsedLine out;
-  const std::optional<JsonValue> tree = parse_line(line, out.error);
-  if (!tree) return out;
+Expected<Request> parse_request(std::string_view line) {
+  using Result = Expected<Request>;
+  std::string error;
+  const Expected<JsonValue> tree = parse_json(line, JsonLimits{kMaxValuesPerLine, 8});
+  if (!tree) return Result::failure(tree.error());
   const JsonValue& root = *tree;
-  if (root.kind != JsonValue::Kind::object) {
-    out.error = std::string("a request must be a JSON object, not ") + kind_name(root.kind);
-    return out;
-  }
+  if (root.kind != JsonValue::Kind::object)
+    return Result::failure(std::string("a request must be a JSON object, not ") +
+                           kind_name(root.kind));
   Request request;
   bool has_projection = false, has_plane = false;
   for (const auto& [key, value] : root.members) {
     if (key == "projection") {
-      if (!read_numbers(value, "projection", request.projection, out.error)) return out;
+      if (!read_numbers(value, "projection", request.projection, error))
+        return Result::failure(error);
       has_projection = true;
     } else if (key == "plane") {
-      if (!read_numbers(value, "plane", request.plane, out.error)) return out;
+      if (!read_numbers(value, "plane", request.plane, error)) return Result::failure(error);
       has_plane = true;
     } else if (key == "convention") {
-      if (value.kind != JsonValue::Kind::string) {
-        out.error = std::string("\"convention\" must be a string, not ") + kind_name(value.kind);
-        return out;
-      }
+      if (value.kind != JsonValue::Kind::string)
+        return Result::failure(std::string("\"convention\" must be a string, not ") +
+                               kind_name(value.kind));
       request.convention = parse_convention(value.text);
-      if (!request.convention) {
-        out.error = "unknown convention \"" + value.text + "\" (gl, zero_one or reversed_z)";
-        return out;
-      }
+      if (!request.convention)
+        return Result::failure("unknown convention \"" + value.text +
+                               "\" (gl, zero_one or reversed_z)");
     } else {
-      out.error = "unknown field \"" + key + "\" (a request has projection, plane, convention)";
-      return out;
+      return Result::failure("unknown field \"" + key +
+                             "\" (a request has projection, plane, convention)");
     }
   }
-  if (!has_projection)
-    out.error = "missing field \"projection\"";
-  else if (!has_plane)
-    out.error = "missing field \"plane\"";
-  else
-    out.request = std::move(request);
-  return out;
+  if (!has_projection) return Result::failure("missing field \"projection\"");
+  if (!has_plane) return Result::failure("missing field \"plane\"");
+  return request;
 }
 
-ParsedAnswer parse_answer(std::string_view line) {
-  ParsedAnswer out;
-  const std::optional<JsonValue> tree = parse_line(line, out.error);
-  if (!tree) return out;
-  if (tree->kind != JsonValue::Kind::object) {
-    out.error = std::string("an answer must be a JSON object, not ") + kind_name(tree->kind);
-    return out;
-  }
+Expected<AnswerText> parse_answer(std::string_view line) {
+  using Result = Expected<AnswerText>;
+  std::string error;
+  const Expected<JsonValue> tree = parse_json(line, JsonLimits{kMaxValuesPerLine, 8});
+  if (!tree) return Result::failure(tree.error());
+  if (tree->kind != JsonValue::Kind::object)
+    return Result::failure(std::string("an answer must be a JSON object, not ") +
+                           kind_name(tree->kind));
+  AnswerText out;
   bool has_status = false;
   for (const auto& [key, value] : tree->members) {
     if (key == "status") {
-      if (value.kind != JsonValue::Kind::string) {
-        out.error = std::string("\"status\" must be a string, not ") + kind_name(value.kind);
-        return out;
-      }
+      if (value.kind != JsonValue::Kind::string)
+        return Result::failure(std::string("\"status\" must be a string, not ") +
+                               kind_name(value.kind));
       out.status = value.text;
       has_status = true;
     } else if (key == "projection") {
       std::array<std::string, 16> numbers;
-      if (!read_numbers(value, "projection", numbers, out.error)) return out;
+      if (!read_numbers(value, "projection", numbers, error)) return Result::failure(error);
       out.projection = std::move(numbers);
     } else if (key == "message") {
       if (value.kind == JsonValue::Kind::string) out.message = value.text;
     }
   }
-  if (!has_status) {
-    out.error = "missing field \"status\"";
-  } else if (out.status == "ok" && !out.projection) {
-    out.error = "an ok answer needs \"projection\"";
-  } else {
-    out.valid = true;
-  }
+  if (!has_status) return Result::failure("missing field \"status\"");
+  if (out.status == "ok" && !out.projection)
+    return Result::failure("an ok answer needs \"projection\"");
   return out;
 }
 
@@ -177,17 +158,17 @@ std::string refusal_line(Status status, std::string_view message) {
 template <class T>
 Expected<TypedAnswer<T>> read_answer(std::string_view line) {
   using Result = Expected<TypedAnswer<T>>;
-  const ParsedAnswer parsed = parse_answer(normalise_non_finite(line));
-  if (!parsed.valid) return Result::failure(parsed.error);
+  const Expected<AnswerText> parsed = parse_answer(normalise_non_finite(line));
+  if (!parsed) return Result::failure(parsed.error());
   TypedAnswer<T> a;
-  a.message = parsed.message;
-  const std::optional<Status> status = parse_status(parsed.status);
-  if (!status) return Result::failure("unknown status \"" + parsed.status + "\"");
+  a.message = parsed->message;
+  const std::optional<Status> status = parse_status(parsed->status);
+  if (!status) return Result::failure("unknown status \"" + parsed->status + "\"");
   a.status = *status;
   if (a.status != Status::ok) return a;
   for (int i = 0; i < 16; ++i) {
     std::string why;
-    const std::string& token = (*parsed.projection)[static_cast<std::size_t>(i)];
+    const std::string& token = (*parsed->projection)[static_cast<std::size_t>(i)];
     std::optional<T> value = parse_number<T>(token, &why);
     if (!value) {  // a number beyond T's range is an infinite entry to judge
       std::string wide_why;

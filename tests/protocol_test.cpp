@@ -91,9 +91,9 @@ TEST(Protocol, malformedRequestsSayWhatIsWrong) {
       {"[[[[[[[[[[[[1]]]]]]]]]]]]", "nested deeper"},
   };
   for (const auto& [line, expected] : cases) {
-    const ParsedLine parsed = parse_request(line);
-    EXPECT_FALSE(parsed.request) << line;
-    EXPECT_NE(parsed.error.find(expected), std::string::npos) << line << " -> " << parsed.error;
+    const Expected<Request> parsed = parse_request(line);
+    EXPECT_FALSE(parsed) << line;
+    EXPECT_NE(parsed.error().find(expected), std::string::npos) << line << " -> " << parsed.error();
     const Answer answer = answer_request(line, ApplyOptions{});
     EXPECT_EQ(answer.status, Status::invalid_input);
     EXPECT_EQ(answer.line.rfind("{\"status\": \"invalid_input\", \"message\": ", 0), 0u)
@@ -150,17 +150,17 @@ TEST(Protocol, everyWritersNonFiniteTokensReadAsNonFiniteNumbers) {
     std::string line = "{\"status\": \"ok\", \"projection\": [";
     for (int i = 0; i < 16; ++i) line += std::string(i ? ", " : "") + (i == 5 ? token : "1");
     line += "]}";
-    const ParsedAnswer parsed = parse_answer(normalise_non_finite(line));
-    ASSERT_TRUE(parsed.valid) << line << ": " << parsed.error;
+    const Expected<AnswerText> parsed = parse_answer(normalise_non_finite(line));
+    ASSERT_TRUE(parsed) << line << ": " << parsed.error();
     std::string error;
-    const std::optional<double> read = parse_number<double>((*parsed.projection)[5], &error);
+    const std::optional<double> read = parse_number<double>((*parsed->projection)[5], &error);
     ASSERT_TRUE(read) << token << ": " << error;
     if (std::isnan(value)) {
       EXPECT_TRUE(std::isnan(*read)) << token;
     } else {
       EXPECT_EQ(*read, value) << token;
     }
-    EXPECT_EQ(parse_number<double>((*parsed.projection)[0], &error), 1.0);
+    EXPECT_EQ(parse_number<double>((*parsed->projection)[0], &error), 1.0);
   }
   // Inside strings nothing changes.
   EXPECT_EQ(normalise_non_finite("{\"message\": \"nan inf null\"}"),
@@ -174,26 +174,26 @@ namespace oblique::protocol {
 namespace {
 
 TEST(Protocol, negativeZeroKeepsItsSignThroughRequestsAndAnswers) {
-  const ParsedLine parsed = parse_request(
+  const Expected<Request> parsed = parse_request(
       "{\"projection\": [-0, 0, -0.0, 1, 0,1,0,0, 0,0,-3,-4, 0,0,-1,0], \"plane\": [-0,0,-1,-1]}");
-  ASSERT_TRUE(parsed.request) << parsed.error;
-  EXPECT_EQ(parsed.request->projection[0], "-0");
-  EXPECT_EQ(parsed.request->projection[2], "-0.0");
-  EXPECT_EQ(parsed.request->plane[0], "-0");
-  const ParsedAnswer answer = parse_answer(
+  ASSERT_TRUE(parsed) << parsed.error();
+  EXPECT_EQ(parsed->projection[0], "-0");
+  EXPECT_EQ(parsed->projection[2], "-0.0");
+  EXPECT_EQ(parsed->plane[0], "-0");
+  const Expected<AnswerText> answer = parse_answer(
       "{\"status\": \"ok\", \"projection\": [-0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,\"-0x1p+0\"]}");
-  ASSERT_TRUE(answer.valid) << answer.error;
+  ASSERT_TRUE(answer) << answer.error();
   std::string error;
-  EXPECT_TRUE(std::signbit(*parse_number<double>((*answer.projection)[0], &error)));
-  EXPECT_EQ(parse_number<double>((*answer.projection)[15], &error), -1.0);
+  EXPECT_TRUE(std::signbit(*parse_number<double>((*answer->projection)[0], &error)));
+  EXPECT_EQ(parse_number<double>((*answer->projection)[15], &error), -1.0);
 }
 
 TEST(Protocol, answersThatAreNotAnswersAreNamed) {
-  EXPECT_FALSE(parse_answer("{\"projection\": []}").valid);
-  EXPECT_NE(parse_answer("{\"status\": \"ok\"}").error.find("needs \"projection\""),
+  EXPECT_FALSE(parse_answer("{\"projection\": []}"));
+  EXPECT_NE(parse_answer("{\"status\": \"ok\"}").error().find("needs \"projection\""),
             std::string::npos);
-  EXPECT_NE(parse_answer("{\"status\": 3}").error.find("must be a string"), std::string::npos);
-  EXPECT_TRUE(parse_answer("{\"status\": \"camera_not_behind_plane\", \"message\": \"x\"}").valid);
+  EXPECT_NE(parse_answer("{\"status\": 3}").error().find("must be a string"), std::string::npos);
+  EXPECT_TRUE(parse_answer("{\"status\": \"camera_not_behind_plane\", \"message\": \"x\"}"));
 }
 
 const std::string kRequest =
@@ -203,9 +203,9 @@ TEST(Protocol, longDoubleReadsNumbersBeyondDoubleRange) {
   // 1e400 is a long double but not a double: the request must be read at the precision asked.
   const std::string line =
       "{\"projection\": [1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0], \"plane\": [0,0,-1e400,-1e400]}";
-  const ParsedLine parsed = parse_request(line);
-  ASSERT_TRUE(parsed.request) << parsed.error;
-  EXPECT_EQ(parsed.request->plane[2], "-1e400");
+  const Expected<Request> parsed = parse_request(line);
+  ASSERT_TRUE(parsed) << parsed.error();
+  EXPECT_EQ(parsed->plane[2], "-1e400");
   ApplyOptions options;
   options.precision = Precision::long_double;
   const Answer answer = answer_request(line, options);
@@ -242,16 +242,16 @@ TEST(Protocol, repeatedFieldsNulBytesAndTooManyValuesAreRefused) {
       {many_strings, "more than 256 JSON values"},
   };
   for (const auto& [line, expected] : cases) {
-    const ParsedLine parsed = parse_request(line);
-    EXPECT_FALSE(parsed.request) << line;
-    EXPECT_NE(parsed.error.find(expected), std::string::npos) << line << " -> " << parsed.error;
+    const Expected<Request> parsed = parse_request(line);
+    EXPECT_FALSE(parsed) << line;
+    EXPECT_NE(parsed.error().find(expected), std::string::npos) << line << " -> " << parsed.error();
     EXPECT_EQ(answer_request(line, ApplyOptions{}).status, Status::invalid_input);
   }
   // Numbers are counted before any parsing: a line of a million numbers is refused at once.
   std::string numbers = "{\"projection\": [1";
   for (int i = 0; i < 1000000; ++i) numbers += ",1";
-  const ParsedLine parsed = parse_request(numbers + "]}");
-  EXPECT_NE(parsed.error.find("more than 256 numbers"), std::string::npos) << parsed.error;
+  const Expected<Request> parsed = parse_request(numbers + "]}");
+  EXPECT_NE(parsed.error().find("more than 256 numbers"), std::string::npos) << parsed.error();
 }
 
 /// Input that arrives in chunks, as from a pipe: `underflow` hands out the next chunk and, before
@@ -327,9 +327,9 @@ TEST(Serve, aLineLongerThanTheLimitIsAnsweredAndSkipped) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(answers, line);) lines.push_back(line);
   ASSERT_EQ(lines.size(), 4u) << out.str();
-  EXPECT_EQ(parse_answer(lines[0]).status, "ok");
+  EXPECT_EQ(parse_answer(lines[0])->status, "ok");
   EXPECT_NE(lines[1].find("line longer than 100 bytes"), std::string::npos) << lines[1];
-  EXPECT_EQ(parse_answer(lines[2]).status, "ok");
+  EXPECT_EQ(parse_answer(lines[2])->status, "ok");
   EXPECT_NE(lines[3].find("parse error"), std::string::npos) << lines[3];  // 100 bytes: read
   // The default limit is 1 MiB: a 2 MiB line is skipped, the request after it answered.
   std::istringstream big(std::string(2 << 20, '1') + "\n" + kRequest + "\n");
@@ -356,9 +356,9 @@ TEST(Protocol, jsonErrorsNameTheirPlaceWithoutTheParsersId) {
   EXPECT_EQ(json_error_text("[json.exception.parse_error.101] parse error at line 1, column 2: x"),
             "parse error at line 1, column 2: x");
   EXPECT_EQ(json_error_text("no id here"), "no id here");
-  const ParsedLine parsed = parse_request("{\"projection\": [1,");
-  EXPECT_EQ(parsed.error.find("[json.exception"), std::string::npos) << parsed.error;
-  EXPECT_NE(parsed.error.find("line 1"), std::string::npos) << parsed.error;
+  const Expected<Request> parsed = parse_request("{\"projection\": [1,");
+  EXPECT_EQ(parsed.error().find("[json.exception"), std::string::npos) << parsed.error();
+  EXPECT_NE(parsed.error().find("line 1"), std::string::npos) << parsed.error();
 }
 
 }  // namespace

@@ -52,21 +52,21 @@ Expected<VerifyCase<T>> read_report_case(const std::string& path) {
     return Result::failure(path + " is a \"" + precision->text + "\" case, not " +
                            std::string(protocol::scalar_name<T>()));
   }
-  const protocol::ParsedLine parsed = protocol::parse_request(request->text);
-  if (!parsed.request) return Result::failure(path + ": " + parsed.error);
+  const Expected<protocol::Request> parsed = protocol::parse_request(request->text);
+  if (!parsed) return Result::failure(path + ": " + parsed.error());
   VerifyCase<T> v;
   std::string error;
   for (int i = 0; i < 16; ++i) {
-    const auto value = protocol::parse_number<T>(parsed.request->projection[i], &error);
+    const auto value = protocol::parse_number<T>(parsed->projection[i], &error);
     if (!value) return Result::failure(path + ": " + error);
     v.c.matrix(i / 4, i % 4) = *value;
   }
   for (int i = 0; i < 4; ++i) {
-    const auto value = protocol::parse_number<T>(parsed.request->plane[i], &error);
+    const auto value = protocol::parse_number<T>(parsed->plane[i], &error);
     if (!value) return Result::failure(path + ": " + error);
     v.c.plane(i) = *value;
   }
-  v.c.convention = parsed.request->convention.value_or(Convention::gl);
+  v.c.convention = parsed->convention.value_or(Convention::gl);
   if (const protocol::JsonValue* family = j->find("family");
       family && family->is(protocol::JsonValue::Kind::string)) {
     if (auto f = generators::parse_family(family->text)) v.c.family = *f;

@@ -27,16 +27,11 @@ struct Request {
   std::optional<Convention> convention;
 };
 
-/// A request, or why the line is not one (with the JSON parser's line and column when relevant).
-struct ParsedLine {
-  std::optional<Request> request;
-  std::string error;
-};
-
-/// Refuses (with a message) what is not JSON, what is not a request, unknown and repeated fields,
-/// anything after a NUL byte, nesting deeper than 8 levels and more JSON values than
-/// kMaxValuesPerLine, so the memory a line takes stays a small multiple of its length.
-ParsedLine parse_request(std::string_view line);
+/// The request of a line, or why the line is not one (with the JSON parser's line and column
+/// when relevant). Refuses (with a message) what is not JSON, what is not a request, unknown and
+/// repeated fields, anything after a NUL byte, nesting deeper than 8 levels and more JSON values
+/// than kMaxValuesPerLine, so the memory a line takes stays a small multiple of its length.
+Expected<Request> parse_request(std::string_view line);
 
 /// The most JSON values (numbers, strings, arrays, ...) a request or answer line may hold: a
 /// request holds 24.
@@ -54,17 +49,15 @@ std::string request_line(const Matrix4<T>& projection, const Vector4<T>& plane,
                          std::optional<Convention> convention,
                          Notation notation = Notation::shortest);
 
-/// An answer line as read back (by tests, and by `oblique verify` from other implementations).
-/// Unknown fields are ignored; `valid` is false (with `error`) when the line is not an answer.
-struct ParsedAnswer {
-  bool valid = false;
+/// An answer line as read back, its numbers kept as text (read_answer() converts them).
+struct AnswerText {
   std::string status;
   std::optional<std::array<std::string, 16>> projection;  ///< number tokens, for parse_number()
   std::string message;
-  std::string error;
 };
 
-ParsedAnswer parse_answer(std::string_view line);
+/// The answer of a line, or why the line is not one. Unknown fields are ignored.
+Expected<AnswerText> parse_answer(std::string_view line);
 
 /// An answer line read in T: the status, the matrix of an ok answer, the message of a refusal.
 template <class T>
