@@ -146,7 +146,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
     options.progress = !settings->quiet;
     options.self = self;
     options.arguments = settings->arguments;
-    exit_code = oblique::verify::run_verify(options, std::cout, std::cerr);
+    exit_code = static_cast<int>(oblique::verify::run_verify(options, std::cout, std::cerr));
   });
 }
 

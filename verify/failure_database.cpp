@@ -93,11 +93,11 @@ void save_regression(const std::string& json_path, const std::string& folder, st
 }
 
 template <class T>
-int FailureDatabase<T>::replay(const std::string& path, bool verbose) {
+Verdict FailureDatabase<T>::replay(const std::string& path, bool verbose) {
   const Expected<VerifyCase<T>> v = read_report_case<T>(path);
   if (!v) {
     err_ << "oblique verify: --replay: " << v.error() << "\n";
-    return 2;
+    return Verdict::error;
   }
   Found<T> found;
   using Evaluation = typename Session<T>::Evaluation;
@@ -107,7 +107,7 @@ int FailureDatabase<T>::replay(const std::string& path, bool verbose) {
         out_ << "oblique verify: " << path << ": holds (" << protocol::scalar_name<T>() << ", "
              << convention_name(v->c.convention) << ")\n";
       }
-      return 0;
+      return Verdict::holds;
     case Evaluation::finding: {
       const properties::Finding& f = found.finding;
       out_ << "oblique verify: " << path << ": violated: " << f.kind << ": " << f.relation << "\n";
@@ -118,20 +118,20 @@ int FailureDatabase<T>::replay(const std::string& path, bool verbose) {
       }
       if (!found.answer_line.empty())
         out_ << "  answer: " << escape_bytes(found.answer_line.substr(0, 400)) << "\n";
-      return 1;
+      return Verdict::violated;
     }
     case Evaluation::protocol_error:
       session_.child().stop();
       return reporter_.issue(session_.issue());
     case Evaluation::out_of_time:
       err_ << "oblique verify: --replay: out of time before the answer\n";
-      return 2;
+      return Verdict::error;
   }
-  return 2;
+  return Verdict::error;
 }
 
 template <class T>
-int FailureDatabase<T>::replay_all(const std::string& folder) {
+Verdict FailureDatabase<T>::replay_all(const std::string& folder) {
   namespace fs = std::filesystem;
   std::error_code ec;
   std::vector<std::string> paths;
@@ -140,7 +140,7 @@ int FailureDatabase<T>::replay_all(const std::string& folder) {
   }
   if (ec && ec != std::errc::no_such_file_or_directory) {
     err_ << "oblique verify: --regressions " << folder << ": " << ec.message() << "\n";
-    return 2;
+    return Verdict::error;
   }
   std::sort(paths.begin(), paths.end());
   long replayed = 0, other_precision = 0;
@@ -152,12 +152,13 @@ int FailureDatabase<T>::replay_all(const std::string& folder) {
         continue;
       }
       err_ << "oblique verify: --regressions: " << v.error() << "\n";
-      return 2;
+      return Verdict::error;
     }
-    const int result = replay(path, /*verbose=*/false);
-    if (result != 0) {
+    const Verdict result = replay(path, /*verbose=*/false);
+    if (result != Verdict::holds) {
       session_.child().stop();
-      if (result == 1) out_ << "  (a kept regression fails again; the run is not started)\n";
+      if (result == Verdict::violated)
+        out_ << "  (a kept regression fails again; the run is not started)\n";
       return result;
     }
     ++replayed;
@@ -168,7 +169,7 @@ int FailureDatabase<T>::replay_all(const std::string& folder) {
                ? " (" + std::to_string(other_precision) + " of another precision not replayed)"
                : "")
        << "\n";
-  return 0;
+  return Verdict::holds;
 }
 
 template Expected<VerifyCase<float>> read_report_case<float>(const std::string&);

@@ -32,11 +32,11 @@ class FailureDatabase {
   FailureDatabase(Session<T>& session, Reporter<T>& reporter, std::ostream& out, std::ostream& err)
       : session_(session), reporter_(reporter), out_(out), err_(err) {}
 
-  /// Sends one report's case and judges the answer: 0 holds, 1 violated, 2 cannot.
-  int replay(const std::string& report_json, bool verbose);
+  /// Sends one report's case and judges the answer: holds, violated, or error (cannot).
+  Verdict replay(const std::string& report_json, bool verbose);
   /// Every report (.json) in `folder`, in name order; the first that fails again ends it (its
-  /// exit status); reports of another precision are counted and skipped.
-  int replay_all(const std::string& folder);
+  /// verdict); reports of another precision are counted and skipped.
+  Verdict replay_all(const std::string& folder);
 
  private:
   Session<T>& session_;

@@ -34,8 +34,8 @@ Reporter<T>::Reporter(const VerifyOptions& options, const Draws<T>& draws, std::
     : options_(options), draws_(draws), out_(out), err_(err) {}
 
 template <class T>
-int Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int steps, bool out_of_time,
-                         long found_after_cases, double found_after_seconds) {
+Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int steps,
+                             bool out_of_time, long found_after_cases, double found_after_seconds) {
   const properties::Finding& f = found.finding;
   properties::Counterexample ce =
       properties::make_counterexample(v.c.matrix, v.c.plane, v.c.convention);
@@ -104,13 +104,13 @@ int Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int step
     out_ << "  answer: " << escape_bytes(found.answer_line.substr(0, 400)) << "\n";
   out_ << "  report: " << path << "\n  replay: " << context.replay_case << "\n";
   if (!json_path.empty()) out_ << "  re-judge: " << replay_case_command(json_path) << "\n";
-  return 1;
+  return Verdict::violated;
 }
 
 template <class T>
-int Reporter<T>::passed(long done, double elapsed, const Seen& seen,
-                        const std::map<std::string, long>& left_out, bool stopped_by_time,
-                        long dropped) {
+Verdict Reporter<T>::passed(long done, double elapsed, const Seen& seen,
+                            const std::map<std::string, long>& left_out, bool stopped_by_time,
+                            long dropped) {
   out_ << "oblique verify: " << done << " cases, no violation (" << protocol::scalar_name<T>()
        << ", seed " << options_.seed << ", " << std::fixed;
   out_.precision(1);
@@ -144,11 +144,11 @@ int Reporter<T>::passed(long done, double elapsed, const Seen& seen,
                                " requests in flight not judged)"
                          : "")
          << "\n";
-  return 0;
+  return Verdict::holds;
 }
 
 template <class T>
-int Reporter<T>::index(const std::map<std::string, Kind>& kinds, long done) {
+Verdict Reporter<T>::index(const std::map<std::string, Kind>& kinds, long done) {
   std::ostringstream index;
   index << "# oblique verify: " << kinds.size() << " kinds of finding\n\n"
         << "Implementation `" << options_.command << "`, " << protocol::scalar_name<T>()
@@ -166,42 +166,42 @@ int Reporter<T>::index(const std::map<std::string, Kind>& kinds, long done) {
        << " cases (--keep-going); index: " << path << "\n";
   for (const auto& [key, kind] : kinds)
     out_ << "  " << key << ": " << kind.repeats << " cases, report " << kind.report << "\n";
-  return 1;
+  return Verdict::violated;
 }
 
 template <class T>
-int Reporter<T>::protocol_error(const std::string& request, const std::string& answer,
-                                const std::string& why) {
+Verdict Reporter<T>::protocol_error(const std::string& request, const std::string& answer,
+                                    const std::string& why) {
   err_ << "oblique verify: protocol error: the implementation's answer is not an answer of the "
           "protocol ("
        << escape_bytes(why) << ")\n  request: " << request
        << "\n  answer:  " << escape_bytes(answer.substr(0, 400))
        << (answer.size() > 400 ? "..." : "") << "\n";
-  return 2;
+  return Verdict::error;
 }
 
 template <class T>
-int Reporter<T>::count_error(const std::string& what, const std::vector<std::string>& requests,
-                             const std::vector<std::string>& lines) {
+Verdict Reporter<T>::count_error(const std::string& what, const std::vector<std::string>& requests,
+                                 const std::vector<std::string>& lines) {
   err_ << "oblique verify: protocol error: " << what << "\n";
   for (const std::string& r : requests) err_ << "  request: " << r << "\n";
   for (const std::string& l : lines)
     err_ << "  line:    " << escape_bytes(l.substr(0, 400)) << (l.size() > 400 ? "..." : "")
          << "\n";
   err_ << "  (each request gets exactly one answer line, in order)\n";
-  return 2;
+  return Verdict::error;
 }
 
 template <class T>
-int Reporter<T>::overlong_line(const std::string& request, const std::string& line_start) {
+Verdict Reporter<T>::overlong_line(const std::string& request, const std::string& line_start) {
   err_ << "oblique verify: protocol error: an answer line longer than "
        << ChildProcess::kMaxLineBytes << " bytes (1 MiB, not read further)\n  request: " << request
        << "\n  line starts: " << escape_bytes(line_start) << "...\n";
-  return 2;
+  return Verdict::error;
 }
 
 template <class T>
-int Reporter<T>::issue(const Issue& issue) {
+Verdict Reporter<T>::issue(const Issue& issue) {
   const std::string what =
       issue.what.empty() ? "the implementation could not be restarted" : issue.what;
   return count_error(

@@ -27,25 +27,26 @@ class Reporter {
            std::ostream& err);
 
   /// Writes the report of a (shrunk) finding, keeps it as a regression when asked, and prints
-  /// it: exit status 1.
-  int finding(const VerifyCase<T>& v, const Found<T>& found, int steps, bool out_of_time,
-              long found_after_cases, double found_after_seconds);
+  /// it: Verdict::violated.
+  Verdict finding(const VerifyCase<T>& v, const Found<T>& found, int steps, bool out_of_time,
+                  long found_after_cases, double found_after_seconds);
   const std::string& last_report() const { return last_report_; }
   const std::string& last_kind() const { return last_kind_; }
 
-  /// The summary of a run without a finding: exit status 0.
-  int passed(long done, double elapsed, const Seen& seen,
-             const std::map<std::string, long>& left_out, bool stopped_by_time, long dropped);
-  /// The index of a --keep-going run's findings: exit status 1.
-  int index(const std::map<std::string, Kind>& kinds, long done);
+  /// The summary of a run without a finding: Verdict::holds.
+  Verdict passed(long done, double elapsed, const Seen& seen,
+                 const std::map<std::string, long>& left_out, bool stopped_by_time, long dropped);
+  /// The index of a --keep-going run's findings: Verdict::violated.
+  Verdict index(const std::map<std::string, Kind>& kinds, long done);
 
-  // Protocol problems (the implementation is stopped first): exit status 2.
-  int protocol_error(const std::string& request, const std::string& answer, const std::string& why);
+  // Protocol problems (the implementation is stopped first): Verdict::error.
+  Verdict protocol_error(const std::string& request, const std::string& answer,
+                         const std::string& why);
   /// Answers out of step with requests: lines beyond one per request, or one missing.
-  int count_error(const std::string& what, const std::vector<std::string>& requests,
-                  const std::vector<std::string>& lines);
-  int overlong_line(const std::string& request, const std::string& line_start);
-  int issue(const Issue& issue);
+  Verdict count_error(const std::string& what, const std::vector<std::string>& requests,
+                      const std::vector<std::string>& lines);
+  Verdict overlong_line(const std::string& request, const std::string& line_start);
+  Verdict issue(const Issue& issue);
 
   /// The whole run again: this run's own flags (every one of them), with its seed.
   std::string replay_run_command() const;

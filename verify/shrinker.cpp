@@ -6,9 +6,9 @@
 namespace oblique::verify {
 
 template <class T>
-int Shrinker<T>::confirm(const Batch<T>& batch, std::size_t k,
-                         const std::vector<std::string>& answers, Found<T> finding,
-                         long cases_run) {
+Verdict Shrinker<T>::confirm(const Batch<T>& batch, std::size_t k,
+                             const std::vector<std::string>& answers, Found<T> finding,
+                             long cases_run) {
   using Evaluation = typename Session<T>::Evaluation;
   session_.child().stop();
   Found<T> alone;
@@ -37,8 +37,8 @@ int Shrinker<T>::confirm(const Batch<T>& batch, std::size_t k,
 }
 
 template <class T>
-int Shrinker<T>::shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<T> finding,
-                        long cases_run) {
+Verdict Shrinker<T>::shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<T> finding,
+                            long cases_run) {
   using Evaluation = typename Session<T>::Evaluation;
   const long found_after_cases = cases_run;
   const double found_after_seconds = session_.seconds_since_start();
@@ -85,8 +85,8 @@ int Shrinker<T>::shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<T> f
 }
 
 template <class T>
-int Shrinker<T>::isolate(const std::vector<rc::Shrinkable<VerifyCase<T>>>& cases,
-                         std::size_t answered, long done, ChildProcess::Outcome outcome) {
+Verdict Shrinker<T>::isolate(const std::vector<rc::Shrinkable<VerifyCase<T>>>& cases,
+                             std::size_t answered, long done, ChildProcess::Outcome outcome) {
   using Evaluation = typename Session<T>::Evaluation;
   Found<T> in_batch = session_.lost_finding(outcome);
   const bool hung = outcome == ChildProcess::Outcome::timed_out;
@@ -124,7 +124,7 @@ int Shrinker<T>::isolate(const std::vector<rc::Shrinkable<VerifyCase<T>>>& cases
   err_ << "oblique verify: the implementation stopped answering after " << done << " cases (it "
        << description << "), and no single request of the batch repeats it"
        << (tail.empty() ? "" : "\n  its standard error ended with:\n" + tail) << "\n";
-  return 1;
+  return Verdict::violated;
 }
 
 template class Shrinker<float>;

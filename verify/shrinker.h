@@ -23,15 +23,15 @@ class Shrinker {
 
   /// Case k of a batch was found violating: confirmed alone (a fresh process) and shrunk, or a
   /// protocol error when alone it holds (the answers were out of step with the requests).
-  int confirm(const Batch<T>& batch, std::size_t k, const std::vector<std::string>& answers,
-              Found<T> finding, long cases_run);
-  /// Shrinks a confirmed finding through the implementation and reports it (exit status 1), or
-  /// reports a protocol error met on the way (2).
-  int shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<T> finding, long cases_run);
+  Verdict confirm(const Batch<T>& batch, std::size_t k, const std::vector<std::string>& answers,
+                  Found<T> finding, long cases_run);
+  /// Shrinks a confirmed finding through the implementation and reports it (violated), or
+  /// reports a protocol error met on the way (error).
+  Verdict shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<T> finding, long cases_run);
   /// The implementation stopped answering after `answered` cases of the batch: the request that
   /// does it alone is found and shrunk.
-  int isolate(const std::vector<rc::Shrinkable<VerifyCase<T>>>& cases, std::size_t answered,
-              long done, ChildProcess::Outcome outcome);
+  Verdict isolate(const std::vector<rc::Shrinkable<VerifyCase<T>>>& cases, std::size_t answered,
+                  long done, ChildProcess::Outcome outcome);
 
  private:
   Session<T>& session_;

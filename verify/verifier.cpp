@@ -44,17 +44,17 @@ class Verifier {
         shrinker_(session_, reporter_, out, err),
         database_(session_, reporter_, out, err) {}
 
-  /// --replay: re-judges one report's case; 0 holds, 1 violated, 2 cannot.
-  int replay_report(const std::string& path) {
-    const int result = database_.replay(path, /*verbose=*/true);
+  /// --replay: re-judges one report's case.
+  Verdict replay_report(const std::string& path) {
+    const Verdict result = database_.replay(path, /*verbose=*/true);
     session_.child().stop();
     return result;
   }
 
-  int run() {
+  Verdict run() {
     if (!options_.regressions.empty()) {
-      const int kept = database_.replay_all(options_.regressions);
-      if (kept != 0) return kept;
+      const Verdict kept = database_.replay_all(options_.regressions);
+      if (kept != Verdict::holds) return kept;
       session_.start_clock();  // the run's own time limit starts now
     }
     ChildProcess& child_ = session_.child();
@@ -63,7 +63,7 @@ class Verifier {
     std::string error;
     if (!child_.start(&error)) {
       err_ << "oblique verify: cannot start the implementation: " << error << "\n";
-      return 2;
+      return Verdict::error;
     }
     rc::Random random(options_.seed);
     long done = 0, generated = 0;
@@ -113,9 +113,9 @@ class Verifier {
             ++kinds_[key].repeats;  // this kind is reported already
             continue;
           }
-          const int result =
+          const Verdict result =
               shrinker_.confirm(current, k, answers, finding, done + static_cast<long>(k) + 1);
-          if (!options_.keep_going || result != 1) return result;
+          if (!options_.keep_going || result != Verdict::violated) return result;
           kinds_[key] = Kind{reporter_.last_report(), 1};
           if (Clock::now() >= deadline_) break;
           // Go on with a fresh process, sent what the old one had queued.
@@ -160,11 +160,11 @@ class Verifier {
             err_ << "oblique verify: cannot run the implementation (" << end
                  << "): " << escape_bytes(child_.stderr_tail());
             child_.stop();
-            return 2;
+            return Verdict::error;
           }
         }
-        const int result = shrinker_.isolate(current.cases, answers.size(), done, outcome);
-        if (result == 1 && options_.keep_going && !kinds_.empty() &&
+        const Verdict result = shrinker_.isolate(current.cases, answers.size(), done, outcome);
+        if (result == Verdict::violated && options_.keep_going && !kinds_.empty() &&
             !reporter_.last_report().empty()) {
           kinds_[reporter_.last_kind() + " (ends the run)"] = Kind{reporter_.last_report(), 1};
           child_.stop();
@@ -199,7 +199,7 @@ class Verifier {
     if (done == 0) {
       err_ << "oblique verify: no case was judged within the time limit ("
            << options_.time_limit_seconds << " s); nothing is verified\n";
-      return 2;
+      return Verdict::error;
     }
     return reporter_.passed(done, session_.seconds_since_start(), seen, left_out_, stopped_by_time_,
                             dropped_);
@@ -275,32 +275,32 @@ int default_threads() {
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-int run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err) {
+Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err) {
   ::signal(SIGPIPE, SIG_IGN);  // a child that exits must not take us with it
   VerifyOptions options = given;
   if (options.command.empty()) {
     err << "oblique verify: --impl needs a command\n";
-    return 2;
+    return Verdict::error;
   }
   // Range checks: durations must fit the clock's arithmetic (and NaN is no duration).
   if (!(options.time_limit_seconds > 0 && options.time_limit_seconds <= kMaxSeconds)) {
     err << "oblique verify: --time-limit must be more than 0 and at most " << kMaxSeconds
         << " seconds (about 3 years), not " << options.time_limit_seconds << "\n";
-    return 2;
+    return Verdict::error;
   }
   if (!(options.request_timeout_seconds >= 0.001 &&
         options.request_timeout_seconds <= kMaxSeconds)) {
     err << "oblique verify: --timeout must be at least 0.001 and at most " << kMaxSeconds
         << " seconds, not " << options.request_timeout_seconds << "\n";
-    return 2;
+    return Verdict::error;
   }
   if (options.cases < 0) {
     err << "oblique verify: --cases must be positive\n";
-    return 2;
+    return Verdict::error;
   }
   if (!(options.threads >= 1 && options.threads <= 256)) {
     err << "oblique verify: --threads must be between 1 and 256, not " << options.threads << "\n";
-    return 2;
+    return Verdict::error;
   }
   // Standard input, output and error closed when we were started: give them /dev/null, so the
   // pipes to the implementation never take fds 0..2 (and our output never goes into its input).
@@ -317,7 +317,7 @@ int run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err)
   if (std::string why = options.replay.empty() ? check_report_directory(options.report_dir) : "";
       !why.empty()) {
     err << "oblique verify: --report-dir " << options.report_dir << ": " << why << "\n";
-    return 2;
+    return Verdict::error;
   }
   if (options.seed == 0) options.seed = std::random_device{}() | 1u;
   if (!options.replay.empty()) {
@@ -326,7 +326,7 @@ int run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err)
     if (!precision) {
       err << "oblique verify: --replay: cannot read the report " << options.replay << " ("
           << precision.error() << ")\n";
-      return 2;
+      return Verdict::error;
     }
     if (*precision) options.precision = **precision;
     switch (options.precision) {
@@ -336,7 +336,7 @@ int run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err)
         return Verifier<double>(options, out, err).replay_report(options.replay);
       case protocol::Precision::long_double:
         err << "oblique verify: --replay: a long_double report\n";
-        return 2;
+        return Verdict::error;
     }
   }
   switch (options.precision) {
@@ -344,9 +344,9 @@ int run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err)
     case protocol::Precision::float64: return Verifier<double>(options, out, err).run();
     case protocol::Precision::long_double:
       err << "oblique verify: --precision is float or double\n";
-      return 2;
+      return Verdict::error;
   }
-  return 2;
+  return Verdict::error;
 }
 
 }  // namespace oblique::verify

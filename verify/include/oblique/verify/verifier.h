@@ -45,8 +45,14 @@ struct VerifyOptions {
   std::string save_regressions;  ///< keep each new shrunk case here
 };
 
-/// Exit codes: 0 no violation within the budget, 1 a violation (or a crash or hang of the
-/// implementation) with a report written, 2 usage or protocol errors.
-int run_verify(const VerifyOptions& options, std::ostream& out, std::ostream& err);
+/// How a run ended; the CLI exits with its value.
+enum class Verdict {
+  holds = 0,     ///< no violation within the budget (or the kept regressions hold)
+  violated = 1,  ///< a violation, or a crash or hang of the implementation: a report written
+  error = 2,     ///< usage, protocol or I/O errors: nothing was verified
+};
+
+/// Runs `oblique verify`, saying on `out` and `err` what it did.
+Verdict run_verify(const VerifyOptions& options, std::ostream& out, std::ostream& err);
 
 }  // namespace oblique::verify
