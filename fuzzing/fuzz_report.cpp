@@ -229,21 +229,13 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
   return properties::write_report(ce, context);
 }
 
-/// A name in `dir` not taken yet: STEM.md, STEM-2.md, ...
-std::string free_name(const std::string& dir, const std::string& stem) {
-  std::string name = stem + ".md";
-  std::error_code ec;
-  for (int n = 2; fs::exists(fs::path(dir) / name, ec); ++n)
-    name = stem + "-" + std::to_string(n) + ".md";
-  return name;
-}
-
 /// The report of any other finding (a sanitizer's error, a crash, a hang): the target's output
 /// and the command that replays it.
 Expected<std::string> plain_report(const FuzzReportOptions& options, const FuzzFinding& finding,
                                    const std::string& output) {
   report::ReportFiles files(options.report_dir);
-  const std::string name = free_name(options.report_dir, "fuzz-" + stem_of(finding.key));
+  const std::string name =
+      report::free_stem(options.report_dir, "fuzz-" + stem_of(finding.key), {".md"}) + ".md";
   std::ostream& md = files.open(name);
   md << "# Fuzz finding: " << finding.key << "\n\n"
      << finding.inputs.size() << " input(s); the smallest, `" << finding.inputs.front()
@@ -322,7 +314,7 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
   }
   if (out.findings.empty()) return out;
   report::ReportFiles files_out(options.report_dir);
-  const std::string name = free_name(options.report_dir, "fuzz-index");
+  const std::string name = report::free_stem(options.report_dir, "fuzz-index", {".md"}) + ".md";
   std::ostream& index = files_out.open(name);
   index << "# Fuzz findings: " << out.findings.size() << " distinct, in " << out.inputs
         << " inputs\n\nTarget `" << options.target << "`; " << out.holds

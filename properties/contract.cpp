@@ -33,7 +33,7 @@ const std::vector<std::string>& field_names() {
   return names;
 }
 
-/// Reads a list of names into `out` with `parse`; false with `error`.
+/// Reads a list of names with `parse` into `out`, which it replaces; false with `error`.
 template <class E, class Parse>
 bool read_names(const JsonValue& v, const char* field, const char* what, Parse parse,
                 const std::vector<std::string>& known, std::vector<E>& out, std::string& error) {
@@ -41,6 +41,7 @@ bool read_names(const JsonValue& v, const char* field, const char* what, Parse p
     error = std::string("\"") + field + "\" is a list of names, not " + protocol::kind_name(v.kind);
     return false;
   }
+  std::vector<E> read;
   for (const JsonValue& item : v.items) {
     if (!item.is(JsonValue::Kind::string)) {
       error = std::string("\"") + field + "\" holds names, not " + protocol::kind_name(item.kind);
@@ -51,8 +52,9 @@ bool read_names(const JsonValue& v, const char* field, const char* what, Parse p
       error = "\"" + std::string(field) + "\": " + protocol::unknown_name(what, item.text, known);
       return false;
     }
-    if (!contains(out, *value)) out.push_back(*value);
+    if (!contains(read, *value)) read.push_back(*value);
   }
+  out = std::move(read);
   return true;
 }
 
@@ -258,10 +260,13 @@ Expected<Contract> with_field(Contract c, const std::string& field,
     return Expected<Contract>::failure(
         "statuses: " + protocol::unknown_name("status contract or refusal", names.front(), known));
   }
+  // The JSON value the flag stands for: a string for planes and a status contract's name, a
+  // list otherwise (read_field() replaces the field's list with it).
   JsonValue value;
-  const bool one_word = field == "planes" || (field == "statuses" && names.size() == 1 &&
-                                              parse_status_contract(names.front()).has_value());
-  if (one_word && names.size() == 1) {
+  const bool one_word =
+      names.size() == 1 &&
+      (field == "planes" || (field == "statuses" && parse_status_contract(names.front())));
+  if (one_word) {
     value.kind = JsonValue::Kind::string;
     value.text = names.front();
   } else {
@@ -273,12 +278,6 @@ Expected<Contract> with_field(Contract c, const std::string& field,
       value.items.push_back(std::move(item));
     }
   }
-  if (field == "families") c.families.clear();
-  if (field == "conventions") c.conventions.clear();
-  if (field == "places") c.places.clear();
-  if (field == "defects") c.defects.clear();
-  if (field == "properties") c.properties.clear();
-  if (field == "statuses") c.refusals.clear();
   std::vector<std::string> excluded;
   if (std::string error = read_field(c, field, value, excluded); !error.empty())
     return Expected<Contract>::failure(error);

@@ -296,14 +296,8 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   for (char& ch : stem) {
     if (ch == '/' || ch == ' ') ch = '_';
   }
-  if (context.keep_existing) {
-    const std::string base = stem;
-    for (int n = 2; std::filesystem::exists(context.directory + "/" + stem + ".md") ||
-                    std::filesystem::exists(context.directory + "/" + stem + ".json") ||
-                    std::filesystem::exists(context.directory + "/" + stem + ".views.dat");
-         ++n)
-      stem = base + "-" + std::to_string(n);
-  }
+  if (context.keep_existing)
+    stem = report::free_stem(context.directory, stem, {".md", ".json", ".views.dat"});
   const std::string md_path = context.directory + "/" + stem + ".md";
   const std::string rc_params = "RC_PARAMS=\"seed=" + std::to_string(context.seed) +
                                 " max_success=" + std::to_string(context.max_success) + "\"";

@@ -158,4 +158,18 @@ bool ReportFiles::plot_staged(const std::string& script, const std::string& png,
   return false;
 }
 
+std::string free_stem(const std::filesystem::path& dir, const std::string& stem,
+                      const std::vector<std::string>& extensions) {
+  std::string name = stem;
+  auto taken = [&] {
+    std::error_code ec;
+    for (const std::string& extension : extensions) {
+      if (std::filesystem::exists(dir / (name + extension), ec)) return true;
+    }
+    return false;
+  };
+  for (int n = 2; taken(); ++n) name = stem + "-" + std::to_string(n);
+  return name;
+}
+
 }  // namespace oblique::report

@@ -13,6 +13,7 @@
 #include "oblique/properties/counterexample_report.h"
 #include "oblique/properties/properties.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/report/report_files.h"
 
 namespace oblique::verify {
 
@@ -158,9 +159,10 @@ Verdict Reporter<T>::index(const std::map<std::string, Kind>& kinds, long done) 
     index << "| " << key << " | " << kind.repeats << " | " << kind.report << " |\n";
   index << "\nThe whole run again:\n\n```sh\n" << replay_run_command() << "\n```\n";
   namespace fs = std::filesystem;
-  std::string path = options_.report_dir + "/verify-index.md";
-  for (int n = 2; fs::exists(path); ++n)
-    path = options_.report_dir + "/verify-index-" + std::to_string(n) + ".md";
+  const std::string path =
+      (fs::path(options_.report_dir) /
+       (report::free_stem(options_.report_dir, "verify-index", {".md"}) + ".md"))
+          .string();
   std::ofstream(path) << index.str();
   out_ << "oblique verify: " << kinds.size() << " kinds of finding in " << done
        << " cases (--keep-going); index: " << path << "\n";

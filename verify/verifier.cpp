@@ -57,11 +57,11 @@ class Verifier {
       if (kept != Verdict::holds) return kept;
       session_.start_clock();  // the run's own time limit starts now
     }
-    ChildProcess& child_ = session_.child();
-    const Clock::time_point deadline_ = session_.deadline();
-    const auto idle_ = session_.idle();
+    ChildProcess& child = session_.child();
+    const Clock::time_point deadline = session_.deadline();
+    const auto idle = session_.idle();
     std::string error;
-    if (!child_.start(&error)) {
+    if (!child.start(&error)) {
       err_ << "oblique verify: cannot start the implementation: " << error << "\n";
       return Verdict::error;
     }
@@ -69,37 +69,37 @@ class Verifier {
     long done = 0, generated = 0;
     std::size_t batch = 16;
     auto last_progress = session_.start();
-    std::map<std::string, Kind> kinds_;
-    std::map<std::string, long> left_out_;
+    std::map<std::string, Kind> kinds;
+    std::map<std::string, long> left_out;
     Seen seen;
-    bool stopped_by_time_ = false;
-    long dropped_ = 0;
+    bool stopped_by_time = false;
+    long dropped = 0;
     // Batch k + 1 is generated and queued before batch k's answers are read, so the
     // implementation works on it while batch k is judged (on --threads threads).
-    Batch<T> current = next_batch(random, generated, batch, left_out_);
+    Batch<T> current = next_batch(random, generated, batch, left_out);
     while (!current.cases.empty()) {
       batch = std::min<std::size_t>(batch * 2, 1024);
       Batch<T> following;
-      if (generated < case_limit() && Clock::now() < deadline_)
-        following = next_batch(random, generated, batch, left_out_);
+      if (generated < case_limit() && Clock::now() < deadline)
+        following = next_batch(random, generated, batch, left_out);
       const std::size_t n = current.cases.size();
       std::vector<std::string> answers;
       bool restarted = false;  // --keep-going: a fresh process after a finding in this batch
-      auto outcome = child_.exchange({}, n, answers, idle_, deadline_);
+      auto outcome = child.exchange({}, n, answers, idle, deadline);
       bool time_up = false;
-      if (outcome == ChildProcess::Outcome::timed_out && Clock::now() >= deadline_) {
+      if (outcome == ChildProcess::Outcome::timed_out && Clock::now() >= deadline) {
         // The time limit ended the wait, not the implementation; it must still show that it is
         // answering: one more line within --timeout of its last one, or the request it owes is
         // a timeout finding (never a pass with an unanswered request).
         time_up = true;
-        outcome = child_.exchange({}, answers.size() + 1, answers, idle_,
-                                  child_.last_line_time() + idle_);
+        outcome =
+            child.exchange({}, answers.size() + 1, answers, idle, child.last_line_time() + idle);
       }
       const std::vector<Judged<T>> judged = judge_batch(draws_, current, answers, options_.threads);
       for (std::size_t k = 0; k < answers.size(); ++k) {
         const Judged<T>& j = judged[k];
         if (!j.protocol_error.empty()) {
-          child_.stop();
+          child.stop();
           return reporter_.protocol_error(current.requests[k], answers[k], j.protocol_error);
         }
         if (j.finding) {
@@ -109,30 +109,30 @@ class Verifier {
           const std::string key = finding.finding.kind + " x " +
                                   std::string(generators::family_name(v.c.family)) + " x " +
                                   v.kind();
-          if (options_.keep_going && kinds_.count(key)) {
-            ++kinds_[key].repeats;  // this kind is reported already
+          if (options_.keep_going && kinds.count(key)) {
+            ++kinds[key].repeats;  // this kind is reported already
             continue;
           }
           const Verdict result =
               shrinker_.confirm(current, k, answers, finding, done + static_cast<long>(k) + 1);
           if (!options_.keep_going || result != Verdict::violated) return result;
-          kinds_[key] = Kind{reporter_.last_report(), 1};
-          if (Clock::now() >= deadline_) break;
+          kinds[key] = Kind{reporter_.last_report(), 1};
+          if (Clock::now() >= deadline) break;
           // Go on with a fresh process, sent what the old one had queued.
           std::string error;
-          if (!child_.start(&error)) {
+          if (!child.start(&error)) {
             err_ << "oblique verify: cannot restart the implementation: " << error << "\n";
-            child_.stop();
-            return reporter_.index(kinds_, done);
+            child.stop();
+            return reporter_.index(kinds, done);
           }
-          child_.send(following.text());
+          child.send(following.text());
           restarted = true;
         }
         seen.count(current.values[k]);
       }
       done += static_cast<long>(answers.size());
-      if (!kinds_.empty() && Clock::now() >= deadline_) {
-        stopped_by_time_ = true;
+      if (!kinds.empty() && Clock::now() >= deadline) {
+        stopped_by_time = true;
         break;
       }
       if (restarted) {
@@ -140,13 +140,13 @@ class Verifier {
         continue;
       }
       if (outcome == ChildProcess::Outcome::too_long) {
-        const std::string start = child_.overlong_start();
-        child_.stop();
+        const std::string start = child.overlong_start();
+        child.stop();
         return reporter_.overlong_line(current.requests[answers.size()], start);
       }
       if (time_up && outcome == ChildProcess::Outcome::done) {
-        dropped_ = static_cast<long>(n - answers.size());
-        stopped_by_time_ = true;
+        dropped = static_cast<long>(n - answers.size());
+        stopped_by_time = true;
         break;  // still answering: the time limit ends the run
       }
       if (time_up && outcome == ChildProcess::Outcome::timed_out) {
@@ -155,20 +155,20 @@ class Verifier {
       }
       if (outcome != ChildProcess::Outcome::done) {
         if (done == 0 && outcome == ChildProcess::Outcome::exited) {
-          const std::string end = child_.end_description();
+          const std::string end = child.end_description();
           if (end == "exited with status 126" || end == "exited with status 127") {
             err_ << "oblique verify: cannot run the implementation (" << end
-                 << "): " << escape_bytes(child_.stderr_tail());
-            child_.stop();
+                 << "): " << escape_bytes(child.stderr_tail());
+            child.stop();
             return Verdict::error;
           }
         }
         const Verdict result = shrinker_.isolate(current.cases, answers.size(), done, outcome);
-        if (result == Verdict::violated && options_.keep_going && !kinds_.empty() &&
+        if (result == Verdict::violated && options_.keep_going && !kinds.empty() &&
             !reporter_.last_report().empty()) {
-          kinds_[reporter_.last_kind() + " (ends the run)"] = Kind{reporter_.last_report(), 1};
-          child_.stop();
-          return reporter_.index(kinds_, done);
+          kinds[reporter_.last_kind() + " (ends the run)"] = Kind{reporter_.last_report(), 1};
+          child.stop();
+          return reporter_.index(kinds, done);
         }
         return result;
       }
@@ -181,28 +181,28 @@ class Verifier {
              << " per second, no violation\n";
       }
     }
-    if (!stopped_by_time_ && child_.running()) {
+    if (!stopped_by_time && child.running()) {
       // The count check of the last batch: once its input is closed, the implementation has
       // nothing more to say.
-      const auto grace = std::min<Clock::duration>(idle_, std::chrono::seconds(1));
-      const std::vector<std::string> extra = child_.close_and_drain(Clock::now() + grace);
+      const auto grace = std::min<Clock::duration>(idle, std::chrono::seconds(1));
+      const std::vector<std::string> extra = child.close_and_drain(Clock::now() + grace);
       if (!extra.empty()) {
-        child_.stop();
+        child.stop();
         return reporter_.count_error(
             "the implementation wrote lines beyond one answer per request (" +
                 std::to_string(done) + " requests, all answered)",
             {}, extra);
       }
     }
-    child_.stop();
-    if (!kinds_.empty()) return reporter_.index(kinds_, done);
+    child.stop();
+    if (!kinds.empty()) return reporter_.index(kinds, done);
     if (done == 0) {
       err_ << "oblique verify: no case was judged within the time limit ("
            << options_.time_limit_seconds << " s); nothing is verified\n";
       return Verdict::error;
     }
-    return reporter_.passed(done, session_.seconds_since_start(), seen, left_out_, stopped_by_time_,
-                            dropped_);
+    return reporter_.passed(done, session_.seconds_since_start(), seen, left_out, stopped_by_time,
+                            dropped);
   }
 
  private:

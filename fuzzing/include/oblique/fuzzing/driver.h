@@ -208,38 +208,11 @@ inline bool describing() {
   return enabled;
 }
 
-/// Prints the decoded case: every number in shortest decimal and exact hex.
-inline void describe(const FuzzCase& c, std::FILE* out = stderr) {
-  std::fprintf(out, "scalar %s, convention %s, method %s, family %s\n",
-               std::string(protocol::precision_name(c.scalar)).c_str(),
-               std::string(convention_name(c.convention)).c_str(),
-               std::string(method_name(c.method)).c_str(), family_label(c.family));
-  using protocol::format_number;
-  using protocol::Notation;
-  for (int i = 0; i < 5; ++i) {
-    std::string decimal, hex;
-    for (int j = 0; j < 4; ++j) {
-      const double x = i < 4 ? c.matrix(i, j) : c.plane(j);
-      decimal += " " + format_number(x);
-      hex += (j ? " " : "") + format_number(x, Notation::hex);
-    }
-    if (i < 4)
-      std::fprintf(out, "M row %d:%s  (%s)\n", i + 1, decimal.c_str(), hex.c_str());
-    else
-      std::fprintf(out, "C:%s  (%s)\n", decimal.c_str(), hex.c_str());
-  }
-}
-
-/// Prints the input as the function was given it: in its scalar type T (the decoder's scalar byte
-/// picks T only for the project's own target), each number in shortest decimal and exact hex.
+/// Prints M's rows and C, each number in T's shortest decimal and exact hex, indented by two.
 template <class T>
-void describe_input(const FuzzCase& c, const Matrix4<T>& m, const Vector4<T>& plane,
-                    std::FILE* out = stderr) {
+void print_numbers(const Matrix4<T>& m, const Vector4<T>& plane, std::FILE* out) {
   using protocol::format_number;
   using protocol::Notation;
-  std::fprintf(out, "input (%s, %s convention, %s projection):\n",
-               std::string(protocol::scalar_name<T>()).c_str(),
-               std::string(convention_name(c.convention)).c_str(), family_label(c.family));
   for (int i = 0; i < 5; ++i) {
     std::string decimal, hex;
     for (int j = 0; j < 4; ++j) {
@@ -252,6 +225,27 @@ void describe_input(const FuzzCase& c, const Matrix4<T>& m, const Vector4<T>& pl
     else
       std::fprintf(out, "  C:%s  (%s)\n", decimal.c_str(), hex.c_str());
   }
+}
+
+/// Prints the decoded case (OBLIQUE_FUZZ_DESCRIBE): what each byte chose, and the numbers as
+/// decoded (in double).
+inline void describe(const FuzzCase& c, std::FILE* out = stderr) {
+  std::fprintf(out, "scalar %s, convention %s, method %s, family %s\n",
+               std::string(protocol::precision_name(c.scalar)).c_str(),
+               std::string(convention_name(c.convention)).c_str(),
+               std::string(method_name(c.method)).c_str(), family_label(c.family));
+  print_numbers(c.matrix, c.plane, out);
+}
+
+/// Prints the input as the function was given it: in its scalar type T (the decoder's scalar byte
+/// picks T only for the project's own target).
+template <class T>
+void describe_input(const FuzzCase& c, const Matrix4<T>& m, const Vector4<T>& plane,
+                    std::FILE* out = stderr) {
+  std::fprintf(out, "input (%s, %s convention, %s projection):\n",
+               std::string(protocol::scalar_name<T>()).c_str(),
+               std::string(convention_name(c.convention)).c_str(), family_label(c.family));
+  print_numbers(m, plane, out);
 }
 
 /// What the input allows, in words: an answer, no answer (its status), or an answer that lies

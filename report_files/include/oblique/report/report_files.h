@@ -13,6 +13,11 @@
 
 namespace oblique::report {
 
+/// `stem`, or the first of `stem-2`, `stem-3`, ... for which no file `dir/<it><extension>` exists
+/// for any of `extensions`: a name that replaces no earlier report.
+std::string free_stem(const std::filesystem::path& dir, const std::string& stem,
+                      const std::vector<std::string>& extensions);
+
 class ReportFiles {
  public:
   /// Creates `dir` (and its parents) and a staging folder inside it; a failure is reported by
