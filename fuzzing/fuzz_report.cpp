@@ -278,6 +278,7 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
   for (const auto& [size, path] : files) {
     const Run r = run(options, path);
     ++out.inputs;
+    if (r.status == -1) return Result::failure("cannot start /bin/sh to run the target");
     if (r.status == 127 || r.status == 126)
       return Result::failure("cannot run the target (" + options.target + "): " + r.output);
     const std::string key = key_of(r);

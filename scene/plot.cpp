@@ -84,11 +84,9 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
   std::vector<Vector3> framed = {eye};
   const Vector3 axis = (scene.camera.target - eye).normalized();
   for (const Surface& s : scene.surfaces) {
-    const Vector3 at = s.polygon.empty() ? s.point : Vector3::Zero();
-    Vector3 centroid = at;
-    for (const Vector3& v : s.polygon) centroid += v / static_cast<double>(s.polygon.size());
-    labels.push_back({centroid, s.name});
-    framed.push_back(centroid);
+    // A bounded surface's point is its polygon's centroid (the reader's polygon_plane()).
+    labels.push_back({s.point, s.name});
+    framed.push_back(s.point);
     for (const Vector3& v : s.polygon) framed.push_back(v);
     const double facing = s.normal.dot(axis);
     if (facing != 0) {
