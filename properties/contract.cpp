@@ -2,9 +2,7 @@
 #include "oblique/properties/contract.h"
 
 #include <algorithm>
-#include <fstream>
 #include <iterator>
-#include <sstream>
 
 #include "oblique/protocol/json.h"
 #include "oblique/protocol/names.h"
@@ -16,6 +14,9 @@ namespace {
 using properties::Property;
 using properties::StatusContract;
 using protocol::JsonValue;
+
+/// A contract file is a few lines; anything larger is not one.
+constexpr std::size_t kMaxContractBytes = 1u << 20;
 
 constexpr StatusContract kStatusContracts[] = {StatusContract::exact, StatusContract::any_refusal,
                                                StatusContract::answers_only};
@@ -285,13 +286,9 @@ Expected<Contract> with_field(Contract c, const std::string& field,
 }
 
 Expected<Contract> read_contract_file(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return Expected<Contract>::failure("cannot read the contract file " + path);
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (!file.good() && !file.eof())
-    return Expected<Contract>::failure("cannot read the contract file " + path);
-  Expected<Contract> c = read_contract(text.str());
+  const Expected<std::string> text = protocol::read_text_file(path, kMaxContractBytes);
+  if (!text) return Expected<Contract>::failure("the contract file " + path + ": " + text.error());
+  Expected<Contract> c = read_contract(*text);
   if (!c) return Expected<Contract>::failure(path + ": " + c.error());
   return c;
 }

@@ -3,7 +3,10 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 
 namespace oblique::protocol {
 
@@ -216,6 +219,24 @@ Expected<JsonValue> parse_json(std::string_view text, JsonLimits limits) {
     return Expected<JsonValue>::failure(builder.error.empty() ? "not valid JSON" : builder.error);
   }
   return std::move(builder.root);
+}
+
+Expected<std::string> read_text_file(const std::string& path, std::size_t max_bytes) {
+  using Result = Expected<std::string>;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return Result::failure("is a directory");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return Result::failure(std::string("cannot open: ") + std::strerror(errno));
+  std::string text;
+  char block[65536];
+  while (file && text.size() <= max_bytes) {
+    file.read(block, sizeof block);
+    text.append(block, static_cast<std::size_t>(file.gcount()));
+  }
+  if (file.bad()) return Result::failure(std::string("cannot read: ") + std::strerror(errno));
+  if (text.size() > max_bytes)
+    return Result::failure("larger than " + std::to_string(max_bytes) + " bytes");
+  return text;
 }
 
 std::string json_string(std::string_view s) {

@@ -1,10 +1,8 @@
 #include "oblique/scene/scene.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <limits>
 #include <stdexcept>
@@ -57,33 +55,13 @@ Matrix4<double> reflection(const Vector4<double>& plane_in) {
 }
 
 ParsedScene read_scene_file(const std::string& path) {
-  ParsedScene out;
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    out.error = "is a directory, not a scene file";
+  const Expected<std::string> text = protocol::read_text_file(path, kMaxSceneBytes);
+  if (!text) {
+    ParsedScene out;
+    out.error = text.error() + ": not a scene file";
     return out;
   }
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    out.error = std::string("cannot open: ") + std::strerror(errno);
-    return out;
-  }
-  // Read in blocks, never more than kMaxSceneBytes + 1 (a device like /dev/zero never ends).
-  std::string text;
-  char block[65536];
-  while (file && text.size() <= kMaxSceneBytes) {
-    file.read(block, sizeof block);
-    text.append(block, static_cast<std::size_t>(file.gcount()));
-  }
-  if (file.bad()) {
-    out.error = std::string("cannot read: ") + std::strerror(errno);
-    return out;
-  }
-  if (text.size() > kMaxSceneBytes) {
-    out.error = "larger than " + std::to_string(kMaxSceneBytes) + " bytes: not a scene file";
-    return out;
-  }
-  return parse_scene(text);
+  return parse_scene(*text);
 }
 
 ParsedScene parse_scene(std::string_view text_in) {

@@ -277,6 +277,9 @@ TEST(Cli, aMistypedSubcommandFlagOrNameGetsTheClosest) {
       {"verify --impl cat --statuses answer_only",
        "unknown status contract or refusal \"answer_only\" (did you mean answers_only?"},
       {"verify --impl cat --exclude infinte", "did you mean infinite?"},
+      // Files that never end are refused, not read whole.
+      {"verify --impl cat --contract /dev/zero", "/dev/zero: larger than"},
+      {"verify --impl cat --replay /dev/zero", "/dev/zero: larger than"},
   };
   for (const auto& c : cases) {
     std::string err;

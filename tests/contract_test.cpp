@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+
 #include "oblique/protocol/names.h"
 
 namespace oblique {
@@ -80,6 +83,20 @@ TEST(Contract, refusesUnknownNamesWithTheKnownOnesAndTheClosest) {
     ASSERT_FALSE(read) << c.text;
     EXPECT_NE(read.error().find(c.message), std::string::npos)
         << c.text << "\n  said: " << read.error() << "\n  expected: " << c.message;
+  }
+}
+
+// A contract file that never ends, a folder, a missing file: refused with the reason, never read
+// whole (/dev/zero once aborted `oblique verify --contract` with std::bad_alloc).
+TEST(Contract, aFileThatIsNoContractIsRefusedWithTheReason) {
+  for (const auto& [path, reason] :
+       {std::pair<std::string, std::string>{"/dev/zero", "larger than 1048576 bytes"},
+        {::testing::TempDir(), "is a directory"},
+        {"/no/such/contract.json", "cannot open"}}) {
+    const Expected<Contract> c = read_contract_file(path);
+    ASSERT_FALSE(c) << path;
+    EXPECT_NE(c.error().find("the contract file " + path + ": " + reason), std::string::npos)
+        << c.error();
   }
 }
 

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <ostream>
-#include <sstream>
 #include <vector>
 
 #include "oblique/protocol/json.h"
@@ -16,11 +14,10 @@ namespace {
 
 /// A report's JSON, or why it cannot be read (reports hold pictures' data: generous limits).
 Expected<protocol::JsonValue> read_report(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return Expected<protocol::JsonValue>::failure("cannot read " + path);
-  std::ostringstream text;
-  text << file.rdbuf();
-  Expected<protocol::JsonValue> j = protocol::parse_json(text.str(), {1u << 22, 32});
+  // A report holds its pictures' data, a few MiB at most.
+  const Expected<std::string> text = protocol::read_text_file(path, 64u << 20);
+  if (!text) return Expected<protocol::JsonValue>::failure(path + ": " + text.error());
+  Expected<protocol::JsonValue> j = protocol::parse_json(*text, {1u << 22, 32});
   if (!j || !j->is(protocol::JsonValue::Kind::object))
     return Expected<protocol::JsonValue>::failure(
         path + " is not a report of oblique verify (" +

@@ -70,6 +70,11 @@ std::optional<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t 
 /// prefix dropped, so what remains names the line and column.
 std::string json_error_text(std::string_view what);
 
+/// The text of a file a person names (a scene, a contract, a report), read in blocks and never
+/// more than `max_bytes` + 1 of it, so a device that never ends (/dev/zero) is refused, not read.
+/// Fails with "is a directory", "cannot open: ...", "cannot read: ..." or "larger than N bytes".
+Expected<std::string> read_text_file(const std::string& path, std::size_t max_bytes);
+
 /// `s` as a JSON string literal (invalid UTF-8 replaced).
 std::string json_string(std::string_view s);
 
