@@ -1,5 +1,7 @@
 // oblique check --impl: each rendered pass's request sent to the user's program (the apply
 // protocol), and its answers judged as oblique verify judges them.
+#include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <limits>
 
@@ -99,15 +101,30 @@ Expected<std::size_t> judge_implementation(const Scene& scene, SceneCheck& check
   const auto idle = std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000));
   const auto outcome =
       child.exchange(input, rendered.size(), lines, idle, protocol::Clock::now() + 4 * idle);
+  // As verify: once its input is closed, a program that has answered every request has nothing
+  // more to say; lines beyond one per request mean the answers were out of step (each would be
+  // judged against another request's plane), a protocol error, not a finding.
+  const std::vector<std::string> extra =
+      outcome == ChildProcess::Outcome::done
+          ? child.close_and_drain(protocol::Clock::now() +
+                                  std::min(idle, std::chrono::milliseconds(1000)))
+          : std::vector<std::string>{};
+  const std::string ended = outcome == ChildProcess::Outcome::timed_out ? "timed out"
+                            : outcome == ChildProcess::Outcome::too_long
+                                ? "an answer line longer than 1 MiB"
+                                : child.end_description();
   child.stop();
   if (outcome != ChildProcess::Outcome::done || lines.size() < rendered.size()) {
     std::string why = "the implementation answered " + std::to_string(lines.size()) + " of " +
-                      std::to_string(rendered.size()) + " requests (" +
-                      (outcome == ChildProcess::Outcome::timed_out ? std::string("timed out")
-                                                                   : child.end_description()) +
-                      ")";
+                      std::to_string(rendered.size()) + " requests (" + ended + ")";
     if (!child.stderr_tail().empty()) why += "; its standard error:\n" + child.stderr_tail();
     return Expected<std::size_t>::failure(why);
+  }
+  if (!extra.empty()) {
+    return Expected<std::size_t>::failure(
+        "the implementation wrote lines beyond one answer per request (" +
+        std::to_string(rendered.size()) + " requests; the first extra line: " +
+        protocol::escape_bytes(extra.front().substr(0, 200)) + ")");
   }
   for (std::size_t i = 0; i < rendered.size(); ++i)
     judge_impl_answer(scene, *rendered[i], lines[i], check.impl_precision);

@@ -203,7 +203,10 @@ const std::string kGood =
 
 /// Runs a shell command; its exit status, and its standard output in `out`.
 int shell(const std::string& command, std::string* out) {
-  const std::string out_path = ::testing::TempDir() + "oblique_cli_shell_out.txt";
+  // One file per test: CTest runs tests in parallel (a shared name mixed two tests' outputs).
+  const std::string out_path = ::testing::TempDir() + "oblique_cli_shell_" +
+                               ::testing::UnitTest::GetInstance()->current_test_info()->name() +
+                               ".txt";
   const int raw = std::system((command + " > " + out_path).c_str());
   std::ifstream file(out_path);
   std::ostringstream text;

@@ -888,6 +888,21 @@ TEST(Scenes, cliImplJudgesTheUsersMatricesOnEveryPass) {
   // One that answers nothing, or cannot be started: exit 2.
   EXPECT_EQ(run_check(dir + "/hall_of_mirrors.json --timeout 2 --impl 'cat > /dev/null'"), 2);
   EXPECT_EQ(run_check(dir + "/hall_of_mirrors.json --impl 'exit 3'"), 2);
+  // One that answers each request twice: its lines are out of step with the requests, a protocol
+  // error (exit 2), never a property judged against another request's plane (it was exit 1).
+  const std::string twice = ::testing::TempDir() + "oblique_answers_twice.sh";
+  std::ofstream(twice) << "while read -r line; do echo \"$line\" | " << OBLIQUE_CLI
+                       << " apply; echo '{\"status\": \"invalid_input\"}'; done\n";
+  std::string output;
+  EXPECT_EQ(run_check_capturing(dir + "/hall_of_mirrors.json --impl 'sh " + twice + "'", output), 2)
+      << output;
+  EXPECT_NE(output.find("lines beyond one answer per request"), std::string::npos) << output;
+  // An endless line: said as such.
+  EXPECT_EQ(run_check_capturing(dir + "/lake.json --timeout 2 --impl 'head -c 3000000 /dev/zero'",
+                                output),
+            2)
+      << output;
+  EXPECT_NE(output.find("an answer line longer than 1 MiB"), std::string::npos) << output;
 }
 
 TEST(Scenes, cliPlotWritesTwoViewsOrSaysWhyNot) {
