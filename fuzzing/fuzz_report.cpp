@@ -154,13 +154,22 @@ std::optional<std::vector<T>> numbers_after(const std::string& output, const std
   std::istringstream tokens(paren == std::string::npos ? line : between(line, "(", ")"));
   std::vector<T> out;
   for (std::string token; tokens >> token && out.size() < count;) {
-    std::string error;
-    const std::optional<T> value = protocol::parse_number<T>(token, &error);
+    const Expected<T> value = protocol::parse_number<T>(token);
     if (!value) return std::nullopt;
     out.push_back(*value);
   }
   if (out.size() != count) return std::nullopt;
   return out;
+}
+
+/// The status the driver's words say the function gave ("answered ok", "answered" for a
+/// function without statuses, "answered STATUS", "refused (returned false)": the adapter's
+/// invalid_input).
+std::optional<Status> status_answered(const std::string& words) {
+  if (words == "answered" || words == "answered ok") return Status::ok;
+  if (words.rfind("refused", 0) == 0) return Status::invalid_input;
+  if (words.rfind("answered ", 0) == 0) return parse_status(words.substr(9));
+  return std::nullopt;
 }
 
 /// The report of a property violation: the input in its scalar type, the answer, the property's
@@ -183,22 +192,6 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
   ce.implementation = v.implementation;
   ce.family = v.family;
   ce.place = "fuzz input";
-  ce.finding.kind = v.property;
-  ce.finding.relation = "the answer has " + v.property;
-  // The driver's line for the failing check: "KIND: relation; residual R, bound B".
-  if (const std::string check = line_from(output, "\n" + v.property + ": "); !check.empty()) {
-    ce.finding.relation = between(check, ": ", "; residual ");
-    ce.finding.lhs = between(check, "; residual ", ", bound ");
-    ce.finding.rhs = between(check, ", bound ", "\n");
-    char* end = nullptr;
-    const double residual = std::strtod(ce.finding.lhs.c_str(), &end);
-    const double bound = std::strtod(ce.finding.rhs.c_str(), nullptr);
-    if (end != ce.finding.lhs.c_str() && bound > 0) ce.finding.ratio = std::abs(residual) / bound;
-  } else {  // a status finding: what the input allows, and what came
-    ce.finding.relation = "an answer the input allows";
-    ce.finding.expected = line_from(output, "the input has");
-    ce.finding.got = "it " + v.answered;
-  }
   std::optional<Matrix4<T>> answer;
   Matrix4<T> rows;
   bool all_rows = true;
@@ -212,7 +205,39 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
     answer = rows;
     properties::set_result(ce, rows);
   }
-  properties::set_views(ce, properties::Problem<T>(m, c, *convention), answer ? &*answer : nullptr);
+  // The finding judged again here, from the numbers the driver printed (they round-trip): the
+  // checker's own, not the driver's words read back.
+  const std::optional<properties::Check> check = properties::parse_check(v.property);
+  if (!check) return "";
+  const properties::Problem<T> problem(m, c, *convention);
+  if (*check == properties::Check::status) {
+    ce.finding.check = *check;
+    ce.finding.shows = properties::Shows::statuses;
+    ce.finding.exact = problem.exact_status();
+    ce.finding.allowed = problem.acceptable_statuses();
+    const std::optional<Status> answered = status_answered(v.answered);
+    if (!answered) return "";
+    ce.finding.answered = *answered;
+  } else if (*check == properties::Check::finite_result) {
+    ce.finding.check = *check;
+    ce.finding.shows = properties::Shows::non_finite_answer;
+  } else {
+    if (!answer) return "";
+    properties::Checks every;
+    every.every = true;
+    every.row3_accuracy = true;
+    bool found = false;
+    for (const properties::Finding& f :
+         properties::judge(problem, properties::Outcome<T>{Status::ok, *answer}, every).checks) {
+      if (f.check == *check && !f.holds) {
+        ce.finding = f;
+        found = true;
+        break;
+      }
+    }
+    if (!found) return "";
+  }
+  properties::set_views(ce, problem, answer ? &*answer : nullptr);
   ce.notes.emplace_back("fuzz input", finding.inputs.front());
   ce.notes.emplace_back("inputs with this finding", std::to_string(finding.inputs.size()));
   ce.notes.emplace_back("what it did", "it " + v.answered);

@@ -92,6 +92,14 @@ OBLIQUE_COUNTEREXAMPLE(long double)
 
 namespace {
 
+/// finding_numbers() as a JSON object (a non-finite number as its text: JSON has none).
+nlohmann::json finding_json_numbers(const Finding& f) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, x] : finding_numbers(f))
+    out[name] = std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(protocol::format_number(x));
+  return out;
+}
+
 std::string matrix_table(const std::vector<std::string>& values) {
   std::ostringstream out;
   out << "| | col 1 | col 2 | col 3 | col 4 |\n|---|---|---|---|---|\n";
@@ -132,7 +140,7 @@ struct Mark {
 
 Mark mark_of(const Counterexample& ce) {
   const CaseViews& v = ce.views;
-  const std::string& kind = ce.finding.kind;
+  const Check check = ce.finding.check;
   if (v.clipped) {
     const std::optional<Eigen::Vector3d> p = affine(*v.clipped);
     if (p)
@@ -143,7 +151,8 @@ Mark mark_of(const Counterexample& ce) {
                 "): not drawn",
             "marked: nothing (the clipped point is at infinity)", std::nullopt};
   }
-  if ((kind == "far_plane_through_corner" || kind == "infinite_edge_parallel") && v.far_corner) {
+  if ((check == Check::far_plane_through_corner || check == Check::infinite_edge_parallel) &&
+      v.far_corner) {
     const std::optional<Eigen::Vector3d> q = affine(*v.far_corner);
     if (q)
       return {"the far corner Q " + point_text(*q) + ", which the answer's far plane misses",
@@ -159,8 +168,8 @@ Mark mark_of(const Counterexample& ce) {
   const std::string legend = !v.answer     ? "no answer"
                              : !v.expected ? "the input has no answer"
                                            : "the answer clips nothing";
-  return {"nothing: " + why + " (the finding is " + kind + ")", "marked: nothing (" + legend + ")",
-          std::nullopt};
+  return {"nothing: " + why + " (the finding is " + std::string(check_name(check)) + ")",
+          "marked: nothing (" + legend + ")", std::nullopt};
 }
 
 /// C's crossing of the volume `edges` (each edge's point on C), in order around it.
@@ -223,7 +232,7 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
   const double reach = 3 * extent;
   const Matrix4<double> eye = Matrix4<double>::Identity();
   report::Views views;
-  views.title = ce.finding.kind + " (" + ce.implementation + ")";
+  views.title = std::string(check_name(ce.finding.check)) + " (" + ce.implementation + ")";
   views.space = "eye";
   views.data = stem + ".views.dat";
   views.top = stem + ".top";
@@ -316,14 +325,16 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
 
   std::ostringstream md;
   const Finding& f = ce.finding;
-  md << "# Counterexample: " << f.kind << " (" << ce.implementation << ", " << ce.scalar << ")\n\n";
-  md << "**Relation:** " << f.relation << "\n\n";
-  if (!f.expected.empty()) {  // a status finding: what was expected and what came
-    md << "| | status |\n|---|---|\n| expected | `" << f.expected << "` |\n| got | `" << f.got
-       << "` |\n";
+  md << "# Counterexample: " << check_name(f.check) << " (" << ce.implementation << ", "
+     << ce.scalar << ")\n\n";
+  md << "**Relation:** " << relation_text(f) << "\n\n";
+  if (f.shows == Shows::statuses) {  // what the input allows and what came
+    md << "| | status |\n|---|---|\n| expected | `" << bound_text(f) << "` |\n| got | `"
+       << residual_text(f) << "` |\n";
   } else {
-    md << "| side | value |\n|---|---|\n| residual | `" << f.lhs << "` |\n| bound | `" << f.rhs
-       << "` |\n| residual / bound | `" << protocol::format_number(f.ratio) << "` |\n";
+    md << "| side | value |\n|---|---|\n| residual | `" << residual_text(f) << "` |\n| bound | `"
+       << bound_text(f) << "` |\n";
+    if (f.ratio) md << "| residual / bound | `" << protocol::format_number(*f.ratio) << "` |\n";
   }
   md << "\nFamily `" << ce.family << "`, convention `" << ce.convention << "`, place `" << ce.place
      << "`.\n\n## Input\n\nProjection M (shortest round-trip decimals):\n\n"
@@ -415,11 +426,12 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   md << "Built with " << OBLIQUE_COMPILER << ", flags `" << OBLIQUE_CXX_FLAGS << "`.\n";
 
   nlohmann::json j;
-  j["property"] = f.kind;
-  j["relation"] = f.relation;
-  j["lhs"] = f.lhs;
-  j["rhs"] = f.rhs;
-  j["ratio"] = f.ratio;
+  j["property"] = std::string(check_name(f.check));
+  j["relation"] = relation_text(f);
+  j["residual"] = residual_text(f);
+  j["bound"] = bound_text(f);
+  j["ratio"] = f.ratio && std::isfinite(*f.ratio) ? nlohmann::json(*f.ratio) : nullptr;
+  j["numbers"] = finding_json_numbers(f);
   j["implementation"] = ce.implementation;
   j["precision"] = ce.scalar;
   j["family"] = ce.family;
@@ -430,8 +442,8 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   j["projection_decimal"] = ce.projection_decimal;
   j["plane_decimal"] = ce.plane_decimal;
   j["result"] = ce.result_decimal;
-  j["status_expected"] = f.expected;
-  j["status_answered"] = f.got;
+  j["status_expected"] = f.shows == Shows::statuses ? bound_text(f) : "";
+  j["status_answered"] = f.shows == Shows::statuses ? residual_text(f) : "";
   j["seed"] = context.seed;
   j["replay"] = replay_suite;
   j["replay_case"] = replay_case;

@@ -16,16 +16,17 @@ template <class T>
 Answer run(const Request& request, const ApplyOptions& options) {
   Matrix4<T> m;
   Vector4<T> c;
-  std::string error;
   for (int i = 0; i < 16; ++i) {
-    auto value = parse_number<T>(request.projection[i], &error);
+    const Expected<T> value = parse_number<T>(request.projection[i]);
     if (!value)
-      return refusal(Status::invalid_input, "projection[" + std::to_string(i) + "]: " + error);
+      return refusal(Status::invalid_input,
+                     "projection[" + std::to_string(i) + "]: " + value.error());
     m(i / 4, i % 4) = *value;
   }
   for (int i = 0; i < 4; ++i) {
-    auto value = parse_number<T>(request.plane[i], &error);
-    if (!value) return refusal(Status::invalid_input, "plane[" + std::to_string(i) + "]: " + error);
+    const Expected<T> value = parse_number<T>(request.plane[i]);
+    if (!value)
+      return refusal(Status::invalid_input, "plane[" + std::to_string(i) + "]: " + value.error());
     c(i) = *value;
   }
   const Convention convention = request.convention.value_or(options.convention);

@@ -76,7 +76,7 @@ std::string json_number(T value, Notation notation) {
 }
 
 template <class T>
-std::optional<T> parse_number(const std::string& token, std::string* error) {
+Expected<T> parse_number(const std::string& token) {
   const bool quoted_string = !token.empty() && token[0] == '"';
   const std::string text = quoted_string ? token.substr(1) : token;
   if (quoted_string) {
@@ -88,22 +88,19 @@ std::optional<T> parse_number(const std::string& token, std::string* error) {
       return std::numeric_limits<T>::infinity();
     if (text == "-inf" || text == "-Infinity") return -std::numeric_limits<T>::infinity();
     if (!is_hex_float(text)) {
-      *error =
-          "the string \"" + text +
-          "\" is not a number (use \"nan\", \"inf\", \"-inf\" or a hex float such as \"0x1.8p+1\")";
-      return std::nullopt;
+      return Expected<T>::failure("the string \"" + text +
+                                  "\" is not a number (use \"nan\", \"inf\", \"-inf\" or a hex "
+                                  "float such as \"0x1.8p+1\")");
     }
   }
   char* end = nullptr;
   errno = 0;
   const T value = string_to<T>(text.c_str(), &end);
   if (end != text.c_str() + text.size()) {
-    *error = "\"" + text + "\" is not a number";
-    return std::nullopt;
+    return Expected<T>::failure("\"" + text + "\" is not a number");
   }
   if (std::isinf(value)) {
-    *error = text + " overflows the scalar type";
-    return std::nullopt;
+    return Expected<T>::failure(text + " overflows the scalar type");
   }
   return value;
 }
@@ -111,7 +108,7 @@ std::optional<T> parse_number(const std::string& token, std::string* error) {
 #define OBLIQUE_PROTOCOL_NUMBERS(T)                   \
   template std::string format_number<T>(T, Notation); \
   template std::string json_number<T>(T, Notation);   \
-  template std::optional<T> parse_number<T>(const std::string&, std::string*);
+  template Expected<T> parse_number<T>(const std::string&);
 OBLIQUE_PROTOCOL_NUMBERS(float)
 OBLIQUE_PROTOCOL_NUMBERS(double)
 OBLIQUE_PROTOCOL_NUMBERS(long double)

@@ -167,17 +167,17 @@ Expected<TypedAnswer<T>> read_answer(std::string_view line) {
   a.status = *status;
   if (a.status != Status::ok) return a;
   for (int i = 0; i < 16; ++i) {
-    std::string why;
     const std::string& token = (*parsed->projection)[static_cast<std::size_t>(i)];
-    std::optional<T> value = parse_number<T>(token, &why);
-    if (!value) {  // a number beyond T's range is an infinite entry to judge
-      std::string wide_why;
-      if (const auto wide = parse_number<long double>(token, &wide_why))
-        value =
-            *wide < 0 ? -std::numeric_limits<T>::infinity() : std::numeric_limits<T>::infinity();
+    const Expected<T> value = parse_number<T>(token);
+    if (value) {
+      a.projection(i / 4, i % 4) = *value;
+      continue;
     }
-    if (!value) return Result::failure("projection[" + std::to_string(i) + "]: " + why);
-    a.projection(i / 4, i % 4) = *value;
+    // A number beyond T's range is an infinite entry to judge.
+    const Expected<long double> wide = parse_number<long double>(token);
+    if (!wide) return Result::failure("projection[" + std::to_string(i) + "]: " + value.error());
+    a.projection(i / 4, i % 4) =
+        *wide < 0 ? -std::numeric_limits<T>::infinity() : std::numeric_limits<T>::infinity();
   }
   return a;
 }

@@ -32,11 +32,9 @@ void judge_answer_in(const Scene& scene, SurfaceCheck& pass, const std::string& 
   pass.impl_findings.clear();
   auto protocol_error = [&](const std::string& why) {
     properties::Finding f;
-    f.kind = "protocol";
-    f.relation = "the answer is a protocol answer line";
-    f.lhs = why;
-    f.rhs = "{\"status\": ..., \"projection\": [16 numbers]}";
-    f.ratio = 1e300;
+    f.check = properties::Check::protocol;
+    f.shows = properties::Shows::program;
+    f.message = why;
     pass.impl_findings.push_back(f);
   };
   const Expected<protocol::TypedAnswer<T>> answer = protocol::read_answer<T>(line);

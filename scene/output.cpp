@@ -53,8 +53,9 @@ std::string to_json(const SceneCheck& check) {
   for (const SurfaceCheck& s : check.surfaces) {
     json properties = json::object(), residuals = json::object();
     for (const properties::Finding& p : s.properties) {
-      properties[p.kind] = p.holds;
-      residuals[p.kind] = p.ratio;
+      const std::string name(properties::check_name(p.check));
+      properties[name] = p.holds;
+      residuals[name] = p.ratio ? json(*p.ratio) : json(nullptr);
     }
     surfaces.push_back({
         {"name", s.name},
@@ -83,11 +84,11 @@ std::string to_json(const SceneCheck& check) {
     if (s.impl_answer) {
       json findings = json::array();
       for (const properties::Finding& f : s.impl_findings)
-        findings.push_back({{"property", f.kind},
+        findings.push_back({{"property", std::string(properties::check_name(f.check))},
                             {"holds", f.holds},
-                            {"relation", f.relation},
-                            {"residual", f.lhs},
-                            {"bound", f.rhs}});
+                            {"relation", properties::relation_text(f)},
+                            {"residual", properties::residual_text(f)},
+                            {"bound", properties::bound_text(f)}});
       surfaces.back()["impl"] = {
           {"answer", *s.impl_answer},
           {"precision", std::string(protocol::precision_name(check.impl_precision))},
@@ -178,8 +179,8 @@ std::string to_text(const SceneCheck& check) {
       out << "]\n";
     }
     for (const properties::Finding& p : s.properties) {
-      out << "  " << (p.holds ? "ok   " : "FAIL ") << p.kind;
-      if (p.ratio > 0) out << "  (residual / bound " << number(p.ratio) << ")";
+      out << "  " << (p.holds ? "ok   " : "FAIL ") << properties::check_name(p.check);
+      if (p.ratio && *p.ratio > 0) out << "  (residual / bound " << number(*p.ratio) << ")";
       out << "\n";
     }
     if (s.depth) {
@@ -215,8 +216,9 @@ std::string to_text(const SceneCheck& check) {
       out << "  " << printable(s.name) << ": " << (holds ? "pass" : "FAIL") << "\n";
       for (const properties::Finding& f : s.impl_findings) {
         if (f.holds) continue;
-        out << "    FAIL " << f.kind << ": " << f.relation << "\n      " << printable(f.lhs)
-            << "\n      bound: " << printable(f.rhs) << "\n";
+        out << "    FAIL " << properties::check_name(f.check) << ": "
+            << properties::relation_text(f) << "\n      " << printable(properties::residual_text(f))
+            << "\n      bound: " << printable(properties::bound_text(f)) << "\n";
       }
     }
   }

@@ -41,7 +41,7 @@ TEST(CheckerMutation, nearPlaneWithOneSignFlippedIsRejected) {
   EXPECT_TRUE(judge_alone(problem, r.projection, Property::near_is_clip_plane).holds());
   const Judgement j = judge_alone(problem, wrong, Property::near_is_clip_plane);
   ASSERT_NE(j.violation(), nullptr);
-  EXPECT_EQ(j.violation()->kind, "near_is_clip_plane");
+  EXPECT_EQ(check_name(j.violation()->check), "near_is_clip_plane");
 }
 
 template <class T>
@@ -71,9 +71,9 @@ void every_member_is_rejected(const rc::Gen<Case<T>>& gen, int count, std::uint6
       const Finding* violation = j.violation();
       const Judgement jf = judge_alone(filtered, mutant.projection, p);
       const Finding* filtered_violation = jf.violation();
-      EXPECT_TRUE(filtered_violation != nullptr && filtered_violation->kind == property_name(p))
+      EXPECT_TRUE(filtered_violation != nullptr && filtered_violation->check == check_of(p))
           << "the filtered checker accepts a member of " << property_name(p) << "'s class";
-      if (violation != nullptr && violation->kind == property_name(p)) continue;
+      if (violation != nullptr && violation->check == check_of(p)) continue;
       ++rejected_wrongly;
       ADD_FAILURE() << property_name(p) << " accepts a member of its class (entry "
                     << mutant.what.detail << ") on case " << i << " of seed " << seed << ": "

@@ -116,9 +116,8 @@ int run_cli(const std::string& arguments, const std::string& input,
 template <class Answer>
 Matrix4<double> answered_matrix(const Answer& answer) {
   Matrix4<double> result;
-  std::string error;
   for (int j = 0; j < 16; ++j)
-    result(j / 4, j % 4) = protocol::parse_number<double>((*answer.projection)[j], &error).value();
+    result(j / 4, j % 4) = protocol::parse_number<double>((*answer.projection)[j]).value();
   return result;
 }
 
@@ -153,7 +152,8 @@ TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
     for (const auto& v : verdicts.items) {
       EXPECT_TRUE(!v.applies || v.holds)
           << what << "\n"
-          << properties::property_name(v.property) << " " << v.lhs << " vs " << v.rhs;
+          << properties::property_name(v.property()) << " " << properties::residual_text(v)
+          << " vs " << properties::bound_text(v);
     }
     const auto closeness = problem.compare_row3(result);
     EXPECT_TRUE(closeness.within) << what << "\nrow 3 at " << closeness.ratio << " of its bound";

@@ -46,9 +46,8 @@ struct Tally {
 std::string describe(const Judgement& j) {
   std::string out;
   for (const Finding& f : j.checks) {
-    out += "  " + f.kind + (f.holds ? " holds" : " FAILS") + " [" + f.relation + "] " + f.lhs +
-           " / " + f.rhs + (f.got.empty() ? "" : " got " + f.got + " expected " + f.expected) +
-           "\n";
+    out += "  " + std::string(check_name(f.check)) + (f.holds ? " holds" : " FAILS") + " [" +
+           relation_text(f) + "] " + residual_text(f) + " / " + bound_text(f) + "\n";
   }
   return out.empty() ? "  (no findings)\n" : out;
 }
@@ -57,8 +56,8 @@ bool same(const Judgement& a, const Judgement& b) {
   if (a.checks.size() != b.checks.size()) return false;
   for (std::size_t i = 0; i < a.checks.size(); ++i) {
     const Finding &x = a.checks[i], &y = b.checks[i];
-    if (x.kind != y.kind || x.holds != y.holds || x.relation != y.relation ||
-        x.expected != y.expected || x.got != y.got)
+    if (x.check != y.check || x.holds != y.holds || relation_text(x) != relation_text(y) ||
+        x.answered != y.answered || x.allowed != y.allowed)
       return false;
   }
   return true;
@@ -250,7 +249,7 @@ TEST(Filtered, decidesTheCoresAnswerOnAPlainFrustum) {
   wrong(2, 0) = -wrong(2, 0) - 2 * m(3, 0);
   const Judgement rejected = judge(problem, Outcome<double>{Status::ok, wrong}, checks);
   ASSERT_NE(rejected.violation(), nullptr);
-  EXPECT_EQ(rejected.violation()->kind, "near_is_clip_plane");
+  EXPECT_EQ(check_name(rejected.violation()->check), "near_is_clip_plane");
 }
 
 // A plain frustum and plane moved by powers of two (M and C apart): far beyond double's range in

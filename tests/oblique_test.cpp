@@ -89,7 +89,8 @@ TYPED_TEST(ObliqueTest, everyFamilyHasTheFiveProperties) {
         for (const auto& v : verdicts.items) {
           EXPECT_TRUE(!v.applies || v.holds)
               << family.family << " " << convention_name(convention) << " " << method_name(method)
-              << ": " << properties::property_name(v.property) << " " << v.lhs << " vs " << v.rhs;
+              << ": " << properties::property_name(v.property()) << " "
+              << properties::residual_text(v) << " vs " << properties::bound_text(v);
         }
         EXPECT_EQ(verdicts[properties::Property::infinite_edge_parallel].applies,
                   family.family == "infinite")
@@ -311,7 +312,8 @@ TEST(GeneralMethod, settlesSignsItsBoundCannotVouchFor) {
       for (const auto& v : problem.check(result.projection).items) {
         EXPECT_TRUE(!v.applies || v.holds)
             << convention_name(s.convention) << " " << method_name(method) << ": "
-            << properties::property_name(v.property) << " " << v.lhs << " vs " << v.rhs
+            << properties::property_name(v.property()) << " " << properties::residual_text(v)
+            << " vs " << properties::bound_text(v)
             << std::setprecision(std::numeric_limits<T>::max_digits10) << "\nM =\n"
             << s.m << "\nC = " << s.c.transpose();
       }
@@ -370,8 +372,9 @@ void expect_underflowing_dot_products_settled() {
       for (const auto& v : problem.check(result.projection).items) {
         EXPECT_TRUE(!v.applies || v.holds)
             << convention_name(convention) << " " << method_name(method) << ": "
-            << properties::property_name(v.property) << " " << v.lhs << " vs " << v.rhs
-            << std::setprecision(limits::max_digits10) << "\nM =\n"
+            << properties::property_name(v.property()) << " " << properties::residual_text(v)
+            << " vs " << properties::bound_text(v) << std::setprecision(limits::max_digits10)
+            << "\nM =\n"
             << m << "\nC = " << c.transpose();
       }
     }

@@ -80,11 +80,12 @@ void closed_form_and_general_agree() {
                                                  exact::to_rational(general.projection(2, i)));
           if (gap <= 2 * bounds[i]) continue;
           Finding f;
-          f.kind = "closed_form_and_general_agree";
-          f.relation = "|M'_3i(closed form) - M'_3i(general)| <= 2 bound_i";
-          f.lhs = "entry " + std::to_string(i + 1) + ": " + format_number(gap);
-          f.rhs = format_number(exact::Rational(2 * bounds[i]));
-          f.ratio = bounds[i] > 0 ? exact::Rational(gap / (2 * bounds[i])).get_d() : 1e300;
+          f.check = Check::methods_agree;
+          f.column = i + 1;
+          f.residual = gap.get_d();
+          f.bound = exact::Rational(2 * bounds[i]).get_d();
+          f.ratio = bounds[i] > 0 ? exact::Rational(gap / (2 * bounds[i])).get_d()
+                                  : std::numeric_limits<double>::infinity();
           fail_with(c, core_method<T>(Method::closed_form), f);
         }
       },

@@ -30,11 +30,10 @@ std::vector<std::filesystem::path> regression_files() {
 /// reads decimals as JSON number tokens, the rest as the protocol's strings).
 template <class T>
 T parse_value(const std::string& text) {
-  std::string error;
-  std::optional<T> value = protocol::parse_number<T>(text, &error);
-  if (!value) value = protocol::parse_number<T>("\"" + text, &error);
-  EXPECT_TRUE(value) << text << ": " << error;
-  return value.value_or(T(0));
+  Expected<T> value = protocol::parse_number<T>(text);
+  if (!value) value = protocol::parse_number<T>("\"" + text);
+  EXPECT_TRUE(value) << text << ": " << value.error();
+  return value ? *value : T(0);
 }
 
 template <class T>
@@ -52,7 +51,7 @@ void replay(const nlohmann::json& j, const std::string& name) {
     const Outcome<T> outcome = core.run(m, c, convention);
     const Judgement judgement = judge(problem, outcome, core.checks(/*accuracy=*/true));
     EXPECT_TRUE(judgement.holds())
-        << name << ": " << core.name << " violates " << judgement.violation()->kind;
+        << name << ": " << core.name << " violates " << check_name(judgement.violation()->check);
   }
   const std::string recorded = j.at("implementation").get<std::string>();
   if (recorded.rfind("core_", 0) == 0) return;  // a finding about the checker: the core passes

@@ -265,7 +265,7 @@ TEST(SuiteReportViews, marksThePointTheWrongAnswerClips) {
   const std::string md = properties::write_report(*testing::tally().failure, context);
   const fs::path json = fs::path(md).replace_extension(".json");
   const Json j = expect_marked_clipped_point(json);
-  EXPECT_EQ(j.at("property"), judgement.violation()->kind);
+  EXPECT_EQ(j.at("property"), std::string(check_name(judgement.violation()->check)));
   EXPECT_NE(read_text(md).find("## Pictures"), std::string::npos);
 }
 
@@ -315,7 +315,8 @@ TEST(SuiteReportViews, aReplacedReportTakesItsPicturesAlong) {
   c.plane = Vector4<double>(0, 0.3, -1, -4);
   const properties::Problem<double> problem(c.matrix, c.plane, c.convention);
   properties::Counterexample ce = properties::make_counterexample(c.matrix, c.plane, c.convention);
-  ce.finding.kind = "status";
+  ce.finding.check = properties::Check::status;
+  ce.finding.shows = properties::Shows::statuses;
   ce.implementation = "refuses";
   properties::set_views(ce, problem, static_cast<const Matrix4<double>*>(nullptr));
   properties::ReportContext context;

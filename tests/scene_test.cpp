@@ -216,7 +216,8 @@ TEST(Scenes, heldOutScenesGetTheRightDecisionsAndExactMatrices) {
 TEST(Scenes, infiniteEdgePropertyIsCheckedOnlyForInfiniteProjections) {
   auto names = [](const SceneCheck& check) {
     std::vector<std::string> out;
-    for (const properties::Finding& p : check.surfaces.at(0).properties) out.push_back(p.kind);
+    for (const properties::Finding& p : check.surfaces.at(0).properties)
+      out.push_back(std::string(properties::check_name(p.check)));
     return out;
   };
   const std::string mirror = surface("mirror", "[0, 1, 0]", "[0, 0, 0]");

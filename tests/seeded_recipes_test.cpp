@@ -20,8 +20,8 @@ std::string describe(const properties::Verdicts& verdicts) {
   std::string out;
   for (const auto& v : verdicts.items) {
     if (v.applies && !v.holds) {
-      out +=
-          std::string(properties::property_name(v.property)) + ": " + v.lhs + " vs " + v.rhs + "\n";
+      out += std::string(properties::property_name(v.property())) + ": " +
+             properties::residual_text(v) + " vs " + properties::bound_text(v) + "\n";
     }
   }
   return out;

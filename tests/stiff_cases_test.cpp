@@ -36,7 +36,8 @@ void expect_correct(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
     for (const auto& v : verdicts.items) {
       EXPECT_TRUE(!v.applies || v.holds)
           << what << " " << convention_name(convention) << " " << method_name(method) << ": "
-          << properties::property_name(v.property) << " " << v.lhs << " vs " << v.rhs;
+          << properties::property_name(v.property()) << " " << properties::residual_text(v)
+          << " vs " << properties::bound_text(v);
     }
     const auto closeness = problem.compare_row3(result.projection);
     EXPECT_TRUE(closeness.within) << what << " " << convention_name(convention) << " "

@@ -52,15 +52,14 @@ Expected<VerifyCase<T>> read_report_case(const std::string& path) {
   const Expected<protocol::Request> parsed = protocol::parse_request(request->text);
   if (!parsed) return Result::failure(path + ": " + parsed.error());
   VerifyCase<T> v;
-  std::string error;
   for (int i = 0; i < 16; ++i) {
-    const auto value = protocol::parse_number<T>(parsed->projection[i], &error);
-    if (!value) return Result::failure(path + ": " + error);
+    const Expected<T> value = protocol::parse_number<T>(parsed->projection[i]);
+    if (!value) return Result::failure(path + ": " + value.error());
     v.c.matrix(i / 4, i % 4) = *value;
   }
   for (int i = 0; i < 4; ++i) {
-    const auto value = protocol::parse_number<T>(parsed->plane[i], &error);
-    if (!value) return Result::failure(path + ": " + error);
+    const Expected<T> value = protocol::parse_number<T>(parsed->plane[i]);
+    if (!value) return Result::failure(path + ": " + value.error());
     v.c.plane(i) = *value;
   }
   v.c.convention = parsed->convention.value_or(Convention::gl);
@@ -107,12 +106,9 @@ Verdict FailureDatabase<T>::replay(const std::string& path, bool verbose) {
       return Verdict::holds;
     case Evaluation::finding: {
       const properties::Finding& f = found.finding;
-      out_ << "oblique verify: " << path << ": violated: " << f.kind << ": " << f.relation << "\n";
-      if (!f.expected.empty()) {
-        out_ << "  expected: " << f.expected << "\n  got:      " << f.got << "\n";
-      } else {
-        out_ << "  residual: " << f.lhs << "\n  bound:    " << f.rhs << "\n";
-      }
+      out_ << "oblique verify: " << path << ": violated: " << check_name(f.check) << ": "
+           << relation_text(f) << "\n"
+           << sides_text(f, "  ");
       if (!found.answer_line.empty())
         out_ << "  answer: " << escape_bytes(found.answer_line.substr(0, 400)) << "\n";
       return Verdict::violated;

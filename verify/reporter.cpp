@@ -72,7 +72,7 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
   const std::string request = request_text(v.c);
   properties::ReportContext context;
   context.directory = options_.report_dir;
-  context.stem = "verify-" + f.kind;
+  context.stem = "verify-" + std::string(check_name(f.check));
   context.seed = options_.seed;
   context.replay_run = replay_run_command();
   context.replay_case = "echo " + shell_quote(request) + " | " + options_.command;
@@ -85,19 +85,14 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
     path = "(not written: " + std::string(e.what()) + ")";
   }
   last_report_ = path;
-  last_kind_ = f.kind;
+  last_kind_ = std::string(check_name(f.check));
   const std::string json_path = path.size() > 3 && path.compare(path.size() - 3, 3, ".md") == 0
                                     ? path.substr(0, path.size() - 3) + ".json"
                                     : "";
   if (!json_path.empty() && !options_.save_regressions.empty())
     save_regression(json_path, options_.save_regressions, out_, err_);
 
-  out_ << "  " << f.kind << ": " << f.relation << "\n";
-  if (!f.expected.empty()) {
-    out_ << "  expected: " << f.expected << "\n  got:      " << f.got << "\n";
-  } else {
-    out_ << "  residual: " << f.lhs << "\n  bound:    " << f.rhs << "\n";
-  }
+  out_ << "  " << check_name(f.check) << ": " << relation_text(f) << "\n" << sides_text(f, "  ");
   out_ << "  input (" << ce.family << ", " << ce.convention << ", " << ce.place << "): " << request
        << "\n  found after " << found_after_cases << " cases, " << seconds_text(found_after_seconds)
        << " s\n";

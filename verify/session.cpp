@@ -82,23 +82,18 @@ template <class T>
 Found<T> Session<T>::lost_finding(ChildProcess::Outcome outcome) {
   Found<T> found;
   properties::Finding& f = found.finding;
-  f.ratio = 1e300;
+  f.shows = properties::Shows::program;
   if (outcome == ChildProcess::Outcome::exited) {
-    f.kind = "crash";
-    f.relation = "the implementation answers every request and keeps running";
+    f.check = properties::Check::crash;
     found.process = child_.end_description();
-    f.lhs = "it " + found.process + " before answering";
-    f.rhs = "an answer line";
+    f.message = "it " + found.process + " before answering";
   } else {
-    f.kind = "timeout";
-    std::ostringstream relation;
-    relation << "an answer within " << options_.request_timeout_seconds << " s (--timeout)";
-    f.relation = relation.str();
+    f.check = properties::Check::timeout;
+    f.bound = options_.request_timeout_seconds;
     found.process = "no answer line";
-    f.lhs =
+    f.message =
         "no answer within the timeout: it hangs on this request, or does not flush its "
         "standard output after each answer line";
-    f.rhs = "an answer line";
   }
   found.answer_line =
       child_.stderr_tail().empty() ? "" : "(stderr) " + escape_bytes(child_.stderr_tail());

@@ -26,7 +26,8 @@ Verdict Shrinker<T>::confirm(const Batch<T>& batch, std::size_t k,
                         answers[i]);
       session_.child().stop();
       return reporter_.count_error(
-          "answer " + std::to_string(k + 1) + " of a batch violates " + finding.finding.kind +
+          "answer " + std::to_string(k + 1) + " of a batch violates " +
+              std::string(check_name(finding.finding.check)) +
               ", but the same request sent alone is answered without a violation: the answers "
               "are out of step with the requests (an extra or a missing answer line before "
               "it), or an answer depends on earlier requests",
@@ -43,14 +44,14 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<
   const long found_after_cases = cases_run;
   const double found_after_seconds = session_.seconds_since_start();
   session_.child().stop();  // it may still be working on the next batch; shrinking restarts it
-  out_ << "oblique verify: " << finding.finding.kind << " violated after " << cases_run
+  out_ << "oblique verify: " << check_name(finding.finding.check) << " violated after " << cases_run
        << " cases; shrinking";
   out_.flush();
   rc::Shrinkable<VerifyCase<T>> current = failing;
   int steps = 0, tries = 0;
   bool out_of_time = false;
   // Timeouts cost the whole timeout per try: the case is reported as found.
-  bool progress = finding.finding.kind != "timeout";
+  bool progress = finding.finding.check != properties::Check::timeout;
   while (progress && !out_of_time) {
     progress = false;
     auto shrinks = current.shrinks();
@@ -67,7 +68,7 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<
         session_.child().stop();
         return reporter_.issue(session_.issue());
       }
-      if (e == Evaluation::finding && candidate.finding.kind == finding.finding.kind) {
+      if (e == Evaluation::finding && candidate.finding.check == finding.finding.check) {
         current = *next;
         finding = candidate;
         ++steps;

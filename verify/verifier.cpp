@@ -106,7 +106,7 @@ class Verifier {
           Found<T> finding = *j.finding;
           finding.answer_line = answers[k];
           const VerifyCase<T>& v = current.values[k];
-          const std::string key = finding.finding.kind + " x " +
+          const std::string key = std::string(check_name(finding.finding.check)) + " x " +
                                   std::string(generators::family_name(v.c.family)) + " x " +
                                   v.kind();
           if (options_.keep_going && kinds.count(key)) {

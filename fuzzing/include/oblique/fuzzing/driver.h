@@ -291,8 +291,10 @@ void explain(const properties::Problem<T>& problem, const properties::Outcome<T>
   every.every = true;
   for (const auto& f : properties::judge(problem, outcome, every).checks) {
     if (!f.holds)
-      std::fprintf(out, "%s: %s; residual %s, bound %s\n", f.kind.c_str(), f.relation.c_str(),
-                   f.lhs.c_str(), f.rhs.c_str());
+      std::fprintf(out, "%s: %s; residual %s, bound %s\n",
+                   std::string(properties::check_name(f.check)).c_str(),
+                   properties::relation_text(f).c_str(), properties::residual_text(f).c_str(),
+                   properties::bound_text(f).c_str());
   }
 }
 
@@ -406,7 +408,7 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
   describe_input<T>(c, m, plane);
   explain(judge.problem().exact(), outcome);
   std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, %s projection): it %s\n",
-               violation->kind.c_str(), impl.name.c_str(),
+               std::string(properties::check_name(violation->check)).c_str(), impl.name.c_str(),
                std::string(protocol::scalar_name<T>()).c_str(),
                std::string(convention_name(c.convention)).c_str(), family_label(c.family),
                impl.answer_words(outcome.status).c_str());

@@ -6,8 +6,8 @@
 //   oblique::properties::Outcome<float> mine{oblique::Status::ok, my_matrix};
 //   const oblique::properties::Judgement j = checker.judge(mine);
 //   if (const oblique::properties::Finding* f = j.violation())
-//     std::printf("%s: %s; %s against %s\n", f->kind.c_str(), f->relation.c_str(),
-//                 f->lhs.c_str(), f->rhs.c_str());
+//     std::printf("%s: %s; %s against %s\n", std::string(check_name(f->check)).c_str(),
+//                 relation_text(*f).c_str(), residual_text(*f).c_str(), bound_text(*f).c_str());
 //
 // The checker (GMP's rationals behind a floating-point filter that settles most questions without
 // them) is compiled in oblique::properties for float, double and long double; this header

@@ -572,9 +572,13 @@ class FilteredProblem {
       return std::find(checks.properties.begin(), checks.properties.end(), p) !=
              checks.properties.end();
     };
-    auto holding = [&](std::string kind, std::string relation, double ratio) {
-      out.checks.push_back(
-          Finding{std::move(kind), true, std::move(relation), "certified", "", ratio, {}, {}});
+    auto holding = [&](Check check, double ratio) {
+      Finding f;
+      f.check = check;
+      f.holds = true;
+      f.shows = Shows::certified;
+      f.ratio = ratio;
+      out.checks.push_back(std::move(f));
     };
     const bool any_of_the_five = std::any_of(std::begin(all_properties), std::end(all_properties),
                                              [&](Property p) { return wanted(p); });
@@ -719,29 +723,18 @@ class FilteredProblem {
       for (Property p : all_properties) {
         if (!wanted(p)) continue;
         switch (p) {
-          case Property::near_is_clip_plane:
-            holding(std::string(property_name(p)), kNearRelation, std::min(p1_worst, 1.0));
-            break;
-          case Property::side_rows_unchanged:
-            holding(std::string(property_name(p)),
-                    "rows 1, 2, 4 of M' are those of M (equal values; -0 equals +0)", 0);
-            break;
+          case Property::near_is_clip_plane: holding(check_of(p), std::min(p1_worst, 1.0)); break;
+          case Property::side_rows_unchanged: holding(check_of(p), 0); break;
           case Property::far_plane_through_corner:
             if (!corners_judged) break;
             if (!far_q_holds) throw filtering::Undecided{__LINE__};
-            holding(std::string(property_name(p)), "|far' . Q| <= bound", far_q_ratio);
+            holding(check_of(p), far_q_ratio);
             break;
-          case Property::no_clipping:
-            holding(std::string(property_name(p)),
-                    "far' . p >= -bound at every vertex p of the view volume with C . p >= 0",
-                    p4_worst);
-            break;
+          case Property::no_clipping: holding(check_of(p), p4_worst); break;
           case Property::infinite_edge_parallel:
             if (!p5_applies) break;
             if (!far_q_holds) throw filtering::Undecided{__LINE__};
-            holding(std::string(property_name(p)),
-                    "Q_w = 0 and |far' . Q| <= bound (far' parallel to the frustum edge Q)",
-                    far_q_ratio);
+            holding(check_of(p), far_q_ratio);
             break;
           default: break;
         }
@@ -761,13 +754,9 @@ class FilteredProblem {
       const int sn = largest_exponent(after.near_plane);
       for (int i = 0; i < 4; ++i) n[i] = cert::scaled(T(after.near_plane(i)), -sn);
       if (!cert::positive(filtering::dot(n, cx_))) throw filtering::Undecided{__LINE__};
-      holding("extracted_planes_match",
-              "frustum_planes(M') has the side planes of M and a near plane n with n . C > 0", 0);
+      holding(Check::extracted_planes_match, 0);
     }
     if (checks.row3_accuracy) {
-      const std::string relation = "|M'_3i - exact M'_3i| <= bound_i (what careful " +
-                                   std::string(protocol::scalar_name<T>()) +
-                                   " arithmetic achieves)";
       const std::optional<Num> scale = scale_error();
       double worst = 0;
       if (scale) {
@@ -783,7 +772,7 @@ class FilteredProblem {
             worst = std::max(worst, cert::approx(error) / cert::approx(bound));
         }
       }
-      holding("row3_accuracy", relation, worst);
+      holding(Check::row3_accuracy, worst);
     }
     if (checks.max_ulps < std::numeric_limits<double>::infinity()) {
       // Rows 1, 2, 4 are M's own (0 ulp when equal); row 3 against the exact value's rounding,
@@ -816,12 +805,9 @@ class FilteredProblem {
           worst = std::max(worst, cert::approx(gap) / cert::approx(quantum));
         }
       }
-      holding("accurate_ulps",
-              "every entry of M' within " + protocol::format_number(checks.max_ulps) +
-                  " ulp of the correctly rounded exact answer",
-              worst / checks.max_ulps);
-      out.checks.back().lhs = protocol::format_number(worst) + " ulp (certified)";
-      out.checks.back().rhs = protocol::format_number(checks.max_ulps) + " ulp";
+      holding(Check::accurate_ulps, worst / checks.max_ulps);
+      out.checks.back().residual = worst;
+      out.checks.back().bound = checks.max_ulps;
     }
     return out;
   }

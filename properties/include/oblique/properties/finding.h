@@ -4,29 +4,123 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "oblique/properties/checks.h"
+#include "oblique/properties/property.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/status.h"
 
 namespace oblique::properties {
 
-/// One check on one answer: what was compared, both sides, and whether it holds.
-struct Finding {
-  /// "status", "finite_result", a property's name (property_name()), "row3_accuracy",
-  /// "accurate_ulps"; tools add their own ("crash", "timeout", "closed_form_and_general_agree").
-  std::string kind;
-  bool holds = false;
-  std::string relation;  ///< what was compared, in words
-  std::string lhs;       ///< the residual side
-  std::string rhs;       ///< the bound side
-  double ratio = 0;      ///< |residual| / bound: holds at ratio <= 1
-  std::string expected;  ///< the statuses the input allows (status findings)
-  std::string got;       ///< the status answered (status findings)
+/// What a finding is about: the status, a finite answer, a property (check_of()), row 3's
+/// accuracy, an ulps promise; and what the tools that run a program see of it (crash, timeout,
+/// protocol: never from judge()).
+enum class Check : std::uint8_t {
+  status,                    ///< the answered status is one the contract allows for the input
+  finite_result,             ///< an ok answer has finite entries
+  near_is_clip_plane,        ///< the properties, in Property's order
+  side_rows_unchanged,       ///<
+  far_plane_through_corner,  ///<
+  no_clipping,               ///<
+  infinite_edge_parallel,    ///<
+  extracted_planes_match,    ///<
+  row3_accuracy,             ///< row 3 within Problem::row3_bounds() of the exact row
+  accurate_ulps,             ///< every entry within Checks::max_ulps of the rounded exact answer
+  methods_agree,             ///< the property suite's cross-check of the core's two methods
+  crash,                     ///< the program ended before answering
+  timeout,                   ///< the program did not answer in time
+  protocol,                  ///< the program's answer is not a protocol answer line
 };
+
+constexpr Check check_of(Property p) noexcept {
+  return static_cast<Check>(static_cast<int>(Check::near_is_clip_plane) + static_cast<int>(p));
+}
+constexpr std::optional<Property> property_of(Check c) noexcept {
+  if (c < Check::near_is_clip_plane || c > Check::extracted_planes_match) return std::nullopt;
+  return static_cast<Property>(static_cast<int>(c) - static_cast<int>(Check::near_is_clip_plane));
+}
+
+/// A check's name: a property's own (property_name()), "status", "row3_accuracy", ...
+std::string_view check_name(Check c) noexcept;
+/// The check of that name, if any.
+std::optional<Check> parse_check(std::string_view name) noexcept;
+
+/// Which outcome of its check a finding shows, and so what its numbers mean.
+enum class Shows : std::uint8_t {
+  /// |residual| against bound (far' . Q, far' . p at a vertex, ulps, row 3's worst entry).
+  residual,
+  /// A check the filtered checker settled in intervals: it holds, ratio approximate, no residual.
+  certified,
+  /// The answered status (Evidence::answered) against the statuses the input allows.
+  statuses,
+  /// M' has a NaN or an infinite entry.
+  non_finite_answer,
+  /// near_is_clip_plane: lambda and the worst residual / bound (ratio); `wrong_side` when no
+  /// lambda > 0 fits because near' is C negated, `no_fit` when none fits otherwise.
+  lambda_fit,
+  wrong_side,
+  no_fit,
+  /// An entry of M' (row, column) is `value`, not `reference` (M's entry, the exact entry).
+  entry,
+  /// no_clipping: far' . p (residual) below -bound at a corner, or at an edge's crossing of C.
+  below_at_corner,
+  below_at_edge_crossing,
+  /// no_clipping holds: no vertex is below its bound.
+  no_vertex_below,
+  /// extracted_planes_match: side plane `row` differs by `residual`; the near plane has a
+  /// non-finite component; n . C = `residual` (must be > 0).
+  side_plane_differs,
+  near_plane_not_finite,
+  near_plane_side,
+  /// C lies within rounding of the far corner Q: no bound exists, nothing is judged.
+  no_bound,
+  /// infinite_edge_parallel: Q_w (reference) and far' . Q (residual) against bound.
+  edge_direction,
+  /// What a program did (crash, timeout, protocol), in Evidence::message.
+  program,
+};
+
+/// One check on one answer: which check, whether it holds, and what it measured, as numbers
+/// (the words come from relation_text(), residual_text() and bound_text(), made only when a
+/// report or a console line is written).
+struct Finding {
+  Check check = Check::status;
+  bool holds = false;
+  /// |residual| / bound, where the check measures one (it holds at <= 1); none for a check that
+  /// is a yes or a no (a status, equal entries, a sign). Infinite where the bound is 0 and the
+  /// residual is not.
+  std::optional<double> ratio;
+  Shows shows = Shows::residual;
+  double residual = 0;      ///< the measured side (its meaning: Shows)
+  double bound = 0;         ///< the bound it is held to
+  double lambda = 0;        ///< near_is_clip_plane: the scale of C near' is compared with
+  int row = 0, column = 0;  ///< 1-based entry (or side plane: row) the numbers are about; 0: none
+  double value = 0;         ///< Shows::entry: the answer's entry
+  double reference = 0;     ///< Shows::entry: what it must be; Shows::edge_direction: Q_w
+  Status answered = Status::ok;  ///< Shows::statuses: the status answered
+  Status exact = Status::ok;     ///< Shows::statuses: the input's exact status
+  std::vector<Status> allowed;   ///< Shows::statuses: the statuses the input allows
+  std::string message;           ///< Shows::program: what the program did, in the tool's words
+};
+
+/// What the check compares, in words ("|far' . Q| <= bound").
+std::string relation_text(const Finding& f);
+/// The measured side in words, with its numbers ("far' . p = -3.5 at a corner").
+std::string residual_text(const Finding& f);
+/// The side it is held to ("2.2e-16", "> 0", "or_refusal").
+std::string bound_text(const Finding& f);
+/// Both sides as console lines after `indent`: "expected:"/"got:" for a status, else
+/// "residual:"/"bound:".
+std::string sides_text(const Finding& f, const std::string& indent);
+/// The finding's numbers by name, for the JSON forms (reports, check's output): only those its
+/// Shows gives a meaning.
+std::vector<std::pair<std::string, double>> finding_numbers(const Finding& f);
 
 /// The checks that applied, in order.
 struct Judgement {

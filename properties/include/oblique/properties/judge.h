@@ -29,8 +29,7 @@ std::string not_judged(const AnyProblem& problem, StatusContract contract,
 namespace judging {
 
 inline Finding from_verdict(const Verdict& v) {
-  return Finding{
-      std::string(property_name(v.property)), v.holds, v.relation, v.lhs, v.rhs, v.ratio, {}, {}};
+  return v;
 }
 
 /// The status finding for `got` (or nothing when the contract allows it), given the input's
@@ -50,15 +49,11 @@ inline std::optional<Finding> status_finding(Status exact, const std::vector<Sta
     if (contract == StatusContract::any_refusal && some_refusal_allowed) return std::nullopt;
   }
   Finding f;
-  f.kind = "status";
-  f.relation = got != Status::ok && exact == Status::ok
-                   ? "an input with an answer is answered (or refused only where rounding allows)"
-               : got != Status::ok   ? "an input without an answer is refused with its status"
-               : exact == Status::ok ? "an answer beyond the range of the type is refused"
-                                     : "an input without an answer is refused";
-  f.got = f.lhs = std::string(status_code(got));
-  f.expected = f.rhs = status_list(acceptable);
-  f.ratio = 1e300;
+  f.check = Check::status;
+  f.shows = Shows::statuses;
+  f.answered = got;
+  f.exact = exact;
+  f.allowed = acceptable;
   return f;
 }
 
@@ -71,27 +66,25 @@ std::optional<Finding> status_finding(const Problem<T>& problem, Status got,
 
 template <class T>
 Finding row3_accuracy(const Problem<T>& problem, const Matrix4<T>& result) {
-  using protocol::format_number;
   const auto closeness = problem.compare_row3(result);
   Finding f;
-  f.kind = "row3_accuracy";
+  f.check = Check::row3_accuracy;
   f.holds = closeness.within;
   f.ratio = closeness.ratio;
-  f.relation = "|M'_3i - exact M'_3i| <= bound_i (what careful " +
-               std::string(protocol::scalar_name<T>()) + " arithmetic achieves)";
   const std::optional<exact::Vec> bounds = problem.row3_bounds();
   if (!bounds) {
-    f.lhs = "C lies within rounding of the far corner";
-    f.rhs = "no bound";
+    f.shows = Shows::no_bound;
     return f;
   }
   const int i = closeness.worst_entry;
   const exact::Vec expected = problem.exact_row3();
-  f.lhs = "entry " + std::to_string(i + 1) + ": |" + format_number(result(2, i)) + " - " +
-          format_number(expected[i].get_d()) + "| = " +
-          format_number(
-              exact::Rational(exact::abs(exact::to_rational(result(2, i)) - expected[i])).get_d());
-  f.rhs = format_number((*bounds)[i].get_d());
+  f.shows = Shows::entry;
+  f.row = 3;
+  f.column = i + 1;
+  f.value = static_cast<double>(result(2, i));
+  f.reference = expected[i].get_d();
+  f.residual = exact::Rational(exact::abs(exact::to_rational(result(2, i)) - expected[i])).get_d();
+  f.bound = (*bounds)[i].get_d();
   return f;
 }
 
@@ -119,11 +112,8 @@ Judgement judge(const Problem<T>& problem, const Outcome<T>& outcome, const Chec
   if (!all_finite(outcome.projection)) {
     // Nothing further is judged, even with Checks::every: the exact checks take finite entries.
     Finding f;
-    f.kind = "finite_result";
-    f.relation = "an ok answer is finite";
-    f.lhs = "NaN or infinity in M'";
-    f.rhs = "finite entries";
-    f.ratio = 1e300;
+    f.check = Check::finite_result;
+    f.shows = Shows::non_finite_answer;
     record(std::move(f));
     return out;
   }
@@ -137,7 +127,7 @@ Judgement judge(const Problem<T>& problem, const Outcome<T>& outcome, const Chec
   if (any_of_the_five) {
     const Verdicts verdicts = problem.check(outcome.projection);
     for (const Verdict& v : verdicts.items) {
-      if (!v.applies || !wanted(v.property)) continue;
+      if (!v.applies || !wanted(v.property())) continue;
       if (!record(judging::from_verdict(v))) return out;
     }
   }
@@ -151,12 +141,10 @@ Judgement judge(const Problem<T>& problem, const Outcome<T>& outcome, const Chec
   if (checks.max_ulps < std::numeric_limits<double>::infinity()) {
     const double ulps = problem.ulps_from_exact(outcome.projection);
     Finding f;
-    f.kind = "accurate_ulps";
+    f.check = Check::accurate_ulps;
     f.holds = ulps <= checks.max_ulps;
-    f.relation = "every entry of M' within " + protocol::format_number(checks.max_ulps) +
-                 " ulp of the correctly rounded exact answer";
-    f.lhs = protocol::format_number(ulps) + " ulp";
-    f.rhs = protocol::format_number(checks.max_ulps) + " ulp";
+    f.residual = ulps;
+    f.bound = checks.max_ulps;
     f.ratio = ulps / checks.max_ulps;
     record(std::move(f));
   }

@@ -15,6 +15,7 @@
 #include "oblique/frustum_planes.h"
 #include "oblique/plane.h"
 #include "oblique/properties/exact.h"
+#include "oblique/properties/finding.h"
 #include "oblique/properties/property.h"
 #include "oblique/properties/tolerance.h"
 #include "oblique/protocol/numbers.h"
@@ -22,16 +23,15 @@
 
 namespace oblique::properties {
 
-/// One property's verdict on one result (all_properties lists the five that check() judges).
-/// `ratio` is |residual| / bound: it holds at ratio <= 1.
-struct Verdict {
-  Property property = Property::near_is_clip_plane;
+/// One property's verdict on one result (all_properties lists the five that check() judges):
+/// its Finding (check_of(property)), whether it applies, and the point it is about.
+struct Verdict : Finding {
+  explicit Verdict(Property p) {
+    check = check_of(p);
+    holds = true;
+  }
+  Property property() const { return *property_of(check); }
   bool applies = true;
-  bool holds = true;
-  double ratio = 0;
-  std::string relation;  ///< what was compared, in words
-  std::string lhs;       ///< the residual side
-  std::string rhs;       ///< the bound side
   /// The point the verdict is about, homogeneous, in the space C is given in (eye space): for a
   /// violated no_clipping, the vertex of the view volume on C's positive side that far' cuts
   /// away farthest beyond its bound (normalised so that M_4 . p = 1). Empty otherwise.
@@ -56,16 +56,9 @@ struct Verdicts {
   const Verdict& operator[](Property p) const { return items.at(static_cast<std::size_t>(p)); }
 };
 
-/// The checker's numbers as text (protocol::format_number, the one number printer); a rational
-/// shows its double.
-using protocol::format_number;
-/// What property 1 compares, in words (the exact and the filtered checker say the same).
-inline constexpr const char* kNearRelation =
-    "some lambda > 0 has |near'_i - lambda C_i| <= gamma(3) (lambda |C_i| + |t M4_i|) for every "
-    "i (or, where that fails, within u lambda max|C_j| more: a change no rasterizer sees)";
-
-inline std::string format_number(const exact::Rational& x) {
-  return protocol::format_number(x.get_d());
+/// A rational's double, for a finding's numbers.
+inline double approx(const exact::Rational& x) {
+  return x.get_d();
 }
 
 /// Everything exact about one input (M, C, convention): the inverse, the clip-space plane C',
@@ -232,7 +225,7 @@ class Problem {
     Closeness out;
     if (!all_finite(result)) {
       out.within = false;
-      out.ratio = 1e300;
+      out.ratio = std::numeric_limits<double>::infinity();
       return out;
     }
     if (!maybe_bounds) {
@@ -241,18 +234,25 @@ class Problem {
     }
     const exact::Vec& bounds = *maybe_bounds;
     exact::Rational worst = -1;
+    bool unbounded = false;  // an error where the bound is 0: the worst entry, ratio infinite
     for (int i = 0; i < 4; ++i) {
       const exact::Rational error = exact::abs(exact::to_rational(result(2, i)) - expected[i]);
       const exact::Rational& bound = bounds[i];
-      const exact::Rational ratio =
-          bound > 0 ? exact::Rational(error / bound) : exact::Rational(error > 0 ? 1e300 : 0);
       if (error > bound) out.within = false;
-      if (ratio > worst) {
+      if (bound == 0) {
+        if (error > 0 && !unbounded) {
+          unbounded = true;
+          out.worst_entry = i;
+        }
+        continue;
+      }
+      const exact::Rational ratio = error / bound;
+      if (!unbounded && ratio > worst) {
         worst = ratio;
         out.worst_entry = i;
       }
     }
-    out.ratio = worst.get_d();
+    out.ratio = unbounded ? std::numeric_limits<double>::infinity() : std::max(0.0, worst.get_d());
     return out;
   }
 
@@ -273,9 +273,7 @@ class Problem {
   /// The suite's cross-check through frustum_planes() in T: the side planes of M' equal those of
   /// M, and its near plane keeps C's positive side.
   Verdict check_extracted_planes(const Matrix4<T>& result) const {
-    Verdict v;
-    v.property = Property::extracted_planes_match;
-    v.relation = "frustum_planes(M') has the side planes of M and a near plane n with n . C > 0";
+    Verdict v(Property::extracted_planes_match);
     const FrustumPlanes<T> before = frustum_planes(m_, convention_);
     const FrustumPlanes<T> after = frustum_planes(result, convention_);
     const Vector4<T> sides_before[] = {before.left, before.right, before.bottom, before.top};
@@ -283,26 +281,21 @@ class Problem {
     for (int i = 0; i < 4; ++i) {
       if (!(sides_after[i] == sides_before[i])) {
         v.holds = false;
-        v.ratio = 1e300;
-        v.lhs = "side plane " + std::to_string(i + 1) + " differs by " +
-                format_number(
-                    static_cast<double>((sides_after[i] - sides_before[i]).cwiseAbs().maxCoeff()));
-        v.rhs = "0";
+        v.shows = Shows::side_plane_differs;
+        v.row = i + 1;
+        v.residual = static_cast<double>((sides_after[i] - sides_before[i]).cwiseAbs().maxCoeff());
         return v;
       }
     }
     if (!all_finite(after.near_plane)) {
       v.holds = false;
-      v.ratio = 1e300;
-      v.lhs = "the near plane has a NaN or infinite component";
-      v.rhs = "finite";
+      v.shows = Shows::near_plane_not_finite;
       return v;
     }
     const exact::Rational dot = exact::dot(exact::to_rational(Vector4<T>(after.near_plane)), cx_);
     v.holds = dot > 0;
-    v.ratio = v.holds ? 0 : 1e300;
-    v.lhs = "n . C = " + format_number(dot);
-    v.rhs = "> 0";
+    v.shows = Shows::near_plane_side;
+    v.residual = approx(dot);
     return v;
   }
 
@@ -311,17 +304,13 @@ class Problem {
     Verdicts out;
     if (!all_finite(result)) {  // a NaN or infinity in M' violates every property it touches
       for (Property p : all_properties) {
-        Verdict v;
-        v.property = p;
+        Verdict v(p);
         v.applies = p != Property::infinite_edge_parallel || far_corner_at_infinity();
         v.holds = p == Property::side_rows_unchanged && all_finite(result.row(0)) &&
                   all_finite(result.row(1)) && all_finite(result.row(3)) &&
                   result.row(0) == m_.row(0) && result.row(1) == m_.row(1) &&
                   result.row(3) == m_.row(3);
-        v.ratio = v.holds ? 0 : 1e300;
-        v.relation = "M' is finite";
-        v.lhs = "M' has a NaN or infinite entry";
-        v.rhs = "finite";
+        v.shows = Shows::non_finite_answer;
         out.items.push_back(v);
       }
       return out;
@@ -401,51 +390,49 @@ class Problem {
                        invisible * exact::abs(lambda) + underflow;
     }
     {
-      Verdict v;
-      v.property = Property::near_is_clip_plane;
-      v.relation = kNearRelation;
+      Verdict v(Property::near_is_clip_plane);
       exact::Rational worst = 0;
+      bool unbounded = false;  // a residual where the bound is 0
       for (int i = 0; i < 4; ++i) {
         const exact::Rational residual = exact::abs(near[i] - lambda * cx_[i]);
         if (entry_bound[i] > 0) {
           worst = std::max(worst, exact::Rational(residual / entry_bound[i]));
         } else if (residual > 0) {
-          worst = 1e300;
+          unbounded = true;
         }
       }
       v.holds = feasible;
-      v.ratio = feasible ? std::min(worst.get_d(), 1.0) : std::max(worst.get_d(), 1.0 + 1e-9);
+      const double worst_ratio =
+          unbounded ? std::numeric_limits<double>::infinity() : approx(worst);
+      v.ratio = feasible ? std::min(worst_ratio, 1.0) : std::max(worst_ratio, 1.0 + 1e-9);
       // lambda <= 0 is the wrong side: near' keeps the half-space C cuts away, whatever the
       // residual (which may well be below its bound).
-      v.lhs = "lambda = " + format_number(lambda) +
-              (!feasible && lambda <= 0 ? " (wrong side: near' is C negated)" : "") +
-              ", worst residual/bound = " + format_number(worst) +
-              (feasible ? "" : ", no lambda > 0 fits every entry");
-      v.rhs = "1";
+      v.shows = feasible ? Shows::lambda_fit : lambda <= 0 ? Shows::wrong_side : Shows::no_fit;
+      v.lambda = approx(lambda);
+      v.residual = worst_ratio;
+      v.bound = 1;
       out.items.push_back(v);
     }
     // 2. Rows 1, 2, 4 unchanged in value: -0 and +0 are the same plane coefficient, so a changed
     // sign of zero (JavaScript's JSON.stringify(-0) writes 0) is not a changed side plane.
     {
-      Verdict v;
-      v.property = Property::side_rows_unchanged;
-      v.relation = "rows 1, 2, 4 of M' are those of M (equal values; -0 equals +0)";
+      Verdict v(Property::side_rows_unchanged);
       for (int row : {0, 1, 3}) {
         for (int j = 0; j < 4; ++j) {
           const T before = m_(row, j), after = result(row, j);
           // Equal values (inputs are finite, so a NaN or an infinity here is a change).
           if (!(before == after)) {
             if (v.holds) {
-              v.lhs = "M'(" + std::to_string(row + 1) + "," + std::to_string(j + 1) +
-                      ") = " + format_number(static_cast<double>(after));
-              v.rhs = "M(" + std::to_string(row + 1) + "," + std::to_string(j + 1) +
-                      ") = " + format_number(static_cast<double>(before));
+              v.shows = Shows::entry;
+              v.row = row + 1;
+              v.column = j + 1;
+              v.value = static_cast<double>(after);
+              v.reference = static_cast<double>(before);
             }
             v.holds = false;
           }
         }
       }
-      v.ratio = v.holds ? 0 : 1e300;
       out.items.push_back(v);
     }
     // What rounding may do to far' . p at a point p with M_4 . p = 1: the error of a (relative
@@ -463,37 +450,35 @@ class Problem {
     // 3. and 5. far' . Q = 0.
     const exact::Rational far_q = exact::dot(far, q_);
     const exact::Rational far_q_bound = point_bound(q_, true);
-    const double far_q_ratio = far_q_bound > 0
-                                   ? exact::Rational(exact::abs(far_q) / far_q_bound).get_d()
-                                   : (far_q == 0 ? 0.0 : 1e300);
+    const double far_q_ratio = far_q_bound > 0 ? approx(exact::abs(far_q) / far_q_bound)
+                               : far_q == 0    ? 0.0
+                                               : std::numeric_limits<double>::infinity();
     {
-      Verdict v;
-      v.property = Property::far_plane_through_corner;
+      Verdict v(Property::far_plane_through_corner);
       v.applies = corners_judged;
-      v.relation = corners_judged ? "|far' . Q| <= bound"
-                                  : "not judged: C is within rounding of Q (gamma(16) kappa >= 1)";
+      v.shows = corners_judged ? Shows::residual : Shows::no_bound;
       v.holds = exact::abs(far_q) <= far_q_bound;
       v.ratio = far_q_ratio;
-      v.lhs = format_number(far_q);
-      v.rhs = format_number(far_q_bound);
+      v.residual = approx(far_q);
+      v.bound = approx(far_q_bound);
       out.items.push_back(v);
     }
     // 4. far' . p >= -bound at every vertex p of the view volume on C's positive side: the
     // corners with C . p >= 0 and the points where C crosses an edge of the volume.
     {
-      Verdict v;
-      v.property = Property::no_clipping;
-      v.relation = "far' . p >= -bound at every vertex p of the view volume with C . p >= 0";
+      Verdict v(Property::no_clipping);
       double worst = 0;
-      auto visit = [&](const exact::Vec& point, bool through_scale, const char* what) {
+      auto visit = [&](const exact::Vec& point, bool through_scale, Shows where) {
         const exact::Rational value = exact::dot(far, point);
         if (value >= 0) return;
         const exact::Rational bound = point_bound(point, through_scale);
-        const double ratio = bound > 0 ? exact::Rational(-value / bound).get_d() : 1e300;
+        const double ratio =
+            bound > 0 ? approx(-value / bound) : std::numeric_limits<double>::infinity();
         if (-value > bound) {
           if (v.holds || ratio > worst) {
-            v.lhs = std::string("far' . p = ") + format_number(value) + " at " + what;
-            v.rhs = "-" + format_number(bound);
+            v.shows = where;
+            v.residual = approx(value);
+            v.bound = approx(bound);
             v.point = point;
           }
           v.holds = false;
@@ -501,7 +486,8 @@ class Problem {
         worst = std::max(worst, ratio);
       };
       for (int i = 0; i < 8; ++i) {
-        if (corners_judged && corner_dots_[i] >= 0) visit(corners_[i], true, "a corner");
+        if (corners_judged && corner_dots_[i] >= 0)
+          visit(corners_[i], true, Shows::below_at_corner);
         for (int j = i + 1; j < 8; ++j) {
           int differing = 0;
           for (int axis = 0; axis < 3; ++axis)
@@ -510,25 +496,22 @@ class Problem {
           // The point of edge ij on C, normalised so that M_4 . p = 1.
           const exact::Rational alpha = corner_dots_[j] / (corner_dots_[j] - corner_dots_[i]);
           visit(exact::combine(alpha, corners_[i], 1 - alpha, corners_[j]), false,
-                "an edge crossing of C");
+                Shows::below_at_edge_crossing);
         }
       }
       v.ratio = worst;
-      if (v.holds) {
-        v.lhs = "no vertex below its bound";
-        v.rhs = "0";
-      }
+      if (v.holds) v.shows = Shows::no_vertex_below;
       out.items.push_back(v);
     }
     {
-      Verdict v;
-      v.property = Property::infinite_edge_parallel;
+      Verdict v(Property::infinite_edge_parallel);
       v.applies = far_corner_at_infinity() && corners_judged;
-      v.relation = "Q_w = 0 and |far' . Q| <= bound (far' parallel to the frustum edge Q)";
       v.holds = !v.applies || (q_[3] == 0 && exact::abs(far_q) <= far_q_bound);
       v.ratio = v.applies ? far_q_ratio : 0;
-      v.lhs = "Q_w = " + format_number(q_[3]) + ", far' . Q = " + format_number(far_q);
-      v.rhs = format_number(far_q_bound);
+      v.shows = Shows::edge_direction;
+      v.reference = approx(q_[3]);
+      v.residual = approx(far_q);
+      v.bound = approx(far_q_bound);
       out.items.push_back(v);
     }
     return out;

@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "oblique/expected.h"
+
 namespace oblique::protocol {
 
 /// The scalar type a request is computed in.
@@ -74,9 +76,9 @@ std::string json_number(T value, Notation notation = Notation::shortest);
 
 /// The value of a number token in type T, correctly rounded from its text: a JSON number's text,
 /// or a JSON string's contents marked by a leading '"' ("nan", "-nan", "inf", "-inf", "NaN",
-/// "-NaN", "+inf", "Infinity", "+Infinity", "-Infinity" or a hex float). Empty (with `error` set)
+/// "-NaN", "+inf", "Infinity", "+Infinity", "-Infinity" or a hex float). A failure, saying why,
 /// for anything else, and for a finite literal that overflows T.
 template <class T>
-std::optional<T> parse_number(const std::string& token, std::string* error);
+Expected<T> parse_number(const std::string& token);
 
 }  // namespace oblique::protocol

@@ -94,10 +94,11 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
   properties::set_views(ce, Problem<T>(c.matrix, c.plane, c.convention),
                         outcome && outcome->status == Status::ok ? &outcome->projection : nullptr);
   tally().failure = ce;
-  if (finding.kind == "status")
+  if (finding.check == properties::Check::status)
     RC_FAIL(impl.name + " " + impl.answer_words(outcome ? outcome->status : Status::ok) +
-            "; right: " + finding.expected);
-  RC_FAIL(impl.name + " violates " + finding.kind + ": " + finding.lhs + " against " + finding.rhs);
+            "; right: " + bound_text(finding));
+  RC_FAIL(impl.name + " violates " + std::string(check_name(finding.check)) + ": " +
+          residual_text(finding) + " against " + bound_text(finding));
 }
 
 /// Runs each implementation on the case and judges each answer (judge(), with `checks` and the
@@ -127,7 +128,8 @@ void for_each_answer(const std::vector<Implementation<T>>& implementations,
     checks.statuses = statuses;
     const Judgement judgement = judge(problem, outcome, checks);
     for (const Finding& f : judgement.checks) {
-      if (f.kind != "status" && f.kind != "finite_result") ++tally().applied[f.kind];
+      if (f.check != properties::Check::status && f.check != properties::Check::finite_result)
+        ++tally().applied[std::string(check_name(f.check))];
     }
     if (const Finding* violation = judgement.violation()) fail_with(c, impl, *violation, &outcome);
   }
