@@ -163,7 +163,7 @@ ChildProcess::~ChildProcess() {
   stop();
 }
 
-bool ChildProcess::start(std::string* error) {
+Expected<Done> ChildProcess::start() {
   stop();
   // Descendants that leave the process group (setsid) are orphaned to us, not to init, so stop()
   // can still end them.
@@ -172,14 +172,13 @@ bool ChildProcess::start(std::string* error) {
   handle_interrupts();
   int in[2], out[2], err[2];
   if (::pipe2(in, O_CLOEXEC) != 0 || ::pipe2(out, O_CLOEXEC) != 0 || ::pipe2(err, O_CLOEXEC) != 0) {
-    *error = std::string("cannot create pipes: ") + std::strerror(errno);
-    return false;
+    return Expected<Done>::failure(std::string("cannot create pipes: ") + std::strerror(errno));
   }
   const pid_t pid = ::fork();
   if (pid < 0) {
-    *error = std::string("cannot fork: ") + std::strerror(errno);
+    const std::string why = std::string("cannot fork: ") + std::strerror(errno);
     for (int fd : {in[0], in[1], out[0], out[1], err[0], err[1]}) ::close(fd);
-    return false;
+    return Expected<Done>::failure(why);
   }
   if (pid == 0) {
     ::setpgid(0, 0);
@@ -218,7 +217,7 @@ bool ChildProcess::start(std::string* error) {
   set_nonblocking(in_);
   set_nonblocking(out_);
   set_nonblocking(err_);
-  return true;
+  return Done{};
 }
 
 void ChildProcess::keep_stderr(const char* data, std::size_t size) {

@@ -165,8 +165,7 @@ const char* kind_name(JsonValue::Kind kind) {
   return "a value";
 }
 
-std::optional<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t max_numbers,
-                                             std::string* error) {
+Expected<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t max_numbers) {
   JsonNumbers out;
   out.masked.assign(text);
   bool in_string = false;
@@ -183,8 +182,8 @@ std::optional<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t 
       std::size_t end = i + 1;
       while (end < text.size() && std::strchr("0123456789.eE+-", text[end]) != nullptr) ++end;
       if (out.texts.size() == max_numbers) {
-        *error = "more than " + std::to_string(max_numbers) + " numbers";
-        return std::nullopt;
+        return Expected<JsonNumbers>::failure("more than " + std::to_string(max_numbers) +
+                                              " numbers");
       }
       const std::string_view token = text.substr(i, end - i);
       out.texts.push_back(token);
@@ -209,10 +208,9 @@ Expected<JsonValue> parse_json(std::string_view text, JsonLimits limits) {
     return Expected<JsonValue>::failure("a NUL byte at column " + std::to_string(nul + 1) +
                                         " (JSON is text)");
   }
-  std::string error;
-  const std::optional<JsonNumbers> numbers =
-      scan_json_numbers(text, std::min(limits.max_values, limits.max_numbers), &error);
-  if (!numbers) return Expected<JsonValue>::failure(error);
+  const Expected<JsonNumbers> numbers =
+      scan_json_numbers(text, std::min(limits.max_values, limits.max_numbers));
+  if (!numbers) return Expected<JsonValue>::failure(numbers.error());
   TreeBuilder builder(numbers->texts, limits);
   if (!json::sax_parse(numbers->masked.begin(), numbers->masked.end(), &builder,
                        json::input_format_t::json, true, false)) {

@@ -92,9 +92,8 @@ Expected<std::size_t> judge_implementation(const Scene& scene, SceneCheck& check
   // input fails with EPIPE instead.
   std::signal(SIGPIPE, SIG_IGN);
   ChildProcess child(command);
-  std::string error;
-  if (!child.start(&error))
-    return Expected<std::size_t>::failure("cannot start the implementation: " + error);
+  if (const Expected<Done> started = child.start(); !started)
+    return Expected<std::size_t>::failure("cannot start the implementation: " + started.error());
   std::vector<std::string> lines;
   const auto idle = std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000));
   const auto outcome =

@@ -8,6 +8,9 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
+#include <string>
+#include <utility>
 
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
@@ -284,6 +287,74 @@ TEST(NearPlane, aComponentFarBelowThePlanesNormMayBeLostButNotVisiblyChanged) {
   near_plane_allowance<float>();
   near_plane_allowance<double>();
   near_plane_allowance<long double>();
+}
+
+// Every check has its own name, read back to itself; a property's check is the property's.
+TEST(Findings, everyCheckHasOneNameReadBackToItself) {
+  std::set<std::string> names;
+  for (int i = 0; i <= static_cast<int>(Check::protocol); ++i) {
+    const Check c = static_cast<Check>(i);
+    const std::string name(check_name(c));
+    EXPECT_NE(name, "unknown") << i;
+    EXPECT_TRUE(names.insert(name).second) << name << " names two checks";
+    EXPECT_EQ(parse_check(name), c) << name;
+  }
+  EXPECT_EQ(parse_check("near_is_clip_plan"), std::nullopt);
+  for (Property p : all_properties) {
+    EXPECT_EQ(property_of(check_of(p)), p);
+    EXPECT_EQ(check_name(check_of(p)), property_name(p));
+  }
+  EXPECT_EQ(property_of(Check::row3_accuracy), std::nullopt);
+}
+
+// The words are made from the finding's numbers, when written: a violated no_clipping at a corner
+// says the value and the bound it holds, and its JSON numbers are the same numbers.
+TEST(Findings, theWordsComeFromTheNumbers) {
+  Finding f;
+  f.check = Check::no_clipping;
+  f.shows = Shows::below_at_corner;
+  f.residual = -3.5;
+  f.bound = 0.25;
+  f.ratio = 14;
+  EXPECT_EQ(relation_text(f),
+            "far' . p >= -bound at every vertex p of the view volume with C . p >= 0");
+  EXPECT_EQ(residual_text(f), "far' . p = -3.5 at a corner");
+  EXPECT_EQ(bound_text(f), "-0.25");
+  f.shows = Shows::below_at_edge_crossing;
+  f.residual = -0.5;
+  EXPECT_EQ(residual_text(f), "far' . p = -0.5 at an edge crossing of C");
+  const auto numbers = finding_numbers(f);
+  ASSERT_EQ(numbers.size(), 2u);
+  EXPECT_EQ(numbers[0], std::make_pair(std::string("residual"), -0.5));
+  EXPECT_EQ(numbers[1], std::make_pair(std::string("bound"), 0.25));
+  Finding status;
+  status.check = Check::status;
+  status.shows = Shows::statuses;
+  status.answered = Status::ok;
+  status.exact = Status::camera_not_behind_plane;
+  status.allowed = {Status::camera_not_behind_plane, Status::invalid_input};
+  EXPECT_EQ(sides_text(status, "  "),
+            "  expected: camera_not_behind_plane or invalid_input\n  got:      ok\n");
+  EXPECT_EQ(relation_text(status), "an input without an answer is refused");
+  EXPECT_TRUE(finding_numbers(status).empty());
+}
+
+// A check that is a yes or a no has no ratio, not a large number standing for one.
+TEST(Findings, aYesOrNoCheckHasNoRatio) {
+  const Problem<double> problem(kFrustum, kPlane, Convention::gl);
+  Outcome<double> changed = core_answer();
+  changed.projection(0, 0) += 1;
+  Checks sides;
+  sides.properties = {Property::side_rows_unchanged};
+  const Judgement j = judge(problem, changed, sides);
+  ASSERT_NE(j.violation(), nullptr);
+  EXPECT_EQ(j.violation()->check, Check::side_rows_unchanged);
+  EXPECT_FALSE(j.violation()->ratio.has_value());
+  EXPECT_EQ(j.violation()->shows, Shows::entry);
+  EXPECT_EQ(j.violation()->row, 1);
+  EXPECT_EQ(j.violation()->column, 1);
+  EXPECT_EQ(j.violation()->value, changed.projection(0, 0));
+  EXPECT_EQ(j.violation()->reference, kFrustum(0, 0));
 }
 
 }  // namespace

@@ -32,11 +32,12 @@ typename Session<T>::Evaluation Session<T>::evaluate(const VerifyCase<T>& v, Fou
   const properties::FilteredProblem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
   if (draws_.needs_status() && !draws_.left_out(problem).empty())
     return Evaluation::pass;  // not an input the implementation promises anything for
-  std::string error;
   issue_ = Issue{};
-  if (!child_.running() && !child_.start(&error)) {
-    issue_.what = "the implementation could not be restarted: " + error;
-    return Evaluation::protocol_error;
+  if (!child_.running()) {
+    if (const Expected<Done> started = child_.start(); !started) {
+      issue_.what = "the implementation could not be restarted: " + started.error();
+      return Evaluation::protocol_error;
+    }
   }
   // The count check of one evaluation: nothing left over before the request, one line after.
   if (std::vector<std::string> left = child_.unasked_output(); !left.empty()) {

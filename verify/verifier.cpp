@@ -60,9 +60,8 @@ class Verifier {
     ChildProcess& child = session_.child();
     const Clock::time_point deadline = session_.deadline();
     const auto idle = session_.idle();
-    std::string error;
-    if (!child.start(&error)) {
-      err_ << "oblique verify: cannot start the implementation: " << error << "\n";
+    if (const Expected<Done> started = child.start(); !started) {
+      err_ << "oblique verify: cannot start the implementation: " << started.error() << "\n";
       return Verdict::error;
     }
     rc::Random random(options_.seed);
@@ -119,9 +118,9 @@ class Verifier {
           kinds[key] = Kind{reporter_.last_report(), 1};
           if (Clock::now() >= deadline) break;
           // Go on with a fresh process, sent what the old one had queued.
-          std::string error;
-          if (!child.start(&error)) {
-            err_ << "oblique verify: cannot restart the implementation: " << error << "\n";
+          if (const Expected<Done> started = child.start(); !started) {
+            err_ << "oblique verify: cannot restart the implementation: " << started.error()
+                 << "\n";
             child.stop();
             return reporter_.index(kinds, done);
           }

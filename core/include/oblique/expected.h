@@ -10,6 +10,9 @@
 
 namespace oblique {
 
+/// The value of an Expected for an operation that has nothing to return (starting a process).
+struct Done {};
+
 template <class T>
 class Expected {
  public:

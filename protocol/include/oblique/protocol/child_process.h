@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "oblique/expected.h"
+
 namespace oblique::protocol {
 
 using Clock = std::chrono::steady_clock;
@@ -29,8 +31,8 @@ class ChildProcess {
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
 
-  /// Starts the command; false (with `error`) when it cannot be started.
-  bool start(std::string* error);
+  /// Starts the command, or says why it cannot be started.
+  Expected<Done> start();
   bool running() const { return pid_ > 0; }
 
   enum class Outcome {

@@ -62,9 +62,8 @@ struct JsonNumbers {
   std::vector<std::string_view> texts;
 };
 
-/// Empty, with `error` set, when the text holds more than `max_numbers` number tokens.
-std::optional<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t max_numbers,
-                                             std::string* error);
+/// A failure when the text holds more than `max_numbers` number tokens.
+Expected<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t max_numbers);
 
 /// A JSON parser's error message for a person: nlohmann's "[json.exception.parse_error.101] "
 /// prefix dropped, so what remains names the line and column.
