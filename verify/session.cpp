@@ -1,7 +1,6 @@
 #include "session.h"
 
 #include <algorithm>
-#include <sstream>
 
 namespace oblique::verify {
 

@@ -35,7 +35,7 @@ enum class Check : std::uint8_t {
   methods_agree,             ///< the property suite's cross-check of the core's two methods
   crash,                     ///< the program ended before answering
   timeout,                   ///< the program did not answer in time
-  protocol,                  ///< the program's answer is not a protocol answer line
+  protocol,                  ///< the program's answer is not a protocol answer line (the last)
 };
 
 constexpr Check check_of(Property p) noexcept {
@@ -57,7 +57,7 @@ enum class Shows : std::uint8_t {
   residual,
   /// A check the filtered checker settled in intervals: it holds, ratio approximate, no residual.
   certified,
-  /// The answered status (Evidence::answered) against the statuses the input allows.
+  /// The answered status (Finding::answered) against the statuses the input allows.
   statuses,
   /// M' has a NaN or an infinite entry.
   non_finite_answer,
@@ -82,7 +82,7 @@ enum class Shows : std::uint8_t {
   no_bound,
   /// infinite_edge_parallel: Q_w (reference) and far' . Q (residual) against bound.
   edge_direction,
-  /// What a program did (crash, timeout, protocol), in Evidence::message.
+  /// What a program did (crash, timeout, protocol), in Finding::message.
   program,
 };
 
@@ -113,7 +113,7 @@ struct Finding {
 std::string relation_text(const Finding& f);
 /// The measured side in words, with its numbers ("far' . p = -3.5 at a corner").
 std::string residual_text(const Finding& f);
-/// The side it is held to ("2.2e-16", "> 0", "or_refusal").
+/// The side it is held to ("2.2e-16", "> 0", "camera_not_behind_plane or invalid_input").
 std::string bound_text(const Finding& f);
 /// Both sides as console lines after `indent`: "expected:"/"got:" for a status, else
 /// "residual:"/"bound:".

@@ -28,10 +28,6 @@ std::string not_judged(const AnyProblem& problem, StatusContract contract,
 
 namespace judging {
 
-inline Finding from_verdict(const Verdict& v) {
-  return v;
-}
-
 /// The status finding for `got` (or nothing when the contract allows it), given the input's
 /// exact status and the statuses it allows.
 inline std::optional<Finding> status_finding(Status exact, const std::vector<Status>& acceptable,
@@ -128,12 +124,11 @@ Judgement judge(const Problem<T>& problem, const Outcome<T>& outcome, const Chec
     const Verdicts verdicts = problem.check(outcome.projection);
     for (const Verdict& v : verdicts.items) {
       if (!v.applies || !wanted(v.property())) continue;
-      if (!record(judging::from_verdict(v))) return out;
+      if (!record(v)) return out;  // a Verdict is its Finding
     }
   }
   if (wanted(Property::extracted_planes_match)) {
-    if (!record(judging::from_verdict(problem.check_extracted_planes(outcome.projection))))
-      return out;
+    if (!record(problem.check_extracted_planes(outcome.projection))) return out;
   }
   if (checks.row3_accuracy) {
     if (!record(judging::row3_accuracy(problem, outcome.projection))) return out;
