@@ -299,6 +299,42 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
 
 }  // namespace
 
+namespace {
+
+/// The report's "diagnosis": the causes by name, the counts behind them and the evidence.
+nlohmann::json diagnosis_json(const Diagnosis& d) {
+  nlohmann::json j;
+  j["causes"] = nlohmann::json::array();
+  for (const auto& cause : d.causes) {
+    nlohmann::json names = nlohmann::json::array();
+    for (Mistake m : cause) names.push_back(std::string(mistake_entry(m).name));
+    j["causes"].push_back(names);
+  }
+  j["line"] = likely_cause_line(d);
+  j["seen"] = d.seen;
+  j["wrong"] = d.wrong;
+  j["probed"] = d.probed;
+  j["decided"] = d.decided;
+  j["wrong_where_it_differs"] = d.wrong_where_it_differs;
+  j["right_where_it_agrees"] = d.right_where_it_agrees;
+  nlohmann::json differences = nlohmann::json::array();
+  for (const ChoiceDifference& c : d.differences) differences.push_back(choice_text(c));
+  j["differences"] = differences;
+  auto row = [](const std::optional<std::array<double, 4>>& r) {
+    if (!r) return nlohmann::json(nullptr);
+    nlohmann::json out = nlohmann::json::array();
+    for (double v : *r) out.push_back(protocol::format_number(v));
+    return out;
+  };
+  j["row"] = d.row + 1;
+  j["answered"] = {{"status", status_code(d.answered)}, {"row", row(d.answered_row)}};
+  j["mistaken"] = {{"status", status_code(d.mistaken)}, {"row", row(d.mistaken_row)}};
+  j["right"] = {{"status", status_code(d.right)}, {"row", row(d.right_row)}};
+  return j;
+}
+
+}  // namespace
+
 std::string write_report(const Counterexample& ce, const ReportContext& context) {
   std::string stem =
       context.stem.empty() ? context.test_id + "." + ce.implementation : context.stem;
@@ -337,7 +373,9 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
     if (f.ratio) md << "| residual / bound | `" << protocol::format_number(*f.ratio) << "` |\n";
   }
   md << "\nFamily `" << ce.family << "`, convention `" << ce.convention << "`, place `" << ce.place
-     << "`.\n\n## Input\n\nProjection M (shortest round-trip decimals):\n\n"
+     << "`.\n\n";
+  if (ce.diagnosis) md << likely_cause_markdown(*ce.diagnosis);
+  md << "## Input\n\nProjection M (shortest round-trip decimals):\n\n"
      << matrix_table(ce.projection_decimal) << "\nProjection M (hex, exact):\n\n"
      << matrix_table(ce.projection_hex) << "\nPlane C: `(" << ce.plane_decimal[0] << ", "
      << ce.plane_decimal[1] << ", " << ce.plane_decimal[2] << ", " << ce.plane_decimal[3]
@@ -432,6 +470,7 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   j["bound"] = bound_text(f);
   j["ratio"] = f.ratio && std::isfinite(*f.ratio) ? nlohmann::json(*f.ratio) : nullptr;
   j["numbers"] = finding_json_numbers(f);
+  j["diagnosis"] = ce.diagnosis ? diagnosis_json(*ce.diagnosis) : nlohmann::json(nullptr);
   j["implementation"] = ce.implementation;
   j["precision"] = ce.scalar;
   j["family"] = ce.family;

@@ -107,8 +107,12 @@ Match compare(const Observation<T>& o, const Exact& x) {
     return o.status == x.e.status ? Match::agrees : Match::undecided;
   }
   if (o.status != Status::ok) return Match::differs;
-  if (x.kind == Exact::Kind::non_finite)
-    return all_finite(o.projection) ? Match::differs : Match::agrees;
+  if (x.kind == Exact::Kind::non_finite) {
+    if (!all_finite(o.projection)) return Match::agrees;
+    // A NaN sign of a C' component that is 0 exactly: computed in T it may round to either sign
+    // (both corners equally far), and the answer is then finite.
+    return x.e.nan_sign_of_computed ? Match::undecided : Match::differs;
+  }
   if (!all_finite(o.projection)) return Match::differs;
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) {
@@ -137,39 +141,55 @@ bool distinct(const Exact& a, const Exact& b) {
 /// shifted, left-handed and orthographic matrices, with planes of every corner sign, head-on,
 /// through and in front of the camera and beyond the far plane.
 template <class T>
-std::vector<std::pair<Matrix4<T>, Vector4<T>>> panel(Convention convention) {
+struct PanelCase {
+  Matrix4<T> matrix;
+  Vector4<T> plane;
+  generators::Family family;
+};
+
+template <class T>
+std::vector<PanelCase<T>> panel(Convention convention) {
+  using generators::Family;
+  struct Shape {
+    Matrix4<T> m;
+    Family family;
+    bool left_handed;
+  };
   const Matrix4<T> p = frustum<T>(-1, 1, -0.75, 0.75, 1, 64, convention);
-  std::vector<std::pair<Matrix4<T>, bool>> shapes;  // (matrix, left-handed)
-  auto add = [&shapes](Matrix4<T> m, bool left) { shapes.emplace_back(m, left); };
-  add(p, false);
   Matrix4<T> x = p, y = p, xy = p, s = p, left = p;
   x.row(0) *= T(-1);
   y.row(1) *= T(-1);
   xy.row(0) *= T(-1);
   xy.row(1) *= T(-1);
-  add(x, false);
-  add(y, false);
-  add(xy, false);
-  add(frustum<T>(-0.5, 1.5, -0.25, 1.25, 1, 64, convention), false);
-  s(0, 3) = T(0.25);
+  s(0, 3) = T(0.25);  // a lens shift: M14, M24
   s(1, 3) = T(-0.125);
-  add(s, false);
   Matrix4<T> xs = x, ys = y;
-  xs(0, 3) = ys(0, 3) = T(0.25);
-  xs(1, 3) = ys(1, 3) = T(-0.125);
-  add(xs, false);
-  add(ys, false);
-  left.col(2) *= T(-1);
-  add(left, true);
-  add(orthographic<T>(-2, 2, -1.5, 1.5, 1, 64, convention), false);
-  add(orthographic<T>(-2, 2, -2, 2, -5, 10, convention), false);  // reaching behind the eye
-  const T planes[][4] = {{0.25, 0.5, -1, -4},   {-0.25, 0.5, -1, -4}, {0.25, -0.5, -1, -4},
-                         {-0.25, -0.5, -1, -4}, {0, 0, -1, -4},       {0.25, 0.5, -1, 0},
-                         {0.25, 0.5, -1, 2},    {0, 0, -1, -100},     {1, 1, 0.125, -1}};
-  std::vector<std::pair<Matrix4<T>, Vector4<T>>> out;
-  for (const auto& [m, left_handed] : shapes) {
+  xs.col(3) = ys.col(3) = s.col(3);
+  xs(0, 3) = -xs(0, 3);
+  left.col(2) *= T(-1);  // a left-handed camera: z negated
+  const Shape shapes[] = {
+      {p, Family::perspective, false},
+      {x, Family::x_flipped, false},
+      {y, Family::y_flipped, false},
+      {xy, Family::xy_flipped, false},
+      {frustum<T>(-0.5, 1.5, -0.25, 1.25, 1, 64, convention), Family::off_axis, false},
+      {s, Family::stereo_shift, false},
+      {xs, Family::general, false},
+      {ys, Family::general, false},
+      {left, Family::general, true},
+      {orthographic<T>(-2, 2, -1.5, 1.5, 1, 64, convention), Family::orthographic, false},
+      // an orthographic volume reaching behind the eye: C'_z < 0 for the last plane below
+      {orthographic<T>(-2, 2, -2, 2, -5, 10, convention), Family::orthographic, false},
+  };
+  // Every corner sign, head-on, through and in front of the camera, beyond the far plane.
+  const T planes[][4] = {{0.25, 0.5, -1, -4}, {-0.25, 0.5, -1, -4}, {0.25, -0.5, -1, -4},
+                         {-0.25, -0.5, -1, -4}, {0, 0, -1, -4},     {0.25, 0.5, -1, 0},
+                         {0.25, 0.5, -1, 2},   {0, 0, -1, -100},    {1, 1, 0.125, -1}};
+  std::vector<PanelCase<T>> out;
+  for (const Shape& shape : shapes) {
     for (const auto& c : planes) {
-      out.emplace_back(m, Vector4<T>(c[0], c[1], left_handed ? -c[2] : c[2], c[3]));
+      out.push_back(PanelCase<T>{
+          shape.m, Vector4<T>(c[0], c[1], shape.left_handed ? -c[2] : c[2], c[3]), shape.family});
     }
   }
   return out;
@@ -247,8 +267,8 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
         conventions.push_back(k.seen.convention);
     }
     for (Convention convention : conventions) {
-      for (const auto& [m, c] : panel<T>(convention)) {
-        if (const std::optional<Observation<T>> o = probe(m, c, convention)) {
+      for (const PanelCase<T>& k : panel<T>(convention)) {
+        if (const std::optional<Observation<T>> o = probe(k.matrix, k.plane, convention, k.family)) {
           add_case(*o);
           ++out.probed;
         }

@@ -68,6 +68,7 @@ template <class S>
 struct Evaluation {
   Status status = Status::ok;
   bool unchanged = false, non_finite = false, solve_failed = false;
+  bool nan_sign_of_computed = false;  ///< a NaN sign of a component of C' (computed), not of C
   Choices choices;
   S a{}, d{};
   Vec<S> c{}, c_clip{}, q_clip{}, q{},
@@ -186,18 +187,21 @@ Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Conven
     e.status = Status::singular_projection;
     return e;
   }
-  auto sign = [&](const S& v) {
-    if (knobs.sign_by_division && v == 0) ch.nan_sign = true;
+  auto sign = [&](const S& v, bool computed) {
+    if (knobs.sign_by_division && v == 0) {
+      ch.nan_sign = true;
+      e.nan_sign_of_computed = e.nan_sign_of_computed || computed;
+    }
     return v > 0 ? 1 : (v < 0 ? -1 : 0);
   };
   auto read = [&](SignFrom from, int i) {
     const bool camera =
         from == SignFrom::camera || (from == SignFrom::camera_on_perspective_shape && perspective);
-    return sign(camera ? c[i] : e.c_clip[i]);
+    return camera ? sign(c[i], false) : sign(e.c_clip[i], true);
   };
   ch.sx = read(knobs.x, 0);
   ch.sy = read(knobs.y, 1);
-  const int sz = sign(e.c_clip[2]);
+  const int sz = sign(e.c_clip[2], true);
   const DepthRange range = clip_depth_range(ch.formula);
   ch.z_twice = knobs.face_fixed ? 2
                : sz > 0         ? 2 * range.z_high

@@ -42,7 +42,8 @@ Diagnosis first_finding_diagnosed(const Implementation<T>& impl, int cases = 400
     if (!all_finite(c.matrix) || !all_finite(c.plane)) continue;
     const Observation<T> o = observe(impl, c.matrix, c.plane, c.convention);
     if (!o.wrong) continue;
-    const Probe<T> probe = [&impl](const Matrix4<T>& m, const Vector4<T>& p, Convention k) {
+    const Probe<T> probe = [&impl](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
+                                   generators::Family) {
       return std::optional<Observation<T>>(observe(impl, m, p, k));
     };
     return diagnose<T>({o}, probe);

@@ -36,7 +36,8 @@ Reporter<T>::Reporter(const VerifyOptions& options, const Draws<T>& draws, std::
 
 template <class T>
 Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int steps,
-                             bool out_of_time, long found_after_cases, double found_after_seconds) {
+                             bool out_of_time, long found_after_cases, double found_after_seconds,
+                             const properties::Diagnosis& diagnosis) {
   const properties::Finding& f = found.finding;
   properties::Counterexample ce =
       properties::make_counterexample(v.c.matrix, v.c.plane, v.c.convention);
@@ -49,6 +50,7 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
                  ? std::string(generators::defect_name(v.defect)) + " (has an answer)"
                  : v.kind();
   if (found.result) properties::set_result(ce, *found.result);
+  if (diagnosis.ran) ce.diagnosis = diagnosis;
   properties::set_views(ce, problem, found.result ? &*found.result : nullptr);
   ce.notes.emplace_back("implementation", options_.command);
   ce.notes.emplace_back("exact status", std::string(status_code(problem.exact_status())));
@@ -86,6 +88,12 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
   }
   last_report_ = path;
   last_kind_ = std::string(check_name(f.check));
+  last_cause_.clear();
+  if (diagnosis.ran) {
+    for (const auto& cause : diagnosis.causes)
+      last_cause_ += (last_cause_.empty() ? "" : " or ") + properties::cause_name(cause);
+    if (last_cause_.empty()) last_cause_ = "no known mistake";
+  }
   const std::string json_path = path.size() > 3 && path.compare(path.size() - 3, 3, ".md") == 0
                                     ? path.substr(0, path.size() - 3) + ".json"
                                     : "";
@@ -93,6 +101,7 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
     save_regression(json_path, options_.save_regressions, out_, err_);
 
   out_ << "  " << check_name(f.check) << ": " << relation_text(f) << "\n" << sides_text(f, "  ");
+  if (diagnosis.ran) out_ << "  " << properties::likely_cause_line(diagnosis) << "\n";
   out_ << "  input (" << ce.family << ", " << ce.convention << ", " << ce.place << "): " << request
        << "\n  found after " << found_after_cases << " cases, " << seconds_text(found_after_seconds)
        << " s\n";
@@ -149,9 +158,17 @@ Verdict Reporter<T>::index(const std::map<std::string, Kind>& kinds, long done) 
   index << "# oblique verify: " << kinds.size() << " kinds of finding\n\n"
         << "Implementation `" << options_.command << "`, " << protocol::scalar_name<T>()
         << ", seed " << options_.seed << ", " << done << " cases judged.\n\n"
-        << "| kind (property x family x place) | cases | report |\n|---|---|---|\n";
-  for (const auto& [key, kind] : kinds)
-    index << "| " << key << " | " << kind.repeats << " | " << kind.report << " |\n";
+        << "| likely cause | kind (property x family x place) | cases | report |\n"
+        << "|---|---|---|---|\n";
+  // Grouped by likely cause: one mistake usually breaks several properties.
+  std::map<std::string, std::vector<const std::pair<const std::string, Kind>*>> by_cause;
+  for (const auto& entry : kinds)
+    by_cause[entry.second.cause.empty() ? "(not diagnosed)" : entry.second.cause].push_back(&entry);
+  for (const auto& [cause, entries] : by_cause) {
+    for (const auto* entry : entries)
+      index << "| " << cause << " | " << entry->first << " | " << entry->second.repeats << " | "
+            << entry->second.report << " |\n";
+  }
   index << "\nThe whole run again:\n\n```sh\n" << replay_run_command() << "\n```\n";
   namespace fs = std::filesystem;
   const std::string path =
@@ -161,8 +178,12 @@ Verdict Reporter<T>::index(const std::map<std::string, Kind>& kinds, long done) 
   std::ofstream(path) << index.str();
   out_ << "oblique verify: " << kinds.size() << " kinds of finding in " << done
        << " cases (--keep-going); index: " << path << "\n";
-  for (const auto& [key, kind] : kinds)
-    out_ << "  " << key << ": " << kind.repeats << " cases, report " << kind.report << "\n";
+  for (const auto& [cause, entries] : by_cause) {
+    out_ << "  likely cause " << cause << ":\n";
+    for (const auto* entry : entries)
+      out_ << "    " << entry->first << ": " << entry->second.repeats << " cases, report "
+           << entry->second.report << "\n";
+  }
   return Verdict::violated;
 }
 

@@ -17,7 +17,8 @@ namespace oblique::verify {
 /// --keep-going: one report per kind of finding (property x family x place).
 struct Kind {
   std::string report;
-  long repeats = 0;  ///< cases of this kind found (the first one shrunk and reported)
+  long repeats = 0;   ///< cases of this kind found (the first one shrunk and reported)
+  std::string cause;  ///< its likely cause (Reporter::last_cause()), by which the index groups
 };
 
 template <class T>
@@ -29,9 +30,12 @@ class Reporter {
   /// Writes the report of a (shrunk) finding, keeps it as a regression when asked, and prints
   /// it: Verdict::violated.
   Verdict finding(const VerifyCase<T>& v, const Found<T>& found, int steps, bool out_of_time,
-                  long found_after_cases, double found_after_seconds);
+                  long found_after_cases, double found_after_seconds,
+                  const properties::Diagnosis& diagnosis = {});
   const std::string& last_report() const { return last_report_; }
   const std::string& last_kind() const { return last_kind_; }
+  /// The likely cause of the last finding reported ("" where none was diagnosed).
+  const std::string& last_cause() const { return last_cause_; }
 
   /// The summary of a run without a finding: Verdict::holds.
   Verdict passed(long done, double elapsed, const Seen& seen,
@@ -58,7 +62,7 @@ class Reporter {
   const Draws<T>& draws_;
   std::ostream& out_;
   std::ostream& err_;
-  std::string last_report_, last_kind_;
+  std::string last_report_, last_kind_, last_cause_;
 };
 
 }  // namespace oblique::verify

@@ -27,6 +27,7 @@ double Session<T>::seconds_since_start() const {
 
 template <class T>
 typename Session<T>::Evaluation Session<T>::evaluate(const VerifyCase<T>& v, Found<T>& finding) {
+  last_answer_.reset();
   if (out_of_time()) return Evaluation::out_of_time;
   const properties::FilteredProblem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
   if (draws_.needs_status() && !draws_.left_out(problem).empty())
@@ -71,11 +72,22 @@ typename Session<T>::Evaluation Session<T>::evaluate(const VerifyCase<T>& v, Fou
                    {answers[0]}};
     return Evaluation::protocol_error;
   }
+  last_answer_ = *answered;
   auto judged = judge(problem, *answered, draws_.checks());
   if (!judged) return Evaluation::pass;
   finding = *judged;
   finding.answer_line = answers[0];
   return Evaluation::finding;
+}
+
+template <class T>
+std::optional<properties::Observation<T>> Session<T>::observe(const VerifyCase<T>& v) {
+  Found<T> found;
+  const Evaluation e = evaluate(v, found);
+  if (!last_answer_ || (e != Evaluation::pass && e != Evaluation::finding)) return std::nullopt;
+  return properties::Observation<T>{v.c.matrix,           v.c.plane,
+                                    v.c.convention,       last_answer_->status,
+                                    last_answer_->projection, e == Evaluation::finding};
 }
 
 template <class T>

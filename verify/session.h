@@ -4,10 +4,12 @@
 #pragma once
 
 #include <chrono>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cases.h"
+#include "oblique/properties/diagnosis.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/verify/verifier.h"
 
@@ -46,6 +48,9 @@ class Session {
   /// the answer: a finding (in `finding`), a pass (also for an input the contract leaves out),
   /// a protocol problem (issue()), or no time left.
   Evaluation evaluate(const VerifyCase<T>& v, Found<T>& finding);
+  /// Sends one case alone and judges it, for the diagnosis: the answer and whether it is wrong,
+  /// or none (left out by the contract, a protocol problem, no answer, no time left).
+  std::optional<properties::Observation<T>> observe(const VerifyCase<T>& v);
   /// The protocol problem of the last evaluation.
   const Issue& issue() const { return issue_; }
 
@@ -60,6 +65,7 @@ class Session {
   Clock::time_point start_, deadline_;
   Issue issue_;
   std::string last_request_;
+  std::optional<protocol::TypedAnswer<T>> last_answer_;  ///< of the last evaluation
 };
 
 }  // namespace oblique::verify

@@ -78,11 +78,35 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<
       }
     }
   }
-  session_.child().stop();
   out_ << " " << steps << " steps (" << tries << " tries)"
        << (out_of_time ? ", stopped by the time limit" : "") << "\n";
+  const properties::Diagnosis diagnosis = diagnose(current.value(), finding);
+  session_.child().stop();
   return reporter_.finding(current.value(), finding, steps, out_of_time, found_after_cases,
-                           found_after_seconds);
+                           found_after_seconds, diagnosis);
+}
+
+template <class T>
+properties::Diagnosis Shrinker<T>::diagnose(const VerifyCase<T>& shrunk, const Found<T>& finding) {
+  using properties::Check;
+  const Check check = finding.finding.check;
+  if (check == Check::crash || check == Check::timeout || check == Check::protocol) return {};
+  const std::optional<properties::Observation<T>> seen = session_.observe(shrunk);
+  if (!seen || !seen->wrong) return {};
+  const auto& families = session_.draws().contract().families;
+  const properties::Probe<T> probe = [this, &families](const Matrix4<T>& m, const Vector4<T>& c,
+                                                       Convention convention,
+                                                       generators::Family family) {
+    if (std::find(families.begin(), families.end(), family) == families.end())
+      return std::optional<properties::Observation<T>>();
+    VerifyCase<T> v;
+    v.c.matrix = m;
+    v.c.plane = c;
+    v.c.convention = convention;
+    v.c.family = family;
+    return session_.observe(v);
+  };
+  return properties::diagnose<T>({*seen}, probe);
 }
 
 template <class T>

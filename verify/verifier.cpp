@@ -115,7 +115,7 @@ class Verifier {
           const Verdict result =
               shrinker_.confirm(current, k, answers, finding, done + static_cast<long>(k) + 1);
           if (!options_.keep_going || result != Verdict::violated) return result;
-          kinds[key] = Kind{reporter_.last_report(), 1};
+          kinds[key] = Kind{reporter_.last_report(), 1, reporter_.last_cause()};
           if (Clock::now() >= deadline) break;
           // Go on with a fresh process, sent what the old one had queued.
           if (const Expected<Done> started = child.start(); !started) {
@@ -165,7 +165,8 @@ class Verifier {
         const Verdict result = shrinker_.isolate(current.cases, answers.size(), done, outcome);
         if (result == Verdict::violated && options_.keep_going && !kinds.empty() &&
             !reporter_.last_report().empty()) {
-          kinds[reporter_.last_kind() + " (ends the run)"] = Kind{reporter_.last_report(), 1};
+          kinds[reporter_.last_kind() + " (ends the run)"] =
+              Kind{reporter_.last_report(), 1, reporter_.last_cause()};
           child.stop();
           return reporter_.index(kinds, done);
         }

@@ -10,6 +10,7 @@
 
 #include "oblique/depth_convention.h"
 #include "oblique/projection.h"
+#include "oblique/properties/diagnosis.h"
 #include "oblique/properties/judge.h"
 #include "oblique/properties/properties.h"
 
@@ -43,6 +44,8 @@ struct Counterexample {
   /// shown as a table in the Markdown and as an object in the JSON.
   std::vector<std::pair<std::string, std::string>> notes;
   CaseViews views;  ///< the pictures' case (none unless set_views() was called)
+  /// Which known mistake explains the answer (diagnose()), for the "Likely cause" section.
+  std::optional<Diagnosis> diagnosis;
 };
 
 /// The input's part of a counterexample: the numbers (shortest decimal and exact hex), the

@@ -17,6 +17,7 @@
 
 #include "oblique/depth_convention.h"
 #include "oblique/plane.h"
+#include "oblique/properties/case_kinds.h"
 #include "oblique/properties/mistakes.h"
 #include "oblique/status.h"
 
@@ -33,11 +34,11 @@ struct Observation {
   bool wrong = false;                              ///< the checker found a violation in this answer
 };
 
-/// Asks the implementation about one more case: its observation, or none when the case is not
+/// Asks the implementation about one more case (of `family`): its observation, or none when the case is not
 /// one the implementation promises anything for (its contract leaves it out).
 template <class T>
-using Probe =
-    std::function<std::optional<Observation<T>>(const Matrix4<T>&, const Vector4<T>&, Convention)>;
+using Probe = std::function<std::optional<Observation<T>>(
+    const Matrix4<T>&, const Vector4<T>&, Convention, generators::Family family)>;
 
 /// A choice of the modification, where a cause decided otherwise than the correct method.
 enum class Choice {
