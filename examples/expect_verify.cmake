@@ -1,10 +1,11 @@
 cmake_minimum_required(VERSION 3.25)
 # Runs `oblique verify` on an implementation and checks the outcome:
 #   cmake -DOBLIQUE=... -DIMPL=... -DARGS="--cases;2000" -DEXIT=0|1|2 [-DKINDS="a;b"]
-#         [-DMATCH=regex] -DREPORTS=dir -P expect_verify.cmake
+#         [-DMATCH=regex] [-DCAUSE=name] -DREPORTS=dir -P expect_verify.cmake
 # EXIT 1 also requires the report (Markdown + JSON) to name one of KINDS, carry the replay
 # command, and the replay command to get an answer from the implementation; with
-# -DALL_KINDS="a;b" (--keep-going) an index and a report for each of ALL_KINDS instead.
+# -DALL_KINDS="a;b" (--keep-going) an index and a report for each of ALL_KINDS instead. CAUSE:
+# the likely cause the console line, the report (Markdown and JSON) and the index name.
 file(REMOVE_RECURSE "${REPORTS}")
 execute_process(COMMAND "${OBLIQUE}" verify --impl "${IMPL}" --report-dir "${REPORTS}" --quiet ${ARGS}
                 RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE errors)
@@ -14,6 +15,12 @@ if(NOT result EQUAL EXIT)
 endif()
 if(DEFINED MATCH AND NOT "${output}${errors}" MATCHES "${MATCH}")
   message(FATAL_ERROR "the output does not match '${MATCH}'")
+endif()
+if(CAUSE)
+  string(REPLACE "+" "\\+" cause_pattern "${CAUSE}")
+  if(NOT "${output}" MATCHES "likely cause:? ${cause_pattern}[ (;\n]")
+    message(FATAL_ERROR "the output does not name the likely cause '${CAUSE}'")
+  endif()
 endif()
 if(NOT EXIT EQUAL 1)
   return()
@@ -36,6 +43,13 @@ if(ALL_KINDS)
       message(FATAL_ERROR "no report names '${kind}'; the reports name: ${found_kinds}")
     endif()
   endforeach()
+  if(CAUSE)
+    file(READ "${REPORTS}/verify-index.md" index)
+    string(FIND "${index}" "| ${CAUSE} |" at)
+    if(at EQUAL -1)
+      message(FATAL_ERROR "the index does not group a finding under the cause '${CAUSE}'")
+    endif()
+  endif()
   message(STATUS "caught every kind: ${found_kinds}")
   return()
 endif()
@@ -49,6 +63,20 @@ if(NOT kind IN_LIST KINDS)
 endif()
 string(REPLACE ".json" ".md" markdown "${reports}")
 file(READ "${markdown}" text)
+if(CAUSE)
+  string(JSON first_cause GET "${json}" diagnosis causes 0)
+  string(JSON cause_count LENGTH "${json}" diagnosis causes)
+  string(REGEX REPLACE "[][\" \n]" "" first_cause "${first_cause}")
+  string(REPLACE "," " + " first_cause "${first_cause}")
+  if(NOT cause_count EQUAL 1 OR NOT first_cause STREQUAL CAUSE)
+    message(FATAL_ERROR "the report's diagnosis names '${first_cause}' (of ${cause_count}), expected '${CAUSE}'")
+  endif()
+  string(FIND "${text}" "## Likely cause" at)
+  string(FIND "${text}" "`${CAUSE}`" named)
+  if(at EQUAL -1 OR (named EQUAL -1 AND NOT CAUSE MATCHES "\\+"))
+    message(FATAL_ERROR "the Markdown report has no Likely cause section naming ${CAUSE}")
+  endif()
+endif()
 # The whole-run replay carries every flag of the run.
 set(parts "# Counterexample: ${kind}" "## Input" "## Replay" "oblique verify" "--seed" "found after")
 foreach(arg ${ARGS})
