@@ -182,9 +182,9 @@ std::vector<PanelCase<T>> panel(Convention convention) {
       {orthographic<T>(-2, 2, -2, 2, -5, 10, convention), Family::orthographic, false},
   };
   // Every corner sign, head-on, through and in front of the camera, beyond the far plane.
-  const T planes[][4] = {{0.25, 0.5, -1, -4}, {-0.25, 0.5, -1, -4}, {0.25, -0.5, -1, -4},
-                         {-0.25, -0.5, -1, -4}, {0, 0, -1, -4},     {0.25, 0.5, -1, 0},
-                         {0.25, 0.5, -1, 2},   {0, 0, -1, -100},    {1, 1, 0.125, -1}};
+  const T planes[][4] = {{0.25, 0.5, -1, -4},   {-0.25, 0.5, -1, -4}, {0.25, -0.5, -1, -4},
+                         {-0.25, -0.5, -1, -4}, {0, 0, -1, -4},       {0.25, 0.5, -1, 0},
+                         {0.25, 0.5, -1, 2},    {0, 0, -1, -100},     {1, 1, 0.125, -1}};
   std::vector<PanelCase<T>> out;
   for (const Shape& shape : shapes) {
     for (const auto& c : planes) {
@@ -268,7 +268,8 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
     }
     for (Convention convention : conventions) {
       for (const PanelCase<T>& k : panel<T>(convention)) {
-        if (const std::optional<Observation<T>> o = probe(k.matrix, k.plane, convention, k.family)) {
+        if (const std::optional<Observation<T>> o =
+                probe(k.matrix, k.plane, convention, k.family)) {
           add_case(*o);
           ++out.probed;
         }
@@ -323,6 +324,8 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
 
 template Diagnosis diagnose<float>(const std::vector<Observation<float>>&, const Probe<float>&);
 template Diagnosis diagnose<double>(const std::vector<Observation<double>>&, const Probe<double>&);
+template Diagnosis diagnose<long double>(const std::vector<Observation<long double>>&,
+                                         const Probe<long double>&);
 
 std::string cause_name(const std::vector<Mistake>& cause) {
   std::string out;

@@ -154,7 +154,14 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   if (!result.match(success)) {
     // Printed once, as the test's failure: RapidCheck's message, the statistics, the report.
     std::string where;
-    if (t.failure) where = "\nreport: " + write_report(*t.failure, report_context(property));
+    if (t.failure) {
+      Counterexample failure = *t.failure;
+      if (t.diagnose_failure) {
+        failure.diagnosis = t.diagnose_failure();
+        where = "\n" + properties::likely_cause_line(*failure.diagnosis);
+      }
+      where += "\nreport: " + write_report(failure, report_context(property));
+    }
     ADD_FAILURE() << name << message.str() << "\n" << statistics.str() << where;
     return;
   }

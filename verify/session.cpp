@@ -85,9 +85,12 @@ std::optional<properties::Observation<T>> Session<T>::observe(const VerifyCase<T
   Found<T> found;
   const Evaluation e = evaluate(v, found);
   if (!last_answer_ || (e != Evaluation::pass && e != Evaluation::finding)) return std::nullopt;
-  return properties::Observation<T>{v.c.matrix,           v.c.plane,
-                                    v.c.convention,       last_answer_->status,
-                                    last_answer_->projection, e == Evaluation::finding};
+  return properties::Observation<T>{v.c.matrix,
+                                    v.c.plane,
+                                    v.c.convention,
+                                    last_answer_->status,
+                                    last_answer_->projection,
+                                    e == Evaluation::finding};
 }
 
 template <class T>

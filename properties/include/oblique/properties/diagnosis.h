@@ -6,7 +6,7 @@
 // on at least one wrong answer it is an answer the correct method does not give. With a probe
 // (the implementation asked again) the cases where the candidates part are asked too, so that
 // one cause is left where the finding alone fits several. No cause is a guess: when none fits,
-// the diagnosis says so. Compiled in oblique::properties (float and double).
+// the diagnosis says so. Compiled in oblique::properties (float, double, long double).
 #pragma once
 
 #include <array>
@@ -34,11 +34,11 @@ struct Observation {
   bool wrong = false;                              ///< the checker found a violation in this answer
 };
 
-/// Asks the implementation about one more case (of `family`): its observation, or none when the case is not
-/// one the implementation promises anything for (its contract leaves it out).
+/// Asks the implementation about one more case (of `family`): its observation, or none when the
+/// case is not one the implementation promises anything for (its contract leaves it out).
 template <class T>
-using Probe = std::function<std::optional<Observation<T>>(
-    const Matrix4<T>&, const Vector4<T>&, Convention, generators::Family family)>;
+using Probe = std::function<std::optional<Observation<T>>(const Matrix4<T>&, const Vector4<T>&,
+                                                          Convention, generators::Family family)>;
 
 /// A choice of the modification, where a cause decided otherwise than the correct method.
 enum class Choice {
@@ -87,6 +87,8 @@ extern template Diagnosis diagnose<float>(const std::vector<Observation<float>>&
                                           const Probe<float>&);
 extern template Diagnosis diagnose<double>(const std::vector<Observation<double>>&,
                                            const Probe<double>&);
+extern template Diagnosis diagnose<long double>(const std::vector<Observation<long double>>&,
+                                                const Probe<long double>&);
 
 /// "camera_space_signs" or "no_camera_guard + sign_by_division".
 std::string cause_name(const std::vector<Mistake>& cause);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "oblique/properties/counterexample_report.h"
+#include "oblique/properties/diagnosis.h"
 #include "oblique/properties/filtered.h"
 #include "oblique/properties/generators.h"
 #include "oblique/properties/judge.h"
@@ -35,6 +36,8 @@ struct Tally {
   std::map<std::string, int> families, conventions, places, defects, implementations, applied;
   std::map<std::string, int> left_out;  ///< answers not judged, by properties::not_judged()
   std::optional<Counterexample> failure;
+  /// The last failure's diagnosis, run when its report is written (not at every shrinking step).
+  std::function<properties::Diagnosis()> diagnose_failure;
   std::string property;  ///< the RapidCheck test id of the run
 };
 
@@ -86,7 +89,7 @@ Counterexample describe(const generators::Case<T>& c, const Implementation<T>& i
 /// Fails the current RapidCheck case with `finding` as its report.
 template <class T>
 void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, const Finding& finding,
-               const Outcome<T>* outcome = nullptr) {
+               const Outcome<T>* outcome = nullptr, const Checks* checks = nullptr) {
   Counterexample ce = describe(c, impl);
   ce.finding = finding;
   if (outcome && outcome->status == Status::ok) properties::set_result(ce, outcome->projection);
@@ -94,6 +97,24 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
   properties::set_views(ce, Problem<T>(c.matrix, c.plane, c.convention),
                         outcome && outcome->status == Status::ok ? &outcome->projection : nullptr);
   tally().failure = ce;
+  tally().diagnose_failure = nullptr;
+  if (outcome && checks) {
+    // The likely cause: the answer, and the implementation asked on the diagnosis's panel.
+    tally().diagnose_failure = [c, impl, out = *outcome, judged = *checks]() {
+      auto observe = [&impl, &judged](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
+                                      const Outcome<T>& answer) {
+        const Judgement j = judge(Problem<T>(m, p, k), answer, judged);
+        return properties::Observation<T>{
+            m, p, k, answer.status, answer.projection, j.violation() != nullptr};
+      };
+      const properties::Probe<T> probe = [&](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
+                                             generators::Family) {
+        if (!impl.accepts(k, m)) return std::optional<properties::Observation<T>>();
+        return std::optional(observe(m, p, k, impl.run(m, p, k)));
+      };
+      return properties::diagnose<T>({observe(c.matrix, c.plane, c.convention, out)}, probe);
+    };
+  }
   if (finding.check == properties::Check::status)
     RC_FAIL(impl.name + " " + impl.answer_words(outcome ? outcome->status : Status::ok) +
             "; right: " + bound_text(finding));
@@ -131,7 +152,8 @@ void for_each_answer(const std::vector<Implementation<T>>& implementations,
       if (f.check != properties::Check::status && f.check != properties::Check::finite_result)
         ++tally().applied[std::string(check_name(f.check))];
     }
-    if (const Finding* violation = judgement.violation()) fail_with(c, impl, *violation, &outcome);
+    if (const Finding* violation = judgement.violation())
+      fail_with(c, impl, *violation, &outcome, &checks);
   }
 }
 
