@@ -302,7 +302,7 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
 namespace {
 
 /// The report's "diagnosis": the causes by name, the counts behind them and the evidence.
-nlohmann::json diagnosis_json(const Diagnosis& d) {
+nlohmann::json diagnosis_object(const Diagnosis& d) {
   nlohmann::json j;
   j["causes"] = nlohmann::json::array();
   for (const auto& cause : d.causes) {
@@ -334,6 +334,10 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
 }
 
 }  // namespace
+
+std::string diagnosis_json(const Diagnosis& diagnosis) {
+  return diagnosis_object(diagnosis).dump();
+}
 
 std::string write_report(const Counterexample& ce, const ReportContext& context) {
   std::string stem =
@@ -470,7 +474,7 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   j["bound"] = bound_text(f);
   j["ratio"] = f.ratio && std::isfinite(*f.ratio) ? nlohmann::json(*f.ratio) : nullptr;
   j["numbers"] = finding_json_numbers(f);
-  j["diagnosis"] = ce.diagnosis ? diagnosis_json(*ce.diagnosis) : nlohmann::json(nullptr);
+  j["diagnosis"] = ce.diagnosis ? diagnosis_object(*ce.diagnosis) : nlohmann::json(nullptr);
   j["implementation"] = ce.implementation;
   j["precision"] = ce.scalar;
   j["family"] = ce.family;

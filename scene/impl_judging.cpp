@@ -5,6 +5,7 @@
 #include <csignal>
 #include <limits>
 
+#include "oblique/properties/diagnosis.h"
 #include "oblique/properties/judge.h"
 #include "oblique/properties/properties.h"
 #include "oblique/protocol/child_process.h"
@@ -48,6 +49,26 @@ void judge_answer_in(const Scene& scene, SurfaceCheck& pass, const std::string& 
   // As verify: the judgement stops at the first violation (every = true would go on to the
   // properties after a non-finite answer, whose exact arithmetic cannot take infinities).
   pass.impl_findings = properties::judge(problem, outcome, checks).checks;
+}
+
+/// The likely cause of the wrong answers among the passes' (every answer judged is a case).
+template <class T>
+properties::Diagnosis diagnose_in(const Scene& scene, const std::vector<SurfaceCheck*>& passes,
+                                  const std::vector<std::string>& lines) {
+  std::vector<properties::Observation<T>> seen;
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    const Expected<protocol::TypedAnswer<T>> answer = protocol::read_answer<T>(lines[i]);
+    if (!answer) continue;
+    properties::Observation<T> o{request_projection<T>(scene),
+                                 request_plane<T>(*passes[i]),
+                                 scene.convention,
+                                 answer->status,
+                                 answer->projection,
+                                 false};
+    for (const properties::Finding& f : passes[i]->impl_findings) o.wrong = o.wrong || !f.holds;
+    seen.push_back(o);
+  }
+  return properties::diagnose<T>(seen);
 }
 
 }  // namespace
@@ -125,6 +146,17 @@ Expected<std::size_t> judge_implementation(const Scene& scene, SceneCheck& check
   }
   for (std::size_t i = 0; i < rendered.size(); ++i)
     judge_impl_answer(scene, *rendered[i], lines[i], check.impl_precision);
+  switch (check.impl_precision) {
+    case protocol::Precision::float32:
+      check.impl_diagnosis = diagnose_in<float>(scene, rendered, lines);
+      break;
+    case protocol::Precision::float64:
+      check.impl_diagnosis = diagnose_in<double>(scene, rendered, lines);
+      break;
+    case protocol::Precision::long_double:
+      check.impl_diagnosis = diagnose_in<long double>(scene, rendered, lines);
+      break;
+  }
   return rendered.size();
 }
 

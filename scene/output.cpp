@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "oblique/properties/counterexample_report.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/scene/check.h"
 
@@ -95,12 +96,16 @@ std::string to_json(const SceneCheck& check) {
           {"findings", findings}};
     }
   }
-  const json out = {{"scene", check.scene},
-                    {"convention", std::string(convention_name(check.convention))},
-                    {"depth_buffer", buffer_name(check.depth_buffer)},
-                    {"max_depth", check.max_depth},
-                    {"truncated", check.truncated},
-                    {"surfaces", surfaces}};
+  const json out = {
+      {"scene", check.scene},
+      {"convention", std::string(convention_name(check.convention))},
+      {"depth_buffer", buffer_name(check.depth_buffer)},
+      {"max_depth", check.max_depth},
+      {"truncated", check.truncated},
+      {"surfaces", surfaces},
+      {"impl_diagnosis", check.impl_diagnosis.ran
+                             ? json::parse(properties::diagnosis_json(check.impl_diagnosis))
+                             : json(nullptr)}};
   return out.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
@@ -221,6 +226,8 @@ std::string to_text(const SceneCheck& check) {
             << "\n      bound: " << printable(properties::bound_text(f)) << "\n";
       }
     }
+    if (check.impl_diagnosis.ran)
+      out << "  " << properties::likely_cause_line(check.impl_diagnosis) << "\n";
   }
   if (check.truncated)
     out << "\nmore than " << kMaxPasses << " passes: the rest were not looked at\n";

@@ -63,6 +63,10 @@ void set_result(Counterexample& ce, const Matrix4<T>& result);
 template <class T>
 void set_views(Counterexample& ce, const Problem<T>& problem, const Matrix4<T>* answer);
 
+/// A diagnosis as the report's JSON has it ("diagnosis"): its causes by name, the counts and the
+/// evidence, as JSON text (for other writers: `oblique check --impl --json`).
+std::string diagnosis_json(const Diagnosis& diagnosis);
+
 /// Where the report goes and how it is replayed.
 struct ReportContext {
   std::string directory;   ///< reports folder

@@ -11,6 +11,7 @@
 
 #include "oblique/expected.h"
 #include "oblique/oblique.h"
+#include "oblique/properties/diagnosis.h"
 #include "oblique/properties/judge.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/scene/scene.h"
@@ -77,6 +78,9 @@ struct SceneCheck {
   /// `--impl --precision`: the scalar type of the requests sent and of the bounds the answers
   /// are judged with (as `oblique verify --precision`).
   protocol::Precision impl_precision = protocol::Precision::float64;
+  /// `--impl`: which known mistake explains its answers (all the passes' cases; ran only when
+  /// one is wrong).
+  properties::Diagnosis impl_diagnosis;
   bool passes() const;
 };
 
