@@ -71,6 +71,19 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
                            tolerance::kScaleRoundings * tolerance::underflow_unit<T>();
   const Rational d = exact::abs(e.d);
   if (d <= d_error) return x;  // the guard and the scale are not decided in T
+  if (e.choices.closed_form && !e.perspective_shape) {
+    // The closed form on another shape is not M^-1 Q': a corner sign read from a C' component
+    // within its solve's error (gamma(12) (|S^-T| |S^T| |C'|)_i) may come out either way in T,
+    // and C . Q with it, by far more than d's error.
+    const exact::Vec spread = exact::mul(exact::transpose(abs_inv),
+                                         exact::mul(exact::transpose(abs_s), exact::abs(e.c_clip)));
+    const Rational solve_gamma = tolerance::gamma(3 * 4, p);
+    for (int i = 0; i < 3; ++i) {
+      if (e.sign_of_computed[i] &&
+          exact::abs(e.c_clip[i]) <= solve_gamma * spread[i] + tolerance::underflow_unit<T>())
+        return x;
+    }
+  }
   if (e.status == Status::plane_misses_view_volume) {
     x.decided = true;
     return x;

@@ -243,5 +243,7 @@ Implementation<T> mistaken_implementation(const std::vector<Mistake>& mistakes) 
 
 template Implementation<float> mistaken_implementation<float>(const std::vector<Mistake>&);
 template Implementation<double> mistaken_implementation<double>(const std::vector<Mistake>&);
+template Implementation<long double> mistaken_implementation<long double>(
+    const std::vector<Mistake>&);
 
 }  // namespace oblique::properties

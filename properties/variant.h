@@ -5,6 +5,7 @@
 // Internal to oblique::properties.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -68,7 +69,9 @@ template <class S>
 struct Evaluation {
   Status status = Status::ok;
   bool unchanged = false, non_finite = false, solve_failed = false;
-  bool nan_sign_of_computed = false;  ///< a NaN sign of a component of C' (computed), not of C
+  bool nan_sign_of_computed = false;       ///< a NaN sign of a component of C' (computed), not of C
+  std::array<bool, 3> sign_of_computed{};  ///< the corner's x, y, z signs read from C', not C
+  bool perspective_shape = false;          ///< M has the perspective shape
   Choices choices;
   S a{}, d{};
   Vec<S> c{}, c_clip{}, q_clip{}, q{},
@@ -159,6 +162,17 @@ Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Conven
     for (int j = 0; j < 4; ++j) m[i][j] = convert<S>(matrix(i, j));
     e.c[i] = convert<S>(plane(i));
   }
+  if constexpr (std::is_floating_point_v<S>) {
+    // a C does not change when C is scaled: a very tiny or huge C is brought near magnitude 1
+    // by a power of two (exact) first, as careful code does, so that C . Q neither under- nor
+    // overflows (an ordinary C is left alone: scaling it down would lose a subnormal's bits).
+    S largest = 0;
+    for (const S& v : e.c) largest = std::max(largest, std::abs(v));
+    const int exponent = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) : 0;
+    if (std::abs(exponent) > std::numeric_limits<S>::max_exponent / 4) {
+      for (S& v : e.c) v = std::ldexp(v, -exponent);
+    }
+  }
   const Vec<S>& c = e.c;
   const bool perspective = has_perspective_shape(matrix);
   Choices& ch = e.choices;
@@ -197,8 +211,11 @@ Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Conven
   auto read = [&](SignFrom from, int i) {
     const bool camera =
         from == SignFrom::camera || (from == SignFrom::camera_on_perspective_shape && perspective);
+    e.sign_of_computed[i] = !camera;
     return camera ? sign(c[i], false) : sign(e.c_clip[i], true);
   };
+  e.sign_of_computed[2] = true;
+  e.perspective_shape = perspective;
   ch.sx = read(knobs.x, 0);
   ch.sy = read(knobs.y, 1);
   const int sz = sign(e.c_clip[2], true);

@@ -1,6 +1,7 @@
 # Runs the property suite against a deliberately broken implementation and passes only when the
-# suite fails it and writes a readable counterexample report naming a violated property.
-# cmake -DBINARY=... -DIMPL=... -DREPORTS=... -P expect_caught.cmake
+# suite fails it and writes a readable counterexample report naming a violated property and, with
+# -DCAUSE=name, a Likely cause naming that mistake.
+# cmake -DBINARY=... -DIMPL=... [-DCAUSE=...] -DREPORTS=... -P expect_caught.cmake
 file(REMOVE_RECURSE "${REPORTS}")
 set(ENV{OBLIQUE_IMPL} "${IMPL}")
 set(ENV{OBLIQUE_REPORT_DIR} "${REPORTS}")
@@ -20,6 +21,14 @@ if(NOT text MATCHES "## Replay")
 endif()
 if(NOT text MATCHES "# Counterexample: ([a-z_]+)")
   message(FATAL_ERROR "the report ${first} names no property:\n${text}")
+endif()
+if(CAUSE)
+  foreach(report ${reports})
+    file(READ "${report}" text)
+    if(NOT text MATCHES "## Likely cause\n\n\\*\\*`${CAUSE}`")
+      message(FATAL_ERROR "the report ${report} does not name the likely cause ${CAUSE}:\n${text}")
+    endif()
+  endforeach()
 endif()
 list(LENGTH reports count)
 message(STATUS "${IMPL}: caught, ${count} report(s), first: ${CMAKE_MATCH_1} in ${first}")

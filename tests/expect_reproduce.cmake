@@ -2,7 +2,7 @@
 # pasted without --gtest_filter, fails the one test it names with the same counterexample and
 # skips every other test (none fails with "no implementation ran").
 # cmake -DBINARY=... -DREPORTS=... -P expect_reproduce.cmake
-set(ENV{OBLIQUE_IMPL} mutant_signs_from_c)
+set(ENV{OBLIQUE_IMPL} mistake_camera_space_signs)
 set(ENV{OBLIQUE_REPORT_DIR} "${REPORTS}")
 execute_process(COMMAND "${BINARY}" --gtest_filter=PropertiesDouble.farPlanePassesThroughTheFarCorner
                 OUTPUT_VARIABLE output ERROR_VARIABLE output)

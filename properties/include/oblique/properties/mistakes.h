@@ -63,5 +63,7 @@ Implementation<T> mistaken_implementation(const std::vector<Mistake>& mistakes);
 
 extern template Implementation<float> mistaken_implementation<float>(const std::vector<Mistake>&);
 extern template Implementation<double> mistaken_implementation<double>(const std::vector<Mistake>&);
+extern template Implementation<long double> mistaken_implementation<long double>(
+    const std::vector<Mistake>&);
 
 }  // namespace oblique::properties

@@ -100,7 +100,11 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
   tally().diagnose_failure = nullptr;
   if (outcome && checks) {
     // The likely cause: the answer, and the implementation asked on the diagnosis's panel.
-    tally().diagnose_failure = [c, impl, out = *outcome, judged = *checks]() {
+    // The panel's answers are judged on every property (a run may judge one), under the run's
+    // status contract.
+    Checks every_property;
+    every_property.statuses = checks->statuses;
+    tally().diagnose_failure = [c, impl, out = *outcome, judged = every_property]() {
       auto observe = [&impl, &judged](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
                                       const Outcome<T>& answer) {
         const Judgement j = judge(Problem<T>(m, p, k), answer, judged);
