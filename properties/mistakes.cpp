@@ -64,6 +64,15 @@ constexpr MistakeEntry kCatalogue[] = {
      "Q'_z = z_far when sgn C'_z > 0 and z_near when sgn C'_z < 0, with (z_near, z_far) = "
      "(-1, 1) for [-1, 1], (0, 1) for [0, 1] and (1, 0) for reversed Z.",
      "reversed-Z matrices, and wherever C'_z < 0"},
+    {Mistake::wrong_face, "wrong_face",
+     "the far corner taken on the near depth face",
+     "The code takes Q'_z on the face opposite sgn C'_z, the near face: reversed-Z code "
+     "(far face z = 0) run on a forward-Z matrix, or the other way round, or a sign slip in "
+     "Q'_z = -sgn C'_z. C is scaled by its value at a nearer corner, the far plane then cuts "
+     "through the view volume, or C . Q <= 0 and the input is refused.",
+     "Q'_z = z_far when sgn C'_z > 0 and z_near when sgn C'_z < 0, with (z_near, z_far) = "
+     "(-1, 1) for [-1, 1], (0, 1) for [0, 1] and (1, 0) for reversed Z.",
+     "every matrix (wherever C'_z != 0)"},
     {Mistake::left_handed_qw, "left_handed_qw",
      "a left-handed Q_w formula on a right-handed matrix",
      "The perspective closed form has Q_z = 1 / M43 and Q_w = (z - M33 Q_z) / M34: "
@@ -170,6 +179,7 @@ Knobs knobs_of(Mistake mistake) {
     case Mistake::ignores_m11_sign: k.x = SignFrom::camera_on_perspective_shape; break;
     case Mistake::ignores_m22_sign: k.y = SignFrom::camera_on_perspective_shape; break;
     case Mistake::far_face_fixed: k.face_fixed = true; break;
+    case Mistake::wrong_face: k.face_opposite = true; break;
     case Mistake::left_handed_qw:
       k.closed_form = ClosedForm::perspective_shape;
       k.left_handed_qw = true;
@@ -203,6 +213,7 @@ Knobs knobs_of(const std::vector<Mistake>& mistakes) {
     if (one.x != none.x && k.x != SignFrom::camera) k.x = one.x;
     if (one.y != none.y && k.y != SignFrom::camera) k.y = one.y;
     k.face_fixed = k.face_fixed || one.face_fixed;
+    k.face_opposite = k.face_opposite || one.face_opposite;
     k.drops_off_axis = k.drops_off_axis || one.drops_off_axis;
     k.drops_shift = k.drops_shift || one.drops_shift;
     k.closed_form = std::max(k.closed_form, one.closed_form);

@@ -28,7 +28,7 @@ enum class SignFrom { clip, camera, camera_on_perspective_shape };
 struct Knobs {
   bool camera_guard = true, corner_guard = true, skips_head_on = false, sign_by_division = false;
   SignFrom x = SignFrom::clip, y = SignFrom::clip;
-  bool face_fixed = false, drops_off_axis = false, drops_shift = false;
+  bool face_fixed = false, face_opposite = false, drops_off_axis = false, drops_shift = false;
   ClosedForm closed_form = ClosedForm::never;
   bool assumes_m43_minus_one = false, left_handed_qw = false;
   bool zero_one_on_gl = false, gl_on_zero_one = false, note_flip = false;
@@ -220,9 +220,10 @@ Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Conven
   ch.sy = read(knobs.y, 1);
   const int sz = sign(e.c_clip[2], true);
   const DepthRange range = clip_depth_range(ch.formula);
+  const int face = knobs.face_opposite ? -sz : sz;
   ch.z_twice = knobs.face_fixed ? 2
-               : sz > 0         ? 2 * range.z_high
-               : sz < 0         ? 2 * range.z_low
+               : face > 0       ? 2 * range.z_high
+               : face < 0       ? 2 * range.z_low
                                 : range.z_low + range.z_high;
   if (ch.nan_sign) {  // x / |x| at 0: a NaN in Q, C . Q and every entry of row 3
     e.non_finite = true;

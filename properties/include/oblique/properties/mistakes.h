@@ -20,6 +20,7 @@ enum class Mistake {
   ignores_m11_sign,        ///< the perspective fast path's x sign from C (mirror cameras)
   ignores_m22_sign,        ///< the perspective fast path's y sign from C (y-flipped cameras)
   far_face_fixed,          ///< Q'_z = 1 whatever the convention and sgn(C'_z) (Eq. 7)
+  wrong_face,              ///< Q'_z on the face opposite sgn(C'_z): the near face
   left_handed_qw,          ///< Q_w = (z - M33) / M34 on a right-handed matrix
   drops_off_axis,          ///< M13, M23 left out of C' and Q
   drops_shift,             ///< M14, M24 (stereo, lens shift) left out of C' and Q
@@ -33,11 +34,22 @@ enum class Mistake {
 };
 
 inline constexpr Mistake all_mistakes[] = {
-    Mistake::zero_one_formula_on_gl, Mistake::gl_formula_on_zero_one, Mistake::camera_space_signs,
-    Mistake::ignores_m11_sign,       Mistake::ignores_m22_sign,       Mistake::far_face_fixed,
-    Mistake::left_handed_qw,         Mistake::drops_off_axis,         Mistake::drops_shift,
-    Mistake::divides_by_m43,         Mistake::perspective_rows,       Mistake::skips_head_on,
-    Mistake::no_camera_guard,        Mistake::no_corner_guard,        Mistake::sign_by_division,
+    Mistake::zero_one_formula_on_gl,
+    Mistake::gl_formula_on_zero_one,
+    Mistake::camera_space_signs,
+    Mistake::ignores_m11_sign,
+    Mistake::ignores_m22_sign,
+    Mistake::far_face_fixed,
+    Mistake::wrong_face,
+    Mistake::left_handed_qw,
+    Mistake::drops_off_axis,
+    Mistake::drops_shift,
+    Mistake::divides_by_m43,
+    Mistake::perspective_rows,
+    Mistake::skips_head_on,
+    Mistake::no_camera_guard,
+    Mistake::no_corner_guard,
+    Mistake::sign_by_division,
     Mistake::note_flip_as_printed,
 };
 
