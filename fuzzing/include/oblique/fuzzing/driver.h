@@ -278,12 +278,13 @@ void explain(const properties::Problem<T>& problem, const properties::Outcome<T>
                allowed_words(problem, std::string(protocol::scalar_name<T>()).c_str()).c_str(),
                format_number(problem.skeel_condition()).c_str(),
                format_number(problem.kappa().get_d()).c_str());
-  if (outcome.status != Status::ok || problem.exact_status() != Status::ok) return;
-  for (int i = 0; i < 4; ++i) {
+  if (outcome.status != Status::ok) return;
+  for (int i = 0; i < 4; ++i) {  // also where the input has no answer: what was answered
     std::string row;
     for (int j = 0; j < 4; ++j) row += " " + format_number(outcome.projection(i, j));
     std::fprintf(out, "M' row %d:%s\n", i + 1, row.c_str());
   }
+  if (problem.exact_status() != Status::ok) return;
   std::string row;
   for (const auto& v : problem.exact_row3()) row += " " + format_number(v.get_d());
   std::fprintf(out, "exact row 3:%s\n", row.c_str());
