@@ -94,17 +94,22 @@ properties::Diagnosis Shrinker<T>::diagnose(const VerifyCase<T>& shrunk, const F
   const std::optional<properties::Observation<T>> seen = session_.observe(shrunk);
   if (!seen || !seen->wrong) return {};
   const auto& families = session_.draws().contract().families;
-  const properties::Probe<T> probe = [this, &families](const Matrix4<T>& m, const Vector4<T>& c,
-                                                       Convention convention,
-                                                       generators::Family family) {
-    if (std::find(families.begin(), families.end(), family) == families.end())
+  // A probe the implementation does not answer (it crashed, hung or broke the protocol) ends the
+  // probing: each further one would cost a restart or the whole --timeout.
+  bool answering = true;
+  const properties::Probe<T> probe = [this, &families, &answering](
+                                         const Matrix4<T>& m, const Vector4<T>& c,
+                                         Convention convention, generators::Family family) {
+    if (!answering || std::find(families.begin(), families.end(), family) == families.end())
       return std::optional<properties::Observation<T>>();
     VerifyCase<T> v;
     v.c.matrix = m;
     v.c.plane = c;
     v.c.convention = convention;
     v.c.family = family;
-    return session_.observe(v);
+    std::optional<properties::Observation<T>> seen = session_.observe(v);
+    if (!seen && (!session_.child().running() || !session_.issue().what.empty())) answering = false;
+    return seen;
   };
   return properties::diagnose<T>({*seen}, probe);
 }
