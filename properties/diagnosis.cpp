@@ -53,22 +53,18 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
     x.kind = Exact::Kind::matrix;
     return x;
   }
-  // The error of C . Q as tolerance.h bounds it, for this variant's corner: kappa's numerator
-  // |C|.|Q| + |C|^T |S^-1| |S| |Q| (the solve; the closed form: |C|.|Q| as it sums) +
-  // |C'|^T |S| |S^-1| |Q'|, S the matrix solved with.
+  // The error of C . Q as tolerance.h bounds it, for this variant's corner and the matrix S it
+  // solves with; a closed form adds the magnitudes it sums (|C| . |Q| as it computes Q).
   const std::optional<exact::Mat> inverse = exact::inverse(e.solved);
   if (!inverse) return x;
   const exact::Mat abs_s = exact::abs(e.solved), abs_inv = exact::abs(*inverse);
-  const exact::Vec abs_c = exact::abs(e.c), abs_q = exact::abs(e.q);
+  const exact::Vec abs_c = exact::abs(e.c);
   const Rational numerator =
-      exact::dot(abs_c, abs_q) +
-      (e.choices.closed_form ? exact::dot(abs_c, e.q_magnitude)
-                             : exact::dot(abs_c, exact::mul(abs_inv, exact::mul(abs_s, abs_q)))) +
-      exact::dot(exact::abs(e.c_clip),
-                 exact::mul(abs_s, exact::mul(abs_inv, exact::abs(e.q_clip))));
+      tolerance::corner_dot_numerator(abs_c, exact::abs(e.q), exact::abs(e.c_clip),
+                                      exact::abs(e.q_clip), abs_s, abs_inv) +
+      (e.choices.closed_form ? exact::dot(abs_c, e.q_magnitude) : Rational(0));
   const int p = tolerance::precision_bits<T>();
-  const Rational d_error = tolerance::gamma(tolerance::kScaleRoundings, p) * numerator +
-                           tolerance::kScaleRoundings * tolerance::underflow_unit<T>();
+  const Rational d_error = tolerance::corner_dot_error<T>(numerator);
   const Rational d = exact::abs(e.d);
   if (d <= d_error) return x;  // the guard and the scale are not decided in T
   if (e.choices.closed_form && !e.perspective_shape) {
@@ -77,7 +73,7 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
     // and C . Q with it, by far more than d's error.
     const exact::Vec spread = exact::mul(exact::transpose(abs_inv),
                                          exact::mul(exact::transpose(abs_s), exact::abs(e.c_clip)));
-    const Rational solve_gamma = tolerance::gamma(3 * 4, p);
+    const Rational solve_gamma = tolerance::gamma(tolerance::kSolveRoundings, p);
     for (int i = 0; i < 3; ++i) {
       if (e.sign_of_computed[i] &&
           exact::abs(e.c_clip[i]) <= solve_gamma * spread[i] + tolerance::underflow_unit<T>())
@@ -88,8 +84,7 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
     x.decided = true;
     return x;
   }
-  const Rational eps = d_error / d, scale = eps / (1 - eps);
-  const Rational entry_gamma = tolerance::gamma(tolerance::kEntryRoundings, p);
+  const Rational scale = *tolerance::scale_error(d_error, d);  // d > d_error: eps < 1
   const Rational largest = exact::to_rational(std::numeric_limits<T>::max()) / 256;
   for (int row : {2, 3}) {
     if (row == 3 && !e.row4_changed) continue;
@@ -97,9 +92,8 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
     for (int i = 0; i < 4; ++i) {
       const Rational ac = r * e.a * e.c[i];
       x.values[row][i] = ac + t * mx[3][i];
-      x.bounds[row][i] = entry_gamma * (exact::abs(ac) + exact::abs(t * mx[3][i])) +
-                         exact::abs(ac) * scale +
-                         tolerance::kEntryRoundings * tolerance::underflow_unit<T>();
+      x.bounds[row][i] =
+          tolerance::row3_entry_bound<T>(exact::abs(ac), exact::abs(t * mx[3][i]), scale);
       if (exact::abs(x.values[row][i]) >= largest) return x;  // near overflow: out_of_range too
     }
   }
@@ -343,6 +337,14 @@ template Diagnosis diagnose<long double>(const std::vector<Observation<long doub
 std::string cause_name(const std::vector<Mistake>& cause) {
   std::string out;
   for (Mistake m : cause) out += (out.empty() ? "" : " + ") + std::string(mistake_entry(m).name);
+  return out;
+}
+
+std::string cause_names(const Diagnosis& d) {
+  if (!d.ran) return "";
+  if (d.causes.empty()) return "no known mistake";
+  std::string out;
+  for (const auto& cause : d.causes) out += (out.empty() ? "" : " or ") + cause_name(cause);
   return out;
 }
 

@@ -88,12 +88,7 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
   }
   last_report_ = path;
   last_kind_ = std::string(check_name(f.check));
-  last_cause_.clear();
-  if (diagnosis.ran) {
-    for (const auto& cause : diagnosis.causes)
-      last_cause_ += (last_cause_.empty() ? "" : " or ") + properties::cause_name(cause);
-    if (last_cause_.empty()) last_cause_ = "no known mistake";
-  }
+  last_cause_ = properties::cause_names(diagnosis);
   const std::string json_path = path.size() > 3 && path.compare(path.size() - 3, 3, ".md") == 0
                                     ? path.substr(0, path.size() - 3) + ".json"
                                     : "";

@@ -91,8 +91,13 @@ properties::Diagnosis Shrinker<T>::diagnose(const VerifyCase<T>& shrunk, const F
   using properties::Check;
   const Check check = finding.finding.check;
   if (check == Check::crash || check == Check::timeout || check == Check::protocol) return {};
-  const std::optional<properties::Observation<T>> seen = session_.observe(shrunk);
-  if (!seen || !seen->wrong) return {};
+  // The shrunk case's answer as judged: a matrix, or (a status finding) the refusal.
+  const properties::Observation<T> seen{shrunk.c.matrix,
+                                        shrunk.c.plane,
+                                        shrunk.c.convention,
+                                        finding.result ? Status::ok : finding.finding.answered,
+                                        finding.result ? *finding.result : shrunk.c.matrix,
+                                        true};
   const auto& families = session_.draws().contract().families;
   // A probe the implementation does not answer (it crashed, hung or broke the protocol) ends the
   // probing: each further one would cost a restart or the whole --timeout.
@@ -111,7 +116,7 @@ properties::Diagnosis Shrinker<T>::diagnose(const VerifyCase<T>& shrunk, const F
     if (!seen && (!session_.child().running() || !session_.issue().what.empty())) answering = false;
     return seen;
   };
-  return properties::diagnose<T>({*seen}, probe);
+  return properties::diagnose<T>({seen}, probe);
 }
 
 template <class T>

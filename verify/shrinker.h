@@ -34,8 +34,8 @@ class Shrinker {
                   long done, ChildProcess::Outcome outcome);
 
  private:
-  /// Which known mistake explains the shrunk case's answer: the case asked again, and the
-  /// diagnosis's panel of cases (those the contract promises) asked too.
+  /// Which known mistake explains the shrunk case's answer, with the diagnosis's panel of cases
+  /// (those the contract promises) asked too.
   properties::Diagnosis diagnose(const VerifyCase<T>& shrunk, const Found<T>& finding);
 
   Session<T>& session_;

@@ -92,6 +92,8 @@ extern template Diagnosis diagnose<long double>(const std::vector<Observation<lo
 
 /// "camera_space_signs" or "no_camera_guard + sign_by_division".
 std::string cause_name(const std::vector<Mistake>& cause);
+/// The causes joined by " or ", "no known mistake", or "" where nothing was diagnosed.
+std::string cause_names(const Diagnosis& diagnosis);
 /// One line for a console: "likely cause: NAME (title); fix: ..." or "likely cause: no known
 /// mistake reproduces these answers".
 std::string likely_cause_line(const Diagnosis& diagnosis);

@@ -92,11 +92,7 @@ class Problem {
   /// to 5 cannot be judged at the corners (acceptable_statuses() then allows every verdict).
   std::optional<exact::Rational> scale_error() const {
     if (!(d_ > 0)) return std::nullopt;
-    const exact::Rational eps =
-        tolerance::gamma(tolerance::kScaleRoundings, tolerance::precision_bits<T>()) * kappa() +
-        tolerance::kScaleRoundings * tolerance::underflow_unit<T>() / d_;
-    if (eps >= 1) return std::nullopt;
-    return exact::Rational(eps / (1 - eps));
+    return tolerance::scale_error(tolerance::corner_dot_error<T>(kappa_numerator_), d_);
   }
 
   /// kappa, the condition number of C . Q (tolerance.h); meaningful when C . Q > 0.
@@ -130,9 +126,7 @@ class Problem {
     const int p = tolerance::precision_bits<T>();
     if (skeel_condition_ * 256 * std::ldexp(1.0, 1 - p) >= 1) add(Status::singular_projection);
     if (!camera_behind_) return out;
-    const exact::Rational d_error =
-        tolerance::gamma(tolerance::kScaleRoundings, p) * kappa_numerator_ +
-        tolerance::kScaleRoundings * tolerance::underflow_unit<T>();
+    const exact::Rational d_error = tolerance::corner_dot_error<T>(kappa_numerator_);
     const bool d_unresolved = exact::abs(d_) <= d_error;
     if (d_unresolved) {
       add(Status::plane_misses_view_volume);
@@ -207,14 +201,10 @@ class Problem {
     if (!scale) return std::nullopt;
     const DepthRange range = clip_depth_range(convention_);
     const exact::Rational a = exact::Rational(range.z_high - range.z_low) / d_;
-    const exact::Rational entry_gamma =
-        tolerance::gamma(tolerance::kEntryRoundings, tolerance::precision_bits<T>());
     exact::Vec bounds;
-    for (int i = 0; i < 4; ++i) {
-      const exact::Rational ac = exact::abs(a * cx_[i]);
-      bounds[i] = entry_gamma * (ac + exact::abs(mx_[3][i])) + ac * *scale +
-                  tolerance::kEntryRoundings * tolerance::underflow_unit<T>();
-    }
+    for (int i = 0; i < 4; ++i)
+      bounds[i] =
+          tolerance::row3_entry_bound<T>(exact::abs(a * cx_[i]), exact::abs(mx_[3][i]), *scale);
     return bounds;
   }
 
@@ -579,10 +569,8 @@ Problem<T>::Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
     if (clip_corners_[i][2] == far_z && corners_[i][3] != 0) infinite_ = false;
   }
   const exact::Mat abs_m = exact::abs(mx_), abs_inv = exact::abs(inverse_);
-  const exact::Vec abs_c = exact::abs(cx_), abs_q = exact::abs(q_);
-  kappa_numerator_ =
-      exact::dot(abs_c, abs_q) + exact::dot(abs_c, exact::mul(abs_inv, exact::mul(abs_m, abs_q))) +
-      exact::dot(exact::abs(c_clip_), exact::mul(abs_m, exact::mul(abs_inv, exact::abs(q_clip_))));
+  kappa_numerator_ = tolerance::corner_dot_numerator(
+      exact::abs(cx_), exact::abs(q_), exact::abs(c_clip_), exact::abs(q_clip_), abs_m, abs_inv);
   camera_behind_ = cx_[3] < 0;
   // Skeel's condition number || |M^-1| |M| ||_inf, for the singularity gray zone.
   const exact::Vec ones{1, 1, 1, 1};

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 
 #include "oblique/properties/exact.h"
 
@@ -31,8 +32,11 @@ constexpr int precision_bits() noexcept {
   return std::numeric_limits<T>::digits;
 }
 
-/// Roundings that reach the scale factor a: solve for Q (3n = 12, n = 4) and the dot product (4).
-constexpr int kScaleRoundings = 16;
+/// Roundings of a 4 x 4 solve by elimination: backward error gamma(3n), n = 4.
+constexpr int kSolveRoundings = 12;
+
+/// Roundings that reach the scale factor a: solve for Q and the dot product (4).
+constexpr int kScaleRoundings = kSolveRoundings + 4;
 
 /// Roundings in one entry of M'_3 given a: the product a C_i, the difference with M_4,
 /// and one more for an implementation that forms k C_i / d instead of (k / d) C_i.
@@ -69,6 +73,44 @@ inline exact::Rational unit_roundoff(int precision_bits) {
 inline exact::Rational gamma(int n, int precision_bits) {
   const exact::Rational nu = n * unit_roundoff(precision_bits);
   return nu / (1 - nu);
+}
+
+/// kappa's numerator (above) for a corner Q' = S Q of a matrix S: |C|.|Q| + |C|^T |S^-1| |S| |Q| +
+/// |C'|^T |S| |S^-1| |Q'|, from the magnitudes |C|, |Q|, |C'|, |Q'|, |S| and |S^-1|.
+inline exact::Rational corner_dot_numerator(const exact::Vec& abs_c, const exact::Vec& abs_q,
+                                            const exact::Vec& abs_c_clip,
+                                            const exact::Vec& abs_q_clip, const exact::Mat& abs_s,
+                                            const exact::Mat& abs_inverse) {
+  return exact::dot(abs_c, abs_q) +
+         exact::dot(abs_c, exact::mul(abs_inverse, exact::mul(abs_s, abs_q))) +
+         exact::dot(abs_c_clip, exact::mul(abs_s, exact::mul(abs_inverse, abs_q_clip)));
+}
+
+/// The bound on the error of C . Q computed in T: gamma(kScaleRoundings) times kappa's numerator,
+/// plus kScaleRoundings eta for underflow.
+template <class T>
+exact::Rational corner_dot_error(const exact::Rational& numerator) {
+  return gamma(kScaleRoundings, precision_bits<T>()) * numerator +
+         kScaleRoundings * underflow_unit<T>();
+}
+
+/// The bound on the relative error of a = k / (C . Q) from that of C . Q, eps = error / |C . Q|:
+/// eps / (1 - eps) (not eps: the first-order bound fails as eps -> 1); none where eps >= 1.
+inline std::optional<exact::Rational> scale_error(const exact::Rational& corner_dot_error,
+                                                  const exact::Rational& corner_dot) {
+  if (corner_dot == 0) return std::nullopt;
+  const exact::Rational eps = corner_dot_error / exact::abs(corner_dot);
+  if (eps >= 1) return std::nullopt;
+  return exact::Rational(eps / (1 - eps));
+}
+
+/// The bound on one entry of M'_3 = s (a C_i - t M4_i) computed in T given a's relative error
+/// `scale`: gamma(kEntryRoundings) (|a C_i| + |t M4_i|) + |a C_i| scale + kEntryRoundings eta.
+template <class T>
+exact::Rational row3_entry_bound(const exact::Rational& abs_ac, const exact::Rational& abs_m4,
+                                 const exact::Rational& scale) {
+  return gamma(kEntryRoundings, precision_bits<T>()) * (abs_ac + abs_m4) + abs_ac * scale +
+         kEntryRoundings * underflow_unit<T>();
 }
 
 }  // namespace oblique::tolerance
