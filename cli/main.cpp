@@ -87,7 +87,13 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;  // --help exits 0; every usage error exits 2
   }
   // What a subcommand printed must have reached standard output (a full disk, a closed pipe).
-  if (exit_code != 2 && !std::cout.flush()) {
+  // The stream may have failed long before (errno since overwritten): its state is cleared and
+  // what is left written again, so the reason printed is this write's.
+  const bool failed_before = !std::cout;
+  std::cout.clear();
+  errno = 0;
+  const bool flushed = static_cast<bool>(std::cout.flush());
+  if (exit_code != 2 && (failed_before || !flushed)) {
     std::cerr << "oblique: cannot write to standard output"
               << (errno ? std::string(": ") + std::strerror(errno) : std::string()) << "\n";
     return 2;

@@ -192,6 +192,7 @@ std::vector<PanelCase<T>> panel(Convention convention) {
   const T planes[][4] = {{0.25, 0.5, -1, -4},   {-0.25, 0.5, -1, -4}, {0.25, -0.5, -1, -4},
                          {-0.25, -0.5, -1, -4}, {0, 0, -1, -4},       {0.25, 0.5, -1, 0},
                          {0.25, 0.5, -1, 2},    {0, 0, -1, -100},     {1, 1, 0.125, -1}};
+  static_assert(std::size(shapes) * std::size(planes) == kPanelCasesPerConvention);
   std::vector<PanelCase<T>> out;
   for (const Shape& shape : shapes) {
     for (const auto& c : planes) {

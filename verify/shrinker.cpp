@@ -102,6 +102,10 @@ properties::Diagnosis Shrinker<T>::diagnose(const VerifyCase<T>& shrunk, const F
   // A probe the implementation does not answer (it crashed, hung or broke the protocol) ends the
   // probing: each further one would cost a restart or the whole --timeout.
   bool answering = true;
+  // Said (and flushed) first: a slow implementation takes a while over the panel.
+  (out_ << "oblique verify: diagnosing the likely cause (asking the implementation up to "
+        << properties::kPanelCasesPerConvention << " more cases)\n")
+      .flush();
   const properties::Probe<T> probe = [this, &families, &answering](
                                          const Matrix4<T>& m, const Vector4<T>& c,
                                          Convention convention, generators::Family family) {

@@ -78,6 +78,9 @@ struct Diagnosis {
   std::vector<ChoiceDifference> differences;  ///< what the cause decided otherwise there
 };
 
+/// How many cases the diagnosis asks a probe per convention seen (its fixed panel).
+inline constexpr int kPanelCasesPerConvention = 99;
+
 /// The diagnosis of the answers `seen` (at least one wrong), with more cases asked through
 /// `probe` when given (in the conventions seen).
 template <class T>
