@@ -43,11 +43,6 @@ double far_face(Convention c) {
   return c == Convention::reversed_z ? 0 : clip_depth_range(c).z_high;
 }
 
-/// The plane in the space that `to_camera` maps world points into: planes go by M^-T.
-Vector4<double> plane_in(const Matrix4<double>& to_camera, const Vector4<double>& world_plane) {
-  return to_camera.inverse().transpose() * world_plane;
-}
-
 /// Whether the main camera's view volume lies entirely on the camera's side of the plane (it
 /// does not see the surface at all). Corners at infinity count by direction.
 bool out_of_view(const Matrix4<double>& projection, const Matrix4<double>& view,
@@ -195,7 +190,7 @@ class Checker {
       s.kind = surface.kind;
       const Vector4<double> world_plane = surface.plane();
       switch (surface.kind) {
-        case SurfaceKind::mirror: s.view = parent.view * reflection(world_plane); break;
+        case SurfaceKind::mirror: s.view = mirror_view(parent.view, world_plane); break;
         case SurfaceKind::portal: s.view = parent.view * surface.portal_transform; break;
         case SurfaceKind::clip: s.view = parent.view; break;
       }
@@ -203,9 +198,9 @@ class Checker {
       // linked portal (this portal's plane turned around, carried through the portal).
       const Vector4<double> kept_plane =
           surface.kind == SurfaceKind::portal
-              ? Vector4<double>(surface.portal_transform.transpose() * -world_plane)
+              ? portal_kept_plane(surface.portal_transform, world_plane)
               : world_plane;
-      s.plane_in_camera = plane_in(s.view, kept_plane);
+      s.plane_in_camera = plane_in_camera(s.view, kept_plane);
       const ObliqueResult<double> result =
           apply<double>(scene_.camera.projection, s.plane_in_camera, scene_.convention);
       s.status = result.status;

@@ -40,20 +40,6 @@ std::optional<Matrix4<double>> look_at(const Vector3& eye, const Vector3& target
   return v;
 }
 
-Matrix4<double> reflection(const Vector4<double>& plane_in) {
-  // The reflection does not depend on the plane's scale: scaled (exactly) so |n|^2 is in range.
-  const double largest = plane_in.head<3>().cwiseAbs().maxCoeff();
-  const Vector4<double> plane = largest > 0 && std::isfinite(largest)
-                                    ? std::ldexp(1.0, -std::ilogb(largest)) * plane_in
-                                    : plane_in;
-  const Vector3 n = plane.head<3>();
-  const double nn = n.squaredNorm();
-  Matrix4<double> r = Matrix4<double>::Identity();
-  r.block<3, 3>(0, 0) -= 2 * n * n.transpose() / nn;
-  r.block<3, 1>(0, 3) = -2 * plane.w() * n / nn;
-  return r;
-}
-
 ParsedScene read_scene_file(const std::string& path) {
   const Expected<std::string> text = protocol::read_text_file(path, kMaxSceneBytes);
   if (!text) {

@@ -178,10 +178,4 @@ std::optional<Matrix4<double>> rectangle_frame(const Vector3& center, const Vect
   return f;
 }
 
-Matrix4<double> portal_map(const Matrix4<double>& frame, const Matrix4<double>& linked) {
-  // Through the portal, in front of the linked one is behind this one: x and z turn around.
-  const Matrix4<double> turn = Vector4<double>(-1, 1, -1, 1).asDiagonal();
-  return frame * turn * linked.inverse();
-}
-
 }  // namespace oblique::scene

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "oblique/report/report_files.h"
 #include "oblique/testing/harness.h"
 
 namespace oblique::testing {
@@ -118,6 +119,19 @@ void move_earlier_reports(const properties::ReportContext& context) {
 
 }  // namespace
 
+std::string write_consumer_report(const std::string& markdown,
+                                  const properties::ReportContext& context) {
+  const std::string stem = report::free_stem(
+      context.directory, context.stem.empty() ? context.test_id : context.stem, {".md"});
+  report::ReportFiles files(context.directory);
+  files.open(stem + ".md") << markdown << "\n## Replay\n\n```\n"
+                           << (context.replay_run.empty() ? context.binary : context.replay_run)
+                           << "\n```\n";
+  std::ostringstream log;
+  if (!files.commit(log)) return "(not written: " + log.str() + ")";
+  return (std::filesystem::path(context.directory) / (stem + ".md")).string();
+}
+
 bool left_out_by_reproduce(const std::string& id) {
   const auto& reproduce = rc::detail::configuration().reproduce;
   return !reproduce.empty() && reproduce.count(id) == 0;
@@ -161,6 +175,8 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
         where = "\n" + properties::likely_cause_line(*failure.diagnosis);
       }
       where += "\nreport: " + write_report(failure, report_context(property));
+    } else if (!t.consumer_failure.empty()) {
+      where = "\nreport: " + write_consumer_report(t.consumer_failure, report_context(property));
     }
     ADD_FAILURE() << name << message.str() << "\n" << statistics.str() << where;
     return;

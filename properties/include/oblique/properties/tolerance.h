@@ -56,6 +56,27 @@ constexpr int kInvisiblePlaneUlps = 1;
 /// the correctly rounded exact answer (exact::ulp_distance).
 constexpr double kAccurateUlps = 2;
 
+// The code around the matrix (consumers.h) computes in T from inputs in T; its bounds:
+//  - a solve with a projection (depth reconstruction, a view volume's corners): through an inverse
+//    computed by elimination (|X^ - M^-1| <= gamma(3n) |M^-1| |M| |X^|, Higham 14.3) and applied
+//    (n roundings), or an LU solve (backward error gamma(3n) |L||U|, the smaller); with the
+//    window depth's conversion to NDC (2: a product and a difference) and the divide by w (1):
+//    |v^ - v| <= gamma(kConsumerSolveRoundings) |M^-1| |M| |M^-1| |b| for v = M^-1 b, and
+//    p = v / v_w within (|dv_i| + |p_i| |dv_w|) / (|v_w| - |dv_w|) + u |p_i|; where |dv_w| >=
+//    |v_w| the point is not determined in T and is not judged.
+//  - a plane from two rows (culling): 1 rounding per coefficient; normalised, 7 more (three
+//    squares, two sums, the square root, the quotient): kPlaneRoundings.
+//  - a pass camera's view (mirror: V R, R = I - 2 n n^T / |n|^2 with the normal normalised first
+//    (8 roundings per component, two in a product) and 1 for the difference; portal: V F turn L^-1
+//    with L^-1 by elimination, 12): the larger, 17, plus a 4-term product: kPassViewRoundings.
+//  - the plane in a pass camera's space, W^-T P: an inverse by elimination (12) applied (4):
+//    gamma(kCameraPlaneRoundings) |W^-T| |W^T| |W^-T| |P|, and kPlaneRoundings more for a plane
+//    the implementation normalises.
+constexpr int kConsumerSolveRoundings = kSolveRoundings + 4 + 2;
+constexpr int kPlaneRoundings = 8;
+constexpr int kPassViewRoundings = 17 + 4;
+constexpr int kCameraPlaneRoundings = kSolveRoundings + 4;
+
 /// eta = half the smallest subnormal of T: with gradual underflow a product or quotient that
 /// lands in the subnormal range carries an absolute error up to eta besides its relative one
 /// (fl(x op y) = (x op y)(1 + delta) + eta', |eta'| <= eta; sums and differences are exact there).

@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
+#include "oblique/depth_reconstruction.h"
+#include "oblique/pass_camera.h"
 #include "oblique/plane.h"
 
 namespace oblique::scene {
@@ -23,8 +25,7 @@ using Vector3 = Eigen::Vector3d;
 
 enum class ProjectionType { perspective, infinite, frustum, orthographic, matrix };
 
-/// How the scene's depth buffer stores depth: bits lost are counted in its representable values.
-enum class DepthBuffer { fixed24, float32 };
+// (The depth buffer's format, DepthBuffer: the core's oblique/depth_reconstruction.h.)
 
 struct Camera {
   ProjectionType type = ProjectionType::perspective;
@@ -89,13 +90,8 @@ ParsedScene read_scene_file(const std::string& path);
 std::optional<Matrix4<double>> look_at(const Vector3& eye, const Vector3& target,
                                        const Vector3& up);
 
-/// The reflection through a world-space plane (n, d): p -> p - 2 (n . p + d) n / |n|^2.
-Matrix4<double> reflection(const Vector4<double>& plane);
-
-/// The world -> world map of a portal at `frame` linked to `linked` (frames: columns right, up,
-/// normal, center): a point in front of the linked portal goes to where it is seen behind this
-/// one.
-Matrix4<double> portal_map(const Matrix4<double>& frame, const Matrix4<double>& linked);
+// (A mirror's reflection, a portal's map and the plane in a pass camera's space: the core's
+// oblique/pass_camera.h.)
 
 /// The frame (columns right = up x normal, up, normal, center) of a rectangle; empty when up is
 /// parallel to the normal.

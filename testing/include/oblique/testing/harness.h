@@ -36,6 +36,8 @@ struct Tally {
   std::map<std::string, int> families, conventions, places, defects, implementations, applied;
   std::map<std::string, int> left_out;  ///< answers not judged, by properties::not_judged()
   std::optional<Counterexample> failure;
+  /// A consumer property's last failure (testing/consumers.cpp), as the Markdown of its report.
+  std::string consumer_failure;
   /// The last failure's diagnosis, run when its report is written (not at every shrinking step).
   std::function<properties::Diagnosis()> diagnose_failure;
   std::string property;  ///< the RapidCheck test id of the run
@@ -59,6 +61,12 @@ std::string run_id(const std::string& property);
 
 /// Whether RC_PARAMS="reproduce=..." is set and leaves out the run `id`.
 bool left_out_by_reproduce(const std::string& id);
+
+/// Writes a consumer property's report (`markdown`, with the replay command appended) as a new
+/// file in the context's directory (never over an earlier one); its path, or why it was not
+/// written.
+std::string write_consumer_report(const std::string& markdown,
+                                  const properties::ReportContext& context);
 
 /// Runs `testable` (RC_ macros and generators inside) as a RapidCheck property of the current test
 /// (RapidCheck id run_id(property)); fails the test with the report's path on a counterexample, and

@@ -1,0 +1,24 @@
+// The right code around the matrix (consumers.h) passes every consumer property, in float and
+// double, every family and convention.
+#include "consumers.h"
+
+namespace {
+
+template <class T>
+oblique::testing::Consumers<T> right() {
+  oblique::testing::Consumers<T> c;
+  c.name = "engine_consumers";
+  c.view_position = engine_consumers::view_position<T>;
+  c.linear_depth = engine_consumers::linear_depth<T>;
+  c.culling_planes = engine_consumers::culling_planes<T>;
+  c.camera_plane = engine_consumers::camera_plane<T>;
+  c.mirror_view = engine_consumers::mirror_view<T>;
+  c.portal_view = engine_consumers::portal_view<T>;
+  c.corners = engine_consumers::corners<T>;
+  return c;
+}
+
+}  // namespace
+
+OBLIQUE_CONSUMERS_TEST(RightConsumers, floatHasEveryProperty, right<float>(), oblique::Contract{})
+OBLIQUE_CONSUMERS_TEST(RightConsumers, doubleHasEveryProperty, right<double>(), oblique::Contract{})

@@ -1,0 +1,837 @@
+// The consumer properties (consumers.h), judged in exact rational arithmetic; compiled once for
+// float, double and long double.
+#include "oblique/properties/consumers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "oblique/kept_region.h"
+#include "oblique/pass_camera.h"
+#include "oblique/properties/exact.h"
+#include "oblique/properties/properties.h"
+#include "oblique/properties/tolerance.h"
+#include "oblique/protocol/numbers.h"
+
+namespace oblique::properties {
+
+namespace {
+
+using exact::Mat;
+using exact::Rational;
+using exact::Vec;
+
+constexpr const char* kNames[] = {"view_position",     "linear_depth",     "culling_keeps_visible",
+                                  "culling_near_is_c", "plane_on_surface", "plane_kept_side",
+                                  "mirror_view",       "portal_view",      "corners_contain_kept"};
+
+template <class T>
+Rational gamma_of(int roundings) {
+  return tolerance::gamma(roundings, tolerance::precision_bits<T>());
+}
+
+template <class T>
+Rational unit() {
+  return tolerance::unit_roundoff(tolerance::precision_bits<T>());
+}
+
+Mat mul(const Mat& a, const Mat& b) {
+  Mat out;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      Rational s = 0;
+      for (int k = 0; k < 4; ++k) s += a[i][k] * b[k][j];
+      out[i][j] = s;
+    }
+  }
+  return out;
+}
+
+Rational max_abs(const Vec& v) {
+  Rational m = 0;
+  for (const Rational& x : v) m = std::max(m, exact::abs(x));
+  return m;
+}
+
+Rational sum_abs(const Vec& v) {
+  Rational s = 0;
+  for (const Rational& x : v) s += exact::abs(x);
+  return s;
+}
+
+template <class T>
+Vec point_of(const Vector3<T>& p) {
+  return {exact::to_rational(p(0)), exact::to_rational(p(1)), exact::to_rational(p(2)),
+          Rational(1)};
+}
+
+/// A rational as the nearest double, shortest digits.
+std::string text(const Rational& x) {
+  return protocol::format_number(x.get_d());
+}
+
+template <class T>
+std::string text(const Vector3<T>& v) {
+  return "(" + protocol::format_number(v(0)) + ", " + protocol::format_number(v(1)) + ", " +
+         protocol::format_number(v(2)) + ")";
+}
+
+template <class T>
+std::string text(const Vector4<T>& v) {
+  return "(" + protocol::format_number(v(0)) + ", " + protocol::format_number(v(1)) + ", " +
+         protocol::format_number(v(2)) + ", " + protocol::format_number(v(3)) + ")";
+}
+
+std::string text(const Vec& v, int n = 4) {
+  std::string out = "(";
+  for (int i = 0; i < n; ++i) out += (i ? ", " : "") + text(v[static_cast<std::size_t>(i)]);
+  return out + ")";
+}
+
+/// |a| / b as a double ratio; 0 for 0 / 0, infinity for x / 0.
+double ratio_of(const Rational& a, const Rational& b) {
+  const Rational x = exact::abs(a);
+  if (b == 0) return x == 0 ? 0.0 : std::numeric_limits<double>::infinity();
+  return Rational(x / b).get_d();
+}
+
+Rational ndc_of(const Rational& window, Convention convention) {
+  return convention == Convention::gl ? Rational(2 * window - 1) : window;
+}
+
+Rational window_of(const Rational& ndc, Convention convention) {
+  return convention == Convention::gl ? Rational((ndc + 1) / 2) : ndc;
+}
+
+/// The window depths the stored value stands for, with the value the shader reads, in [0, 1].
+template <class T>
+std::pair<Rational, Rational> depth_interval(const DepthSample<T>& s) {
+  Rational lo, hi;
+  if (s.buffer == DepthBuffer::fixed24) {
+    const Rational k(static_cast<unsigned long>(s.stored));
+    lo = (k - Rational(1, 2)) / kFixed24Max;
+    hi = (k + Rational(1, 2)) / kFixed24Max;
+  } else {
+    float f;
+    std::memcpy(&f, &s.stored, sizeof f);
+    const Rational v = exact::to_rational(f);
+    lo = (v + exact::to_rational(std::nextafter(f, -1.0f))) / 2;
+    hi = (v + exact::to_rational(std::nextafter(f, 2.0f))) / 2;
+  }
+  const Rational read = exact::to_rational(s.depth);
+  lo = std::max(Rational(0), std::min(lo, read));
+  hi = std::min(Rational(1), std::max(hi, read));
+  return {lo, hi};
+}
+
+/// What judge_view_position() and judge_linear_depth() share: the segment of the ray and the
+/// bound on each coordinate of a reconstruction computed in T.
+struct Segment {
+  bool judged = false;
+  std::string why;
+  Vec a, b;       ///< the ends (w = 1)
+  Vec bound;      ///< per coordinate (x, y, z)
+  int axis = -1;  ///< view_axis_sign of the original
+};
+
+template <class T>
+Segment ray_segment(const DepthSample<T>& s) {
+  Segment out;
+  const Mat m = exact::to_rational(s.projection);
+  const std::optional<Mat> inv = exact::inverse(m);
+  const std::optional<Mat> original_inv = exact::inverse(exact::to_rational(s.original));
+  if (!inv || !original_inv) {
+    out.why = "a singular projection";
+    return out;
+  }
+  {
+    const DepthRange range = clip_depth_range(s.convention);
+    const Vec centre =
+        exact::mul(*original_inv, {0, 0, Rational(range.z_low + range.z_high, 2), 1});
+    out.axis = (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
+  }
+  const auto [lo, hi] = depth_interval(s);
+  const Rational x = exact::to_rational(s.ndc_x), y = exact::to_rational(s.ndc_y);
+  const Mat chain = mul(mul(exact::abs(*inv), exact::abs(m)), exact::abs(*inv));
+  const Rational g = gamma_of<T>(tolerance::kConsumerSolveRoundings);
+  const Rational u = unit<T>();
+  Vec ends[2];
+  out.bound = {0, 0, 0, 0};
+  const Rational depths[2] = {lo, hi};
+  for (int e = 0; e < 2; ++e) {
+    const Vec b{x, y, ndc_of(depths[e], s.convention), 1};
+    const Vec v = exact::mul(*inv, b);
+    if (v[3] == 0) {
+      out.why = "the stored depth's interval reaches the ray's point at infinity";
+      return out;
+    }
+    ends[e] = v;
+    const Vec dv = exact::mul(chain, exact::abs(b));
+    if (g * dv[3] >= exact::abs(v[3])) {
+      out.why = "the solve's rounding in T can reach w = 0: the point is not determined in T";
+      return out;
+    }
+    for (int i = 0; i < 3; ++i) {
+      const Rational p = v[i] / v[3];
+      const Rational bound_i =
+          (g * dv[i] + exact::abs(p) * g * dv[3]) / (exact::abs(v[3]) - g * dv[3]) +
+          u * exact::abs(p);
+      out.bound[i] = std::max(out.bound[i], bound_i);
+    }
+  }
+  if (ends[0][3] * ends[1][3] < 0) {
+    out.why = "the stored depth's interval reaches the ray's point at infinity";
+    return out;
+  }
+  for (int i = 0; i < 4; ++i) {
+    out.a[i] = ends[0][i] / ends[0][3];
+    out.b[i] = ends[1][i] / ends[1][3];
+  }
+  out.judged = true;
+  return out;
+}
+
+/// Whether some point a + t (b - a), t in [0, 1], is within `bound` of `answer` in every
+/// coordinate of `coordinates`; the ratio of the worst coordinate at the point nearest answer.
+std::pair<bool, double> near_segment(const Vec& a, const Vec& b, const Vec& bound,
+                                     const Vec& answer, const std::vector<int>& coordinates) {
+  Rational t_lo = 0, t_hi = 1;
+  bool feasible = true;
+  Rational num = 0, den = 0;
+  for (int i : coordinates) {
+    const Rational d = b[i] - a[i];
+    const Rational r = answer[i] - a[i];
+    num += r * d;
+    den += d * d;
+    if (d == 0) {
+      if (exact::abs(r) > bound[i]) feasible = false;
+      continue;
+    }
+    Rational t1 = (r - bound[i]) / d, t2 = (r + bound[i]) / d;
+    if (t1 > t2) std::swap(t1, t2);
+    t_lo = std::max(t_lo, t1);
+    t_hi = std::min(t_hi, t2);
+  }
+  if (t_lo > t_hi) feasible = false;
+  Rational t = den == 0 ? Rational(0) : Rational(num / den);
+  t = std::clamp(t, Rational(0), Rational(1));
+  double worst = 0;
+  for (int i : coordinates) {
+    const Rational at = a[i] + t * (b[i] - a[i]);
+    worst = std::max(worst, ratio_of(answer[i] - at, bound[i]));
+  }
+  // The nearest point is a witness: within there means feasible; the verdict is the exact one.
+  if (feasible) worst = std::min(worst, 1.0);
+  if (!feasible) worst = std::max(worst, std::nextafter(1.0, 2.0));
+  return {feasible, worst};
+}
+
+template <class T>
+std::vector<Vec> exact_kept_region(const Matrix4<T>& m, const Vector4<T>& c,
+                                   Convention convention) {
+  std::vector<polytope::Vec<Rational>> planes;
+  for (const auto& p : kept_region_planes(m, c, convention)) {
+    planes.push_back({exact::to_rational(p[0]), exact::to_rational(p[1]), exact::to_rational(p[2]),
+                      exact::to_rational(p[3])});
+  }
+  // The planes in T are sums of two rows of m (exact in T only when no rounding happened):
+  // take them from m exactly instead.
+  const Mat mx = exact::to_rational(m);
+  auto rows = [&](int r0, int s0, int r1) {
+    Vec out;
+    for (int i = 0; i < 4; ++i) out[i] = mx[3][i] * s0 + mx[r0][i] * r1;
+    return out;
+  };
+  planes[0] = rows(0, 1, 1);
+  planes[1] = rows(0, 1, -1);
+  planes[2] = rows(1, 1, 1);
+  planes[3] = rows(1, 1, -1);
+  const RowCombination nr = near_rows(convention), fr = far_rows(convention);
+  planes[4] = rows(2, nr.m4, nr.m3);
+  planes[5] = rows(2, fr.m4, fr.m3);
+  std::vector<Vec> out;
+  for (const auto& v : polytope::vertices(planes, Rational(0))) {
+    const Vec x{v[0], v[1], v[2], v[3]};
+    if (std::find(out.begin(), out.end(), x) == out.end()) out.push_back(x);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string_view consumer_check_name(ConsumerCheck check) {
+  return kNames[static_cast<int>(check)];
+}
+
+std::optional<ConsumerCheck> parse_consumer_check(std::string_view name) {
+  for (ConsumerCheck c : all_consumer_checks) {
+    if (consumer_check_name(c) == name) return c;
+  }
+  return std::nullopt;
+}
+
+std::string describe(const ConsumerFinding& f) {
+  std::string out(consumer_check_name(f.check));
+  if (!f.judged) return out + ": not judged: " + f.detail;
+  out += f.holds ? " holds: " : " violated: ";
+  out += f.detail;
+  out += " (residual / bound " + protocol::format_number(f.ratio) + ")";
+  return out;
+}
+
+template <class T>
+std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const Matrix4<T>& original,
+                                           Convention convention, DepthBuffer buffer,
+                                           const Vector4<T>& point) {
+  if (!projection.allFinite() || !point.allFinite()) return std::nullopt;
+  const Vec clip = exact::mul(exact::to_rational(projection), exact::to_rational(point));
+  if (!(clip[3] > 0)) return std::nullopt;
+  const Rational window = window_of(clip[2] / clip[3], convention);
+  if (window < 0 || window > 1) return std::nullopt;
+  DepthSample<T> s;
+  s.projection = projection;
+  s.original = original;
+  s.convention = convention;
+  s.buffer = buffer;
+  s.ndc_x = exact::round_to<T>(clip[0] / clip[3]);
+  s.ndc_y = exact::round_to<T>(clip[1] / clip[3]);
+  if (buffer == DepthBuffer::fixed24) {
+    const Rational scaled = window * kFixed24Max + Rational(1, 2);
+    const mpz_class k = scaled.get_num() / scaled.get_den();  // floor: both positive
+    s.stored = static_cast<std::uint32_t>(k.get_ui());
+    s.depth = exact::round_to<T>(Rational(k) / kFixed24Max);
+  } else {
+    const float f = exact::round_to<float>(window);
+    std::memcpy(&s.stored, &f, sizeof f);
+    s.depth = static_cast<T>(f);
+  }
+  return s;
+}
+
+template <class T>
+ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& answer) {
+  ConsumerFinding f;
+  f.check = ConsumerCheck::view_position;
+  const Segment seg = ray_segment(s);
+  if (!seg.judged) {
+    f.judged = false;
+    f.detail = seg.why;
+    return f;
+  }
+  if (!answer.allFinite()) {
+    f.holds = false;
+    f.ratio = std::numeric_limits<double>::infinity();
+    f.detail = "answered " + text(answer) + ", not a finite point";
+    return f;
+  }
+  const auto [ok, ratio] = near_segment(seg.a, seg.b, seg.bound, point_of(answer), {0, 1, 2});
+  f.holds = ok;
+  f.ratio = ratio;
+  f.detail = "answered " + text(answer) + "; the stored depth stands for the points from " +
+             text(seg.a, 3) + " to " + text(seg.b, 3) + ", each coordinate within " +
+             text(seg.bound, 3);
+  return f;
+}
+
+template <class T>
+ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
+  ConsumerFinding f;
+  f.check = ConsumerCheck::linear_depth;
+  const Segment seg = ray_segment(s);
+  if (!seg.judged) {
+    f.judged = false;
+    f.detail = seg.why;
+    return f;
+  }
+  if (!std::isfinite(static_cast<double>(answer))) {
+    f.holds = false;
+    f.ratio = std::numeric_limits<double>::infinity();
+    f.detail = "answered " + protocol::format_number(answer) + ", not a finite depth";
+    return f;
+  }
+  const Rational sign = seg.axis;
+  const Vec a{0, 0, sign * seg.a[2], 1}, b{0, 0, sign * seg.b[2], 1};
+  const Vec given{0, 0, exact::to_rational(answer), 1};
+  const auto [ok, ratio] = near_segment(a, b, seg.bound, given, {2});
+  f.holds = ok;
+  f.ratio = ratio;
+  f.detail = "answered " + protocol::format_number(answer) +
+             "; the stored depth stands for linear depths from " + text(a[2]) + " to " +
+             text(b[2]) + ", within " + text(seg.bound[2]);
+  return f;
+}
+
+template <class T>
+std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vector4<T>& c,
+                                                  Convention convention, const Matrix4<T>& oblique,
+                                                  const FrustumPlanes<T>& answer) {
+  ConsumerFinding keeps, near;
+  keeps.check = ConsumerCheck::culling_keeps_visible;
+  near.check = ConsumerCheck::culling_near_is_c;
+  const Problem<T> problem(m, c, convention);
+  const std::optional<exact::Vec> row3 =
+      problem.exact_status() == Status::ok ? problem.row3_bounds() : std::nullopt;
+  if (!row3 || !oblique.allFinite()) {
+    keeps.judged = near.judged = false;
+    keeps.detail = near.detail =
+        row3 ? "the oblique matrix is not finite" : "the case has no answer to judge against";
+    return {keeps, near};
+  }
+  // How far the answer's near and far planes may be from the exact ones, relative to their size.
+  const Mat mx = exact::to_rational(m);
+  Mat exact_oblique = mx;
+  exact_oblique[2] = problem.exact_row3();
+  const RowCombination nr = near_rows(convention), fr = far_rows(convention);
+  const Vec near_exact = exact::combine(nr.m3, exact_oblique[2], nr.m4, exact_oblique[3]);
+  const Vec far_exact = exact::combine(fr.m3, exact_oblique[2], fr.m4, exact_oblique[3]);
+  const Rational row3_error = max_abs(*row3);
+  const Rational smallest_plane = std::min(max_abs(near_exact), max_abs(far_exact));
+  const Rational rho = smallest_plane > 0 ? Rational(row3_error / smallest_plane) : Rational(0);
+  const Rational g = gamma_of<T>(tolerance::kPlaneRoundings);
+
+  const std::vector<Vec> kept = exact_kept_region(m, c, convention);
+  const Vector4<T>* planes[] = {&answer.left, &answer.right,      &answer.bottom,
+                                &answer.top,  &answer.near_plane, &answer.far_plane};
+  const char* plane_names[] = {"left", "right", "bottom", "top", "near", "far"};
+  double worst = 0;
+  for (int k = 0; k < 6; ++k) {
+    const Vector4<T>& plane = *planes[k];
+    if (!plane.allFinite()) {
+      keeps.holds = false;
+      worst = std::numeric_limits<double>::infinity();
+      keeps.detail =
+          std::string("the ") + plane_names[k] + " plane " + text(plane) + " is not finite";
+      break;
+    }
+    const Vec p = exact::to_rational(plane);
+    for (const Vec& v : kept) {
+      const Rational value = exact::dot(p, v);
+      const Rational slack =
+          g * exact::dot(exact::abs(p), exact::abs(v)) + rho * max_abs(p) * sum_abs(v);
+      if (value >= 0) continue;
+      const double r = ratio_of(value, slack);
+      if (r > worst) {
+        worst = r;
+        if (-value > slack) {
+          keeps.holds = false;
+          keeps.detail = std::string("the ") + plane_names[k] + " plane " + text(plane) +
+                         " culls the kept region's vertex " + text(v) + ": P . v = " + text(value) +
+                         ", allowed down to -" + text(slack);
+        }
+      }
+    }
+  }
+  keeps.ratio = worst;
+  if (keeps.holds)
+    keeps.detail = "every one of the kept region's " + std::to_string(kept.size()) +
+                   " vertices is inside all six planes";
+
+  // near = lambda C, lambda > 0: each coefficient within g |P_i| + lambda beta_i, where beta_i is
+  // row 3's bound in C's units (over a) plus property 1's allowance for what no rasterizer sees.
+  const Vec cx = exact::to_rational(c);
+  const Vec p = exact::to_rational(answer.near_plane);
+  if (!answer.near_plane.allFinite()) {
+    near.holds = false;
+    near.ratio = std::numeric_limits<double>::infinity();
+    near.detail = "the near plane " + text(answer.near_plane) + " is not finite";
+    return {keeps, near};
+  }
+  const DepthRange range = clip_depth_range(convention);
+  const Rational a = Rational(range.z_high - range.z_low) / problem.corner_dot();
+  const Rational invisible = tolerance::kInvisiblePlaneUlps * unit<T>() * max_abs(cx);
+  Rational lambda_lo = 0, lambda_hi = -1;  // hi < 0: unbounded
+  bool feasible = true;
+  Vec beta;
+  for (int i = 0; i < 4; ++i) {
+    beta[i] = (*row3)[i] / a + invisible;
+    const Rational slack = g * exact::abs(p[i]);
+    // lambda (c_i + beta_i) >= p_i - slack and lambda (c_i - beta_i) <= p_i + slack.
+    auto bound_by = [&](const Rational& coefficient, const Rational& rhs, bool at_least) {
+      // coefficient * lambda (>= or <=) rhs
+      if (coefficient == 0) {
+        if (at_least ? rhs > 0 : rhs < 0) feasible = false;
+        return;
+      }
+      const Rational t = rhs / coefficient;
+      const bool lower = (coefficient > 0) == at_least;
+      if (lower) {
+        lambda_lo = std::max(lambda_lo, t);
+      } else if (lambda_hi < 0 || t < lambda_hi) {
+        lambda_hi = t;
+        if (t < 0) feasible = false;
+      }
+    };
+    bound_by(cx[i] + beta[i], p[i] - slack, true);
+    bound_by(cx[i] - beta[i], p[i] + slack, false);
+  }
+  if (!(lambda_hi < 0) && lambda_lo > lambda_hi) feasible = false;
+  // lambda must be positive: at lambda = 0 every coefficient would be within its own rounding.
+  const bool positive = feasible && (lambda_hi < 0 || lambda_hi > 0);
+  near.holds = feasible && positive && max_abs(p) > 0;
+  const Rational lambda_fit =
+      exact::dot(cx, cx) > 0 ? Rational(exact::dot(p, cx) / exact::dot(cx, cx)) : Rational(0);
+  double worst_near = 0;
+  if (lambda_fit > 0) {
+    for (int i = 0; i < 4; ++i)
+      worst_near = std::max(worst_near, ratio_of(p[i] - lambda_fit * cx[i],
+                                                 g * exact::abs(p[i]) + lambda_fit * beta[i]));
+  } else {
+    worst_near = std::numeric_limits<double>::infinity();
+  }
+  near.ratio =
+      near.holds ? std::min(worst_near, 1.0) : std::max(worst_near, std::nextafter(1.0, 2.0));
+  near.detail = "near plane " + text(answer.near_plane) + (near.holds ? " is " : " is not ") +
+                "a positive multiple of C = " + text(c) +
+                (lambda_fit > 0 ? " (best fit " + text(lambda_fit) + " C)"
+                                : " (it keeps the other side of C)");
+  return {keeps, near};
+}
+
+template <class T>
+std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
+                                                const Vector4<T>& world_plane,
+                                                const std::vector<Vector4<T>>& surface_points,
+                                                const Vector4<T>& front_point,
+                                                const Vector4<T>& answer) {
+  ConsumerFinding on, side;
+  on.check = ConsumerCheck::plane_on_surface;
+  side.check = ConsumerCheck::plane_kept_side;
+  const Mat w = exact::to_rational(pass_view);
+  const std::optional<Mat> inv = exact::inverse(w);
+  if (!inv || !answer.allFinite()) {
+    on.judged = side.judged = !inv ? false : true;
+    if (!inv) {
+      on.detail = side.detail = "a singular view";
+      return {on, side};
+    }
+    on.holds = side.holds = false;
+    on.ratio = side.ratio = std::numeric_limits<double>::infinity();
+    on.detail = side.detail = "answered " + text(answer) + ", not a finite plane";
+    return {on, side};
+  }
+  const Mat inv_t = exact::transpose(*inv);
+  const Vec world = exact::to_rational(world_plane);
+  const Vec reference = exact::mul(inv_t, world);
+  const Vec p = exact::to_rational(answer);
+  const Rational rr = exact::dot(reference, reference);
+  const Rational lambda = rr > 0 ? Rational(exact::dot(p, reference) / rr) : Rational(0);
+  const Vec chain =
+      exact::mul(mul(mul(exact::abs(inv_t), exact::abs(exact::transpose(w))), exact::abs(inv_t)),
+                 exact::abs(world));
+  Vec bound;
+  for (int i = 0; i < 4; ++i)
+    bound[i] = exact::abs(lambda) * gamma_of<T>(tolerance::kCameraPlaneRoundings) * chain[i] +
+               gamma_of<T>(tolerance::kPlaneRoundings) * exact::abs(p[i]);
+
+  double worst = 0;
+  for (const Vector4<T>& x : surface_points) {
+    Vec xe = exact::to_rational(x);
+    // On the plane exactly: x projected onto it in rational arithmetic.
+    const Rational nn = world[0] * world[0] + world[1] * world[1] + world[2] * world[2];
+    const Rational off = exact::dot(world, xe) / nn;
+    for (int i = 0; i < 3; ++i) xe[i] -= off * world[i] * xe[3];
+    const Vec y = exact::mul(w, xe);
+    const Rational value = exact::dot(p, y);
+    const Rational slack = exact::dot(bound, exact::abs(y));
+    const double r = ratio_of(value, slack);
+    if (r > worst) {
+      worst = r;
+      if (exact::abs(value) > slack) {
+        on.holds = false;
+        on.detail = "the surface's point " + text(xe, 3) + " is at camera-space " + text(y, 3) +
+                    ", where the plane " + text(answer) + " gives " + text(value) +
+                    " instead of 0 (within " + text(slack) + ")";
+      }
+    }
+  }
+  on.ratio = on.holds ? std::min(worst, 1.0) : worst;
+  if (on.holds)
+    on.detail = "the surface's " + std::to_string(surface_points.size()) +
+                " points land on the plane " + text(answer);
+
+  const Vec y = exact::mul(w, exact::to_rational(front_point));
+  const Rational value = exact::dot(p, y);
+  const Rational slack = exact::dot(bound, exact::abs(y));
+  side.holds = !(value < 0 && -value > slack);
+  side.ratio = value >= 0 ? 0.0 : ratio_of(value, slack);
+  side.detail = "a point in front of the surface, camera-space " + text(y, 3) + ", is on the " +
+                (value > 0   ? "kept"
+                 : value < 0 ? "clipped"
+                             : "boundary") +
+                " side of " + text(answer) + " (P . x = " + text(value) + ")";
+  return {on, side};
+}
+
+namespace {
+
+template <class T>
+ConsumerFinding compare_matrix(ConsumerCheck check, const Mat& reference, const Mat& bound,
+                               const Matrix4<T>& answer) {
+  ConsumerFinding f;
+  f.check = check;
+  if (!answer.allFinite()) {
+    f.holds = false;
+    f.ratio = std::numeric_limits<double>::infinity();
+    f.detail = "the answer is not finite";
+    return f;
+  }
+  const Mat given = exact::to_rational(answer);
+  double worst = 0;
+  int wi = 0, wj = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const Rational diff = given[i][j] - reference[i][j];
+      const double r = ratio_of(diff, bound[i][j]);
+      if (r > worst) {
+        worst = r;
+        wi = i;
+        wj = j;
+      }
+      if (exact::abs(diff) > bound[i][j]) f.holds = false;
+    }
+  }
+  f.ratio = worst;
+  auto det3 = [](const Mat& m) -> Rational {
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  f.detail = "entry (" + std::to_string(wi + 1) + ", " + std::to_string(wj + 1) + ") is " +
+             protocol::format_number(answer(wi, wj)) + ", should be " + text(reference[wi][wj]) +
+             " within " + text(bound[wi][wj]) +
+             "; the view's handedness (sign of det of its 3 x 3) is " +
+             (det3(given) < 0 ? "flipped" : "kept") + ", should be " +
+             (det3(reference) < 0 ? "flipped" : "kept");
+  return f;
+}
+
+}  // namespace
+
+template <class T>
+ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& world_plane,
+                                  const Matrix4<T>& answer) {
+  const Mat v = exact::to_rational(view);
+  const Vec plane = exact::to_rational(world_plane);
+  const Rational nn = plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2];
+  if (nn == 0) {
+    ConsumerFinding f;
+    f.check = ConsumerCheck::mirror_view;
+    f.judged = false;
+    f.detail = "a plane without a normal";
+    return f;
+  }
+  Mat r{}, r_abs{};
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      r[i][j] = i == j ? 1 : 0;
+      r_abs[i][j] = r[i][j];
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const Rational term = 2 * plane[i] * plane[j] / nn;
+      r[i][j] -= term;
+      r_abs[i][j] += exact::abs(term);
+    }
+    r[i][3] = -2 * plane[3] * plane[i] / nn;
+    r_abs[i][3] = exact::abs(r[i][3]);
+  }
+  const Mat reference = mul(v, r);
+  Mat bound = mul(exact::abs(v), r_abs);
+  const Rational g = gamma_of<T>(tolerance::kPassViewRoundings);
+  for (auto& row : bound)
+    for (auto& x : row) x *= g;
+  return compare_matrix(ConsumerCheck::mirror_view, reference, bound, answer);
+}
+
+template <class T>
+ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& frame,
+                                  const Matrix4<T>& linked, const Matrix4<T>& answer) {
+  const Mat l = exact::to_rational(linked);
+  const std::optional<Mat> l_inv = exact::inverse(l);
+  if (!l_inv) {
+    ConsumerFinding f;
+    f.check = ConsumerCheck::portal_view;
+    f.judged = false;
+    f.detail = "a singular portal frame";
+    return f;
+  }
+  Mat turn{};
+  turn[0][0] = -1;
+  turn[1][1] = 1;
+  turn[2][2] = -1;
+  turn[3][3] = 1;
+  const Mat v = exact::to_rational(view), fr = exact::to_rational(frame);
+  const Mat reference = mul(mul(mul(v, fr), turn), *l_inv);
+  Mat bound = mul(mul(exact::abs(v), exact::abs(fr)),
+                  mul(mul(exact::abs(*l_inv), exact::abs(l)), exact::abs(*l_inv)));
+  const Rational g = gamma_of<T>(tolerance::kPassViewRoundings);
+  for (auto& row : bound)
+    for (auto& x : row) x *= g;
+  return compare_matrix(ConsumerCheck::portal_view, reference, bound, answer);
+}
+
+template <class T>
+ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                              const Matrix4<T>& oblique, const std::vector<Vector3<T>>& answer) {
+  ConsumerFinding f;
+  f.check = ConsumerCheck::corners_contain_kept;
+  const Problem<T> problem(m, c, convention);
+  const std::optional<exact::Vec> row3 =
+      problem.exact_status() == Status::ok ? problem.row3_bounds() : std::nullopt;
+  if (!row3 || problem.infinite()) {
+    f.judged = false;
+    f.detail = row3 ? "an infinite projection: the kept region is unbounded"
+                    : "the case has no answer to judge against";
+    return f;
+  }
+  const std::vector<Vec> kept = exact_kept_region(m, c, convention);
+  for (const Vec& v : kept) {
+    if (v[3] == 0) {
+      f.judged = false;
+      f.detail = "the kept region is unbounded";
+      return f;
+    }
+  }
+  std::vector<Vec> points;
+  for (const Vector3<T>& p : answer) {
+    if (!p.allFinite()) {
+      f.holds = false;
+      f.ratio = std::numeric_limits<double>::infinity();
+      f.detail = "the corner " + text(p) + " is not finite";
+      return f;
+    }
+    const Vec x = point_of(p);
+    if (std::find(points.begin(), points.end(), x) == points.end()) points.push_back(x);
+  }
+  // How far each given corner may be from a correct one: a solve with M' in T, and M' itself
+  // off the exact answer by row 3's bound.
+  const Mat mo = exact::to_rational(oblique);
+  const std::optional<Mat> inv = exact::inverse(mo);
+  if (!inv) {
+    f.judged = false;
+    f.detail = "a singular oblique matrix";
+    return f;
+  }
+  const Mat chain = mul(mul(exact::abs(*inv), exact::abs(mo)), exact::abs(*inv));
+  const Rational g = gamma_of<T>(tolerance::kConsumerSolveRoundings);
+  const Rational u = unit<T>();
+  Rational delta = 0;
+  for (const Vec& x : points) {
+    const Vec q = exact::mul(mo, x);  // its clip-space point
+    Vec dv = exact::mul(chain, exact::abs(q));
+    const Rational row3_part = exact::dot(*row3, exact::abs(x));
+    for (int i = 0; i < 4; ++i) dv[i] = g * dv[i] + exact::abs((*inv)[i][2]) * row3_part;
+    Rational d = 0;
+    for (int i = 0; i < 3; ++i) d += dv[i] + exact::abs(x[i]) * dv[3] + u * exact::abs(x[i]);
+    delta = std::max(delta, d);
+  }
+  // The hull's facets: planes through three corners with every corner on one side.
+  struct Facet {
+    Vec origin, normal;  // inward normal (x, y, z; w unused)
+  };
+  std::vector<Facet> facets;
+  const std::size_t n = points.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      for (std::size_t k = j + 1; k < n; ++k) {
+        Vec e1, e2, normal{0, 0, 0, 0};
+        for (int d = 0; d < 3; ++d) {
+          e1[d] = points[j][d] - points[i][d];
+          e2[d] = points[k][d] - points[i][d];
+        }
+        normal[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        normal[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        normal[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        if (normal[0] == 0 && normal[1] == 0 && normal[2] == 0) continue;
+        bool any_above = false, any_below = false;
+        for (const Vec& x : points) {
+          Rational s = 0;
+          for (int d = 0; d < 3; ++d) s += normal[d] * (x[d] - points[i][d]);
+          any_above = any_above || s > 0;
+          any_below = any_below || s < 0;
+        }
+        if (!any_below) facets.push_back({points[i], normal});
+        if (!any_above) {
+          Vec flipped = normal;
+          for (auto& x : flipped) x = -x;
+          facets.push_back({points[i], flipped});
+        }
+      }
+    }
+  }
+  double worst = 0;
+  if (facets.empty()) {
+    f.holds = false;
+    worst = std::numeric_limits<double>::infinity();
+    f.detail = "the " + std::to_string(n) + " corners bound no region (fewer than 3 apart)";
+  }
+  for (const Vec& v : kept) {
+    for (const Facet& facet : facets) {
+      Rational s = 0, nn = 0;
+      for (int d = 0; d < 3; ++d) {
+        s += facet.normal[d] * (v[d] - facet.origin[d]);
+        nn += facet.normal[d] * facet.normal[d];
+      }
+      if (s >= 0) continue;
+      // Outside by -s / |normal|; allowed delta.
+      const double distance = std::sqrt(Rational(s * s / nn).get_d());
+      const double r =
+          delta > 0 ? distance / delta.get_d() : std::numeric_limits<double>::infinity();
+      if (s * s > delta * delta * nn && f.holds) {
+        f.holds = false;
+        f.detail = "the kept region's vertex " + text(v, 3) + " is " +
+                   protocol::format_number(distance) + " outside the corners' hull (allowed " +
+                   text(delta) + ")";
+      }
+      worst = std::max(worst, r);
+    }
+  }
+  f.ratio = f.holds ? std::min(worst, 1.0) : worst;
+  // Depth waste along the view axis.
+  const Vec centre = exact::mul(
+      *exact::inverse(exact::to_rational(m)),
+      {0, 0, Rational(clip_depth_range(convention).z_low + clip_depth_range(convention).z_high, 2),
+       1});
+  const int axis = (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
+  auto extent = [axis](const std::vector<Vec>& xs) {
+    Rational lo = axis * xs.front()[2], hi = lo;
+    for (const Vec& x : xs) {
+      lo = std::min(lo, Rational(axis * x[2]));
+      hi = std::max(hi, Rational(axis * x[2]));
+    }
+    return Rational(hi - lo);
+  };
+  if (!points.empty() && !kept.empty() && extent(kept) > 0)
+    f.depth_waste = Rational(extent(points) / extent(kept)).get_d();
+  if (f.holds)
+    f.detail = "the hull of " + std::to_string(n) + " corners contains the kept region's " +
+               std::to_string(kept.size()) + " vertices; it spans " +
+               protocol::format_number(f.depth_waste) + " times the kept region's depth";
+  return f;
+}
+
+#define OBLIQUE_CONSUMER_INSTANCES(T)                                                              \
+  template std::optional<DepthSample<T>> depth_sample(const Matrix4<T>&, const Matrix4<T>&,        \
+                                                      Convention, DepthBuffer, const Vector4<T>&); \
+  template ConsumerFinding judge_view_position(const DepthSample<T>&, const Vector3<T>&);          \
+  template ConsumerFinding judge_linear_depth(const DepthSample<T>&, T);                           \
+  template std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>&, const Vector4<T>&, \
+                                                             Convention, const Matrix4<T>&,        \
+                                                             const FrustumPlanes<T>&);             \
+  template std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>&, const Vector4<T>&,   \
+                                                           const std::vector<Vector4<T>>&,         \
+                                                           const Vector4<T>&, const Vector4<T>&);  \
+  template ConsumerFinding judge_mirror_view(const Matrix4<T>&, const Vector4<T>&,                 \
+                                             const Matrix4<T>&);                                   \
+  template ConsumerFinding judge_portal_view(const Matrix4<T>&, const Matrix4<T>&,                 \
+                                             const Matrix4<T>&, const Matrix4<T>&);                \
+  template ConsumerFinding judge_corners(const Matrix4<T>&, const Vector4<T>&, Convention,         \
+                                         const Matrix4<T>&, const std::vector<Vector3<T>>&);
+
+OBLIQUE_CONSUMER_INSTANCES(float)
+OBLIQUE_CONSUMER_INSTANCES(double)
+OBLIQUE_CONSUMER_INSTANCES(long double)
+
+}  // namespace oblique::properties

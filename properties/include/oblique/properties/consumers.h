@@ -1,0 +1,136 @@
+// The properties of the code around the oblique matrix ("consumers"): depth reconstruction,
+// culling planes, the pass camera and its plane, and a view volume's corners. Each judge takes the
+// inputs as the consumer got them (in T) and its answer, and decides in exact rational arithmetic
+// against the bounds of tolerance.h. The references are the core's (depth_reconstruction.h,
+// frustum_planes.h, pass_camera.h, kept_region.h); docs/consumers.md has the formulas.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "oblique/depth_convention.h"
+#include "oblique/depth_reconstruction.h"
+#include "oblique/frustum_planes.h"
+#include "oblique/plane.h"
+
+namespace oblique::properties {
+
+/// The consumer properties, each of which alone rejects its class of wrong answers.
+enum class ConsumerCheck {
+  view_position,          ///< the reconstructed point is the pixel's point within the buffer's
+                          ///< quantisation and the solve's rounding
+  linear_depth,           ///< the same, for its distance along the view axis
+  culling_keeps_visible,  ///< no vertex of the kept region is outside an extracted plane
+  culling_near_is_c,      ///< the extracted near plane is C up to a positive scale
+  plane_on_surface,       ///< world points of the surface lie on the camera-space plane
+  plane_kept_side,        ///< the camera-space plane keeps the surface's front
+  mirror_view,            ///< the mirror pass's view is the main view times the reflection
+  portal_view,            ///< the portal pass's view is the main view times the portal's map
+  corners_contain_kept,   ///< the corners' convex hull contains the kept region
+};
+
+inline constexpr ConsumerCheck all_consumer_checks[] = {
+    ConsumerCheck::view_position,         ConsumerCheck::linear_depth,
+    ConsumerCheck::culling_keeps_visible, ConsumerCheck::culling_near_is_c,
+    ConsumerCheck::plane_on_surface,      ConsumerCheck::plane_kept_side,
+    ConsumerCheck::mirror_view,           ConsumerCheck::portal_view,
+    ConsumerCheck::corners_contain_kept};
+
+std::string_view consumer_check_name(ConsumerCheck check);
+std::optional<ConsumerCheck> parse_consumer_check(std::string_view name);
+
+/// One consumer property's verdict on one answer.
+struct ConsumerFinding {
+  ConsumerCheck check = ConsumerCheck::view_position;
+  bool judged = true;  ///< false: the case cannot be decided (why: `detail`)
+  bool holds = true;
+  /// The worst residual over its bound (<= 1 within); for a failed kept-side or near-plane
+  /// check, the margin by which the sign is wrong, over its bound.
+  double ratio = 0;
+  std::string detail;  ///< what was compared, in words and round-trip numbers
+  /// corners_contain_kept: how much longer than the kept region's the corners' extent along the
+  /// view axis is (1: as tight as it can be); 0 when not measured.
+  double depth_waste = 0;
+};
+
+/// What a depth consumer reads at one pixel.
+template <class T>
+struct DepthSample {
+  Matrix4<T> projection;  ///< M', the matrix the depth was rendered with
+  Matrix4<T> original;    ///< M, the camera's projection before the oblique modification
+  Convention convention = Convention::gl;
+  DepthBuffer buffer = DepthBuffer::fixed24;
+  T ndc_x = 0, ndc_y = 0;  ///< the pixel's NDC
+  /// The window depth as a shader reads it: fixed24, k / (2^24 - 1) rounded to T; float32, the
+  /// stored float.
+  T depth = 0;
+  std::uint32_t stored = 0;  ///< fixed24: k; float32: the float's bits
+};
+
+/// The sample a camera-space point leaves in the buffer under `projection`: its NDC x and y
+/// rounded to T, its window depth stored in `buffer`. Empty when the point is not in front of
+/// the camera or its depth is outside [0, 1].
+template <class T>
+std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const Matrix4<T>& original,
+                                           Convention convention, DepthBuffer buffer,
+                                           const Vector4<T>& point);
+
+/// `answer`, the view position the consumer reconstructed from `sample`, against the segment of
+/// the pixel ray whose window depths the stored value stands for (fixed24: k +- 1/2 over 2^24 - 1;
+/// float32: the half-ulps around it; clamped to [0, 1]), widened by the solve's rounding. Not
+/// judged where that segment reaches infinity.
+template <class T>
+ConsumerFinding judge_view_position(const DepthSample<T>& sample, const Vector3<T>& answer);
+
+/// `answer`, the linear depth (view_axis_sign(original) z) the consumer reconstructed from
+/// `sample`, as judge_view_position() judges the point's z.
+template <class T>
+ConsumerFinding judge_linear_depth(const DepthSample<T>& sample, T answer);
+
+/// The culling planes the consumer extracted from `oblique` (the answer for m, c, convention in T),
+/// each keeping P . x >= 0: culling_keeps_visible (every vertex of the kept region of m and c,
+/// directions at infinity included, on each plane's kept side within its rounding and row 3's
+/// error bound) and culling_near_is_c (near_plane = s C, s > 0, within those bounds).
+template <class T>
+std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vector4<T>& c,
+                                                  Convention convention, const Matrix4<T>& oblique,
+                                                  const FrustumPlanes<T>& answer);
+
+/// The plane the consumer gives in the pass camera's space (pass_view: world -> pass camera) for
+/// the world plane whose front the pass keeps: plane_on_surface (points of the world plane,
+/// `surface_points`, land on it) and plane_kept_side (`front_point`, in front of the world plane,
+/// lands on its positive side).
+template <class T>
+std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
+                                                const Vector4<T>& world_plane,
+                                                const std::vector<Vector4<T>>& surface_points,
+                                                const Vector4<T>& front_point,
+                                                const Vector4<T>& answer);
+
+/// The mirror pass's view the consumer built from the main `view` and the mirror's world plane:
+/// view R within gamma(kPassViewRoundings) |view| |R|.
+template <class T>
+ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& world_plane,
+                                  const Matrix4<T>& answer);
+
+/// The portal pass's view from the main `view` and the two portals' frames: view frame turn
+/// linked^-1 within gamma(kPassViewRoundings) |view| |frame| |linked^-1| |linked| |linked^-1|.
+template <class T>
+ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& frame,
+                                  const Matrix4<T>& linked, const Matrix4<T>& answer);
+
+/// The points the consumer gives as the corners of the view volume of `oblique` (the answer for
+/// m, c, convention in T): their convex hull must contain every vertex of the kept region, within
+/// the distance their computation from `oblique` in T and row 3's error allow. Not judged for an
+/// infinite m (the kept region is unbounded). Reports the depth waste.
+template <class T>
+ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                              const Matrix4<T>& oblique, const std::vector<Vector3<T>>& answer);
+
+/// A readable line of a finding: "culling_near_is_c: ... (ratio 3.2)".
+std::string describe(const ConsumerFinding& finding);
+
+}  // namespace oblique::properties
