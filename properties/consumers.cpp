@@ -227,32 +227,22 @@ std::pair<bool, double> near_segment(const Vec& a, const Vec& b, const Vec& boun
   return {feasible, worst};
 }
 
+/// The kept region's vertices, exactly (polytope::clip_volume on M's exact corners).
 template <class T>
-std::vector<Vec> exact_kept_region(const Matrix4<T>& m, const Vector4<T>& c,
-                                   Convention convention) {
-  std::vector<polytope::Vec<Rational>> planes;
-  for (const auto& p : kept_region_planes(m, c, convention)) {
-    planes.push_back({exact::to_rational(p[0]), exact::to_rational(p[1]), exact::to_rational(p[2]),
-                      exact::to_rational(p[3])});
+std::vector<Vec> exact_kept_region(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+  const std::optional<Mat> inv = exact::inverse(exact::to_rational(m));
+  if (!inv) return {};
+  const DepthRange range = clip_depth_range(convention);
+  std::array<Vec, 8> corners;
+  for (int i = 0; i < 8; ++i) {
+    Vec v = exact::mul(*inv, {i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? range.z_high : range.z_low, 1});
+    if (v[3] < 0) {
+      for (Rational& x : v) x = -x;
+    }
+    corners[static_cast<std::size_t>(i)] = v;
   }
-  // The planes in T are sums of two rows of m (exact in T only when no rounding happened):
-  // take them from m exactly instead.
-  const Mat mx = exact::to_rational(m);
-  auto rows = [&](int r0, int s0, int r1) {
-    Vec out;
-    for (int i = 0; i < 4; ++i) out[i] = mx[3][i] * s0 + mx[r0][i] * r1;
-    return out;
-  };
-  planes[0] = rows(0, 1, 1);
-  planes[1] = rows(0, 1, -1);
-  planes[2] = rows(1, 1, 1);
-  planes[3] = rows(1, 1, -1);
-  const RowCombination nr = near_rows(convention), fr = far_rows(convention);
-  planes[4] = rows(2, nr.m4, nr.m3);
-  planes[5] = rows(2, fr.m4, fr.m3);
   std::vector<Vec> out;
-  for (const auto& v : polytope::vertices(planes, Rational(0))) {
-    const Vec x{v[0], v[1], v[2], v[3]};
+  for (const Vec& x : polytope::clip_volume(corners, exact::to_rational(c))) {
     if (std::find(out.begin(), out.end(), x) == out.end()) out.push_back(x);
   }
   return out;
@@ -705,26 +695,50 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
     const Vec x = point_of(p);
     if (std::find(points.begin(), points.end(), x) == points.end()) points.push_back(x);
   }
-  // How far each given corner may be from a correct one: a solve with M' in T, and M' itself
-  // off the exact answer by row 3's bound.
+  // How far each given corner may be from a correct one, in the directions the hull's facets
+  // face: a point computed by a solve in T with M' (the oblique volume's corners) or with M (the
+  // original's, then clipped by C), M' itself off the exact answer by row 3's bound, and a point
+  // where C crosses an edge off C by its rounding (gamma(kPlaneRoundings) |C| . |x| over |n_C|;
+  // along the edge, inside the hull's other facets, it costs nothing).
   const Mat mo = exact::to_rational(oblique);
+  const Mat mx = exact::to_rational(m);
   const std::optional<Mat> inv = exact::inverse(mo);
-  if (!inv) {
+  const std::optional<Mat> m_inv = exact::inverse(mx);
+  if (!inv || !m_inv) {
     f.judged = false;
-    f.detail = "a singular oblique matrix";
+    f.detail = "a singular matrix";
     return f;
   }
   const Mat chain = mul(mul(exact::abs(*inv), exact::abs(mo)), exact::abs(*inv));
+  const Mat m_chain = mul(mul(exact::abs(*m_inv), exact::abs(mx)), exact::abs(*m_inv));
   const Rational g = gamma_of<T>(tolerance::kConsumerSolveRoundings);
   const Rational u = unit<T>();
+  const Vec cx = exact::to_rational(c);
+  const Rational c_normal = std::max({exact::abs(cx[0]), exact::abs(cx[1]), exact::abs(cx[2])});
   Rational delta = 0;
   for (const Vec& x : points) {
-    const Vec q = exact::mul(mo, x);  // its clip-space point
-    Vec dv = exact::mul(chain, exact::abs(q));
-    const Rational row3_part = exact::dot(*row3, exact::abs(x));
-    for (int i = 0; i < 4; ++i) dv[i] = g * dv[i] + exact::abs((*inv)[i][2]) * row3_part;
     Rational d = 0;
-    for (int i = 0; i < 3; ++i) d += dv[i] + exact::abs(x[i]) * dv[3] + u * exact::abs(x[i]);
+    for (const auto& [solve, with_m] : {std::pair{&chain, true}, std::pair{&m_chain, false}}) {
+      const Vec q = exact::mul(with_m ? mo : mx, x);  // its clip-space point
+      Vec dv = exact::mul(*solve, exact::abs(q));
+      const Rational row3_part = with_m ? exact::dot(*row3, exact::abs(x)) : Rational(0);
+      const Mat& inverse = with_m ? *inv : *m_inv;
+      for (int i = 0; i < 4; ++i) dv[i] = g * dv[i] + exact::abs(inverse[i][2]) * row3_part;
+      if (dv[3] >= 1) {  // w not determined: no bound from this solve
+        d = -1;
+        break;
+      }
+      for (int i = 0; i < 3; ++i)
+        d += (dv[i] + exact::abs(x[i]) * dv[3]) / (1 - dv[3]) + u * exact::abs(x[i]);
+    }
+    if (d < 0) {
+      f.judged = false;
+      f.detail = "a corner's w is not determined in T";
+      return f;
+    }
+    if (c_normal > 0)
+      d += gamma_of<T>(tolerance::kPlaneRoundings) * exact::dot(exact::abs(cx), exact::abs(x)) /
+           c_normal;
     delta = std::max(delta, d);
   }
   // The hull's facets: planes through three corners with every corner on one side.

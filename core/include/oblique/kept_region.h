@@ -3,9 +3,8 @@
 // start from).
 //
 // The kept region is what the pass must draw: the original view volume of M on C's positive
-// side, the polytope {x : P . x >= 0} of M's six planes and C. Its vertices are the points where
-// three of the planes meet and no plane is violated (at infinity, as directions with w = 0, when M
-// is infinite).
+// side. Its vertices are M's corners on that side and the points where C crosses the volume's
+// edges (at infinity, as directions with w = 0, when M is infinite).
 //
 // The eight corners M^-1 (+-1, +-1, z, 1) of a view volume bound it only when all eight lie in
 // front of the eye (w > 0 before the divide). An oblique M' often has corners behind the eye or at
@@ -14,13 +13,11 @@
 // answer.
 #pragma once
 
+#include <Eigen/LU>
 #include <array>
-#include <cmath>
-#include <limits>
 #include <vector>
 
 #include "oblique/depth_convention.h"
-#include "oblique/frustum_planes.h"
 #include "oblique/plane.h"
 
 namespace oblique {
@@ -50,52 +47,39 @@ S dot(const Vec<S>& a, const Vec<S>& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
 }
 
-/// The point where planes a, b and c meet, homogeneous (zero when they meet in a line or not
-/// at all): the cofactors of the 3 x 4 matrix of the planes.
+/// The vertices of a view volume (its eight corners, homogeneous, indexed as
+/// view_volume_corners() gives them, in front of the eye: w >= 0) on the positive side of the
+/// plane c: the corners with c . x >= 0, and where an edge (corners whose indices differ in one
+/// bit) crosses c, the crossing (c . a) b - (c . b) a, positive in both. Finite vertices are
+/// divided to w = 1; directions at infinity keep w = 0. Written once for any scalar with
+/// + - * / and comparisons: the core's T, the checker's rationals.
 template <class S>
-Vec<S> meet(const Vec<S>& a, const Vec<S>& b, const Vec<S>& c) {
-  auto minor = [&](int i, int j, int k) -> S {
-    return a[i] * (b[j] * c[k] - b[k] * c[j]) - a[j] * (b[i] * c[k] - b[k] * c[i]) +
-           a[k] * (b[i] * c[j] - b[j] * c[i]);
-  };
-  return {minor(1, 2, 3), -minor(0, 2, 3), minor(0, 1, 3), -minor(0, 1, 2)};
-}
-
-/// The vertices of {x : P . x >= 0 for every P of `planes`}: points with w = 1, directions at
-/// infinity with w = 0. A candidate counts as on the kept side of P where P . x >= -slack |P| . |x|
-/// (slack 0 in exact arithmetic; a few epsilon in floating point, where a vertex on four or more
-/// planes rounds to either side). A vertex where more than three planes meet appears once per
-/// triple of them.
-template <class S>
-std::vector<Vec<S>> vertices(const std::vector<Vec<S>>& planes, const S& slack) {
-  auto magnitude = [](const S& x) { return x < 0 ? S(-x) : x; };
-  auto kept = [&](const Vec<S>& x) {
-    for (const Vec<S>& p : planes) {
-      S scale = 0;
-      for (int i = 0; i < 4; ++i) scale += magnitude(p[i]) * magnitude(x[i]);
-      if (dot(p, x) < -slack * scale) return false;
-    }
-    return true;
-  };
+std::vector<Vec<S>> clip_volume(const std::array<Vec<S>, 8>& corners, const Vec<S>& c) {
+  std::array<S, 8> side;
+  for (std::size_t i = 0; i < 8; ++i) side[i] = dot(c, corners[i]);
   std::vector<Vec<S>> out;
-  const std::size_t n = planes.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = i + 1; j < n; ++j) {
-      for (std::size_t k = j + 1; k < n; ++k) {
-        Vec<S> x = meet(planes[i], planes[j], planes[k]);
-        if (x[3] != 0) {
-          const S w = x[3];
-          for (S& v : x) v = v / w;
-          if (kept(x)) out.push_back(x);
-        } else if (x[0] != 0 || x[1] != 0 || x[2] != 0) {
-          if (kept(x)) {
-            out.push_back(x);
-          } else {
-            for (S& v : x) v = -v;
-            if (kept(x)) out.push_back(x);
-          }
-        }
-      }
+  auto add = [&out](Vec<S> x) {
+    if (x[3] != 0) {
+      const S w = x[3];
+      for (S& v : x) v = v / w;
+    }
+    out.push_back(x);
+  };
+  for (std::size_t i = 0; i < 8; ++i) {
+    if (!(side[i] < 0)) add(corners[i]);
+  }
+  for (std::size_t i = 0; i < 8; ++i) {
+    for (std::size_t bit = 1; bit < 8; bit <<= 1) {
+      const std::size_t j = i | bit;
+      if (j == i) continue;
+      const bool crosses = (side[i] > 0 && side[j] < 0) || (side[i] < 0 && side[j] > 0);
+      if (!crosses) continue;
+      const std::size_t in = side[i] > 0 ? i : j, out_index = side[i] > 0 ? j : i;
+      Vec<S> x;
+      for (int k = 0; k < 4; ++k)
+        x[static_cast<std::size_t>(k)] = side[in] * corners[out_index][static_cast<std::size_t>(k)] -
+                                         side[out_index] * corners[in][static_cast<std::size_t>(k)];
+      add(x);
     }
   }
   return out;
@@ -103,25 +87,20 @@ std::vector<Vec<S>> vertices(const std::vector<Vec<S>>& planes, const S& slack) 
 
 }  // namespace polytope
 
-/// The six planes of M's view volume and C, as polytope::vertices() takes them.
-template <class T>
-std::vector<polytope::Vec<T>> kept_region_planes(const Matrix4<T>& m, const Vector4<T>& c,
-                                                 Convention convention) {
-  const FrustumPlanes<T> f = frustum_planes(m, convention);
-  std::vector<polytope::Vec<T>> out;
-  for (const Vector4<T>& p : {f.left, f.right, f.bottom, f.top, f.near_plane, f.far_plane, c})
-    out.push_back({p(0), p(1), p(2), p(3)});
-  return out;
-}
-
-/// The vertices of the kept region of (M, C) in camera space (w = 1; w = 0 for directions of an
-/// infinite M), computed in T with a slack of 64 epsilon.
+/// The vertices of the kept region of (M, C) in camera space: points with w = 1, directions at
+/// infinity (an infinite M) with w = 0. Computed in T from M's corners; a corner within rounding
+/// of C may be kept or replaced by the crossings next to it, which lie within rounding of it.
 template <class T>
 std::vector<Vector4<T>> kept_region_vertices(const Matrix4<T>& m, const Vector4<T>& c,
                                              Convention convention) {
+  std::array<polytope::Vec<T>, 8> corners;
+  const std::array<Vector4<T>, 8> homogeneous = view_volume_corners(m, convention);
+  for (std::size_t i = 0; i < 8; ++i) {
+    const T sign = homogeneous[i].w() < 0 ? T(-1) : T(1);
+    for (int k = 0; k < 4; ++k) corners[i][static_cast<std::size_t>(k)] = sign * homogeneous[i](k);
+  }
   std::vector<Vector4<T>> out;
-  for (const auto& v : polytope::vertices(kept_region_planes(m, c, convention),
-                                          T(64) * std::numeric_limits<T>::epsilon()))
+  for (const auto& v : polytope::clip_volume(corners, {c(0), c(1), c(2), c(3)}))
     out.emplace_back(v[0], v[1], v[2], v[3]);
   return out;
 }

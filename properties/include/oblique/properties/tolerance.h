@@ -64,6 +64,9 @@ constexpr double kAccurateUlps = 2;
 //    |v^ - v| <= gamma(kConsumerSolveRoundings) |M^-1| |M| |M^-1| |b| for v = M^-1 b, and
 //    p = v / v_w within (|dv_i| + |p_i| |dv_w|) / (|v_w| - |dv_w|) + u |p_i|; where |dv_w| >=
 //    |v_w| the point is not determined in T and is not judged.
+//  - a view volume's corner (corners_contain_kept): that solve's bound with M' (row 3's own error
+//    bound carried through |M'^-1|) and with M (the original's corners, clipped by C), and, for a
+//    point where C crosses an edge, gamma(kPlaneRoundings) |C| . |x| / max|n_C| across C.
 //  - a plane from two rows (culling): 1 rounding per coefficient; normalised, 7 more (three
 //    squares, two sums, the square root, the quotient): kPlaneRoundings.
 //  - a pass camera's view (mirror: V R, R = I - 2 n n^T / |n|^2 with the normal normalised first

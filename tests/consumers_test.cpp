@@ -1,0 +1,330 @@
+// The references of the code around the matrix (depth_reconstruction.h, kept_region.h,
+// pass_camera.h) and the consumer properties (consumers.h): each property holds for the right
+// answer and for it a few ulps off, and alone rejects the wrong answers it exists for.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "oblique/depth_reconstruction.h"
+#include "oblique/kept_region.h"
+#include "oblique/oblique.h"
+#include "oblique/pass_camera.h"
+#include "oblique/projection.h"
+#include "oblique/properties/consumers.h"
+
+namespace {
+
+using oblique::Convention;
+using oblique::DepthBuffer;
+using oblique::Matrix4;
+using oblique::Vector3;
+using oblique::Vector4;
+using oblique::properties::ConsumerCheck;
+using oblique::properties::ConsumerFinding;
+
+const Convention kConventions[] = {Convention::gl, Convention::zero_one, Convention::reversed_z};
+
+Matrix4<double> perspective(Convention convention, double n = 0.5, double f = 200) {
+  return oblique::perspective<double>(1.2, 16.0 / 9.0, n, f, convention);
+}
+
+/// A water-like plane, tilted, 2 units in front of the camera, keeping the far side.
+Vector4<double> tilted_plane() {
+  return oblique::plane_from_normal_and_point<double>(Vector3<double>(0.3, 0.4, -1),
+                                                      Vector3<double>(0, 0, -2));
+}
+
+Matrix4<double> oblique_of(const Matrix4<double>& m, const Vector4<double>& c, Convention k) {
+  const auto result = oblique::apply<double>(m, c, k);
+  EXPECT_EQ(result.status, oblique::Status::ok);
+  return result.projection;
+}
+
+/// A point of the kept region: the mean of its finite vertices.
+Vector4<double> kept_centre(const Matrix4<double>& m, const Vector4<double>& c, Convention k) {
+  Vector4<double> sum = Vector4<double>::Zero();
+  int n = 0;
+  for (const auto& v : oblique::kept_region_vertices(m, c, k)) {
+    if (v.w() != 0) {
+      sum += v;
+      ++n;
+    }
+  }
+  return sum / n;
+}
+
+const ConsumerFinding& find(const std::vector<ConsumerFinding>& findings, ConsumerCheck check) {
+  for (const auto& f : findings) {
+    if (f.check == check) return f;
+  }
+  throw std::logic_error("no such finding");
+}
+
+Vector3<double> nudged(Vector3<double> v, int ulps) {
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < ulps; ++k) v(i) = std::nextafter(v(i), 2 * v(i) + 1);
+  }
+  return v;
+}
+
+TEST(DepthReconstruction, viewPositionInvertsTheWindowDepth) {
+  for (Convention k : kConventions) {
+    const Matrix4<double> m = perspective(k);
+    const Vector4<double> p(0.7, -0.3, -5, 1);
+    const Vector4<double> clip = m * p;
+    const double depth = oblique::window_depth(clip.z() / clip.w(), k);
+    const Vector3<double> back =
+        oblique::view_position(m, clip.x() / clip.w(), clip.y() / clip.w(), depth, k);
+    EXPECT_NEAR((back - p.head<3>()).norm(), 0, 1e-12) << convention_name(k);
+    EXPECT_EQ(oblique::view_axis_sign(m, k), -1);
+    EXPECT_NEAR(oblique::linear_depth(m, clip.x() / clip.w(), clip.y() / clip.w(), depth, k, -1),
+                5, 1e-12);
+  }
+}
+
+TEST(DepthReconstruction, rightAnswersHoldAndTheOriginalMatrixIsCaught) {
+  for (Convention k : kConventions) {
+    for (DepthBuffer buffer : {DepthBuffer::fixed24, DepthBuffer::float32}) {
+      const Matrix4<double> m = perspective(k);
+      const Vector4<double> c = tilted_plane();
+      const Matrix4<double> mo = oblique_of(m, c, k);
+      const auto sample = oblique::properties::depth_sample(mo, m, k, buffer, kept_centre(m, c, k));
+      ASSERT_TRUE(sample.has_value());
+      const Vector3<double> right =
+          oblique::view_position(mo, sample->ndc_x, sample->ndc_y, sample->depth, k);
+      EXPECT_TRUE(oblique::properties::judge_view_position(*sample, right).holds);
+      EXPECT_TRUE(oblique::properties::judge_view_position(*sample, nudged(right, 4)).holds);
+      // The same depth read through M instead of M'.
+      const Vector3<double> wrong =
+          oblique::view_position(m, sample->ndc_x, sample->ndc_y, sample->depth, k);
+      const ConsumerFinding f = oblique::properties::judge_view_position(*sample, wrong);
+      EXPECT_TRUE(f.judged);
+      EXPECT_FALSE(f.holds) << describe(f);
+    }
+  }
+}
+
+// The textbook linearisation n f / (f - d (f - n)) ([0, 1] depth) with the camera's n and f, used
+// on a depth written through M': caught, and the error it makes is a large part of the depth.
+TEST(DepthReconstruction, textbookLinearisationOnAnObliqueMatrixIsCaughtWithItsError) {
+  const double n = 0.5, f = 200;
+  const Convention k = Convention::zero_one;
+  const Matrix4<double> m = perspective(k, n, f);
+  const Vector4<double> c = tilted_plane();
+  const Matrix4<double> mo = oblique_of(m, c, k);
+  const Vector4<double> point = kept_centre(m, c, k);
+  const auto sample = oblique::properties::depth_sample(mo, m, k, DepthBuffer::fixed24, point);
+  ASSERT_TRUE(sample.has_value());
+  const double textbook = n * f / (f - sample->depth * (f - n));
+  const ConsumerFinding caught = oblique::properties::judge_linear_depth(*sample, textbook);
+  EXPECT_FALSE(caught.holds) << describe(caught);
+  const double true_depth = -point.z();
+  const double relative_error = std::fabs(textbook - true_depth) / true_depth;
+  EXPECT_GT(relative_error, 0.1) << "textbook " << textbook << ", true " << true_depth;
+  std::cout << "textbook linearisation on M': " << textbook << " for a point at depth "
+            << true_depth << " (" << 100 * relative_error << "% off; " << describe(caught)
+            << ")\n";
+  // The same formula on the unmodified matrix's depth is right: the property accepts it there.
+  const auto plain = oblique::properties::depth_sample(m, m, k, DepthBuffer::fixed24, point);
+  ASSERT_TRUE(plain.has_value());
+  EXPECT_TRUE(
+      oblique::properties::judge_linear_depth(*plain, n * f / (f - plain->depth * (f - n))).holds);
+}
+
+TEST(CullingPlanes, rightPlanesHoldInEveryConvention) {
+  for (Convention k : kConventions) {
+    const Matrix4<double> m = perspective(k);
+    const Vector4<double> c = tilted_plane();
+    const Matrix4<double> mo = oblique_of(m, c, k);
+    const auto findings = oblique::properties::judge_culling_planes(
+        m, c, k, mo, oblique::frustum_planes(mo, k));
+    for (const auto& f : findings) EXPECT_TRUE(f.judged && f.holds) << describe(f);
+    // Normalised planes are the same half-spaces.
+    auto planes = oblique::frustum_planes(mo, k);
+    for (Vector4<double>* p : {&planes.left, &planes.right, &planes.bottom, &planes.top,
+                               &planes.near_plane, &planes.far_plane})
+      *p /= p->head<3>().norm();
+    for (const auto& f : oblique::properties::judge_culling_planes(m, c, k, mo, planes))
+      EXPECT_TRUE(f.holds) << describe(f);
+  }
+}
+
+TEST(CullingPlanes, nearIsCAloneRejectsGlRowsOnZeroOneAndReversedZ) {
+  for (Convention k : {Convention::zero_one, Convention::reversed_z}) {
+    const Matrix4<double> m = perspective(k);
+    const Vector4<double> c = tilted_plane();
+    const Matrix4<double> mo = oblique_of(m, c, k);
+    auto planes = oblique::frustum_planes(mo, k);
+    planes.near_plane = oblique::near_plane(mo, Convention::gl);
+    const auto findings = oblique::properties::judge_culling_planes(m, c, k, mo, planes);
+    EXPECT_FALSE(find(findings, ConsumerCheck::culling_near_is_c).holds);
+    EXPECT_TRUE(find(findings, ConsumerCheck::culling_keeps_visible).holds)
+        << describe(find(findings, ConsumerCheck::culling_keeps_visible));
+  }
+}
+
+TEST(CullingPlanes, keepsVisibleAloneRejectsAFarPlaneThatCullsTheKeptRegion) {
+  for (Convention k : kConventions) {
+    const Matrix4<double> m = perspective(k);
+    const Vector4<double> c = tilted_plane();
+    const Matrix4<double> mo = oblique_of(m, c, k);
+    auto planes = oblique::frustum_planes(mo, k);
+    // The far plane of the unmodified matrix moved in by a tenth: it cuts the kept region.
+    planes.far_plane = oblique::far_plane(m, k);
+    planes.far_plane.w() *= 0.9;
+    const auto findings = oblique::properties::judge_culling_planes(m, c, k, mo, planes);
+    EXPECT_FALSE(find(findings, ConsumerCheck::culling_keeps_visible).holds) << convention_name(k);
+    EXPECT_TRUE(find(findings, ConsumerCheck::culling_near_is_c).holds);
+  }
+}
+
+struct PassCase {
+  Matrix4<double> view = Matrix4<double>::Identity();
+  Vector4<double> plane;
+  Matrix4<double> pass_view;
+  std::vector<Vector4<double>> on_plane;
+  Vector4<double> front;
+};
+
+/// A mirror 6 units ahead of a camera at (1, 2, 3), turned 30 degrees.
+PassCase mirror_case() {
+  PassCase p;
+  const double a = M_PI / 6;
+  Matrix4<double> rotation = Matrix4<double>::Identity();
+  rotation(0, 0) = std::cos(a);
+  rotation(0, 2) = std::sin(a);
+  rotation(2, 0) = -std::sin(a);
+  rotation(2, 2) = std::cos(a);
+  Matrix4<double> translation = Matrix4<double>::Identity();
+  translation.block<3, 1>(0, 3) = Vector3<double>(-1, -2, -3);
+  p.view = rotation * translation;
+  p.plane = oblique::plane_from_normal_and_point<double>(Vector3<double>(0.2, 0.1, 1),
+                                                         Vector3<double>(1, 2, -3));
+  p.pass_view = oblique::mirror_view(p.view, p.plane);
+  const Vector3<double> n = p.plane.head<3>();
+  const Vector3<double> base = -p.plane.w() * n / n.squaredNorm();
+  const Vector3<double> t1 = n.unitOrthogonal(), t2 = n.cross(t1).normalized();
+  for (double s : {-3.0, 0.0, 5.0})
+    p.on_plane.push_back((Vector4<double>() << base + s * t1 + (2 - s) * t2, 1).finished());
+  p.front << base + 4 * n.normalized(), 1;
+  return p;
+}
+
+TEST(PassCamera, rightPlaneHoldsAndEachPropertyAloneRejectsItsMistake) {
+  const PassCase p = mirror_case();
+  const Vector4<double> right = oblique::plane_in_camera(p.pass_view, p.plane);
+  EXPECT_LT(right.w(), 0) << "the mirror's camera is behind its plane";
+  for (const auto& f : oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane,
+                                                               p.front, right))
+    EXPECT_TRUE(f.holds) << describe(f);
+  const Vector4<double> unit = right / right.head<3>().norm();
+  for (const auto& f :
+       oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front, unit))
+    EXPECT_TRUE(f.holds) << describe(f);
+  // Wrong side: on the surface, but keeping the mirror's back.
+  auto findings = oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane,
+                                                          p.front, Vector4<double>(-right));
+  EXPECT_TRUE(find(findings, ConsumerCheck::plane_on_surface).holds);
+  EXPECT_FALSE(find(findings, ConsumerCheck::plane_kept_side).holds);
+  // Wrong space: the normal rotated, the distance kept from world space; on the right side.
+  Vector4<double> no_translation;
+  no_translation << p.pass_view.topLeftCorner<3, 3>() * p.plane.head<3>(), p.plane.w();
+  findings = oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front,
+                                                     no_translation);
+  EXPECT_FALSE(find(findings, ConsumerCheck::plane_on_surface).holds);
+  // The main view's plane (the reflection forgotten): points of the mirror still land on it, but
+  // it keeps the wrong side.
+  findings = oblique::properties::judge_camera_plane(
+      p.pass_view, p.plane, p.on_plane, p.front, oblique::plane_in_camera(p.view, p.plane));
+  EXPECT_TRUE(find(findings, ConsumerCheck::plane_on_surface).holds);
+  EXPECT_FALSE(find(findings, ConsumerCheck::plane_kept_side).holds);
+}
+
+TEST(PassCamera, mirrorAndPortalViews) {
+  const PassCase p = mirror_case();
+  EXPECT_TRUE(oblique::properties::judge_mirror_view(p.view, p.plane, p.pass_view).holds);
+  EXPECT_LT(p.pass_view.block(0, 0, 3, 3).determinant(), 0) << "a mirror flips the winding";
+  // The main view: not mirrored.
+  EXPECT_FALSE(oblique::properties::judge_mirror_view(p.view, p.plane, p.view).holds);
+  // A portal: the map carries the linked portal's front to behind this one.
+  Matrix4<double> frame = Matrix4<double>::Identity(), linked = Matrix4<double>::Identity();
+  frame.block<3, 1>(0, 3) = Vector3<double>(0, 0, -5);
+  linked.block<3, 3>(0, 0) << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // turned a quarter about up
+  linked.block<3, 1>(0, 3) = Vector3<double>(20, 0, 0);
+  const Matrix4<double> right = oblique::portal_view(p.view, frame, linked);
+  EXPECT_TRUE(oblique::properties::judge_portal_view(p.view, frame, linked, right).holds);
+  const Matrix4<double> no_turn = p.view * frame * linked.inverse();
+  EXPECT_FALSE(oblique::properties::judge_portal_view(p.view, frame, linked, no_turn).holds);
+  // In front of the linked portal is behind this one.
+  const Vector4<double> ahead_of_linked = linked * Vector4<double>(0, 0, 3, 1);
+  const Vector4<double> seen = oblique::portal_map(frame, linked) * ahead_of_linked;
+  EXPECT_NEAR(seen.z(), -8, 1e-12);
+}
+
+TEST(Corners, keptRegionVerticesHoldAndTheObliqueMatrixCornersAreCaught) {
+  // Where C cuts an edge of the volume behind the eye (found by the property suite).
+  Matrix4<double> m;
+  m << 2, 0, 0, 0, 0, -2, 0, 0, 0, 0, -3, -4, 0, 0, -1, 0;
+  const Vector4<double> c(-1, 0, 0.25, -2.0 / 15);
+  const Convention k = Convention::gl;
+  const Matrix4<double> mo = oblique_of(m, c, k);
+  std::vector<Vector3<double>> kept, naive;
+  for (const auto& v : oblique::kept_region_vertices(m, oblique::near_plane(mo, k), k))
+    kept.push_back(v.head<3>());
+  int behind = 0;
+  for (const auto& v : oblique::view_volume_corners(mo, k)) {
+    naive.push_back(v.head<3>() / v.w());
+    behind += v.w() < 0;
+  }
+  EXPECT_GT(behind, 0) << "the case has corners behind the eye";
+  const ConsumerFinding right = oblique::properties::judge_corners(m, c, k, mo, kept);
+  EXPECT_TRUE(right.holds) << describe(right);
+  EXPECT_NEAR(right.depth_waste, 1, 1e-9);
+  const ConsumerFinding wrong = oblique::properties::judge_corners(m, c, k, mo, naive);
+  EXPECT_FALSE(wrong.holds) << describe(wrong);
+  // The original volume's corners bound the kept region too, with depth to spare.
+  std::vector<Vector3<double>> original;
+  for (const auto& v : oblique::view_volume_corners(m, k)) original.push_back(v.head<3>() / v.w());
+  const ConsumerFinding loose = oblique::properties::judge_corners(m, c, k, mo, original);
+  EXPECT_TRUE(loose.holds) << describe(loose);
+  EXPECT_GE(loose.depth_waste, 1);
+}
+
+TEST(Corners, obliqueMatrixCornersBoundWhereAllAreInFront) {
+  for (Convention k : kConventions) {
+    const Matrix4<double> m = perspective(k);
+    // A plane parallel to the near plane: M' keeps a far plane parallel to it, and every corner
+    // is in front of the eye. (Tilted by as little as (0.05, 0.05, -1), three far corners of
+    // M' already lie behind it: corners_of_oblique_matrix's mistake.)
+    const Vector4<double> c = oblique::plane_from_normal_and_point<double>(
+        Vector3<double>(0, 0, -1), Vector3<double>(0, 0, -2));
+    const Matrix4<double> mo = oblique_of(m, c, k);
+    std::vector<Vector3<double>> corners;
+    bool all_in_front = true;
+    for (const auto& v : oblique::view_volume_corners(mo, k)) {
+      corners.push_back(v.head<3>() / v.w());
+      all_in_front = all_in_front && v.w() > 0;
+    }
+    ASSERT_TRUE(all_in_front);
+    const ConsumerFinding f = oblique::properties::judge_corners(m, c, k, mo, corners);
+    EXPECT_TRUE(f.holds) << describe(f);
+    EXPECT_NEAR(f.depth_waste, 1, 1e-9) << "for a parallel plane M' volume is the kept region";
+    // The near face's corners and the eye: the far part is lost.
+    std::vector<Vector3<double>> near_and_eye;
+    const std::size_t first_near = k == Convention::reversed_z ? 4 : 0;
+    for (std::size_t i = first_near; i < first_near + 4; ++i) near_and_eye.push_back(corners[i]);
+    near_and_eye.push_back(Vector3<double>::Zero());
+    corners = near_and_eye;
+    EXPECT_FALSE(oblique::properties::judge_corners(m, c, k, mo, corners).holds);
+  }
+}
+
+TEST(ConsumerChecks, namesRoundTrip) {
+  for (ConsumerCheck c : oblique::properties::all_consumer_checks)
+    EXPECT_EQ(oblique::properties::parse_consumer_check(oblique::properties::consumer_check_name(c)),
+              c);
+  EXPECT_FALSE(oblique::properties::parse_consumer_check("near_plane").has_value());
+}
+
+}  // namespace
