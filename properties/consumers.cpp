@@ -227,18 +227,23 @@ std::pair<bool, double> near_segment(const Vec& a, const Vec& b, const Vec& boun
   return {feasible, worst};
 }
 
-/// The kept region's vertices, exactly (polytope::clip_volume on M's exact corners).
+constexpr const char* kNotProper =
+    "a corner of the original view volume is behind the eye in exact arithmetic";
+
+/// The kept region's vertices, exactly (polytope::clip_volume on M's exact corners); empty when
+/// M is singular or a corner of its volume is behind the eye (w < 0: the volume wraps through
+/// infinity, and has no kept region to judge by).
 template <class T>
-std::vector<Vec> exact_kept_region(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>& m, const Vector4<T>& c,
+                                                  Convention convention) {
   const std::optional<Mat> inv = exact::inverse(exact::to_rational(m));
-  if (!inv) return {};
+  if (!inv) return std::nullopt;
   const DepthRange range = clip_depth_range(convention);
   std::array<Vec, 8> corners;
   for (int i = 0; i < 8; ++i) {
-    Vec v = exact::mul(*inv, {i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? range.z_high : range.z_low, 1});
-    if (v[3] < 0) {
-      for (Rational& x : v) x = -x;
-    }
+    Vec v =
+        exact::mul(*inv, {i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? range.z_high : range.z_low, 1});
+    if (v[3] < 0) return std::nullopt;
     corners[static_cast<std::size_t>(i)] = v;
   }
   std::vector<Vec> out;
@@ -380,7 +385,13 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
   const Rational rho = smallest_plane > 0 ? Rational(row3_error / smallest_plane) : Rational(0);
   const Rational g = gamma_of<T>(tolerance::kPlaneRoundings);
 
-  const std::vector<Vec> kept = exact_kept_region(m, c, convention);
+  const std::optional<std::vector<Vec>> region = exact_kept_region(m, c, convention);
+  if (!region) {
+    keeps.judged = near.judged = false;
+    keeps.detail = near.detail = kNotProper;
+    return {keeps, near};
+  }
+  const std::vector<Vec>& kept = *region;
   const Vector4<T>* planes[] = {&answer.left, &answer.right,      &answer.bottom,
                                 &answer.top,  &answer.near_plane, &answer.far_plane};
   const char* plane_names[] = {"left", "right", "bottom", "top", "near", "far"};
@@ -676,7 +687,13 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
                     : "the case has no answer to judge against";
     return f;
   }
-  const std::vector<Vec> kept = exact_kept_region(m, c, convention);
+  const std::optional<std::vector<Vec>> region = exact_kept_region(m, c, convention);
+  if (!region) {
+    f.judged = false;
+    f.detail = kNotProper;
+    return f;
+  }
+  const std::vector<Vec>& kept = *region;
   for (const Vec& v : kept) {
     if (v[3] == 0) {
       f.judged = false;

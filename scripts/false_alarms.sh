@@ -5,15 +5,18 @@
 #   bash scripts/false_alarms.sh [--minutes M] [--jobs J] [--seed S] [--no-build]
 #
 # Each run below takes M minutes (default 10) of one job; J (default: the number of cores) run
-# at a time, so the whole takes about 6 M / J minutes, then the buggy examples (at most 7 min).
+# at a time, so the whole takes about 7 M / J minutes, then the buggy examples (at most 7 min).
 # S (default: from the clock) is the first seed, each run gets its own. The runs:
 #   verify: the bundled `correct` (double and float, any refusal) and `engine_no_statuses` (double
 #           and float, examples/engine_contract.json: answers only, unit planes), every
 #           convention and family;
 #   testing: the float engine of false_alarms/ through oblique::testing (every family and place,
 #           each convention, answers only), RC_PARAMS max_success per property;
-#   fuzz driver: the same engine through oblique::fuzzing, on mutated fuzz_oblique corpus inputs.
-# Then each buggy example under verify (must be caught: exit 1), with its time to the finding.
+#   fuzz driver: the same engine through oblique::fuzzing, on mutated fuzz_oblique corpus inputs;
+#   consumers: the right code around the matrix (examples/consumers) through
+#           oblique::testing::check_consumers, float and double, every family and convention.
+# Then each buggy example under verify (must be caught: exit 1), with its time to the finding, and
+# each wrong consumer (must be caught by its property).
 # Logs and a summary go to a new folder build/false-alarms/<UTC time>/ (nothing is overwritten);
 # the script exits 1 on any false alarm or missed bug, 2 when a run could not be made.
 set -euo pipefail
@@ -29,7 +32,7 @@ while (($#)); do
     --seed) seed="${2:-}"; shift $(($# > 1 ? 2 : 1)) ;;
     --jobs) jobs="${2:-}"; shift $(($# > 1 ? 2 : 1)) ;;
     --no-build) build=0; shift ;;
-    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
     *) echo "false_alarms.sh: unknown argument $1 (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -43,13 +46,15 @@ if ((build)); then
   cmake --build --preset release --target oblique example_correct example_engine_no_statuses \
     example_camera_space_signs example_zero_one_factor_on_gl example_no_camera_guard \
     example_sign_by_division example_ignores_shift example_two_bugs example_ignores_m11_sign \
-    float_engine_property_test float_engine_fuzz_replay > /dev/null
+    float_engine_property_test float_engine_fuzz_replay example_consumers_right \
+    example_consumers_wrong > /dev/null
 fi
 bin=build/release
 oblique=$bin/cli/oblique
 ex=$bin/examples
 for f in "$oblique" "$ex/example_correct" "$ex/example_engine_no_statuses" \
-         "$bin/false_alarms/float_engine_property_test" "$bin/false_alarms/float_engine_fuzz_replay"; do
+         "$bin/false_alarms/float_engine_property_test" "$bin/false_alarms/float_engine_fuzz_replay" \
+         "$ex/example_consumers_right" "$ex/example_consumers_wrong"; do
   [[ -x "$f" ]] || { echo "false_alarms.sh: $f is not built (run without --no-build)" >&2; exit 2; }
 done
 
@@ -68,6 +73,7 @@ runs=(
   "engine_no_statuses, float, contract file|verify|$ex/example_engine_no_statuses --float|--precision float --contract examples/engine_contract.json"
   "float engine, oblique::testing|testing||"
   "float engine, fuzz driver|fuzzing||"
+  "right consumers, oblique::testing|consumers||"
 )
 secs=$((minutes * 60))
 
@@ -106,6 +112,15 @@ run_one() {
       judged=$(sed -n 's/^oblique: \([0-9]*\) inputs judged.*/\1/p' "$log" | tail -1)
       left=$(sed -n 's/^oblique: [0-9]* inputs judged//p' "$log" | grep -o '[0-9]* left out' |
              grep -o '[0-9]*' | awk '{s += $1} END {print s + 0}')
+      ;;
+    consumers)
+      # Nine properties, each its own cases, in float then double: about 2,200 cases per second
+      # per job in all, so max_success = secs * 2200 / 18 per property.
+      RC_PARAMS="max_success=$((secs * 120)) seed=$s" OBLIQUE_REPORT_DIR="$out/reports$n" \
+        "$ex/example_consumers_right" > "$log" 2>&1 || rc=$?
+      judged=$(grep -o '^[a-z_]*: OK, passed [0-9]* tests' "$log" | awk '{s += $4} END {print s + 0}')
+      left=$(sed -n 's/^[a-z_]*: OK, passed [0-9]* tests (left out: \(.*\))$/\1/p' "$log" |
+               grep -o '[0-9][0-9]*\(,\|$\)' | tr -d ',' | awk '{s += $1} END {print s + 0}')
       ;;
   esac
   echo "${judged:-0} ${left:-0} $rc" > "$out/run$n.figures"
@@ -188,6 +203,31 @@ rc=0
 kind=$(sed -n 's/^oblique verify: \([a-z_0-9]*\) violated after \([0-9]*\) cases.*/\1 after \2 cases/p' "$log" | head -1)
 if ((rc == 1)); then say "| ignores_shift (stereo_shift) | yes | | ${kind:-see log} |"; else
   say "| ignores_shift (stereo_shift) | NO (exit $rc) | | |"; missed=$((missed + 1)); fi
+say ""
+say "Wrong consumers (oblique::testing, seed $seed): each must be caught by its property."
+say ""
+say "| test | caught by | seconds |"
+say "|---|---|---|"
+for pair in reconstructsWithOriginal:view_position linearisesWithNearFar:linear_depth \
+            glPlanesOnAnyMatrix:culling_near_is_c planesOfTranspose:culling_keeps_visible \
+            planeWithoutTranslation:plane_on_surface planeFlippedForMirrors:plane_kept_side \
+            mirrorByReflectedLookAt:mirror_view portalWithoutTurn:portal_view \
+            cornersOfObliqueMatrix:corners_contain_kept; do
+  test=${pair%%:*}
+  property=${pair#*:}
+  log="$out/wrong_$test.log"
+  start=$(date +%s.%N)
+  rc=0
+  RC_PARAMS="seed=$seed" OBLIQUE_REPORT_DIR="$out/wrong_reports_$test" \
+    "$ex/example_consumers_wrong" --gtest_filter="WrongConsumers.$test" > "$log" 2>&1 || rc=$?
+  elapsed=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {printf "%.2f", b - a}')
+  if ((rc != 0)) && grep -q "violates $property violated" "$log"; then
+    say "| $test | $property | $elapsed |"
+  else
+    say "| $test | NOT CAUGHT by $property (exit $rc) | $elapsed |"
+    missed=$((missed + 1))
+  fi
+done
 say ""
 say "Summary: $total judged cases, $failures false-alarm runs, $missed buggy examples missed."
 if ((failures > 0 || missed > 0)); then exit 1; fi

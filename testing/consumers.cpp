@@ -89,7 +89,7 @@ std::string case_text(const ObliqueCase<T>& c) {
 inline namespace OBLIQUE_EIGEN_LAYOUT {
 
 template <class T>
-void check_consumers(const Consumers<T>& consumers, const Contract& given) {
+void check_consumers(const oblique::Consumers<T>& consumers, const Contract& given) {
   const Contract contract =
       resolved(given, generators::every_convention(), properties::StatusContract::exact, false);
   const std::string who = consumers.name;
@@ -162,12 +162,12 @@ void check_consumers(const Consumers<T>& consumers, const Contract& given) {
                              properties::ConsumerCheck::plane_kept_side}) {
       run(
           [=] {
-            const generators::PassPlaneCase<T> c = *generators::pass_plane_case<T>();
+            const consumer_cases::PassPlaneCase<T> c = *generators::pass_plane_case<T>();
             ++tally().implementations[who];
-            ++tally().places[generators::pass_kind_name(c.kind)];
+            ++tally().places[consumer_cases::pass_kind_name(c.kind)];
             const Vector4<T> answer = consumers.camera_plane(c.pass_view, c.kept_plane);
             const std::string inputs =
-                std::string("- pass: ") + generators::pass_kind_name(c.kind) +
+                std::string("- pass: ") + consumer_cases::pass_kind_name(c.kind) +
                 "\n- main view: " + matrix_text(c.main_view) +
                 "\n- pass view: " + matrix_text(c.pass_view) +
                 "\n- world plane kept: " + matrix_text(c.kept_plane.transpose().eval()) +
@@ -234,9 +234,9 @@ void check_consumers(const Consumers<T>& consumers, const Contract& given) {
   if (!any) ADD_FAILURE() << who << ": oblique::testing::Consumers gives no function to check";
 }
 
-template void check_consumers<float>(const Consumers<float>&, const Contract&);
-template void check_consumers<double>(const Consumers<double>&, const Contract&);
-template void check_consumers<long double>(const Consumers<long double>&, const Contract&);
+template void check_consumers<float>(const oblique::Consumers<float>&, const Contract&);
+template void check_consumers<double>(const oblique::Consumers<double>&, const Contract&);
+template void check_consumers<long double>(const oblique::Consumers<long double>&, const Contract&);
 
 }  // namespace OBLIQUE_EIGEN_LAYOUT
 

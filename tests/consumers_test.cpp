@@ -78,8 +78,8 @@ TEST(DepthReconstruction, viewPositionInvertsTheWindowDepth) {
         oblique::view_position(m, clip.x() / clip.w(), clip.y() / clip.w(), depth, k);
     EXPECT_NEAR((back - p.head<3>()).norm(), 0, 1e-12) << convention_name(k);
     EXPECT_EQ(oblique::view_axis_sign(m, k), -1);
-    EXPECT_NEAR(oblique::linear_depth(m, clip.x() / clip.w(), clip.y() / clip.w(), depth, k, -1),
-                5, 1e-12);
+    EXPECT_NEAR(oblique::linear_depth(m, clip.x() / clip.w(), clip.y() / clip.w(), depth, k, -1), 5,
+                1e-12);
   }
 }
 
@@ -123,8 +123,7 @@ TEST(DepthReconstruction, textbookLinearisationOnAnObliqueMatrixIsCaughtWithItsE
   const double relative_error = std::fabs(textbook - true_depth) / true_depth;
   EXPECT_GT(relative_error, 0.1) << "textbook " << textbook << ", true " << true_depth;
   std::cout << "textbook linearisation on M': " << textbook << " for a point at depth "
-            << true_depth << " (" << 100 * relative_error << "% off; " << describe(caught)
-            << ")\n";
+            << true_depth << " (" << 100 * relative_error << "% off; " << describe(caught) << ")\n";
   // The same formula on the unmodified matrix's depth is right: the property accepts it there.
   const auto plain = oblique::properties::depth_sample(m, m, k, DepthBuffer::fixed24, point);
   ASSERT_TRUE(plain.has_value());
@@ -137,8 +136,8 @@ TEST(CullingPlanes, rightPlanesHoldInEveryConvention) {
     const Matrix4<double> m = perspective(k);
     const Vector4<double> c = tilted_plane();
     const Matrix4<double> mo = oblique_of(m, c, k);
-    const auto findings = oblique::properties::judge_culling_planes(
-        m, c, k, mo, oblique::frustum_planes(mo, k));
+    const auto findings =
+        oblique::properties::judge_culling_planes(m, c, k, mo, oblique::frustum_planes(mo, k));
     for (const auto& f : findings) EXPECT_TRUE(f.judged && f.holds) << describe(f);
     // Normalised planes are the same half-spaces.
     auto planes = oblique::frustum_planes(mo, k);
@@ -148,6 +147,23 @@ TEST(CullingPlanes, rightPlanesHoldInEveryConvention) {
     for (const auto& f : oblique::properties::judge_culling_planes(m, c, k, mo, planes))
       EXPECT_TRUE(f.holds) << describe(f);
   }
+}
+
+// Found by a long run: a float matrix whose third and fourth rows nearly agree puts the far
+// plane beyond infinity in exact arithmetic (far corners with w < 0), so the "volume" wraps
+// through infinity and a vertex where C crosses its edge lies outside every plane of it. Such a
+// case has no kept region to judge by.
+TEST(CullingPlanes, aVolumeWithCornersBehindTheEyeIsNotJudged) {
+  Matrix4<float> m;
+  m << 0.13278781f, -0.15411554f, 0.089434415f, 0, 0.34675997f, 0.09754516f, -0.34675997f, 0,
+      -0.4024549f, -0.69352f, -0.5975452f, -2.2500002f, -0.40245485f, -0.69351995f, -0.59754515f, 0;
+  const Vector4<float> c(0, 0, -1, -1.1771363f);
+  const auto result = oblique::apply<float>(m, c, Convention::gl);
+  ASSERT_EQ(result.status, oblique::Status::ok);
+  const auto findings = oblique::properties::judge_culling_planes(
+      m, c, Convention::gl, result.projection,
+      oblique::frustum_planes(result.projection, Convention::gl));
+  for (const auto& f : findings) EXPECT_FALSE(f.judged) << describe(f);
 }
 
 TEST(CullingPlanes, nearIsCAloneRejectsGlRowsOnZeroOneAndReversedZ) {
@@ -215,16 +231,16 @@ TEST(PassCamera, rightPlaneHoldsAndEachPropertyAloneRejectsItsMistake) {
   const PassCase p = mirror_case();
   const Vector4<double> right = oblique::plane_in_camera(p.pass_view, p.plane);
   EXPECT_LT(right.w(), 0) << "the mirror's camera is behind its plane";
-  for (const auto& f : oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane,
-                                                               p.front, right))
+  for (const auto& f :
+       oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front, right))
     EXPECT_TRUE(f.holds) << describe(f);
   const Vector4<double> unit = right / right.head<3>().norm();
   for (const auto& f :
        oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front, unit))
     EXPECT_TRUE(f.holds) << describe(f);
   // Wrong side: on the surface, but keeping the mirror's back.
-  auto findings = oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane,
-                                                          p.front, Vector4<double>(-right));
+  auto findings = oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front,
+                                                          Vector4<double>(-right));
   EXPECT_TRUE(find(findings, ConsumerCheck::plane_on_surface).holds);
   EXPECT_FALSE(find(findings, ConsumerCheck::plane_kept_side).holds);
   // Wrong space: the normal rotated, the distance kept from world space; on the right side.
@@ -235,8 +251,8 @@ TEST(PassCamera, rightPlaneHoldsAndEachPropertyAloneRejectsItsMistake) {
   EXPECT_FALSE(find(findings, ConsumerCheck::plane_on_surface).holds);
   // The main view's plane (the reflection forgotten): points of the mirror still land on it, but
   // it keeps the wrong side.
-  findings = oblique::properties::judge_camera_plane(
-      p.pass_view, p.plane, p.on_plane, p.front, oblique::plane_in_camera(p.view, p.plane));
+  findings = oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front,
+                                                     oblique::plane_in_camera(p.view, p.plane));
   EXPECT_TRUE(find(findings, ConsumerCheck::plane_on_surface).holds);
   EXPECT_FALSE(find(findings, ConsumerCheck::plane_kept_side).holds);
 }
@@ -322,8 +338,8 @@ TEST(Corners, obliqueMatrixCornersBoundWhereAllAreInFront) {
 
 TEST(ConsumerChecks, namesRoundTrip) {
   for (ConsumerCheck c : oblique::properties::all_consumer_checks)
-    EXPECT_EQ(oblique::properties::parse_consumer_check(oblique::properties::consumer_check_name(c)),
-              c);
+    EXPECT_EQ(
+        oblique::properties::parse_consumer_check(oblique::properties::consumer_check_name(c)), c);
   EXPECT_FALSE(oblique::properties::parse_consumer_check("near_plane").has_value());
 }
 

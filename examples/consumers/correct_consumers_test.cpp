@@ -5,8 +5,8 @@
 namespace {
 
 template <class T>
-oblique::testing::Consumers<T> right() {
-  oblique::testing::Consumers<T> c;
+oblique::Consumers<T> right() {
+  oblique::Consumers<T> c;
   c.name = "engine_consumers";
   c.view_position = engine_consumers::view_position<T>;
   c.linear_depth = engine_consumers::linear_depth<T>;

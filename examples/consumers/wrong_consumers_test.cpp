@@ -5,9 +5,9 @@
 
 namespace {
 
+using oblique::Consumers;
 using oblique::Contract;
 using oblique::Convention;
-using oblique::testing::Consumers;
 
 template <class F>
 Consumers<float> only(const char* name, F set) {

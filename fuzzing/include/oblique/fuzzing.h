@@ -27,6 +27,7 @@
 #include "oblique/depth_convention.h"
 #include "oblique/eigen_layout.h"
 #include "oblique/properties/adapter.h"
+#include "oblique/properties/consumers.h"
 #include "oblique/properties/contract.h"
 
 namespace oblique::fuzzing {
@@ -42,6 +43,16 @@ inline namespace OBLIQUE_EIGEN_LAYOUT {
 template <class T>
 int test_one_input(const std::uint8_t* data, std::size_t size,
                    const properties::Implementation<T>& impl, const Contract& contract = {});
+/// The body of a libFuzzer target for the code around the matrix (oblique::Consumers, as
+/// oblique::testing::check_consumers takes it): decodes M and C as test_one_input() does (in one
+/// of the contract's conventions), takes the core's oblique matrix for them, and with choices read
+/// from the input's end (a point of the kept region, the depth buffer, a main view, a mirror's
+/// plane, portal frames) asks each function given and judges its answer by its properties
+/// (oblique/properties/consumers.h). On a violation prints the finding and every input
+/// (round-trip decimals), then aborts. Returns 0.
+template <class T>
+int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T>& consumers,
+                   const Contract& contract = {});
 }  // namespace OBLIQUE_EIGEN_LAYOUT
 
 }  // namespace oblique::fuzzing

@@ -24,7 +24,6 @@
 
 #include <gtest/gtest.h>
 
-#include <functional>
 #include <iterator>
 #include <optional>
 #include <string>
@@ -74,51 +73,19 @@ template <class T>
 void check_properties(const Implementation<T>& impl, const Contract& contract = Contract{});
 }  // namespace OBLIQUE_EIGEN_LAYOUT
 
-/// The code around the oblique matrix, yours: each function given is checked against its
-/// properties (oblique/properties/consumers.h; docs/consumers.md), the others are not asked.
-/// Camera space and planes as for adapt(): column vectors, a plane keeps P . x >= 0.
-template <class T>
-struct Consumers {
-  std::string name = "consumers";
-  /// The camera-space point of the pixel at NDC (x, y) whose depth buffer holds sample.depth
-  /// (the depth was rendered with sample.projection, the oblique M').
-  std::function<Vector3<T>(const properties::DepthSample<T>& sample)> view_position;
-  /// Its linear depth: the distance in front of the camera along the view axis (-z for a camera
-  /// looking down -z).
-  std::function<T(const properties::DepthSample<T>& sample)> linear_depth;
-  /// The six culling planes of an oblique projection (camera space, kept side positive).
-  std::function<FrustumPlanes<T>(const Matrix4<T>& oblique, Convention convention)> culling_planes;
-  /// The plane in a pass camera's space (pass_view: world -> that camera) whose positive side is
-  /// the world plane's front, which the pass keeps.
-  std::function<Vector4<T>(const Matrix4<T>& pass_view, const Vector4<T>& world_plane)>
-      camera_plane;
-  /// A mirror pass's view from the main view and the mirror's world plane.
-  std::function<Matrix4<T>(const Matrix4<T>& view, const Vector4<T>& mirror_plane)> mirror_view;
-  /// A portal pass's view from the main view, this portal's frame and the linked portal's frame
-  /// (columns right, up, normal, centre).
-  std::function<Matrix4<T>(const Matrix4<T>& view, const Matrix4<T>& frame,
-                           const Matrix4<T>& linked)>
-      portal_view;
-  /// Points whose convex hull bounds what an oblique pass draws (cascade fitting, light lists),
-  /// from its oblique projection and the camera's unmodified one.
-  std::function<std::vector<Vector3<T>>(const Matrix4<T>& oblique, const Matrix4<T>& original,
-                                        Convention convention)>
-      corners;
-};
-
 /// Checks each function of `consumers`: one RapidCheck run per property (named by it), on the
 /// oblique answers of the core for the contract's families, conventions and places (and, for
 /// the pass camera, views and planes of mirrors, clip planes and portals). Fails the current
 /// GoogleTest test on a violation, with a report, or when no function is given.
 inline namespace OBLIQUE_EIGEN_LAYOUT {
 template <class T>
-void check_consumers(const Consumers<T>& consumers, const Contract& contract = Contract{});
+void check_consumers(const oblique::Consumers<T>& consumers, const Contract& contract = Contract{});
 }  // namespace OBLIQUE_EIGEN_LAYOUT
 
 }  // namespace oblique::testing
 
-/// A GoogleTest test that checks the code around the matrix, `consumers`
-/// (oblique::testing::Consumers), under `contract` (its families, conventions and places).
+/// A GoogleTest test that checks the code around the matrix, `consumers` (oblique::Consumers,
+/// oblique/properties/consumers.h), under `contract` (its families, conventions and places).
 #define OBLIQUE_CONSUMERS_TEST(Suite, Name, consumers, contract)  \
   TEST(Suite, Name) {                                             \
     ::oblique::testing::check_consumers((consumers), (contract)); \

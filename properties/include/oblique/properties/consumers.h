@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -134,3 +135,39 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
 std::string describe(const ConsumerFinding& finding);
 
 }  // namespace oblique::properties
+
+namespace oblique {
+
+/// The code around the oblique matrix, yours: each function given is checked against its
+/// properties (oblique/properties/consumers.h; docs/consumers.md), the others are not asked.
+/// Camera space and planes as for adapt(): column vectors, a plane keeps P . x >= 0.
+template <class T>
+struct Consumers {
+  std::string name = "consumers";
+  /// The camera-space point of the pixel at NDC (x, y) whose depth buffer holds sample.depth
+  /// (the depth was rendered with sample.projection, the oblique M').
+  std::function<Vector3<T>(const properties::DepthSample<T>& sample)> view_position;
+  /// Its linear depth: the distance in front of the camera along the view axis (-z for a camera
+  /// looking down -z).
+  std::function<T(const properties::DepthSample<T>& sample)> linear_depth;
+  /// The six culling planes of an oblique projection (camera space, kept side positive).
+  std::function<FrustumPlanes<T>(const Matrix4<T>& oblique, Convention convention)> culling_planes;
+  /// The plane in a pass camera's space (pass_view: world -> that camera) whose positive side is
+  /// the world plane's front, which the pass keeps.
+  std::function<Vector4<T>(const Matrix4<T>& pass_view, const Vector4<T>& world_plane)>
+      camera_plane;
+  /// A mirror pass's view from the main view and the mirror's world plane.
+  std::function<Matrix4<T>(const Matrix4<T>& view, const Vector4<T>& mirror_plane)> mirror_view;
+  /// A portal pass's view from the main view, this portal's frame and the linked portal's frame
+  /// (columns right, up, normal, centre).
+  std::function<Matrix4<T>(const Matrix4<T>& view, const Matrix4<T>& frame,
+                           const Matrix4<T>& linked)>
+      portal_view;
+  /// Points whose convex hull bounds what an oblique pass draws (cascade fitting, light lists),
+  /// from its oblique projection and the camera's unmodified one.
+  std::function<std::vector<Vector3<T>>(const Matrix4<T>& oblique, const Matrix4<T>& original,
+                                        Convention convention)>
+      corners;
+};
+
+}  // namespace oblique
