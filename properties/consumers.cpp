@@ -133,6 +133,7 @@ struct Segment {
   Vec a, b;       ///< the ends (w = 1)
   Vec bound;      ///< per coordinate (x, y, z)
   int axis = -1;  ///< view_axis_sign of the original
+  bool axis_is_z = true;
 };
 
 template <class T>
@@ -146,6 +147,10 @@ Segment ray_segment(const DepthSample<T>& s) {
     return out;
   }
   {
+    // The view axis is z only where M's fourth row is (0, 0, a, b); elsewhere (a rotated or
+    // general matrix) linear depth has no axis to be measured along.
+    const Mat original = exact::to_rational(s.original);
+    out.axis_is_z = original[3][0] == 0 && original[3][1] == 0;
     const DepthRange range = clip_depth_range(s.convention);
     const Vec centre =
         exact::mul(*original_inv, {0, 0, Rational(range.z_low + range.z_high, 2), 1});
@@ -343,6 +348,11 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
     f.holds = false;
     f.ratio = std::numeric_limits<double>::infinity();
     f.detail = "answered " + protocol::format_number(answer) + ", not a finite depth";
+    return f;
+  }
+  if (!seg.axis_is_z) {
+    f.judged = false;
+    f.detail = "the camera does not look along z (M's fourth row is not (0, 0, a, b))";
     return f;
   }
   const Rational sign = seg.axis;

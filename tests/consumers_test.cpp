@@ -131,6 +131,27 @@ TEST(DepthReconstruction, textbookLinearisationOnAnObliqueMatrixIsCaughtWithItsE
       oblique::properties::judge_linear_depth(*plain, n * f / (f - plain->depth * (f - n))).holds);
 }
 
+// A camera whose projection turns its axis off z (the rotated family) has no linear depth along
+// z: the sign of z along its axis is rounding noise (found by a long run).
+TEST(DepthReconstruction, linearDepthIsNotJudgedOffTheZAxis) {
+  const Convention k = Convention::gl;
+  Matrix4<double> turn = Matrix4<double>::Identity();
+  turn.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(M_PI / 2, Vector3<double>::UnitY()).toRotationMatrix();
+  const Matrix4<double> m = perspective(k) * turn;
+  const Vector4<double> c =
+      oblique::plane_in_camera<double>(turn.transpose(), tilted_plane());  // turn^T C
+  const Matrix4<double> mo = oblique_of(m, c, k);
+  const auto sample =
+      oblique::properties::depth_sample(mo, m, k, DepthBuffer::float32, kept_centre(m, c, k));
+  ASSERT_TRUE(sample.has_value());
+  EXPECT_FALSE(oblique::properties::judge_linear_depth(*sample, 1.0).judged);
+  EXPECT_TRUE(
+      oblique::properties::judge_view_position(
+          *sample, oblique::view_position(mo, sample->ndc_x, sample->ndc_y, sample->depth, k))
+          .holds);
+}
+
 TEST(CullingPlanes, rightPlanesHoldInEveryConvention) {
   for (Convention k : kConventions) {
     const Matrix4<double> m = perspective(k);

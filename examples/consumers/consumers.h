@@ -5,7 +5,7 @@
 #pragma once
 
 #include <oblique/kept_region.h>
-#include <oblique/testing.h>
+#include <oblique/properties/consumers.h>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>

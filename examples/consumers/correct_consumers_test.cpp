@@ -1,5 +1,7 @@
 // The right code around the matrix (consumers.h) passes every consumer property, in float and
 // double, every family and convention.
+#include <oblique/testing.h>
+
 #include "consumers.h"
 
 namespace {

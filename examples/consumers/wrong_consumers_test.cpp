@@ -1,6 +1,8 @@
 // Each wrong function of consumers.h, alone, under the contract of the engine it comes from;
 // CTest runs one test at a time and expects it caught by its property
 // (expect_consumer_caught.cmake).
+#include <oblique/testing.h>
+
 #include "consumers.h"
 
 namespace {

@@ -59,7 +59,8 @@ Vector3<T> view_position(const Matrix4<T>& m, T ndc_x, T ndc_y, T depth, Convent
 
 /// +1 when the camera looks along +z (left-handed camera space), -1 along -z (OpenGL's
 /// right-handed one): the sign of the camera-space z of the centre of `original`'s view volume
-/// (the unmodified projection; perspective or orthographic).
+/// (the unmodified projection, perspective or orthographic, looking along z: its fourth row is
+/// (0, 0, a, b); for any other, linear depth is not defined).
 template <class T>
 int view_axis_sign(const Matrix4<T>& original, Convention convention) {
   const DepthRange range = clip_depth_range(convention);
