@@ -1,6 +1,7 @@
 # Runs one test of example_consumers_wrong and passes only when it fails on PROPERTY and writes a
-# report naming it, with its replay command.
-# cmake -DBINARY=... -DTEST=Suite.Name -DPROPERTY=... -DREPORTS=... -P expect_consumer_caught.cmake
+# report naming it, with its replay command (and, with PICTURES=1, its pictures' section).
+# cmake -DBINARY=... -DTEST=Suite.Name -DPROPERTY=... [-DPICTURES=1] -DREPORTS=...
+#       -P expect_consumer_caught.cmake
 file(REMOVE_RECURSE "${REPORTS}")
 set(ENV{OBLIQUE_REPORT_DIR} "${REPORTS}")
 execute_process(COMMAND "${BINARY}" --gtest_filter=${TEST}
@@ -19,6 +20,9 @@ set(named "")
 foreach(report ${reports})
   file(READ "${report}" text)
   if(text MATCHES "# Counterexample: ${PROPERTY}\n" AND text MATCHES "## Replay")
+    if(PICTURES AND NOT text MATCHES "## Pictures")
+      message(FATAL_ERROR "the report ${report} has no pictures:\n${text}")
+    endif()
     set(named "${report}")
   endif()
 endforeach()

@@ -89,6 +89,10 @@ std::string text(const Vec& v, int n = 4) {
   return out + ")";
 }
 
+Eigen::Vector3d approx_point(const Vec& v) {
+  return {v[0].get_d(), v[1].get_d(), v[2].get_d()};
+}
+
 /// |a| / b as a double ratio; 0 for 0 / 0, infinity for x / 0.
 double ratio_of(const Rational& a, const Rational& b) {
   const Rational x = exact::abs(a);
@@ -328,6 +332,8 @@ ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& a
   const auto [ok, ratio] = near_segment(seg.a, seg.b, seg.bound, point_of(answer), {0, 1, 2});
   f.holds = ok;
   f.ratio = ratio;
+  f.points = {answer.template cast<double>(), approx_point(seg.a), approx_point(seg.b)};
+  f.points_what = "the answer, and the ends of the pixel ray's segment the stored depth stands for";
   f.detail = "answered " + text(answer) + "; the stored depth stands for the points from " +
              text(seg.a, 3) + " to " + text(seg.b, 3) + ", each coordinate within " +
              text(seg.bound, 3);
@@ -361,6 +367,8 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
   const auto [ok, ratio] = near_segment(a, b, seg.bound, given, {2});
   f.holds = ok;
   f.ratio = ratio;
+  f.points = {approx_point(seg.a), approx_point(seg.b)};
+  f.points_what = "the ends of the pixel ray's segment the stored depth stands for";
   f.detail = "answered " + protocol::format_number(answer) +
              "; the stored depth stands for linear depths from " + text(a[2]) + " to " +
              text(b[2]) + ", within " + text(seg.bound[2]);
@@ -429,6 +437,10 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
           keeps.detail = std::string("the ") + plane_names[k] + " plane " + text(plane) +
                          " culls the kept region's vertex " + text(v) + ": P . v = " + text(value) +
                          ", allowed down to -" + text(slack);
+          keeps.points.clear();
+          if (v[3] != 0) keeps.points.push_back(approx_point(v));
+          keeps.points_what =
+              "the kept region's vertex the " + std::string(plane_names[k]) + " plane culls";
         }
       }
     }
@@ -825,6 +837,9 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
         f.detail = "the kept region's vertex " + text(v, 3) + " is " +
                    protocol::format_number(distance) + " outside the corners' hull (allowed " +
                    text(delta) + ")";
+        f.points = {approx_point(v)};
+        for (const Vec& x : points) f.points.push_back(approx_point(x));
+        f.points_what = "the kept region's vertex outside the hull (first), and the given corners";
       }
       worst = std::max(worst, r);
     }

@@ -136,6 +136,8 @@ std::string point_text(const Eigen::Vector3d& p) {
 struct Mark {
   std::string what, legend;
   std::optional<Eigen::Vector3d> point;
+  std::vector<Eigen::Vector3d> more;  ///< further points of the same mark (a consumer's)
+  std::string title;                  ///< the pictures' title, when not the finding's check
 };
 
 Mark mark_of(const Counterexample& ce) {
@@ -228,11 +230,14 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
   for (const auto& p : {q, mark.point}) {
     if (p) extent = std::max(extent, p->norm());
   }
+  for (const Eigen::Vector3d& p : mark.more) extent = std::max(extent, p.norm());
   if (!(extent > 0) || !std::isfinite(extent)) extent = 1;
   const double reach = 3 * extent;
   const Matrix4<double> eye = Matrix4<double>::Identity();
   report::Views views;
-  views.title = std::string(check_name(ce.finding.check)) + " (" + ce.implementation + ")";
+  views.title = mark.title.empty()
+                    ? std::string(check_name(ce.finding.check)) + " (" + ce.implementation + ")"
+                    : mark.title;
   views.space = "eye";
   views.data = stem + ".views.dat";
   views.top = stem + ".top";
@@ -265,11 +270,12 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
                         "points pt 6 ps 2 lw 2 lc rgb '#9467bd'",
                         {},
                         q ? std::vector<Eigen::Vector3d>{*q} : std::vector<Eigen::Vector3d>{}});
-  views.sets.push_back(
-      {mark.legend,
-       mark.point ? "points pt 2 ps 3 lw 3 lc rgb '#e377c2'" : "points ps 0",
-       {},
-       mark.point ? std::vector<Eigen::Vector3d>{*mark.point} : std::vector<Eigen::Vector3d>{}});
+  std::vector<Eigen::Vector3d> marked = mark.more;
+  if (mark.point) marked.insert(marked.begin(), *mark.point);
+  views.sets.push_back({mark.legend,
+                        marked.empty() ? "points ps 0" : "points pt 2 ps 3 lw 3 lc rgb '#e377c2'",
+                        {},
+                        marked});
   for (std::size_t i = 0; i < 4; ++i) {  // a volume (or cut) that has no edge to draw says so
     report::Dataset& d = views.sets[i];
     if (d.segments.empty() && d.title.find(": none") == std::string::npos)
@@ -288,7 +294,7 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
     include(e.b);
   }
   if (q) include(*q);
-  if (mark.point) include(*mark.point);
+  for (const Eigen::Vector3d& p : marked) include(p);
   // (A volume that could not be drawn, a singular M, leaves the box empty: then a unit margin.)
   const double size = (hi - lo).maxCoeff();
   const double margin = size > 0 && std::isfinite(size) ? 0.1 * size : 1.0;
@@ -337,6 +343,84 @@ nlohmann::json diagnosis_object(const Diagnosis& d) {
 
 std::string diagnosis_json(const Diagnosis& diagnosis) {
   return diagnosis_object(diagnosis).dump();
+}
+
+namespace {
+
+/// Stages the case's pictures (top and side views, rendered by gnuplot in the staging folder when
+/// it is there) in `files` under `stem`; returns the "## Pictures" section and sets `pictures`
+/// (the JSON's field).
+std::string stage_pictures(report::ReportFiles& files, const Counterexample& ce,
+                           const std::string& stem, const Mark& mark, nlohmann::json& pictures) {
+  std::ostringstream md;
+  std::vector<std::string> rendered_views;
+  {
+    report::stage_views(files, case_views(ce, stem, mark), "");
+    std::ostringstream why;
+    for (const char* view : {"top", "side"}) {
+      std::ostringstream log;
+      if (files.plot_staged(stem + "." + view + ".gp", stem + "." + view + ".png", log)) {
+        rendered_views.push_back(view);
+      } else if (why.str().empty()) {
+        why << log.str();
+      }
+    }
+    const bool rendered = rendered_views.size() == 2;
+    auto has = [&](const char* view) {
+      return std::find(rendered_views.begin(), rendered_views.end(), view) != rendered_views.end();
+    };
+    md << "## Pictures\n\nThe case in eye space (the space C is given in): a top view (x, z) and "
+          "a side view (z, y) of M's view volume (black), C where it cuts it (blue, dotted), the "
+          "expected oblique view volume (green), the implementation's (red, dashed), the far "
+          "corner Q (circle) and the marked point (cross).\n\nMarked: "
+       << mark.what << ".\n\n";
+    for (const char* view : {"top", "side"}) {
+      if (has(view)) md << "![" << view << " view](" << stem << "." << view << ".png)\n\n";
+    }
+    if (!rendered) {
+      md << (rendered_views.empty() ? "The pictures were" : "A picture was")
+         << " not rendered: " << why.str() << ".\n\n";
+    }
+    md << "Data `" << stem << ".views.dat`, scripts `" << stem << ".top.gp` and `" << stem
+       << ".side.gp` (in this folder: `gnuplot " << stem << ".top.gp` renders the top view).\n\n";
+    pictures = nlohmann::json::object();
+    pictures["rendered"] = rendered;
+    pictures["error"] = why.str();
+    for (const char* view : {"top", "side"}) {
+      pictures[view] = has(view) ? nlohmann::json(stem + "." + view + ".png") : nullptr;
+    }
+    pictures["data"] = stem + ".views.dat";
+    pictures["scripts"] = {stem + ".top.gp", stem + ".side.gp"};
+    pictures["marked"] = mark.what;
+    pictures["marked_point"] = nullptr;
+    if (mark.point) {
+      pictures["marked_point"] = {protocol::format_number(mark.point->x()),
+                                  protocol::format_number(mark.point->y()),
+                                  protocol::format_number(mark.point->z())};
+    }
+    pictures["clipped_point"] = nullptr;
+    if (ce.views.clipped) {
+      nlohmann::json p = nlohmann::json::array();
+      for (int i = 0; i < 4; ++i) p.push_back(protocol::format_number((*ce.views.clipped)(i)));
+      pictures["clipped_point"] = p;
+    }
+  }
+  return md.str();
+}
+
+}  // namespace
+
+std::string stage_consumer_pictures(report::ReportFiles& files, const Counterexample& ce,
+                                    const std::string& stem, const std::string& title,
+                                    const std::string& what,
+                                    const std::vector<Eigen::Vector3d>& points) {
+  Mark mark;
+  mark.title = title;
+  mark.what = what;
+  mark.legend = what;
+  mark.more = points;
+  nlohmann::json unused;
+  return stage_pictures(files, ce, stem, mark, unused);
 }
 
 std::string write_report(const Counterexample& ce, const ReportContext& context) {
@@ -402,59 +486,7 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   // failing leaves the data and scripts, and says so).
   report::ReportFiles files(context.directory);
   nlohmann::json pictures = nullptr;
-  std::vector<std::string> rendered_views;
-  if (ce.views.set) {
-    const Mark mark = mark_of(ce);
-    report::stage_views(files, case_views(ce, stem, mark), "");
-    std::ostringstream why;
-    for (const char* view : {"top", "side"}) {
-      std::ostringstream log;
-      if (files.plot_staged(stem + "." + view + ".gp", stem + "." + view + ".png", log)) {
-        rendered_views.push_back(view);
-      } else if (why.str().empty()) {
-        why << log.str();
-      }
-    }
-    const bool rendered = rendered_views.size() == 2;
-    auto has = [&](const char* view) {
-      return std::find(rendered_views.begin(), rendered_views.end(), view) != rendered_views.end();
-    };
-    md << "## Pictures\n\nThe case in eye space (the space C is given in): a top view (x, z) and "
-          "a side view (z, y) of M's view volume (black), C where it cuts it (blue, dotted), the "
-          "expected oblique view volume (green), the implementation's (red, dashed), the far "
-          "corner Q (circle) and the marked point (cross).\n\nMarked: "
-       << mark.what << ".\n\n";
-    for (const char* view : {"top", "side"}) {
-      if (has(view)) md << "![" << view << " view](" << stem << "." << view << ".png)\n\n";
-    }
-    if (!rendered) {
-      md << (rendered_views.empty() ? "The pictures were" : "A picture was")
-         << " not rendered: " << why.str() << ".\n\n";
-    }
-    md << "Data `" << stem << ".views.dat`, scripts `" << stem << ".top.gp` and `" << stem
-       << ".side.gp` (in this folder: `gnuplot " << stem << ".top.gp` renders the top view).\n\n";
-    pictures = nlohmann::json::object();
-    pictures["rendered"] = rendered;
-    pictures["error"] = why.str();
-    for (const char* view : {"top", "side"}) {
-      pictures[view] = has(view) ? nlohmann::json(stem + "." + view + ".png") : nullptr;
-    }
-    pictures["data"] = stem + ".views.dat";
-    pictures["scripts"] = {stem + ".top.gp", stem + ".side.gp"};
-    pictures["marked"] = mark.what;
-    pictures["marked_point"] = nullptr;
-    if (mark.point) {
-      pictures["marked_point"] = {protocol::format_number(mark.point->x()),
-                                  protocol::format_number(mark.point->y()),
-                                  protocol::format_number(mark.point->z())};
-    }
-    pictures["clipped_point"] = nullptr;
-    if (ce.views.clipped) {
-      nlohmann::json p = nlohmann::json::array();
-      for (int i = 0; i < 4; ++i) p.push_back(protocol::format_number((*ce.views.clipped)(i)));
-      pictures["clipped_point"] = p;
-    }
-  }
+  if (ce.views.set) md << stage_pictures(files, ce, stem, mark_of(ce), pictures);
   md << "## Replay\n\nThe whole run"
      << (context.seed ? ", shrinking included (seed " + std::to_string(context.seed) + ")" : "")
      << ":\n\n```sh\n"
@@ -513,7 +545,7 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   // A picture of this name not rendered now is an earlier case's (the report it went with is
   // replaced): it would show the wrong case beside this report.
   for (const char* view : {"top", "side"}) {
-    if (std::find(rendered_views.begin(), rendered_views.end(), view) == rendered_views.end()) {
+    if (!pictures.is_object() || pictures[view].is_null()) {
       std::error_code ignored;
       std::filesystem::remove(context.directory + "/" + stem + "." + view + ".png", ignored);
     }

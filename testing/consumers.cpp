@@ -1,10 +1,12 @@
 // check_consumers(): the code around the matrix (oblique::testing::Consumers) against the
 // consumer properties (oblique/properties/consumers.h), one RapidCheck run per property, for
 // float, double and long double.
+#include <functional>
 #include <sstream>
 
 #include "oblique/oblique.h"
 #include "oblique/properties/consumer_generators.h"
+#include "oblique/report/report_files.h"
 #include "oblique/testing/harness.h"
 
 namespace oblique::testing {
@@ -29,7 +31,8 @@ std::string matrix_text(const Eigen::Matrix<T, R, C>& m) {
 /// Fails the current case with the finding, and keeps the report the run writes if it is the
 /// last (most shrunk) failure.
 void fail(const std::string& consumer, const properties::ConsumerFinding& finding,
-          const std::string& inputs) {
+          const std::string& inputs,
+          std::function<std::string(report::ReportFiles&, const std::string&)> pictures) {
   const std::string name(properties::consumer_check_name(finding.check));
   std::ostringstream report;
   report << "# Counterexample: " << name << "\n\n"
@@ -41,19 +44,9 @@ void fail(const std::string& consumer, const properties::ConsumerFinding& findin
          << "Numbers print so that they read back to the same value; matrices are row by row, "
             "planes keep P . x >= 0. The properties and their bounds: docs/consumers.md.\n";
   tally().consumer_failure = report.str();
+  tally().consumer_pictures = std::move(pictures);
   tally().failure.reset();
   RC_FAIL(consumer + " violates " + properties::describe(finding) + "\n" + inputs);
-}
-
-/// Counts the finding; fails the case when it is violated.
-void judged(const std::string& consumer, const properties::ConsumerFinding& finding,
-            const std::string& inputs) {
-  if (!finding.judged) {
-    ++tally().left_out[finding.detail];
-    return;
-  }
-  ++tally().applied[std::string(properties::consumer_check_name(finding.check))];
-  if (!finding.holds) fail(consumer, finding, inputs);
 }
 
 template <class T>
@@ -61,6 +54,36 @@ struct ObliqueCase {
   generators::Case<T> base;
   Matrix4<T> oblique;
 };
+
+/// Counts the finding; fails the case when it is violated (with the case's pictures when it has
+/// an oblique matrix: M's volume, C, the core's M' and the finding's points).
+template <class T = double>
+void judged(const std::string& consumer, const properties::ConsumerFinding& finding,
+            const std::string& inputs, const ObliqueCase<T>* c = nullptr) {
+  if (!finding.judged) {
+    ++tally().left_out[finding.detail];
+    return;
+  }
+  ++tally().applied[std::string(properties::consumer_check_name(finding.check))];
+  if (finding.holds) return;
+  std::function<std::string(report::ReportFiles&, const std::string&)> pictures;
+  if (c) {
+    Counterexample ce =
+        properties::make_counterexample(c->base.matrix, c->base.plane, c->base.convention);
+    ce.implementation = "the core's M', given to " + consumer;
+    properties::set_result(ce, c->oblique);
+    properties::set_views(ce, Problem<T>(c->base.matrix, c->base.plane, c->base.convention),
+                          &c->oblique);
+    pictures = [ce, finding, consumer](report::ReportFiles& files, const std::string& stem) {
+      return properties::stage_consumer_pictures(
+          files, ce, stem,
+          std::string(properties::consumer_check_name(finding.check)) + " (" + consumer + ")",
+          finding.points_what.empty() ? std::string("nothing") : finding.points_what,
+          finding.points);
+    };
+  }
+  fail(consumer, finding, inputs, std::move(pictures));
+}
 
 /// A case of the contract and the core's answer to it (cases without one are discarded).
 template <class T>
@@ -122,10 +145,10 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
             if (pass == 0) {
               judged(who,
                      properties::judge_view_position(*sample, consumers.view_position(*sample)),
-                     inputs);
+                     inputs, &c);
             } else {
               judged(who, properties::judge_linear_depth(*sample, consumers.linear_depth(*sample)),
-                     inputs);
+                     inputs, &c);
             }
           },
           Coverage::none, std::string(properties::consumer_check_name(check)), contract);
@@ -149,7 +172,7 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
                 matrix_text(planes.far_plane.transpose().eval()) + "\n";
             for (const auto& f : properties::judge_culling_planes<T>(
                      c.base.matrix, c.base.plane, c.base.convention, c.oblique, planes)) {
-              if (f.check == check) judged(who, f, inputs);
+              if (f.check == check) judged(who, f, inputs, &c);
             }
           },
           Coverage::none, std::string(properties::consumer_check_name(check)), contract);
@@ -226,7 +249,7 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
           judged(who,
                  properties::judge_corners<T>(c.base.matrix, c.base.plane, c.base.convention,
                                               c.oblique, corners),
-                 case_text(c) + "- the corners:" + listed + "\n");
+                 case_text(c) + "- the corners:" + listed + "\n", &c);
         },
         Coverage::none, "corners_contain_kept", contract);
   }

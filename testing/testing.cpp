@@ -124,7 +124,10 @@ std::string write_consumer_report(const std::string& markdown,
   const std::string stem = report::free_stem(
       context.directory, context.stem.empty() ? context.test_id : context.stem, {".md"});
   report::ReportFiles files(context.directory);
-  files.open(stem + ".md") << markdown << "\n## Replay\n\n```\n"
+  const std::string pictures =
+      tally().consumer_pictures ? tally().consumer_pictures(files, stem) : std::string();
+  files.open(stem + ".md") << markdown << "\n"
+                           << pictures << "## Replay\n\n```\n"
                            << (context.replay_run.empty() ? context.binary : context.replay_run)
                            << "\n```\n";
   std::ostringstream log;

@@ -52,6 +52,9 @@ struct ConsumerFinding {
   /// check, the margin by which the sign is wrong, over its bound.
   double ratio = 0;
   std::string detail;  ///< what was compared, in words and round-trip numbers
+  /// The points the finding is about (camera space), for a report's pictures, and what they are.
+  std::vector<Eigen::Vector3d> points;
+  std::string points_what;
   /// corners_contain_kept: how much longer than the kept region's the corners' extent along the
   /// view axis is (1: as tight as it can be); 0 when not measured.
   double depth_waste = 0;

@@ -14,6 +14,10 @@
 #include "oblique/properties/judge.h"
 #include "oblique/properties/properties.h"
 
+namespace oblique::report {
+class ReportFiles;
+}  // namespace oblique::report
+
 namespace oblique::properties {
 
 /// The case in eye space (the space C is given in), for the report's top view (x, z) and side
@@ -92,5 +96,14 @@ struct ReportContext {
 /// (report::ReportFiles), so a failed write leaves an earlier report as it was. Returns the
 /// Markdown path; throws std::runtime_error when it cannot write the report.
 std::string write_report(const Counterexample& ce, const ReportContext& context);
+
+/// The pictures of a consumer's report (oblique::testing's consumer properties): the case's views
+/// as write_report() draws them (ce: the case, its views set with the core's M' as the answer),
+/// under `title`, `points` marked and described by `what`; staged (and rendered, with gnuplot) in
+/// `files` under `stem`. Returns the report's "## Pictures" section.
+std::string stage_consumer_pictures(report::ReportFiles& files, const Counterexample& ce,
+                                    const std::string& stem, const std::string& title,
+                                    const std::string& what,
+                                    const std::vector<Eigen::Vector3d>& points);
 
 }  // namespace oblique::properties

@@ -38,6 +38,9 @@ struct Tally {
   std::optional<Counterexample> failure;
   /// A consumer property's last failure (testing/consumers.cpp), as the Markdown of its report.
   std::string consumer_failure;
+  /// Its pictures (a case with an oblique matrix): staged in a report's files under a stem,
+  /// returning their Markdown section; empty when the finding has none.
+  std::function<std::string(report::ReportFiles&, const std::string&)> consumer_pictures;
   /// The last failure's diagnosis, run when its report is written (not at every shrinking step).
   std::function<properties::Diagnosis()> diagnose_failure;
   std::string property;  ///< the RapidCheck test id of the run
