@@ -148,20 +148,32 @@ Mark mark_of(const Counterexample& ce) {
     if (p)
       return {"the clipped point " + point_text(*p) +
                   ": a vertex of M's view volume on C's side that the answer's far plane cuts away",
-              "marked: clipped point", p};
+              "marked: clipped point",
+              p,
+              {},
+              {}};
     return {"the clipped point is at infinity (direction " + point_text(v.clipped->head<3>()) +
                 "): not drawn",
-            "marked: nothing (the clipped point is at infinity)", std::nullopt};
+            "marked: nothing (the clipped point is at infinity)",
+            std::nullopt,
+            {},
+            {}};
   }
   if ((check == Check::far_plane_through_corner || check == Check::infinite_edge_parallel) &&
       v.far_corner) {
     const std::optional<Eigen::Vector3d> q = affine(*v.far_corner);
     if (q)
       return {"the far corner Q " + point_text(*q) + ", which the answer's far plane misses",
-              "marked: far corner Q", q};
+              "marked: far corner Q",
+              q,
+              {},
+              {}};
     return {"the far corner Q is at infinity (direction " + point_text(v.far_corner->head<3>()) +
                 "): not drawn",
-            "marked: nothing (Q is at infinity)", std::nullopt};
+            "marked: nothing (Q is at infinity)",
+            std::nullopt,
+            {},
+            {}};
   }
   const std::string why = !v.answer ? "no answer to draw"
                           : !v.expected
@@ -171,7 +183,10 @@ Mark mark_of(const Counterexample& ce) {
                              : !v.expected ? "the input has no answer"
                                            : "the answer clips nothing";
   return {"nothing: " + why + " (the finding is " + std::string(check_name(check)) + ")",
-          "marked: nothing (" + legend + ")", std::nullopt};
+          "marked: nothing (" + legend + ")",
+          std::nullopt,
+          {},
+          {}};
 }
 
 /// C's crossing of the volume `edges` (each edge's point on C), in order around it.

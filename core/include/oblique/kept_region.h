@@ -76,9 +76,8 @@ std::vector<Vec<S>> clip_volume(const std::array<Vec<S>, 8>& corners, const Vec<
       if (!crosses) continue;
       const std::size_t in = side[i] > 0 ? i : j, out_index = side[i] > 0 ? j : i;
       Vec<S> x;
-      for (int k = 0; k < 4; ++k)
-        x[static_cast<std::size_t>(k)] = side[in] * corners[out_index][static_cast<std::size_t>(k)] -
-                                         side[out_index] * corners[in][static_cast<std::size_t>(k)];
+      for (std::size_t k = 0; k < 4; ++k)
+        x[k] = side[in] * corners[out_index][k] - side[out_index] * corners[in][k];
       add(x);
     }
   }
