@@ -36,6 +36,15 @@ Rational unit() {
   return tolerance::unit_roundoff(tolerance::precision_bits<T>());
 }
 
+/// The 4 x 4 matrix whose every entry is tolerance::lu_entry_bound(m): what |L||U| of m's LU
+/// factors is at most, entry by entry.
+Mat lu_bound(const Mat& m) {
+  const Rational b = tolerance::lu_entry_bound(m);
+  Mat out;
+  for (auto& row : out) row.fill(b);
+  return out;
+}
+
 Mat mul(const Mat& a, const Mat& b) {
   Mat out;
   for (int i = 0; i < 4; ++i) {
@@ -162,7 +171,7 @@ Segment ray_segment(const DepthSample<T>& s) {
   }
   const auto [lo, hi] = depth_interval(s);
   const Rational x = exact::to_rational(s.ndc_x), y = exact::to_rational(s.ndc_y);
-  const Mat chain = mul(mul(exact::abs(*inv), exact::abs(m)), exact::abs(*inv));
+  const Mat chain = mul(mul(exact::abs(*inv), lu_bound(m)), exact::abs(*inv));
   const Rational g = gamma_of<T>(tolerance::kConsumerSolveRoundings);
   const Rational u = unit<T>();
   Vec ends[2];
@@ -540,7 +549,7 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
   const Rational rr = exact::dot(reference, reference);
   const Rational lambda = rr > 0 ? Rational(exact::dot(p, reference) / rr) : Rational(0);
   const Vec chain =
-      exact::mul(mul(mul(exact::abs(inv_t), exact::abs(exact::transpose(w))), exact::abs(inv_t)),
+      exact::mul(mul(mul(exact::abs(inv_t), lu_bound(exact::transpose(w))), exact::abs(inv_t)),
                  exact::abs(world));
   Vec bound;
   for (int i = 0; i < 4; ++i)
@@ -688,7 +697,7 @@ ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& fram
   const Mat v = exact::to_rational(view), fr = exact::to_rational(frame);
   const Mat reference = mul(mul(mul(v, fr), turn), *l_inv);
   Mat bound = mul(mul(exact::abs(v), exact::abs(fr)),
-                  mul(mul(exact::abs(*l_inv), exact::abs(l)), exact::abs(*l_inv)));
+                  mul(mul(exact::abs(*l_inv), lu_bound(l)), exact::abs(*l_inv)));
   const Rational g = gamma_of<T>(tolerance::kPassViewRoundings);
   for (auto& row : bound)
     for (auto& x : row) x *= g;
@@ -748,8 +757,8 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
     f.detail = "a singular matrix";
     return f;
   }
-  const Mat chain = mul(mul(exact::abs(*inv), exact::abs(mo)), exact::abs(*inv));
-  const Mat m_chain = mul(mul(exact::abs(*m_inv), exact::abs(mx)), exact::abs(*m_inv));
+  const Mat chain = mul(mul(exact::abs(*inv), lu_bound(mo)), exact::abs(*inv));
+  const Mat m_chain = mul(mul(exact::abs(*m_inv), lu_bound(mx)), exact::abs(*m_inv));
   const Rational g = gamma_of<T>(tolerance::kConsumerSolveRoundings);
   const Rational u = unit<T>();
   const Vec cx = exact::to_rational(c);

@@ -58,10 +58,15 @@ constexpr double kAccurateUlps = 2;
 
 // The code around the matrix (consumers.h) computes in T from inputs in T; its bounds:
 //  - a solve with a projection (depth reconstruction, a view volume's corners): through an inverse
-//    computed by elimination (|X^ - M^-1| <= gamma(3n) |M^-1| |M| |X^|, Higham 14.3) and applied
-//    (n roundings), or an LU solve (backward error gamma(3n) |L||U|, the smaller); with the
-//    window depth's conversion to NDC (2: a product and a difference) and the divide by w (1):
-//    |v^ - v| <= gamma(kConsumerSolveRoundings) |M^-1| |M| |M^-1| |b| for v = M^-1 b, and
+//    computed by elimination (|X^ - M^-1| <= gamma(3n) |M^-1| |L||U| |X^|, Higham 14.3) and
+//    applied (n roundings), or an LU solve (backward error gamma(3n) |L||U|, the smaller); with
+//    the window depth's conversion to NDC (2: a product and a difference) and the divide by w (1).
+//    |L||U| is not bounded by |M| entry by entry (a zero of M, and projections have many, need
+//    not be one of L U: fuzz_consumers found a reference 56,000 times off such a bound), but
+//    with partial pivoting |l_ij| <= 1 and |u_ij| <= rho max|m|, rho <= 2^(n-1), so every entry
+//    of |L||U| is at most n rho max|m| = 32 max|m| (lu_entry_bound()). So
+//    |v^ - v| <= gamma(kConsumerSolveRoundings) |M^-1| G |M^-1| |b| for v = M^-1 b, G the 4 x 4
+//    matrix of lu_entry_bound(M), and
 //    p = v / v_w within (|dv_i| + |p_i| |dv_w|) / (|v_w| - |dv_w|) + u |p_i|; where |dv_w| >=
 //    |v_w| the point is not determined in T and is not judged.
 //  - a view volume's corner (corners_contain_kept): that solve's bound with M' (row 3's own error
@@ -71,14 +76,24 @@ constexpr double kAccurateUlps = 2;
 //    squares, two sums, the square root, the quotient): kPlaneRoundings.
 //  - a pass camera's view (mirror: V R, R = I - 2 n n^T / |n|^2 with the normal normalised first
 //    (8 roundings per component, two in a product) and 1 for the difference; portal: V F turn L^-1
-//    with L^-1 by elimination, 12): the larger, 17, plus a 4-term product: kPassViewRoundings.
+//    with L^-1 by elimination, 12, bounded through |L^-1| G |L^-1|): the larger, 17, plus a
+//    4-term product: kPassViewRoundings.
 //  - the plane in a pass camera's space, W^-T P: an inverse by elimination (12) applied (4):
-//    gamma(kCameraPlaneRoundings) |W^-T| |W^T| |W^-T| |P|, and kPlaneRoundings more for a plane
-//    the implementation normalises.
+//    gamma(kCameraPlaneRoundings) |W^-T| G^T |W^-T| |P| (G as above, for W), and kPlaneRoundings
+//    more for a plane the implementation normalises.
 constexpr int kConsumerSolveRoundings = kSolveRoundings + 4 + 2;
 constexpr int kPlaneRoundings = 8;
 constexpr int kPassViewRoundings = 17 + 4;
 constexpr int kCameraPlaneRoundings = kSolveRoundings + 4;
+
+/// n rho max|m| for n = 4 and partial pivoting's growth rho <= 2^(n-1): the bound on every entry
+/// of |L||U| for the LU factors of m (above).
+inline exact::Rational lu_entry_bound(const exact::Mat& m) {
+  exact::Rational largest = 0;
+  for (const auto& row : m)
+    for (const auto& x : row) largest = std::max(largest, exact::abs(x));
+  return 32 * largest;
+}
 
 /// eta = half the smallest subnormal of T: with gradual underflow a product or quotient that
 /// lands in the subnormal range carries an absolute error up to eta besides its relative one
