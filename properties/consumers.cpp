@@ -412,13 +412,14 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
   const Rational rho = smallest_plane > 0 ? Rational(row3_error / smallest_plane) : Rational(0);
   const Rational g = gamma_of<T>(tolerance::kPlaneRoundings);
 
+  // (Without a proper original volume there is no kept region to cull, but near = C still
+  // holds or not.)
   const std::optional<std::vector<Vec>> region = exact_kept_region(m, c, convention);
   if (!region) {
-    keeps.judged = near.judged = false;
-    keeps.detail = near.detail = kNotProper;
-    return {keeps, near};
+    keeps.judged = false;
+    keeps.detail = kNotProper;
   }
-  const std::vector<Vec>& kept = *region;
+  const std::vector<Vec> kept = region ? *region : std::vector<Vec>{};
   const Vector4<T>* planes[] = {&answer.left, &answer.right,      &answer.bottom,
                                 &answer.top,  &answer.near_plane, &answer.far_plane};
   const char* plane_names[] = {"left", "right", "bottom", "top", "near", "far"};
@@ -426,6 +427,7 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
   for (int k = 0; k < 6; ++k) {
     const Vector4<T>& plane = *planes[k];
     if (!plane.allFinite()) {
+      keeps.judged = true;
       keeps.holds = false;
       worst = std::numeric_limits<double>::infinity();
       keeps.detail =
@@ -455,7 +457,7 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
     }
   }
   keeps.ratio = worst;
-  if (keeps.holds)
+  if (keeps.holds && keeps.judged)
     keeps.detail = "every one of the kept region's " + std::to_string(kept.size()) +
                    " vertices is inside all six planes";
 
