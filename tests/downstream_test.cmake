@@ -1,7 +1,8 @@
 # The downstream example (examples/downstream) against the installed package, as a user would
 # build it: install this build tree into WORK/prefix, configure the example with
 # -DCMAKE_PREFIX_PATH, build it, then
-#  - the fixed engine passes the property suite and its fuzz replay;
+#  - the fixed engine passes the property suite and its fuzz replay, and its depth reconstruction
+#    the consumer properties;
 #  - the engine as shipped fails the suite with a report naming make_oblique, the y-flipped
 #    family and a property, and the report's replay command, pasted into a shell, fails again;
 #  - the fuzz replay of the installed seed corpus catches it too;
@@ -30,6 +31,10 @@ run(EXPECT ok COMMAND ${CMAKE_COMMAND} --build "${WORK}/gcc" -j2)
 
 set(ENV{OBLIQUE_REPORT_DIR} "${WORK}/reports")
 run(EXPECT ok COMMAND "${WORK}/gcc/engine_property_test_fixed")
+run(EXPECT ok OUTPUT output COMMAND "${WORK}/gcc/engine_consumers_test")
+if(NOT output MATCHES "view_position: OK, passed")
+  message(FATAL_ERROR "the engine's consumer test ran no view_position property:\n${output}")
+endif()
 run(EXPECT ok COMMAND "${WORK}/gcc/engine_fuzz_replay_fixed" "${prefix}/share/oblique/fuzz/corpus")
 run(EXPECT fail OUTPUT output COMMAND "${WORK}/gcc/engine_property_test")
 if(NOT output MATCHES "make_oblique violates ([a-z_]+)")

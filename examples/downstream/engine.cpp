@@ -6,6 +6,7 @@
 // theirs) puts the far plane through the wrong corner and clips visible geometry.
 #include "engine.h"
 
+#include <Eigen/LU>
 #include <cmath>
 
 #ifndef ENGINE_FIXED
@@ -67,6 +68,13 @@ bool make_oblique(float m[16], const float plane[4]) {
   m[10] = row3[2];
   m[14] = row3[3];
   return true;
+}
+
+void view_position(const float projection[16], float ndc_x, float ndc_y, float depth,
+                   float out[3]) {
+  const Eigen::Matrix4f m = Eigen::Map<const Eigen::Matrix4f>(projection);  // column-major
+  const Eigen::Vector4f v = m.inverse() * Eigen::Vector4f(ndc_x, ndc_y, 2 * depth - 1, 1);
+  for (int i = 0; i < 3; ++i) out[i] = v(i) / v(3);
 }
 
 }  // namespace engine

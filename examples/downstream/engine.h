@@ -10,4 +10,9 @@ namespace engine {
 
 bool make_oblique(float m[16], const float plane[4]);
 
+/// The camera-space point of a pixel from its depth-buffer value (OpenGL: NDC z = 2 depth - 1)
+/// under the projection it was rendered with (column-major, the oblique one in a mirror pass):
+/// out = (x, y, z). What the engine's SSAO and fog reconstruct positions with.
+void view_position(const float projection[16], float ndc_x, float ndc_y, float depth, float out[3]);
+
 }  // namespace engine
