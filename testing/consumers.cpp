@@ -1,4 +1,4 @@
-// check_consumers(): the code around the matrix (oblique::testing::Consumers) against the
+// check_consumers(): the code around the matrix (oblique::Consumers) against the
 // consumer properties (oblique/properties/consumers.h), one RapidCheck run per property, for
 // float, double and long double.
 #include <functional>
@@ -254,7 +254,7 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
         Coverage::none, "corners_contain_kept", contract);
   }
 
-  if (!any) ADD_FAILURE() << who << ": oblique::testing::Consumers gives no function to check";
+  if (!any) ADD_FAILURE() << who << ": oblique::Consumers gives no function to check";
 }
 
 template void check_consumers<float>(const oblique::Consumers<float>&, const Contract&);
