@@ -151,7 +151,7 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
                      inputs, &c);
             }
           },
-          Coverage::none, std::string(properties::consumer_check_name(check)), contract);
+          Coverage::valid, std::string(properties::consumer_check_name(check)), contract);
     }
   }
 
@@ -175,7 +175,7 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
               if (f.check == check) judged(who, f, inputs, &c);
             }
           },
-          Coverage::none, std::string(properties::consumer_check_name(check)), contract);
+          Coverage::valid, std::string(properties::consumer_check_name(check)), contract);
     }
   }
 
@@ -251,7 +251,7 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
                                               c.oblique, corners),
                  case_text(c) + "- the corners:" + listed + "\n", &c);
         },
-        Coverage::none, "corners_contain_kept", contract);
+        Coverage::valid, "corners_contain_kept", contract);
   }
 
   if (!any) ADD_FAILURE() << who << ": oblique::Consumers gives no function to check";
