@@ -745,6 +745,14 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
     const Vec x = point_of(p);
     if (std::find(points.begin(), points.end(), x) == points.end()) points.push_back(x);
   }
+  // The hull is found from every triple of points (n^4 exact products): a corner set, not a
+  // point cloud.
+  if (points.size() > kMaxCorners) {
+    f.judged = false;
+    f.detail = std::to_string(points.size()) + " distinct points: the hull test takes at most " +
+               std::to_string(kMaxCorners);
+    return f;
+  }
   // How far each given corner may be from a correct one, in the directions the hull's facets
   // face: a point computed by a solve in T with M' (the oblique volume's corners) or with M (the
   // original's, then clipped by C), M' itself off the exact answer by row 3's bound, and a point

@@ -359,6 +359,18 @@ TEST(Corners, obliqueMatrixCornersBoundWhereAllAreInFront) {
   }
 }
 
+TEST(Corners, aPointCloudIsRefusedNotHung) {
+  const Convention k = Convention::gl;
+  const Matrix4<double> m = perspective(k);
+  const Vector4<double> c = tilted_plane();
+  const Matrix4<double> mo = oblique_of(m, c, k);
+  std::vector<Vector3<double>> cloud;
+  for (int i = 0; i < 1000; ++i) cloud.emplace_back(i, -i, -1 - i);
+  const ConsumerFinding f = oblique::properties::judge_corners(m, c, k, mo, cloud);
+  EXPECT_FALSE(f.judged);
+  EXPECT_NE(f.detail.find("1000 distinct points"), std::string::npos) << f.detail;
+}
+
 TEST(ConsumerChecks, namesRoundTrip) {
   for (ConsumerCheck c : oblique::properties::all_consumer_checks)
     EXPECT_EQ(

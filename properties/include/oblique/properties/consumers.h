@@ -126,10 +126,14 @@ template <class T>
 ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& frame,
                                   const Matrix4<T>& linked, const Matrix4<T>& answer);
 
+/// The most distinct points judge_corners() takes.
+inline constexpr std::size_t kMaxCorners = 32;
+
 /// The points the consumer gives as the corners of the view volume of `oblique` (the answer for
 /// m, c, convention in T): their convex hull must contain every vertex of the kept region, within
 /// the distance their computation from `oblique` in T and row 3's error allow. Not judged for an
-/// infinite m (the kept region is unbounded). Reports the depth waste.
+/// infinite m (the kept region is unbounded), or for more than kMaxCorners distinct points.
+/// Reports the depth waste.
 template <class T>
 ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
                               const Matrix4<T>& oblique, const std::vector<Vector3<T>>& answer);
