@@ -409,6 +409,14 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
   const Vec far_exact = exact::combine(fr.m3, exact_oblique[2], fr.m4, exact_oblique[3]);
   const Rational row3_error = max_abs(*row3);
   const Rational smallest_plane = std::min(max_abs(near_exact), max_abs(far_exact));
+  // Where C is M_4 up to scale, M''s exact far plane (reversed Z: M_4 - a C) is the zero vector:
+  // the one M' has in T is rounding alone, and no plane extracted from it can be judged.
+  if (smallest_plane == 0) {
+    keeps.judged = false;
+    keeps.detail =
+        "the exact oblique matrix's near or far plane is the zero vector (C is M_4 "
+        "up to scale): the plane in T is rounding alone";
+  }
   const Rational rho = smallest_plane > 0 ? Rational(row3_error / smallest_plane) : Rational(0);
   const Rational g = gamma_of<T>(tolerance::kPlaneRoundings);
 
@@ -424,7 +432,7 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
                                 &answer.top,  &answer.near_plane, &answer.far_plane};
   const char* plane_names[] = {"left", "right", "bottom", "top", "near", "far"};
   double worst = 0;
-  for (int k = 0; k < 6; ++k) {
+  for (int k = 0; k < 6 && keeps.judged; ++k) {
     const Vector4<T>& plane = *planes[k];
     if (!plane.allFinite()) {
       keeps.judged = true;
