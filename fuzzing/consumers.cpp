@@ -15,16 +15,6 @@ namespace oblique::fuzzing {
 
 namespace {
 
-template <class T, int R, int C>
-std::string numbers(const Eigen::Matrix<T, R, C>& m) {
-  std::string out = "[";
-  for (int i = 0; i < R; ++i) {
-    for (int j = 0; j < C; ++j)
-      out += (i || j ? (j ? ", " : "; ") : "") + protocol::format_number(m(i, j));
-  }
-  return out + "]";
-}
-
 /// Counts a finding; on a violation prints it with the inputs and aborts.
 void settle(const std::string& consumer, const properties::ConsumerFinding& finding,
             const std::string& inputs) {
@@ -73,10 +63,10 @@ int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T
       needs_oblique ? apply<T>(m, plane, c.convention) : ObliqueResult<T>{};
   if (needs_oblique && result.status == Status::ok) {
     const Matrix4<T>& mo = result.projection;
-    const std::string base = "  convention: " + std::string(convention_name(c.convention)) +
-                             "\n  M: " + numbers(m) +
-                             "\n  C: " + numbers(Eigen::Matrix<T, 1, 4>(plane.transpose())) +
-                             "\n  M' (the core's answer, given): " + numbers(mo) + "\n";
+    const std::string base =
+        "  convention: " + std::string(convention_name(c.convention)) +
+        "\n  M: " + properties::numbers_text(m) + "\n  C: " + properties::numbers_text(plane) +
+        "\n  M' (the core's answer, given): " + properties::numbers_text(mo) + "\n";
     if (consumers.view_position || consumers.linear_depth) {
       const Vector4<T> point = consumer_cases::kept_point<T>(m, plane, c.convention, pick);
       const DepthBuffer buffer = pick(0, 2) ? DepthBuffer::float32 : DepthBuffer::fixed24;
@@ -94,20 +84,19 @@ int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T
     }
     if (consumers.culling_planes) {
       const FrustumPlanes<T> p = consumers.culling_planes(mo, c.convention);
-      const std::string inputs =
-          base + "  planes: left " + numbers(Eigen::Matrix<T, 1, 4>(p.left.transpose())) +
-          ", right " + numbers(Eigen::Matrix<T, 1, 4>(p.right.transpose())) + ", bottom " +
-          numbers(Eigen::Matrix<T, 1, 4>(p.bottom.transpose())) + ", top " +
-          numbers(Eigen::Matrix<T, 1, 4>(p.top.transpose())) + ", near " +
-          numbers(Eigen::Matrix<T, 1, 4>(p.near_plane.transpose())) + ", far " +
-          numbers(Eigen::Matrix<T, 1, 4>(p.far_plane.transpose())) + "\n";
+      const std::string inputs = base + "  planes: left " + properties::numbers_text(p.left) +
+                                 ", right " + properties::numbers_text(p.right) + ", bottom " +
+                                 properties::numbers_text(p.bottom) + ", top " +
+                                 properties::numbers_text(p.top) + ", near " +
+                                 properties::numbers_text(p.near_plane) + ", far " +
+                                 properties::numbers_text(p.far_plane) + "\n";
       for (const auto& f : properties::judge_culling_planes(m, plane, c.convention, mo, p))
         settle(who, f, inputs);
     }
     if (consumers.corners) {
       const std::vector<Vector3<T>> corners = consumers.corners(mo, m, c.convention);
       std::string inputs = base + "  corners:";
-      for (const auto& x : corners) inputs += " " + numbers(Eigen::Matrix<T, 1, 3>(x.transpose()));
+      for (const auto& x : corners) inputs += " " + properties::numbers_text(x);
       settle(who, properties::judge_corners(m, plane, c.convention, mo, corners), inputs + "\n");
     }
   } else if (needs_oblique) {
@@ -117,11 +106,10 @@ int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T
   if (consumers.camera_plane) {
     const consumer_cases::PassPlaneCase<T> p = consumer_cases::pass_plane_case<T>(pick);
     const Vector4<T> answer = consumers.camera_plane(p.pass_view, p.kept_plane);
-    const std::string inputs =
-        std::string("  pass: ") + consumer_cases::pass_kind_name(p.kind) +
-        "\n  pass view: " + numbers(p.pass_view) +
-        "\n  world plane kept: " + numbers(Eigen::Matrix<T, 1, 4>(p.kept_plane.transpose())) +
-        "\n  answered: " + numbers(Eigen::Matrix<T, 1, 4>(answer.transpose())) + "\n";
+    const std::string inputs = std::string("  pass: ") + consumer_cases::pass_kind_name(p.kind) +
+                               "\n  pass view: " + properties::numbers_text(p.pass_view) +
+                               "\n  world plane kept: " + properties::numbers_text(p.kept_plane) +
+                               "\n  answered: " + properties::numbers_text(answer) + "\n";
     for (const auto& f : properties::judge_camera_plane(p.pass_view, p.kept_plane, p.surface_points,
                                                         p.front_point, answer))
       settle(who, f, inputs);
@@ -131,9 +119,9 @@ int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T
     const Vector4<T> mirror = consumer_cases::world_plane<T>(pick);
     const Matrix4<T> answer = consumers.mirror_view(view, mirror);
     settle(who, properties::judge_mirror_view(view, mirror, answer),
-           "  view: " + numbers(view) +
-               "\n  mirror plane: " + numbers(Eigen::Matrix<T, 1, 4>(mirror.transpose())) +
-               "\n  answered: " + numbers(answer) + "\n");
+           "  view: " + properties::numbers_text(view) +
+               "\n  mirror plane: " + properties::numbers_text(mirror) +
+               "\n  answered: " + properties::numbers_text(answer) + "\n");
   }
   if (consumers.portal_view) {
     const Matrix4<T> view = consumer_cases::rigid_view<T>(pick);
@@ -141,8 +129,9 @@ int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T
     const Matrix4<T> linked = consumer_cases::portal_frame<T>(pick);
     const Matrix4<T> answer = consumers.portal_view(view, frame, linked);
     settle(who, properties::judge_portal_view(view, frame, linked, answer),
-           "  view: " + numbers(view) + "\n  frame: " + numbers(frame) +
-               "\n  linked: " + numbers(linked) + "\n  answered: " + numbers(answer) + "\n");
+           "  view: " + properties::numbers_text(view) + "\n  frame: " +
+               properties::numbers_text(frame) + "\n  linked: " + properties::numbers_text(linked) +
+               "\n  answered: " + properties::numbers_text(answer) + "\n");
   }
   return 0;
 }

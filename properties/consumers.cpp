@@ -80,18 +80,6 @@ std::string text(const Rational& x) {
   return protocol::format_number(x.get_d());
 }
 
-template <class T>
-std::string text(const Vector3<T>& v) {
-  return "(" + protocol::format_number(v(0)) + ", " + protocol::format_number(v(1)) + ", " +
-         protocol::format_number(v(2)) + ")";
-}
-
-template <class T>
-std::string text(const Vector4<T>& v) {
-  return "(" + protocol::format_number(v(0)) + ", " + protocol::format_number(v(1)) + ", " +
-         protocol::format_number(v(2)) + ", " + protocol::format_number(v(3)) + ")";
-}
-
 std::string text(const Vec& v, int n = 4) {
   std::string out = "(";
   for (int i = 0; i < n; ++i) out += (i ? ", " : "") + text(v[static_cast<std::size_t>(i)]);
@@ -149,6 +137,33 @@ struct Segment {
   bool axis_is_z = true;
 };
 
+/// view_axis_sign() in exact arithmetic, from the inverse of the original projection: the sign
+/// of the z of its view volume's centre.
+int axis_sign(const Mat& original_inverse, Convention convention) {
+  const DepthRange range = clip_depth_range(convention);
+  const Vec centre =
+      exact::mul(original_inverse, {0, 0, Rational(range.z_low + range.z_high, 2), 1});
+  return (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
+}
+
+/// What a depth judge says before it looks at the answer: not judged where the stored depth
+/// has no segment to judge by, violated where the answer is not finite; empty otherwise.
+std::optional<ConsumerFinding> before_the_answer(ConsumerCheck check, const Segment& seg,
+                                                 bool finite, const std::string& answered) {
+  ConsumerFinding f;
+  f.check = check;
+  if (!seg.judged) {
+    f.judged = false;
+    f.detail = seg.why;
+    return f;
+  }
+  if (finite) return std::nullopt;
+  f.holds = false;
+  f.ratio = std::numeric_limits<double>::infinity();
+  f.detail = "answered " + answered + ", not finite";
+  return f;
+}
+
 template <class T>
 Segment ray_segment(const DepthSample<T>& s) {
   Segment out;
@@ -164,10 +179,7 @@ Segment ray_segment(const DepthSample<T>& s) {
     // general matrix) linear depth has no axis to be measured along.
     const Mat original = exact::to_rational(s.original);
     out.axis_is_z = original[3][0] == 0 && original[3][1] == 0;
-    const DepthRange range = clip_depth_range(s.convention);
-    const Vec centre =
-        exact::mul(*original_inv, {0, 0, Rational(range.z_low + range.z_high, 2), 1});
-    out.axis = (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
+    out.axis = axis_sign(*original_inv, s.convention);
   }
   const auto [lo, hi] = depth_interval(s);
   const Rational x = exact::to_rational(s.ndc_x), y = exact::to_rational(s.ndc_y);
@@ -256,11 +268,10 @@ std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>& m, const Vec
                                                   Convention convention) {
   const std::optional<Mat> inv = exact::inverse(exact::to_rational(m));
   if (!inv) return std::nullopt;
-  const DepthRange range = clip_depth_range(convention);
   std::array<Vec, 8> corners;
   for (int i = 0; i < 8; ++i) {
-    Vec v =
-        exact::mul(*inv, {i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? range.z_high : range.z_low, 1});
+    const std::array<int, 4> q = clip_corner(i, convention);
+    Vec v = exact::mul(*inv, {q[0], q[1], q[2], q[3]});
     if (v[3] < 0) return std::nullopt;
     corners[static_cast<std::size_t>(i)] = v;
   }
@@ -324,26 +335,18 @@ std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const M
 
 template <class T>
 ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& answer) {
+  const Segment seg = ray_segment(s);
+  if (auto early = before_the_answer(ConsumerCheck::view_position, seg, answer.allFinite(),
+                                     numbers_text(answer)))
+    return *early;
   ConsumerFinding f;
   f.check = ConsumerCheck::view_position;
-  const Segment seg = ray_segment(s);
-  if (!seg.judged) {
-    f.judged = false;
-    f.detail = seg.why;
-    return f;
-  }
-  if (!answer.allFinite()) {
-    f.holds = false;
-    f.ratio = std::numeric_limits<double>::infinity();
-    f.detail = "answered " + text(answer) + ", not a finite point";
-    return f;
-  }
   const auto [ok, ratio] = near_segment(seg.a, seg.b, seg.bound, point_of(answer), {0, 1, 2});
   f.holds = ok;
   f.ratio = ratio;
   f.points = {answer.template cast<double>(), approx_point(seg.a), approx_point(seg.b)};
   f.points_what = "the answer, and the ends of the pixel ray's segment the stored depth stands for";
-  f.detail = "answered " + text(answer) + "; the stored depth stands for the points from " +
+  f.detail = "answered " + numbers_text(answer) + "; the stored depth stands for the points from " +
              text(seg.a, 3) + " to " + text(seg.b, 3) + ", each coordinate within " +
              text(seg.bound, 3);
   return f;
@@ -351,20 +354,13 @@ ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& a
 
 template <class T>
 ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
+  const Segment seg = ray_segment(s);
+  if (auto early = before_the_answer(ConsumerCheck::linear_depth, seg,
+                                     std::isfinite(static_cast<double>(answer)),
+                                     protocol::format_number(answer)))
+    return *early;
   ConsumerFinding f;
   f.check = ConsumerCheck::linear_depth;
-  const Segment seg = ray_segment(s);
-  if (!seg.judged) {
-    f.judged = false;
-    f.detail = seg.why;
-    return f;
-  }
-  if (!std::isfinite(static_cast<double>(answer))) {
-    f.holds = false;
-    f.ratio = std::numeric_limits<double>::infinity();
-    f.detail = "answered " + protocol::format_number(answer) + ", not a finite depth";
-    return f;
-  }
   if (!seg.axis_is_z) {
     f.judged = false;
     f.detail = "the camera does not look along z (M's fourth row is not (0, 0, a, b))";
@@ -439,7 +435,7 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
       keeps.holds = false;
       worst = std::numeric_limits<double>::infinity();
       keeps.detail =
-          std::string("the ") + plane_names[k] + " plane " + text(plane) + " is not finite";
+          std::string("the ") + plane_names[k] + " plane " + numbers_text(plane) + " is not finite";
       break;
     }
     const Vec p = exact::to_rational(plane);
@@ -453,7 +449,7 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
         worst = r;
         if (-value > slack) {
           keeps.holds = false;
-          keeps.detail = std::string("the ") + plane_names[k] + " plane " + text(plane) +
+          keeps.detail = std::string("the ") + plane_names[k] + " plane " + numbers_text(plane) +
                          " culls the kept region's vertex " + text(v) + ": P . v = " + text(value) +
                          ", allowed down to -" + text(slack);
           keeps.points.clear();
@@ -476,7 +472,7 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
   if (!answer.near_plane.allFinite()) {
     near.holds = false;
     near.ratio = std::numeric_limits<double>::infinity();
-    near.detail = "the near plane " + text(answer.near_plane) + " is not finite";
+    near.detail = "the near plane " + numbers_text(answer.near_plane) + " is not finite";
     return {keeps, near};
   }
   const DepthRange range = clip_depth_range(convention);
@@ -523,8 +519,9 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
   }
   near.ratio =
       near.holds ? std::min(worst_near, 1.0) : std::max(worst_near, std::nextafter(1.0, 2.0));
-  near.detail = "near plane " + text(answer.near_plane) + (near.holds ? " is " : " is not ") +
-                "a positive multiple of C = " + text(c) +
+  near.detail = "near plane " + numbers_text(answer.near_plane) +
+                (near.holds ? " is " : " is not ") +
+                "a positive multiple of C = " + numbers_text(c) +
                 (lambda_fit > 0 ? " (best fit " + text(lambda_fit) + " C)"
                                 : " (it keeps the other side of C)");
   return {keeps, near};
@@ -549,7 +546,7 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
     }
     on.holds = side.holds = false;
     on.ratio = side.ratio = std::numeric_limits<double>::infinity();
-    on.detail = side.detail = "answered " + text(answer) + ", not a finite plane";
+    on.detail = side.detail = "answered " + numbers_text(answer) + ", not a finite plane";
     return {on, side};
   }
   const Mat inv_t = exact::transpose(*inv);
@@ -582,7 +579,7 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
       if (exact::abs(value) > slack) {
         on.holds = false;
         on.detail = "the surface's point " + text(xe, 3) + " is at camera-space " + text(y, 3) +
-                    ", where the plane " + text(answer) + " gives " + text(value) +
+                    ", where the plane " + numbers_text(answer) + " gives " + text(value) +
                     " instead of 0 (within " + text(slack) + ")";
       }
     }
@@ -590,7 +587,7 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
   on.ratio = on.holds ? std::min(worst, 1.0) : worst;
   if (on.holds)
     on.detail = "the surface's " + std::to_string(surface_points.size()) +
-                " points land on the plane " + text(answer);
+                " points land on the plane " + numbers_text(answer);
 
   const Vec y = exact::mul(w, exact::to_rational(front_point));
   const Rational value = exact::dot(p, y);
@@ -601,7 +598,7 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
                 (value > 0   ? "kept"
                  : value < 0 ? "clipped"
                              : "boundary") +
-                " side of " + text(answer) + " (P . x = " + text(value) + ")";
+                " side of " + numbers_text(answer) + " (P . x = " + text(value) + ")";
   return {on, side};
 }
 
@@ -747,7 +744,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
     if (!p.allFinite()) {
       f.holds = false;
       f.ratio = std::numeric_limits<double>::infinity();
-      f.detail = "the corner " + text(p) + " is not finite";
+      f.detail = "the corner " + numbers_text(p) + " is not finite";
       return f;
     }
     const Vec x = point_of(p);
@@ -873,11 +870,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   }
   f.ratio = f.holds ? std::min(worst, 1.0) : worst;
   // Depth waste along the view axis.
-  const Vec centre = exact::mul(
-      *exact::inverse(exact::to_rational(m)),
-      {0, 0, Rational(clip_depth_range(convention).z_low + clip_depth_range(convention).z_high, 2),
-       1});
-  const int axis = (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
+  const int axis = axis_sign(*m_inv, convention);
   auto extent = [axis](const std::vector<Vec>& xs) {
     Rational lo = axis * xs.front()[2], hi = lo;
     for (const Vec& x : xs) {

@@ -13,21 +13,6 @@ namespace oblique::testing {
 
 namespace {
 
-template <class T>
-std::string number(T x) {
-  return protocol::format_number(x);
-}
-
-template <class T, int R, int C>
-std::string matrix_text(const Eigen::Matrix<T, R, C>& m) {
-  std::string out = "[";
-  for (int i = 0; i < R; ++i) {
-    out += i ? "; " : "";
-    for (int j = 0; j < C; ++j) out += (j ? ", " : "") + number(m(i, j));
-  }
-  return out + "]";
-}
-
 /// Fails the current case with the finding, and keeps the report the run writes if it is the
 /// last (most shrunk) failure.
 void fail(const std::string& consumer, const properties::ConsumerFinding& finding,
@@ -101,10 +86,10 @@ std::string case_text(const ObliqueCase<T>& c) {
   return "- convention: " + std::string(convention_name(c.base.convention)) + " (family " +
          std::string(generators::family_name(c.base.family)) + ", place " +
          std::string(generators::place_name(c.base.place)) +
-         ")\n- M: " + matrix_text(c.base.matrix) +
-         "\n- C: " + matrix_text(c.base.plane.transpose().eval()) +
-         "\n- M' (the core's answer, what the consumer was given): " + matrix_text(c.oblique) +
-         "\n";
+         ")\n- M: " + properties::numbers_text(c.base.matrix) +
+         "\n- C: " + properties::numbers_text(c.base.plane) +
+         "\n- M' (the core's answer, what the consumer was given): " +
+         properties::numbers_text(c.oblique) + "\n";
 }
 
 }  // namespace
@@ -138,9 +123,10 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
             const std::string inputs =
                 case_text(c) +
                 "- buffer: " + (buffer == DepthBuffer::fixed24 ? "fixed24" : "float32") +
-                "\n- the point: " + matrix_text(point.transpose().eval()) +
-                "\n- the sample: NDC x " + number(sample->ndc_x) + ", y " + number(sample->ndc_y) +
-                ", window depth " + number(sample->depth) + " (stored " +
+                "\n- the point: " + properties::numbers_text(point) + "\n- the sample: NDC x " +
+                protocol::format_number(sample->ndc_x) + ", y " +
+                protocol::format_number(sample->ndc_y) + ", window depth " +
+                protocol::format_number(sample->depth) + " (stored " +
                 std::to_string(sample->stored) + ")\n";
             if (pass == 0) {
               judged(who,
@@ -163,13 +149,13 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
           [=] {
             const ObliqueCase<T> c = oblique_case<T>(contract, who);
             const FrustumPlanes<T> planes = consumers.culling_planes(c.oblique, c.base.convention);
-            const std::string inputs =
-                case_text(c) + "- the planes: left " + matrix_text(planes.left.transpose().eval()) +
-                ", right " + matrix_text(planes.right.transpose().eval()) + ", bottom " +
-                matrix_text(planes.bottom.transpose().eval()) + ", top " +
-                matrix_text(planes.top.transpose().eval()) + ", near " +
-                matrix_text(planes.near_plane.transpose().eval()) + ", far " +
-                matrix_text(planes.far_plane.transpose().eval()) + "\n";
+            const std::string inputs = case_text(c) + "- the planes: left " +
+                                       properties::numbers_text(planes.left) + ", right " +
+                                       properties::numbers_text(planes.right) + ", bottom " +
+                                       properties::numbers_text(planes.bottom) + ", top " +
+                                       properties::numbers_text(planes.top) + ", near " +
+                                       properties::numbers_text(planes.near_plane) + ", far " +
+                                       properties::numbers_text(planes.far_plane) + "\n";
             for (const auto& f : properties::judge_culling_planes<T>(
                      c.base.matrix, c.base.plane, c.base.convention, c.oblique, planes)) {
               if (f.check == check) judged(who, f, inputs, &c);
@@ -191,10 +177,10 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
             const Vector4<T> answer = consumers.camera_plane(c.pass_view, c.kept_plane);
             const std::string inputs =
                 std::string("- pass: ") + consumer_cases::pass_kind_name(c.kind) +
-                "\n- main view: " + matrix_text(c.main_view) +
-                "\n- pass view: " + matrix_text(c.pass_view) +
-                "\n- world plane kept: " + matrix_text(c.kept_plane.transpose().eval()) +
-                "\n- answered: " + matrix_text(answer.transpose().eval()) + "\n";
+                "\n- main view: " + properties::numbers_text(c.main_view) +
+                "\n- pass view: " + properties::numbers_text(c.pass_view) +
+                "\n- world plane kept: " + properties::numbers_text(c.kept_plane) +
+                "\n- answered: " + properties::numbers_text(answer) + "\n";
             for (const auto& f : properties::judge_camera_plane<T>(
                      c.pass_view, c.kept_plane, c.surface_points, c.front_point, answer)) {
               if (f.check == check) judged(who, f, inputs);
@@ -213,9 +199,9 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
           ++tally().implementations[who];
           const Matrix4<T> answer = consumers.mirror_view(view, plane);
           judged(who, properties::judge_mirror_view<T>(view, plane, answer),
-                 "- view: " + matrix_text(view) +
-                     "\n- mirror plane: " + matrix_text(plane.transpose().eval()) +
-                     "\n- answered: " + matrix_text(answer) + "\n");
+                 "- view: " + properties::numbers_text(view) +
+                     "\n- mirror plane: " + properties::numbers_text(plane) +
+                     "\n- answered: " + properties::numbers_text(answer) + "\n");
         },
         Coverage::none, "mirror_view", contract);
   }
@@ -230,9 +216,10 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
           ++tally().implementations[who];
           const Matrix4<T> answer = consumers.portal_view(view, frame, linked);
           judged(who, properties::judge_portal_view<T>(view, frame, linked, answer),
-                 "- view: " + matrix_text(view) + "\n- frame: " + matrix_text(frame) +
-                     "\n- linked frame: " + matrix_text(linked) +
-                     "\n- answered: " + matrix_text(answer) + "\n");
+                 "- view: " + properties::numbers_text(view) +
+                     "\n- frame: " + properties::numbers_text(frame) +
+                     "\n- linked frame: " + properties::numbers_text(linked) +
+                     "\n- answered: " + properties::numbers_text(answer) + "\n");
         },
         Coverage::none, "portal_view", contract);
   }
@@ -245,7 +232,7 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
           const std::vector<Vector3<T>> corners =
               consumers.corners(c.oblique, c.base.matrix, c.base.convention);
           std::string listed;
-          for (const auto& p : corners) listed += " " + matrix_text(p.transpose().eval());
+          for (const auto& p : corners) listed += " " + properties::numbers_text(p);
           judged(who,
                  properties::judge_corners<T>(c.base.matrix, c.base.plane, c.base.convention,
                                               c.oblique, corners),

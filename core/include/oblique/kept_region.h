@@ -22,17 +22,23 @@
 
 namespace oblique {
 
+/// The clip-space corner i (0..7) of the view volume at w = 1: x = -1 or 1 (bit 0), y (bit 1),
+/// z = z_low or z_high (bit 2).
+inline std::array<int, 4> clip_corner(int i, Convention convention) {
+  const DepthRange range = clip_depth_range(convention);
+  return {i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? range.z_high : range.z_low, 1};
+}
+
 /// The corners of M's view volume, homogeneous (M^-1 (x, y, z, 1) not divided by w), in the
 /// order x, then y, then z from low to high: index 4 z_index + 2 y_index + x_index (z_index 0 is
 /// z_low, -1 for gl and 0 otherwise, which is the far face for reversed_z).
 template <class T>
 std::array<Vector4<T>, 8> view_volume_corners(const Matrix4<T>& m, Convention convention) {
-  const DepthRange range = clip_depth_range(convention);
   const auto lu = m.partialPivLu();
   std::array<Vector4<T>, 8> out;
   for (int i = 0; i < 8; ++i) {
-    const Vector4<T> clip(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? range.z_high : range.z_low, 1);
-    out[static_cast<std::size_t>(i)] = lu.solve(clip);
+    const std::array<int, 4> q = clip_corner(i, convention);
+    out[static_cast<std::size_t>(i)] = lu.solve(Vector4<T>(T(q[0]), T(q[1]), T(q[2]), T(q[3])));
   }
   return out;
 }

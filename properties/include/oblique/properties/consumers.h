@@ -16,6 +16,7 @@
 #include "oblique/depth_reconstruction.h"
 #include "oblique/frustum_planes.h"
 #include "oblique/plane.h"
+#include "oblique/protocol/numbers.h"
 
 namespace oblique::properties {
 
@@ -137,6 +138,21 @@ inline constexpr std::size_t kMaxCorners = 32;
 template <class T>
 ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
                               const Matrix4<T>& oblique, const std::vector<Vector3<T>>& answer);
+
+/// A vector or matrix as the consumer reports print it: "[a, b; c, d]" (rows separated by "; "),
+/// each number the shortest decimal that reads back as it (protocol::format_number()); a
+/// vector prints as one row.
+template <class T, int R, int C>
+std::string numbers_text(const Eigen::Matrix<T, R, C>& m) {
+  const bool row = C == 1;  // a column vector prints as one row
+  std::string out = "[";
+  for (int i = 0; i < (row ? 1 : R); ++i) {
+    out += i ? "; " : "";
+    for (int j = 0; j < (row ? R : C); ++j)
+      out += (j ? ", " : "") + protocol::format_number(row ? m(j, 0) : m(i, j));
+  }
+  return out + "]";
+}
 
 /// A readable line of a finding: "culling_near_is_c: ... (ratio 3.2)".
 std::string describe(const ConsumerFinding& finding);
