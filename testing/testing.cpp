@@ -131,7 +131,11 @@ std::string write_consumer_report(const std::string& markdown,
                            << (context.replay_run.empty() ? context.binary : context.replay_run)
                            << "\n```\n";
   std::ostringstream log;
-  if (!files.commit(log)) return "(not written: " + log.str() + ")";
+  if (!files.commit(log)) {
+    std::string why = log.str();
+    while (!why.empty() && why.back() == '\n') why.pop_back();
+    return "(not written: " + why + ")";
+  }
   return (std::filesystem::path(context.directory) / (stem + ".md")).string();
 }
 
