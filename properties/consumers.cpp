@@ -8,6 +8,8 @@
 #include <limits>
 
 #include "oblique/kept_region.h"
+#include "oblique/oblique.h"
+#include "oblique/properties/consumer_cases.h"
 #include "oblique/pass_camera.h"
 #include "oblique/properties/exact.h"
 #include "oblique/properties/properties.h"
@@ -888,6 +890,111 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   return f;
 }
 
+namespace {
+
+std::string buffer_name(DepthBuffer buffer) {
+  return buffer == DepthBuffer::fixed24 ? "fixed24" : "float32";
+}
+
+}  // namespace
+
+template <class T>
+void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                    const Consumers<T>& consumers, const Pick& pick, const Settle& settle) {
+  const bool needs_oblique = consumers.view_position || consumers.linear_depth ||
+                             consumers.culling_planes || consumers.corners;
+  if (needs_oblique) {
+    const ObliqueResult<T> result = apply<T>(m, c, convention);
+    if (result.status != Status::ok) {
+      ConsumerFinding none;
+      none.judged = false;
+      none.detail = "no oblique matrix for M and C (" + std::string(status_code(result.status)) + ")";
+      settle(none, "", false);
+    } else {
+      const Matrix4<T>& mo = result.projection;
+      const std::string base = "- convention: " + std::string(convention_name(convention)) +
+                               "\n- M: " + numbers_text(m) + "\n- C: " + numbers_text(c) +
+                               "\n- M' (the core's answer, what the consumer was given): " +
+                               numbers_text(mo) + "\n";
+      if (consumers.view_position || consumers.linear_depth) {
+        const Vector4<T> point = consumer_cases::kept_point<T>(m, c, convention, pick);
+        const DepthBuffer buffer = pick(0, 2) ? DepthBuffer::float32 : DepthBuffer::fixed24;
+        const auto s = depth_sample(mo, m, convention, buffer, point);
+        if (!s) {
+          ConsumerFinding none;
+          none.judged = false;
+          none.detail = "the point leaves no depth sample (behind the eye or outside [0, 1])";
+          settle(none, "", true);
+        } else {
+          const std::string inputs =
+              base + "- buffer: " + buffer_name(buffer) + "\n- the point: " + numbers_text(point) +
+              "\n- the sample: NDC x " + protocol::format_number(s->ndc_x) + ", y " +
+              protocol::format_number(s->ndc_y) + ", window depth " +
+              protocol::format_number(s->depth) + " (stored " + std::to_string(s->stored) + ")\n";
+          if (consumers.view_position) {
+            const Vector3<T> answer = consumers.view_position(*s);
+            settle(judge_view_position(*s, answer),
+                   inputs + "- answered: " + numbers_text(answer) + "\n", true);
+          }
+          if (consumers.linear_depth) {
+            const T answer = consumers.linear_depth(*s);
+            settle(judge_linear_depth(*s, answer),
+                   inputs + "- answered: " + protocol::format_number(answer) + "\n", true);
+          }
+        }
+      }
+      if (consumers.culling_planes) {
+        const FrustumPlanes<T> p = consumers.culling_planes(mo, convention);
+        const std::string inputs =
+            base + "- the planes: left " + numbers_text(p.left) + ", right " +
+            numbers_text(p.right) + ", bottom " + numbers_text(p.bottom) + ", top " +
+            numbers_text(p.top) + ", near " + numbers_text(p.near_plane) + ", far " +
+            numbers_text(p.far_plane) + "\n";
+        for (const auto& f : judge_culling_planes(m, c, convention, mo, p)) settle(f, inputs, true);
+      }
+      if (consumers.corners) {
+        const std::vector<Vector3<T>> corners = consumers.corners(mo, m, convention);
+        std::string listed;
+        for (const auto& x : corners) listed += " " + numbers_text(x);
+        settle(judge_corners(m, c, convention, mo, corners), base + "- the corners:" + listed + "\n",
+               true);
+      }
+    }
+  }
+  if (consumers.camera_plane) {
+    const consumer_cases::PassPlaneCase<T> p = consumer_cases::pass_plane_case<T>(pick);
+    const Vector4<T> answer = consumers.camera_plane(p.pass_view, p.kept_plane);
+    const std::string inputs = std::string("- pass: ") + consumer_cases::pass_kind_name(p.kind) +
+                               "\n- main view: " + numbers_text(p.main_view) +
+                               "\n- pass view: " + numbers_text(p.pass_view) +
+                               "\n- world plane kept: " + numbers_text(p.kept_plane) +
+                               "\n- answered: " + numbers_text(answer) + "\n";
+    for (const auto& f :
+         judge_camera_plane(p.pass_view, p.kept_plane, p.surface_points, p.front_point, answer))
+      settle(f, inputs, false);
+  }
+  if (consumers.mirror_view) {
+    const Matrix4<T> view = consumer_cases::rigid_view<T>(pick);
+    const Vector4<T> mirror = consumer_cases::world_plane<T>(pick);
+    const Matrix4<T> answer = consumers.mirror_view(view, mirror);
+    settle(judge_mirror_view(view, mirror, answer),
+           "- view: " + numbers_text(view) + "\n- mirror plane: " + numbers_text(mirror) +
+               "\n- answered: " + numbers_text(answer) + "\n",
+           false);
+  }
+  if (consumers.portal_view) {
+    const Matrix4<T> view = consumer_cases::rigid_view<T>(pick);
+    const Matrix4<T> frame = consumer_cases::portal_frame<T>(pick);
+    const Matrix4<T> linked = consumer_cases::portal_frame<T>(pick);
+    const Matrix4<T> answer = consumers.portal_view(view, frame, linked);
+    settle(judge_portal_view(view, frame, linked, answer),
+           "- view: " + numbers_text(view) + "\n- frame: " + numbers_text(frame) +
+               "\n- linked frame: " + numbers_text(linked) + "\n- answered: " +
+               numbers_text(answer) + "\n",
+           false);
+  }
+}
+
 #define OBLIQUE_CONSUMER_INSTANCES(T)                                                              \
   template std::optional<DepthSample<T>> depth_sample(const Matrix4<T>&, const Matrix4<T>&,        \
                                                       Convention, DepthBuffer, const Vector4<T>&); \
@@ -904,7 +1011,9 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   template ConsumerFinding judge_portal_view(const Matrix4<T>&, const Matrix4<T>&,                 \
                                              const Matrix4<T>&, const Matrix4<T>&);                \
   template ConsumerFinding judge_corners(const Matrix4<T>&, const Vector4<T>&, Convention,         \
-                                         const Matrix4<T>&, const std::vector<Vector3<T>>&);
+                                         const Matrix4<T>&, const std::vector<Vector3<T>>&);   \
+  template void consumer_round(const Matrix4<T>&, const Vector4<T>&, Convention,                   \
+                               const Consumers<T>&, const Pick&, const Settle&);
 
 OBLIQUE_CONSUMER_INSTANCES(float)
 OBLIQUE_CONSUMER_INSTANCES(double)

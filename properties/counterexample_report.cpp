@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "oblique/oblique.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/report/report_files.h"
 #include "oblique/report/views.h"
@@ -425,18 +426,43 @@ std::string stage_pictures(report::ReportFiles& files, const Counterexample& ce,
 
 }  // namespace
 
-std::string stage_consumer_pictures(report::ReportFiles& files, const Counterexample& ce,
-                                    const std::string& stem, const std::string& title,
-                                    const std::string& what,
-                                    const std::vector<Eigen::Vector3d>& points) {
+std::string consumer_report_markdown(const std::string& consumer, const ConsumerFinding& finding,
+                                     const std::string& inputs) {
+  const std::string name(consumer_check_name(finding.check));
+  return "# Counterexample: " + name + "\n\n`" + consumer + "` violates **" + name +
+         "**.\n\n## What was found\n\n" + describe(finding) + "\n\n## The inputs\n\n" + inputs +
+         "\nNumbers print so that they read back to the same value; matrices are row by row, "
+         "planes keep P . x >= 0. The properties and their bounds: docs/consumers.md.\n";
+}
+
+template <class T>
+std::string stage_consumer_pictures(report::ReportFiles& files, const std::string& stem,
+                                    const Matrix4<T>& m, const Vector4<T>& c,
+                                    Convention convention, const ConsumerFinding& finding,
+                                    const std::string& consumer) {
+  Counterexample ce = make_counterexample(m, c, convention);
+  ce.implementation = "the core's M', given to " + consumer;
+  const Matrix4<T> oblique = apply<T>(m, c, convention).projection;
+  set_result(ce, oblique);
+  set_views(ce, Problem<T>(m, c, convention), &oblique);
   Mark mark;
-  mark.title = title;
-  mark.what = what;
-  mark.legend = what;
-  mark.more = points;
+  mark.title = std::string(consumer_check_name(finding.check)) + " (" + consumer + ")";
+  mark.what = finding.points_what.empty() ? std::string("nothing") : finding.points_what;
+  mark.legend = mark.what;
+  mark.more = finding.points;
   nlohmann::json unused;
   return stage_pictures(files, ce, stem, mark, unused);
 }
+
+#define OBLIQUE_CONSUMER_PICTURES(T)                                                      \
+  template std::string stage_consumer_pictures<T>(report::ReportFiles&, const std::string&, \
+                                                  const Matrix4<T>&, const Vector4<T>&,     \
+                                                  Convention, const ConsumerFinding&,       \
+                                                  const std::string&);
+OBLIQUE_CONSUMER_PICTURES(float)
+OBLIQUE_CONSUMER_PICTURES(double)
+OBLIQUE_CONSUMER_PICTURES(long double)
+#undef OBLIQUE_CONSUMER_PICTURES
 
 std::string write_report(const Counterexample& ce, const ReportContext& context) {
   std::string stem =

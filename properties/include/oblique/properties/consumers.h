@@ -194,3 +194,27 @@ struct Consumers {
 };
 
 }  // namespace oblique
+
+namespace oblique::properties {
+
+/// Where a consumer round's choices come from: an integer in [lo, hi) (RapidCheck's choices, a
+/// fuzz input's bytes, verify's seeded draws or a report's recorded picks).
+using Pick = std::function<int(int lo, int hi)>;
+
+/// A consumer property's verdict on one answer, with the inputs as text (a Markdown list, every
+/// number round-trip) and whether the case is an oblique matrix's (M, C and the core's M'), which
+/// a report draws.
+using Settle = std::function<void(const ConsumerFinding& finding, const std::string& inputs,
+                                  bool about_oblique_case)>;
+
+/// One round of the code around the matrix, the one way every tool asks and judges it: for each
+/// function `consumers` gives, its case is built from `pick` (consumer_cases.h; depth, culling
+/// and corners on m, c and the core's M' for them), the function is asked, and each finding of its
+/// properties goes to `settle` as soon as it is judged. m and c are used only by the functions
+/// that take an oblique matrix; where the core has no answer for them, `settle` gets one finding
+/// not judged ("no oblique matrix for M and C (STATUS)").
+template <class T>
+void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                    const Consumers<T>& consumers, const Pick& pick, const Settle& settle);
+
+}  // namespace oblique::properties

@@ -10,6 +10,7 @@
 
 #include "oblique/depth_convention.h"
 #include "oblique/projection.h"
+#include "oblique/properties/consumers.h"
 #include "oblique/properties/diagnosis.h"
 #include "oblique/properties/judge.h"
 #include "oblique/properties/properties.h"
@@ -97,13 +98,19 @@ struct ReportContext {
 /// Markdown path; throws std::runtime_error when it cannot write the report.
 std::string write_report(const Counterexample& ce, const ReportContext& context);
 
-/// The pictures of a consumer's report (oblique::testing's consumer properties): the case's views
-/// as write_report() draws them (ce: the case, its views set with the core's M' as the answer),
-/// under `title`, `points` marked and described by `what`; staged (and rendered, with gnuplot) in
-/// `files` under `stem`. Returns the report's "## Pictures" section.
-std::string stage_consumer_pictures(report::ReportFiles& files, const Counterexample& ce,
-                                    const std::string& stem, const std::string& title,
-                                    const std::string& what,
-                                    const std::vector<Eigen::Vector3d>& points);
+/// A consumer finding's report as every tool writes it (oblique::testing, `oblique verify`), up
+/// to its pictures and replay: the title, what was found and the inputs (`inputs`, a Markdown list).
+std::string consumer_report_markdown(const std::string& consumer, const ConsumerFinding& finding,
+                                     const std::string& inputs);
+
+/// The pictures of a consumer finding about an oblique matrix's case (m, c, convention: M's
+/// volume, C and the core's M', the answer the consumer was given), as write_report() draws a
+/// case, with the finding's points marked; staged (and rendered, with gnuplot) in `files` under
+/// `stem`. Returns the report's "## Pictures" section.
+template <class T>
+std::string stage_consumer_pictures(report::ReportFiles& files, const std::string& stem,
+                                    const Matrix4<T>& m, const Vector4<T>& c,
+                                    Convention convention, const ConsumerFinding& finding,
+                                    const std::string& consumer);
 
 }  // namespace oblique::properties
