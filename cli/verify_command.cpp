@@ -1,5 +1,6 @@
 // `oblique verify`: another implementation, over the apply protocol; the contract from its file
 // and flags.
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -23,6 +24,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
     bool answers_only = false;
     std::vector<std::string> arguments;  // after "verify", for the replay command
     bool quiet = false;
+    std::string consumers;  // --consumers LIST
   };
   auto settings = std::make_shared<Settings>();
   for (int i = 1; i < argc; ++i) {
@@ -110,6 +112,10 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                      "flags replace the fields they name");
   verify->add_flag("--keep-going", options.keep_going,
                    "Go on after a finding; report each kind (property x family x place) once");
+  verify->add_option(
+      "--consumers", settings->consumers,
+      "Ask the code around the matrix instead: a comma list of request kinds, or all: " +
+          name_list(oblique::protocol::consumer_kind_names()) + " (docs/verify.md)");
   verify->add_option("--replay", options.replay,
                      "Re-judge the case of a report (its .json) with --impl: exit 0 or 1");
   verify->add_option("--regressions", options.regressions,
@@ -142,6 +148,23 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       return;
     }
     options.contract = std::move(*contract);
+    for (const std::string& name : split_list(settings->consumers)) {
+      if (name == "all") {
+        options.consumers.assign(std::begin(oblique::protocol::all_consumer_kinds),
+                                 std::end(oblique::protocol::all_consumer_kinds));
+      } else if (const auto kind = oblique::protocol::parse_consumer_kind(name)) {
+        if (std::find(options.consumers.begin(), options.consumers.end(), *kind) ==
+            options.consumers.end())
+          options.consumers.push_back(*kind);
+      } else {
+        std::cerr << "oblique verify: --consumers: "
+                  << oblique::protocol::unknown_name("request kind", name,
+                                                     oblique::protocol::consumer_kind_names())
+                  << "\n";
+        exit_code = 2;
+        return;
+      }
+    }
     options.precision = *oblique::protocol::parse_precision(settings->precision);
     options.progress = !settings->quiet;
     options.self = self;

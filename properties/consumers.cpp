@@ -9,8 +9,8 @@
 
 #include "oblique/kept_region.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/consumer_cases.h"
 #include "oblique/pass_camera.h"
+#include "oblique/properties/consumer_cases.h"
 #include "oblique/properties/exact.h"
 #include "oblique/properties/properties.h"
 #include "oblique/properties/tolerance.h"
@@ -908,14 +908,15 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
     if (result.status != Status::ok) {
       ConsumerFinding none;
       none.judged = false;
-      none.detail = "no oblique matrix for M and C (" + std::string(status_code(result.status)) + ")";
+      none.detail =
+          "no oblique matrix for M and C (" + std::string(status_code(result.status)) + ")";
       settle(none, "", false);
     } else {
       const Matrix4<T>& mo = result.projection;
-      const std::string base = "- convention: " + std::string(convention_name(convention)) +
-                               "\n- M: " + numbers_text(m) + "\n- C: " + numbers_text(c) +
-                               "\n- M' (the core's answer, what the consumer was given): " +
-                               numbers_text(mo) + "\n";
+      const std::string base =
+          "- convention: " + std::string(convention_name(convention)) +
+          "\n- M: " + numbers_text(m) + "\n- C: " + numbers_text(c) +
+          "\n- M' (the core's answer, what the consumer was given): " + numbers_text(mo) + "\n";
       if (consumers.view_position || consumers.linear_depth) {
         const Vector4<T> point = consumer_cases::kept_point<T>(m, c, convention, pick);
         const DepthBuffer buffer = pick(0, 2) ? DepthBuffer::float32 : DepthBuffer::fixed24;
@@ -945,19 +946,19 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
       }
       if (consumers.culling_planes) {
         const FrustumPlanes<T> p = consumers.culling_planes(mo, convention);
-        const std::string inputs =
-            base + "- the planes: left " + numbers_text(p.left) + ", right " +
-            numbers_text(p.right) + ", bottom " + numbers_text(p.bottom) + ", top " +
-            numbers_text(p.top) + ", near " + numbers_text(p.near_plane) + ", far " +
-            numbers_text(p.far_plane) + "\n";
+        const std::string inputs = base + "- the planes: left " + numbers_text(p.left) +
+                                   ", right " + numbers_text(p.right) + ", bottom " +
+                                   numbers_text(p.bottom) + ", top " + numbers_text(p.top) +
+                                   ", near " + numbers_text(p.near_plane) + ", far " +
+                                   numbers_text(p.far_plane) + "\n";
         for (const auto& f : judge_culling_planes(m, c, convention, mo, p)) settle(f, inputs, true);
       }
       if (consumers.corners) {
         const std::vector<Vector3<T>> corners = consumers.corners(mo, m, convention);
         std::string listed;
         for (const auto& x : corners) listed += " " + numbers_text(x);
-        settle(judge_corners(m, c, convention, mo, corners), base + "- the corners:" + listed + "\n",
-               true);
+        settle(judge_corners(m, c, convention, mo, corners),
+               base + "- the corners:" + listed + "\n", true);
       }
     }
   }
@@ -989,8 +990,8 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
     const Matrix4<T> answer = consumers.portal_view(view, frame, linked);
     settle(judge_portal_view(view, frame, linked, answer),
            "- view: " + numbers_text(view) + "\n- frame: " + numbers_text(frame) +
-               "\n- linked frame: " + numbers_text(linked) + "\n- answered: " +
-               numbers_text(answer) + "\n",
+               "\n- linked frame: " + numbers_text(linked) +
+               "\n- answered: " + numbers_text(answer) + "\n",
            false);
   }
 }
@@ -1011,7 +1012,7 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
   template ConsumerFinding judge_portal_view(const Matrix4<T>&, const Matrix4<T>&,                 \
                                              const Matrix4<T>&, const Matrix4<T>&);                \
   template ConsumerFinding judge_corners(const Matrix4<T>&, const Vector4<T>&, Convention,         \
-                                         const Matrix4<T>&, const std::vector<Vector3<T>>&);   \
+                                         const Matrix4<T>&, const std::vector<Vector3<T>>&);       \
   template void consumer_round(const Matrix4<T>&, const Vector4<T>&, Convention,                   \
                                const Consumers<T>&, const Pick&, const Settle&);
 

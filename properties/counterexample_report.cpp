@@ -437,9 +437,8 @@ std::string consumer_report_markdown(const std::string& consumer, const Consumer
 
 template <class T>
 std::string stage_consumer_pictures(report::ReportFiles& files, const std::string& stem,
-                                    const Matrix4<T>& m, const Vector4<T>& c,
-                                    Convention convention, const ConsumerFinding& finding,
-                                    const std::string& consumer) {
+                                    const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                                    const ConsumerFinding& finding, const std::string& consumer) {
   Counterexample ce = make_counterexample(m, c, convention);
   ce.implementation = "the core's M', given to " + consumer;
   const Matrix4<T> oblique = apply<T>(m, c, convention).projection;
@@ -454,11 +453,10 @@ std::string stage_consumer_pictures(report::ReportFiles& files, const std::strin
   return stage_pictures(files, ce, stem, mark, unused);
 }
 
-#define OBLIQUE_CONSUMER_PICTURES(T)                                                      \
-  template std::string stage_consumer_pictures<T>(report::ReportFiles&, const std::string&, \
-                                                  const Matrix4<T>&, const Vector4<T>&,     \
-                                                  Convention, const ConsumerFinding&,       \
-                                                  const std::string&);
+#define OBLIQUE_CONSUMER_PICTURES(T)                                                              \
+  template std::string stage_consumer_pictures<T>(                                                \
+      report::ReportFiles&, const std::string&, const Matrix4<T>&, const Vector4<T>&, Convention, \
+      const ConsumerFinding&, const std::string&);
 OBLIQUE_CONSUMER_PICTURES(float)
 OBLIQUE_CONSUMER_PICTURES(double)
 OBLIQUE_CONSUMER_PICTURES(long double)

@@ -16,13 +16,6 @@ namespace oblique::protocol {
 
 namespace {
 
-/// A number token: a JSON number's text, or a string (marked by a leading '"' here).
-std::optional<std::string> number_token(const JsonValue& v) {
-  if (v.kind == JsonValue::Kind::number) return v.text;
-  if (v.kind == JsonValue::Kind::string) return "\"" + v.text;
-  return std::nullopt;
-}
-
 template <std::size_t N>
 bool read_numbers(const JsonValue& v, const char* field, std::array<std::string, N>& out,
                   std::string& error) {
@@ -49,6 +42,21 @@ bool read_numbers(const JsonValue& v, const char* field, std::array<std::string,
 }
 
 }  // namespace
+
+std::optional<std::string> number_token(const JsonValue& v) {
+  if (v.kind == JsonValue::Kind::number) return v.text;
+  if (v.kind == JsonValue::Kind::string) return "\"" + v.text;
+  return std::nullopt;
+}
+
+template <class T>
+Expected<T> read_answer_number(const std::string& token) {
+  const Expected<T> value = parse_number<T>(token);
+  if (value) return value;
+  const Expected<long double> wide = parse_number<long double>(token);
+  if (!wide) return value;
+  return *wide < 0 ? -std::numeric_limits<T>::infinity() : std::numeric_limits<T>::infinity();
+}
 
 Expected<Request> parse_request(std::string_view line) {
   using Result = Expected<Request>;
@@ -168,16 +176,9 @@ Expected<TypedAnswer<T>> read_answer(std::string_view line) {
   if (a.status != Status::ok) return a;
   for (int i = 0; i < 16; ++i) {
     const std::string& token = (*parsed->projection)[static_cast<std::size_t>(i)];
-    const Expected<T> value = parse_number<T>(token);
-    if (value) {
-      a.projection(i / 4, i % 4) = *value;
-      continue;
-    }
-    // A number beyond T's range is an infinite entry to judge.
-    const Expected<long double> wide = parse_number<long double>(token);
-    if (!wide) return Result::failure("projection[" + std::to_string(i) + "]: " + value.error());
-    a.projection(i / 4, i % 4) =
-        *wide < 0 ? -std::numeric_limits<T>::infinity() : std::numeric_limits<T>::infinity();
+    const Expected<T> value = read_answer_number<T>(token);
+    if (!value) return Result::failure("projection[" + std::to_string(i) + "]: " + value.error());
+    a.projection(i / 4, i % 4) = *value;
   }
   return a;
 }
@@ -186,7 +187,8 @@ Expected<TypedAnswer<T>> read_answer(std::string_view line) {
   template std::string request_line<T>(const Matrix4<T>&, const Vector4<T>&, \
                                        std::optional<Convention>, Notation); \
   template std::string ok_answer_line<T>(const Matrix4<T>&);                 \
-  template Expected<TypedAnswer<T>> read_answer<T>(std::string_view);
+  template Expected<TypedAnswer<T>> read_answer<T>(std::string_view);        \
+  template Expected<T> read_answer_number<T>(const std::string&);
 OBLIQUE_PROTOCOL_MESSAGES(float)
 OBLIQUE_PROTOCOL_MESSAGES(double)
 OBLIQUE_PROTOCOL_MESSAGES(long double)

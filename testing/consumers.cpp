@@ -50,8 +50,8 @@ void judged(const std::string& consumer, const properties::ConsumerFinding& find
 template <class T>
 void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck check,
                const Contract& contract) {
-  const bool needs_oblique = only.view_position || only.linear_depth || only.culling_planes ||
-                             only.corners;
+  const bool needs_oblique =
+      only.view_position || only.linear_depth || only.culling_planes || only.corners;
   run(
       [=] {
         generators::Case<T> c{};
@@ -64,7 +64,8 @@ void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck chec
         properties::consumer_round<T>(
             c.matrix, c.plane, c.convention, only, generators::rc_pick,
             [&](const properties::ConsumerFinding& f, const std::string& inputs, bool oblique) {
-              if (!f.judged || f.check == check) judged(only.name, f, inputs, oblique ? &c : nullptr);
+              if (!f.judged || f.check == check)
+                judged(only.name, f, inputs, oblique ? &c : nullptr);
             });
       },
       needs_oblique ? Coverage::valid : Coverage::none,

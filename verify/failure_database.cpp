@@ -10,8 +10,6 @@
 
 namespace oblique::verify {
 
-namespace {
-
 /// A report's JSON, or why it cannot be read (reports hold pictures' data: generous limits).
 Expected<protocol::JsonValue> read_report(const std::string& path) {
   // A report holds its pictures' data, a few MiB at most.
@@ -24,8 +22,6 @@ Expected<protocol::JsonValue> read_report(const std::string& path) {
         (j ? std::string("not a JSON object") : j.error()) + ")");
   return j;
 }
-
-}  // namespace
 
 Expected<std::optional<protocol::Precision>> report_precision(const std::string& path) {
   const Expected<protocol::JsonValue> j = read_report(path);

@@ -16,6 +16,9 @@
 namespace oblique::verify {
 
 /// The precision a report names ("precision"), if any; an error when it is not a report.
+/// A report's JSON, or why it cannot be read.
+Expected<protocol::JsonValue> read_report(const std::string& path);
+
 Expected<std::optional<protocol::Precision>> report_precision(const std::string& path);
 
 /// The case of a report (its JSON sidecar): the request, and the family named there.

@@ -223,17 +223,21 @@ Verdict Reporter<T>::issue(const Issue& issue) {
       issue.lines);
 }
 
-template <class T>
-std::string Reporter<T>::replay_run_command() const {
-  std::string command = options_.self + " verify";
+std::string rerun_command(const VerifyOptions& options) {
+  std::string command = options.self + " verify";
   bool has_seed = false;
-  for (const std::string& a : options_.arguments) {
+  for (const std::string& a : options.arguments) {
     if (a == "--seed" || a.rfind("--seed=", 0) == 0) has_seed = true;
     command += " " + shell_quote(a);
   }
-  if (options_.arguments.empty()) command += " --impl " + shell_quote(options_.command);
-  if (!has_seed) command += " --seed " + std::to_string(options_.seed);
+  if (options.arguments.empty()) command += " --impl " + shell_quote(options.command);
+  if (!has_seed) command += " --seed " + std::to_string(options.seed);
   return command;
+}
+
+template <class T>
+std::string Reporter<T>::replay_run_command() const {
+  return rerun_command(options_);
 }
 
 template <class T>

@@ -14,6 +14,9 @@
 
 namespace oblique::verify {
 
+/// The command that runs `options`' run again: every flag it was given, and its seed.
+std::string rerun_command(const VerifyOptions& options);
+
 /// --keep-going: one report per kind of finding (property x family x place).
 struct Kind {
   std::string report;

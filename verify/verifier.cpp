@@ -22,6 +22,7 @@
 
 #include "batches.h"
 #include "cases.h"
+#include "consumers.h"
 #include "failure_database.h"
 #include "reporter.h"
 #include "session.h"
@@ -321,6 +322,9 @@ Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& 
   }
   if (options.seed == 0) options.seed = std::random_device{}() | 1u;
   if (!options.replay.empty()) {
+    if (const Expected<protocol::JsonValue> report = read_report(options.replay);
+        report && is_consumer_report(*report))
+      return replay_consumer_report(options, *report, out, err);
     // The report's precision, whatever --precision says.
     const Expected<std::optional<protocol::Precision>> precision = report_precision(options.replay);
     if (!precision) {
@@ -338,6 +342,15 @@ Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& 
         err << "oblique verify: --replay: a long_double report\n";
         return Verdict::error;
     }
+  }
+  if (!options.consumers.empty()) {
+    if (options.keep_going || !options.regressions.empty() || !options.save_regressions.empty()) {
+      err << "oblique verify: --keep-going, --regressions and --save-regressions do not apply "
+             "to --consumers (a consumer run stops at its first violation; replay its report "
+             "with --replay)\n";
+      return Verdict::error;
+    }
+    return verify_consumers(options, out, err);
   }
   switch (options.precision) {
     case protocol::Precision::float32: return Verifier<float>(options, out, err).run();

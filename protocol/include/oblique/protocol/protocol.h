@@ -73,6 +73,15 @@ struct TypedAnswer {
 template <class T>
 Expected<TypedAnswer<T>> read_answer(std::string_view line);
 
+/// The token of a JSON value for parse_number(): a number's text, or a string's contents marked
+/// by a leading '"'; empty for any other value.
+std::optional<std::string> number_token(const JsonValue& value);
+
+/// A number of another program's answer in T: parse_number(), except that a finite number beyond
+/// T's range is an infinity of its sign, to judge rather than a protocol error.
+template <class T>
+Expected<T> read_answer_number(const std::string& token);
+
 /// The answer line of an ok result: each entry the shortest text that reads back as it in T.
 template <class T>
 std::string ok_answer_line(const Matrix4<T>& projection);

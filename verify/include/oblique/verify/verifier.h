@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "oblique/properties/contract.h"
+#include "oblique/protocol/consumer_messages.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/status.h"
 
@@ -43,6 +44,10 @@ struct VerifyOptions {
   std::string replay;
   std::string regressions;       ///< replay every report kept here before the run
   std::string save_regressions;  ///< keep each new shrunk case here
+
+  /// --consumers: ask these request kinds of the code around the matrix (consumer_messages.h)
+  /// instead of the oblique matrix, round by round, judged by the consumer properties.
+  std::vector<protocol::ConsumerKind> consumers;
 };
 
 /// How a run ended; the CLI exits with its value.

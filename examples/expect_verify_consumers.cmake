@@ -1,0 +1,57 @@
+cmake_minimum_required(VERSION 3.25)
+# Runs `oblique verify --consumers KINDS` on a program and checks the outcome:
+#   cmake -DOBLIQUE=... -DIMPL=... -DKINDS=a,b -DEXIT=0|1 [-DPROPERTY=name -DPICTURES=0|1
+#         -DRIGHT=command] [-DARGS="--time-limit;5"] -DREPORTS=dir -P expect_verify_consumers.cmake
+# EXIT 1 also requires the report (Markdown and JSON) of PROPERTY, its replay commands, pictures
+# when PICTURES is 1, and its --replay to be violated again by IMPL and to hold for RIGHT.
+file(REMOVE_RECURSE "${REPORTS}")
+execute_process(COMMAND "${OBLIQUE}" verify --consumers "${KINDS}" --impl "${IMPL}"
+                        --report-dir "${REPORTS}" --quiet ${ARGS}
+                RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE errors)
+message(STATUS "${output}${errors}")
+if(NOT result EQUAL EXIT)
+  message(FATAL_ERROR "oblique verify exited with ${result}, expected ${EXIT}")
+endif()
+if(EXIT EQUAL 0)
+  if(NOT output MATCHES "no violation in [1-9][0-9]* answers judged")
+    message(FATAL_ERROR "a pass must say how many answers were judged")
+  endif()
+  return()
+endif()
+set(stem "${REPORTS}/verify-consumer-${PROPERTY}")
+foreach(file "${stem}.md" "${stem}.json")
+  if(NOT EXISTS "${file}")
+    message(FATAL_ERROR "no report ${file}")
+  endif()
+endforeach()
+file(READ "${stem}.json" json)
+string(JSON check GET "${json}" check)
+if(NOT check STREQUAL PROPERTY)
+  message(FATAL_ERROR "the report is about ${check}, not ${PROPERTY}")
+endif()
+file(READ "${stem}.md" md)
+foreach(part "violates \\*\\*${PROPERTY}\\*\\*" "## The inputs" "## The exchange" "## Replay"
+             "verify --replay")
+  if(NOT md MATCHES "${part}")
+    message(FATAL_ERROR "the report has no '${part}'")
+  endif()
+endforeach()
+if(PICTURES AND NOT EXISTS "${stem}.views.dat")
+  message(FATAL_ERROR "the report has no pictures (${stem}.views.dat)")
+endif()
+if(NOT PICTURES AND EXISTS "${stem}.views.dat")
+  message(FATAL_ERROR "a finding without an oblique matrix's case has no volume to draw")
+endif()
+execute_process(COMMAND "${OBLIQUE}" verify --replay "${stem}.json" --impl "${IMPL}"
+                RESULT_VARIABLE again OUTPUT_VARIABLE replayed ERROR_VARIABLE replay_errors)
+if(NOT again EQUAL 1 OR NOT replayed MATCHES "${PROPERTY} violated")
+  message(FATAL_ERROR "the replay gave ${again}, not the violation: ${replayed}${replay_errors}")
+endif()
+if(RIGHT)
+  execute_process(COMMAND "${OBLIQUE}" verify --replay "${stem}.json" --impl "${RIGHT}"
+                  RESULT_VARIABLE right OUTPUT_VARIABLE right_output ERROR_VARIABLE right_errors)
+  if(NOT right EQUAL 0)
+    message(FATAL_ERROR "the right program does not hold on the replay (${right}): "
+                        "${right_output}${right_errors}")
+  endif()
+endif()

@@ -1,0 +1,388 @@
+#include "consumers.h"
+
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <random>
+#include <sstream>
+
+#include "oblique/oblique.h"
+#include "oblique/properties/counterexample_report.h"
+#include "oblique/properties/generators.h"
+#include "oblique/protocol/child_process.h"
+#include "oblique/protocol/names.h"
+#include "oblique/report/report_files.h"
+#include "oblique/verify/consumer_program.h"
+#include "reporter.h"
+
+namespace oblique::verify {
+
+namespace {
+
+using protocol::ConsumerKind;
+using protocol::shell_quote;
+
+/// What a round is made of, all a report needs to replay it: the case (M, C, convention) and
+/// the picks the round made, in order.
+template <class T>
+struct Round {
+  generators::Case<T> c;
+  std::vector<int> picks;
+};
+
+/// The first violation of a run, with its evidence.
+template <class T>
+struct Caught {
+  properties::ConsumerFinding finding;
+  std::string inputs, request, answer;
+  bool about_oblique_case = false;
+  Round<T> round;
+  long index = 0;                      ///< of the round, from 0
+  std::optional<ProgramFailure> lost;  ///< a crash or a timeout instead of a finding
+};
+
+std::string summary(const std::map<std::string, long>& counts) {
+  std::string out;
+  for (const auto& [name, n] : counts)
+    out += (out.empty() ? "" : ", ") + name + " " + std::to_string(n);
+  return out.empty() ? "none" : out;
+}
+
+template <class T>
+class ConsumerRun {
+ public:
+  ConsumerRun(const VerifyOptions& options, std::vector<ConsumerKind> kinds, std::ostream& out,
+              std::ostream& err)
+      : options_(options),
+        kinds_(std::move(kinds)),
+        out_(out),
+        err_(err),
+        program_(options.command, std::chrono::milliseconds(
+                                      static_cast<long>(options.request_timeout_seconds * 1000))),
+        asked_(program_.consumers(kinds_, options.command)) {}
+
+  /// One round: the program asked each kind on `round` (its picks drawn from `engine` and
+  /// recorded, or replayed from round.picks when `engine` is null). Returns false for a protocol
+  /// error (said on err_).
+  bool play(Round<T>& round, std::mt19937_64* engine, long index) {
+    std::size_t next = 0;
+    const properties::Pick pick = [&](int lo, int hi) {
+      if (engine) {
+        const int v = std::uniform_int_distribution<int>(lo, hi - 1)(*engine);
+        round.picks.push_back(v);
+        return v;
+      }
+      // A replay: the recorded picks, in order (clamped, should a report have been edited).
+      const int v = next < round.picks.size() ? round.picks[next++] : lo;
+      return v < lo ? lo : v >= hi ? hi - 1 : v;
+    };
+    const properties::Settle settle = [&](const properties::ConsumerFinding& f,
+                                          const std::string& inputs, bool about) {
+      if (!f.judged) {
+        ++left_out_[f.detail];
+        return;
+      }
+      ++judged_[std::string(properties::consumer_check_name(f.check))];
+      if (f.holds || caught_) return;
+      caught_ =
+          Caught<T>{f,     inputs,      program_.last_request(), program_.last_answer(), about, {},
+                    index, std::nullopt};
+    };
+    try {
+      properties::consumer_round<T>(round.c.matrix, round.c.plane, round.c.convention, asked_, pick,
+                                    settle);
+    } catch (const ProgramFailure& failure) {
+      if (failure.kind == ProgramFailure::Kind::protocol) {
+        err_ << "oblique verify: protocol error: " << failure.what
+             << "\n  request: " << failure.request << "\n";
+        for (const std::string& line : failure.lines)
+          err_ << "  read: " << protocol::escape_bytes(line) << "\n";
+        return false;
+      }
+      if (!caught_) {
+        caught_ = Caught<T>{};
+        caught_->lost = failure;
+        caught_->request = failure.request;
+        caught_->index = index;
+      }
+    }
+    if (caught_) caught_->round = round;
+    return true;
+  }
+
+  Verdict run() {
+    const Contract contract = resolved(options_.contract, {Convention::gl},
+                                       properties::StatusContract::any_refusal, true);
+    const rc::Gen<generators::Case<T>> cases = generators::valid_case_for<T>(contract);
+    rc::Random random(options_.seed);
+    const auto start = std::chrono::steady_clock::now();
+    const auto deadline =
+        start + std::chrono::milliseconds(static_cast<long>(options_.time_limit_seconds * 1000));
+    auto last_progress = start;
+    long index = 0;
+    std::map<std::string, long> conventions, families;
+    while (std::chrono::steady_clock::now() < deadline &&
+           (options_.cases == 0 || index < options_.cases)) {
+      Round<T> round;
+      round.c = cases(random.split(), static_cast<int>(index % 101)).value();
+      std::mt19937_64 engine(options_.seed * 0x9E3779B97F4A7C15ull +
+                             static_cast<std::uint64_t>(index));
+      if (!play(round, &engine, index)) {
+        program_.stop();
+        return Verdict::error;
+      }
+      ++conventions[std::string(convention_name(round.c.convention))];
+      ++families[std::string(generators::family_name(round.c.family))];
+      ++index;
+      if (caught_) break;
+      const auto now = std::chrono::steady_clock::now();
+      if (options_.progress && now - last_progress > std::chrono::seconds(5)) {
+        last_progress = now;
+        err_ << "oblique verify: " << index << " rounds, " << total(judged_) << " answers judged, "
+             << static_cast<long>(std::chrono::duration<double>(now - start).count()) << " s\n";
+      }
+    }
+    program_.stop();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (caught_) return report(seconds);
+    if (total(judged_) == 0) {
+      err_ << "oblique verify: no answer was judged in " << index
+           << " rounds (left out: " << summary(left_out_) << "): nothing was verified\n";
+      return Verdict::error;
+    }
+    std::ostringstream line;
+    line.precision(3);
+    line << std::fixed << seconds;
+    out_ << "oblique verify: no violation in " << total(judged_) << " answers judged, " << index
+         << " rounds of " << kind_list() << " (" << protocol::scalar_name<T>() << ", seed "
+         << options_.seed << ", " << line.str() << " s)\n  judged: " << summary(judged_)
+         << "\n  conventions: " << summary(conventions) << "\n  families: " << summary(families)
+         << "\n  left out: " << summary(left_out_) << "\n";
+    return Verdict::holds;
+  }
+
+  /// --replay: the report's round again; prints every violation.
+  Verdict replay(Round<T> round) {
+    if (!play(round, nullptr, 0)) {
+      program_.stop();
+      return Verdict::error;
+    }
+    program_.stop();
+    if (!caught_) {
+      out_ << "oblique verify: the round holds (" << summary(judged_)
+           << " judged; left out: " << summary(left_out_) << ")\n";
+      return Verdict::holds;
+    }
+    if (caught_->lost) {
+      out_ << "oblique verify: " << caught_->lost->what << "\n  request: " << caught_->request
+           << "\n";
+    } else {
+      out_ << "oblique verify: violated: " << properties::describe(caught_->finding)
+           << "\n  request: " << caught_->request << "\n  answer: " << caught_->answer << "\n";
+    }
+    return Verdict::violated;
+  }
+
+ private:
+  static long total(const std::map<std::string, long>& counts) {
+    long n = 0;
+    for (const auto& [name, k] : counts) n += k;
+    return n;
+  }
+
+  std::string kind_list() const {
+    std::string out;
+    for (const ConsumerKind k : kinds_)
+      out += (out.empty() ? "" : ", ") + std::string(protocol::consumer_kind_name(k));
+    return out;
+  }
+
+  /// The report's JSON: everything the replay needs, M and C in exact hex.
+  std::string report_json(const std::string& check) const {
+    const Caught<T>& c = *caught_;
+    auto hex_list = [](const auto& m) {
+      std::string out = "[";
+      for (int i = 0; i < static_cast<int>(m.size()); ++i)
+        out += (i ? ", " : "") +
+               protocol::json_number(m(i / m.cols(), i % m.cols()), protocol::Notation::hex);
+      return out + "]";
+    };
+    std::string picks = "[";
+    for (std::size_t i = 0; i < c.round.picks.size(); ++i)
+      picks += (i ? ", " : "") + std::to_string(c.round.picks[i]);
+    picks += "]";
+    std::string kinds = "[";
+    for (std::size_t i = 0; i < kinds_.size(); ++i)
+      kinds += (i ? ", " : "") + protocol::json_string(protocol::consumer_kind_name(kinds_[i]));
+    kinds += "]";
+    const Matrix4<T> m = c.round.c.matrix;
+    const Eigen::Matrix<T, 1, 4> plane = c.round.c.plane.transpose();
+    return "{\"type\": \"consumers\", \"check\": " + protocol::json_string(check) +
+           ", \"finding\": " +
+           protocol::json_string(c.lost ? c.lost->what : properties::describe(c.finding)) +
+           ", \"precision\": " + protocol::json_string(protocol::scalar_name<T>()) +
+           ", \"kinds\": " + kinds +
+           ", \"convention\": " + protocol::json_string(convention_name(c.round.c.convention)) +
+           ", \"family\": " + protocol::json_string(generators::family_name(c.round.c.family)) +
+           ", \"projection\": " + hex_list(m) + ", \"plane\": " + hex_list(plane) +
+           ", \"picks\": " + picks + ", \"request\": " + protocol::json_string(c.request) +
+           ", \"answer\": " + protocol::json_string(c.answer) +
+           ", \"seed\": " + std::to_string(options_.seed) +
+           ", \"round\": " + std::to_string(c.index) + "}\n";
+  }
+
+  Verdict report(double seconds) {
+    const Caught<T>& c = *caught_;
+    const std::string check =
+        c.lost ? (c.lost->kind == ProgramFailure::Kind::crash ? "crash" : "timeout")
+               : std::string(properties::consumer_check_name(c.finding.check));
+    const std::string stem =
+        report::free_stem(options_.report_dir, "verify-consumer-" + check, {".md", ".json"});
+    const std::string json_path =
+        (std::filesystem::path(options_.report_dir) / (stem + ".json")).string();
+    report::ReportFiles files(options_.report_dir);
+    std::string md;
+    if (c.lost) {
+      md = "# Counterexample: " + check + "\n\n`" + options_.command + "`: " + c.lost->what +
+           ".\n\n";
+    } else {
+      md = properties::consumer_report_markdown(options_.command, c.finding, c.inputs) + "\n";
+    }
+    md += "## The exchange\n\nRound " + std::to_string(c.index + 1) + " (" +
+          std::string(protocol::scalar_name<T>()) + ", seed " + std::to_string(options_.seed) +
+          "), after " + std::to_string(seconds) + " s. The request:\n\n```\n" + c.request +
+          "\n```\n\nThe answer:\n\n```\n" + (c.answer.empty() ? "(none)" : c.answer) + "\n```\n\n";
+    if (!c.lost && c.about_oblique_case)
+      md +=
+          properties::stage_consumer_pictures<T>(files, stem, c.round.c.matrix, c.round.c.plane,
+                                                 c.round.c.convention, c.finding, options_.command);
+    md += "## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
+          "\n# this round again, judged (exit 0 holds, 1 violated)\n" + options_.self +
+          " verify --replay " + shell_quote(json_path) + " --impl " +
+          shell_quote(options_.command) + "\n# the one request\necho " + shell_quote(c.request) +
+          " | " + options_.command + "\n```\n";
+    files.open(stem + ".md") << md;
+    files.open(stem + ".json") << report_json(check);
+    std::ostringstream log;
+    const bool written = files.commit(log);
+    err_ << "oblique verify: "
+         << (c.lost ? c.lost->what : "violated: " + properties::describe(c.finding)) << "\n";
+    if (!written) {
+      std::string why = log.str();
+      while (!why.empty() && why.back() == '\n') why.pop_back();
+      err_ << "oblique verify: the report could not be written: " << why << "\n";
+      return Verdict::error;
+    }
+    err_ << "report: " << (std::filesystem::path(options_.report_dir) / (stem + ".md")).string()
+         << "\n";
+    return Verdict::violated;
+  }
+
+  const VerifyOptions& options_;
+  std::vector<ConsumerKind> kinds_;
+  std::ostream& out_;
+  std::ostream& err_;
+  ConsumerProgram<T> program_;
+  Consumers<T> asked_;
+  std::map<std::string, long> judged_, left_out_;
+  std::optional<Caught<T>> caught_;
+};
+
+/// `field`'s numbers in T, `n` of them, from a report (hex strings or numbers).
+template <class T>
+bool report_numbers(const protocol::JsonValue& report, const char* field, std::size_t n,
+                    std::vector<T>& out, std::string& error) {
+  const protocol::JsonValue* v = report.find(field);
+  if (!v || !v->is_array() || v->size() != n) {
+    error = std::string("\"") + field + "\" must hold " + std::to_string(n) + " numbers";
+    return false;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::optional<std::string> token = protocol::number_token((*v)[i]);
+    const Expected<T> x =
+        token ? protocol::parse_number<T>(*token) : Expected<T>::failure("not a number");
+    if (!x) {
+      error = std::string("\"") + field + "\"[" + std::to_string(i) + "]: " + x.error();
+      return false;
+    }
+    out.push_back(*x);
+  }
+  return true;
+}
+
+template <class T>
+Verdict replay_in(const VerifyOptions& options, const protocol::JsonValue& report,
+                  std::ostream& out, std::ostream& err) {
+  std::string error;
+  std::vector<T> m, c;
+  Round<T> round;
+  std::vector<ConsumerKind> kinds;
+  const protocol::JsonValue* k = report.find("kinds");
+  const protocol::JsonValue* picks = report.find("picks");
+  const protocol::JsonValue* convention = report.find("convention");
+  std::optional<Convention> parsed_convention =
+      convention && convention->is_string() ? parse_convention(convention->text) : std::nullopt;
+  if (k && k->is_array()) {
+    for (std::size_t i = 0; i < k->size(); ++i) {
+      if (const auto kind = protocol::parse_consumer_kind((*k)[i].text)) kinds.push_back(*kind);
+    }
+  }
+  if (kinds.empty()) error = "\"kinds\" names no request kind";
+  if (error.empty() && !parsed_convention) error = "\"convention\" is not a convention";
+  if (error.empty() && (!picks || !picks->is_array())) error = "\"picks\" must be an array";
+  if (error.empty()) {
+    for (std::size_t i = 0; i < picks->size(); ++i) {
+      char* end = nullptr;
+      const long v = std::strtol((*picks)[i].text.c_str(), &end, 10);
+      if (!(*picks)[i].is_number() || *end != '\0') {
+        error = "\"picks\"[" + std::to_string(i) + "] is not an integer";
+        break;
+      }
+      round.picks.push_back(static_cast<int>(v));
+    }
+  }
+  if (error.empty() && report_numbers<T>(report, "projection", 16, m, error) &&
+      report_numbers<T>(report, "plane", 4, c, error)) {
+    for (int i = 0; i < 16; ++i) round.c.matrix(i / 4, i % 4) = m[static_cast<std::size_t>(i)];
+    for (int i = 0; i < 4; ++i) round.c.plane(i) = c[static_cast<std::size_t>(i)];
+    round.c.convention = *parsed_convention;
+  }
+  if (!error.empty()) {
+    err << "oblique verify: --replay " << options.replay << ": " << error << "\n";
+    return Verdict::error;
+  }
+  return ConsumerRun<T>(options, kinds, out, err).replay(std::move(round));
+}
+
+}  // namespace
+
+bool is_consumer_report(const protocol::JsonValue& report) {
+  const protocol::JsonValue* type = report.find("type");
+  return type && type->is_string() && type->text == "consumers";
+}
+
+Verdict replay_consumer_report(const VerifyOptions& options, const protocol::JsonValue& report,
+                               std::ostream& out, std::ostream& err) {
+  const protocol::JsonValue* precision = report.find("precision");
+  if (precision && precision->text == "float") return replay_in<float>(options, report, out, err);
+  if (precision && precision->text == "double") return replay_in<double>(options, report, out, err);
+  err << "oblique verify: --replay " << options.replay << ": \"precision\" is float or double\n";
+  return Verdict::error;
+}
+
+Verdict verify_consumers(const VerifyOptions& options, std::ostream& out, std::ostream& err) {
+  switch (options.precision) {
+    case protocol::Precision::float32:
+      return ConsumerRun<float>(options, options.consumers, out, err).run();
+    case protocol::Precision::float64:
+      return ConsumerRun<double>(options, options.consumers, out, err).run();
+    case protocol::Precision::long_double: break;
+  }
+  err << "oblique verify: --precision is float or double\n";
+  return Verdict::error;
+}
+
+}  // namespace oblique::verify

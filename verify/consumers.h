@@ -1,0 +1,25 @@
+// `oblique verify --consumers`: a program's code around the matrix (the consumer request kinds),
+// asked and judged round by round with the consumer round every tool shares
+// (properties::consumer_round()), a violation written as a report that replays its round exactly
+// (M and C in exact hex, the round's picks). Internal to oblique::verify.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include "oblique/protocol/json.h"
+#include "oblique/verify/verifier.h"
+
+namespace oblique::verify {
+
+/// The run: rounds until --time-limit or --cases, stopping at the first violation.
+Verdict verify_consumers(const VerifyOptions& options, std::ostream& out, std::ostream& err);
+
+/// Whether a report's JSON is a consumer finding's.
+bool is_consumer_report(const protocol::JsonValue& report);
+
+/// --replay of a consumer report: its round again through the program; 0 holds, 1 violated.
+Verdict replay_consumer_report(const VerifyOptions& options, const protocol::JsonValue& report,
+                               std::ostream& out, std::ostream& err);
+
+}  // namespace oblique::verify
