@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "oblique/projection.h"
+#include "oblique/protocol/consumer_messages.h"
 #include "printers.h"
 
 namespace oblique::protocol {
@@ -358,4 +359,66 @@ TEST(Protocol, jsonErrorsNameTheirPlaceWithoutTheParsersId) {
 }
 
 }  // namespace
+}  // namespace oblique::protocol
+
+namespace oblique::protocol {
+
+TEST(ConsumerMessages, requestsCarryTheirKindAndNumbersExactly) {
+  Matrix4<double> view = Matrix4<double>::Identity();
+  view(0, 3) = 0.1;
+  view(2, 2) = -0.0;
+  ConsumerRequest r(ConsumerKind::mirror_view);
+  r.numbers("view", view).numbers("plane", Vector4<double>(0, 1, 0, -2.5));
+  EXPECT_EQ(r.line(),
+            "{\"kind\": \"mirror_view\", \"view\": [1, 0, 0, 0.1, 0, 1, 0, 0, 0, 0, -0.0, 0, 0, 0, "
+            "0, 1], \"plane\": [0, 1, 0, -2.5]}");
+  EXPECT_EQ(ConsumerRequest(ConsumerKind::linear_depth).number("depth", 0.5f).line(),
+            "{\"kind\": \"linear_depth\", \"depth\": 0.5}");
+  for (const ConsumerKind k : all_consumer_kinds)
+    EXPECT_EQ(parse_consumer_kind(consumer_kind_name(k)), k);
+  EXPECT_FALSE(parse_consumer_kind("corner"));
+}
+
+TEST(ConsumerMessages, answersReadFlatNestedAndNonFinite) {
+  const auto planes = read_consumer_answer<double>(
+      "{\"planes\": [[1, 0, 0, 1], [-1, 0, 0, 1], [0, 1, 0, 1], [0, -1, 0, 1], [0, 0, -1, -1], "
+      "[0, 0, 1, 100]]}",
+      ConsumerKind::culling_planes, 24, 4);
+  ASSERT_TRUE(planes) << planes.error();
+  EXPECT_EQ((*planes)[23], 100);
+  const auto flat = read_consumer_answer<float>("{\"position\": [1, NaN, \"-inf\"]}",
+                                                ConsumerKind::view_position, 3, 3);
+  ASSERT_TRUE(flat) << flat.error();
+  EXPECT_TRUE(std::isnan((*flat)[1]));
+  EXPECT_EQ((*flat)[2], -std::numeric_limits<float>::infinity());
+  // Beyond float's range: an infinity to judge, not a protocol error.
+  const auto huge =
+      read_consumer_answer<float>("{\"depth\": 1e300}", ConsumerKind::linear_depth, 1, 1);
+  ASSERT_TRUE(huge);
+  EXPECT_EQ(huge->front(), std::numeric_limits<float>::infinity());
+  const auto none = read_consumer_answer<double>("{\"corners\": []}", ConsumerKind::corners, 0, 3);
+  ASSERT_TRUE(none);
+  EXPECT_TRUE(none->empty());
+}
+
+TEST(ConsumerMessages, answersThatAreNotAnswersSayWhy) {
+  auto why = [](std::string_view line, ConsumerKind kind, std::size_t count, std::size_t group) {
+    const auto a = read_consumer_answer<double>(line, kind, count, group);
+    return a ? std::string("read") : a.error();
+  };
+  EXPECT_EQ(why("{\"status\": \"camera_not_behind_plane\"}", ConsumerKind::mirror_view, 16, 16),
+            "a mirror_view answer needs \"view\" (it has status \"camera_not_behind_plane\": these "
+            "requests have no refusal)");
+  EXPECT_EQ(why("{\"plane\": [1, 2, 3]}", ConsumerKind::camera_plane, 4, 4),
+            "\"plane\" must hold 4 numbers, not 3");
+  EXPECT_EQ(why("{\"corners\": [[1, 2], [3, 4]]}", ConsumerKind::corners, 0, 3),
+            "\"corners\"[0] must hold 3 numbers, not 2");
+  EXPECT_EQ(why("{\"corners\": [1, 2, 3, 4]}", ConsumerKind::corners, 0, 3),
+            "\"corners\" must hold a multiple of 3 numbers, not 4");
+  EXPECT_EQ(why("{\"depth\": true}", ConsumerKind::linear_depth, 1, 1),
+            "\"depth\" must be a number, not a boolean");
+  EXPECT_EQ(why("[1]", ConsumerKind::linear_depth, 1, 1),
+            "an answer must be a JSON object, not an array");
+}
+
 }  // namespace oblique::protocol
