@@ -33,6 +33,13 @@ int run_check(const CheckSettings& settings) {
       std::cerr << "oblique check: " << judged.error() << "\n";
       return 2;
     }
+    const oblique::Expected<oblique::Done> consumers =
+        oblique::scene::judge_implementation_consumers(*parsed.scene, check, settings.impl,
+                                                       settings.timeout_seconds);
+    if (!consumers) {
+      std::cerr << "oblique check: " << consumers.error() << "\n";
+      return 2;
+    }
   }
   std::cout << (settings.as_json ? oblique::scene::to_json(check) + "\n"
                                  : oblique::scene::to_text(check));
@@ -73,7 +80,8 @@ void setup_check(CLI::App& app, int& exit_code) {
   check->add_flag("--json", settings->as_json, "Print one JSON object instead of a table");
   check->add_option("--impl", settings->impl,
                     "Send each rendered pass's request to this command (run by /bin/sh, speaking "
-                    "the apply protocol) and judge its answers as oblique verify does");
+                    "the apply protocol) and judge its answers as oblique verify does; the scene's "
+                    "consumers are asked of it too, in their request kinds");
   add_precision_option(
       check, settings->precision,
       "With --impl: the scalar type the implementation computes in; its requests "

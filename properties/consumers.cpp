@@ -640,10 +640,9 @@ ConsumerFinding compare_matrix(ConsumerCheck check, const Mat& reference, const 
   };
   f.detail = "entry (" + std::to_string(wi + 1) + ", " + std::to_string(wj + 1) + ") is " +
              protocol::format_number(answer(wi, wj)) + ", should be " + text(reference[wi][wj]) +
-             " within " + text(bound[wi][wj]) +
-             "; the view's handedness (sign of det of its 3 x 3) is " +
-             (det3(given) < 0 ? "flipped" : "kept") + ", should be " +
-             (det3(reference) < 0 ? "flipped" : "kept");
+             " within " + text(bound[wi][wj]) + "; det of its 3 x 3 (the handedness) is " +
+             (det3(given) < 0 ? "negative" : "positive") + ", should be " +
+             (det3(reference) < 0 ? "negative" : "positive");
   return f;
 }
 
@@ -962,38 +961,106 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
       }
     }
   }
-  if (consumers.camera_plane) {
-    const consumer_cases::PassPlaneCase<T> p = consumer_cases::pass_plane_case<T>(pick);
-    const Vector4<T> answer = consumers.camera_plane(p.pass_view, p.kept_plane);
-    const std::string inputs = std::string("- pass: ") + consumer_cases::pass_kind_name(p.kind) +
-                               "\n- main view: " + numbers_text(p.main_view) +
-                               "\n- pass view: " + numbers_text(p.pass_view) +
-                               "\n- world plane kept: " + numbers_text(p.kept_plane) +
-                               "\n- answered: " + numbers_text(answer) + "\n";
-    for (const auto& f :
-         judge_camera_plane(p.pass_view, p.kept_plane, p.surface_points, p.front_point, answer))
-      settle(f, inputs, false);
-  }
+  if (consumers.camera_plane)
+    consumer_cases::ask_camera_plane(consumers, consumer_cases::pass_plane_case<T>(pick), settle);
   if (consumers.mirror_view) {
     const Matrix4<T> view = consumer_cases::rigid_view<T>(pick);
-    const Vector4<T> mirror = consumer_cases::world_plane<T>(pick);
-    const Matrix4<T> answer = consumers.mirror_view(view, mirror);
-    settle(judge_mirror_view(view, mirror, answer),
-           "- view: " + numbers_text(view) + "\n- mirror plane: " + numbers_text(mirror) +
-               "\n- answered: " + numbers_text(answer) + "\n",
-           false);
+    consumer_cases::ask_mirror_view(consumers, view, consumer_cases::world_plane<T>(pick), settle);
   }
   if (consumers.portal_view) {
     const Matrix4<T> view = consumer_cases::rigid_view<T>(pick);
     const Matrix4<T> frame = consumer_cases::portal_frame<T>(pick);
-    const Matrix4<T> linked = consumer_cases::portal_frame<T>(pick);
-    const Matrix4<T> answer = consumers.portal_view(view, frame, linked);
-    settle(judge_portal_view(view, frame, linked, answer),
-           "- view: " + numbers_text(view) + "\n- frame: " + numbers_text(frame) +
-               "\n- linked frame: " + numbers_text(linked) +
-               "\n- answered: " + numbers_text(answer) + "\n",
-           false);
+    consumer_cases::ask_portal_view(consumers, view, frame, consumer_cases::portal_frame<T>(pick),
+                                    settle);
   }
+}
+
+}  // namespace oblique::properties
+
+namespace oblique::consumer_cases {
+
+template <class T>
+void ask_camera_plane(const Consumers<T>& consumers, const PassPlaneCase<T>& p,
+                      const properties::Settle& settle) {
+  using properties::numbers_text;
+  const Vector4<T> answer = consumers.camera_plane(p.pass_view, p.kept_plane);
+  const std::string inputs = std::string("- pass: ") + pass_kind_name(p.kind) +
+                             "\n- main view: " + numbers_text(p.main_view) +
+                             "\n- pass view: " + numbers_text(p.pass_view) +
+                             "\n- world plane kept: " + numbers_text(p.kept_plane) +
+                             "\n- answered: " + numbers_text(answer) + "\n";
+  for (const auto& f : properties::judge_camera_plane(p.pass_view, p.kept_plane, p.surface_points,
+                                                      p.front_point, answer))
+    settle(f, inputs, false);
+}
+
+template <class T>
+void ask_mirror_view(const Consumers<T>& consumers, const Matrix4<T>& view,
+                     const Vector4<T>& mirror, const properties::Settle& settle) {
+  using properties::numbers_text;
+  const Matrix4<T> answer = consumers.mirror_view(view, mirror);
+  settle(properties::judge_mirror_view(view, mirror, answer),
+         "- view: " + numbers_text(view) + "\n- mirror plane: " + numbers_text(mirror) +
+             "\n- answered: " + numbers_text(answer) + "\n",
+         false);
+}
+
+template <class T>
+void ask_portal_view(const Consumers<T>& consumers, const Matrix4<T>& view, const Matrix4<T>& frame,
+                     const Matrix4<T>& linked, const properties::Settle& settle) {
+  using properties::numbers_text;
+  const Matrix4<T> answer = consumers.portal_view(view, frame, linked);
+  settle(properties::judge_portal_view(view, frame, linked, answer),
+         "- view: " + numbers_text(view) + "\n- frame: " + numbers_text(frame) +
+             "\n- linked frame: " + numbers_text(linked) + "\n- answered: " + numbers_text(answer) +
+             "\n",
+         false);
+}
+
+#define OBLIQUE_CONSUMER_ASKS(T)                                                           \
+  template void ask_camera_plane(const Consumers<T>&, const PassPlaneCase<T>&,             \
+                                 const properties::Settle&);                               \
+  template void ask_mirror_view(const Consumers<T>&, const Matrix4<T>&, const Vector4<T>&, \
+                                const properties::Settle&);                                \
+  template void ask_portal_view(const Consumers<T>&, const Matrix4<T>&, const Matrix4<T>&, \
+                                const Matrix4<T>&, const properties::Settle&);
+OBLIQUE_CONSUMER_ASKS(float)
+OBLIQUE_CONSUMER_ASKS(double)
+OBLIQUE_CONSUMER_ASKS(long double)
+#undef OBLIQUE_CONSUMER_ASKS
+
+}  // namespace oblique::consumer_cases
+
+namespace oblique::properties {
+
+template <class T>
+Consumers<T> reference_consumers() {
+  Consumers<T> c;
+  c.name = "core_references";
+  c.view_position = [](const DepthSample<T>& s) {
+    return view_position(s.projection, s.ndc_x, s.ndc_y, s.depth, s.convention);
+  };
+  c.linear_depth = [](const DepthSample<T>& s) {
+    return linear_depth(s.projection, s.ndc_x, s.ndc_y, s.depth, s.convention,
+                        view_axis_sign(s.original, s.convention));
+  };
+  c.culling_planes = [](const Matrix4<T>& m, Convention k) { return frustum_planes(m, k); };
+  c.camera_plane = [](const Matrix4<T>& view, const Vector4<T>& plane) {
+    return plane_in_camera(view, plane);
+  };
+  c.mirror_view = [](const Matrix4<T>& view, const Vector4<T>& plane) {
+    return oblique::mirror_view(view, plane);
+  };
+  c.portal_view = [](const Matrix4<T>& view, const Matrix4<T>& frame, const Matrix4<T>& linked) {
+    return oblique::portal_view(view, frame, linked);
+  };
+  c.corners = [](const Matrix4<T>& m, const Matrix4<T>& original, Convention k) {
+    std::vector<Vector3<T>> out;
+    for (const auto& v : kept_region_vertices(original, near_plane(m, k), k))
+      out.push_back(v.template head<3>());
+    return out;
+  };
+  return c;
 }
 
 #define OBLIQUE_CONSUMER_INSTANCES(T)                                                              \
@@ -1013,6 +1080,7 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
                                              const Matrix4<T>&, const Matrix4<T>&);                \
   template ConsumerFinding judge_corners(const Matrix4<T>&, const Vector4<T>&, Convention,         \
                                          const Matrix4<T>&, const std::vector<Vector3<T>>&);       \
+  template Consumers<T> reference_consumers<T>();                                                  \
   template void consumer_round(const Matrix4<T>&, const Vector4<T>&, Convention,                   \
                                const Consumers<T>&, const Pick&, const Settle&);
 

@@ -46,6 +46,37 @@ nlohmann::ordered_json matrix_json(const Matrix4<double>& m) {
   return out;
 }
 
+/// A consumer's verdict in a line: "ok (64 judged, 3 left out)", "FAIL: ...".
+std::string consumer_line(const ConsumerResult& c) {
+  if (!c.note.empty()) return "- (" + c.note + ")";
+  std::string out = c.violation ? "FAIL" : c.judged ? "ok" : "not judged";
+  out += " (" + std::to_string(c.judged) + " judged";
+  if (c.left_out) out += ", " + std::to_string(c.left_out) + " left out";
+  if (c.consumer == SceneConsumer::cascades && c.depth_waste > 0)
+    out += ", depth waste " + fixed2(c.depth_waste);
+  out += ")";
+  if (c.violation) out += ": " + properties::describe(*c.violation);
+  return out;
+}
+
+nlohmann::ordered_json consumers_json(const std::vector<ConsumerResult>& list) {
+  using json = nlohmann::ordered_json;
+  json out = json::object();
+  for (const ConsumerResult& c : list) {
+    out[std::string(scene_consumer_name(c.consumer))] = {
+        {"holds", c.holds()},
+        {"judged", c.judged},
+        {"left_out", c.left_out},
+        {"note", c.note.empty() ? json(nullptr) : json(c.note)},
+        {"worst_ratio", c.worst_ratio},
+        {"depth_waste",
+         c.consumer == SceneConsumer::cascades ? json(c.depth_waste) : json(nullptr)},
+        {"violation", c.violation ? json(properties::describe(*c.violation)) : json(nullptr)},
+        {"inputs", c.violation ? json(c.inputs) : json(nullptr)}};
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string to_json(const SceneCheck& check) {
@@ -81,7 +112,10 @@ std::string to_json(const SceneCheck& check) {
          s.scissor && s.scissor->pixels ? json(*s.scissor->pixels) : json(nullptr)},
         {"covered_pixels",
          s.scissor && s.scissor->covered_pixels ? json(*s.scissor->covered_pixels) : json(nullptr)},
+        {"consumers", s.render ? consumers_json(s.consumers) : json(nullptr)},
     });
+    if (s.render && !s.impl_consumers.empty())
+      surfaces.back()["impl_consumers"] = consumers_json(s.impl_consumers);
     if (s.impl_answer) {
       json findings = json::array();
       for (const properties::Finding& f : s.impl_findings)
@@ -208,6 +242,9 @@ std::string to_text(const SceneCheck& check) {
       }
       out << "\n";
     }
+    for (const ConsumerResult& c : s.consumers)
+      out << "  consumer " << scene_consumer_name(c.consumer) << ": " << printable(consumer_line(c))
+          << "\n";
   }
   bool any_impl = false;
   for (const SurfaceCheck& s : check.surfaces) any_impl = any_impl || s.impl_answer.has_value();
@@ -228,6 +265,18 @@ std::string to_text(const SceneCheck& check) {
     }
     if (check.impl_diagnosis.ran)
       out << "  " << properties::likely_cause_line(check.impl_diagnosis) << "\n";
+  }
+  bool any_impl_consumers = false;
+  for (const SurfaceCheck& s : check.surfaces)
+    any_impl_consumers = any_impl_consumers || !s.impl_consumers.empty();
+  if (any_impl_consumers) {
+    out << "\nthe implementation's consumers (--impl, "
+        << protocol::precision_name(check.impl_precision) << "):\n";
+    for (const SurfaceCheck& s : check.surfaces) {
+      for (const ConsumerResult& c : s.impl_consumers)
+        out << "  " << printable(s.name) << ": " << scene_consumer_name(c.consumer) << " "
+            << printable(consumer_line(c)) << "\n";
+    }
   }
   if (check.truncated)
     out << "\nmore than " << kMaxPasses << " passes: the rest were not looked at\n";

@@ -23,6 +23,11 @@ bool SurfaceCheck::passes() const {
   for (const properties::Finding& p : impl_findings) {
     if (!p.holds) return false;
   }
+  for (const auto* list : {&consumers, &impl_consumers}) {
+    for (const ConsumerResult& c : *list) {
+      if (!c.holds()) return false;
+    }
+  }
   return true;
 }
 
@@ -201,6 +206,8 @@ class Checker {
               ? portal_kept_plane(surface.portal_transform, world_plane)
               : world_plane;
       s.plane_in_camera = plane_in_camera(s.view, kept_plane);
+      s.parent_view = parent.view;
+      s.kept_plane = kept_plane;
       const ObliqueResult<double> result =
           apply<double>(scene_.camera.projection, s.plane_in_camera, scene_.convention);
       s.status = result.status;
@@ -235,6 +242,9 @@ class Checker {
                              result.projection);
         s.depth = depth_precision(scene_.camera.projection, result.projection, s.plane_in_camera,
                                   scene_.convention, scene_.depth_buffer);
+        if (!scene_.consumers.empty())
+          s.consumers =
+              judge_consumers<double>(scene_, s, properties::reference_consumers<double>());
       }
       // Beyond the depth limit only the passes that would have been rendered are listed.
       if (level > scene_.max_depth && s.reason.rfind("depth limit", 0) != 0) continue;

@@ -1,5 +1,6 @@
 #include "oblique/scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -9,6 +10,7 @@
 
 #include "oblique/projection.h"
 #include "oblique/protocol/json.h"
+#include "oblique/protocol/names.h"
 #include "oblique/protocol/protocol.h"
 #include "reading.h"
 
@@ -65,9 +67,9 @@ ParsedScene parse_scene(std::string_view text_in) {
     Scene scene;
     if (!root.is_object())
       fail("(top level)", std::string("must be an object, not ") + type_of(root));
-    only_keys(
-        root, "",
-        {"name", "convention", "depth_buffer", "camera", "surfaces", "max_depth", "viewport"});
+    only_keys(root, "",
+              {"name", "convention", "depth_buffer", "camera", "surfaces", "max_depth", "viewport",
+               "consumers"});
     scene.name = text(root, "", "name");
     const std::string convention = text(root, "", "convention");
     const auto c = parse_convention(convention);
@@ -96,6 +98,25 @@ ParsedScene parse_scene(std::string_view text_in) {
       scene.viewport = std::array<int, 2>{integer(v[0], "viewport[0]", 1, 1 << 16),
                                           integer(v[1], "viewport[1]", 1, 1 << 16)};
     }
+    if (has(root, "consumers")) {
+      const json& list = root.at("consumers");
+      if (!list.is_array()) fail("consumers", "must be an array of names, not " + type_of(list));
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string where = "consumers[" + std::to_string(i) + "]";
+        if (!list[i].is_string()) fail(where, "must be a name, not " + type_of(list[i]));
+        const std::string name = list[i].text;
+        const auto consumer = parse_scene_consumer(name);
+        if (!consumer) {
+          std::vector<std::string> known;
+          for (const SceneConsumer c : all_scene_consumers)
+            known.emplace_back(scene_consumer_name(c));
+          fail(where, protocol::unknown_name("consumer", name, known));
+        }
+        if (std::find(scene.consumers.begin(), scene.consumers.end(), *consumer) ==
+            scene.consumers.end())
+          scene.consumers.push_back(*consumer);
+      }
+    }
     scene.camera = read_camera(root, scene.convention);
     const json& surfaces = member(root, "", "surfaces");
     if (!surfaces.is_array())
@@ -107,6 +128,23 @@ ParsedScene parse_scene(std::string_view text_in) {
     out.error = e.what();
   }
   return out;
+}
+
+std::string_view scene_consumer_name(SceneConsumer c) {
+  switch (c) {
+    case SceneConsumer::reconstruction: return "reconstruction";
+    case SceneConsumer::culling: return "culling";
+    case SceneConsumer::cascades: return "cascades";
+    case SceneConsumer::camera_plane: return "camera_plane";
+    case SceneConsumer::pass_view: return "pass_view";
+  }
+  return "unknown";
+}
+
+std::optional<SceneConsumer> parse_scene_consumer(std::string_view name) {
+  for (const SceneConsumer c : all_scene_consumers)
+    if (scene_consumer_name(c) == name) return c;
+  return std::nullopt;
 }
 
 }  // namespace oblique::scene

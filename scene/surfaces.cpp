@@ -151,6 +151,8 @@ Surface read_surface(const json& s, const std::string& path) {
                                        unit_normal(vector3(linked, l, "normal"), l + ".normal"),
                                        vector3(linked, l, "up"));
     if (!other) fail(l + ".up", "must not be the zero vector nor parallel to the normal");
+    out.portal_frame = *frame;
+    out.linked_frame = *other;
     out.portal_transform = portal_map(*frame, *other);
     if (!out.portal_transform.allFinite()) fail(l, "out of the range of a double");
   }

@@ -207,5 +207,6 @@ Consumers<T> ConsumerProgram<T>::consumers(const std::vector<ConsumerKind>& kind
 
 template class ConsumerProgram<float>;
 template class ConsumerProgram<double>;
+template class ConsumerProgram<long double>;
 
 }  // namespace oblique::verify

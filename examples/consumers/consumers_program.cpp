@@ -2,6 +2,8 @@
 // `oblique check --impl` drive: one JSON request per line on standard input, one answer line each
 // on standard output, flushed (the request kinds: docs/verify.md). Right by default; `--wrong
 // NAME` answers one kind with one of the mistakes of consumers.h, `--float` computes in float.
+// A request without a kind (the oblique matrix itself, as `oblique check --impl` sends first) is
+// answered by the core, so that only the consumers are this program's own.
 //
 //   consumers_program [--float] [--wrong NAME]
 #include <cstdio>
@@ -10,6 +12,8 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+
+#include <oblique/oblique.h>
 
 #include "consumers.h"
 
@@ -36,7 +40,7 @@ Eigen::Matrix<T, R, C> numbers(const json& v) {
 }
 
 Convention convention(const json& request) {
-  const std::string name = request.at("convention").get<std::string>();
+  const std::string name = request.value("convention", std::string("gl"));
   return name == "zero_one"     ? Convention::zero_one
          : name == "reversed_z" ? Convention::reversed_z
                                 : Convention::gl;
@@ -62,6 +66,14 @@ std::string list(const Eigen::Matrix<T, R, C>& m) {
 template <class T>
 std::string answer(const json& request, const std::string& wrong) {
   namespace ec = engine_consumers;
+  if (!request.contains("kind")) {
+    const oblique::ObliqueResult<T> r =
+        oblique::apply<T>(numbers<T, 4, 4>(request.at("projection")),
+                          numbers<T, 4, 1>(request.at("plane")), convention(request));
+    if (r.status != oblique::Status::ok)
+      return "{\"status\": \"" + std::string(oblique::status_code(r.status)) + "\"}";
+    return "{\"status\": \"ok\", \"projection\": " + list(r.projection) + "}";
+  }
   const std::string kind = request.at("kind").get<std::string>();
   if (kind == "view_position" || kind == "linear_depth") {
     oblique::properties::DepthSample<T> s;

@@ -88,6 +88,25 @@ Matrix4<T> portal_frame(Pick&& pick) {
   return f;
 }
 
+/// Three points of `plane` (within 64 units of its point nearest the origin, computed in long
+/// double and rounded; the properties project them onto it exactly) and one in front of it.
+template <class T, class Pick>
+void plane_samples(const Vector4<T>& plane, Pick&& pick, std::vector<Vector4<T>>& surface_points,
+                   Vector4<T>& front_point) {
+  using Wide = long double;
+  const Eigen::Matrix<Wide, 3, 1> n = plane.template head<3>().template cast<Wide>();
+  const Wide nn = n.squaredNorm();
+  const Eigen::Matrix<Wide, 3, 1> base = -Wide(plane.w()) * n / nn;
+  const Eigen::Matrix<Wide, 3, 1> t1 = n.unitOrthogonal(), t2 = n.cross(t1).normalized();
+  for (int k = 0; k < 3; ++k) {
+    const Wide s = Wide(pick(-64, 65)), t = Wide(pick(-64, 65));
+    const Eigen::Matrix<Wide, 3, 1> x = base + s * t1 + t * t2;
+    surface_points.push_back(Vector4<T>(T(x(0)), T(x(1)), T(x(2)), T(1)));
+  }
+  const Eigen::Matrix<Wide, 3, 1> front = base + Wide(pick(1, 65)) * n / std::sqrt(nn);
+  front_point = Vector4<T>(T(front(0)), T(front(1)), T(front(2)), T(1));
+}
+
 /// The passes whose camera and plane are checked.
 enum class PassKind { mirror, clip, portal };
 
@@ -136,22 +155,27 @@ PassPlaneCase<T> pass_plane_case(Pick&& pick) {
           out.kind == PassKind::mirror ? mirror_view(out.main_view, plane) : out.main_view;
       out.kept_plane = plane;
     }
-    // Points of the kept plane (computed in long double and rounded; the properties project
-    // them onto it exactly) and one in front of it.
-    using Wide = long double;
-    const Eigen::Matrix<Wide, 3, 1> n = out.kept_plane.template head<3>().template cast<Wide>();
-    const Wide nn = n.squaredNorm();
-    const Eigen::Matrix<Wide, 3, 1> base = -Wide(out.kept_plane.w()) * n / nn;
-    const Eigen::Matrix<Wide, 3, 1> t1 = n.unitOrthogonal(), t2 = n.cross(t1).normalized();
-    for (int k = 0; k < 3; ++k) {
-      const Wide s = Wide(pick(-64, 65)), t = Wide(pick(-64, 65));
-      const Eigen::Matrix<Wide, 3, 1> x = base + s * t1 + t * t2;
-      out.surface_points.push_back(Vector4<T>(T(x(0)), T(x(1)), T(x(2)), T(1)));
-    }
-    const Eigen::Matrix<Wide, 3, 1> front = base + Wide(pick(1, 65)) * n / std::sqrt(nn);
-    out.front_point = Vector4<T>(T(front(0)), T(front(1)), T(front(2)), T(1));
+    plane_samples(out.kept_plane, pick, out.surface_points, out.front_point);
     return out;
   }
 }
+
+// Asking the consumer one case and judging its answer, for the cases a round builds and for the
+// passes of a scene (`oblique check`): each finding goes to `settle` with the inputs as text.
+
+/// consumers.camera_plane on a pass: plane_on_surface and plane_kept_side.
+template <class T>
+void ask_camera_plane(const Consumers<T>& consumers, const PassPlaneCase<T>& pass,
+                      const properties::Settle& settle);
+
+/// consumers.mirror_view on a main view and a mirror's world plane.
+template <class T>
+void ask_mirror_view(const Consumers<T>& consumers, const Matrix4<T>& view,
+                     const Vector4<T>& mirror, const properties::Settle& settle);
+
+/// consumers.portal_view on a main view and two portals' frames.
+template <class T>
+void ask_portal_view(const Consumers<T>& consumers, const Matrix4<T>& view, const Matrix4<T>& frame,
+                     const Matrix4<T>& linked, const properties::Settle& settle);
 
 }  // namespace oblique::consumer_cases

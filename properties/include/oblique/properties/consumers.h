@@ -197,6 +197,12 @@ struct Consumers {
 
 namespace oblique::properties {
 
+/// The core's references as a Consumers (depth_reconstruction.h, frustum_planes.h, pass_camera.h,
+/// kept_region.h), named "core_references": what `oblique check` judges when no program is
+/// given, and what fuzz_consumers fuzzes.
+template <class T>
+Consumers<T> reference_consumers();
+
 /// Where a consumer round's choices come from: an integer in [lo, hi) (RapidCheck's choices, a
 /// fuzz input's bytes, verify's seeded draws or a report's recorded picks).
 using Pick = std::function<int(int lo, int hi)>;

@@ -11,6 +11,7 @@
 
 #include "oblique/expected.h"
 #include "oblique/oblique.h"
+#include "oblique/properties/consumers.h"
 #include "oblique/properties/diagnosis.h"
 #include "oblique/properties/judge.h"
 #include "oblique/protocol/numbers.h"
@@ -41,6 +42,20 @@ struct Scissor {
   std::optional<double> covered_pixels;      ///< the polygon's own area in pixels
 };
 
+/// One consumer of a rendered pass (Scene::consumers), asked and judged by its properties
+/// (oblique/properties/consumers.h).
+struct ConsumerResult {
+  SceneConsumer consumer = SceneConsumer::reconstruction;
+  long judged = 0;    ///< answers judged
+  long left_out = 0;  ///< cases no implementation in the precision can settle (not judged)
+  std::string note;   ///< why nothing applies (a clip pass has no view of its own), else empty
+  std::optional<properties::ConsumerFinding> violation;  ///< the first
+  std::string inputs;      ///< the violation's inputs (a Markdown list)
+  double worst_ratio = 0;  ///< the largest residual / bound judged
+  double depth_waste = 0;  ///< cascades: how much deeper the corners reach than the kept region
+  bool holds() const { return !violation; }
+};
+
 struct SurfaceCheck {
   std::string name;               ///< the pass's path: "hall mirror > window"
   std::vector<std::size_t> path;  ///< indices into Scene::surfaces, outermost first
@@ -58,13 +73,22 @@ struct SurfaceCheck {
   std::optional<DepthPrecision> depth;
   std::optional<Scissor> scissor;  ///< rendered bounded surfaces
 
+  /// What the pass is seen from and keeps, for its consumers: the parent pass's (or the main
+  /// camera's) view, and the world plane whose front it keeps.
+  Matrix4<double> parent_view = Matrix4<double>::Identity();
+  Vector4<double> kept_plane = Vector4<double>::Zero();
+  /// The scene's consumers with the core's references (what a right implementation gives).
+  std::vector<ConsumerResult> consumers;
+  /// `--impl`: the same asked of the user's program.
+  std::vector<ConsumerResult> impl_consumers;
+
   /// `--impl`: the user's answer to this pass's request, judged (empty when not asked).
   std::optional<std::string> impl_answer;
   std::vector<properties::Finding> impl_findings;
 
   /// Every property of our oblique matrix holds.
   bool properties_hold() const;
-  /// properties_hold(), and the user's answer (when asked) violates nothing.
+  /// properties_hold(), and the user's answer and consumers (when asked) violate nothing.
   bool passes() const;
 };
 
@@ -112,6 +136,22 @@ Expected<std::size_t> judge_implementation(const Scene& scene, SceneCheck& check
 /// {"scene": ..., "surfaces": [{"name", "action", "reason", "view", "projection", "method",
 /// "properties": {name: bool}, "depth_bits_lost", ...}]}; numbers round-trip.
 std::string to_json(const SceneCheck& check);
+
+/// Each consumer the scene names, for a rendered pass, asked of `who` in T (M and C rounded to T)
+/// and judged: reconstruction on kConsumerSamples depth samples of the pass's kept region, culling
+/// and cascades on the pass's matrix (the consumer round every tool shares), camera_plane and
+/// pass_view on the pass's own views and plane. Throws what `who` throws (a program's failure).
+template <class T>
+std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceCheck& pass,
+                                            const Consumers<T>& who);
+
+inline constexpr int kConsumerSamples = 64;
+
+/// `oblique check --impl` on a scene with consumers: the user's program (`command`, a new process)
+/// asked the consumer request kinds of every rendered pass in check.impl_precision, stored in
+/// impl_consumers. Fails, saying why, when the program does not answer as the protocol says.
+Expected<Done> judge_implementation_consumers(const Scene& scene, SceneCheck& check,
+                                              const std::string& command, double timeout_seconds);
 
 /// A table a person reads.
 std::string to_text(const SceneCheck& check);

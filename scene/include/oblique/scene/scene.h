@@ -48,10 +48,28 @@ struct Surface {
   /// Portals: world -> world, from around the linked portal to behind this one (rectangle frame
   /// x (rotation by 180 degrees about up) x linked frame^-1); identity otherwise.
   Matrix4<double> portal_transform = Matrix4<double>::Identity();
+  /// Portals: this portal's frame and the linked one's (columns right, up, normal, centre), from
+  /// which portal_transform is made.
+  Matrix4<double> portal_frame = Matrix4<double>::Identity(),
+                  linked_frame = Matrix4<double>::Identity();
   /// The world-space plane (n, -n . p), positive in front.
   Vector4<double> plane() const;
   bool bounded() const { return !polygon.empty(); }
 };
+
+/// The code around the matrix a scene's passes have, checked by `oblique check` (the consumer
+/// properties, docs/consumers.md): reconstruction (view position and linear depth from the depth
+/// buffer), culling (planes extracted from the pass's matrix), cascades (corners of its volume),
+/// camera_plane (the surface's plane in the pass camera's space) and pass_view (the mirror's or
+/// portal's view).
+enum class SceneConsumer { reconstruction, culling, cascades, camera_plane, pass_view };
+
+inline constexpr SceneConsumer all_scene_consumers[] = {
+    SceneConsumer::reconstruction, SceneConsumer::culling, SceneConsumer::cascades,
+    SceneConsumer::camera_plane, SceneConsumer::pass_view};
+
+std::string_view scene_consumer_name(SceneConsumer c);
+std::optional<SceneConsumer> parse_scene_consumer(std::string_view name);
 
 struct Scene {
   std::string name;
@@ -61,6 +79,8 @@ struct Scene {
   std::vector<Surface> surfaces;
   int max_depth = 1;  ///< passes seen through passes, up to this many levels
   std::optional<std::array<int, 2>> viewport;  ///< width, height in pixels
+  /// What each rendered pass feeds its matrix to ("consumers"): only these are checked.
+  std::vector<SceneConsumer> consumers;
 };
 
 /// A scene, or why the text is not one (naming the field, or the line and column).

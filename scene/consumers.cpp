@@ -1,0 +1,157 @@
+// oblique check's consumers: the code around the matrix a scene names, asked for each rendered
+// pass (of the core's references, or of the user's program with --impl) and judged by the
+// consumer properties, on the pass's own matrix, views and plane.
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "oblique/properties/consumer_cases.h"
+#include "oblique/protocol/child_process.h"
+#include "oblique/scene/check.h"
+#include "oblique/verify/consumer_program.h"
+
+namespace oblique::scene {
+
+namespace {
+
+/// The picks of a pass's samples: the same every run, so a scene's verdict is repeatable.
+constexpr std::uint64_t kSampleSeed = 20261204;
+
+/// The request kinds a scene consumer asks.
+std::vector<protocol::ConsumerKind> kinds_of(SceneConsumer c) {
+  using K = protocol::ConsumerKind;
+  switch (c) {
+    case SceneConsumer::reconstruction: return {K::view_position, K::linear_depth};
+    case SceneConsumer::culling: return {K::culling_planes};
+    case SceneConsumer::cascades: return {K::corners};
+    case SceneConsumer::camera_plane: return {K::camera_plane};
+    case SceneConsumer::pass_view: return {K::mirror_view, K::portal_view};
+  }
+  return {};
+}
+
+}  // namespace
+
+template <class T>
+std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceCheck& pass,
+                                            const Consumers<T>& who) {
+  const Matrix4<T> m = scene.camera.projection.template cast<T>();
+  const Vector4<T> c = pass.plane_in_camera.template cast<T>();
+  const Surface& surface = scene.surfaces[pass.path.back()];
+  std::vector<ConsumerResult> out;
+  for (const SceneConsumer consumer : scene.consumers) {
+    ConsumerResult r;
+    r.consumer = consumer;
+    const properties::Settle settle = [&r](const properties::ConsumerFinding& f,
+                                           const std::string& inputs, bool) {
+      if (!f.judged) {
+        ++r.left_out;
+        return;
+      }
+      ++r.judged;
+      if (std::isfinite(f.ratio)) r.worst_ratio = std::max(r.worst_ratio, f.ratio);
+      r.depth_waste = std::max(r.depth_waste, f.depth_waste);
+      if (!f.holds && !r.violation) {
+        r.violation = f;
+        r.inputs = inputs;
+      }
+    };
+    std::mt19937_64 engine(kSampleSeed);
+    const properties::Pick pick = [&engine](int lo, int hi) {
+      return std::uniform_int_distribution<int>(lo, hi - 1)(engine);
+    };
+    Consumers<T> only;
+    only.name = who.name;
+    int rounds = 1;
+    switch (consumer) {
+      case SceneConsumer::reconstruction:
+        only.view_position = who.view_position;
+        only.linear_depth = who.linear_depth;
+        rounds = kConsumerSamples;
+        break;
+      case SceneConsumer::culling: only.culling_planes = who.culling_planes; break;
+      case SceneConsumer::cascades: only.corners = who.corners; break;
+      case SceneConsumer::camera_plane: {
+        rounds = 0;
+        consumer_cases::PassPlaneCase<T> p;
+        p.kind = surface.kind == SurfaceKind::mirror   ? consumer_cases::PassKind::mirror
+                 : surface.kind == SurfaceKind::portal ? consumer_cases::PassKind::portal
+                                                       : consumer_cases::PassKind::clip;
+        p.main_view = pass.parent_view.template cast<T>();
+        p.pass_view = pass.view.template cast<T>();
+        p.kept_plane = pass.kept_plane.template cast<T>();
+        consumer_cases::plane_samples(p.kept_plane, pick, p.surface_points, p.front_point);
+        consumer_cases::ask_camera_plane(who, p, settle);
+        break;
+      }
+      case SceneConsumer::pass_view:
+        rounds = 0;
+        if (surface.kind == SurfaceKind::mirror) {
+          consumer_cases::ask_mirror_view<T>(who, pass.parent_view.template cast<T>(),
+                                             surface.plane().template cast<T>(), settle);
+        } else if (surface.kind == SurfaceKind::portal) {
+          consumer_cases::ask_portal_view<T>(who, pass.parent_view.template cast<T>(),
+                                             surface.portal_frame.template cast<T>(),
+                                             surface.linked_frame.template cast<T>(), settle);
+        } else {
+          r.note = "a clip pass renders with the main view";
+        }
+        break;
+    }
+    for (int i = 0; i < rounds; ++i)
+      properties::consumer_round<T>(m, c, scene.convention, only, pick, settle);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+template std::vector<ConsumerResult> judge_consumers<float>(const Scene&, const SurfaceCheck&,
+                                                            const Consumers<float>&);
+template std::vector<ConsumerResult> judge_consumers<double>(const Scene&, const SurfaceCheck&,
+                                                             const Consumers<double>&);
+template std::vector<ConsumerResult> judge_consumers<long double>(const Scene&, const SurfaceCheck&,
+                                                                  const Consumers<long double>&);
+
+namespace {
+
+template <class T>
+Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::string& command,
+                           double timeout_seconds) {
+  std::vector<protocol::ConsumerKind> kinds;
+  for (const SceneConsumer c : scene.consumers)
+    for (const protocol::ConsumerKind k : kinds_of(c)) kinds.push_back(k);
+  verify::ConsumerProgram<T> program(
+      command, std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000)));
+  const Consumers<T> asked = program.consumers(kinds, command);
+  try {
+    for (SurfaceCheck& s : check.surfaces) {
+      if (s.render) s.impl_consumers = judge_consumers<T>(scene, s, asked);
+    }
+  } catch (const verify::ProgramFailure& failure) {
+    program.stop();
+    std::string why = "the implementation's consumers: " + failure.what +
+                      " (request: " + failure.request.substr(0, 200) + ")";
+    if (!failure.lines.empty())
+      why += "; it wrote: " + protocol::escape_bytes(failure.lines.front().substr(0, 200));
+    return Expected<Done>::failure(why);
+  }
+  program.stop();
+  return Done{};
+}
+
+}  // namespace
+
+Expected<Done> judge_implementation_consumers(const Scene& scene, SceneCheck& check,
+                                              const std::string& command, double timeout_seconds) {
+  if (scene.consumers.empty()) return Done{};
+  switch (check.impl_precision) {
+    case protocol::Precision::float32:
+      return ask_program<float>(scene, check, command, timeout_seconds);
+    case protocol::Precision::float64: break;
+    case protocol::Precision::long_double:
+      return ask_program<long double>(scene, check, command, timeout_seconds);
+  }
+  return ask_program<double>(scene, check, command, timeout_seconds);
+}
+
+}  // namespace oblique::scene
