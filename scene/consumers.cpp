@@ -6,9 +6,9 @@
 #include <random>
 
 #include "oblique/properties/consumer_cases.h"
+#include "oblique/properties/consumer_program.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/scene/check.h"
-#include "oblique/verify/consumer_program.h"
 
 namespace oblique::scene {
 
@@ -120,14 +120,14 @@ Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::str
   std::vector<protocol::ConsumerKind> kinds;
   for (const SceneConsumer c : scene.consumers)
     for (const protocol::ConsumerKind k : kinds_of(c)) kinds.push_back(k);
-  verify::ConsumerProgram<T> program(
+  properties::ConsumerProgram<T> program(
       command, std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000)));
   const Consumers<T> asked = program.consumers(kinds, command);
   try {
     for (SurfaceCheck& s : check.surfaces) {
       if (s.render) s.impl_consumers = judge_consumers<T>(scene, s, asked);
     }
-  } catch (const verify::ProgramFailure& failure) {
+  } catch (const properties::ProgramFailure& failure) {
     program.stop();
     std::string why = "the implementation's consumers: " + failure.what +
                       " (request: " + failure.request.substr(0, 200) + ")";

@@ -9,18 +9,20 @@
 #include <sstream>
 
 #include "oblique/oblique.h"
+#include "oblique/properties/consumer_program.h"
 #include "oblique/properties/counterexample_report.h"
 #include "oblique/properties/generators.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/protocol/names.h"
 #include "oblique/report/report_files.h"
-#include "oblique/verify/consumer_program.h"
 #include "reporter.h"
 
 namespace oblique::verify {
 
 namespace {
 
+using properties::ConsumerProgram;
+using properties::ProgramFailure;
 using protocol::ConsumerKind;
 using protocol::shell_quote;
 

@@ -99,7 +99,8 @@ struct ReportContext {
 std::string write_report(const Counterexample& ce, const ReportContext& context);
 
 /// A consumer finding's report as every tool writes it (oblique::testing, `oblique verify`), up
-/// to its pictures and replay: the title, what was found and the inputs (`inputs`, a Markdown list).
+/// to its pictures and replay: the title, what was found and the inputs (`inputs`, a Markdown
+/// list).
 std::string consumer_report_markdown(const std::string& consumer, const ConsumerFinding& finding,
                                      const std::string& inputs);
 
@@ -109,8 +110,7 @@ std::string consumer_report_markdown(const std::string& consumer, const Consumer
 /// `stem`. Returns the report's "## Pictures" section.
 template <class T>
 std::string stage_consumer_pictures(report::ReportFiles& files, const std::string& stem,
-                                    const Matrix4<T>& m, const Vector4<T>& c,
-                                    Convention convention, const ConsumerFinding& finding,
-                                    const std::string& consumer);
+                                    const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                                    const ConsumerFinding& finding, const std::string& consumer);
 
 }  // namespace oblique::properties

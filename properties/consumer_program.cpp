@@ -1,8 +1,8 @@
-#include "oblique/verify/consumer_program.h"
+#include "oblique/properties/consumer_program.h"
 
 #include "oblique/protocol/child_process.h"
 
-namespace oblique::verify {
+namespace oblique::properties {
 
 using protocol::ConsumerKind;
 using protocol::ConsumerRequest;
@@ -209,4 +209,4 @@ template class ConsumerProgram<float>;
 template class ConsumerProgram<double>;
 template class ConsumerProgram<long double>;
 
-}  // namespace oblique::verify
+}  // namespace oblique::properties

@@ -13,7 +13,7 @@
 #include "oblique/properties/consumers.h"
 #include "oblique/protocol/consumer_messages.h"
 
-namespace oblique::verify {
+namespace oblique::properties {
 
 /// Why a request got no answer to judge; thrown by the functions of ConsumerProgram::consumers().
 struct ProgramFailure {
@@ -53,4 +53,4 @@ class ConsumerProgram {
   std::unique_ptr<State> state_;
 };
 
-}  // namespace oblique::verify
+}  // namespace oblique::properties
