@@ -5,7 +5,7 @@
 #   bash scripts/false_alarms.sh [--minutes M] [--jobs J] [--seed S] [--no-build]
 #
 # Each run below takes M minutes (default 10) of one job; J (default: the number of cores) run
-# at a time, so the whole takes about 7 M / J minutes, then the buggy examples (at most 7 min).
+# at a time, so the whole takes about 9 M / J minutes, then the buggy examples (at most 7 min).
 # S (default: from the clock) is the first seed, each run gets its own. The runs:
 #   verify: the bundled `correct` (double and float, any refusal) and `engine_no_statuses` (double
 #           and float, examples/engine_contract.json: answers only, unit planes), every
@@ -14,9 +14,11 @@
 #           each convention, answers only), RC_PARAMS max_success per property;
 #   fuzz driver: the same engine through oblique::fuzzing, on mutated fuzz_oblique corpus inputs;
 #   consumers: the right code around the matrix (examples/consumers) through
-#           oblique::testing::check_consumers, float and double, every family and convention.
+#           oblique::testing::check_consumers, float and double, every family and convention;
+#   consumers over the protocol: the same functions as a program (consumers_program) under
+#           `oblique verify --consumers all`, double and float, every family and convention.
 # Then each buggy example under verify (must be caught: exit 1), with its time to the finding, and
-# each wrong consumer (must be caught by its property).
+# each wrong consumer (must be caught by its property), in-process and over the protocol.
 # Logs and a summary go to a new folder build/false-alarms/<UTC time>/ (nothing is overwritten);
 # the script exits 1 on any false alarm or missed bug, 2 when a run could not be made.
 set -euo pipefail
@@ -47,14 +49,15 @@ if ((build)); then
     example_camera_space_signs example_zero_one_factor_on_gl example_no_camera_guard \
     example_sign_by_division example_ignores_shift example_two_bugs example_ignores_m11_sign \
     float_engine_property_test float_engine_fuzz_replay example_consumers_right \
-    example_consumers_wrong > /dev/null
+    example_consumers_wrong example_consumers_program > /dev/null
 fi
 bin=build/release
 oblique=$bin/cli/oblique
 ex=$bin/examples
 for f in "$oblique" "$ex/example_correct" "$ex/example_engine_no_statuses" \
          "$bin/false_alarms/float_engine_property_test" "$bin/false_alarms/float_engine_fuzz_replay" \
-         "$ex/example_consumers_right" "$ex/example_consumers_wrong"; do
+         "$ex/example_consumers_right" "$ex/example_consumers_wrong" \
+         "$ex/example_consumers_program"; do
   [[ -x "$f" ]] || { echo "false_alarms.sh: $f is not built (run without --no-build)" >&2; exit 2; }
 done
 
@@ -74,6 +77,8 @@ runs=(
   "float engine, oblique::testing|testing||"
   "float engine, fuzz driver|fuzzing||"
   "right consumers, oblique::testing|consumers||"
+  "right consumers, verify, double|consumers_verify|$ex/example_consumers_program|--convention all"
+  "right consumers, verify, float|consumers_verify|$ex/example_consumers_program --float|--precision float --convention all"
 )
 secs=$((minutes * 60))
 
@@ -121,6 +126,14 @@ run_one() {
       judged=$(grep -o '^[a-z_]*: OK, passed [0-9]* tests' "$log" | awk '{s += $4} END {print s + 0}')
       left=$(sed -n 's/^[a-z_]*: OK, passed [0-9]* tests (left out: \(.*\))$/\1/p' "$log" |
                grep -o '[0-9][0-9]*\(,\|$\)' | tr -d ',' | awk '{s += $1} END {print s + 0}')
+      ;;
+    consumers_verify)
+      # shellcheck disable=SC2086
+      "$oblique" verify --consumers all --impl "$impl" $args --seed "$s" --time-limit "$secs" \
+        --quiet --report-dir "$out/reports$n" > "$log" 2>&1 || rc=$?
+      judged=$(sed -n 's/^oblique verify: no violation in \([0-9]*\) answers judged.*/\1/p' "$log")
+      left=$(sed -n 's/^  left out: //p' "$log" | grep -o '[0-9][0-9]*\(,\|$\)' | tr -d ',' |
+             awk '{s += $1} END {print s + 0}')
       ;;
   esac
   echo "${judged:-0} ${left:-0} $rc" > "$out/run$n.figures"
@@ -225,6 +238,36 @@ for pair in reconstructsWithOriginal:view_position linearisesWithNearFar:linear_
     say "| $test | $property | $elapsed |"
   else
     say "| $test | NOT CAUGHT by $property (exit $rc) | $elapsed |"
+    missed=$((missed + 1))
+  fi
+done
+say ""
+say "Wrong consumers over the protocol (verify --consumers, seed $seed): each must be caught."
+say ""
+say "| mistake | caught by | seconds |"
+say "|---|---|---|"
+for triple in reconstructs_with_original:view_position:view_position \
+              linearises_with_near_far:linear_depth:linear_depth \
+              gl_planes_on_any_matrix:culling_planes:culling_near_is_c \
+              planes_of_transpose:culling_planes:culling_ \
+              plane_without_translation:camera_plane:plane_on_surface \
+              plane_flipped_for_mirrors:camera_plane:plane_kept_side \
+              mirror_by_reflected_look_at:mirror_view:mirror_view \
+              portal_without_turn:portal_view:portal_view \
+              corners_of_oblique_matrix:corners:corners_contain_kept; do
+  IFS=':' read -r mistake kind property <<< "$triple"
+  log="$out/wrong_verify_$mistake.log"
+  start=$(date +%s.%N)
+  rc=0
+  "$oblique" verify --consumers "$kind" --impl "$ex/example_consumers_program --wrong $mistake" \
+    --convention all --seed "$seed" --time-limit 60 --quiet \
+    --report-dir "$out/wrong_verify_reports_$mistake" > "$log" 2>&1 || rc=$?
+  elapsed=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {printf "%.2f", b - a}')
+  caught=$(sed -n 's/^oblique verify: violated: \([a-z_]*\) violated.*/\1/p' "$log" | head -1)
+  if ((rc == 1)) && [[ "$caught" == "$property"* ]]; then
+    say "| $mistake | $caught | $elapsed |"
+  else
+    say "| $mistake | NOT CAUGHT by $property (exit $rc) | $elapsed |"
     missed=$((missed + 1))
   fi
 done
