@@ -1,17 +1,19 @@
 #!/bin/sh
-# expect_interrupt_ends_the_implementation.sh OBLIQUE DIR SIGNAL: starts oblique verify on an
+# expect_interrupt_ends_the_implementation.sh OBLIQUE DIR SIGNAL [ARG...]: starts oblique verify
+# (with ARGs, e.g. --consumers all) on an
 # implementation that never answers, sends verify SIGNAL (INT as a Ctrl-C does, or TERM) once the
 # implementation runs, and requires verify to die of it (exit 128 + n) and the implementation,
 # which runs in a process group of its own, to be gone too.
 oblique=$1
 dir=$2
 sig=$3
+shift 3
 rm -rf "$dir"
 mkdir -p "$dir"
 # (A background command of a non-interactive shell starts with SIGINT ignored; a terminal's
 # foreground command has it at its default, which env --default-signal restores.)
 env --default-signal=INT "$oblique" verify --impl "echo \$\$ > $dir/impl.pid; exec sleep 60" --time-limit 30 \
-  --report-dir "$dir/reports" > "$dir/verify.log" 2>&1 &
+  --report-dir "$dir/reports" "$@" > "$dir/verify.log" 2>&1 &
 verify=$!
 tries=0
 while [ ! -s "$dir/impl.pid" ]; do
