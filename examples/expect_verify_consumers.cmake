@@ -3,8 +3,9 @@ cmake_minimum_required(VERSION 3.25)
 #   cmake -DOBLIQUE=... -DIMPL=... -DKINDS=a,b -DEXIT=0|1 [-DPROPERTY=name -DPICTURES=0|1
 #         -DRIGHT=command] [-DARGS="--time-limit;5"] -DREPORTS=dir -P expect_verify_consumers.cmake
 # EXIT 1 also requires the report (Markdown and JSON) of PROPERTY (or of one of "a|b", for a
-# mistake that breaks two properties, whichever the round judges first), its replay commands,
-# pictures when PICTURES is 1, and its --replay to be violated again by IMPL and to hold for RIGHT.
+# mistake that breaks two properties, whichever the round judges first), its replay commands, its
+# pictures (of the case's volume when PICTURES is 1, else of the pass's cameras and planes), and
+# its --replay to be violated again by IMPL and to hold for RIGHT.
 file(REMOVE_RECURSE "${REPORTS}")
 execute_process(COMMAND "${OBLIQUE}" verify --consumers "${KINDS}" --impl "${IMPL}"
                         --report-dir "${REPORTS}" --quiet ${ARGS}
@@ -43,11 +44,14 @@ foreach(part "violates \\*\\*${PROPERTY}\\*\\*" "## The inputs" "## The exchange
     message(FATAL_ERROR "the report has no '${part}'")
   endif()
 endforeach()
-if(PICTURES AND NOT EXISTS "${stem}.views.dat")
+if(NOT EXISTS "${stem}.views.dat" OR NOT md MATCHES "## Pictures")
   message(FATAL_ERROR "the report has no pictures (${stem}.views.dat)")
 endif()
-if(NOT PICTURES AND EXISTS "${stem}.views.dat")
-  message(FATAL_ERROR "a finding without an oblique matrix's case has no volume to draw")
+if(PICTURES AND NOT md MATCHES "The case in eye space")
+  message(FATAL_ERROR "the report's pictures are not of the case's volume")
+endif()
+if(NOT PICTURES AND NOT md MATCHES "what the finding is about")
+  message(FATAL_ERROR "the report's pictures are not of the pass's cameras and planes")
 endif()
 execute_process(COMMAND "${OBLIQUE}" verify --replay "${stem}.json" --impl "${IMPL}"
                 RESULT_VARIABLE again OUTPUT_VARIABLE replayed ERROR_VARIABLE replay_errors)

@@ -98,6 +98,22 @@ void ConsumerProgram<T>::stop() {
   state_->child.stop();
 }
 
+template <class T>
+std::vector<std::string> ConsumerProgram<T>::finish() {
+  std::vector<std::string> extra;
+  if (state_->child.running()) {
+    const auto grace = std::min(state_->timeout, std::chrono::milliseconds(1000));
+    extra = state_->child.close_and_drain(protocol::Clock::now() + grace);
+  }
+  state_->child.stop();
+  return extra;
+}
+
+template <class T>
+long ConsumerProgram<T>::answered() const {
+  return state_->answered;
+}
+
 namespace {
 
 template <class T>

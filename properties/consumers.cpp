@@ -92,6 +92,46 @@ Eigen::Vector3d approx_point(const Vec& v) {
   return {v[0].get_d(), v[1].get_d(), v[2].get_d()};
 }
 
+using Lines = std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>;
+
+/// A square of half-size `half` in `plane` around its point nearest `near`, and the normal from
+/// its centre toward the kept side; nothing for a plane without a finite normal.
+Lines plane_square(const Eigen::Vector4d& plane, const Eigen::Vector3d& near, double half) {
+  const Eigen::Vector3d n = plane.head<3>();
+  const double nn = n.squaredNorm();
+  if (!(nn > 0) || !std::isfinite(nn) || !std::isfinite(plane.w())) return {};
+  const Eigen::Vector3d c = near - (n.dot(near) + plane.w()) / nn * n;
+  const Eigen::Vector3d u = n.unitOrthogonal() * half, v = n.normalized().cross(u);
+  const Eigen::Vector3d k[4] = {c + u + v, c - u + v, c - u - v, c + u - v};
+  Lines out;
+  for (int i = 0; i < 4; ++i) out.push_back({k[i], k[(i + 1) % 4]});
+  out.push_back({c, c + n.normalized() * half / 2});
+  return out;
+}
+
+/// A camera of `view` (world -> camera) drawn in world space: its eye, its view direction
+/// (-z, `length` long) and its up (y, shorter); nothing for a singular or non-finite view.
+ConsumerFinding::Drawn camera_drawn(const std::string& name, const Eigen::Matrix4d& view,
+                                    double length) {
+  ConsumerFinding::Drawn d;
+  d.name = name;
+  const Eigen::Matrix3d r = view.topLeftCorner<3, 3>();
+  if (!view.allFinite() || r.determinant() == 0) return d;
+  const Eigen::Matrix3d to_world = r.inverse();
+  const Eigen::Vector3d eye = -to_world * view.topRightCorner<3, 1>();
+  d.points = {eye};
+  d.lines = {{eye, eye + length * (to_world * -Eigen::Vector3d::UnitZ()).normalized()},
+             {eye, eye + 0.4 * length * (to_world * Eigen::Vector3d::UnitY()).normalized()}};
+  return d;
+}
+
+Eigen::Matrix4d approx_matrix(const Mat& m) {
+  Eigen::Matrix4d out;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) out(i, j) = m[i][j].get_d();
+  return out;
+}
+
 /// |a| / b as a double ratio; 0 for 0 / 0, infinity for x / 0.
 double ratio_of(const Rational& a, const Rational& b) {
   const Rational x = exact::abs(a);
@@ -601,6 +641,37 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
                  : value < 0 ? "clipped"
                              : "boundary") +
                 " side of " + numbers_text(answer) + " (P . x = " + text(value) + ")";
+  if (!on.holds || !side.holds) {
+    // The pass camera's space: the camera, the surface's points and the one in front, the plane
+    // as it should be and as answered, each a square around the points.
+    std::vector<Eigen::Vector3d> points;
+    for (const Vector4<T>& x : surface_points)
+      points.push_back(approx_point(exact::mul(w, exact::to_rational(x))));
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& x : points) centre += x;
+    centre /= static_cast<double>(std::max<std::size_t>(points.size(), 1));
+    double half = 0;
+    for (const Eigen::Vector3d& x : points) half = std::max(half, (x - centre).norm());
+    if (!(half > 0) || !std::isfinite(half)) half = 1;
+    const Eigen::Vector4d should(reference[0].get_d(), reference[1].get_d(), reference[2].get_d(),
+                                 reference[3].get_d());
+    std::vector<ConsumerFinding::Drawn> drawn = {
+        {"the pass camera (eye, view direction, up)",
+         {{Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, -half)},
+          {Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0.4 * half, 0)}},
+         {Eigen::Vector3d::Zero()}},
+        {"the plane as it should be (normal toward the kept side)",
+         plane_square(should, centre, half),
+         {}},
+        {"the plane as answered", plane_square(answer.template cast<double>(), centre, half), {}},
+        {"the surface's points", {}, points},
+        {"a point in front of the surface", {}, {approx_point(y)}}};
+    for (ConsumerFinding* f : {&on, &side}) {
+      if (f->holds) continue;
+      f->drawn = drawn;
+      f->drawn_space = "the pass camera's space";
+    }
+  }
   return {on, side};
 }
 
@@ -682,7 +753,24 @@ ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& worl
   const Rational g = gamma_of<T>(tolerance::kPassViewRoundings);
   for (auto& row : bound)
     for (auto& x : row) x *= g;
-  return compare_matrix(ConsumerCheck::mirror_view, reference, bound, answer);
+  ConsumerFinding f = compare_matrix(ConsumerCheck::mirror_view, reference, bound, answer);
+  if (!f.holds) {
+    const Eigen::Matrix4d main_view = view.template cast<double>();
+    const ConsumerFinding::Drawn main = camera_drawn("the main camera", main_view, 1);
+    const Eigen::Vector4d mirror = world_plane.template cast<double>();
+    const Eigen::Vector3d eye = main.points.empty() ? Eigen::Vector3d::Zero() : main.points[0];
+    const double distance =
+        std::abs(mirror.head<3>().dot(eye) + mirror.w()) / mirror.head<3>().norm();
+    const double length = std::isfinite(distance) && distance > 0 ? distance : 1;
+    f.drawn = {
+        camera_drawn("the main camera", main_view, length),
+        camera_drawn("the mirror pass's camera as it should be", approx_matrix(reference), length),
+        camera_drawn("the mirror pass's camera as answered", answer.template cast<double>(),
+                     length),
+        {"the mirror (normal toward its front)", plane_square(mirror, eye, length), {}}};
+    f.drawn_space = "world space";
+  }
+  return f;
 }
 
 template <class T>
@@ -709,7 +797,30 @@ ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& fram
   const Rational g = gamma_of<T>(tolerance::kPassViewRoundings);
   for (auto& row : bound)
     for (auto& x : row) x *= g;
-  return compare_matrix(ConsumerCheck::portal_view, reference, bound, answer);
+  ConsumerFinding f = compare_matrix(ConsumerCheck::portal_view, reference, bound, answer);
+  if (!f.holds) {
+    const Eigen::Matrix4d main_view = view.template cast<double>();
+    const Eigen::Matrix4d here = frame.template cast<double>(),
+                          there = linked.template cast<double>();
+    const ConsumerFinding::Drawn main = camera_drawn("the main camera", main_view, 1);
+    const Eigen::Vector3d eye = main.points.empty() ? Eigen::Vector3d::Zero() : main.points[0];
+    const double distance = (here.col(3).head<3>() - eye).norm();
+    const double length = std::isfinite(distance) && distance > 0 ? distance : 1;
+    auto portal = [](const Eigen::Matrix4d& fr) {
+      return plane_square(
+          plane_from_normal_and_point<double>(fr.block<3, 1>(0, 2), fr.block<3, 1>(0, 3)),
+          fr.block<3, 1>(0, 3), 1);
+    };
+    f.drawn = {
+        camera_drawn("the main camera", main_view, length),
+        camera_drawn("the portal pass's camera as it should be", approx_matrix(reference), length),
+        camera_drawn("the portal pass's camera as answered", answer.template cast<double>(),
+                     length),
+        {"this portal (normal toward its front)", portal(here), {}},
+        {"the linked portal", portal(there), {}}};
+    f.drawn_space = "world space";
+  }
+  return f;
 }
 
 template <class T>
@@ -902,29 +1013,43 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
                     const Consumers<T>& consumers, const Pick& pick, const Settle& settle) {
   const bool needs_oblique = consumers.view_position || consumers.linear_depth ||
                              consumers.culling_planes || consumers.corners;
+  // A case none of `checks` can be judged on: one finding left out for each of them.
+  auto left_out = [&settle](std::initializer_list<std::pair<bool, ConsumerCheck>> checks,
+                            const std::string& why) {
+    for (const auto& [asked, check] : checks) {
+      if (!asked) continue;
+      ConsumerFinding none;
+      none.check = check;
+      none.judged = false;
+      none.detail = why;
+      settle(none, "", false);
+    }
+  };
+  const bool depth = consumers.view_position || consumers.linear_depth;
   if (needs_oblique) {
     const ObliqueResult<T> result = apply<T>(m, c, convention);
     if (result.status != Status::ok) {
-      ConsumerFinding none;
-      none.judged = false;
-      none.detail =
-          "no oblique matrix for M and C (" + std::string(status_code(result.status)) + ")";
-      settle(none, "", false);
+      const bool culling = bool(consumers.culling_planes);
+      left_out({{bool(consumers.view_position), ConsumerCheck::view_position},
+                {bool(consumers.linear_depth), ConsumerCheck::linear_depth},
+                {culling, ConsumerCheck::culling_keeps_visible},
+                {culling, ConsumerCheck::culling_near_is_c},
+                {bool(consumers.corners), ConsumerCheck::corners_contain_kept}},
+               "no oblique matrix for M and C (" + std::string(status_code(result.status)) + ")");
     } else {
       const Matrix4<T>& mo = result.projection;
       const std::string base =
           "- convention: " + std::string(convention_name(convention)) +
           "\n- M: " + numbers_text(m) + "\n- C: " + numbers_text(c) +
           "\n- M' (the core's answer, what the consumer was given): " + numbers_text(mo) + "\n";
-      if (consumers.view_position || consumers.linear_depth) {
+      if (depth) {
         const Vector4<T> point = consumer_cases::kept_point<T>(m, c, convention, pick);
         const DepthBuffer buffer = pick(0, 2) ? DepthBuffer::float32 : DepthBuffer::fixed24;
         const auto s = depth_sample(mo, m, convention, buffer, point);
         if (!s) {
-          ConsumerFinding none;
-          none.judged = false;
-          none.detail = "the point leaves no depth sample (behind the eye or outside [0, 1])";
-          settle(none, "", true);
+          left_out({{bool(consumers.view_position), ConsumerCheck::view_position},
+                    {bool(consumers.linear_depth), ConsumerCheck::linear_depth}},
+                   "the point leaves no depth sample (behind the eye or outside [0, 1])");
         } else {
           const std::string inputs =
               base + "- buffer: " + buffer_name(buffer) + "\n- the point: " + numbers_text(point) +

@@ -366,42 +366,60 @@ namespace {
 /// Stages the case's pictures (top and side views, rendered by gnuplot in the staging folder when
 /// it is there) in `files` under `stem`; returns the "## Pictures" section and sets `pictures`
 /// (the JSON's field).
+/// Which of a case's two views ("top", "side") gnuplot rendered from the staged `views`, and why
+/// the others were not.
+struct Rendered {
+  std::vector<std::string> views;
+  std::string why;
+  bool has(const char* view) const {
+    return std::find(views.begin(), views.end(), view) != views.end();
+  }
+  /// The Markdown of the pictures: each rendered view, or why not, and the files.
+  std::string markdown(const std::string& stem) const {
+    std::ostringstream md;
+    for (const char* view : {"top", "side"}) {
+      if (has(view)) md << "![" << view << " view](" << stem << "." << view << ".png)\n\n";
+    }
+    if (views.size() != 2) {
+      md << (views.empty() ? "The pictures were" : "A picture was") << " not rendered: " << why
+         << ".\n\n";
+    }
+    md << "Data `" << stem << ".views.dat`, scripts `" << stem << ".top.gp` and `" << stem
+       << ".side.gp` (in this folder: `gnuplot " << stem << ".top.gp` renders the top view).\n\n";
+    return md.str();
+  }
+};
+
+Rendered render(report::ReportFiles& files, const report::Views& views, const std::string& stem) {
+  report::stage_views(files, views, "");
+  Rendered out;
+  for (const char* view : {"top", "side"}) {
+    std::ostringstream log;
+    if (files.plot_staged(stem + "." + view + ".gp", stem + "." + view + ".png", log)) {
+      out.views.push_back(view);
+    } else if (out.why.empty()) {
+      out.why = log.str();
+    }
+  }
+  return out;
+}
+
 std::string stage_pictures(report::ReportFiles& files, const Counterexample& ce,
                            const std::string& stem, const Mark& mark, nlohmann::json& pictures) {
   std::ostringstream md;
-  std::vector<std::string> rendered_views;
   {
-    report::stage_views(files, case_views(ce, stem, mark), "");
-    std::ostringstream why;
-    for (const char* view : {"top", "side"}) {
-      std::ostringstream log;
-      if (files.plot_staged(stem + "." + view + ".gp", stem + "." + view + ".png", log)) {
-        rendered_views.push_back(view);
-      } else if (why.str().empty()) {
-        why << log.str();
-      }
-    }
-    const bool rendered = rendered_views.size() == 2;
-    auto has = [&](const char* view) {
-      return std::find(rendered_views.begin(), rendered_views.end(), view) != rendered_views.end();
-    };
+    const Rendered rendered_views = render(files, case_views(ce, stem, mark), stem);
+    const bool rendered = rendered_views.views.size() == 2;
+    auto has = [&](const char* view) { return rendered_views.has(view); };
     md << "## Pictures\n\nThe case in eye space (the space C is given in): a top view (x, z) and "
           "a side view (z, y) of M's view volume (black), C where it cuts it (blue, dotted), the "
           "expected oblique view volume (green), the implementation's (red, dashed), the far "
           "corner Q (circle) and the marked point (cross).\n\nMarked: "
-       << mark.what << ".\n\n";
-    for (const char* view : {"top", "side"}) {
-      if (has(view)) md << "![" << view << " view](" << stem << "." << view << ".png)\n\n";
-    }
-    if (!rendered) {
-      md << (rendered_views.empty() ? "The pictures were" : "A picture was")
-         << " not rendered: " << why.str() << ".\n\n";
-    }
-    md << "Data `" << stem << ".views.dat`, scripts `" << stem << ".top.gp` and `" << stem
-       << ".side.gp` (in this folder: `gnuplot " << stem << ".top.gp` renders the top view).\n\n";
+       << mark.what << ".\n\n"
+       << rendered_views.markdown(stem);
     pictures = nlohmann::json::object();
     pictures["rendered"] = rendered;
-    pictures["error"] = why.str();
+    pictures["error"] = rendered_views.why;
     for (const char* view : {"top", "side"}) {
       pictures[view] = has(view) ? nlohmann::json(stem + "." + view + ".png") : nullptr;
     }
@@ -461,6 +479,57 @@ OBLIQUE_CONSUMER_PICTURES(float)
 OBLIQUE_CONSUMER_PICTURES(double)
 OBLIQUE_CONSUMER_PICTURES(long double)
 #undef OBLIQUE_CONSUMER_PICTURES
+
+std::string stage_drawn_pictures(report::ReportFiles& files, const std::string& stem,
+                                 const ConsumerFinding& finding, const std::string& consumer) {
+  if (finding.drawn.empty()) return "";
+  static const char* const kColours[] = {"black",   "#2ca02c", "#d62728",
+                                         "#1f77b4", "#9467bd", "#e377c2"};
+  report::Views views;
+  views.title = std::string(consumer_check_name(finding.check)) + " (" + consumer + ")";
+  views.space = finding.drawn_space;
+  views.data = stem + ".views.dat";
+  views.top = stem + ".top";
+  views.side = stem + ".side";
+  views.key = "below left Left reverse maxcols 1";
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  auto include = [&](const Eigen::Vector3d& p) {
+    if (!p.allFinite()) return;
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  };
+  std::size_t k = 0;
+  for (const ConsumerFinding::Drawn& d : finding.drawn) {
+    const std::string colour = kColours[k++ % (sizeof kColours / sizeof *kColours)];
+    report::Dataset lines{
+        d.name, "lines lc rgb '" + colour + "' lw 2" + (k == 3 ? " dt 2" : ""), {}, {}};
+    for (const auto& [a, b] : d.lines) {
+      lines.segments.push_back({a, b});
+      include(a);
+      include(b);
+    }
+    for (const Eigen::Vector3d& p : d.points) include(p);
+    if (!d.points.empty()) {
+      views.sets.push_back({d.lines.empty() ? d.name : d.name + " (its point)",
+                            "points pt 6 ps 2 lw 2 lc rgb '" + colour + "'",
+                            {},
+                            d.points});
+    }
+    if (!d.lines.empty()) views.sets.push_back(lines);
+    if (d.lines.empty() && d.points.empty())
+      views.sets.push_back({d.name + ": nothing to draw", "points ps 0", {}, {}});
+  }
+  if (!(lo.array() <= hi.array()).all()) lo = hi = Eigen::Vector3d::Zero();
+  const double size = (hi - lo).maxCoeff();
+  const double margin = size > 0 && std::isfinite(size) ? 0.1 * size : 1.0;
+  views.lo = lo.array() - margin;
+  views.hi = hi.array() + margin;
+  const Rendered rendered = render(files, views, stem);
+  return "## Pictures\n\nIn " + finding.drawn_space +
+         ": a top view (x, z) and a side view (z, y) of what the finding is about, each in its "
+         "colour as the legend names it.\n\n" +
+         rendered.markdown(stem);
+}
 
 std::string write_report(const Counterexample& ce, const ReportContext& context) {
   std::string stem =

@@ -135,7 +135,13 @@ Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::str
       why += "; it wrote: " + protocol::escape_bytes(failure.lines.front().substr(0, 200));
     return Expected<Done>::failure(why);
   }
-  program.stop();
+  // As verify: lines beyond one answer per request mean each answer was judged against another
+  // request, so no verdict stands.
+  if (const std::vector<std::string> extra = program.finish(); !extra.empty())
+    return Expected<Done>::failure(
+        "the implementation's consumers wrote lines beyond one answer per request (" +
+        std::to_string(program.answered()) + " answer lines read before; the first extra line: " +
+        protocol::escape_bytes(extra.front().substr(0, 200)) + ")");
   return Done{};
 }
 

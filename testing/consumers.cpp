@@ -41,6 +41,10 @@ void judged(const std::string& consumer, const properties::ConsumerFinding& find
       return properties::stage_consumer_pictures(files, stem, c.matrix, c.plane, c.convention,
                                                  finding, consumer);
     };
+  } else if (!finding.drawn.empty()) {
+    pictures = [finding, consumer](report::ReportFiles& files, const std::string& stem) {
+      return properties::stage_drawn_pictures(files, stem, finding, consumer);
+    };
   }
   fail(consumer, finding, inputs, std::move(pictures));
 }
@@ -64,8 +68,12 @@ void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck chec
         properties::consumer_round<T>(
             c.matrix, c.plane, c.convention, only, generators::rc_pick,
             [&](const properties::ConsumerFinding& f, const std::string& inputs, bool oblique) {
-              if (!f.judged || f.check == check)
-                judged(only.name, f, inputs, oblique ? &c : nullptr);
+              if (f.check != check) return;
+              const std::string which =
+                  oblique ? "- case: family " + std::string(generators::family_name(c.family)) +
+                                ", place " + std::string(generators::place_name(c.place)) + "\n"
+                          : "";
+              judged(only.name, f, which + inputs, oblique ? &c : nullptr);
             });
       },
       needs_oblique ? Coverage::valid : Coverage::none,

@@ -301,6 +301,52 @@ TEST(PassCamera, mirrorAndPortalViews) {
   EXPECT_NEAR(seen.z(), -8, 1e-12);
 }
 
+// What a report draws for a pass camera's finding: the cameras, the planes and the points, where
+// they are. A mirror 5 units ahead of an eye at the origin: the mirror pass's eye is 10 units
+// ahead, looking back.
+TEST(PassCamera, violatedFindingsCarryWhatTheirPicturesDraw) {
+  const Matrix4<double> view = Matrix4<double>::Identity();
+  const Vector4<double> mirror(0, 0, 1, 5);  // z = -5, its front toward the eye
+  const ConsumerFinding wrong = oblique::properties::judge_mirror_view(view, mirror, view);
+  ASSERT_FALSE(wrong.holds);
+  EXPECT_EQ(wrong.drawn_space, "world space");
+  ASSERT_EQ(wrong.drawn.size(), 4u);
+  ASSERT_EQ(wrong.drawn[1].points.size(), 1u);
+  EXPECT_NEAR((wrong.drawn[1].points[0] - Vector3<double>(0, 0, -10)).norm(), 0, 1e-12)
+      << "the mirror pass's eye, as it should be";
+  EXPECT_NEAR((wrong.drawn[2].points[0] - Vector3<double>(0, 0, 0)).norm(), 0, 1e-12)
+      << "the eye as answered";
+  // The reflected camera looks back along +z, toward the mirror.
+  const Vector3<double> look = wrong.drawn[1].lines[0].second - wrong.drawn[1].lines[0].first;
+  EXPECT_GT(look.z(), 0);
+  for (const auto& [a, b] : wrong.drawn[3].lines) {  // the mirror's square (and its normal)
+    EXPECT_NEAR(a.z(), -5, 1e-12);
+    EXPECT_GE(b.z(), -5 - 1e-12);
+  }
+  EXPECT_TRUE(
+      oblique::properties::judge_mirror_view(view, mirror, oblique::mirror_view(view, mirror))
+          .drawn.empty())
+      << "a finding that holds draws nothing";
+
+  const PassCase p = mirror_case();
+  const auto findings = oblique::properties::judge_camera_plane(
+      p.pass_view, p.plane, p.on_plane, p.front,
+      Vector4<double>(-oblique::plane_in_camera(p.pass_view, p.plane)));
+  const ConsumerFinding& side = find(findings, ConsumerCheck::plane_kept_side);
+  ASSERT_FALSE(side.holds);
+  EXPECT_EQ(side.drawn_space, "the pass camera's space");
+  ASSERT_EQ(side.drawn.size(), 5u);
+  // The square of the plane as it should be lies in it, and its normal points to the front.
+  const Vector4<double> should = oblique::plane_in_camera(p.pass_view, p.plane);
+  const auto& square = side.drawn[1].lines;
+  ASSERT_EQ(square.size(), 5u);
+  for (std::size_t i = 0; i < 4; ++i)
+    EXPECT_NEAR(should.head<3>().dot(square[i].first) + should.w(), 0,
+                1e-9 * should.head<3>().norm() * (1 + square[i].first.norm()));
+  EXPECT_GT(should.head<3>().dot(square[4].second) + should.w(), 0);
+  EXPECT_TRUE(find(findings, ConsumerCheck::plane_on_surface).drawn.empty());
+}
+
 TEST(Corners, keptRegionVerticesHoldAndTheObliqueMatrixCornersAreCaught) {
   // Where C cuts an edge of the volume behind the eye (found by the property suite).
   Matrix4<double> m;

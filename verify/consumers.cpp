@@ -1,6 +1,7 @@
 #include "consumers.h"
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -146,7 +147,7 @@ class ConsumerRun {
              << static_cast<long>(std::chrono::duration<double>(now - start).count()) << " s\n";
       }
     }
-    program_.stop();
+    if (!counted()) return Verdict::error;
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (caught_) return report(seconds);
@@ -172,7 +173,7 @@ class ConsumerRun {
       program_.stop();
       return Verdict::error;
     }
-    program_.stop();
+    if (!counted()) return Verdict::error;
     if (!caught_) {
       out_ << "oblique verify: the round holds (" << summary(judged_)
            << " judged; left out: " << summary(left_out_) << ")\n";
@@ -193,6 +194,25 @@ class ConsumerRun {
     long n = 0;
     for (const auto& [name, k] : counts) n += k;
     return n;
+  }
+
+  /// The count check at the end (ConsumerProgram::finish()): a program that wrote lines beyond
+  /// one answer per request had its answers judged against other requests, so neither a pass nor
+  /// a violation stands; says so on err_ and returns false.
+  bool counted() {
+    const std::vector<std::string> extra = program_.finish();
+    if (extra.empty()) return true;
+    err_
+        << "oblique verify: protocol error: the program wrote lines beyond one answer per request ("
+        << program_.answered() << " answer lines read before)";
+    if (caught_ && !caught_->lost)
+      err_ << "; the answers were out of step with the requests, so the "
+           << properties::consumer_check_name(caught_->finding.check)
+           << " violation judged on one of them is not reported";
+    err_ << "\n";
+    for (std::size_t i = 0; i < extra.size() && i < 5; ++i)
+      err_ << "  read: " << protocol::escape_bytes(extra[i]) << "\n";
+    return false;
   }
 
   std::string kind_list() const {
@@ -253,10 +273,14 @@ class ConsumerRun {
     } else {
       md = properties::consumer_report_markdown(options_.command, c.finding, c.inputs) + "\n";
     }
+    char elapsed[32];
+    std::snprintf(elapsed, sizeof elapsed, "%.3f", seconds);
     md += "## The exchange\n\nRound " + std::to_string(c.index + 1) + " (" +
           std::string(protocol::scalar_name<T>()) + ", seed " + std::to_string(options_.seed) +
-          "), after " + std::to_string(seconds) + " s. The request:\n\n```\n" + c.request +
+          "), after " + elapsed + " s. The request:\n\n```\n" + c.request +
           "\n```\n\nThe answer:\n\n```\n" + (c.answer.empty() ? "(none)" : c.answer) + "\n```\n\n";
+    if (!c.lost && !c.about_oblique_case)
+      md += properties::stage_drawn_pictures(files, stem, c.finding, options_.command);
     if (!c.lost && c.about_oblique_case)
       md +=
           properties::stage_consumer_pictures<T>(files, stem, c.round.c.matrix, c.round.c.plane,

@@ -121,9 +121,9 @@ oblique::FrustumPlanes<T> planes_of_transpose(const Matrix4<T>& m, Convention co
 /// (three.js#16013, drei#721). Caught by plane_on_surface.
 template <class T>
 Vector4<T> plane_without_translation(const Matrix4<T>& pass_view, const Vector4<T>& world_plane) {
-  Vector4<T> out;
-  out << pass_view.template topLeftCorner<3, 3>() * world_plane.template head<3>(), world_plane.w();
-  return out;
+  const oblique::Vector3<T> normal =
+      pass_view.template topLeftCorner<3, 3>() * world_plane.template head<3>();
+  return Vector4<T>(normal.x(), normal.y(), normal.z(), world_plane.w());
 }
 
 /// camera_plane: flipped again where the pass view mirrors ("the reflection turns the plane

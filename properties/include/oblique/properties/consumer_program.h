@@ -48,6 +48,15 @@ class ConsumerProgram {
   /// Stops the program (and its process group).
   void stop();
 
+  /// The count check that ends a conversation: closes the program's input, reads what it still
+  /// writes (waiting at most the smaller of its timeout and a second) and stops it. Returns the
+  /// lines beyond the one answer per request: when there are any, the answers were out of step
+  /// with the requests and what was judged was another request's answer.
+  std::vector<std::string> finish();
+
+  /// Answer lines read so far.
+  long answered() const;
+
  private:
   struct State;
   std::unique_ptr<State> state_;

@@ -59,6 +59,16 @@ struct ConsumerFinding {
   /// corners_contain_kept: how much longer than the kept region's the corners' extent along the
   /// view axis is (1: as tight as it can be); 0 when not measured.
   double depth_waste = 0;
+  /// For a violated finding about a pass camera or its plane (no oblique matrix's case to draw):
+  /// what a report draws, in `drawn_space`: named sets of line segments and points (cameras as
+  /// an eye with its view direction and up, planes as squares with their kept side's normal).
+  struct Drawn {
+    std::string name;
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> lines;
+    std::vector<Eigen::Vector3d> points;
+  };
+  std::vector<Drawn> drawn;
+  std::string drawn_space;
 };
 
 /// What a depth consumer reads at one pixel.

@@ -108,6 +108,11 @@ std::string consumer_report_markdown(const std::string& consumer, const Consumer
 /// volume, C and the core's M', the answer the consumer was given), as write_report() draws a
 /// case, with the finding's points marked; staged (and rendered, with gnuplot) in `files` under
 /// `stem`. Returns the report's "## Pictures" section.
+/// The pictures of a consumer finding about a pass camera or its plane (finding.drawn, in its
+/// space: the cameras, the planes, the points); "" when it has nothing drawn.
+std::string stage_drawn_pictures(report::ReportFiles& files, const std::string& stem,
+                                 const ConsumerFinding& finding, const std::string& consumer);
+
 template <class T>
 std::string stage_consumer_pictures(report::ReportFiles& files, const std::string& stem,
                                     const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
