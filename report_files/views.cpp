@@ -124,7 +124,7 @@ void stage_views(ReportFiles& files, const Views& views, const std::filesystem::
     std::ostream& gp = files.open(stem + ".gp");
     gp << "set terminal pngcairo size 1000,800 noenhanced\n"
        << "set output " << gnuplot_string((script_dir / (stem + ".png")).string()) << "\n"
-       << "set title " << gnuplot_string(views.title + ": " + view + " view") << "\n"
+       << "set title " << gnuplot_string(std::string(view) + " view: " + views.title) << "\n"
        << "set xlabel '" << views.space << " " << names[axes[0]] << "'\nset ylabel '" << views.space
        << " " << names[axes[1]] << "'\n"
        << "set size ratio -1\nset key " << views.key << "\nset grid\n"
