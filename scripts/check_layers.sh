@@ -29,9 +29,10 @@ declare -A below=(
   [verify]="core protocol report_files properties"
   [scene]="core protocol report_files properties"
   [report]="core protocol report_files properties"
-  [cli]="core protocol report_files properties fuzzing verify scene report"
+  [raster]="core protocol report_files properties"
+  [cli]="core protocol report_files properties fuzzing verify scene report raster"
 )
-libraries=(core protocol report_files properties testing fuzzing verify scene report cli)
+libraries=(core protocol report_files properties testing fuzzing verify scene report raster cli)
 
 sources_of() {  # the library's own files, tests left out
   find "$1" -type f \( -name '*.h' -o -name '*.cpp' \) ! -name '*_test.cpp' | sort

@@ -152,4 +152,35 @@ exact::Rational row3_entry_bound(const exact::Rational& abs_ac, const exact::Rat
          kEntryRoundings * underflow_unit<T>();
 }
 
+// The rasterizer (raster/, oblique::raster) evaluates M' v in float32, for a float32 point v with
+// w = 1; the judge (in double, from the same float32 inputs, for a million samples a frame) uses
+// these bounds, in doubles:
+//  - a row r: M' rounded to float32 (1 rounding an entry) and a 4-term dot product (4, in any
+//    order, fused or not): |fl(M'_r . v) - M'_r . v| <= gamma_f(kRasterRowRoundings) sum_i
+//    |M'_ri v_i| + kRasterRowRoundings FLT_MIN (llvmpipe flushes subnormals to zero, an absolute
+//    error up to FLT_MIN a rounding), plus the judge's own double evaluation of the same sum
+//    (gamma_d(kRasterRowRoundings) of it): raster_row_gamma().
+//  - a clip test alpha z + beta w >= 0 (alpha, beta in {0, 1, -1}): both rows' bounds, and one
+//    rounding more (u (|z| + |w|)) for a renderer that forms the sum before comparing.
+//  - a window position or depth, z / w: (dz + |z / w| dw) / (|w| - dw) from the rows' bounds dz,
+//    dw, and kRasterDivideRoundings u |z / w| for the divide (a reciprocal and a product); the
+//    viewport transform 1 rounding more (u); the buffer: fixed24 a whole quantum 1 / (2^24 - 1)
+//    (rounded or truncated) and the read-back's conversion to float (u), float32 half an ulp (u
+//    |d|) and FLT_MIN (flushed).
+//  - every band is computed in double from positive terms (a few roundings, relative error below
+//    2^-40): it is widened by kRasterBandSlack.
+constexpr int kRasterRowRoundings = 5;
+constexpr int kRasterDivideRoundings = 2;
+constexpr double kRasterUnit = 0x1p-24;          ///< float32's u
+constexpr double kRasterFlush = 0x1p-126;        ///< FLT_MIN: what a flushed subnormal loses
+constexpr double kRasterBandSlack = 1 + 0x1p-40;
+constexpr double kRasterFixed24Quantum = 1.0 / 16777215.0;
+
+/// gamma(kRasterRowRoundings) of float32 plus that of double: a row's relative bound (above).
+constexpr double raster_row_gamma() noexcept {
+  constexpr double nf = kRasterRowRoundings * kRasterUnit;
+  constexpr double nd = kRasterRowRoundings * 0x1p-53;
+  return (nf / (1 - nf) + nd / (1 - nd)) * kRasterBandSlack;
+}
+
 }  // namespace oblique::tolerance

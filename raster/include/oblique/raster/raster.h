@@ -1,0 +1,145 @@
+// oblique::raster: an oblique projection rendered on a real rasterizer (OpenGL 4.5 through EGL,
+// headless), and what it clipped and stored judged against the plane C and the original view
+// volume. The software device is Mesa's llvmpipe, on any machine without a GPU.
+//
+// One frame is one sample per pixel: a point of camera space on the pixel's ray through M, at a
+// distance bunched near C, the original near and far planes and the answer's far plane. The
+// rasterizer draws them as 1-pixel points with M' in float32, each writing its id and its depth;
+// the judge reads both back. Its bands (what float32 shading cannot decide) are in
+// oblique/properties/tolerance.h, derived there.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "oblique/depth_convention.h"
+#include "oblique/depth_reconstruction.h"
+#include "oblique/expected.h"
+
+namespace oblique::raster {
+
+enum class Device {
+  software,  ///< Mesa's llvmpipe, forced (LIBGL_ALWAYS_SOFTWARE): the same on every machine
+  gpu,       ///< whatever the machine's EGL driver gives (its renderer is said)
+};
+
+/// A verdict about the answer, or none: a self-check of the renderer tripped.
+enum class Outcome { pass, fail, inconclusive };
+
+std::string_view outcome_name(Outcome outcome) noexcept;
+
+/// The samples of one frame, one per pixel (pixel (i, j), i from the left, j from the bottom, is
+/// sample j * size + i): a point of camera space with w = 1, in float32 as the vertex shader
+/// gets it. A sample whose pixel float32 shading cannot decide is not drawn (`placed` 0).
+struct Frame {
+  int size = 0;
+  std::vector<Eigen::Vector4f> points;
+  std::vector<unsigned char> placed;
+};
+
+/// Builds the frame for M, C and the correct answer `reference` (its far plane is one the
+/// distances bunch at) in `convention`, `size` x `size` pixels, from `seed`.
+Frame make_frame(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
+                 const Eigen::Matrix4d& reference, Convention convention, int size,
+                 std::uint64_t seed);
+
+/// What the renderer gave back for a frame: per pixel, the id of the sample drawn there (its
+/// index + 1; 0 for none) and the depth stored, as read back.
+struct Readback {
+  std::vector<std::uint32_t> ids;
+  std::vector<float> depths;
+};
+
+/// One sample that a judgement flagged, with its numbers.
+struct Flag {
+  enum class Kind {
+    drawn_behind_c,      ///< drawn, on C's clipped side beyond the band
+    clipped_kept,        ///< in the original volume on C's kept side beyond the bands, not drawn
+    wrong_pixel,         ///< drawn into a pixel not its own: the answer moved it
+    renderer_disagrees,  ///< the renderer clipped against its own float32 arithmetic (self-check)
+    depth_off,           ///< the stored depth beyond its bound (self-check)
+  };
+  Kind kind = Kind::drawn_behind_c;
+  long sample = 0;        ///< its index (pixel j * size + i)
+  long pixel = 0;         ///< where it was drawn (its own pixel unless wrong_pixel)
+  Eigen::Vector4f point;  ///< in camera space
+  double c_dot = 0;       ///< C . point
+  double band = 0;        ///< the band C . point was judged against
+  double depth_read = 0, depth_exact = 0, depth_bound = 0;
+};
+
+std::string_view flag_name(Flag::Kind kind) noexcept;
+
+/// The depth buffer's precision measured across the kept region: the depths stored there span
+/// [low, high], which the buffer resolves into `values` distinct values (log2: `bits`);
+/// `observed` distinct values were read back from the frame's samples.
+struct DepthMeasure {
+  double low = 0, high = 0;
+  double values = 0;
+  double bits = 0;
+  long observed = 0;
+};
+
+struct Result {
+  Outcome outcome = Outcome::inconclusive;
+  std::string why;  ///< one line: what failed, or which self-check tripped
+  long samples = 0;
+  long placed = 0;       ///< samples drawn into the frame (the others' pixel is not decidable)
+  long drawn = 0;        ///< samples the renderer kept
+  long undecidable = 0;  ///< placed, but within a band of a plane that decides them
+  long drawn_behind_c = 0, clipped_kept = 0, wrong_pixel = 0;
+  long renderer_disagrees = 0, depth_off = 0, ids_inconsistent = 0;
+  double worst_depth_ratio = 0;  ///< the largest |stored - exact| / bound
+  DepthMeasure depth;
+  std::vector<Flag> examples;  ///< the first few flags of each kind
+  double render_seconds = 0, judge_seconds = 0;
+};
+
+/// Judges a frame's read-back for the answer M' (`answer`), against C, the original M and the
+/// correct answer `reference` (the bands are a correct answer's), in `convention` and `buffer`.
+Result judge_frame(const Frame& frame, const Readback& readback, const Eigen::Matrix4d& m,
+                   const Eigen::Vector4d& c, const Eigen::Matrix4d& answer,
+                   const Eigen::Matrix4d& reference, Convention convention, DepthBuffer buffer);
+
+struct Options {
+  Device device = Device::software;
+  int size = 1000;  ///< the frame is size x size pixels, one sample each
+};
+
+/// A headless OpenGL 4.5 context with the frame's buffers, opened once and used for every check.
+class Rasterizer {
+ public:
+  /// Opens the device and runs the self-checks (the renderer is the one asked for; the core's
+  /// answer on a fixed case passes in every convention and buffer). Fails with one line that says
+  /// what is missing ("no EGL: install ...") or which self-check tripped.
+  static Expected<std::shared_ptr<Rasterizer>> open(const Options& options);
+  ~Rasterizer();
+  Rasterizer(const Rasterizer&) = delete;
+  Rasterizer& operator=(const Rasterizer&) = delete;
+
+  /// GL_RENDERER and GL_VERSION, as the driver says them.
+  const std::string& renderer() const;
+  const Options& options() const;
+
+  /// Renders `frame` with the answer M' in `convention` into a `buffer` depth buffer and reads
+  /// back ids and depths; the error is one line.
+  Expected<Readback> render(const Frame& frame, const Eigen::Matrix4d& answer,
+                            Convention convention, DepthBuffer buffer);
+
+  /// make_frame(), render() and judge_frame() for the answer M' to (M, C); `reference` is the
+  /// core's answer. A render that fails is an inconclusive result saying why.
+  Result check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c, const Eigen::Matrix4d& answer,
+               const Eigen::Matrix4d& reference, Convention convention, DepthBuffer buffer,
+               std::uint64_t seed = 1);
+
+ private:
+  struct State;
+  explicit Rasterizer(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace oblique::raster

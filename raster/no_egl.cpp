@@ -1,0 +1,38 @@
+// A build without EGL and OpenGL: every way in to the rasterizer says what to install.
+#include "oblique/raster/raster.h"
+
+namespace oblique::raster {
+
+struct Rasterizer::State {
+  Options options;
+  std::string renderer;
+};
+
+Rasterizer::Rasterizer(std::unique_ptr<State> state) : state_(std::move(state)) {}
+Rasterizer::~Rasterizer() = default;
+const std::string& Rasterizer::renderer() const {
+  return state_->renderer;
+}
+const Options& Rasterizer::options() const {
+  return state_->options;
+}
+
+Expected<Readback> Rasterizer::render(const Frame&, const Eigen::Matrix4d&, Convention,
+                                      DepthBuffer) {
+  return Expected<Readback>::failure("no EGL in this build");
+}
+
+Result Rasterizer::check(const Eigen::Matrix4d&, const Eigen::Vector4d&, const Eigen::Matrix4d&,
+                         const Eigen::Matrix4d&, Convention, DepthBuffer, std::uint64_t) {
+  Result r;
+  r.why = "no EGL in this build";
+  return r;
+}
+
+Expected<std::shared_ptr<Rasterizer>> Rasterizer::open(const Options&) {
+  return Expected<std::shared_ptr<Rasterizer>>::failure(
+      "no EGL: this oblique was built without EGL and OpenGL; install libegl-dev libgl-dev "
+      "libopengl-dev libegl-mesa0 libgl1-mesa-dri (bash scripts/setup.sh) and build again");
+}
+
+}  // namespace oblique::raster

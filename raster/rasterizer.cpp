@@ -1,0 +1,292 @@
+// The headless OpenGL 4.5 context (EGL's surfaceless platform, through glvnd) and one frame's
+// render and read-back.
+#define GL_GLEXT_PROTOTYPES 1
+#define EGL_EGLEXT_PROTOTYPES 1
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include "oblique/oblique.h"
+#include "oblique/projection.h"
+#include "oblique/raster/raster.h"
+
+namespace oblique::raster {
+
+namespace {
+
+constexpr const char* kPackages = "libegl-mesa0 libgl1-mesa-dri (and libegl1, libopengl0)";
+
+const char* const kVertexShader = R"(#version 450 core
+layout(location = 0) in vec4 point;
+layout(location = 1) in uint sample_id;
+uniform mat4 projection;
+flat out uint id;
+void main() {
+  gl_Position = projection * point;
+  gl_PointSize = 1.0;
+  id = sample_id;
+}
+)";
+
+const char* const kFragmentShader = R"(#version 450 core
+flat in uint id;
+layout(location = 0) out uint stored_id;
+void main() { stored_id = id; }
+)";
+
+std::string egl_error(const char* what) {
+  char line[96];
+  std::snprintf(line, sizeof line, "%s failed (EGL error 0x%04x)", what,
+                static_cast<unsigned>(eglGetError()));
+  return line;
+}
+
+}  // namespace
+
+struct Rasterizer::State {
+  Options options;
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLContext context = EGL_NO_CONTEXT;
+  std::string renderer;
+  GLuint program = 0, vertex_array = 0, buffers[2] = {0, 0};
+  GLuint framebuffer = 0, id_buffer = 0, depth_buffer = 0;
+  GLint projection_at = -1;
+  DepthBuffer depth_format = DepthBuffer::fixed24;
+  int allocated = 0;  ///< the buffers' size (0: none yet)
+
+  ~State() {
+    if (context != EGL_NO_CONTEXT) {
+      eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context);
+      if (program) glDeleteProgram(program);
+      if (buffers[0]) glDeleteBuffers(2, buffers);
+      if (vertex_array) glDeleteVertexArrays(1, &vertex_array);
+      if (id_buffer) glDeleteRenderbuffers(1, &id_buffer);
+      if (depth_buffer) glDeleteRenderbuffers(1, &depth_buffer);
+      if (framebuffer) glDeleteFramebuffers(1, &framebuffer);
+      eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      eglDestroyContext(display, context);
+    }
+    if (display != EGL_NO_DISPLAY) eglTerminate(display);
+  }
+
+  Expected<Done> start() {
+    // Software: Mesa's llvmpipe whatever the machine has; no shader cache written to $HOME.
+    if (options.device == Device::software) setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
+    setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
+    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!client || !std::strstr(client, "EGL_MESA_platform_surfaceless"))
+      return Expected<Done>::failure(std::string("no EGL with the surfaceless platform: install ") +
+                                     kPackages);
+    display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    EGLint major = 0, minor = 0;
+    if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor))
+      return Expected<Done>::failure(egl_error("eglInitialize") + ": install " + kPackages);
+    if (!eglBindAPI(EGL_OPENGL_API)) return Expected<Done>::failure(egl_error("eglBindAPI"));
+    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                 4,
+                                 EGL_CONTEXT_MINOR_VERSION,
+                                 5,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                 EGL_NONE};
+    context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+    if (context == EGL_NO_CONTEXT)
+      return Expected<Done>::failure(egl_error("an OpenGL 4.5 core context"));
+    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
+      return Expected<Done>::failure(egl_error("eglMakeCurrent"));
+    const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    renderer = std::string(name ? name : "?") + ", OpenGL " + (version ? version : "?");
+    if (options.device == Device::software && renderer.find("llvmpipe") == std::string::npos)
+      return Expected<Done>::failure("asked for llvmpipe, the driver gave " + renderer);
+    return build();
+  }
+
+  Expected<Done> build() {
+    GLuint shaders[2] = {glCreateShader(GL_VERTEX_SHADER), glCreateShader(GL_FRAGMENT_SHADER)};
+    const char* sources[2] = {kVertexShader, kFragmentShader};
+    program = glCreateProgram();
+    for (int s = 0; s < 2; ++s) {
+      glShaderSource(shaders[s], 1, &sources[s], nullptr);
+      glCompileShader(shaders[s]);
+      GLint ok = 0;
+      glGetShaderiv(shaders[s], GL_COMPILE_STATUS, &ok);
+      if (!ok) {
+        char log[512] = {};
+        glGetShaderInfoLog(shaders[s], sizeof log, nullptr, log);
+        return Expected<Done>::failure(std::string("a shader did not compile: ") + log);
+      }
+      glAttachShader(program, shaders[s]);
+    }
+    glLinkProgram(program);
+    glDeleteShader(shaders[0]);
+    glDeleteShader(shaders[1]);
+    GLint linked = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (!linked) return Expected<Done>::failure("the shaders did not link");
+    projection_at = glGetUniformLocation(program, "projection");
+    glGenVertexArrays(1, &vertex_array);
+    glGenBuffers(2, buffers);
+    glGenFramebuffers(1, &framebuffer);
+    glGenRenderbuffers(1, &id_buffer);
+    glGenRenderbuffers(1, &depth_buffer);
+    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+      char line[64];
+      std::snprintf(line, sizeof line, "setting up the frame: GL error 0x%04x", e);
+      return Expected<Done>::failure(line);
+    }
+    return Done{};
+  }
+
+  /// The id and depth buffers for a `size` x `size` frame with a `format` depth buffer.
+  Expected<Done> prepare(int size, DepthBuffer format) {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    if (allocated == size && depth_format == format) return Done{};
+    glBindRenderbuffer(GL_RENDERBUFFER, id_buffer);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_R32UI, size, size);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, id_buffer);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_buffer);
+    glRenderbufferStorage(
+        GL_RENDERBUFFER,
+        format == DepthBuffer::fixed24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F, size, size);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer);
+    allocated = 0;
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      return Expected<Done>::failure("the frame's buffers are not complete");
+    allocated = size;
+    depth_format = format;
+    return Done{};
+  }
+};
+
+Rasterizer::Rasterizer(std::unique_ptr<State> state) : state_(std::move(state)) {}
+Rasterizer::~Rasterizer() = default;
+
+const std::string& Rasterizer::renderer() const {
+  return state_->renderer;
+}
+const Options& Rasterizer::options() const {
+  return state_->options;
+}
+
+Expected<Readback> Rasterizer::render(const Frame& frame, const Eigen::Matrix4d& answer,
+                                      Convention convention, DepthBuffer buffer) {
+  State& s = *state_;
+  const Eigen::Matrix4f projection = answer.cast<float>();
+  if (!projection.allFinite())
+    return Expected<Readback>::failure(
+        "the answer does not fit float32 (an entry beyond its range or not finite)");
+  if (!eglMakeCurrent(s.display, EGL_NO_SURFACE, EGL_NO_SURFACE, s.context))
+    return Expected<Readback>::failure(egl_error("eglMakeCurrent"));
+  if (const Expected<Done> ready = s.prepare(frame.size, buffer); !ready)
+    return Expected<Readback>::failure(ready.error());
+  std::vector<Eigen::Vector4f> points;
+  std::vector<std::uint32_t> ids;
+  points.reserve(frame.points.size());
+  ids.reserve(frame.points.size());
+  for (std::size_t k = 0; k < frame.points.size(); ++k) {
+    if (!frame.placed[k]) continue;
+    points.push_back(frame.points[k]);
+    ids.push_back(static_cast<std::uint32_t>(k + 1));
+  }
+  glViewport(0, 0, frame.size, frame.size);
+  glClipControl(GL_LOWER_LEFT,
+                convention == Convention::gl ? GL_NEGATIVE_ONE_TO_ONE : GL_ZERO_TO_ONE);
+  glDisable(GL_DEPTH_CLAMP);
+  glDisable(GL_MULTISAMPLE);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glEnable(GL_DEPTH_TEST);
+  // Reversed Z as engines set it: cleared to 0, GL_GEQUAL; the others cleared to 1, GL_LEQUAL.
+  const bool reversed = convention == Convention::reversed_z;
+  glDepthFunc(reversed ? GL_GEQUAL : GL_LEQUAL);
+  const GLuint no_id[4] = {0, 0, 0, 0};
+  const GLfloat clear_depth = reversed ? 0.0f : 1.0f;
+  glClearBufferuiv(GL_COLOR, 0, no_id);
+  glClearBufferfv(GL_DEPTH, 0, &clear_depth);
+  glUseProgram(s.program);
+  glUniformMatrix4fv(s.projection_at, 1, GL_FALSE, projection.data());  // column-major
+  glBindVertexArray(s.vertex_array);
+  glBindBuffer(GL_ARRAY_BUFFER, s.buffers[0]);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(points.size() * sizeof(Eigen::Vector4f)),
+               points.data(), GL_STREAM_DRAW);
+  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Eigen::Vector4f), nullptr);
+  glEnableVertexAttribArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, s.buffers[1]);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(ids.size() * sizeof(std::uint32_t)),
+               ids.data(), GL_STREAM_DRAW);
+  glVertexAttribIPointer(1, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+  glEnableVertexAttribArray(1);
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(points.size()));
+  Readback out;
+  const std::size_t count = static_cast<std::size_t>(frame.size) * frame.size;
+  out.ids.resize(count);
+  out.depths.resize(count);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glReadPixels(0, 0, frame.size, frame.size, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
+  glReadPixels(0, 0, frame.size, frame.size, GL_DEPTH_COMPONENT, GL_FLOAT, out.depths.data());
+  if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+    char line[64];
+    std::snprintf(line, sizeof line, "rendering the frame: GL error 0x%04x", e);
+    return Expected<Readback>::failure(line);
+  }
+  return out;
+}
+
+Result Rasterizer::check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
+                         const Eigen::Matrix4d& answer, const Eigen::Matrix4d& reference,
+                         Convention convention, DepthBuffer buffer, std::uint64_t seed) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const Frame frame = make_frame(m, c, reference, convention, state_->options.size, seed);
+  const Expected<Readback> readback = render(frame, answer, convention, buffer);
+  const auto rendered = Clock::now();
+  if (!readback) {
+    Result r;
+    r.why = "not rendered: " + readback.error();
+    return r;
+  }
+  Result r = judge_frame(frame, *readback, m, c, answer, reference, convention, buffer);
+  r.render_seconds = std::chrono::duration<double>(rendered - start).count();
+  r.judge_seconds = std::chrono::duration<double>(Clock::now() - rendered).count();
+  return r;
+}
+
+Expected<std::shared_ptr<Rasterizer>> Rasterizer::open(const Options& options) {
+  using Opened = Expected<std::shared_ptr<Rasterizer>>;
+  if (options.size < 16 || options.size > 4096)
+    return Opened::failure("the frame's size must be within [16, 4096] pixels");
+  auto state = std::make_unique<State>();
+  state->options = options;
+  if (const Expected<Done> started = state->start(); !started)
+    return Opened::failure(started.error());
+  std::shared_ptr<Rasterizer> out(new Rasterizer(std::move(state)));
+  // The self-check: the core's answer on a fixed case (a tilted plane in front of a perspective
+  // camera) passes in every convention and buffer, in a small frame.
+  const Options asked = out->state_->options;
+  out->state_->options.size = 128;
+  for (const Convention convention : all_conventions) {
+    const Eigen::Matrix4d m = perspective<double>(1.0, 1.25, 0.5, 200.0, convention);
+    const Eigen::Vector4d c(0.3, -0.8, -0.5, -2.0);
+    const ObliqueResult<double> answer = apply<double>(m, c, convention);
+    for (const DepthBuffer buffer : {DepthBuffer::fixed24, DepthBuffer::float32}) {
+      const Result r =
+          out->check(m, c, answer.projection, answer.projection, convention, buffer, 7);
+      if (answer.status != Status::ok || r.outcome != Outcome::pass)
+        return Opened::failure("the renderer (" + out->renderer() +
+                               ") failed its self-check, the core's answer on a fixed case in " +
+                               std::string(convention_name(convention)) + ", " +
+                               (buffer == DepthBuffer::fixed24 ? "fixed24" : "float32") + ": " +
+                               r.why);
+    }
+  }
+  out->state_->options = asked;
+  return out;
+}
+
+}  // namespace oblique::raster
