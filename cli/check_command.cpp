@@ -1,8 +1,12 @@
-// `oblique check`: a scene file, its passes, --impl and --plot.
+// `oblique check`: a scene file, its passes, --impl, --plot and --rasterize.
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
 #include "commands.h"
+#include "oblique/protocol/protocol.h"
+#include "oblique/raster/raster.h"
 #include "oblique/scene/check.h"
 #include "oblique/scene/plot.h"
 
@@ -15,7 +19,117 @@ struct CheckSettings {
   std::string impl;      ///< --impl CMD: the user's implementation, over the apply protocol
   std::string plot_dir;  ///< --plot DIR
   double timeout_seconds = 10;
+  bool rasterize = false;           ///< --rasterize
+  std::string device = "software";  ///< --device
+  int raster_size = 1000;           ///< --raster-size
 };
+
+/// The exit status of a raster check that could not judge (no EGL, a self-check tripped).
+constexpr int kInconclusive = 3;
+
+std::string with_commas(long n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+/// One rendered pass on the rasterizer: our matrix, or the --impl program's answer (for M and C
+/// as its request had them).
+struct RasterPass {
+  std::string name;
+  raster::Result result;
+};
+
+/// --rasterize: every rendered pass's matrix drawn and judged (oblique::raster). Writes the
+/// table's lines (or a JSON member) and returns 0, 1 (a pass fails) or kInconclusive.
+int rasterize(const CheckSettings& settings, const scene::Scene& scene,
+              const scene::SceneCheck& check, std::string& text, std::string& json) {
+  raster::Options options;
+  options.device = settings.device == "gpu" ? raster::Device::gpu : raster::Device::software;
+  options.size = settings.raster_size;
+  const auto opened = raster::Rasterizer::open(options);
+  if (!opened) {
+    text = "raster: inconclusive: " + opened.error() + "\n";
+    json = "\"raster\": {\"outcome\": \"inconclusive\", \"why\": " +
+           protocol::json_string(opened.error()) + "}";
+    return kInconclusive;
+  }
+  raster::Rasterizer& rasterizer = **opened;
+  const char* buffer = check.depth_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32";
+  text = "raster: " + rasterizer.renderer() + "; " + std::to_string(options.size) + " x " +
+         std::to_string(options.size) + " samples a pass, " + buffer + " depth\n";
+  json = "\"raster\": {\"renderer\": " + protocol::json_string(rasterizer.renderer()) +
+         ", \"size\": " + std::to_string(options.size) + ", \"passes\": [";
+  int status = 0;
+  bool first = true;
+  const bool float_requests = check.impl_precision == protocol::Precision::float32;
+  for (const scene::SurfaceCheck& pass : check.surfaces) {
+    if (!pass.render || !pass.projection) continue;
+    Eigen::Matrix4d m = scene.camera.projection;
+    Eigen::Vector4d c = pass.plane_in_camera;
+    Eigen::Matrix4d answer = *pass.projection;
+    std::string refused;
+    if (pass.impl_answer) {
+      // As the request had them: rounded to float for --precision float.
+      if (float_requests) {
+        m = m.cast<float>().cast<double>();
+        c = c.cast<float>().cast<double>();
+      }
+      const auto read = protocol::read_answer<double>(*pass.impl_answer);
+      if (!read || read->status != Status::ok)
+        refused = "the implementation gave no matrix for this pass";
+      else
+        answer = read->projection;
+    }
+    const ObliqueResult<double> reference = apply<double>(m, c, scene.convention);
+    raster::Result r;
+    if (!refused.empty()) {
+      r.why = refused;
+    } else if (reference.status != Status::ok) {
+      r.why = "the core has no answer for the request's M and C to judge against";
+    } else {
+      r = rasterizer.check(m, c, answer, reference.projection, scene.convention, check.depth_buffer,
+                           1);
+    }
+    char line[512];
+    if (r.outcome == raster::Outcome::pass) {
+      std::snprintf(line, sizeof line,
+                    "raster: %s: pass (%s placed, %s drawn, %s within a band; depth across the "
+                    "kept region in [%.9g, %.9g]: 2^%.2f buffer values, %s seen; %.2f s)\n",
+                    pass.name.c_str(), with_commas(r.placed).c_str(), with_commas(r.drawn).c_str(),
+                    with_commas(r.undecidable).c_str(), r.depth.low, r.depth.high, r.depth.bits,
+                    with_commas(r.depth.observed).c_str(), r.render_seconds + r.judge_seconds);
+    } else {
+      std::snprintf(line, sizeof line, "raster: %s: %s %s\n", pass.name.c_str(),
+                    r.outcome == raster::Outcome::fail ? "FAIL" : "inconclusive:", r.why.c_str());
+    }
+    text += line;
+    for (const raster::Flag& f : r.examples) {
+      std::snprintf(line, sizeof line,
+                    "  %s: sample %ld at (%.9g, %.9g, %.9g), C . v = %.17g, band %.3g\n",
+                    std::string(raster::flag_name(f.kind)).c_str(), f.sample, f.point.x(),
+                    f.point.y(), f.point.z(), f.c_dot, f.band);
+      text += line;
+    }
+    json += std::string(first ? "" : ", ") + "{\"name\": " + protocol::json_string(pass.name) +
+            ", \"outcome\": \"" + std::string(raster::outcome_name(r.outcome)) +
+            "\", \"why\": " + protocol::json_string(r.why) +
+            ", \"placed\": " + std::to_string(r.placed) +
+            ", \"drawn\": " + std::to_string(r.drawn) +
+            ", \"drawn_behind_c\": " + std::to_string(r.drawn_behind_c) +
+            ", \"clipped_kept\": " + std::to_string(r.clipped_kept) +
+            ", \"wrong_pixel\": " + std::to_string(r.wrong_pixel) +
+            ", \"depth_bits\": " + protocol::json_number(r.depth.bits) + "}";
+    first = false;
+    if (r.outcome == raster::Outcome::fail) status = 1;
+    if (r.outcome == raster::Outcome::inconclusive && status == 0) status = kInconclusive;
+  }
+  json += "]}";
+  return status;
+}
 
 int run_check(const CheckSettings& settings) {
   const std::string& path = settings.scene_path;
@@ -41,8 +155,17 @@ int run_check(const CheckSettings& settings) {
       return 2;
     }
   }
-  std::cout << (settings.as_json ? oblique::scene::to_json(check) + "\n"
-                                 : oblique::scene::to_text(check));
+  std::string raster_text, raster_json;
+  const int raster_status =
+      settings.rasterize ? rasterize(settings, *parsed.scene, check, raster_text, raster_json) : 0;
+  if (settings.as_json) {
+    std::string json = oblique::scene::to_json(check);
+    if (settings.rasterize && !json.empty() && json.back() == '}')
+      json.insert(json.size() - 1, ", " + raster_json);
+    std::cout << json << "\n";
+  } else {
+    std::cout << oblique::scene::to_text(check) << raster_text;
+  }
   if (!settings.plot_dir.empty()) {
     const oblique::scene::PlotResult plot =
         oblique::scene::write_plot(*parsed.scene, check, settings.plot_dir);
@@ -62,7 +185,8 @@ int run_check(const CheckSettings& settings) {
         paths << "picture: " << file.string() << "\n";
     }
   }
-  return check.passes() ? 0 : 1;
+  if (!check.passes() || raster_status == 1) return 1;
+  return raster_status;
 }
 
 void setup_check(CLI::App& app, int& exit_code) {
@@ -73,8 +197,9 @@ void setup_check(CLI::App& app, int& exit_code) {
       "to the scene's max_depth), render or skip (with the reason), the pass camera's view and "
       "oblique projection, the properties that apply, the depth precision left and the scissor "
       "rectangle. Exit 0: every rendered pass passes; 1: a property fails (ours, or the "
-      "implementation's with --impl); 2: the scene cannot be read, the implementation does not "
-      "answer, or the output or picture cannot be written.");
+      "implementation's with --impl, or on the rasterizer); 2: the scene cannot be read, the "
+      "implementation does not answer, or the output or picture cannot be written; 3: "
+      "--rasterize could not judge (inconclusive).");
   check->add_option("SCENE", settings->scene_path, "The scene file (JSON; see the README)")
       ->required();
   check->add_flag("--json", settings->as_json, "Print one JSON object instead of a table");
@@ -94,6 +219,21 @@ void setup_check(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber);
   check->add_option("--plot", settings->plot_dir,
                     "Write a top and a side view (gnuplot PNG) of the scene and its passes here");
+  check->add_flag("--rasterize", settings->rasterize,
+                  "Also draw each rendered pass's matrix (ours, or the --impl program's) on a real "
+                  "rasterizer, one sample a pixel, and judge what it clipped and stored: nothing "
+                  "behind C drawn, nothing of the original volume on C's kept side clipped "
+                  "(beyond float32's bands). Exit 3 when the rasterizer cannot judge "
+                  "(inconclusive: no EGL, a self-check tripped)");
+  check
+      ->add_option("--device", settings->device,
+                   "With --rasterize: software (Mesa's llvmpipe, the default) or gpu (the "
+                   "machine's driver; its renderer is printed)")
+      ->check(CLI::IsMember({"software", "gpu"}));
+  check
+      ->add_option("--raster-size", settings->raster_size,
+                   "With --rasterize: the frame is N x N pixels, one sample each")
+      ->check(CLI::Range(16, 4096));
   check->callback([settings, &exit_code] { exit_code = run_check(*settings); });
 }
 

@@ -165,12 +165,18 @@ Frame make_frame(const Matrix4d& m, const Vector4d& c, const Matrix4d& reference
       const double pick = unit(engine);
       double s = -0.25 + 1.5 * unit(engine);  // a quarter of the samples anywhere along the ray
       if (pick < 0.75) {
+        // At a distance t from the plane, relative to the plane's terms where the ray crosses it:
+        // Pi . P(s) = t P(s)_w, solved for s (Pi . v moves with s as a Mobius function: bunching
+        // in s would not bunch in distance).
         const Vector4d& plane = planes[std::min(3, static_cast<int>(pick / 0.1875))];
         const double pa = plane.dot(a), pb = plane.dot(b);
-        const double at = pa / (pa - pb);
-        const double offset = std::pow(10.0, -(0.5 + 7 * unit(engine)));
-        if (std::isfinite(at))
-          s = at + (unit(engine) < 0.5 ? -offset : offset) * std::max(1.0, std::abs(at));
+        const double crossing = pa / (pa - pb);
+        const Vector4d on = (1 - crossing) * a + crossing * b;
+        const double magnitude = plane.cwiseAbs().dot((on / on.w()).cwiseAbs());
+        const double t =
+            (unit(engine) < 0.5 ? -1 : 1) * std::pow(10.0, -(1 + 7 * unit(engine))) * magnitude;
+        const double at = (pa - t * a.w()) / ((pa - pb) - t * (a.w() - b.w()));
+        if (std::isfinite(at)) s = at;
       }
       for (int attempt = 0; attempt < 2; ++attempt, s = unit(engine)) {
         const Vector4d p = (1 - s) * a + s * b;

@@ -85,7 +85,8 @@ struct Rasterizer::State {
     display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     EGLint major = 0, minor = 0;
     if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor))
-      return Expected<Done>::failure(egl_error("eglInitialize") + ": install " + kPackages);
+      return Expected<Done>::failure("no EGL device (" + egl_error("eglInitialize") +
+                                     "): install " + kPackages);
     if (!eglBindAPI(EGL_OPENGL_API)) return Expected<Done>::failure(egl_error("eglBindAPI"));
     const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
                                  4,

@@ -115,7 +115,8 @@ class Rasterizer {
  public:
   /// Opens the device and runs the self-checks (the renderer is the one asked for; the core's
   /// answer on a fixed case passes in every convention and buffer). Fails with one line that says
-  /// what is missing ("no EGL: install ...") or which self-check tripped.
+  /// what is missing (beginning "no EGL": nothing to render with; install what it names) or which
+  /// self-check tripped.
   static Expected<std::shared_ptr<Rasterizer>> open(const Options& options);
   ~Rasterizer();
   Rasterizer(const Rasterizer&) = delete;
