@@ -116,8 +116,26 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       "--consumers", settings->consumers,
       "Ask the code around the matrix instead: a comma list of request kinds, or all: " +
           name_list(oblique::protocol::consumer_kind_names()) + " (docs/verify.md)");
+  verify->add_flag("--rasterize", options.rasterize,
+                   "Also draw answers on a real rasterizer (EGL + OpenGL 4.5, llvmpipe): the "
+                   "first, one in --raster-every, and every finding's; an answer that passes the "
+                   "properties but fails there is a finding of its own (docs/raster.md). Exit 3 "
+                   "when the rasterizer cannot judge");
+  verify
+      ->add_option("--device", options.raster_device,
+                   "With --rasterize: software (llvmpipe, the default) or gpu")
+      ->check(CLI::IsMember({"software", "gpu"}));
+  verify
+      ->add_option("--raster-size", options.raster_size,
+                   "With --rasterize: frames of N x N pixels, one sample each (default 256)")
+      ->check(CLI::Range(16, 4096));
+  verify
+      ->add_option("--raster-every", options.raster_every,
+                   "With --rasterize: draw one answer in N (default 1000)")
+      ->check(CLI::PositiveNumber);
   verify->add_option("--replay", options.replay,
-                     "Re-judge the case of a report (its .json) with --impl: exit 0 or 1");
+                     "Re-judge the case of a report (its .json) with --impl: exit 0 or 1 (3: a "
+                     "raster report the rasterizer cannot judge)");
   verify->add_option("--regressions", options.regressions,
                      "Replay every report (.json) in this folder before the run");
   verify->add_option("--save-regressions", options.save_regressions,

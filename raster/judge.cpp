@@ -110,6 +110,18 @@ Bounded quotient(const Bounded& p, const Bounded& w) {
   return {q, bound};
 }
 
+/// `plane` scaled by a power of two (exactly) so that its largest coefficient is in [0.5, 1): a C
+/// of subnormal coefficients keeps its digits in C . v and in its scale in near'.
+Vector4d scaled_plane(const Vector4d& plane) {
+  const double largest = plane.cwiseAbs().maxCoeff();
+  if (!(largest > 0) || !std::isfinite(largest)) return plane;
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  Vector4d out;
+  for (int i = 0; i < 4; ++i) out(i) = std::ldexp(plane(i), -exponent);
+  return out;
+}
+
 /// The plane a * M_3 + b * M_4 of `m`.
 Vector4d combined(const Matrix4d& m, RowCombination r) {
   return r.m3 * m.row(2).transpose() + r.m4 * m.row(3).transpose();
@@ -150,7 +162,7 @@ Frame make_frame(const Matrix4d& m, const Vector4d& c, const Matrix4d& reference
       convention == Convention::reversed_z ? 1 : clip_depth_range(convention).z_low;
   const double z_far = convention == Convention::reversed_z ? 0 : 1;
   // The planes the distances bunch at: C, the original near and far, the answer's far plane.
-  const Vector4d planes[] = {c, combined(m, near_rows(convention)),
+  const Vector4d planes[] = {scaled_plane(c), combined(m, near_rows(convention)),
                              combined(m, far_rows(convention)),
                              combined(reference, far_rows(convention))};
   std::mt19937_64 engine(seed);
@@ -204,9 +216,11 @@ Frame make_frame(const Matrix4d& m, const Vector4d& c, const Matrix4d& reference
 }
 
 Result judge_frame(const Frame& frame, const Readback& readback, const Matrix4d& m,
-                   const Vector4d& c, const Matrix4d& answer, const Matrix4d& reference,
+                   const Vector4d& given_c, const Matrix4d& answer, const Matrix4d& reference,
                    Convention convention, DepthBuffer buffer) {
+  const Vector4d c = scaled_plane(given_c);  // C . v and the bands as for C itself, scaled
   Result r;
+  r.rendered = true;
   const long count = static_cast<long>(frame.size) * frame.size;
   r.samples = count;
   if (static_cast<long>(readback.ids.size()) != count ||
@@ -232,6 +246,7 @@ Result judge_frame(const Frame& frame, const Readback& readback, const Matrix4d&
     drawn_at[id - 1] = p;
   }
   auto note = [&r](Flag flag) {
+    if (r.flagged.size() < (std::size_t{1} << 18)) r.flagged.emplace_back(flag.sample, flag.kind);
     long same = 0;
     for (const Flag& f : r.examples) same += f.kind == flag.kind;
     if (same < 3) r.examples.push_back(flag);

@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 
+#include "failure_database.h"
 #include "oblique/oblique.h"
 #include "oblique/properties/consumer_program.h"
 #include "oblique/properties/counterexample_report.h"
@@ -316,28 +317,6 @@ class ConsumerRun {
   std::map<std::string, long> judged_, left_out_;
   std::optional<Caught<T>> caught_;
 };
-
-/// `field`'s numbers in T, `n` of them, from a report (hex strings or numbers).
-template <class T>
-bool report_numbers(const protocol::JsonValue& report, const char* field, std::size_t n,
-                    std::vector<T>& out, std::string& error) {
-  const protocol::JsonValue* v = report.find(field);
-  if (!v || !v->is_array() || v->size() != n) {
-    error = std::string("\"") + field + "\" must hold " + std::to_string(n) + " numbers";
-    return false;
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::optional<std::string> token = protocol::number_token((*v)[i]);
-    const Expected<T> x =
-        token ? protocol::parse_number<T>(*token) : Expected<T>::failure("not a number");
-    if (!x) {
-      error = std::string("\"") + field + "\"[" + std::to_string(i) + "]: " + x.error();
-      return false;
-    }
-    out.push_back(*x);
-  }
-  return true;
-}
 
 template <class T>
 Verdict replay_in(const VerifyOptions& options, const protocol::JsonValue& report,

@@ -21,6 +21,28 @@ Expected<protocol::JsonValue> read_report(const std::string& path);
 
 Expected<std::optional<protocol::Precision>> report_precision(const std::string& path);
 
+/// `field`'s numbers in T, `n` of them, from a report (hex strings or numbers).
+template <class T>
+bool report_numbers(const protocol::JsonValue& report, const char* field, std::size_t n,
+                    std::vector<T>& out, std::string& error) {
+  const protocol::JsonValue* v = report.find(field);
+  if (!v || !v->is_array() || v->size() != n) {
+    error = std::string("\"") + field + "\" must hold " + std::to_string(n) + " numbers";
+    return false;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::optional<std::string> token = protocol::number_token((*v)[i]);
+    const Expected<T> x =
+        token ? protocol::parse_number<T>(*token) : Expected<T>::failure("not a number");
+    if (!x) {
+      error = std::string("\"") + field + "\"[" + std::to_string(i) + "]: " + x.error();
+      return false;
+    }
+    out.push_back(*x);
+  }
+  return true;
+}
+
 /// The case of a report (its JSON sidecar): the request, and the family named there.
 template <class T>
 Expected<VerifyCase<T>> read_report_case(const std::string& path);

@@ -24,6 +24,7 @@
 #include "cases.h"
 #include "consumers.h"
 #include "failure_database.h"
+#include "raster.h"
 #include "reporter.h"
 #include "session.h"
 #include "shrinker.h"
@@ -43,7 +44,8 @@ class Verifier {
         session_(options, draws_),
         reporter_(options, draws_, out, err),
         shrinker_(session_, reporter_, out, err),
-        database_(session_, reporter_, out, err) {}
+        database_(session_, reporter_, out, err),
+        raster_(options, out, err) {}
 
   /// --replay: re-judges one report's case.
   Verdict replay_report(const std::string& path) {
@@ -58,6 +60,7 @@ class Verifier {
       if (kept != Verdict::holds) return kept;
       session_.start_clock();  // the run's own time limit starts now
     }
+    if (options_.rasterize && !raster_.open()) return Verdict::inconclusive;
     ChildProcess& child = session_.child();
     const Clock::time_point deadline = session_.deadline();
     const auto idle = session_.idle();
@@ -113,6 +116,7 @@ class Verifier {
             ++kinds[key].repeats;  // this kind is reported already
             continue;
           }
+          if (options_.rasterize) raster_.finding(v, answers[k]);
           const Verdict result =
               shrinker_.confirm(current, k, answers, finding, done + static_cast<long>(k) + 1);
           if (!options_.keep_going || result != Verdict::violated) return result;
@@ -129,6 +133,14 @@ class Verifier {
           restarted = true;
         }
         seen.count(current.values[k]);
+        if (options_.rasterize && !judged[k].finding) {
+          const long index = done + static_cast<long>(k) + 1;
+          if (const std::optional<Verdict> drawn =
+                  raster_.sample(current.values[k], current.requests[k], answers[k], index)) {
+            child.stop();
+            return *drawn;
+          }
+        }
       }
       done += static_cast<long>(answers.size());
       if (!kinds.empty() && Clock::now() >= deadline) {
@@ -202,8 +214,10 @@ class Verifier {
            << options_.time_limit_seconds << " s); nothing is verified\n";
       return Verdict::error;
     }
-    return reporter_.passed(done, session_.seconds_since_start(), seen, left_out, stopped_by_time,
-                            dropped);
+    const Verdict verdict = reporter_.passed(done, session_.seconds_since_start(), seen, left_out,
+                                             stopped_by_time, dropped);
+    if (options_.rasterize) raster_.summary();
+    return verdict;
   }
 
  private:
@@ -229,6 +243,7 @@ class Verifier {
   Reporter<T> reporter_;
   Shrinker<T> shrinker_;
   FailureDatabase<T> database_;
+  RasterLook<T> raster_;
 };
 
 }  // namespace
@@ -325,6 +340,9 @@ Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& 
     if (const Expected<protocol::JsonValue> report = read_report(options.replay);
         report && is_consumer_report(*report))
       return replay_consumer_report(options, *report, out, err);
+    if (const Expected<protocol::JsonValue> report = read_report(options.replay);
+        report && is_raster_report(*report))
+      return replay_raster_report(options, *report, out, err);
     // The report's precision, whatever --precision says.
     const Expected<std::optional<protocol::Precision>> precision = report_precision(options.replay);
     if (!precision) {
@@ -343,7 +361,18 @@ Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& 
         return Verdict::error;
     }
   }
+  if (options.rasterize &&
+      !(options.raster_every >= 1 && options.raster_size >= 16 && options.raster_size <= 4096)) {
+    err << "oblique verify: --raster-every must be at least 1 and --raster-size within [16, "
+           "4096]\n";
+    return Verdict::error;
+  }
   if (!options.consumers.empty()) {
+    if (options.rasterize) {
+      err << "oblique verify: --rasterize draws oblique matrices; it does not apply to "
+             "--consumers\n";
+      return Verdict::error;
+    }
     if (options.keep_going || !options.regressions.empty() || !options.save_regressions.empty()) {
       err << "oblique verify: --keep-going, --regressions and --save-regressions do not apply "
              "to --consumers (a consumer run stops at its first violation; replay its report "

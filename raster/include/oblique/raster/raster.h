@@ -67,7 +67,7 @@ struct Flag {
   long sample = 0;        ///< its index (pixel j * size + i)
   long pixel = 0;         ///< where it was drawn (its own pixel unless wrong_pixel)
   Eigen::Vector4f point;  ///< in camera space
-  double c_dot = 0;       ///< C . point
+  double c_dot = 0;       ///< C . point, C scaled by a power of two to a largest |C_i| in [0.5, 1)
   double band = 0;        ///< the band C . point was judged against
   double depth_read = 0, depth_exact = 0, depth_bound = 0;
 };
@@ -96,6 +96,9 @@ struct Result {
   double worst_depth_ratio = 0;  ///< the largest |stored - exact| / bound
   DepthMeasure depth;
   std::vector<Flag> examples;  ///< the first few flags of each kind
+  /// Every flagged sample (index, kind), for a picture of where they are (at most 2^18).
+  std::vector<std::pair<long, Flag::Kind>> flagged;
+  bool rendered = false;  ///< the frame was drawn and read back (else `why` says why not)
   double render_seconds = 0, judge_seconds = 0;
 };
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "oblique/depth_reconstruction.h"
 #include "oblique/properties/contract.h"
 #include "oblique/protocol/consumer_messages.h"
 #include "oblique/protocol/protocol.h"
@@ -48,13 +49,22 @@ struct VerifyOptions {
   /// --consumers: ask these request kinds of the code around the matrix (consumer_messages.h)
   /// instead of the oblique matrix, round by round, judged by the consumer properties.
   std::vector<protocol::ConsumerKind> consumers;
+
+  /// --rasterize: the first answer, one in `raster_every` after it, and every finding's answer
+  /// drawn on a real rasterizer (oblique::raster) in `raster_size` x `raster_size` frames.
+  bool rasterize = false;
+  std::string raster_device = "software";  ///< software (llvmpipe) or gpu
+  int raster_size = 256;
+  long raster_every = 1000;
+  DepthBuffer raster_buffer = DepthBuffer::fixed24;
 };
 
 /// How a run ended; the CLI exits with its value.
 enum class Verdict {
-  holds = 0,     ///< no violation within the budget (or the kept regressions hold)
-  violated = 1,  ///< a violation, or a crash or hang of the implementation: a report written
-  error = 2,     ///< usage, protocol or I/O errors: nothing was verified
+  holds = 0,         ///< no violation within the budget (or the kept regressions hold)
+  violated = 1,      ///< a violation, or a crash or hang of the implementation: a report written
+  error = 2,         ///< usage, protocol or I/O errors: nothing was verified
+  inconclusive = 3,  ///< --rasterize: the rasterizer cannot judge (no EGL, a self-check tripped)
 };
 
 /// Runs `oblique verify`, saying on `out` and `err` what it did.

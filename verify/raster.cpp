@@ -1,0 +1,292 @@
+#include "raster.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <ostream>
+#include <sstream>
+
+#include "failure_database.h"
+#include "oblique/oblique.h"
+#include "oblique/protocol/child_process.h"
+#include "oblique/protocol/numbers.h"
+#include "oblique/protocol/protocol.h"
+#include "oblique/report/report_files.h"
+#include "reporter.h"
+
+namespace oblique::verify {
+
+namespace {
+
+raster::Options raster_options(const VerifyOptions& options) {
+  raster::Options out;
+  out.device = options.raster_device == "gpu" ? raster::Device::gpu : raster::Device::software;
+  out.size = options.raster_size;
+  return out;
+}
+
+/// M and C in double, as the request had them, and the core's answer for them (nullopt where the
+/// case has no answer to judge against).
+struct Drawable {
+  Eigen::Matrix4d m;
+  Eigen::Vector4d c;
+  Eigen::Matrix4d reference;
+};
+
+template <class T>
+std::optional<Drawable> drawable(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+  Drawable d{m.template cast<double>(), c.template cast<double>(), Eigen::Matrix4d::Zero()};
+  const ObliqueResult<double> reference = apply<double>(d.m, d.c, convention);
+  if (reference.status != Status::ok) return std::nullopt;
+  d.reference = reference.projection;
+  return d;
+}
+
+std::string counts(const raster::Result& r) {
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "%ld samples drawn behind C, %ld of the original volume on C's kept side clipped, "
+                "%ld drawn into a wrong pixel (%ld placed, %ld drawn)",
+                r.drawn_behind_c, r.clipped_kept, r.wrong_pixel, r.placed, r.drawn);
+  return line;
+}
+
+std::string matrix_text(const Eigen::Matrix4d& m) {
+  std::string out = "[";
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j)
+      out += protocol::format_number(m(i, j)) + (j < 3 ? ", " : i < 3 ? "; " : "");
+  }
+  return out + "]";
+}
+
+}  // namespace
+
+template <class T>
+RasterLook<T>::RasterLook(const VerifyOptions& options, std::ostream& out, std::ostream& err)
+    : options_(options), out_(out), err_(err) {}
+
+template <class T>
+bool RasterLook<T>::open() {
+  const auto opened = raster::Rasterizer::open(raster_options(options_));
+  if (!opened) {
+    err_ << "oblique verify: raster: inconclusive: " << opened.error() << "\n";
+    return false;
+  }
+  rasterizer_ = *opened;
+  return true;
+}
+
+template <class T>
+std::optional<raster::Result> RasterLook<T>::draw(const VerifyCase<T>& v, const std::string& answer,
+                                                  std::uint64_t seed) {
+  const Expected<protocol::TypedAnswer<T>> read = protocol::read_answer<T>(answer);
+  if (!read || read->status != Status::ok) return std::nullopt;
+  const std::optional<Drawable> d = drawable<T>(v.c.matrix, v.c.plane, v.c.convention);
+  if (!d) return std::nullopt;
+  raster::Result r = rasterizer_->check(d->m, d->c, read->projection.template cast<double>(),
+                                        d->reference, v.c.convention, options_.raster_buffer, seed);
+  if (!r.rendered) {
+    ++not_drawn_;
+    return std::nullopt;
+  }
+  ++drawn_;
+  worst_depth_ratio_ = std::max(worst_depth_ratio_, r.worst_depth_ratio);
+  return r;
+}
+
+template <class T>
+std::optional<Verdict> RasterLook<T>::sample(const VerifyCase<T>& v, const std::string& request,
+                                             const std::string& answer, long index) {
+  if (index != 1 && index % options_.raster_every != 0) return std::nullopt;
+  const std::optional<raster::Result> r =
+      draw(v, answer, options_.seed ^ static_cast<std::uint64_t>(index));
+  if (!r || r->outcome == raster::Outcome::pass) return std::nullopt;
+  if (r->outcome == raster::Outcome::inconclusive) {
+    err_ << "oblique verify: raster: inconclusive at answer " << index << ": " << r->why
+         << "\n  request: " << request << "\n";
+    return Verdict::inconclusive;
+  }
+  return report(v, request, answer, *r, index);
+}
+
+template <class T>
+void RasterLook<T>::finding(const VerifyCase<T>& v, const std::string& answer) {
+  const std::optional<raster::Result> r = draw(v, answer, options_.seed);
+  if (!r) {
+    err_ << "oblique verify: raster: the finding's answer is not drawn (no matrix, or no answer "
+            "to judge it against)\n";
+    return;
+  }
+  err_ << "oblique verify: raster: the finding's answer on the rasterizer: "
+       << (r->outcome == raster::Outcome::pass   ? "passes (" + r->why + ")"
+           : r->outcome == raster::Outcome::fail ? "FAIL, " + counts(*r)
+                                                 : "inconclusive: " + r->why)
+       << "\n";
+}
+
+template <class T>
+void RasterLook<T>::summary() const {
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "%ld answers drawn %d x %d, none failed; worst depth %.3g of its bound", drawn_,
+                options_.raster_size, options_.raster_size, worst_depth_ratio_);
+  out_ << "raster: " << rasterizer_->renderer() << ": " << line;
+  if (not_drawn_ > 0) out_ << "; " << not_drawn_ << " not drawn (beyond float32)";
+  out_ << "\n";
+}
+
+template <class T>
+Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request,
+                              const std::string& answer, const raster::Result& r, long index) {
+  const std::string stem =
+      report::free_stem(options_.report_dir, "verify-raster", {".md", ".json"});
+  const std::string json_path =
+      (std::filesystem::path(options_.report_dir) / (stem + ".json")).string();
+  const std::optional<Drawable> d = drawable<T>(v.c.matrix, v.c.plane, v.c.convention);
+  report::ReportFiles files(options_.report_dir);
+  std::string md =
+      "# Counterexample: the rasterizer\n\n`" + options_.command +
+      "`'s answer passes the properties, but drawn on " + rasterizer_->renderer() +
+      " it fails: " + counts(r) +
+      ".\n\n## The case\n\n- family: " + std::string(generators::family_name(v.c.family)) +
+      ", place " + v.kind() + "\n- convention: " + std::string(convention_name(v.c.convention)) +
+      ", depth buffer " + (options_.raster_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32") +
+      "\n- M: " + matrix_text(d->m) + "\n- C: [" + protocol::format_number(d->c(0)) + ", " +
+      protocol::format_number(d->c(1)) + ", " + protocol::format_number(d->c(2)) + ", " +
+      protocol::format_number(d->c(3)) + "]\n\nAnswer " + std::to_string(index) +
+      " of the run. The request:\n\n```\n" + request + "\n```\n\nThe answer:\n\n```\n" + answer +
+      "\n```\n\n## The samples flagged\n\nThe first of each kind (sample " +
+      "j * size + i is pixel (i, j) from the bottom left; the band is what float32 " +
+      "shading of a correct answer cannot decide, docs/raster.md):\n\n" +
+      "| kind | pixel | point (camera space) | C . v | band |\n|---|---|---|---|---|\n";
+  const int size = options_.raster_size;
+  for (const raster::Flag& f : r.examples) {
+    char row[320];
+    std::snprintf(row, sizeof row, "| %s | (%ld, %ld) | (%.9g, %.9g, %.9g) | %.17g | %.3g |\n",
+                  std::string(raster::flag_name(f.kind)).c_str(), f.sample % size, f.sample / size,
+                  f.point.x(), f.point.y(), f.point.z(), f.c_dot, f.band);
+    md += row;
+  }
+  // Where they are: one block per kind, pixel coordinates.
+  std::ostream& dat = files.open(stem + ".pixels.dat");
+  const raster::Flag::Kind kinds[] = {raster::Flag::Kind::drawn_behind_c,
+                                      raster::Flag::Kind::clipped_kept,
+                                      raster::Flag::Kind::wrong_pixel};
+  for (const raster::Flag::Kind kind : kinds) {
+    dat << "# " << raster::flag_name(kind) << "\n0 -1e9\n";  // a point off the frame: never empty
+    for (const auto& [sample, k] : r.flagged)
+      if (k == kind) dat << sample % size << " " << sample / size << "\n";
+    dat << "\n\n";
+  }
+  files.open(stem + ".pixels.gp")
+      << "set terminal pngcairo size 800,800 noenhanced\nset output '" << stem
+      << ".pixels.png'\nset title 'samples flagged on the rasterizer (" << size << " x " << size
+      << " pixels)'\nset size ratio -1\nset xrange [0:" << size << "]\nset yrange [0:" << size
+      << "]\nset xlabel 'pixel x'\nset ylabel 'pixel y'\nset key outside below\nplot '" << stem
+      << ".pixels.dat' index 0 with points pt 5 ps 0.3 lc rgb '#d62728' title 'drawn behind C', '' "
+         "index 1 "
+         "with points pt 5 ps 0.3 lc rgb '#1f77b4' title 'kept region clipped', '' index 2 with "
+         "points pt 5 ps 0.3 lc rgb "
+         "'#2ca02c' title 'drawn into a wrong pixel'\n";
+  std::ostringstream plot_log;
+  if (files.plot_staged(stem + ".pixels.gp", stem + ".pixels.png", plot_log))
+    md += "\n![where the flagged samples are](" + stem + ".pixels.png)\n";
+  md += "\n## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
+        "\n# this request again, its answer drawn (exit 0 holds, 1 fails, 3 inconclusive)\n" +
+        options_.self + " verify --replay " + shell_quote(json_path) + " --impl " +
+        shell_quote(options_.command) + "\n# the one request\necho " + shell_quote(request) +
+        " | " + options_.command + "\n```\n";
+  files.open(stem + ".md") << md;
+  auto hex = [](double x) { return protocol::json_number(x, protocol::Notation::hex); };
+  std::string projection = "[", plane = "[";
+  for (int i = 0; i < 16; ++i) projection += (i ? ", " : "") + hex(v.c.matrix(i / 4, i % 4));
+  for (int i = 0; i < 4; ++i) plane += (i ? ", " : "") + hex(v.c.plane(i));
+  files.open(stem + ".json")
+      << "{\"type\": \"raster\", \"finding\": " << protocol::json_string(counts(r))
+      << ", \"precision\": " << protocol::json_string(protocol::scalar_name<T>())
+      << ", \"convention\": " << protocol::json_string(convention_name(v.c.convention))
+      << ", \"buffer\": \""
+      << (options_.raster_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32")
+      << "\", \"size\": " << size
+      << ", \"seed\": " << (options_.seed ^ static_cast<std::uint64_t>(index))
+      << ", \"projection\": " << projection << "], \"plane\": " << plane
+      << "], \"request\": " << protocol::json_string(request)
+      << ", \"answer\": " << protocol::json_string(answer) << "}\n";
+  std::ostringstream log;
+  err_ << "oblique verify: raster: answer " << index << " passes the properties but fails on "
+       << rasterizer_->renderer() << ": " << counts(r) << "\n";
+  if (!files.commit(log)) {
+    std::string why = log.str();
+    while (!why.empty() && why.back() == '\n') why.pop_back();
+    err_ << "oblique verify: the report could not be written: " << why << "\n";
+    return Verdict::error;
+  }
+  err_ << "report: " << (std::filesystem::path(options_.report_dir) / (stem + ".md")).string()
+       << "\n";
+  return Verdict::violated;
+}
+
+template class RasterLook<float>;
+template class RasterLook<double>;
+
+bool is_raster_report(const protocol::JsonValue& report) {
+  const protocol::JsonValue* type = report.find("type");
+  return type && type->is_string() && type->text == "raster";
+}
+
+Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonValue& report,
+                             std::ostream& out, std::ostream& err) {
+  auto fail = [&](const std::string& why) {
+    err << "oblique verify: --replay " << options.replay << ": " << why << "\n";
+    return Verdict::error;
+  };
+  const protocol::JsonValue* request = report.find("request");
+  const protocol::JsonValue* convention = report.find("convention");
+  const protocol::JsonValue* buffer = report.find("buffer");
+  const protocol::JsonValue* size = report.find("size");
+  const protocol::JsonValue* seed = report.find("seed");
+  if (!request || !request->is_string()) return fail("\"request\" must be a string");
+  const std::optional<Convention> parsed =
+      convention && convention->is_string() ? parse_convention(convention->text) : std::nullopt;
+  if (!parsed) return fail("\"convention\" is not a convention");
+  std::vector<double> m, c;
+  std::string error;
+  if (!report_numbers<double>(report, "projection", 16, m, error) ||
+      !report_numbers<double>(report, "plane", 4, c, error))
+    return fail(error);
+  VerifyOptions o = options;
+  o.raster_buffer =
+      buffer && buffer->text == "float32" ? DepthBuffer::float32 : DepthBuffer::fixed24;
+  if (size && size->is_number()) o.raster_size = std::atoi(size->text.c_str());
+  const std::uint64_t frame_seed =
+      seed && seed->is_number() ? std::strtoull(seed->text.c_str(), nullptr, 10) : 1;
+  VerifyCase<double> v;
+  for (int i = 0; i < 16; ++i) v.c.matrix(i / 4, i % 4) = m[static_cast<std::size_t>(i)];
+  for (int i = 0; i < 4; ++i) v.c.plane(i) = c[static_cast<std::size_t>(i)];
+  v.c.convention = *parsed;
+  protocol::ChildProcess child(options.command);
+  if (const Expected<Done> started = child.start(); !started)
+    return fail("cannot start the implementation: " + started.error());
+  std::vector<std::string> lines;
+  const auto timeout =
+      std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000));
+  const auto outcome =
+      child.exchange(request->text + "\n", 1, lines, timeout, protocol::Clock::now() + timeout);
+  child.stop();
+  if (outcome != protocol::ChildProcess::Outcome::done)
+    return fail("the implementation did not answer");
+  RasterLook<double> look(o, out, err);
+  if (!look.open()) return Verdict::inconclusive;
+  const std::optional<raster::Result> r = look.draw(v, lines.front(), frame_seed);
+  if (!r) return fail("the answer holds no matrix to draw: " + lines.front());
+  out << "oblique verify: raster: " << raster::outcome_name(r->outcome) << ": "
+      << (r->outcome == raster::Outcome::fail ? counts(*r) : r->why)
+      << "\n  answer: " << lines.front() << "\n";
+  return r->outcome == raster::Outcome::pass   ? Verdict::holds
+         : r->outcome == raster::Outcome::fail ? Verdict::violated
+                                               : Verdict::inconclusive;
+}
+
+}  // namespace oblique::verify

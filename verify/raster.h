@@ -1,0 +1,65 @@
+// oblique verify --rasterize: a sample of the answers (one in --raster-every, and the first) and
+// every finding's answer drawn on a real rasterizer (oblique::raster). An answer that passes the
+// properties but fails on the rasterizer is a finding of its own kind, reported with its pixels;
+// --replay of that report asks the program again and draws its answer. Internal to
+// oblique::verify.
+#pragma once
+
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cases.h"
+#include "oblique/protocol/json.h"
+#include "oblique/raster/raster.h"
+#include "oblique/verify/verifier.h"
+
+namespace oblique::verify {
+
+template <class T>
+class RasterLook {
+ public:
+  RasterLook(const VerifyOptions& options, std::ostream& out, std::ostream& err);
+
+  /// Opens the rasterizer (its self-checks included); false, said on err, when it cannot judge.
+  bool open();
+
+  /// The answer line to case `v` (sent as `request`), the `index`-th answer of the run from 1:
+  /// drawn when its turn comes. A failure on the rasterizer is reported (Verdict::violated), a
+  /// tripped self-check ends the run (Verdict::inconclusive); otherwise nullopt.
+  std::optional<Verdict> sample(const VerifyCase<T>& v, const std::string& request,
+                                const std::string& answer, long index);
+
+  /// A finding's answer drawn too; one line on err says what the rasterizer made of it.
+  void finding(const VerifyCase<T>& v, const std::string& answer);
+
+  /// One line for a run's end: answers drawn, all passed, the renderer, the worst depth error.
+  void summary() const;
+
+  /// The answer line to case `v` drawn (frame seed `seed`); nullopt where it holds no matrix, the
+  /// case has no answer to judge against, or the frame could not be drawn.
+  std::optional<raster::Result> draw(const VerifyCase<T>& v, const std::string& answer,
+                                     std::uint64_t seed);
+
+ private:
+  Verdict report(const VerifyCase<T>& v, const std::string& request, const std::string& answer,
+                 const raster::Result& result, long index);
+
+  const VerifyOptions& options_;
+  std::ostream& out_;
+  std::ostream& err_;
+  std::shared_ptr<raster::Rasterizer> rasterizer_;
+  long drawn_ = 0, not_drawn_ = 0;
+  double worst_depth_ratio_ = 0;
+};
+
+/// Whether a report's JSON is a raster finding's ("type": "raster").
+bool is_raster_report(const protocol::JsonValue& report);
+
+/// --replay of a raster finding's report: the request sent again, the answer drawn. Exit 0 holds,
+/// 1 fails again, 3 inconclusive, 2 when the report or the program cannot be read.
+Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonValue& report,
+                             std::ostream& out, std::ostream& err);
+
+}  // namespace oblique::verify
