@@ -171,8 +171,8 @@ exact::Rational row3_entry_bound(const exact::Rational& abs_ac, const exact::Rat
 //    2^-40): it is widened by kRasterBandSlack.
 constexpr int kRasterRowRoundings = 5;
 constexpr int kRasterDivideRoundings = 2;
-constexpr double kRasterUnit = 0x1p-24;          ///< float32's u
-constexpr double kRasterFlush = 0x1p-126;        ///< FLT_MIN: what a flushed subnormal loses
+constexpr double kRasterUnit = 0x1p-24;    ///< float32's u
+constexpr double kRasterFlush = 0x1p-126;  ///< FLT_MIN: what a flushed subnormal loses
 constexpr double kRasterBandSlack = 1 + 0x1p-40;
 constexpr double kRasterFixed24Quantum = 1.0 / 16777215.0;
 
