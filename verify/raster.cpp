@@ -80,16 +80,20 @@ bool RasterLook<T>::open() {
 
 template <class T>
 std::optional<raster::Result> RasterLook<T>::draw(const VerifyCase<T>& v, const std::string& answer,
-                                                  std::uint64_t seed) {
+                                                  std::uint64_t seed, std::string* why) {
+  auto not_drawn = [why](std::string reason) {
+    if (why) *why = std::move(reason);
+    return std::nullopt;
+  };
   const Expected<protocol::TypedAnswer<T>> read = protocol::read_answer<T>(answer);
-  if (!read || read->status != Status::ok) return std::nullopt;
+  if (!read || read->status != Status::ok) return not_drawn("the answer holds no matrix");
   const std::optional<Drawable> d = drawable<T>(v.c.matrix, v.c.plane, v.c.convention);
-  if (!d) return std::nullopt;
+  if (!d) return not_drawn("the case has no answer to judge a matrix against");
   raster::Result r = rasterizer_->check(d->m, d->c, read->projection.template cast<double>(),
                                         d->reference, v.c.convention, options_.raster_buffer, seed);
   if (!r.rendered) {
     ++not_drawn_;
-    return std::nullopt;
+    return not_drawn(r.why);
   }
   ++drawn_;
   worst_depth_ratio_ = std::max(worst_depth_ratio_, r.worst_depth_ratio);
@@ -113,10 +117,10 @@ std::optional<Verdict> RasterLook<T>::sample(const VerifyCase<T>& v, const std::
 
 template <class T>
 void RasterLook<T>::finding(const VerifyCase<T>& v, const std::string& answer) {
-  const std::optional<raster::Result> r = draw(v, answer, options_.seed);
+  std::string why;
+  const std::optional<raster::Result> r = draw(v, answer, options_.seed, &why);
   if (!r) {
-    err_ << "oblique verify: raster: the finding's answer is not drawn (no matrix, or no answer "
-            "to judge it against)\n";
+    err_ << "oblique verify: raster: the finding's answer is not drawn: " << why << "\n";
     return;
   }
   err_ << "oblique verify: raster: the finding's answer on the rasterizer: "
@@ -279,8 +283,9 @@ Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonV
     return fail("the implementation did not answer");
   RasterLook<double> look(o, out, err);
   if (!look.open()) return Verdict::inconclusive;
-  const std::optional<raster::Result> r = look.draw(v, lines.front(), frame_seed);
-  if (!r) return fail("the answer holds no matrix to draw: " + lines.front());
+  std::string why;
+  const std::optional<raster::Result> r = look.draw(v, lines.front(), frame_seed, &why);
+  if (!r) return fail(why + ": " + lines.front());
   out << "oblique verify: raster: " << raster::outcome_name(r->outcome) << ": "
       << (r->outcome == raster::Outcome::fail ? counts(*r) : r->why)
       << "\n  answer: " << lines.front() << "\n";

@@ -38,9 +38,9 @@ class RasterLook {
   void summary() const;
 
   /// The answer line to case `v` drawn (frame seed `seed`); nullopt where it holds no matrix, the
-  /// case has no answer to judge against, or the frame could not be drawn.
+  /// case has no answer to judge against, or the frame could not be drawn (`why` says which).
   std::optional<raster::Result> draw(const VerifyCase<T>& v, const std::string& answer,
-                                     std::uint64_t seed);
+                                     std::uint64_t seed, std::string* why = nullptr);
 
  private:
   Verdict report(const VerifyCase<T>& v, const std::string& request, const std::string& answer,
