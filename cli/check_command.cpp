@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.h"
 #include "oblique/protocol/protocol.h"
@@ -107,6 +108,25 @@ int rasterize(const CheckSettings& settings, const scene::Scene& scene,
                     r.outcome == raster::Outcome::fail ? "FAIL" : "inconclusive:", r.why.c_str());
     }
     text += line;
+    // The depth buffer along the view axis, measured, beside check's analytic figure.
+    std::optional<raster::AxisDepth> axis;
+    if (r.rendered) {
+      if (const auto measured =
+              rasterizer.axis_depth(m, c, answer, scene.convention, check.depth_buffer)) {
+        axis = *measured;
+        std::snprintf(line, sizeof line,
+                      "  depth along the view axis, measured: stored in [%.9g, %.9g], %s values "
+                      "of %s samples: %.4f bits lost",
+                      axis->low, axis->high, with_commas(static_cast<long>(axis->values)).c_str(),
+                      with_commas(axis->drawn).c_str(), axis->bits_lost);
+        text += line;
+        if (pass.depth) {
+          std::snprintf(line, sizeof line, " (analytic %.4f)", pass.depth->bits_lost);
+          text += line;
+        }
+        text += "\n";
+      }
+    }
     for (const raster::Flag& f : r.examples) {
       std::snprintf(line, sizeof line,
                     "  %s: sample %ld at (%.9g, %.9g, %.9g), C . v = %.17g, band %.3g\n",
@@ -122,7 +142,8 @@ int rasterize(const CheckSettings& settings, const scene::Scene& scene,
             ", \"drawn_behind_c\": " + std::to_string(r.drawn_behind_c) +
             ", \"clipped_kept\": " + std::to_string(r.clipped_kept) +
             ", \"wrong_pixel\": " + std::to_string(r.wrong_pixel) +
-            ", \"depth_bits\": " + protocol::json_number(r.depth.bits) + "}";
+            ", \"depth_bits\": " + protocol::json_number(r.depth.bits) + ", \"axis_bits_lost\": " +
+            (axis ? protocol::json_number(axis->bits_lost) : std::string("null")) + "}";
     first = false;
     if (r.outcome == raster::Outcome::fail) status = 1;
     if (r.outcome == raster::Outcome::inconclusive && status == 0) status = kInconclusive;

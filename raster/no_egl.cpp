@@ -22,6 +22,11 @@ Expected<Readback> Rasterizer::render(const Frame&, const Eigen::Matrix4d&, Conv
   return Expected<Readback>::failure("no EGL in this build");
 }
 
+Expected<AxisDepth> Rasterizer::axis_depth(const Eigen::Matrix4d&, const Eigen::Vector4d&,
+                                           const Eigen::Matrix4d&, Convention, DepthBuffer) {
+  return Expected<AxisDepth>::failure("no EGL in this build");
+}
+
 Result Rasterizer::check(const Eigen::Matrix4d&, const Eigen::Vector4d&, const Eigen::Matrix4d&,
                          const Eigen::Matrix4d&, Convention, DepthBuffer, std::uint64_t) {
   Result r;

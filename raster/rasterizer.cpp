@@ -25,9 +25,16 @@ const char* const kVertexShader = R"(#version 450 core
 layout(location = 0) in vec4 point;
 layout(location = 1) in uint sample_id;
 uniform mat4 projection;
+uniform int placed_by_id;  // 1: x and y from the sample's pixel (id - 1), depth from the point
+uniform int size;
 flat out uint id;
 void main() {
   gl_Position = projection * point;
+  if (placed_by_id != 0) {
+    uint k = sample_id - 1u;
+    vec2 pixel = vec2(float(k % uint(size)), float(k / uint(size))) + 0.5;
+    gl_Position.xy = (pixel / float(size) * 2.0 - 1.0) * gl_Position.w;
+  }
   gl_PointSize = 1.0;
   id = sample_id;
 }
@@ -55,7 +62,7 @@ struct Rasterizer::State {
   std::string renderer;
   GLuint program = 0, vertex_array = 0, buffers[2] = {0, 0};
   GLuint framebuffer = 0, id_buffer = 0, depth_buffer = 0;
-  GLint projection_at = -1;
+  GLint projection_at = -1, placed_by_id_at = -1, size_at = -1;
   DepthBuffer depth_format = DepthBuffer::fixed24;
   int allocated = 0;  ///< the buffers' size (0: none yet)
 
@@ -131,6 +138,8 @@ struct Rasterizer::State {
     glGetProgramiv(program, GL_LINK_STATUS, &linked);
     if (!linked) return Expected<Done>::failure("the shaders did not link");
     projection_at = glGetUniformLocation(program, "projection");
+    placed_by_id_at = glGetUniformLocation(program, "placed_by_id");
+    size_at = glGetUniformLocation(program, "size");
     glGenVertexArrays(1, &vertex_array);
     glGenBuffers(2, buffers);
     glGenFramebuffers(1, &framebuffer);
@@ -163,6 +172,67 @@ struct Rasterizer::State {
     depth_format = format;
     return Done{};
   }
+
+  /// Draws `points` (sample ids `ids`) with M' = `answer` into a `size` x `size` frame and reads
+  /// ids and depths back; `placed_by_id`: each point in the pixel of its id, its depth its own.
+  Expected<Readback> draw(const std::vector<Eigen::Vector4f>& points,
+                          const std::vector<std::uint32_t>& ids, int size,
+                          const Eigen::Matrix4d& answer, Convention convention, DepthBuffer buffer,
+                          bool placed_by_id) {
+    State& s = *this;
+    const Eigen::Matrix4f projection = answer.cast<float>();
+    if (!projection.allFinite())
+      return Expected<Readback>::failure(
+          "the answer does not fit float32 (an entry beyond its range or not finite)");
+    if (!eglMakeCurrent(s.display, EGL_NO_SURFACE, EGL_NO_SURFACE, s.context))
+      return Expected<Readback>::failure(egl_error("eglMakeCurrent"));
+    if (const Expected<Done> ready = s.prepare(size, buffer); !ready)
+      return Expected<Readback>::failure(ready.error());
+    glViewport(0, 0, size, size);
+    glClipControl(GL_LOWER_LEFT,
+                  convention == Convention::gl ? GL_NEGATIVE_ONE_TO_ONE : GL_ZERO_TO_ONE);
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_MULTISAMPLE);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glEnable(GL_DEPTH_TEST);
+    // Reversed Z as engines set it: cleared to 0, GL_GEQUAL; the others cleared to 1, GL_LEQUAL.
+    const bool reversed = convention == Convention::reversed_z;
+    glDepthFunc(reversed ? GL_GEQUAL : GL_LEQUAL);
+    const GLuint no_id[4] = {0, 0, 0, 0};
+    const GLfloat clear_depth = reversed ? 0.0f : 1.0f;
+    glClearBufferuiv(GL_COLOR, 0, no_id);
+    glClearBufferfv(GL_DEPTH, 0, &clear_depth);
+    glUseProgram(s.program);
+    glUniformMatrix4fv(s.projection_at, 1, GL_FALSE, projection.data());  // column-major
+    glUniform1i(s.placed_by_id_at, placed_by_id ? 1 : 0);
+    glUniform1i(s.size_at, size);
+    glBindVertexArray(s.vertex_array);
+    glBindBuffer(GL_ARRAY_BUFFER, s.buffers[0]);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(points.size() * sizeof(Eigen::Vector4f)),
+                 points.data(), GL_STREAM_DRAW);
+    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Eigen::Vector4f), nullptr);
+    glEnableVertexAttribArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, s.buffers[1]);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(ids.size() * sizeof(std::uint32_t)),
+                 ids.data(), GL_STREAM_DRAW);
+    glVertexAttribIPointer(1, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+    glEnableVertexAttribArray(1);
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(points.size()));
+    Readback out;
+    const std::size_t count = static_cast<std::size_t>(size) * size;
+    out.ids.resize(count);
+    out.depths.resize(count);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(0, 0, size, size, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
+    glReadPixels(0, 0, size, size, GL_DEPTH_COMPONENT, GL_FLOAT, out.depths.data());
+    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+      char line[64];
+      std::snprintf(line, sizeof line, "rendering the frame: GL error 0x%04x", e);
+      return Expected<Readback>::failure(line);
+    }
+    return out;
+  }
 };
 
 Rasterizer::Rasterizer(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -177,15 +247,6 @@ const Options& Rasterizer::options() const {
 
 Expected<Readback> Rasterizer::render(const Frame& frame, const Eigen::Matrix4d& answer,
                                       Convention convention, DepthBuffer buffer) {
-  State& s = *state_;
-  const Eigen::Matrix4f projection = answer.cast<float>();
-  if (!projection.allFinite())
-    return Expected<Readback>::failure(
-        "the answer does not fit float32 (an entry beyond its range or not finite)");
-  if (!eglMakeCurrent(s.display, EGL_NO_SURFACE, EGL_NO_SURFACE, s.context))
-    return Expected<Readback>::failure(egl_error("eglMakeCurrent"));
-  if (const Expected<Done> ready = s.prepare(frame.size, buffer); !ready)
-    return Expected<Readback>::failure(ready.error());
   std::vector<Eigen::Vector4f> points;
   std::vector<std::uint32_t> ids;
   points.reserve(frame.points.size());
@@ -195,48 +256,42 @@ Expected<Readback> Rasterizer::render(const Frame& frame, const Eigen::Matrix4d&
     points.push_back(frame.points[k]);
     ids.push_back(static_cast<std::uint32_t>(k + 1));
   }
-  glViewport(0, 0, frame.size, frame.size);
-  glClipControl(GL_LOWER_LEFT,
-                convention == Convention::gl ? GL_NEGATIVE_ONE_TO_ONE : GL_ZERO_TO_ONE);
-  glDisable(GL_DEPTH_CLAMP);
-  glDisable(GL_MULTISAMPLE);
-  glEnable(GL_PROGRAM_POINT_SIZE);
-  glEnable(GL_DEPTH_TEST);
-  // Reversed Z as engines set it: cleared to 0, GL_GEQUAL; the others cleared to 1, GL_LEQUAL.
-  const bool reversed = convention == Convention::reversed_z;
-  glDepthFunc(reversed ? GL_GEQUAL : GL_LEQUAL);
-  const GLuint no_id[4] = {0, 0, 0, 0};
-  const GLfloat clear_depth = reversed ? 0.0f : 1.0f;
-  glClearBufferuiv(GL_COLOR, 0, no_id);
-  glClearBufferfv(GL_DEPTH, 0, &clear_depth);
-  glUseProgram(s.program);
-  glUniformMatrix4fv(s.projection_at, 1, GL_FALSE, projection.data());  // column-major
-  glBindVertexArray(s.vertex_array);
-  glBindBuffer(GL_ARRAY_BUFFER, s.buffers[0]);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(points.size() * sizeof(Eigen::Vector4f)),
-               points.data(), GL_STREAM_DRAW);
-  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Eigen::Vector4f), nullptr);
-  glEnableVertexAttribArray(0);
-  glBindBuffer(GL_ARRAY_BUFFER, s.buffers[1]);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(ids.size() * sizeof(std::uint32_t)),
-               ids.data(), GL_STREAM_DRAW);
-  glVertexAttribIPointer(1, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
-  glEnableVertexAttribArray(1);
-  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(points.size()));
-  Readback out;
-  const std::size_t count = static_cast<std::size_t>(frame.size) * frame.size;
-  out.ids.resize(count);
-  out.depths.resize(count);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glReadPixels(0, 0, frame.size, frame.size, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
-  glReadPixels(0, 0, frame.size, frame.size, GL_DEPTH_COMPONENT, GL_FLOAT, out.depths.data());
-  if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
-    char line[64];
-    std::snprintf(line, sizeof line, "rendering the frame: GL error 0x%04x", e);
-    return Expected<Readback>::failure(line);
+  return state_->draw(points, ids, frame.size, answer, convention, buffer, false);
+}
+
+Expected<AxisDepth> Rasterizer::axis_depth(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
+                                           const Eigen::Matrix4d& answer, Convention convention,
+                                           DepthBuffer buffer) {
+  const int size = state_->options.size;
+  const long count = static_cast<long>(size) * size;
+  // The axis, M^-1 (0, 0, z, 1) from the near face to the far one, as homogeneous points with
+  // w >= 0 (the far end a direction for an infinite projection); its kept part by C.
+  const Eigen::Matrix4d inverse = m.inverse();
+  const double z_near =
+      convention == Convention::reversed_z ? 1 : clip_depth_range(convention).z_low;
+  const double z_far = convention == Convention::reversed_z ? 0 : 1;
+  Eigen::Vector4d a = inverse * Eigen::Vector4d(0, 0, z_near, 1);
+  Eigen::Vector4d b = inverse * Eigen::Vector4d(0, 0, z_far, 1);
+  if (a.w() < 0) a = -a;
+  if (b.w() < 0) b = -b;
+  const double ca = c.dot(a), cb = c.dot(b);
+  if (ca < 0 && cb < 0)
+    return Expected<AxisDepth>::failure("the view axis never enters the kept region");
+  double s0 = 0, s1 = 1;
+  if (ca < 0) s0 = ca / (ca - cb);
+  if (cb < 0) s1 = ca / (ca - cb);
+  std::vector<Eigen::Vector4f> points(static_cast<std::size_t>(count));
+  std::vector<std::uint32_t> ids(static_cast<std::size_t>(count));
+  for (long k = 0; k < count; ++k) {
+    const double s = s0 + (s1 - s0) * (static_cast<double>(k) + 0.5) / static_cast<double>(count);
+    Eigen::Vector4d p = (1 - s) * a + s * b;
+    p /= p.cwiseAbs().maxCoeff();  // within float32's range whatever the distance
+    points[static_cast<std::size_t>(k)] = p.cast<float>();
+    ids[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(k + 1);
   }
-  return out;
+  const Expected<Readback> read = state_->draw(points, ids, size, answer, convention, buffer, true);
+  if (!read) return Expected<AxisDepth>::failure(read.error());
+  return measure_axis(*read, convention, buffer);
 }
 
 Result Rasterizer::check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,

@@ -108,6 +108,22 @@ Result judge_frame(const Frame& frame, const Readback& readback, const Eigen::Ma
                    const Eigen::Vector4d& c, const Eigen::Matrix4d& answer,
                    const Eigen::Matrix4d& reference, Convention convention, DepthBuffer buffer);
 
+/// The depth buffer's precision along the view axis, measured: the axis of M (M^-1 (0, 0, z, 1))
+/// where it is on C's kept side, one sample a pixel spread evenly over it, each drawn with its
+/// own depth (placed in its pixel by id). The depths stored span [low, high]: `values` buffer
+/// values, and `bits_lost` = log2(the buffer's values in [0, 1] / values), as `oblique check`'s
+/// analytic figure; `observed` distinct depths were read back from `drawn` samples.
+struct AxisDepth {
+  long drawn = 0;
+  long observed = 0;
+  double low = 0, high = 0;
+  double values = 0;
+  double bits_lost = 0;
+};
+
+/// AxisDepth from the read-back of an axis frame.
+AxisDepth measure_axis(const Readback& readback, Convention convention, DepthBuffer buffer);
+
 struct Options {
   Device device = Device::software;
   int size = 1000;  ///< the frame is size x size pixels, one sample each
@@ -133,6 +149,11 @@ class Rasterizer {
   /// back ids and depths; the error is one line.
   Expected<Readback> render(const Frame& frame, const Eigen::Matrix4d& answer,
                             Convention convention, DepthBuffer buffer);
+
+  /// The depth buffer's precision along M's view axis, measured with the answer M' (AxisDepth).
+  Expected<AxisDepth> axis_depth(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
+                                 const Eigen::Matrix4d& answer, Convention convention,
+                                 DepthBuffer buffer);
 
   /// make_frame(), render() and judge_frame() for the answer M' to (M, C); `reference` is the
   /// core's answer. A render that fails is an inconclusive result saying why.
