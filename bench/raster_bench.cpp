@@ -60,9 +60,11 @@ void raster_judge(benchmark::State& state) {
   const Pass p;
   const auto frame = oblique::raster::make_frame(p.m, p.c, p.answer, Convention::gl, kSize, 1);
   const auto readback = r->render(frame, p.answer, Convention::gl, DepthBuffer::fixed24);
+  const auto accepted = oblique::raster::accepted_row3(p.m, p.c, Convention::gl, 53);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(oblique::raster::judge_frame(
-        frame, *readback, p.m, p.c, p.answer, p.answer, Convention::gl, DepthBuffer::fixed24));
+    benchmark::DoNotOptimize(oblique::raster::judge_frame(frame, *readback, p.m, p.c, p.answer,
+                                                          p.answer, accepted, Convention::gl,
+                                                          DepthBuffer::fixed24));
   }
   state.SetItemsProcessed(state.iterations() * kSize * kSize);
 }

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <random>
 
+#include "oblique/properties/properties.h"
 #include "oblique/properties/tolerance.h"
 #include "oblique/raster/raster.h"
 
@@ -84,11 +85,17 @@ struct ClipTests {
   }
 };
 
-ClipTests clip_tests(const Matrix4d& m, const Vector4d& v, Convention convention) {
+/// The clip tests of `m` at v; with `accepted`, row 3 may be any that far from m's (an accepted
+/// answer's, accepted_row3()), shaded in float32 as well.
+ClipTests clip_tests(const Matrix4d& m, const Vector4d& v, Convention convention,
+                     const Vector4d* accepted = nullptr) {
   ClipTests out;
   const Bounded x = row(m, 0, v), y = row(m, 1, v);
   out.z = row(m, 2, v);
   out.w = row(m, 3, v);
+  if (accepted)
+    out.z.bound += (1 + tol::raster_row_gamma()) * accepted->cwiseAbs().dot(v.cwiseAbs()) *
+                   tol::kRasterBandSlack;
   const RowCombination n = near_rows(convention), f = far_rows(convention);
   out.tests[0] = clip_test(out.z, out.w, n.m3, n.m4);
   out.tests[1] = clip_test(out.z, out.w, f.m3, f.m4);
@@ -230,9 +237,51 @@ Frame make_frame(const Matrix4d& m, const Vector4d& c, const Matrix4d& reference
   return frame;
 }
 
+namespace {
+
+template <class T>
+std::optional<Vector4d> accepted_in(const Matrix4d& m, const Vector4d& c, Convention convention) {
+  const properties::Problem<T> problem(m.cast<T>(), c.cast<T>(), convention);
+  if (problem.exact_status() != Status::ok) return std::nullopt;
+  const std::optional<exact::Vec> bounds = problem.row3_bounds();
+  if (!bounds) return std::nullopt;
+  const std::optional<exact::Rational> scale = problem.scale_error();
+  const DepthRange range = clip_depth_range(convention);
+  // Property 1's allowance, u lambda max|C_j|, for lambda up to a (1 + scale).
+  const exact::Rational a = exact::Rational(range.z_high - range.z_low) / problem.corner_dot();
+  exact::Rational largest = 0;
+  for (int i = 0; i < 4; ++i) largest = std::max(largest, exact::abs(exact::to_rational(c(i))));
+  const exact::Rational allowance =
+      tolerance::unit_roundoff(tolerance::precision_bits<T>()) * a * (1 + *scale) * largest;
+  Vector4d out;
+  for (int i = 0; i < 4; ++i) {
+    // Rounded up: get_d truncates, so one part in 2^50 more, and the smallest double more.
+    const double b = properties::approx((*bounds)[i] + allowance);
+    out(i) = b * (1 + 0x1p-50) + std::numeric_limits<double>::denorm_min();
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<Vector4d> accepted_row3(const Matrix4d& m, const Vector4d& c, Convention convention,
+                                      int precision_bits) {
+  switch (precision_bits) {
+    case 24: return accepted_in<float>(m, c, convention);
+    case 64: return accepted_in<long double>(m, c, convention);
+    default: return accepted_in<double>(m, c, convention);
+  }
+}
+
 Result judge_frame(const Frame& frame, const Readback& readback, const Matrix4d& m,
                    const Vector4d& given_c, const Matrix4d& answer, const Matrix4d& reference,
-                   Convention convention, DepthBuffer buffer) {
+                   const std::optional<Vector4d>& accepted_given, Convention convention,
+                   DepthBuffer buffer) {
+  // The reference (the core's accurate answer) is itself within 2 ulps of the exact one.
+  std::optional<Vector4d> accepted = accepted_given;
+  if (accepted)
+    for (int i = 0; i < 4; ++i)
+      *accepted += Vector4d::Unit(i) * 4 * 0x1p-53 * std::abs(reference(2, i));
   const Vector4d c = scaled_plane(given_c);  // C . v and the bands as for C itself, scaled
   Result r;
   r.rendered = true;
@@ -297,30 +346,35 @@ Result judge_frame(const Frame& frame, const Readback& readback, const Matrix4d&
       note(flag);
       continue;
     }
-    // Against C: the band is what a correct answer's near plane, shaded in float32, cannot
-    // decide (its clip test's bound, over the scale of C in it), plus the judge's C . v.
-    const ClipTests correct = clip_tests(reference, v, convention);
-    flag.band =
-        (correct.tests[0].bound / scale + 8 * 0x1p-53 * c_magnitude) * tol::kRasterBandSlack;
-    const bool kept = flag.c_dot > flag.band && inside_original(m, v, convention);
-    bool decided = true;
-    if (drawn && flag.c_dot < -flag.band) {
-      ++r.drawn_behind_c;
-      flag.kind = Flag::Kind::drawn_behind_c;
-      note(flag);
-    } else if (std::abs(flag.c_dot) <= flag.band) {
-      decided = false;
-    } else if (kept) {
-      // Where a correct answer's far or side planes cannot be decided (its far plane touches the
-      // far corner Q), a clipped sample is no finding.
-      bool others = true;
-      for (int t = 1; t < 6; ++t) others = others && correct.tests[t].surely_positive();
-      if (!others) {
-        decided = false;
-      } else if (!drawn) {
-        ++r.clipped_kept;
-        flag.kind = Flag::Kind::clipped_kept;
+    // Against C: the band is what the near plane of any accepted answer, shaded in float32,
+    // cannot decide (the reference's clip test, widened by `accepted`, over the scale of C in
+    // it), plus the judge's own C . v. Without an accepted envelope nothing is decided.
+    bool decided = false, kept = false;
+    if (accepted) {
+      const ClipTests correct = clip_tests(reference, v, convention, &*accepted);
+      flag.band =
+          (correct.tests[0].bound / scale + 8 * 0x1p-53 * c_magnitude) * tol::kRasterBandSlack;
+      kept = flag.c_dot > flag.band && inside_original(m, v, convention);
+      decided = true;
+      if (drawn && flag.c_dot < -flag.band) {
+        ++r.drawn_behind_c;
+        flag.kind = Flag::Kind::drawn_behind_c;
         note(flag);
+      } else if (std::abs(flag.c_dot) <= flag.band) {
+        decided = false;
+      } else if (kept) {
+        // Where an accepted answer's far or side planes cannot be decided (its far plane touches
+        // the far corner Q, and its scale a is known only so well), a clipped sample is no
+        // finding.
+        bool others = true;
+        for (int t = 1; t < 6; ++t) others = others && correct.tests[t].surely_positive();
+        if (!others) {
+          decided = false;
+        } else if (!drawn) {
+          ++r.clipped_kept;
+          flag.kind = Flag::Kind::clipped_kept;
+          note(flag);
+        }
       }
     }
     if (!decided) ++r.undecidable;

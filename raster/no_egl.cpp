@@ -28,7 +28,7 @@ Expected<AxisDepth> Rasterizer::axis_depth(const Eigen::Matrix4d&, const Eigen::
 }
 
 Result Rasterizer::check(const Eigen::Matrix4d&, const Eigen::Vector4d&, const Eigen::Matrix4d&,
-                         const Eigen::Matrix4d&, Convention, DepthBuffer, std::uint64_t) {
+                         const Eigen::Matrix4d&, Convention, DepthBuffer, std::uint64_t, int) {
   Result r;
   r.why = "no EGL in this build";
   return r;

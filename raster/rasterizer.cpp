@@ -296,7 +296,8 @@ Expected<AxisDepth> Rasterizer::axis_depth(const Eigen::Matrix4d& m, const Eigen
 
 Result Rasterizer::check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
                          const Eigen::Matrix4d& answer, const Eigen::Matrix4d& reference,
-                         Convention convention, DepthBuffer buffer, std::uint64_t seed) {
+                         Convention convention, DepthBuffer buffer, std::uint64_t seed,
+                         int precision_bits) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const Frame frame = make_frame(m, c, reference, convention, state_->options.size, seed);
@@ -307,7 +308,8 @@ Result Rasterizer::check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
     r.why = "not rendered: " + readback.error();
     return r;
   }
-  Result r = judge_frame(frame, *readback, m, c, answer, reference, convention, buffer);
+  Result r = judge_frame(frame, *readback, m, c, answer, reference,
+                         accepted_row3(m, c, convention, precision_bits), convention, buffer);
   r.render_seconds = std::chrono::duration<double>(rendered - start).count();
   r.judge_seconds = std::chrono::duration<double>(Clock::now() - rendered).count();
   return r;

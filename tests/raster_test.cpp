@@ -162,8 +162,10 @@ TEST(RasterJudge, aRendererThatDrawsEverythingIsInconclusive) {
   all.depths.assign(frame.points.size(), 0.5f);
   for (std::size_t p = 0; p < frame.points.size(); ++p)
     all.ids[p] = frame.placed[p] ? static_cast<std::uint32_t>(p + 1) : 0;
-  const auto r = oblique::raster::judge_frame(frame, all, k.m, k.c, answer, answer, Convention::gl,
-                                              DepthBuffer::fixed24);
+  const auto r =
+      oblique::raster::judge_frame(frame, all, k.m, k.c, answer, answer,
+                                   oblique::raster::accepted_row3(k.m, k.c, Convention::gl, 53),
+                                   Convention::gl, DepthBuffer::fixed24);
   EXPECT_EQ(r.outcome, Outcome::inconclusive) << r.why;
   EXPECT_GT(r.renderer_disagrees, 0);
   EXPECT_EQ(r.drawn_behind_c, 0);  // never counted against the answer
@@ -177,8 +179,10 @@ TEST(RasterJudge, oneIdInTwoPixelsIsInconclusive) {
   none.ids.assign(frame.points.size(), 0);
   none.depths.assign(frame.points.size(), 1.0f);
   none.ids[0] = none.ids[1] = 5;
-  const auto r = oblique::raster::judge_frame(frame, none, k.m, k.c, answer, answer,
-                                              Convention::zero_one, DepthBuffer::float32);
+  const auto r = oblique::raster::judge_frame(
+      frame, none, k.m, k.c, answer, answer,
+      oblique::raster::accepted_row3(k.m, k.c, Convention::zero_one, 53), Convention::zero_one,
+      DepthBuffer::float32);
   EXPECT_EQ(r.outcome, Outcome::inconclusive) << r.why;
   EXPECT_EQ(r.ids_inconsistent, 1);
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <ostream>
 #include <sstream>
 
@@ -90,7 +91,8 @@ std::optional<raster::Result> RasterLook<T>::draw(const VerifyCase<T>& v, const 
   const std::optional<Drawable> d = drawable<T>(v.c.matrix, v.c.plane, v.c.convention);
   if (!d) return not_drawn("the case has no answer to judge a matrix against");
   raster::Result r = rasterizer_->check(d->m, d->c, read->projection.template cast<double>(),
-                                        d->reference, v.c.convention, options_.raster_buffer, seed);
+                                        d->reference, v.c.convention, options_.raster_buffer, seed,
+                                        std::numeric_limits<T>::digits);
   if (!r.rendered) {
     ++not_drawn_;
     return not_drawn(r.why);

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -102,11 +103,25 @@ struct Result {
   double render_seconds = 0, judge_seconds = 0;
 };
 
+/// What the properties accept of an answer's third row when it is computed in a type of
+/// `precision_bits` (24: float, 53: double, 64: long double) from M and C (exactly representable
+/// there): per entry, the bound on |M'_3i - exact M'_3i| (properties' Problem::row3_bounds(): the
+/// entries' rounding and the error of the scale a, kappa-dependent), widened by property 1's
+/// allowance (u a max|C_j|) and the reference's own 2 ulps, in doubles rounded up. nullopt where
+/// no bound exists: C lies within rounding of the far corner.
+std::optional<Eigen::Vector4d> accepted_row3(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
+                                             Convention convention, int precision_bits);
+
 /// Judges a frame's read-back for the answer M' (`answer`), against C, the original M and the
-/// correct answer `reference` (the bands are a correct answer's), in `convention` and `buffer`.
+/// correct answer `reference`, in `convention` and `buffer`. The bands are what float32 shading
+/// of any answer the properties accept cannot decide: the reference's rows, widened by
+/// `accepted` (accepted_row3()); where that is nullopt, nothing is decided against C or the
+/// volume (every placed sample counts as within a band), and only the self-checks and the pixels
+/// are judged.
 Result judge_frame(const Frame& frame, const Readback& readback, const Eigen::Matrix4d& m,
                    const Eigen::Vector4d& c, const Eigen::Matrix4d& answer,
-                   const Eigen::Matrix4d& reference, Convention convention, DepthBuffer buffer);
+                   const Eigen::Matrix4d& reference, const std::optional<Eigen::Vector4d>& accepted,
+                   Convention convention, DepthBuffer buffer);
 
 /// The depth buffer's precision along the view axis, measured: the axis of M (M^-1 (0, 0, z, 1))
 /// where it is on C's kept side, one sample a pixel spread evenly over it, each drawn with its
@@ -155,11 +170,12 @@ class Rasterizer {
                                  const Eigen::Matrix4d& answer, Convention convention,
                                  DepthBuffer buffer);
 
-  /// make_frame(), render() and judge_frame() for the answer M' to (M, C); `reference` is the
-  /// core's answer. A render that fails is an inconclusive result saying why.
+  /// make_frame(), render() and judge_frame() for the answer M' to (M, C), computed in a type
+  /// of `precision_bits` (accepted_row3()); `reference` is the core's answer. A render that fails
+  /// is an inconclusive result saying why.
   Result check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c, const Eigen::Matrix4d& answer,
                const Eigen::Matrix4d& reference, Convention convention, DepthBuffer buffer,
-               std::uint64_t seed = 1);
+               std::uint64_t seed = 1, int precision_bits = 53);
 
  private:
   struct State;
