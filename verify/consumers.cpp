@@ -293,19 +293,9 @@ class ConsumerRun {
           " | " + options_.command + "\n```\n";
     files.open(stem + ".md") << md;
     files.open(stem + ".json") << report_json(check);
-    std::ostringstream log;
-    const bool written = files.commit(log);
     err_ << "oblique verify: "
          << (c.lost ? c.lost->what : "violated: " + properties::describe(c.finding)) << "\n";
-    if (!written) {
-      std::string why = log.str();
-      while (!why.empty() && why.back() == '\n') why.pop_back();
-      err_ << "oblique verify: the report could not be written: " << why << "\n";
-      return Verdict::error;
-    }
-    err_ << "report: " << (std::filesystem::path(options_.report_dir) / (stem + ".md")).string()
-         << "\n";
-    return Verdict::violated;
+    return commit_report(files, stem, err_);
   }
 
   const VerifyOptions& options_;

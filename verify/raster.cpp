@@ -220,18 +220,9 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
       << ", \"projection\": " << projection << "], \"plane\": " << plane
       << "], \"request\": " << protocol::json_string(request)
       << ", \"answer\": " << protocol::json_string(answer) << "}\n";
-  std::ostringstream log;
   err_ << "oblique verify: raster: answer " << index << " passes the properties but fails on "
        << rasterizer_->renderer() << ": " << counts(r) << "\n";
-  if (!files.commit(log)) {
-    std::string why = log.str();
-    while (!why.empty() && why.back() == '\n') why.pop_back();
-    err_ << "oblique verify: the report could not be written: " << why << "\n";
-    return Verdict::error;
-  }
-  err_ << "report: " << (std::filesystem::path(options_.report_dir) / (stem + ".md")).string()
-       << "\n";
-  return Verdict::violated;
+  return commit_report(files, stem, err_);
 }
 
 template class RasterLook<float>;

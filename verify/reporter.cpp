@@ -235,6 +235,18 @@ std::string rerun_command(const VerifyOptions& options) {
   return command;
 }
 
+Verdict commit_report(report::ReportFiles& files, const std::string& stem, std::ostream& err) {
+  std::ostringstream log;
+  if (!files.commit(log)) {
+    std::string why = log.str();
+    while (!why.empty() && why.back() == '\n') why.pop_back();
+    err << "oblique verify: the report could not be written: " << why << "\n";
+    return Verdict::error;
+  }
+  err << "report: " << (files.dir() / (stem + ".md")).string() << "\n";
+  return Verdict::violated;
+}
+
 template <class T>
 std::string Reporter<T>::replay_run_command() const {
   return rerun_command(options_);

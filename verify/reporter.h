@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cases.h"
+#include "oblique/report/report_files.h"
 #include "oblique/verify/verifier.h"
 #include "session.h"
 
@@ -16,6 +17,10 @@ namespace oblique::verify {
 
 /// The command that runs `options`' run again: every flag it was given, and its seed.
 std::string rerun_command(const VerifyOptions& options);
+
+/// Commits a report staged in `files` (DIR/STEM.md and the rest) and says on `err` where it is,
+/// or on one line why it could not be written: Verdict::violated, or Verdict::error.
+Verdict commit_report(report::ReportFiles& files, const std::string& stem, std::ostream& err);
 
 /// --keep-going: one report per kind of finding (property x family x place).
 struct Kind {
