@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "oblique/raster/raster.h"
 #include "oblique/report/accuracy_report.h"
 #include "oblique/report/depth_report.h"
 
@@ -15,6 +16,7 @@ void setup_report(CLI::App& app, int& exit_code) {
     bool quiet = false;
     oblique::report::DepthOptions depth;
     std::string depth_out = "report-out";
+    bool depth_rasterize = false;
   };
   auto settings = std::make_shared<Settings>();
   CLI::App* report =
@@ -49,6 +51,11 @@ void setup_report(CLI::App& app, int& exit_code) {
       "and the bits of a 24-bit fixed-point and a 32-bit float depth buffer still used along view "
       "directions. Writes figure5.csv, depth_bits.csv, depth.md and (with gnuplot) figure5.png.");
   depth->add_option("--out", settings->depth_out, "Output directory")->capture_default_str();
+  depth->add_flag("--rasterize", settings->depth_rasterize,
+                  "Also measure Figure 5 on llvmpipe (EGL + OpenGL 4.5): each gl matrix draws the "
+                  "view axis's point at infinity and its stored depth is read back; adds "
+                  "figure5_measured.png and a z_max_measured column. Exit 3 when the rasterizer "
+                  "cannot judge");
   depth->add_option("--far", settings->depth.far_distance, "Far distance of the frustum")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -61,7 +68,36 @@ void setup_report(CLI::App& app, int& exit_code) {
       exit_code = 2;
       return;
     }
-    const auto measured = oblique::report::measure_depth(options);
+    auto measured = oblique::report::measure_depth(options);
+    if (settings->depth_rasterize) {
+      // Figure 5 on llvmpipe: each matrix draws the axis's point at infinity into a float depth
+      // buffer (oblique::raster::Rasterizer::stored_depths()).
+      const auto opened =
+          oblique::raster::Rasterizer::open({oblique::raster::Device::software, 16});
+      std::string error = opened ? "" : opened.error();
+      const auto measure =
+          [&](const std::vector<Eigen::Matrix4d>& matrices,
+              std::string& why) -> std::optional<std::vector<std::optional<double>>> {
+        std::vector<std::optional<double>> out;
+        const std::vector<Eigen::Vector4d> axis_end = {Eigen::Vector4d(0, 0, -1, 0)};
+        for (const Eigen::Matrix4d& m : matrices) {
+          const auto depths = (*opened)->stored_depths(m, axis_end, oblique::Convention::gl,
+                                                       oblique::DepthBuffer::float32);
+          if (!depths) {
+            why = depths.error();
+            return std::nullopt;
+          }
+          out.push_back(depths->front());
+        }
+        return out;
+      };
+      if (!opened ||
+          !oblique::report::add_measured(measured, measure, (*opened)->renderer(), error)) {
+        std::cerr << "oblique report depth: --rasterize: inconclusive: " << error << "\n";
+        exit_code = 3;
+        return;
+      }
+    }
     exit_code = print_paths(oblique::report::write_depth_report(measured, options, std::cerr));
   });
 }

@@ -27,6 +27,11 @@ Expected<AxisDepth> Rasterizer::axis_depth(const Eigen::Matrix4d&, const Eigen::
   return Expected<AxisDepth>::failure("no EGL in this build");
 }
 
+Expected<std::vector<std::optional<double>>> Rasterizer::stored_depths(
+    const Eigen::Matrix4d&, const std::vector<Eigen::Vector4d>&, Convention, DepthBuffer) {
+  return Expected<std::vector<std::optional<double>>>::failure("no EGL in this build");
+}
+
 Result Rasterizer::check(const Eigen::Matrix4d&, const Eigen::Vector4d&, const Eigen::Matrix4d&,
                          const Eigen::Matrix4d&, Convention, DepthBuffer, std::uint64_t, int) {
   Result r;

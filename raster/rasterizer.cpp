@@ -294,6 +294,28 @@ Expected<AxisDepth> Rasterizer::axis_depth(const Eigen::Matrix4d& m, const Eigen
   return measure_axis(*read, convention, buffer);
 }
 
+Expected<std::vector<std::optional<double>>> Rasterizer::stored_depths(
+    const Eigen::Matrix4d& answer, const std::vector<Eigen::Vector4d>& points,
+    Convention convention, DepthBuffer buffer) {
+  using Depths = Expected<std::vector<std::optional<double>>>;
+  const int size = state_->options.size;
+  if (points.size() > static_cast<std::size_t>(size) * size)
+    return Depths::failure("more points than the frame has pixels");
+  std::vector<Eigen::Vector4f> drawn(points.size());
+  std::vector<std::uint32_t> ids(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double largest = points[k].cwiseAbs().maxCoeff();
+    drawn[k] = (largest > 0 ? Eigen::Vector4d(points[k] / largest) : points[k]).cast<float>();
+    ids[k] = static_cast<std::uint32_t>(k + 1);
+  }
+  const Expected<Readback> read = state_->draw(drawn, ids, size, answer, convention, buffer, true);
+  if (!read) return Depths::failure(read.error());
+  std::vector<std::optional<double>> out(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (read->ids[k] == k + 1) out[k] = read->depths[k];
+  return out;
+}
+
 Result Rasterizer::check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
                          const Eigen::Matrix4d& answer, const Eigen::Matrix4d& reference,
                          Convention convention, DepthBuffer buffer, std::uint64_t seed,

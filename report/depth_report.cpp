@@ -105,6 +105,7 @@ DepthReport measure_depth(const DepthOptions& options) {
         if (convention == Convention::gl) {
           p.answered = true;
           p.z_max_matrix = static_cast<double>(limit);
+          p.matrix = m;
           // Eq. 19 with a = 2 / (C . Q) read off the matrix: a C = M'_3 + M_4.
           const double a = (m(2, 2) + m(3, 2)) / c.z();
           p.z_max_eq19 =
@@ -176,6 +177,32 @@ DepthReport measure_depth(const DepthOptions& options) {
   return report;
 }
 
+bool add_measured(DepthReport& report, const AxisLimitMeasure& measure, const std::string& renderer,
+                  std::string& error) {
+  std::vector<Eigen::Matrix4d> matrices;
+  std::vector<Figure5Point*> points;
+  for (Figure5Point& p : report.figure5) {
+    if (!p.answered) continue;
+    matrices.push_back(p.matrix);
+    points.push_back(&p);
+  }
+  const auto depths = measure(matrices, error);
+  if (!depths || depths->size() != matrices.size()) {
+    if (error.empty()) error = "the rasterizer measured no depth";
+    return false;
+  }
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    Figure5Point& p = *points[k];
+    // gl: NDC z = 2 d - 1; a clipped V lies beyond the far plane: the whole range is reachable.
+    p.z_max_measured = (*depths)[k] ? std::min(1.0, 2 * *(*depths)[k] - 1) : 1.0;
+    report.measured_max_gap =
+        std::max(report.measured_max_gap, std::abs(p.z_max_measured - std::min(1.0, p.z_max_eq19)));
+  }
+  report.measured_on = renderer;
+  report.measured_points = static_cast<long>(points.size());
+  return true;
+}
+
 std::optional<std::vector<std::filesystem::path>> write_depth_report(const DepthReport& report,
                                                                      const DepthOptions& options,
                                                                      std::ostream& log) {
@@ -183,12 +210,12 @@ std::optional<std::vector<std::filesystem::path>> write_depth_report(const Depth
   {
     std::ostream& csv = files.open("figure5.csv");
     csv << "angle_degrees,distance,answered,z_max_eq19,z_max_matrix,reachable_gl,"
-           "reachable_zero_one,reachable_reversed_z\n";
+           "reachable_zero_one,reachable_reversed_z,z_max_measured\n";
     csv.precision(17);
     for (const Figure5Point& p : report.figure5) {
       csv << p.angle_degrees << ',' << p.distance << ',' << (p.answered ? 1 : 0) << ','
           << p.z_max_eq19 << ',' << p.z_max_matrix << ',' << p.reachable[0] << ',' << p.reachable[1]
-          << ',' << p.reachable[2] << '\n';
+          << ',' << p.reachable[2] << ',' << p.z_max_measured << '\n';
     }
   }
   {
@@ -243,6 +270,42 @@ std::optional<std::vector<std::filesystem::path>> write_depth_report(const Depth
          << fixed(r.float32_bits_original - r.float32_bits_oblique) << " lost |\n";
     }
     md << "\ndepth_bits.csv has the same for two directions toward far corners of the frustum.\n";
+    if (report.measured_points > 0)
+      md << "\nFigure 5 measured on " << report.measured_on << ": the axis's point at infinity "
+         << "drawn with each of the " << report.measured_points
+         << " gl matrices into a 32-bit float depth buffer and read back (clipped: 1); largest "
+            "gap to Eq. 19 clamped to 1: "
+         << report.measured_max_gap << " (figure5_measured.png).\n";
+  }
+  if (report.measured_points > 0) {
+    // A few angles: Eq. 19 (clamped) as lines, the rasterizer's values as points.
+    std::ostream& dat = files.open("figure5_measured.dat");
+    const double angles[] = {0, 30, 60, 75};
+    for (const double angle : angles) {
+      dat << "# angle " << angle << "\n";
+      for (const Figure5Point& p : report.figure5) {
+        if (p.angle_degrees != angle || !p.answered) continue;
+        dat << p.distance << ' ' << std::min(1.0, p.z_max_eq19) << ' ' << p.z_max_measured << '\n';
+      }
+      dat << "\n\n";
+    }
+    std::ostream& gp = files.open("figure5_measured.gp");
+    gp << "set terminal pngcairo size 900,650 noenhanced\nset output '"
+       << (options.out_dir / "figure5_measured.png").string()
+       << "'\nset title 'Figure 5 measured on "
+       << report.measured_on.substr(0, report.measured_on.find(" ("))
+       << ": max NDC z along the view axis (gl)'\nset xlabel 'distance from the camera to the "
+          "plane'\nset ylabel 'max NDC z (clamped to 1)'\nset key outside below\nset grid\n"
+          "plot ";
+    const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728"};
+    for (int i = 0; i < 4; ++i) {
+      const std::string data = "'" + (options.out_dir / "figure5_measured.dat").string() + "'";
+      gp << (i ? ", " : "") << data << " index " << i << " using 1:2 with lines lw 2 lc rgb '"
+         << colours[i] << "' title 'Eq. 19, " << angles[i] << " degrees', " << data << " index "
+         << i << " using 1:3 with points pt 7 ps 0.8 lc rgb '" << colours[i]
+         << "' title 'measured, " << angles[i] << " degrees'";
+    }
+    gp << "\n";
   }
   {
     std::ostream& gp = files.open("figure5.gp");
@@ -258,6 +321,7 @@ std::optional<std::vector<std::filesystem::path>> write_depth_report(const Depth
   }
   if (!files.commit(log)) return std::nullopt;
   files.plot("figure5.gp", "figure5.png", log);
+  if (report.measured_points > 0) files.plot("figure5_measured.gp", "figure5_measured.png", log);
   return files.written();
 }
 

@@ -170,6 +170,13 @@ class Rasterizer {
                                  const Eigen::Matrix4d& answer, Convention convention,
                                  DepthBuffer buffer);
 
+  /// The window depth M' stores for each of `points` (camera space, homogeneous: a direction,
+  /// w = 0, is a point at infinity), each drawn alone in a pixel of its own; nullopt for a point
+  /// the rasterizer clipped. At most size x size points.
+  Expected<std::vector<std::optional<double>>> stored_depths(
+      const Eigen::Matrix4d& answer, const std::vector<Eigen::Vector4d>& points,
+      Convention convention, DepthBuffer buffer);
+
   /// make_frame(), render() and judge_frame() for the answer M' to (M, C), computed in a type
   /// of `precision_bits` (accepted_row3()); `reference` is the core's answer. A render that fails
   /// is an inconclusive result saying why.

@@ -6,8 +6,11 @@
 //    uses along view directions, against the unmodified frustum.
 #pragma once
 
+#include <Eigen/Core>
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +31,12 @@ struct Figure5Point {
   /// The fraction of the depth range reachable along the axis, min(1, ...), per convention
   /// (gl, zero_one, reversed_z), each from that convention's matrix.
   double reachable[3] = {0, 0, 0};
+  /// With a rasterizer (add_measured()): the NDC z it stored for the axis's point at infinity,
+  /// V = (0, 0, -1, 0), with the core's gl matrix, clamped to 1 (a point it clipped: 1); NaN
+  /// where not measured.
+  double z_max_measured = std::numeric_limits<double>::quiet_NaN();
+  /// The gl matrix the point was measured with (the core's answer).
+  Eigen::Matrix4d matrix = Eigen::Matrix4d::Zero();
 };
 
 /// Distinct depth values along one direction (as bits, log2 of the count): the original
@@ -45,7 +54,21 @@ struct DepthReport {
   std::vector<DepthBitsRow> bits;
   double eq19_vs_matrix_max_gap = 0;  ///< largest |z_max_eq19 - z_max_matrix| over the grid
   double convention_max_gap = 0;      ///< largest spread of `reachable` across conventions
+  /// With add_measured(): who measured, and the largest |z_max_measured - min(1, Eq. 19)|.
+  std::string measured_on;
+  long measured_points = 0;
+  double measured_max_gap = 0;
 };
+
+/// A rasterizer's answer for a batch of gl matrices: the window depth ([0, 1]) each stores for
+/// V = (0, 0, -1, 0), nullopt where it clipped V; or why it could not.
+using AxisLimitMeasure = std::function<std::optional<std::vector<std::optional<double>>>(
+    const std::vector<Eigen::Matrix4d>&, std::string& error)>;
+
+/// Figure 5 measured: every answered grid point's V drawn with its matrix (`measure`), named
+/// `renderer`. False, with the reason in `error`, when the measure fails.
+bool add_measured(DepthReport& report, const AxisLimitMeasure& measure, const std::string& renderer,
+                  std::string& error);
 
 DepthReport measure_depth(const DepthOptions& options);
 
