@@ -81,15 +81,52 @@ struct Rasterizer::State {
     if (display != EGL_NO_DISPLAY) eglTerminate(display);
   }
 
-  Expected<Done> start() {
-    // Software: Mesa's llvmpipe whatever the machine has; no shader cache written to $HOME.
-    if (options.device == Device::software) setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
-    setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
+  /// Mesa's software device (EGL_MESA_device_software): llvmpipe whatever the machine has,
+  /// chosen without touching the environment (which verify's implementation inherits).
+  EGLDisplay software_display() {
     const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!client || !std::strstr(client, "EGL_MESA_platform_surfaceless"))
-      return Expected<Done>::failure(std::string("no EGL with the surfaceless platform: install ") +
-                                     kPackages);
-    display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (!client || !std::strstr(client, "EGL_EXT_device_enumeration") ||
+        !std::strstr(client, "EGL_EXT_platform_device"))
+      return EGL_NO_DISPLAY;
+    const auto query_devices =
+        reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    const auto device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+        eglGetProcAddress("eglQueryDeviceStringEXT"));
+    if (!query_devices || !device_string) return EGL_NO_DISPLAY;
+    EGLDeviceEXT devices[16];
+    EGLint count = 0;
+    if (!query_devices(16, devices, &count)) return EGL_NO_DISPLAY;
+    for (EGLint i = 0; i < count; ++i) {
+      const char* extensions = device_string(devices[i], EGL_EXTENSIONS);
+      if (extensions && std::strstr(extensions, "EGL_MESA_device_software"))
+        return eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+    }
+    return EGL_NO_DISPLAY;
+  }
+
+  Expected<Done> start() {
+    // No shader cache written to $HOME: set while the context is made and the shaders built
+    // (Mesa reads it then), and taken away again unless the user had set it.
+    const bool cache_setting_ours = std::getenv("MESA_SHADER_CACHE_DISABLE") == nullptr;
+    if (cache_setting_ours) setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
+    Expected<Done> started = open_context();
+    if (cache_setting_ours) unsetenv("MESA_SHADER_CACHE_DISABLE");
+    return started;
+  }
+
+  Expected<Done> open_context() {
+    if (options.device == Device::software) {
+      display = software_display();
+      if (display == EGL_NO_DISPLAY)
+        return Expected<Done>::failure(
+            std::string("no EGL software device (EGL_MESA_device_software): install ") + kPackages);
+    } else {
+      const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+      if (!client || !std::strstr(client, "EGL_MESA_platform_surfaceless"))
+        return Expected<Done>::failure(
+            std::string("no EGL with the surfaceless platform: install ") + kPackages);
+      display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    }
     EGLint major = 0, minor = 0;
     if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor))
       return Expected<Done>::failure("no EGL device (" + egl_error("eglInitialize") +

@@ -24,7 +24,7 @@
 namespace oblique::raster {
 
 enum class Device {
-  software,  ///< Mesa's llvmpipe, forced (LIBGL_ALWAYS_SOFTWARE): the same on every machine
+  software,  ///< Mesa's llvmpipe (EGL_MESA_device_software): the same on every machine
   gpu,       ///< whatever the machine's EGL driver gives (its renderer is said)
 };
 
