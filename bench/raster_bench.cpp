@@ -76,8 +76,7 @@ void raster_pass(benchmark::State& state) {
   if (!r) return;
   const Pass p;
   for (auto _ : state) {
-    const auto result =
-        r->check(p.m, p.c, p.answer, p.answer, Convention::gl, DepthBuffer::fixed24, 1);
+    const auto result = r->check(p.m, p.c, p.answer, Convention::gl, DepthBuffer::fixed24, 1);
     if (result.outcome != oblique::raster::Outcome::pass) state.SkipWithError(result.why.c_str());
   }
   state.SetItemsProcessed(state.iterations() * kSize * kSize);

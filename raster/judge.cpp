@@ -157,21 +157,6 @@ Bounded window(const Bounded& ndc, int size) {
 
 }  // namespace
 
-namespace {
-
-/// The buffer's values in [low, high]: fixed24 steps, or the float32 values between (non-negative
-/// floats order as their bit patterns).
-double buffer_values(double low, double high, DepthBuffer buffer) {
-  if (buffer == DepthBuffer::fixed24) return std::round((high - low) * 16777215.0) + 1;
-  std::uint32_t lo = 0, hi = 0;
-  const float l = static_cast<float>(low), h = static_cast<float>(high);
-  std::memcpy(&lo, &l, sizeof lo);
-  std::memcpy(&hi, &h, sizeof hi);
-  return static_cast<double>(hi - lo) + 1;
-}
-
-}  // namespace
-
 Frame make_frame(const Matrix4d& m, const Vector4d& c, const Matrix4d& reference,
                  Convention convention, int size, std::uint64_t seed) {
   Frame frame;
@@ -408,7 +393,7 @@ Result judge_frame(const Frame& frame, const Readback& readback, const Matrix4d&
     r.depth.observed = std::unique(kept_depths.begin(), kept_depths.end()) - kept_depths.begin();
     r.depth.low = kept_depths.front();
     r.depth.high = kept_depths[static_cast<std::size_t>(r.depth.observed - 1)];
-    r.depth.values = buffer_values(r.depth.low, r.depth.high, buffer);
+    r.depth.values = depth_buffer_values(r.depth.low, r.depth.high, buffer);
     r.depth.bits = std::log2(r.depth.values);
   }
   char line[256];
@@ -444,8 +429,8 @@ AxisDepth measure_axis(const Readback& readback, Convention, DepthBuffer buffer)
   out.observed = std::unique(depths.begin(), depths.end()) - depths.begin();
   out.low = depths.front();
   out.high = depths[static_cast<std::size_t>(out.observed - 1)];
-  out.values = buffer_values(out.low, out.high, buffer);
-  out.bits_lost = std::log2(buffer_values(0, 1, buffer) / out.values);
+  out.values = depth_buffer_values(out.low, out.high, buffer);
+  out.bits_lost = std::log2(depth_buffer_values(0.0, 1.0, buffer) / out.values);
   return out;
 }
 

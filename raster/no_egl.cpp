@@ -33,7 +33,7 @@ Expected<std::vector<std::optional<double>>> Rasterizer::stored_depths(
 }
 
 Result Rasterizer::check(const Eigen::Matrix4d&, const Eigen::Vector4d&, const Eigen::Matrix4d&,
-                         const Eigen::Matrix4d&, Convention, DepthBuffer, std::uint64_t, int) {
+                         Convention, DepthBuffer, std::uint64_t, int) {
   Result r;
   r.why = "no EGL in this build";
   return r;

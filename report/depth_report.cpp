@@ -9,6 +9,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "oblique/depth_reconstruction.h"
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
 #include "oblique/report/report_files.h"
@@ -47,24 +48,13 @@ long double window_depth(long double ndc, Convention c) {
   return c == Convention::gl ? (ndc + 1) / 2 : ndc;
 }
 
-/// Distinct values of a 24-bit unsigned normalised buffer between two window depths, as bits.
+/// Distinct depth values between two window depths (both in [0, 1]), as bits
+/// (depth_buffer_values()).
 double fixed24_bits(long double a, long double b) {
-  const long double scale = 16777215.0L;
-  const long double lo = std::nearbyint(std::min(a, b) * scale),
-                    hi = std::nearbyint(std::max(a, b) * scale);
-  return std::log2(static_cast<double>(hi - lo + 1));
+  return std::log2(depth_buffer_values(a, b, DepthBuffer::fixed24));
 }
-
-/// Distinct float32 values between two window depths (both in [0, 1]), as bits: the difference
-/// of their bit patterns, which order like the numbers for non-negative floats.
 double float32_bits(long double a, long double b) {
-  auto pattern = [](long double x) {
-    const float f = static_cast<float>(std::max(0.0L, std::min(1.0L, x)));
-    std::uint32_t u = 0;
-    std::memcpy(&u, &f, sizeof u);
-    return static_cast<double>(u);
-  };
-  return std::log2(std::abs(pattern(b) - pattern(a)) + 1);
+  return std::log2(depth_buffer_values(a, b, DepthBuffer::float32));
 }
 
 std::string fixed(double x, int digits = 2) {

@@ -73,8 +73,7 @@ TEST(Raster, theCoresAnswersPassInEveryConventionAndBuffer) {
       const auto answer = oblique::apply<double>(k.m, k.c, convention);
       ASSERT_EQ(answer.status, oblique::Status::ok) << k.name;
       for (const DepthBuffer buffer : {DepthBuffer::fixed24, DepthBuffer::float32}) {
-        const auto r =
-            shared()->check(k.m, k.c, answer.projection, answer.projection, convention, buffer, 11);
+        const auto r = shared()->check(k.m, k.c, answer.projection, convention, buffer, 11);
         EXPECT_EQ(r.outcome, Outcome::pass)
             << k.name << ", " << oblique::convention_name(convention) << ", " << buffer_name(buffer)
             << ": " << r.why;
@@ -101,8 +100,7 @@ TEST(Raster, theZeroOneFormulaOnGlIsDrawnBehindC) {
   const Matrix4d reference = oblique::apply<double>(k.m, k.c, Convention::gl).projection;
   const Matrix4d wrong =
       mistaken(oblique::properties::Mistake::zero_one_formula_on_gl, k.m, k.c, Convention::gl);
-  const auto r =
-      shared()->check(k.m, k.c, wrong, reference, Convention::gl, DepthBuffer::fixed24, 3);
+  const auto r = shared()->check(k.m, k.c, wrong, Convention::gl, DepthBuffer::fixed24, 3);
   EXPECT_EQ(r.outcome, Outcome::fail) << r.why;
   EXPECT_GT(r.drawn_behind_c, 0) << r.why;
 }
@@ -114,8 +112,7 @@ TEST(Raster, cameraSpaceSignsOnAYFlippedMatrixClipTheOriginalVolume) {
   const Matrix4d wrong =
       mistaken(oblique::properties::Mistake::camera_space_signs, k.m, k.c, Convention::zero_one);
   ASSERT_NE(wrong, reference);
-  const auto r =
-      shared()->check(k.m, k.c, wrong, reference, Convention::zero_one, DepthBuffer::float32, 3);
+  const auto r = shared()->check(k.m, k.c, wrong, Convention::zero_one, DepthBuffer::float32, 3);
   EXPECT_EQ(r.outcome, Outcome::fail) << r.why;
   EXPECT_GT(r.clipped_kept, 0) << r.why;
   EXPECT_EQ(r.drawn_behind_c, 0) << r.why;
@@ -133,7 +130,7 @@ TEST(Raster, aThirdRowScaledALittleIsCaught) {
     Matrix4d wrong = reference;
     const bool zero_one = convention == Convention::zero_one;
     wrong.row(2) *= zero_one ? 1 + 1e-1 : 1 + 1e-4;
-    const auto r = shared()->check(k.m, k.c, wrong, reference, convention, DepthBuffer::fixed24, 5);
+    const auto r = shared()->check(k.m, k.c, wrong, convention, DepthBuffer::fixed24, 5);
     EXPECT_EQ(r.outcome, Outcome::fail) << oblique::convention_name(convention) << ": " << r.why;
     EXPECT_GT(r.clipped_kept, 0) << r.why;
   }
@@ -145,8 +142,7 @@ TEST(Raster, aMovedFourthRowDrawsIntoWrongPixels) {
   const Matrix4d reference = oblique::apply<double>(k.m, k.c, Convention::gl).projection;
   Matrix4d wrong = reference;
   wrong(0, 0) *= 1.01;  // row 1 no longer M's: points move sideways
-  const auto r =
-      shared()->check(k.m, k.c, wrong, reference, Convention::gl, DepthBuffer::fixed24, 5);
+  const auto r = shared()->check(k.m, k.c, wrong, Convention::gl, DepthBuffer::fixed24, 5);
   EXPECT_EQ(r.outcome, Outcome::fail) << r.why;
   EXPECT_GT(r.wrong_pixel, 0) << r.why;
 }

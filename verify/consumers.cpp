@@ -226,13 +226,6 @@ class ConsumerRun {
   /// The report's JSON: everything the replay needs, M and C in exact hex.
   std::string report_json(const std::string& check) const {
     const Caught<T>& c = *caught_;
-    auto hex_list = [](const auto& m) {
-      std::string out = "[";
-      for (int i = 0; i < static_cast<int>(m.size()); ++i)
-        out += (i ? ", " : "") +
-               protocol::json_number(m(i / m.cols(), i % m.cols()), protocol::Notation::hex);
-      return out + "]";
-    };
     std::string picks = "[";
     for (std::size_t i = 0; i < c.round.picks.size(); ++i)
       picks += (i ? ", " : "") + std::to_string(c.round.picks[i]);

@@ -10,6 +10,7 @@
 
 #include "failure_database.h"
 #include "oblique/oblique.h"
+#include "oblique/properties/consumers.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/protocol/protocol.h"
@@ -27,23 +28,6 @@ raster::Options raster_options(const VerifyOptions& options) {
   return out;
 }
 
-/// M and C in double, as the request had them, and the core's answer for them (nullopt where the
-/// case has no answer to judge against).
-struct Drawable {
-  Eigen::Matrix4d m;
-  Eigen::Vector4d c;
-  Eigen::Matrix4d reference;
-};
-
-template <class T>
-std::optional<Drawable> drawable(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
-  Drawable d{m.template cast<double>(), c.template cast<double>(), Eigen::Matrix4d::Zero()};
-  const ObliqueResult<double> reference = apply<double>(d.m, d.c, convention);
-  if (reference.status != Status::ok) return std::nullopt;
-  d.reference = reference.projection;
-  return d;
-}
-
 std::string counts(const raster::Result& r) {
   char line[256];
   std::snprintf(line, sizeof line,
@@ -51,15 +35,6 @@ std::string counts(const raster::Result& r) {
                 "%ld drawn into a wrong pixel (%ld placed, %ld drawn)",
                 r.drawn_behind_c, r.clipped_kept, r.wrong_pixel, r.placed, r.drawn);
   return line;
-}
-
-std::string matrix_text(const Eigen::Matrix4d& m) {
-  std::string out = "[";
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j)
-      out += protocol::format_number(m(i, j)) + (j < 3 ? ", " : i < 3 ? "; " : "");
-  }
-  return out + "]";
 }
 
 }  // namespace
@@ -88,11 +63,10 @@ std::optional<raster::Result> RasterLook<T>::draw(const VerifyCase<T>& v, const 
   };
   const Expected<protocol::TypedAnswer<T>> read = protocol::read_answer<T>(answer);
   if (!read || read->status != Status::ok) return not_drawn("the answer holds no matrix");
-  const std::optional<Drawable> d = drawable<T>(v.c.matrix, v.c.plane, v.c.convention);
-  if (!d) return not_drawn("the case has no answer to judge a matrix against");
-  raster::Result r = rasterizer_->check(d->m, d->c, read->projection.template cast<double>(),
-                                        d->reference, v.c.convention, options_.raster_buffer, seed,
-                                        std::numeric_limits<T>::digits);
+  raster::Result r =
+      rasterizer_->check(v.c.matrix.template cast<double>(), v.c.plane.template cast<double>(),
+                         read->projection.template cast<double>(), v.c.convention,
+                         options_.raster_buffer, seed, std::numeric_limits<T>::digits);
   if (!r.rendered) {
     ++not_drawn_;
     return not_drawn(r.why);
@@ -139,7 +113,10 @@ void RasterLook<T>::summary() const {
                 "%ld answers drawn %d x %d, none failed; worst depth %.3g of its bound", drawn_,
                 options_.raster_size, options_.raster_size, worst_depth_ratio_);
   out_ << "raster: " << rasterizer_->renderer() << ": " << line;
-  if (not_drawn_ > 0) out_ << "; " << not_drawn_ << " not drawn (beyond float32)";
+  if (not_drawn_ > 0)
+    out_ << "; " << not_drawn_
+         << " not drawn (the core has no answer to judge against, or the answer is beyond "
+            "float32)";
   out_ << "\n";
 }
 
@@ -150,7 +127,6 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
       report::free_stem(options_.report_dir, "verify-raster", {".md", ".json"});
   const std::string json_path =
       (std::filesystem::path(options_.report_dir) / (stem + ".json")).string();
-  const std::optional<Drawable> d = drawable<T>(v.c.matrix, v.c.plane, v.c.convention);
   report::ReportFiles files(options_.report_dir);
   std::string md =
       "# Counterexample: the rasterizer\n\n`" + options_.command +
@@ -159,9 +135,8 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
       ".\n\n## The case\n\n- family: " + std::string(generators::family_name(v.c.family)) +
       ", place " + v.kind() + "\n- convention: " + std::string(convention_name(v.c.convention)) +
       ", depth buffer " + (options_.raster_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32") +
-      "\n- M: " + matrix_text(d->m) + "\n- C: [" + protocol::format_number(d->c(0)) + ", " +
-      protocol::format_number(d->c(1)) + ", " + protocol::format_number(d->c(2)) + ", " +
-      protocol::format_number(d->c(3)) + "]\n\nAnswer " + std::to_string(index) +
+      "\n- M: " + properties::numbers_text(v.c.matrix) +
+      "\n- C: " + properties::numbers_text(v.c.plane) + "\n\nAnswer " + std::to_string(index) +
       " of the run. The request:\n\n```\n" + request + "\n```\n\nThe answer:\n\n```\n" + answer +
       "\n```\n\n## The samples flagged\n\nThe first of each kind (sample " +
       "j * size + i is pixel (i, j) from the bottom left; the band is what float32 " +
@@ -205,10 +180,6 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
         shell_quote(options_.command) + "\n# the one request\necho " + shell_quote(request) +
         " | " + options_.command + "\n```\n";
   files.open(stem + ".md") << md;
-  auto hex = [](double x) { return protocol::json_number(x, protocol::Notation::hex); };
-  std::string projection = "[", plane = "[";
-  for (int i = 0; i < 16; ++i) projection += (i ? ", " : "") + hex(v.c.matrix(i / 4, i % 4));
-  for (int i = 0; i < 4; ++i) plane += (i ? ", " : "") + hex(v.c.plane(i));
   files.open(stem + ".json")
       << "{\"type\": \"raster\", \"finding\": " << protocol::json_string(counts(r))
       << ", \"precision\": " << protocol::json_string(protocol::scalar_name<T>())
@@ -217,8 +188,8 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
       << (options_.raster_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32")
       << "\", \"size\": " << size
       << ", \"seed\": " << (options_.seed ^ static_cast<std::uint64_t>(index))
-      << ", \"projection\": " << projection << "], \"plane\": " << plane
-      << "], \"request\": " << protocol::json_string(request)
+      << ", \"projection\": " << hex_list(v.c.matrix) << ", \"plane\": " << hex_list(v.c.plane)
+      << ", \"request\": " << protocol::json_string(request)
       << ", \"answer\": " << protocol::json_string(answer) << "}\n";
   err_ << "oblique verify: raster: answer " << index << " passes the properties but fails on "
        << rasterizer_->renderer() << ": " << counts(r) << "\n";

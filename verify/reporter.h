@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cases.h"
+#include "oblique/protocol/numbers.h"
 #include "oblique/report/report_files.h"
 #include "oblique/verify/verifier.h"
 #include "session.h"
@@ -17,6 +18,17 @@ namespace oblique::verify {
 
 /// The command that runs `options`' run again: every flag it was given, and its seed.
 std::string rerun_command(const VerifyOptions& options);
+
+/// A matrix or vector's entries, row by row, as a JSON list of exact hex strings (what a report
+/// keeps for its replay).
+template <class Derived>
+std::string hex_list(const Eigen::MatrixBase<Derived>& m) {
+  std::string out = "[";
+  for (int i = 0; i < m.rows(); ++i)
+    for (int j = 0; j < m.cols(); ++j)
+      out += (i + j > 0 ? ", " : "") + protocol::json_number(m(i, j), protocol::Notation::hex);
+  return out + "]";
+}
 
 /// Commits a report staged in `files` (DIR/STEM.md and the rest) and says on `err` where it is,
 /// or on one line why it could not be written: Verdict::violated, or Verdict::error.

@@ -14,6 +14,10 @@
 #pragma once
 
 #include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "oblique/depth_convention.h"
 #include "oblique/plane.h"
@@ -29,6 +33,27 @@ enum class DepthBuffer { fixed24, float32 };
 
 /// The largest value of a fixed24 depth buffer.
 inline constexpr unsigned kFixed24Max = (1u << 24) - 1;
+
+/// How many values `buffer` holds between window depths a and b (clamped to [0, 1]), both ends
+/// counted: fixed24, the integers between round(a (2^24 - 1)) and round(b (2^24 - 1)); float32,
+/// the floats between a and b rounded to float (their bit patterns order like the numbers for
+/// non-negative floats). log2 of it is the bits the stretch uses.
+template <class T>
+double depth_buffer_values(T a, T b, DepthBuffer buffer) {
+  const T lo = std::max(T(0), std::min(T(1), std::min(a, b)));
+  const T hi = std::max(T(0), std::min(T(1), std::max(a, b)));
+  if (buffer == DepthBuffer::fixed24) {
+    const T scale = T(kFixed24Max);
+    return static_cast<double>(std::nearbyint(hi * scale) - std::nearbyint(lo * scale)) + 1;
+  }
+  auto pattern = [](T x) {
+    const float f = static_cast<float>(x);
+    std::uint32_t u = 0;
+    std::memcpy(&u, &f, sizeof u);
+    return u;
+  };
+  return static_cast<double>(pattern(hi) - pattern(lo)) + 1;
+}
 
 /// The window depth (depth range [0, 1]) of NDC depth z.
 template <class T>

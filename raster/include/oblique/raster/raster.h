@@ -178,11 +178,11 @@ class Rasterizer {
       Convention convention, DepthBuffer buffer);
 
   /// make_frame(), render() and judge_frame() for the answer M' to (M, C), computed in a type
-  /// of `precision_bits` (accepted_row3()); `reference` is the core's answer. A render that fails
-  /// is an inconclusive result saying why.
+  /// of `precision_bits` (accepted_row3()), against the core's answer for (M, C). Where the core
+  /// has none, or the render fails, the result is inconclusive and not rendered, saying why.
   Result check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c, const Eigen::Matrix4d& answer,
-               const Eigen::Matrix4d& reference, Convention convention, DepthBuffer buffer,
-               std::uint64_t seed = 1, int precision_bits = 53);
+               Convention convention, DepthBuffer buffer, std::uint64_t seed = 1,
+               int precision_bits = 53);
 
  private:
   struct State;
