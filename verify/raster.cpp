@@ -242,9 +242,14 @@ Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonV
       std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000));
   const auto outcome =
       child.exchange(request->text + "\n", 1, lines, timeout, protocol::Clock::now() + timeout);
+  const std::string ended = child.end_description();
   child.stop();
-  if (outcome != protocol::ChildProcess::Outcome::done)
-    return fail("the implementation did not answer");
+  using Outcome = protocol::ChildProcess::Outcome;
+  if (outcome == Outcome::too_long) return fail("an answer line longer than 1 MiB (not read)");
+  if (outcome == Outcome::timed_out)
+    return fail("no answer within " + std::to_string(timeout.count()) + " ms");
+  if (outcome != Outcome::done)
+    return fail("the implementation ended before answering (" + ended + ")");
   RasterLook<double> look(o, out, err);
   if (!look.open()) return Verdict::inconclusive;
   std::string why;
