@@ -1,5 +1,6 @@
 # The installed package: headers, libraries, exported targets (oblique::core, ::protocol,
-# ::properties, ::generators, ::report_files, ::counterexample_reports, ::testing, ::fuzzing, ::fuzzing_replay),
+# ::properties, ::generators, ::report_files, ::counterexample_reports, ::testing, ::raster,
+# ::testing_raster, ::fuzzing, ::fuzzing_replay),
 # obliqueConfig.cmake with its version file, and the fuzz seed corpus and dictionary
 # (share/oblique/fuzz). oblique::warnings is build-only and never exported.
 include(CMakePackageConfigHelpers)
@@ -19,6 +20,13 @@ if(TARGET oblique_testing)
           FILES_MATCHING PATTERN "*.h")
   list(APPEND OBLIQUE_EXPORTED oblique_testing)
 endif()
+# The rasterizer (its EGL and OpenGL are found again by the package when it was built with them).
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/raster/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        FILES_MATCHING PATTERN "*.h")
+list(APPEND OBLIQUE_EXPORTED oblique_raster)
+if(TARGET oblique_testing_raster)
+  list(APPEND OBLIQUE_EXPORTED oblique_testing_raster)
+endif()
 install(TARGETS ${OBLIQUE_EXPORTED} EXPORT obliqueTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
@@ -28,6 +36,7 @@ set(OBLIQUE_PACKAGE_HAS_TESTING OFF)
 if(TARGET oblique_testing)
   set(OBLIQUE_PACKAGE_HAS_TESTING ON)
 endif()
+set(OBLIQUE_PACKAGE_RASTER_EGL ${OBLIQUE_RASTER_EGL})
 set(OBLIQUE_PACKAGE_HAS_GENERATORS OFF)
 if(TARGET oblique_generators)
   set(OBLIQUE_PACKAGE_HAS_GENERATORS ON)
@@ -47,12 +56,20 @@ install(FILES ${PROJECT_SOURCE_DIR}/fuzz/fuzz_oblique.dict
         DESTINATION ${CMAKE_INSTALL_DATADIR}/oblique/fuzz RENAME oblique.dict)
 
 # pkg-config files beside the CMake package (lib/pkgconfig): oblique (core and protocol),
-# oblique-testing and oblique-fuzzing, relocatable (the prefix is found from the file's place).
+# oblique-testing, oblique-testing-raster and oblique-fuzzing, relocatable (the prefix is found
+# from the file's place).
 file(RELATIVE_PATH OBLIQUE_PC_UP "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
 string(REGEX REPLACE "/$" "" OBLIQUE_PC_UP "${OBLIQUE_PC_UP}")
 set(OBLIQUE_PC_FILES oblique oblique-fuzzing)
 if(TARGET oblique_testing)
   list(APPEND OBLIQUE_PC_FILES oblique-testing)
+endif()
+if(TARGET oblique_testing_raster)
+  list(APPEND OBLIQUE_PC_FILES oblique-testing-raster)
+  set(OBLIQUE_PC_RASTER_REQUIRES "")
+  if(OBLIQUE_RASTER_EGL)
+    set(OBLIQUE_PC_RASTER_REQUIRES "egl opengl")
+  endif()
 endif()
 foreach(pc IN LISTS OBLIQUE_PC_FILES)
   configure_file(${CMAKE_CURRENT_LIST_DIR}/pkgconfig/${pc}.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/${pc}.pc

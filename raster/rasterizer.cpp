@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <mutex>
 
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
@@ -53,6 +55,23 @@ std::string egl_error(const char* what) {
   return line;
 }
 
+/// EGL gives one display per platform and device, shared by every Rasterizer of the process, and
+/// eglTerminate() ends every context on it: the last Rasterizer to use a display terminates it.
+std::mutex display_mutex;
+std::map<EGLDisplay, int> display_users;
+
+void use_display(EGLDisplay display) {
+  const std::lock_guard<std::mutex> lock(display_mutex);
+  ++display_users[display];
+}
+
+void release_display(EGLDisplay display) {
+  const std::lock_guard<std::mutex> lock(display_mutex);
+  if (--display_users[display] > 0) return;
+  display_users.erase(display);
+  eglTerminate(display);
+}
+
 }  // namespace
 
 struct Rasterizer::State {
@@ -64,7 +83,8 @@ struct Rasterizer::State {
   GLuint framebuffer = 0, id_buffer = 0, depth_buffer = 0;
   GLint projection_at = -1, placed_by_id_at = -1, size_at = -1;
   DepthBuffer depth_format = DepthBuffer::fixed24;
-  int allocated = 0;  ///< the buffers' size (0: none yet)
+  bool display_used = false;  ///< initialized and counted (use_display())
+  int allocated = 0;          ///< the buffers' size (0: none yet)
 
   ~State() {
     if (context != EGL_NO_CONTEXT) {
@@ -78,7 +98,7 @@ struct Rasterizer::State {
       eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       eglDestroyContext(display, context);
     }
-    if (display != EGL_NO_DISPLAY) eglTerminate(display);
+    if (display_used) release_display(display);
   }
 
   /// Mesa's software device (EGL_MESA_device_software): llvmpipe whatever the machine has,
@@ -131,6 +151,8 @@ struct Rasterizer::State {
     if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor))
       return Expected<Done>::failure("no EGL device (" + egl_error("eglInitialize") +
                                      "): install " + kPackages);
+    use_display(display);
+    display_used = true;
     if (!eglBindAPI(EGL_OPENGL_API)) return Expected<Done>::failure(egl_error("eglBindAPI"));
     const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
                                  4,

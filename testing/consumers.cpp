@@ -18,8 +18,8 @@ namespace {
 void fail(const std::string& consumer, const properties::ConsumerFinding& finding,
           const std::string& inputs,
           std::function<std::string(report::ReportFiles&, const std::string&)> pictures) {
-  tally().consumer_failure = properties::consumer_report_markdown(consumer, finding, inputs);
-  tally().consumer_pictures = std::move(pictures);
+  tally().markdown_failure = properties::consumer_report_markdown(consumer, finding, inputs);
+  tally().markdown_pictures = std::move(pictures);
   tally().failure.reset();
   RC_FAIL(consumer + " violates " + properties::describe(finding) + "\n" + inputs);
 }

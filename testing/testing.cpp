@@ -119,13 +119,13 @@ void move_earlier_reports(const properties::ReportContext& context) {
 
 }  // namespace
 
-std::string write_consumer_report(const std::string& markdown,
+std::string write_markdown_report(const std::string& markdown,
                                   const properties::ReportContext& context) {
   const std::string stem = report::free_stem(
       context.directory, context.stem.empty() ? context.test_id : context.stem, {".md"});
   report::ReportFiles files(context.directory);
   const std::string pictures =
-      tally().consumer_pictures ? tally().consumer_pictures(files, stem) : std::string();
+      tally().markdown_pictures ? tally().markdown_pictures(files, stem) : std::string();
   files.open(stem + ".md") << markdown << "\n"
                            << pictures << "## Replay\n\n```\n"
                            << (context.replay_run.empty() ? context.binary : context.replay_run)
@@ -182,8 +182,8 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
         where = "\n" + properties::likely_cause_line(*failure.diagnosis);
       }
       where += "\nreport: " + write_report(failure, report_context(property));
-    } else if (!t.consumer_failure.empty()) {
-      where = "\nreport: " + write_consumer_report(t.consumer_failure, report_context(property));
+    } else if (!t.markdown_failure.empty()) {
+      where = "\nreport: " + write_markdown_report(t.markdown_failure, report_context(property));
     }
     ADD_FAILURE() << name << message.str() << "\n" << statistics.str() << where;
     return;
@@ -235,14 +235,7 @@ void check_properties(const Implementation<T>& impl, const Contract& given) {
   struct Forget {
     ~Forget() { current_contract().clear(); }
   } forget;
-  for (Convention c : contract.conventions) {
-    if (std::find(impl.conventions.begin(), impl.conventions.end(), c) == impl.conventions.end()) {
-      ADD_FAILURE() << "oblique::testing: the contract names convention " << convention_name(c)
-                    << ", which " << impl.name << " does not serve (adapt() was told "
-                    << convention_name(impl.conventions.front()) << ")";
-      return;
-    }
-  }
+  if (!serves_conventions(impl, contract)) return;
   const auto& reproduce = rc::detail::configuration().reproduce;
   const std::string prefix = run_id("") + "/";
   if (!reproduce.empty() &&

@@ -1,11 +1,12 @@
 # The downstream example (examples/downstream) against the installed package, as a user would
 # build it: install this build tree into WORK/prefix, configure the example with
 # -DCMAKE_PREFIX_PATH, build it, then
-#  - the fixed engine passes the property suite and its fuzz replay, and its depth reconstruction
-#    the consumer properties;
+#  - the fixed engine passes the property suite, the raster check and its fuzz replay, and its
+#    depth reconstruction the consumer properties;
 #  - the engine as shipped fails the suite with a report naming make_oblique, the y-flipped
 #    family and a property, and the report's replay command, pasted into a shell, fails again;
-#  - the fuzz replay of the installed seed corpus catches it too;
+#  - the fuzz replay of the installed seed corpus catches it too, and so does the raster check
+#    (the kept region clipped, with a report of the pixels);
 #  - with CLANGXX, the libFuzzer target builds and, run, stops on a violation.
 # cmake -DBUILD=... -DSOURCE=... -DWORK=... [-DCLANGXX=...] -P downstream_test.cmake
 function(run)
@@ -35,6 +36,14 @@ run(EXPECT ok OUTPUT output COMMAND "${WORK}/gcc/engine_consumers_test")
 if(NOT output MATCHES "view_position: OK, passed")
   message(FATAL_ERROR "the engine's consumer test ran no view_position property:\n${output}")
 endif()
+run(EXPECT ok OUTPUT output COMMAND "${WORK}/gcc/engine_raster_test_fixed")
+set(rasterizer ON)
+if(output MATCHES "the rasterizer cannot run here: no EGL")
+  set(rasterizer OFF)  # no EGL on this machine: the raster tests skip, saying so
+  message(STATUS "no EGL: the raster checks are not run")
+elseif(NOT output MATCHES "rasterizer: OK, passed")
+  message(FATAL_ERROR "the fixed engine's raster test drew nothing:\n${output}")
+endif()
 run(EXPECT ok COMMAND "${WORK}/gcc/engine_fuzz_replay_fixed" "${prefix}/share/oblique/fuzz/corpus")
 run(EXPECT fail OUTPUT output COMMAND "${WORK}/gcc/engine_property_test")
 if(NOT output MATCHES "make_oblique violates ([a-z_]+)")
@@ -61,7 +70,23 @@ run(EXPECT fail OUTPUT output COMMAND "${WORK}/gcc/engine_fuzz_replay" "${prefix
 if(NOT output MATCHES "oblique property violated: [a-z_]+ by make_oblique")
   message(FATAL_ERROR "the fuzz replay did not catch make_oblique:\n${output}")
 endif()
-message(STATUS "the engine as shipped is caught (${report}); the fixed one passes")
+# On the rasterizer, the shipped engine's far plane through the wrong corner clips what the
+# camera sees.
+if(rasterizer)
+  run(EXPECT fail OUTPUT output COMMAND "${WORK}/gcc/engine_raster_test")
+  if(NOT output MATCHES "make_oblique fails on the rasterizer [^\n]*: [0-9]+ samples drawn behind C, [1-9][0-9]* of the original volume on C's kept side clipped")
+    message(FATAL_ERROR "the raster test did not catch make_oblique clipping the kept region:\n${output}")
+  endif()
+  if(NOT output MATCHES "report: ([^\n]+\\.rasterizer\\.md)")
+    message(FATAL_ERROR "the raster test wrote no report:\n${output}")
+  endif()
+  set(raster_report "${CMAKE_MATCH_1}")
+  file(READ "${raster_report}" text)
+  if(NOT text MATCHES "family `y_flipped`" OR NOT text MATCHES "\\| clipped_kept \\|")
+    message(FATAL_ERROR "the raster report ${raster_report} does not show a y-flipped case clipped:\n${text}")
+  endif()
+endif()
+message(STATUS "the engine as shipped is caught (${report}, and on the rasterizer); the fixed one passes")
 
 # Without CMake: the installed pkg-config file builds the fixed engine's property test, and the
 # installed tool says its version.
@@ -82,6 +107,15 @@ run(EXPECT ok COMMAND c++ -O1 -DENGINE_FIXED=1 "${SOURCE}/examples/downstream/en
                       "${SOURCE}/examples/downstream/engine.cpp" ${flags} -pthread
                       -o "${WORK}/engine_property_test_pkg_config")
 run(EXPECT ok COMMAND "${WORK}/engine_property_test_pkg_config")
+if(rasterizer)
+  run(EXPECT ok OUTPUT raster_flags COMMAND ${PKG_CONFIG} --cflags --libs oblique-testing-raster gtest_main)
+  string(STRIP "${raster_flags}" raster_flags)
+  separate_arguments(raster_flags UNIX_COMMAND "${raster_flags}")
+  run(EXPECT ok COMMAND c++ -O1 -DENGINE_FIXED=1 "${SOURCE}/examples/downstream/engine_raster_test.cpp"
+                        "${SOURCE}/examples/downstream/engine.cpp" ${raster_flags} -pthread
+                        -o "${WORK}/engine_raster_test_pkg_config")
+  run(EXPECT ok COMMAND "${WORK}/engine_raster_test_pkg_config")
+endif()
 run(EXPECT ok OUTPUT version COMMAND "${prefix}/bin/oblique" --version)
 if(NOT version MATCHES "^oblique [0-9]+\\.[0-9]+\\.[0-9]+ \\(commit [^)]+\\)")
   message(FATAL_ERROR "the installed bin/oblique --version said: ${version}")

@@ -94,12 +94,28 @@ Matrix4d mistaken(oblique::properties::Mistake mistake, const Matrix4d& m, const
   return impl.run(m, c, convention).projection;
 }
 
+// EGL gives every rasterizer of a process the same display: closing one must not end another's
+// context (eglTerminate() would).
+TEST(Raster, closingOneRasterizerLeavesAnotherWorking) {
+  REQUIRE_RASTERIZER();
+  {
+    const auto second = Rasterizer::open({oblique::raster::Device::software, 16});
+    ASSERT_TRUE(second) << second.error();
+  }
+  const Case k = cases(Convention::gl)[0];
+  const auto answer = oblique::apply<double>(k.m, k.c, Convention::gl);
+  const auto r =
+      shared()->check(k.m, k.c, answer.projection, Convention::gl, DepthBuffer::fixed24, 5);
+  EXPECT_EQ(r.outcome, Outcome::pass) << r.why;
+}
+
 TEST(Raster, theZeroOneFormulaOnGlIsDrawnBehindC) {
   REQUIRE_RASTERIZER();
   const Case k = cases(Convention::gl)[0];
   const Matrix4d reference = oblique::apply<double>(k.m, k.c, Convention::gl).projection;
   const Matrix4d wrong =
       mistaken(oblique::properties::Mistake::zero_one_formula_on_gl, k.m, k.c, Convention::gl);
+  ASSERT_NE(wrong, reference);
   const auto r = shared()->check(k.m, k.c, wrong, Convention::gl, DepthBuffer::fixed24, 3);
   EXPECT_EQ(r.outcome, Outcome::fail) << r.why;
   EXPECT_GT(r.drawn_behind_c, 0) << r.why;

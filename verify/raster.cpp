@@ -14,6 +14,7 @@
 #include "oblique/protocol/child_process.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/protocol/protocol.h"
+#include "oblique/raster/raster_report.h"
 #include "oblique/report/report_files.h"
 #include "reporter.h"
 
@@ -26,15 +27,6 @@ raster::Options raster_options(const VerifyOptions& options) {
   out.device = options.raster_device == "gpu" ? raster::Device::gpu : raster::Device::software;
   out.size = options.raster_size;
   return out;
-}
-
-std::string counts(const raster::Result& r) {
-  char line[256];
-  std::snprintf(line, sizeof line,
-                "%ld samples drawn behind C, %ld of the original volume on C's kept side clipped, "
-                "%ld drawn into a wrong pixel (%ld placed, %ld drawn)",
-                r.drawn_behind_c, r.clipped_kept, r.wrong_pixel, r.placed, r.drawn);
-  return line;
 }
 
 }  // namespace
@@ -101,7 +93,7 @@ void RasterLook<T>::finding(const VerifyCase<T>& v, const std::string& answer) {
   }
   err_ << "oblique verify: raster: the finding's answer on the rasterizer: "
        << (r->outcome == raster::Outcome::pass   ? "passes (" + r->why + ")"
-           : r->outcome == raster::Outcome::fail ? "FAIL, " + counts(*r)
+           : r->outcome == raster::Outcome::fail ? "FAIL, " + r->why
                                                  : "inconclusive: " + r->why)
        << "\n";
 }
@@ -131,49 +123,15 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
   std::string md =
       "# Counterexample: the rasterizer\n\n`" + options_.command +
       "`'s answer passes the properties, but drawn on " + rasterizer_->renderer() +
-      " it fails: " + counts(r) +
+      " it fails: " + r.why +
       ".\n\n## The case\n\n- family: " + std::string(generators::family_name(v.c.family)) +
       ", place " + v.kind() + "\n- convention: " + std::string(convention_name(v.c.convention)) +
       ", depth buffer " + (options_.raster_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32") +
       "\n- M: " + properties::numbers_text(v.c.matrix) +
       "\n- C: " + properties::numbers_text(v.c.plane) + "\n\nAnswer " + std::to_string(index) +
       " of the run. The request:\n\n```\n" + request + "\n```\n\nThe answer:\n\n```\n" + answer +
-      "\n```\n\n## The samples flagged\n\nThe first of each kind (sample " +
-      "j * size + i is pixel (i, j) from the bottom left; the band is what float32 " +
-      "shading of a correct answer cannot decide, docs/raster.md):\n\n" +
-      "| kind | pixel | point (camera space) | C . v | band |\n|---|---|---|---|---|\n";
-  const int size = options_.raster_size;
-  for (const raster::Flag& f : r.examples) {
-    char row[320];
-    std::snprintf(row, sizeof row, "| %s | (%ld, %ld) | (%.9g, %.9g, %.9g) | %.17g | %.3g |\n",
-                  std::string(raster::flag_name(f.kind)).c_str(), f.sample % size, f.sample / size,
-                  f.point.x(), f.point.y(), f.point.z(), f.c_dot, f.band);
-    md += row;
-  }
-  // Where they are: one block per kind, pixel coordinates.
-  std::ostream& dat = files.open(stem + ".pixels.dat");
-  const raster::Flag::Kind kinds[] = {raster::Flag::Kind::drawn_behind_c,
-                                      raster::Flag::Kind::clipped_kept,
-                                      raster::Flag::Kind::wrong_pixel};
-  for (const raster::Flag::Kind kind : kinds) {
-    dat << "# " << raster::flag_name(kind) << "\n0 -1e9\n";  // a point off the frame: never empty
-    for (const auto& [sample, k] : r.flagged)
-      if (k == kind) dat << sample % size << " " << sample / size << "\n";
-    dat << "\n\n";
-  }
-  files.open(stem + ".pixels.gp")
-      << "set terminal pngcairo size 800,800 noenhanced\nset output '" << stem
-      << ".pixels.png'\nset title 'samples flagged on the rasterizer (" << size << " x " << size
-      << " pixels)'\nset size ratio -1\nset xrange [0:" << size << "]\nset yrange [0:" << size
-      << "]\nset xlabel 'pixel x'\nset ylabel 'pixel y'\nset key outside below\nplot '" << stem
-      << ".pixels.dat' index 0 with points pt 5 ps 0.3 lc rgb '#d62728' title 'drawn behind C', '' "
-         "index 1 "
-         "with points pt 5 ps 0.3 lc rgb '#1f77b4' title 'kept region clipped', '' index 2 with "
-         "points pt 5 ps 0.3 lc rgb "
-         "'#2ca02c' title 'drawn into a wrong pixel'\n";
-  std::ostringstream plot_log;
-  if (files.plot_staged(stem + ".pixels.gp", stem + ".pixels.png", plot_log))
-    md += "\n![where the flagged samples are](" + stem + ".pixels.png)\n";
+      "\n```\n\n";
+  md += raster::stage_flagged_section(files, stem, r, options_.raster_size);
   md += "\n## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
         "\n# this request again, its answer drawn (exit 0 holds, 1 fails, 3 inconclusive)\n" +
         options_.self + " verify --replay " + shell_quote(json_path) + " --impl " +
@@ -181,18 +139,18 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
         " | " + options_.command + "\n```\n";
   files.open(stem + ".md") << md;
   files.open(stem + ".json")
-      << "{\"type\": \"raster\", \"finding\": " << protocol::json_string(counts(r))
+      << "{\"type\": \"raster\", \"finding\": " << protocol::json_string(r.why)
       << ", \"precision\": " << protocol::json_string(protocol::scalar_name<T>())
       << ", \"convention\": " << protocol::json_string(convention_name(v.c.convention))
       << ", \"buffer\": \""
       << (options_.raster_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32")
-      << "\", \"size\": " << size
+      << "\", \"size\": " << options_.raster_size
       << ", \"seed\": " << (options_.seed ^ static_cast<std::uint64_t>(index))
       << ", \"projection\": " << hex_list(v.c.matrix) << ", \"plane\": " << hex_list(v.c.plane)
       << ", \"request\": " << protocol::json_string(request)
       << ", \"answer\": " << protocol::json_string(answer) << "}\n";
   err_ << "oblique verify: raster: answer " << index << " passes the properties but fails on "
-       << rasterizer_->renderer() << ": " << counts(r) << "\n";
+       << rasterizer_->renderer() << ": " << r.why << "\n";
   return commit_report(files, stem, err_);
 }
 
@@ -256,8 +214,8 @@ Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonV
   const std::optional<raster::Result> r = look.draw(v, lines.front(), frame_seed, &why);
   if (!r) return fail(why + ": " + lines.front());
   out << "oblique verify: raster: " << raster::outcome_name(r->outcome) << ": "
-      << (r->outcome == raster::Outcome::fail ? counts(*r) : r->why)
-      << "\n  answer: " << lines.front() << "\n";
+      << (r->outcome == raster::Outcome::fail ? r->why : r->why) << "\n  answer: " << lines.front()
+      << "\n";
   return r->outcome == raster::Outcome::pass   ? Verdict::holds
          : r->outcome == raster::Outcome::fail ? Verdict::violated
                                                : Verdict::inconclusive;

@@ -36,11 +36,12 @@ struct Tally {
   std::map<std::string, int> families, conventions, places, defects, implementations, applied;
   std::map<std::string, int> left_out;  ///< answers not judged, by properties::not_judged()
   std::optional<Counterexample> failure;
-  /// A consumer property's last failure (testing/consumers.cpp), as the Markdown of its report.
-  std::string consumer_failure;
-  /// Its pictures (a case with an oblique matrix): staged in a report's files under a stem,
-  /// returning their Markdown section; empty when the finding has none.
-  std::function<std::string(report::ReportFiles&, const std::string&)> consumer_pictures;
+  /// The last failure of a run judged by other than the matrix properties (a consumer property,
+  /// testing/consumers.cpp; the rasterizer, testing/raster.cpp), as the Markdown of its report.
+  std::string markdown_failure;
+  /// Its pictures: staged in a report's files under a stem, returning their Markdown section;
+  /// empty when the finding has none.
+  std::function<std::string(report::ReportFiles&, const std::string&)> markdown_pictures;
   /// The last failure's diagnosis, run when its report is written (not at every shrinking step).
   std::function<properties::Diagnosis()> diagnose_failure;
   std::string property;  ///< the RapidCheck test id of the run
@@ -65,10 +66,10 @@ std::string run_id(const std::string& property);
 /// Whether RC_PARAMS="reproduce=..." is set and leaves out the run `id`.
 bool left_out_by_reproduce(const std::string& id);
 
-/// Writes a consumer property's report (`markdown`, with the replay command appended) as a new
-/// file in the context's directory (never over an earlier one); its path, or why it was not
-/// written.
-std::string write_consumer_report(const std::string& markdown,
+/// Writes the report of a failure Tally::markdown_failure holds (`markdown`, with the replay
+/// command appended) as a new file in the context's directory (never over an earlier one); its
+/// path, or why it was not written.
+std::string write_markdown_report(const std::string& markdown,
                                   const properties::ReportContext& context);
 
 /// Runs `testable` (RC_ macros and generators inside) as a RapidCheck property of the current test
@@ -77,6 +78,21 @@ std::string write_consumer_report(const std::string& markdown,
 /// every one).
 void run(const std::function<void()>& testable, Coverage coverage, const std::string& property = "",
          const Contract& require = Contract{});
+
+/// Whether `impl` serves every convention of `contract`; fails the current test, saying which it
+/// does not, when it does not.
+template <class T>
+bool serves_conventions(const Implementation<T>& impl, const Contract& contract) {
+  for (Convention c : contract.conventions) {
+    if (std::find(impl.conventions.begin(), impl.conventions.end(), c) == impl.conventions.end()) {
+      ADD_FAILURE() << "oblique::testing: the contract names convention " << convention_name(c)
+                    << ", which " << impl.name << " does not serve (adapt() was told "
+                    << convention_name(impl.conventions.front()) << ")";
+      return false;
+    }
+  }
+  return true;
+}
 
 template <class T>
 void count_case(const generators::Case<T>& c) {

@@ -1,0 +1,110 @@
+// oblique::testing's raster check (oblique/testing/raster.h) on a user's function: the core's
+// answers pass in every convention, float and double; each class of wrong matrix the raster
+// judgement exists for is caught by it alone, with a report of the flagged pixels. Skipped, with
+// what to install, where the machine has no EGL.
+#include "oblique/testing/raster.h"
+
+#include <gtest/gtest-spi.h>
+
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "oblique/oblique.h"
+#include "oblique/properties/mistakes.h"
+
+namespace oblique {
+namespace {
+
+template <class T>
+properties::Implementation<T> core() {
+  return adapt<T>(
+      "the_core", Layout::row_major,
+      [](const Matrix4<T>& m, const Vector4<T>& c, Convention k) { return apply<T>(m, c, k); });
+}
+
+OBLIQUE_RASTER_TEST(TestingRaster, theCoreInDoublePassesEveryConvention, core<double>(), Contract{})
+OBLIQUE_RASTER_TEST(TestingRaster, theCoreInFloatPassesEveryConvention, core<float>(), Contract{})
+
+/// The files of `dir` whose names end with `suffix`.
+std::vector<std::filesystem::path> files_ending(const std::filesystem::path& dir,
+                                                const std::string& suffix) {
+  std::vector<std::filesystem::path> out;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() >= suffix.size() &&
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+      out.push_back(entry.path());
+  }
+  return out;
+}
+
+/// Runs the raster check on `mistake` under `contract` in a fresh report folder: it must fail
+/// on the rasterizer with `flag` among the samples flagged, and write a report with the pixels'
+/// picture data.
+void expect_caught(properties::Mistake mistake, const Contract& contract, const std::string& flag) {
+  namespace fs = std::filesystem;
+  const auto wrong = properties::mistaken_implementation<double>({mistake});
+  const fs::path dir =
+      fs::path(::testing::TempDir()) /
+      ("oblique_testing_raster_" + std::string(properties::mistake_entry(mistake).name));
+  fs::remove_all(dir);
+  ASSERT_EQ(::setenv("OBLIQUE_REPORT_DIR", dir.c_str(), 1), 0);
+  EXPECT_NONFATAL_FAILURE(testing::check_on_rasterizer(wrong, contract),
+                          wrong.name + " fails on the rasterizer");
+  ::unsetenv("OBLIQUE_REPORT_DIR");
+  const auto reports = files_ending(dir, ".rasterizer.md");
+  ASSERT_EQ(reports.size(), 1u) << dir;
+  std::ifstream in(reports.front());
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  EXPECT_NE(text.find("# Counterexample: the rasterizer (" + wrong.name), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("| " + flag + " |"), std::string::npos) << text;
+  EXPECT_NE(text.find("RC_PARAMS="), std::string::npos) << text;
+  EXPECT_EQ(files_ending(dir, ".rasterizer.pixels.dat").size(), 1u) << dir;
+}
+
+// Skips where there is no EGL (the reason printed), as check_on_rasterizer() itself does.
+#define REQUIRE_RASTERIZER()                                                        \
+  if (const auto opened = raster::Rasterizer::open({raster::Device::software, 16}); \
+      !opened && opened.error().rfind("no EGL", 0) == 0)                            \
+  GTEST_SKIP() << opened.error()
+
+TEST(TestingRaster, theZeroOneFormulaOnGlIsDrawnBehindC) {
+  REQUIRE_RASTERIZER();
+  Contract gl;
+  gl.conventions = {Convention::gl};
+  expect_caught(properties::Mistake::zero_one_formula_on_gl, gl, "drawn_behind_c");
+}
+
+TEST(TestingRaster, cameraSpaceSignsOnYFlippedMatricesClipTheKeptRegion) {
+  REQUIRE_RASTERIZER();
+  Contract y_flipped;
+  y_flipped.families = {generators::Family::y_flipped};
+  y_flipped.conventions = {Convention::gl};
+  expect_caught(properties::Mistake::camera_space_signs, y_flipped, "clipped_kept");
+}
+
+/// A GL-only function, pointer-style (column-major, in place): it takes no convention.
+Status make_oblique_gl(double m[16], const double plane[4]) {
+  const ObliqueResult<double> r =
+      apply<double>(adapting::load(m, Layout::column_major),
+                    Vector4<double>(plane[0], plane[1], plane[2], plane[3]), Convention::gl);
+  if (r.ok()) adapting::store(r.projection, Layout::column_major, m);
+  return r.status;
+}
+
+TEST(TestingRaster, aContractNamingAConventionTheFunctionDoesNotServeFails) {
+  const auto gl_only =
+      adapt<double>("make_oblique_gl", Layout::column_major, Convention::gl, make_oblique_gl);
+  Contract zero_one;
+  zero_one.conventions = {Convention::zero_one};
+  EXPECT_NONFATAL_FAILURE(testing::check_on_rasterizer(gl_only, zero_one),
+                          "the contract names convention zero_one, which make_oblique_gl");
+}
+
+}  // namespace
+}  // namespace oblique
