@@ -205,14 +205,16 @@ Frame make_frame(const Matrix4d& m, const Vector4d& c, const Matrix4d& reference
         const Vector4f point(static_cast<float>(v.x()), static_cast<float>(v.y()),
                              static_cast<float>(v.z()), 1.0f);
         // Placed only where float32 shading cannot move it out of its pixel (the reference's
-        // rows 1, 2 and 4 are M's).
+        // rows 1, 2 and 4 are M's),
         const Vector4d vd = point.cast<double>();
         const Bounded w = row(reference, 3, vd);
         const Bounded px = window(quotient(row(reference, 0, vd), w), size);
         const Bounded py = window(quotient(row(reference, 1, vd), w), size);
         if (px.bound < 0 || py.bound < 0) continue;
-        if (px.value - px.bound < i || px.value + px.bound >= i + 1) continue;
-        if (py.value - py.bound < j || py.value + py.bound >= j + 1) continue;
+        // and where the snap to the subpixel grid cannot move it onto an edge (tolerance.h).
+        const double xs = px.bound + tol::kRasterSubpixel, ys = py.bound + tol::kRasterSubpixel;
+        if (px.value - xs <= i || px.value + xs >= i + 1) continue;
+        if (py.value - ys <= j || py.value + ys >= j + 1) continue;
         frame.points[static_cast<std::size_t>(k)] = point;
         frame.placed[static_cast<std::size_t>(k)] = 1;
         break;

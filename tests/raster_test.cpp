@@ -109,6 +109,30 @@ TEST(Raster, closingOneRasterizerLeavesAnotherWorking) {
   EXPECT_EQ(r.outcome, Outcome::pass) << r.why;
 }
 
+// Found by a 10-minute verify --rasterize run of the correct example: C passes 5e-13 from the
+// camera, where every pixel's ray meets; a sample that close lies off its ray's centre (double's
+// rounding of a point near the eye), 0.0007 pixel from an edge, and llvmpipe's snap to its
+// subpixel grid (1/256) drew it into the neighbouring pixel. Such samples are no longer placed
+// (tolerance.h, kRasterSubpixel); the frame seeds below each had one.
+TEST(Raster, aSampleTheSubpixelSnapCouldMoveIsNotPlaced) {
+  REQUIRE_RASTERIZER();
+  Matrix4d m;
+  m << 0.14142135623730953, 0.044721359549995794, -0.1341640786499874, 0, -0.08944271909999159,
+      0.3882842712474619, 0.0351471862576143, 0, 2.68338890855609e-05, 3.5148592201302354e-06,
+      2.945702240361186e-05, 1.87507500300012, -0.6708203932499369, -0.08786796564403575,
+      -0.7363961030678928, 0;
+  const Vector4d c(-0.5, -0.5, 2, -4.823324033076557e-13);
+  const auto answer = oblique::apply<double>(m, c, Convention::reversed_z);
+  ASSERT_EQ(answer.status, oblique::Status::ok);
+  const auto small = Rasterizer::open({oblique::raster::Device::software, 128});
+  ASSERT_TRUE(small) << small.error();
+  for (const std::uint64_t seed : {5, 20, 25, 28, 33, 35, 40}) {
+    const auto r = (*small)->check(m, c, answer.projection, Convention::reversed_z,
+                                   DepthBuffer::fixed24, seed);
+    EXPECT_EQ(r.outcome, Outcome::pass) << "frame seed " << seed << ": " << r.why;
+  }
+}
+
 TEST(Raster, theZeroOneFormulaOnGlIsDrawnBehindC) {
   REQUIRE_RASTERIZER();
   const Case k = cases(Convention::gl)[0];

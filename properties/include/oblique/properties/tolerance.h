@@ -164,7 +164,11 @@ exact::Rational row3_entry_bound(const exact::Rational& abs_ac, const exact::Rat
 //    rounding more (u (|z| + |w|)) for a renderer that forms the sum before comparing.
 //  - a window position or depth, z / w: (dz + |z / w| dw) / (|w| - dw) from the rows' bounds dz,
 //    dw, and kRasterDivideRoundings u |z / w| for the divide (a reciprocal and a product); the
-//    viewport transform 1 rounding more (u); the buffer: fixed24 a whole quantum 1 / (2^24 - 1)
+//    viewport transform 1 rounding more (u); then the rasterizer snaps the window position to
+//    its subpixel grid (OpenGL requires GL_SUBPIXEL_BITS >= 4; llvmpipe has 8), moving it by up
+//    to kRasterSubpixel of a pixel: a sample is placed in its pixel only when that far from the
+//    pixel's edges too (a point at exactly an edge is drawn into either pixel by the fill rule);
+//    the buffer: fixed24 a whole quantum 1 / (2^24 - 1)
 //    (rounded or truncated) and the read-back's conversion to float (u), float32 half an ulp (u
 //    |d|) and FLT_MIN (flushed).
 //  - every band is computed in double from positive terms (a few roundings, relative error below
@@ -175,6 +179,7 @@ constexpr double kRasterUnit = 0x1p-24;    ///< float32's u
 constexpr double kRasterFlush = 0x1p-126;  ///< FLT_MIN: what a flushed subnormal loses
 constexpr double kRasterBandSlack = 1 + 0x1p-40;
 constexpr double kRasterFixed24Quantum = 1.0 / 16777215.0;
+constexpr double kRasterSubpixel = 0x1p-4;  ///< a pixel's part: the coarsest grid OpenGL allows
 
 /// gamma(kRasterRowRoundings) of float32 plus that of double: a row's relative bound (above).
 constexpr double raster_row_gamma() noexcept {
