@@ -133,6 +133,11 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       ->add_option("--raster-every", options.raster_every,
                    "With --rasterize: draw one answer in N (default 1000)")
       ->check(CLI::PositiveNumber);
+  verify->add_option("--accuracy", options.accuracy_dir,
+                     "Profile every answer that passes: row 3's error against the exact answer "
+                     "by family, place and stiffness, the round trip timed, beside the core's "
+                     "methods on the same cases; the report (accuracy.md, .csv, charts) written "
+                     "into this folder when the run holds");
   verify->add_option("--replay", options.replay,
                      "Re-judge the case of a report (its .json) with --impl: exit 0 or 1 (3: a "
                      "raster report the rasterizer cannot judge)");

@@ -1,5 +1,6 @@
 # The installed package: headers, libraries, exported targets (oblique::core, ::protocol,
-# ::properties, ::generators, ::report_files, ::counterexample_reports, ::testing, ::raster,
+# ::properties, ::generators, ::report_files, ::counterexample_reports, ::accuracy_profile,
+# ::testing, ::raster,
 # ::testing_raster, ::fuzzing, ::fuzzing_replay),
 # obliqueConfig.cmake with its version file, and the fuzz seed corpus and dictionary
 # (share/oblique/fuzz). oblique::warnings is build-only and never exported.
@@ -20,6 +21,10 @@ if(TARGET oblique_testing)
           FILES_MATCHING PATTERN "*.h")
   list(APPEND OBLIQUE_EXPORTED oblique_testing)
 endif()
+# The accuracy profile (oblique::testing's profile_accuracy() writes it).
+install(FILES ${PROJECT_SOURCE_DIR}/report/include/oblique/report/accuracy_profile.h
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/oblique/report)
+list(APPEND OBLIQUE_EXPORTED oblique_accuracy_profile)
 # The rasterizer (its EGL and OpenGL are found again by the package when it was built with them).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/raster/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.h")

@@ -2,7 +2,8 @@
 # build it: install this build tree into WORK/prefix, configure the example with
 # -DCMAKE_PREFIX_PATH, build it, then
 #  - the fixed engine passes the property suite, the raster check and its fuzz replay, and its
-#    depth reconstruction the consumer properties;
+#    depth reconstruction the consumer properties; its accuracy profile is written beside the
+#    core's methods;
 #  - the engine as shipped fails the suite with a report naming make_oblique, the y-flipped
 #    family and a property, and the report's replay command, pasted into a shell, fails again;
 #  - the fuzz replay of the installed seed corpus catches it too, and so does the raster check
@@ -36,6 +37,19 @@ run(EXPECT ok OUTPUT output COMMAND "${WORK}/gcc/engine_consumers_test")
 if(NOT output MATCHES "view_position: OK, passed")
   message(FATAL_ERROR "the engine's consumer test ran no view_position property:\n${output}")
 endif()
+# The fixed engine's accuracy profile: its report beside the core's three methods.
+run(EXPECT ok OUTPUT output COMMAND "${WORK}/gcc/engine_accuracy_test")
+if(NOT output MATCHES "accuracy: [1-9][0-9]* answers profiled, worst [0-9.]+ bits lost, [0-9.]+ ns a call: ([^\n]+accuracy\\.md)")
+  message(FATAL_ERROR "the engine's accuracy test wrote no profile:\n${output}")
+endif()
+file(READ "${CMAKE_MATCH_1}" text)
+foreach(row "| make_oblique | float |" "| core closed_form | float |" "| core general | float |"
+        "| core accurate | float |")
+  string(FIND "${text}" "${row}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "the accuracy profile has no row \"${row}\":\n${text}")
+  endif()
+endforeach()
 run(EXPECT ok OUTPUT output COMMAND "${WORK}/gcc/engine_raster_test_fixed")
 set(rasterizer ON)
 if(output MATCHES "the rasterizer cannot run here: no EGL")

@@ -5,6 +5,8 @@
 #include <ostream>
 #include <vector>
 
+#include "accuracy.h"
+#include "oblique/properties/properties.h"
 #include "oblique/protocol/json.h"
 #include "oblique/protocol/protocol.h"
 
@@ -85,6 +87,26 @@ void save_regression(const std::string& json_path, const std::string& folder, st
 }
 
 template <class T>
+void FailureDatabase<T>::accuracy_again(const std::string& path, const VerifyCase<T>& v) {
+  const Expected<protocol::JsonValue> j = read_report(path);
+  const auto& answer = session_.last_answer();
+  if (!j || !is_accuracy_case(*j) || !answer || answer->status != Status::ok) return;
+  const properties::Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+  if (problem.exact_status() != Status::ok) return;
+  const report::ProfiledAnswer now = report::profile_answer(problem, answer->projection);
+  std::string recorded;
+  if (const protocol::JsonValue* ulps = j->find("ulps"); ulps && ulps->is_array())
+    for (const protocol::JsonValue& u : ulps->items)
+      recorded += (recorded.empty() ? "" : ", ") + u.text;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "  row 3 against the exact answer: %.1f, %.1f, %.1f, %.1f ulps (%.2f bits lost)",
+                now.ulps[0], now.ulps[1], now.ulps[2], now.ulps[3],
+                report::bits_lost(now.worst_ulps()));
+  out_ << line << "; the profile recorded [" << recorded << "]\n";
+}
+
+template <class T>
 Verdict FailureDatabase<T>::replay(const std::string& path, bool verbose) {
   const Expected<VerifyCase<T>> v = read_report_case<T>(path);
   if (!v) {
@@ -98,6 +120,7 @@ Verdict FailureDatabase<T>::replay(const std::string& path, bool verbose) {
       if (verbose) {
         out_ << "oblique verify: " << path << ": holds (" << protocol::scalar_name<T>() << ", "
              << convention_name(v->c.convention) << ")\n";
+        accuracy_again(path, *v);
       }
       return Verdict::holds;
     case Evaluation::finding: {

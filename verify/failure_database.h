@@ -64,6 +64,10 @@ class FailureDatabase {
   Verdict replay_all(const std::string& folder);
 
  private:
+  /// For an accuracy profile's case (verify --accuracy's worst-K.json) that holds: its row 3's
+  /// error measured again on the answer just given, beside the one the profile recorded.
+  void accuracy_again(const std::string& path, const VerifyCase<T>& v);
+
   Session<T>& session_;
   Reporter<T>& reporter_;
   std::ostream& out_;

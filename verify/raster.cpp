@@ -77,8 +77,7 @@ std::optional<Verdict> RasterLook<T>::sample(const VerifyCase<T>& v, const std::
   if (!r || r->outcome == raster::Outcome::pass) return std::nullopt;
   if (r->outcome == raster::Outcome::inconclusive) {
     err_ << "oblique verify: raster: inconclusive at answer " << index << ": " << r->why
-         << "\n  request: " << request << "\n  the run again: " << rerun_command(options_)
-         << "\n";
+         << "\n  request: " << request << "\n  the run again: " << rerun_command(options_) << "\n";
     return Verdict::inconclusive;
   }
   return report(v, request, answer, *r, index);

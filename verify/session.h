@@ -53,6 +53,8 @@ class Session {
   std::optional<properties::Observation<T>> observe(const VerifyCase<T>& v);
   /// The protocol problem of the last evaluation.
   const Issue& issue() const { return issue_; }
+  /// The answer of the last evaluation, when it gave one.
+  const std::optional<protocol::TypedAnswer<T>>& last_answer() const { return last_answer_; }
 
   /// The finding for a process that exited (a crash) or gave no answer in time (a timeout).
   Found<T> lost_finding(ChildProcess::Outcome outcome);

@@ -20,6 +20,7 @@
 #include <random>
 #include <thread>
 
+#include "accuracy.h"
 #include "batches.h"
 #include "cases.h"
 #include "consumers.h"
@@ -45,7 +46,8 @@ class Verifier {
         reporter_(options, draws_, out, err),
         shrinker_(session_, reporter_, out, err),
         database_(session_, reporter_, out, err),
-        raster_(options, out, err) {}
+        raster_(options, out, err),
+        accuracy_(options, out, err) {}
 
   /// --replay: re-judges one report's case.
   Verdict replay_report(const std::string& path) {
@@ -134,6 +136,8 @@ class Verifier {
           restarted = true;
         }
         seen.count(current.values[k]);
+        if (!options_.accuracy_dir.empty() && !judged[k].finding)
+          accuracy_.passed(current.values[k], current.requests[k], answers[k]);
         if (options_.rasterize && !judged[k].finding) {
           const long index = done + static_cast<long>(k) + 1;
           if (const std::optional<Verdict> drawn =
@@ -218,6 +222,8 @@ class Verifier {
     const Verdict verdict = reporter_.passed(done, session_.seconds_since_start(), seen, left_out,
                                              stopped_by_time, dropped);
     if (options_.rasterize) raster_.summary();
+    if (!options_.accuracy_dir.empty() && verdict == Verdict::holds && !accuracy_.write())
+      return Verdict::error;
     return verdict;
   }
 
@@ -245,6 +251,7 @@ class Verifier {
   Shrinker<T> shrinker_;
   FailureDatabase<T> database_;
   RasterLook<T> raster_;
+  AccuracyLook<T> accuracy_;
 };
 
 }  // namespace
@@ -336,6 +343,13 @@ Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& 
     err << "oblique verify: --report-dir " << options.report_dir << ": " << why << "\n";
     return Verdict::error;
   }
+  if (std::string why = options.accuracy_dir.empty() || !options.replay.empty()
+                            ? ""
+                            : check_report_directory(options.accuracy_dir);
+      !why.empty()) {
+    err << "oblique verify: --accuracy " << options.accuracy_dir << ": " << why << "\n";
+    return Verdict::error;
+  }
   if (options.seed == 0) options.seed = std::random_device{}() | 1u;
   if (!options.replay.empty()) {
     if (const Expected<protocol::JsonValue> report = read_report(options.replay);
@@ -369,6 +383,11 @@ Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& 
     return Verdict::error;
   }
   if (!options.consumers.empty()) {
+    if (!options.accuracy_dir.empty()) {
+      err << "oblique verify: --accuracy profiles oblique matrices; it does not apply to "
+             "--consumers\n";
+      return Verdict::error;
+    }
     if (options.rasterize) {
       err << "oblique verify: --rasterize draws oblique matrices; it does not apply to "
              "--consumers\n";

@@ -24,6 +24,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <iterator>
 #include <optional>
 #include <string>
@@ -82,7 +83,34 @@ template <class T>
 void check_consumers(const oblique::Consumers<T>& consumers, const Contract& contract = Contract{});
 }  // namespace OBLIQUE_EIGEN_LAYOUT
 
+/// What profile_accuracy() asks and where it writes.
+struct AccuracySettings {
+  int cases = 4000;        ///< cases of the contract generated (the same ones every run)
+  std::uint64_t seed = 1;  ///< their seed
+  std::string directory;  ///< empty: $OBLIQUE_REPORT_DIR (or ./oblique-reports)/Suite.Name.accuracy
+};
+
+/// The accuracy profile of `impl` on cases of `contract`: for each answer that passes the
+/// properties, row 3 entry by entry against the exact answer, grouped by family, place and
+/// stiffness; its time per call in this process; the core's closed form, general and accurate
+/// methods on the same cases beside it. Writes the report (oblique/report/accuracy_profile.h:
+/// accuracy.md, accuracy.csv, worst-K.json, charts) and prints one line with its path. Fails the
+/// current test when answers violate the properties (the property tests report them; they are
+/// not profiled) or when the report cannot be written. Compiled for float, double, long double.
+inline namespace OBLIQUE_EIGEN_LAYOUT {
+template <class T>
+void profile_accuracy(const Implementation<T>& impl, const Contract& contract = Contract{},
+                      const AccuracySettings& settings = AccuracySettings{});
+}  // namespace OBLIQUE_EIGEN_LAYOUT
+
 }  // namespace oblique::testing
+
+/// A GoogleTest test that writes the accuracy profile of `implementation` (oblique::adapt()) on
+/// cases of `contract`, beside the core's methods (profile_accuracy()).
+#define OBLIQUE_ACCURACY_REPORT(Suite, Name, implementation, contract)  \
+  TEST(Suite, Name) {                                                   \
+    ::oblique::testing::profile_accuracy((implementation), (contract)); \
+  }
 
 /// A GoogleTest test that checks the code around the matrix, `consumers` (oblique::Consumers,
 /// oblique/properties/consumers.h), under `contract` (its families, conventions and places).

@@ -57,6 +57,11 @@ struct VerifyOptions {
   int raster_size = 256;
   long raster_every = 1000;
   DepthBuffer raster_buffer = DepthBuffer::fixed24;
+
+  /// --accuracy DIR: every answer that passes profiled (row 3's error against the exact answer),
+  /// the round trip timed, the core's methods measured on the same cases; the report written
+  /// into DIR at the end of a run that holds (docs/accuracy-and-performance.md).
+  std::string accuracy_dir;
 };
 
 /// How a run ended; the CLI exits with its value.

@@ -1,0 +1,117 @@
+#include "accuracy.h"
+
+#include <chrono>
+#include <cmath>
+#include <ostream>
+
+#include "oblique/properties/properties.h"
+#include "oblique/protocol/child_process.h"
+#include "oblique/protocol/json.h"
+#include "oblique/protocol/protocol.h"
+#include "reporter.h"
+
+namespace oblique::verify {
+
+template <class T>
+AccuracyLook<T>::AccuracyLook(const VerifyOptions& options, std::ostream& out, std::ostream& err)
+    : options_(options), out_(out), err_(err) {
+  // The program's name without its folder, and its arguments.
+  std::string name = options.command;
+  const std::size_t first_space = name.find(' ');
+  const std::size_t slash = name.rfind('/', first_space);
+  if (slash != std::string::npos) name = name.substr(slash + 1);
+  if (name.size() > 60) name = name.substr(0, 57) + "...";
+  mine_.name = name;
+  mine_.scalar = std::string(protocol::scalar_name<T>());
+  mine_.timing = report::Timing::round_trip;
+}
+
+template <class T>
+void AccuracyLook<T>::passed(const VerifyCase<T>& v, const std::string& request,
+                             const std::string& answer) {
+  if (v.has_defect) return;
+  if (static_cast<long>(mine_.answers.size()) + mine_.refused >= kMaxProfiled) {
+    ++skipped_;
+    return;
+  }
+  const properties::Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+  if (problem.exact_status() != Status::ok) return;
+  const Expected<protocol::TypedAnswer<T>> read = protocol::read_answer<T>(answer);
+  if (!read) return;  // judged already: a protocol error never reaches here
+  const std::string family(generators::family_name(v.c.family));
+  const std::string place(generators::place_name(v.c.place));
+  inputs_.push_back({v.c.matrix, v.c.plane, v.c.convention, family, place, request});
+  if (read->status != Status::ok) {
+    ++mine_.refused;
+    return;
+  }
+  report::ProfiledAnswer a = report::profile_answer(problem, read->projection);
+  a.family = family;
+  a.place = place;
+  a.request = request;
+  mine_.answers.push_back(std::move(a));
+}
+
+template <class T>
+bool AccuracyLook<T>::write() {
+  // The round trip: the profiled requests sent at once to a fresh process, timed from the first
+  // byte sent to the last answer read (JSON both ways, the pipe and the program's own work).
+  const std::size_t timed = std::min<std::size_t>(inputs_.size(), 4096);
+  if (timed > 0) {
+    std::string text;
+    for (std::size_t i = 0; i < timed; ++i) text += inputs_[i].request + "\n";
+    protocol::ChildProcess child(options_.command);
+    if (child.start()) {
+      std::vector<std::string> lines;
+      const auto idle =
+          std::chrono::milliseconds(static_cast<long>(options_.request_timeout_seconds * 1000));
+      const auto start = protocol::Clock::now();
+      const auto outcome = child.exchange(text, timed, lines, idle, start + 100 * idle);
+      const double seconds = std::chrono::duration<double>(protocol::Clock::now() - start).count();
+      child.stop();
+      if (outcome == protocol::ChildProcess::Outcome::done)
+        mine_.ns = seconds * 1e9 / static_cast<double>(timed);
+    }
+    if (std::isnan(mine_.ns))
+      err_ << "oblique verify: --accuracy: the round trip could not be timed (the program did "
+              "not answer the requests again)\n";
+  }
+  std::vector<report::Profile> profiles{mine_};
+  for (report::Profile& p : report::core_profiles(inputs_)) profiles.push_back(std::move(p));
+  report::ProfileReportOptions o;
+  o.dir = options_.accuracy_dir;
+  o.title = mine_.name + " (" + mine_.scalar + ")";
+  o.replay = [this](const report::ProfiledAnswer&, const std::string& json) {
+    return options_.self + " verify --replay " + shell_quote(json) + " --impl " +
+           shell_quote(options_.command);
+  };
+  const auto written = report::write_profile_report(profiles, o, err_);
+  if (!written) {
+    err_ << "oblique verify: --accuracy " << options_.accuracy_dir
+         << ": the report could not be written\n";
+    return false;
+  }
+  const report::ProfiledAnswer* worst = nullptr;
+  for (const report::ProfiledAnswer& a : mine_.answers)
+    if (!worst || a.worst_ulps() > worst->worst_ulps()) worst = &a;
+  out_ << "accuracy: " << mine_.answers.size() << " answers profiled";
+  if (skipped_ > 0) out_ << " (the first " << kMaxProfiled << "; " << skipped_ << " more judged)";
+  if (worst) {
+    char line[96];
+    std::snprintf(line, sizeof line, ", worst %.2f bits lost",
+                  report::bits_lost(worst->worst_ulps()));
+    out_ << line;
+  }
+  out_ << ": " << (std::filesystem::path(options_.accuracy_dir) / "accuracy.md").string() << "\n";
+  return true;
+}
+
+template class AccuracyLook<float>;
+template class AccuracyLook<double>;
+
+bool is_accuracy_case(const protocol::JsonValue& report) {
+  const protocol::JsonValue* type = report.find("type");
+  return type && type->is_string() && type->text == "accuracy";
+}
+
+}  // namespace oblique::verify
