@@ -12,6 +12,7 @@
 
 #include "oblique/oblique.h"
 #include "oblique/properties/generators.h"
+#include "oblique/properties/mistakes.h"
 #include "oblique/properties/seeded_recipes.h"
 
 namespace oblique {
@@ -146,6 +147,41 @@ TEST(Presets, listing51IsCaughtOnTheRestOfThePerspectiveShape) {
     testing::check_properties(on_every_shape, unit_planes());
   }
   EXPECT_GT(failures.size(), 0) << "Listing 5.1 passed on flipped matrices";
+}
+
+// The in-process accuracy profile: the GL function's report beside the core's three methods; a
+// function whose answers violate the properties fails the test (they are not profiled).
+TEST(Accuracy, aFunctionsProfileIsWrittenBesideTheCoresMethods) {
+  namespace fs = std::filesystem;
+  testing::AccuracySettings settings;
+  settings.cases = 500;
+  settings.directory = (fs::path(::testing::TempDir()) / "oblique_testing_accuracy").string();
+  fs::remove_all(settings.directory);
+  ::testing::internal::CaptureStdout();
+  testing::profile_accuracy(gl_only, Contract{}, settings);
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  EXPECT_EQ(out.rfind("accuracy: ", 0), 0u) << out;
+  std::ifstream in(fs::path(settings.directory) / "accuracy.md");
+  const std::string md{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  for (const char* row : {"| make_oblique_gl | double |", "| core closed_form | double |",
+                          "| core general | double |", "| core accurate | double |"})
+    EXPECT_NE(md.find(row), std::string::npos) << row << "\n" << md;
+  EXPECT_NE(md.find(" a call |"), std::string::npos) << md;
+}
+
+TEST(Accuracy, answersThatViolateThePropertiesFailTheProfile) {
+  const auto wrong =
+      properties::mistaken_implementation<double>({properties::Mistake::zero_one_formula_on_gl});
+  Contract gl;
+  gl.conventions = {Convention::gl};
+  testing::AccuracySettings settings;
+  settings.cases = 200;
+  settings.directory =
+      (std::filesystem::path(::testing::TempDir()) / "oblique_testing_accuracy_wrong").string();
+  ::testing::internal::CaptureStdout();
+  EXPECT_NONFATAL_FAILURE(testing::profile_accuracy(wrong, gl, settings),
+                          "answers violate the properties and are not profiled");
+  ::testing::internal::GetCapturedStdout();
 }
 
 }  // namespace
