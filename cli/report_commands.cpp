@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "oblique/protocol/child_process.h"
 #include "oblique/raster/raster.h"
 #include "oblique/report/accuracy_report.h"
 #include "oblique/report/depth_report.h"
@@ -13,6 +14,7 @@ void setup_report(CLI::App& app, int& exit_code) {
   struct Settings {
     oblique::report::AccuracyOptions accuracy;
     std::string accuracy_out = "report-out";
+    std::vector<std::string> impls, impls_float;
     bool quiet = false;
     oblique::report::DepthOptions depth;
     std::string depth_out = "report-out";
@@ -37,11 +39,27 @@ void setup_report(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   accuracy->add_option("--seed", settings->accuracy.seed, "Random seed")->capture_default_str();
   accuracy->add_flag("--quiet", settings->quiet, "No progress lines on standard error");
+  accuracy->add_option("--impl", settings->impls,
+                       "Also an implementation of yours (the protocol of oblique verify, double): "
+                       "asked the same cases over the pipe, its error and round trip per request "
+                       "beside the core's methods; may be given more than once");
+  accuracy->add_option("--impl-float", settings->impls_float,
+                       "The same for an implementation that answers in float");
   accuracy->callback([settings, &exit_code] {
     oblique::report::AccuracyOptions& options = settings->accuracy;
     options.out_dir = settings->accuracy_out;
     options.progress = !settings->quiet;
+    auto add = [&options](const std::string& command, bool float32) {
+      options.implementations.push_back({command, float32, protocol::command_name(command)});
+    };
+    for (const std::string& c : settings->impls) add(c, false);
+    for (const std::string& c : settings->impls_float) add(c, true);
     const auto measured = oblique::report::measure_accuracy(options, std::cerr);
+    if (!measured.error.empty()) {
+      std::cerr << "oblique report accuracy: " << measured.error << "\n";
+      exit_code = 2;
+      return;
+    }
     exit_code = print_paths(oblique::report::write_accuracy_report(measured, options, std::cerr));
   });
   CLI::App* depth = report->add_subcommand(

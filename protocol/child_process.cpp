@@ -136,6 +136,25 @@ std::string shell_quote(const std::string& s) {
   return out + "'";
 }
 
+std::string command_name(const std::string& command) {
+  std::string out, word;
+  auto flush = [&] {
+    if (word.empty()) return;
+    const std::size_t slash = word.rfind('/');
+    if (slash != std::string::npos && slash + 1 < word.size()) word = word.substr(slash + 1);
+    out += (out.empty() ? "" : " ") + word;
+    word.clear();
+  };
+  for (char ch : command) {
+    if (std::isspace(static_cast<unsigned char>(ch)))
+      flush();
+    else
+      word += ch;
+  }
+  flush();
+  return out.size() > 60 ? out.substr(0, 57) + "..." : out;
+}
+
 std::string escape_bytes(std::string_view bytes) {
   std::string out;
   out.reserve(bytes.size());

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <memory>
 #include <ostream>
 #include <random>
 #include <sstream>
@@ -14,7 +15,10 @@
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
 #include "oblique/properties/properties.h"
+#include "oblique/protocol/child_process.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/protocol/protocol.h"
+#include "oblique/report/accuracy_profile.h"
 #include "oblique/report/report_files.h"
 
 namespace oblique::report {
@@ -195,6 +199,40 @@ Stats stats_of(std::vector<double> values) {
   return s;
 }
 
+/// The rows of one method (or implementation) on one scalar type in `regime`: the whole
+/// regime, and each stiffness step.
+void add_rows(const Regime& regime, const std::string& scalar, const std::string& method,
+              bool round_trip, double ns, const Errors& all, const std::vector<Errors>& by_step,
+              AccuracyReport& report) {
+  AccuracyRow row;
+  row.regime = regime.name;
+  row.scalar = scalar;
+  row.method = method;
+  row.round_trip = round_trip;
+  row.answered = all.answered;
+  row.refused = all.refused;
+  const Stats s = stats_of(all.ulps);
+  row.max_ulps = s.max;
+  row.p999_ulps = s.p999;
+  row.mean_ulps = s.mean;
+  row.ns_per_call = ns;
+  row.max_bound_ratio = all.max_bound_ratio;
+  report.rows.push_back(row);
+  if (regime.parameter.empty()) return;
+  for (std::size_t k = 0; k < regime.values.size(); ++k) {
+    if (by_step[k].ulps.empty()) continue;
+    StiffnessPoint p;
+    p.regime = regime.name;
+    p.parameter = regime.parameter;
+    p.scalar = scalar;
+    p.method = method;
+    p.value = regime.values[k];
+    p.max_ulps = stats_of(by_step[k].ulps).max;
+    p.max_bound_ratio = by_step[k].max_bound_ratio;
+    report.stiffness.push_back(p);
+  }
+}
+
 template <class T>
 struct Case {
   Matrix4<T> matrix;
@@ -235,16 +273,14 @@ void measure_scalar(const Regime& regime, const std::vector<Input>& inputs,
       }
       ++all.answered;
       ++step.answered;
-      const exact::Vec row = problem.exact_row3();
       const auto closeness = problem.compare_row3(r.projection);
       const double ratio = closeness.judged ? closeness.ratio : 0.0;
       all.max_bound_ratio = std::max(all.max_bound_ratio, ratio);
       step.max_bound_ratio = std::max(step.max_bound_ratio, ratio);
-      for (int j = 0; j < 4; ++j) {
-        const double u = exact::ulp_distance(r.projection(2, j), row[j]);
-        all.ulps.push_back(u);
-        step.ulps.push_back(u);
-      }
+      // The answer's error: its worst entry, in ulps of the row (accuracy_profile.h).
+      const double u = profile_answer(problem, r.projection).worst_ulps();
+      all.ulps.push_back(u);
+      step.ulps.push_back(u);
     }
     if (timed.empty()) continue;
     // Time per call: every answered case in turn, several passes; a checksum keeps the calls.
@@ -258,34 +294,77 @@ void measure_scalar(const Regime& regime, const std::vector<Input>& inputs,
     const double elapsed =
         std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
     if (checksum == 0.123456789) std::abort();  // never: only keeps the calls alive
-    AccuracyRow row;
-    row.regime = regime.name;
-    row.scalar = std::string(protocol::scalar_name<T>());
-    row.method = std::string(method_name(method));
-    row.answered = all.answered;
-    row.refused = all.refused;
-    const Stats s = stats_of(all.ulps);
-    row.max_ulps = s.max;
-    row.p999_ulps = s.p999;
-    row.mean_ulps = s.mean;
-    row.ns_per_call =
-        elapsed / (static_cast<double>(options.timing_repeats) * static_cast<double>(timed.size()));
-    row.max_bound_ratio = all.max_bound_ratio;
-    report.rows.push_back(row);
-    if (regime.parameter.empty()) continue;
-    for (std::size_t k = 0; k < regime.values.size(); ++k) {
-      if (by_step[k].ulps.empty()) continue;
-      StiffnessPoint p;
-      p.regime = regime.name;
-      p.parameter = regime.parameter;
-      p.scalar = row.scalar;
-      p.method = row.method;
-      p.value = regime.values[k];
-      p.max_ulps = stats_of(by_step[k].ulps).max;
-      p.max_bound_ratio = by_step[k].max_bound_ratio;
-      report.stiffness.push_back(p);
-    }
+    add_rows(
+        regime, std::string(protocol::scalar_name<T>()), std::string(method_name(method)), false,
+        elapsed / (static_cast<double>(options.timing_repeats) * static_cast<double>(timed.size())),
+        all, by_step, report);
   }
+}
+
+/// The same cases sent to an implementation over the pipe, in T: each answer's error, the
+/// round trip per request (every case of the regime sent at once, timed to the last answer).
+/// Empty, or what went wrong.
+template <class T>
+std::string measure_external(const Regime& regime, const std::vector<Input>& inputs,
+                             const std::vector<std::size_t>& steps,
+                             const ExternalImplementation& impl, protocol::ChildProcess& child,
+                             const AccuracyOptions& options, AccuracyReport& report) {
+  std::vector<Case<T>> cases;
+  std::vector<properties::Problem<T>> problems;
+  std::string text;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    Case<T> c{inputs[i].matrix.template cast<T>(), inputs[i].plane.template cast<T>(),
+              inputs[i].convention, steps[i]};
+    if (!all_finite(c.matrix) || !all_finite(c.plane)) continue;
+    properties::Problem<T> problem(c.matrix, c.plane, c.convention);
+    if (problem.exact_status() != Status::ok) continue;
+    text += protocol::request_line(c.matrix, c.plane, c.convention) + "\n";
+    problems.push_back(std::move(problem));
+    cases.push_back(c);
+  }
+  if (cases.empty()) return "";
+  if (!child.running()) {
+    if (const Expected<Done> started = child.start(); !started)
+      return impl.command + ": cannot start: " + started.error();
+  }
+  std::vector<std::string> lines;
+  const auto idle =
+      std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000));
+  const auto start = protocol::Clock::now();
+  const auto outcome = child.exchange(text, cases.size(), lines, idle,
+                                      start + idle * static_cast<long>(cases.size()));
+  const double elapsed =
+      std::chrono::duration<double, std::nano>(protocol::Clock::now() - start).count();
+  if (outcome != protocol::ChildProcess::Outcome::done)
+    return impl.command + ": answered " + std::to_string(lines.size()) + " of the " +
+           std::to_string(cases.size()) + " requests of regime " + regime.name + " (" +
+           child.end_description() + ")";
+  Errors all;
+  std::vector<Errors> by_step(regime.values.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Expected<protocol::TypedAnswer<T>> answer = protocol::read_answer<T>(lines[i]);
+    if (!answer)
+      return impl.command + ": answer " + std::to_string(i + 1) + " of regime " + regime.name +
+             " is not an answer (" + answer.error() + ")";
+    Errors& step = by_step[cases[i].step];
+    if (answer->status != Status::ok) {
+      ++all.refused;
+      ++step.refused;
+      continue;
+    }
+    ++all.answered;
+    ++step.answered;
+    const auto closeness = problems[i].compare_row3(answer->projection);
+    const double ratio = closeness.judged ? closeness.ratio : 0.0;
+    all.max_bound_ratio = std::max(all.max_bound_ratio, ratio);
+    step.max_bound_ratio = std::max(step.max_bound_ratio, ratio);
+    const double u = profile_answer(problems[i], answer->projection).worst_ulps();
+    all.ulps.push_back(u);
+    step.ulps.push_back(u);
+  }
+  add_rows(regime, std::string(protocol::scalar_name<T>()), impl.name, true,
+           elapsed / static_cast<double>(cases.size()), all, by_step, report);
+  return "";
 }
 
 std::string number(double x) {
@@ -297,14 +376,14 @@ std::string number(double x) {
 
 }  // namespace
 
-double ulps_to_bits(double ulps) {
-  return std::log2(ulps + 1);
-}
-
 AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& progress) {
   AccuracyReport report;
   std::mt19937_64 rng(options.seed);
   const auto all = regimes();
+  // One process for each implementation, asked regime after regime.
+  std::vector<std::unique_ptr<protocol::ChildProcess>> children;
+  for (const ExternalImplementation& impl : options.implementations)
+    children.push_back(std::make_unique<protocol::ChildProcess>(impl.command));
   for (std::size_t r = 0; r < all.size(); ++r) {
     const Regime& regime = all[r];
     if (options.progress)
@@ -328,6 +407,14 @@ AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& pr
     measure_scalar<float>(regime, inputs, steps, options, report);
     measure_scalar<double>(regime, inputs, steps, options, report);
     measure_scalar<long double>(regime, inputs, steps, options, report);
+    for (std::size_t i = 0; i < options.implementations.size(); ++i) {
+      const ExternalImplementation& impl = options.implementations[i];
+      report.error = impl.float32 ? measure_external<float>(regime, inputs, steps, impl,
+                                                            *children[i], options, report)
+                                  : measure_external<double>(regime, inputs, steps, impl,
+                                                             *children[i], options, report);
+      if (!report.error.empty()) return report;
+    }
   }
   return report;
 }
@@ -341,6 +428,7 @@ std::map<std::pair<std::string, std::string>, OverallPoint> overall_points(
     const auto key = std::make_pair(row.method, row.scalar);
     OverallPoint& p = points[key];
     p.ns_per_call += row.ns_per_call;  // a sum until divided below
+    p.round_trip = row.round_trip;
     p.max_ulps = std::max(p.max_ulps, row.max_ulps);
     p.p999_ulps = std::max(p.p999_ulps, row.p999_ulps);
     p.max_bound_ratio = std::max(p.max_bound_ratio, row.max_bound_ratio);
@@ -364,13 +452,14 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
 
   std::ostream& csv = files.open("accuracy.csv");
   csv << "regime,scalar,method,answered,refused,max_ulps,p999_ulps,mean_ulps,max_bits,p999_bits,"
-         "mean_bits,ns_per_call,max_error_over_bound\n";
+         "mean_bits,ns_per_call,max_error_over_bound,timing\n";
   csv.precision(17);
   for (const AccuracyRow& r : report.rows) {
     csv << r.regime << ',' << r.scalar << ',' << r.method << ',' << r.answered << ',' << r.refused
         << ',' << r.max_ulps << ',' << r.p999_ulps << ',' << r.mean_ulps << ','
-        << ulps_to_bits(r.max_ulps) << ',' << ulps_to_bits(r.p999_ulps) << ','
-        << ulps_to_bits(r.mean_ulps) << ',' << r.ns_per_call << ',' << r.max_bound_ratio << '\n';
+        << bits_lost(r.max_ulps) << ',' << bits_lost(r.p999_ulps) << ',' << bits_lost(r.mean_ulps)
+        << ',' << r.ns_per_call << ',' << r.max_bound_ratio << ','
+        << (r.round_trip ? "round_trip" : "in_process") << '\n';
   }
 
   std::ostream& stiff = files.open("stiffness.csv");
@@ -378,24 +467,33 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
   stiff.precision(17);
   for (const StiffnessPoint& p : report.stiffness) {
     stiff << p.regime << ',' << p.parameter << ',' << p.value << ',' << p.scalar << ',' << p.method
-          << ',' << p.max_ulps << ',' << ulps_to_bits(p.max_ulps) << ',' << p.max_bound_ratio
-          << '\n';
+          << ',' << p.max_ulps << ',' << bits_lost(p.max_ulps) << ',' << p.max_bound_ratio << '\n';
   }
 
   const auto overall = overall_points(report);
 
   std::ostream& md = files.open("accuracy.md");
-  md << "| method | scalar | max error (ulp) | max error (bits) | worst 99.9th pct (ulp) | "
-        "ns per call (mean over regimes) | max error / checker bound | on the front |\n"
+  md << "Each answer's error is its worst entry of row 3 against the exact answer, in ulps of the "
+        "row (of its largest entry); bits lost = log2(ulps + 1). The core's methods are timed "
+        "in this process (ns per call); an implementation given with --impl over the pipe (ns "
+        "per request, round trip: JSON both ways and the program's own work).\n\n"
+        "| method | scalar | max error (ulp) | max error (bits) | worst 99.9th pct (ulp) | "
+        "ns per answer (mean over regimes) | max error / checker bound | on the front |\n"
         "|---|---|---:|---:|---:|---:|---:|:---:|\n";
   for (const auto& [key, o] : overall) {
     md << "| " << key.first << " | " << key.second << " | " << number(o.max_ulps) << " | "
-       << number(ulps_to_bits(o.max_ulps)) << " | " << number(o.p999_ulps) << " | "
-       << number(o.ns_per_call) << " | " << number(o.max_bound_ratio) << " | "
-       << (o.on_front ? "yes" : "") << " |\n";
+       << number(bits_lost(o.max_ulps)) << " | " << number(o.p999_ulps) << " | "
+       << number(o.ns_per_call) << (o.round_trip ? " (round trip)" : "") << " | "
+       << number(o.max_bound_ratio) << " | " << (o.on_front ? "yes" : "") << " |\n";
   }
-  md << "\nPer regime (max / 99.9th percentile / mean error in ulps, ns per call):\n\n"
-        "| regime | scalar | closed_form | general | accurate |\n|---|---|---|---|---|\n";
+  std::vector<std::string> methods{"closed_form", "general", "accurate"};
+  for (const ExternalImplementation& impl : options.implementations) methods.push_back(impl.name);
+  md << "\nPer regime (max / 99.9th percentile / mean error in ulps, ns per answer):\n\n"
+        "| regime | scalar";
+  for (const std::string& m : methods) md << " | " << m;
+  md << " |\n|---|---";
+  for (std::size_t i = 0; i < methods.size(); ++i) md << "|---";
+  md << "|\n";
   std::map<std::pair<std::string, std::string>, std::map<std::string, const AccuracyRow*>> cells;
   std::vector<std::pair<std::string, std::string>> order;
   for (const AccuracyRow& r : report.rows) {
@@ -405,7 +503,7 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
   }
   for (const auto& key : order) {
     md << "| " << key.first << " | " << key.second;
-    for (const char* m : {"closed_form", "general", "accurate"}) {
+    for (const std::string& m : methods) {
       const auto it = cells[key].find(m);
       if (it == cells[key].end() || it->second->answered == 0) {
         md << " | n/a";
@@ -419,32 +517,49 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
     md << " |\n";
   }
 
-  // Chart data: one line per (method, scalar); the front sorted by time.
+  // Chart data: one block per (method, scalar), drawn in the method's colour with the scalar's
+  // point type and named in the key below the chart (no labels on it to overlap); the front of
+  // the non-dominated points as steps.
+  auto method_colour = [&methods](const std::string& method) {
+    static const char* colours[] = {"#1f77b4", "#2ca02c", "#9467bd", "#d62728",
+                                    "#ff7f0e", "#8c564b", "#17becf", "#7f7f7f"};
+    const auto at = std::find(methods.begin(), methods.end(), method) - methods.begin();
+    return colours[static_cast<std::size_t>(at) % (sizeof colours / sizeof *colours)];
+  };
+  auto scalar_point = [](const std::string& scalar) {
+    return scalar == "float" ? 9 : scalar == "double" ? 7 : 5;  // triangle, circle, square
+  };
   std::ostream& points = files.open("accuracy_points.dat");
   std::vector<std::pair<double, double>> front_points;
+  std::string plots;
+  int block = 0;
   for (const auto& [key, o] : overall) {
-    points << o.ns_per_call << ' ' << ulps_to_bits(o.max_ulps) << ' ' << key.first << '/'
-           << key.second << '\n';
-    if (o.on_front) front_points.emplace_back(o.ns_per_call, ulps_to_bits(o.max_ulps));
+    points << "# " << key.first << " (" << key.second << ")\n"
+           << o.ns_per_call << ' ' << bits_lost(o.max_ulps) << "\n\n\n";
+    if (o.on_front) front_points.emplace_back(o.ns_per_call, bits_lost(o.max_ulps));
+    plots += ", '" + (options.out_dir / "accuracy_points.dat").string() + "' index " +
+             std::to_string(block++) + " using 1:2 with points pt " +
+             std::to_string(scalar_point(key.second)) + " ps 2 lc rgb '" +
+             method_colour(key.first) + "' title '" + key.first + " (" + key.second + ")" +
+             (o.round_trip ? ", round trip" : "") + "'";
   }
   std::sort(front_points.begin(), front_points.end());
   std::ostream& front_file = files.open("accuracy_front.dat");
   for (const auto& [ns, bits] : front_points) front_file << ns << ' ' << bits << '\n';
 
   std::ostream& gp = files.open("accuracy.gp");
-  gp << "set terminal pngcairo size 900,600 noenhanced\n"
+  gp << "set terminal pngcairo size 1000,760 noenhanced\n"
         "set output '"
      << (options.out_dir / "accuracy.png").string()
      << "'\n"
         "set title 'oblique: error against run time (worst over every regime)'\n"
-        "set xlabel 'ns per call (mean over regimes)'\nset logscale x\n"
-        "set ylabel 'max error, bits = log2(ulp + 1)'\nset yrange [-0.5:*]\nset key top right\n"
+        "set xlabel 'ns per answer, mean over regimes (log scale): a call in process, or a "
+        "request over the pipe (round trip)'\nset logscale x\n"
+        "set ylabel 'max error, bits lost = log2(ulps of the row + 1)'\nset yrange [-1:*]\n"
+        "set grid\nset key outside below maxrows 4\n"
         "plot '"
      << (options.out_dir / "accuracy_front.dat").string()
-     << "' using 1:2 with lines lw 2 title 'non-dominated front', '"
-     << (options.out_dir / "accuracy_points.dat").string()
-     << "' using 1:2 with points pt 7 ps 1.5 title 'method/scalar', '' using 1:2:3 with labels "
-        "offset 1,1 left notitle\n";
+     << "' using 1:2 with steps lw 2 lc rgb '#aaaaaa' title 'non-dominated front'" << plots << "\n";
 
   // Stiffness: one panel per swept regime, error in bits against the parameter, double only.
   std::vector<std::string> swept;
@@ -453,32 +568,39 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
   }
   std::ostream& sdat = files.open("stiffness.dat");
   for (const std::string& regime : swept) {
-    for (const char* m : {"closed_form", "general", "accurate"}) {
-      sdat << "# " << regime << ' ' << m << '\n';
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      // The core's methods in double; an implementation in the type it answers in.
+      const std::string scalar =
+          m < 3 ? "double" : (options.implementations[m - 3].float32 ? "float" : "double");
+      sdat << "# " << regime << ' ' << methods[m] << " (" << scalar << ")\n";
       for (const StiffnessPoint& p : report.stiffness) {
-        if (p.regime == regime && p.method == m && p.scalar == "double")
-          sdat << p.value << ' ' << ulps_to_bits(p.max_ulps) << '\n';
+        if (p.regime == regime && p.method == methods[m] && p.scalar == scalar)
+          sdat << p.value << ' ' << bits_lost(p.max_ulps) << '\n';
       }
       sdat << "\n\n";
     }
   }
   std::ostream& sgp = files.open("stiffness.gp");
-  sgp << "set terminal pngcairo size 1200," << 320 * ((swept.size() + 1) / 2)
+  sgp << "set terminal pngcairo size 1200," << 340 * ((swept.size() + 1) / 2)
       << " noenhanced\nset output '" << (options.out_dir / "stiffness.png").string()
       << "'\nset multiplot layout " << (swept.size() + 1) / 2
-      << ",2 title 'oblique: worst error (double) against the stiffness of each regime'\n"
-         "set logscale x\nset ylabel 'max error, bits'\nset yrange [-0.5:*]\nset key top left\n";
-  int block = 0;
+      << ",2 title 'oblique: worst error against the stiffness of each regime (the core in "
+         "double)'\n"
+         "set logscale x\nset ylabel 'max error, bits lost'\nset yrange [-1:*]\nset grid\n"
+         "set key top left\n";
+  int panel = 0;
   std::string parameter;
   for (const std::string& regime : swept) {
     for (const StiffnessPoint& p : report.stiffness)
       if (p.regime == regime) parameter = p.parameter;
-    sgp << "set title '" << regime << "'\nset xlabel '" << parameter << "'\nplot '"
-        << (options.out_dir / "stiffness.dat").string() << "' index " << block
-        << " using 1:2 with linespoints title 'closed_form', '' index " << block + 1
-        << " using 1:2 with linespoints title 'general', '' index " << block + 2
-        << " using 1:2 with linespoints title 'accurate'\n";
-    block += 3;
+    sgp << "set title '" << regime << "'\nset xlabel '" << parameter << "'\nplot ";
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      sgp << (m ? ", " : "") << "'" << (options.out_dir / "stiffness.dat").string() << "' index "
+          << panel * methods.size() + m << " using 1:2 with linespoints pt 7 lw 2 lc rgb '"
+          << method_colour(methods[m]) << "' title '" << methods[m] << "'";
+    }
+    sgp << "\n";
+    ++panel;
   }
   sgp << "unset multiplot\n";
 

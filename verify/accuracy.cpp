@@ -15,13 +15,7 @@ namespace oblique::verify {
 template <class T>
 AccuracyLook<T>::AccuracyLook(const VerifyOptions& options, std::ostream& out, std::ostream& err)
     : options_(options), out_(out), err_(err) {
-  // The program's name without its folder, and its arguments.
-  std::string name = options.command;
-  const std::size_t first_space = name.find(' ');
-  const std::size_t slash = name.rfind('/', first_space);
-  if (slash != std::string::npos) name = name.substr(slash + 1);
-  if (name.size() > 60) name = name.substr(0, 57) + "...";
-  mine_.name = name;
+  mine_.name = protocol::command_name(options.command);
   mine_.scalar = std::string(protocol::scalar_name<T>());
   mine_.timing = report::Timing::round_trip;
 }

@@ -23,6 +23,10 @@ std::string escape_bytes(std::string_view bytes);
 /// `s` quoted for /bin/sh when it needs it (a word of letters, digits and _./=,:+-@% as it is).
 std::string shell_quote(const std::string& s);
 
+/// A command as tables and charts name it: each word that names a file without its folder
+/// ("python3 /x/y/impl.py --float" is "python3 impl.py --float"), at most 60 characters.
+std::string command_name(const std::string& command);
+
 class ChildProcess {
  public:
   /// `command` runs under /bin/sh -c, in its own process group.

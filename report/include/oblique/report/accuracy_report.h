@@ -14,19 +14,31 @@
 
 namespace oblique::report {
 
+/// An implementation outside this process, asked the same cases over the pipe (the protocol of
+/// `oblique verify`): its answers profiled, its round trip per request timed.
+struct ExternalImplementation {
+  std::string command;   ///< run under /bin/sh -c
+  bool float32 = false;  ///< sent and read in float (else double)
+  std::string name;      ///< for the tables and charts (protocol::command_name())
+};
+
 struct AccuracyOptions {
   int cases_per_step = 24;  ///< generated cases per regime and stiffness step
   int timing_repeats = 20;  ///< passes over a regime's cases when timing
   unsigned long seed = 20261123;
   std::filesystem::path out_dir = "report-out";
   bool progress = true;
+  std::vector<ExternalImplementation> implementations;  ///< --impl, --impl-float
+  double request_timeout_seconds = 10;                  ///< for one answer of an implementation
 };
 
-/// One row: a method on a scalar type in one regime (all its stiffness steps together).
+/// One row: a method (or an implementation, `round_trip`) on a scalar type in one regime (all
+/// its stiffness steps together).
 struct AccuracyRow {
   std::string regime, scalar, method;
-  int answered = 0;  ///< cases the method answered ok where the exact answer exists
-  int refused = 0;   ///< cases it refused (a status) where the exact answer exists
+  bool round_trip = false;  ///< an implementation over the pipe: ns_per_call is per request
+  int answered = 0;         ///< cases the method answered ok where the exact answer exists
+  int refused = 0;          ///< cases it refused (a status) where the exact answer exists
   double max_ulps = 0, p999_ulps = 0, mean_ulps = 0;
   double ns_per_call = 0;
   double max_bound_ratio = 0;  ///< largest error / the checker's bound (must stay <= 1)
@@ -43,13 +55,12 @@ struct StiffnessPoint {
 struct AccuracyReport {
   std::vector<AccuracyRow> rows;
   std::vector<StiffnessPoint> stiffness;
+  std::string error;  ///< an implementation could not be asked (nothing is written then)
 };
 
-/// Measures everything (takes tens of seconds at the default size).
+/// Measures everything (takes tens of seconds at the default size): each answer's error is its
+/// worst entry in ulps of the row (accuracy_profile.h), bits = bits_lost(ulps).
 AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& progress);
-
-/// bits = log2(ulps + 1): 0 for the correctly rounded answer.
-double ulps_to_bits(double ulps);
 
 /// Writes accuracy.csv, stiffness.csv, accuracy.md, and the gnuplot scripts accuracy.gp and
 /// stiffness.gp in options.out_dir; runs gnuplot on them when it is installed (PNG charts).
@@ -61,7 +72,8 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
 /// One (method, scalar) pair over every regime: mean ns per call, worst errors, and whether it is
 /// on the error-against-time front (no other pair is both faster and more accurate).
 struct OverallPoint {
-  double ns_per_call = 0;  ///< mean over the regimes it answered in
+  double ns_per_call = 0;   ///< mean over the regimes it answered in
+  bool round_trip = false;  ///< per request over the pipe (an implementation)
   double max_ulps = 0, p999_ulps = 0, max_bound_ratio = 0;  ///< worst over the regimes
   bool on_front = false;
 };
