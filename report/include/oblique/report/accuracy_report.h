@@ -39,6 +39,7 @@ struct AccuracyRow {
   bool round_trip = false;  ///< an implementation over the pipe: ns_per_call is per request
   int answered = 0;         ///< cases the method answered ok where the exact answer exists
   int refused = 0;          ///< cases it refused (a status) where the exact answer exists
+  int violating = 0;  ///< an implementation's answers that violate the properties (not profiled)
   double max_ulps = 0, p999_ulps = 0, mean_ulps = 0;
   double ns_per_call = 0;
   double max_bound_ratio = 0;  ///< largest error / the checker's bound (must stay <= 1)
