@@ -88,22 +88,14 @@ TEST(TestingRaster, cameraSpaceSignsOnYFlippedMatricesClipTheKeptRegion) {
   expect_caught(properties::Mistake::camera_space_signs, y_flipped, "clipped_kept");
 }
 
-/// A GL-only function, pointer-style (column-major, in place): it takes no convention.
-Status make_oblique_gl(double m[16], const double plane[4]) {
-  const ObliqueResult<double> r =
-      apply<double>(adapting::load(m, Layout::column_major),
-                    Vector4<double>(plane[0], plane[1], plane[2], plane[3]), Convention::gl);
-  if (r.ok()) adapting::store(r.projection, Layout::column_major, m);
-  return r.status;
-}
-
 TEST(TestingRaster, aContractNamingAConventionTheFunctionDoesNotServeFails) {
-  const auto gl_only =
-      adapt<double>("make_oblique_gl", Layout::column_major, Convention::gl, make_oblique_gl);
+  auto gl_only = core<double>();
+  gl_only.name = "gl_only";
+  gl_only.conventions = {Convention::gl};  // as adapt() makes a function that takes none
   Contract zero_one;
   zero_one.conventions = {Convention::zero_one};
   EXPECT_NONFATAL_FAILURE(testing::check_on_rasterizer(gl_only, zero_one),
-                          "the contract names convention zero_one, which make_oblique_gl");
+                          "the contract names convention zero_one, which gl_only");
 }
 
 }  // namespace
