@@ -84,18 +84,43 @@ std::optional<Verdict> RasterLook<T>::sample(const VerifyCase<T>& v, const std::
 }
 
 template <class T>
-void RasterLook<T>::finding(const VerifyCase<T>& v, const std::string& answer) {
+void RasterLook<T>::finding(const VerifyCase<T>& v, const std::string& answer,
+                            const std::string& report_md) {
   std::string why;
   const std::optional<raster::Result> r = draw(v, answer, options_.seed, &why);
   if (!r) {
     err_ << "oblique verify: raster: the finding's answer is not drawn: " << why << "\n";
     return;
   }
-  err_ << "oblique verify: raster: the finding's answer on the rasterizer: "
-       << (r->outcome == raster::Outcome::pass   ? "passes (" + r->why + ")"
-           : r->outcome == raster::Outcome::fail ? "FAIL, " + r->why
-                                                 : "inconclusive: " + r->why)
-       << "\n";
+  const std::string verdict = r->outcome == raster::Outcome::pass   ? "passes (" + r->why + ")"
+                              : r->outcome == raster::Outcome::fail ? "FAIL, " + r->why
+                                                                    : "inconclusive: " + r->why;
+  const std::string said =
+      "oblique verify: raster: the finding's answer on the rasterizer: " + verdict;
+  // Beside the finding's report: STEM.raster.md with the pixels (only when STEM.md was written).
+  namespace fs = std::filesystem;
+  if (report_md.size() < 4 || report_md.compare(report_md.size() - 3, 3, ".md") != 0) {
+    err_ << said << "\n";
+    return;
+  }
+  const fs::path md_path(report_md);
+  const std::string stem = md_path.stem().string() + ".raster";
+  report::ReportFiles files(md_path.parent_path());
+  std::string md = "# The finding's answer on the rasterizer\n\nThe answer of [" +
+                   md_path.filename().string() + "](" + md_path.filename().string() +
+                   "), drawn on " + rasterizer_->renderer() + " in a " +
+                   std::to_string(options_.raster_size) + " x " +
+                   std::to_string(options_.raster_size) + " frame (depth buffer " +
+                   (options_.raster_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32") +
+                   ", frame seed " + std::to_string(options_.seed) + "): **" + verdict + "**.\n\n";
+  if (r->outcome == raster::Outcome::fail)
+    md += raster::stage_flagged_section(files, stem, *r, options_.raster_size);
+  files.open(stem + ".md") << md;
+  std::ostringstream log;
+  if (files.commit(log))
+    err_ << said << " (" << (md_path.parent_path() / (stem + ".md")).string() << ")\n";
+  else
+    err_ << said << "\noblique verify: raster: " << stem << ".md not written: " << log.str();
 }
 
 template <class T>

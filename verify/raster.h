@@ -31,8 +31,10 @@ class RasterLook {
   std::optional<Verdict> sample(const VerifyCase<T>& v, const std::string& request,
                                 const std::string& answer, long index);
 
-  /// A finding's answer drawn too; one line on err says what the rasterizer made of it.
-  void finding(const VerifyCase<T>& v, const std::string& answer);
+  /// A finding's answer drawn too; one line on err says what the rasterizer made of it, and
+  /// when it was drawn, STEM.raster.md beside the finding's report `report_md` (STEM.md) holds
+  /// the verdict and the flagged pixels' picture.
+  void finding(const VerifyCase<T>& v, const std::string& answer, const std::string& report_md);
 
   /// One line for a run's end: answers drawn, all passed, the renderer, the worst depth error.
   void summary() const;

@@ -121,7 +121,8 @@ class Verifier {
           const Verdict result =
               shrinker_.confirm(current, k, answers, finding, done + static_cast<long>(k) + 1);
           // Drawn once confirmed: an answer out of step with its request is no finding to draw.
-          if (options_.rasterize && result == Verdict::violated) raster_.finding(v, answers[k]);
+          if (options_.rasterize && result == Verdict::violated)
+            raster_.finding(v, answers[k], reporter_.last_report());
           if (!options_.keep_going || result != Verdict::violated) return result;
           kinds[key] = Kind{reporter_.last_report(), 1, reporter_.last_cause()};
           if (Clock::now() >= deadline) break;
