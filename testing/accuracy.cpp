@@ -65,6 +65,19 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& given,
   std::vector<report::Profile> profiles{mine};
   for (report::Profile& p : report::core_profiles(inputs)) profiles.push_back(std::move(p));
 
+  const std::string violations =
+      violating == 0 ? std::string()
+                     : impl.name + ": " + std::to_string(violating) +
+                           " answers violate the properties and are not profiled (the property "
+                           "tests report them); the first: " +
+                           first_violation;
+  if (mine.answers.empty()) {
+    ADD_FAILURE() << "oblique::testing: no answer of " << impl.name << " was profiled ("
+                  << settings.cases << " cases asked, " << inputs.size()
+                  << " with an answer it is for, " << mine.refused << " refused)"
+                  << (violations.empty() ? "" : "; " + violations);
+    return;
+  }
   report::ProfileReportOptions o;
   const properties::ReportContext context = report_context("");
   o.dir = settings.directory.empty()
@@ -85,11 +98,7 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& given,
                 "accuracy: %zu answers profiled, worst %.2f bits lost, %.1f ns a call: ",
                 mine.answers.size(), report::bits_lost(worst), mine.ns);
   std::cout << line << (o.dir / "accuracy.md").string() << std::endl;
-  if (violating > 0)
-    ADD_FAILURE() << impl.name << ": " << violating
-                  << " answers violate the properties and are not profiled (the property tests "
-                     "report them); the first: "
-                  << first_violation;
+  if (!violations.empty()) ADD_FAILURE() << violations;
 }
 
 template void profile_accuracy<float>(const Implementation<float>&, const Contract&,

@@ -74,6 +74,11 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
     ADD_FAILURE() << "oblique::testing: RasterSettings names no depth buffer to draw into";
     return;
   }
+  if (!(settings.size >= 16 && settings.size <= 4096)) {
+    ADD_FAILURE() << "oblique::testing: RasterSettings::size must be within [16, 4096] pixels, not "
+                  << settings.size;
+    return;
+  }
   const auto& opened = rasterizer_for(settings);
   if (!opened) {
     if (opened.error().rfind("no EGL", 0) == 0)

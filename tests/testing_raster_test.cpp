@@ -88,6 +88,13 @@ TEST(TestingRaster, cameraSpaceSignsOnYFlippedMatricesClipTheKeptRegion) {
   expect_caught(properties::Mistake::camera_space_signs, y_flipped, "clipped_kept");
 }
 
+TEST(TestingRaster, aFrameSizeOutOfRangeIsSaid) {
+  testing::RasterSettings tiny;
+  tiny.size = 8;
+  EXPECT_NONFATAL_FAILURE(testing::check_on_rasterizer(core<double>(), Contract{}, tiny),
+                          "RasterSettings::size must be within [16, 4096] pixels, not 8");
+}
+
 TEST(TestingRaster, aContractNamingAConventionTheFunctionDoesNotServeFails) {
   auto gl_only = core<double>();
   gl_only.name = "gl_only";

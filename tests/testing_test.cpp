@@ -169,6 +169,15 @@ TEST(Accuracy, aFunctionsProfileIsWrittenBesideTheCoresMethods) {
   EXPECT_NE(md.find(" a call |"), std::string::npos) << md;
 }
 
+TEST(Accuracy, aProfileWithoutAnswersFails) {
+  testing::AccuracySettings none;
+  none.cases = 0;
+  none.directory =
+      (std::filesystem::path(::testing::TempDir()) / "oblique_testing_accuracy_none").string();
+  EXPECT_NONFATAL_FAILURE(testing::profile_accuracy(gl_only, Contract{}, none),
+                          "no answer of make_oblique_gl was profiled");
+}
+
 TEST(Accuracy, answersThatViolateThePropertiesFailTheProfile) {
   const auto wrong =
       properties::mistaken_implementation<double>({properties::Mistake::zero_one_formula_on_gl});
