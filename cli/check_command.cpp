@@ -59,7 +59,7 @@ int rasterize(const CheckSettings& settings, const scene::Scene& scene,
     return kInconclusive;
   }
   raster::Rasterizer& rasterizer = **opened;
-  const char* buffer = check.depth_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32";
+  const std::string buffer(depth_buffer_name(check.depth_buffer));
   text = "raster: " + rasterizer.renderer() + "; " + std::to_string(options.size) + " x " +
          std::to_string(options.size) + " samples a pass, " + buffer + " depth\n";
   json = "\"raster\": {\"renderer\": " + protocol::json_string(rasterizer.renderer()) +

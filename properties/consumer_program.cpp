@@ -139,7 +139,7 @@ ConsumerRequest depth_request(ConsumerKind kind, const properties::DepthSample<T
   r.numbers("projection", s.projection)
       .numbers("original", s.original)
       .text("convention", convention_name(s.convention))
-      .text("buffer", s.buffer == DepthBuffer::fixed24 ? "fixed24" : "float32")
+      .text("buffer", std::string(depth_buffer_name(s.buffer)))
       .numbers("ndc", Eigen::Matrix<T, 1, 2>(s.ndc_x, s.ndc_y))
       .number("depth", s.depth)
       .number("stored", static_cast<double>(s.stored));

@@ -1000,13 +1000,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   return f;
 }
 
-namespace {
-
-std::string buffer_name(DepthBuffer buffer) {
-  return buffer == DepthBuffer::fixed24 ? "fixed24" : "float32";
-}
-
-}  // namespace
+namespace {}  // namespace
 
 template <class T>
 void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
@@ -1051,11 +1045,12 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
                     {bool(consumers.linear_depth), ConsumerCheck::linear_depth}},
                    "the point leaves no depth sample (behind the eye or outside [0, 1])");
         } else {
-          const std::string inputs =
-              base + "- buffer: " + buffer_name(buffer) + "\n- the point: " + numbers_text(point) +
-              "\n- the sample: NDC x " + protocol::format_number(s->ndc_x) + ", y " +
-              protocol::format_number(s->ndc_y) + ", window depth " +
-              protocol::format_number(s->depth) + " (stored " + std::to_string(s->stored) + ")\n";
+          const std::string inputs = base + "- buffer: " + std::string(depth_buffer_name(buffer)) +
+                                     "\n- the point: " + numbers_text(point) +
+                                     "\n- the sample: NDC x " + protocol::format_number(s->ndc_x) +
+                                     ", y " + protocol::format_number(s->ndc_y) +
+                                     ", window depth " + protocol::format_number(s->depth) +
+                                     " (stored " + std::to_string(s->stored) + ")\n";
           if (consumers.view_position) {
             const Vector3<T> answer = consumers.view_position(*s);
             settle(judge_view_position(*s, answer),

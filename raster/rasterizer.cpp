@@ -426,8 +426,7 @@ Expected<std::shared_ptr<Rasterizer>> Rasterizer::open(const Options& options) {
         return Opened::failure("the renderer (" + out->renderer() +
                                ") failed its self-check, the core's answer on a fixed case in " +
                                std::string(convention_name(convention)) + ", " +
-                               (buffer == DepthBuffer::fixed24 ? "fixed24" : "float32") + ": " +
-                               r.why);
+                               std::string(depth_buffer_name(buffer)) + ": " + r.why);
     }
   }
   out->state_->options = asked;

@@ -30,10 +30,6 @@ const char* kind_name(SurfaceKind k) {
   return "?";
 }
 
-const char* buffer_name(DepthBuffer b) {
-  return b == DepthBuffer::fixed24 ? "fixed24" : "float32";
-}
-
 std::string fixed2(double x) {
   char buffer[40];
   std::snprintf(buffer, sizeof buffer, "%.2f", x);
@@ -133,7 +129,7 @@ std::string to_json(const SceneCheck& check) {
   const json out = {
       {"scene", check.scene},
       {"convention", std::string(convention_name(check.convention))},
-      {"depth_buffer", buffer_name(check.depth_buffer)},
+      {"depth_buffer", depth_buffer_name(check.depth_buffer)},
       {"max_depth", check.max_depth},
       {"truncated", check.truncated},
       {"surfaces", surfaces},
@@ -175,7 +171,7 @@ std::string printable(std::string_view name) {
 std::string to_text(const SceneCheck& check) {
   std::ostringstream out;
   out << "scene " << printable(check.scene) << " (" << convention_name(check.convention) << ", "
-      << buffer_name(check.depth_buffer) << " depth buffer, max_depth " << check.max_depth
+      << depth_buffer_name(check.depth_buffer) << " depth buffer, max_depth " << check.max_depth
       << ")\n\n";
   // The summary table, then the details of each rendered pass. The name column is as wide as the
   // longest name up to kNameColumn; a longer name has a line of its own above its row.

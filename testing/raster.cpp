@@ -33,10 +33,6 @@ const Expected<std::shared_ptr<raster::Rasterizer>>& rasterizer_for(
   return found->second;
 }
 
-std::string buffer_name(DepthBuffer buffer) {
-  return buffer == DepthBuffer::fixed24 ? "fixed24" : "float32";
-}
-
 /// The report of a case the rasterizer failed, or could not judge.
 template <class T>
 std::string raster_markdown(const generators::Case<T>& c, const Implementation<T>& impl,
@@ -53,9 +49,10 @@ std::string raster_markdown(const generators::Case<T>& c, const Implementation<T
                     ". This is no verdict about " + impl.name + ".\n") +
       "\n## The case\n\n- family `" + std::string(generators::family_name(c.family)) +
       "`, place `" + std::string(generators::place_name(c.place)) + "`, convention " +
-      std::string(convention_name(c.convention)) + "\n- depth buffer " + buffer_name(buffer) +
-      ", frame " + std::to_string(size) + " x " + std::to_string(size) + ", seed " +
-      std::to_string(seed) + "\n- M: " + properties::numbers_text(c.matrix) +
+      std::string(convention_name(c.convention)) + "\n- depth buffer " +
+      std::string(depth_buffer_name(buffer)) + ", frame " + std::to_string(size) + " x " +
+      std::to_string(size) + ", seed " + std::to_string(seed) +
+      "\n- M: " + properties::numbers_text(c.matrix) +
       "\n- C: " + properties::numbers_text(c.plane) +
       "\n- the answer: " + properties::numbers_text(answer) + "\n";
   return md;
@@ -118,7 +115,7 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
         const DepthBuffer buffer = *rc::gen::elementOf(settings.buffers);
         const std::uint64_t seed = *rc::gen::inRange<std::uint64_t>(1, std::uint64_t{1} << 32);
         ++tally().implementations[impl.name];
-        ++tally().applied["drawn into " + buffer_name(buffer)];
+        ++tally().applied["drawn into " + std::string(depth_buffer_name(buffer))];
         const raster::Result r = rasterizer->check(m, plane, answer, c.convention, buffer, seed,
                                                    std::numeric_limits<T>::digits);
         if (r.outcome == raster::Outcome::pass) return;
@@ -134,7 +131,7 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
         }
         if (r.outcome == raster::Outcome::fail)
           RC_FAIL(impl.name + " fails on the rasterizer (" + rasterizer->renderer() + ", " +
-                  buffer_name(buffer) + "): " + r.why);
+                  std::string(depth_buffer_name(buffer)) + "): " + r.why);
         RC_FAIL("inconclusive, no verdict about " + impl.name + ": the rasterizer (" +
                 rasterizer->renderer() + ") could not judge: " + r.why);
       },

@@ -62,10 +62,6 @@ std::vector<Case> cases(Convention convention) {
   };
 }
 
-const char* buffer_name(DepthBuffer b) {
-  return b == DepthBuffer::fixed24 ? "fixed24" : "float32";
-}
-
 TEST(Raster, theCoresAnswersPassInEveryConventionAndBuffer) {
   REQUIRE_RASTERIZER();
   for (const Convention convention : oblique::all_conventions) {
@@ -75,8 +71,8 @@ TEST(Raster, theCoresAnswersPassInEveryConventionAndBuffer) {
       for (const DepthBuffer buffer : {DepthBuffer::fixed24, DepthBuffer::float32}) {
         const auto r = shared()->check(k.m, k.c, answer.projection, convention, buffer, 11);
         EXPECT_EQ(r.outcome, Outcome::pass)
-            << k.name << ", " << oblique::convention_name(convention) << ", " << buffer_name(buffer)
-            << ": " << r.why;
+            << k.name << ", " << oblique::convention_name(convention) << ", "
+            << oblique::depth_buffer_name(buffer) << ": " << r.why;
         // The frame is a real test: most samples drawn, some decided on each side of C.
         EXPECT_GT(r.drawn, r.placed / 10) << k.name;
         EXPECT_GT(r.placed, r.samples * 9 / 10) << k.name;

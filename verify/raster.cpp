@@ -106,13 +106,12 @@ void RasterLook<T>::finding(const VerifyCase<T>& v, const std::string& answer,
   const fs::path md_path(report_md);
   const std::string stem = md_path.stem().string() + ".raster";
   report::ReportFiles files(md_path.parent_path());
-  std::string md = "# The finding's answer on the rasterizer\n\nThe answer of [" +
-                   md_path.filename().string() + "](" + md_path.filename().string() +
-                   "), drawn on " + rasterizer_->renderer() + " in a " +
-                   std::to_string(options_.raster_size) + " x " +
-                   std::to_string(options_.raster_size) + " frame (depth buffer " +
-                   (options_.raster_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32") +
-                   ", frame seed " + std::to_string(options_.seed) + "): **" + verdict + "**.\n\n";
+  std::string md =
+      "# The finding's answer on the rasterizer\n\nThe answer of [" + md_path.filename().string() +
+      "](" + md_path.filename().string() + "), drawn on " + rasterizer_->renderer() + " in a " +
+      std::to_string(options_.raster_size) + " x " + std::to_string(options_.raster_size) +
+      " frame (depth buffer " + std::string(depth_buffer_name(options_.raster_buffer)) +
+      ", frame seed " + std::to_string(options_.seed) + "): **" + verdict + "**.\n\n";
   if (r->outcome == raster::Outcome::fail)
     md += raster::stage_flagged_section(files, stem, *r, options_.raster_size);
   files.open(stem + ".md") << md;
@@ -151,7 +150,7 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
       " it fails: " + r.why +
       ".\n\n## The case\n\n- family: " + std::string(generators::family_name(v.c.family)) +
       ", place " + v.kind() + "\n- convention: " + std::string(convention_name(v.c.convention)) +
-      ", depth buffer " + (options_.raster_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32") +
+      ", depth buffer " + std::string(depth_buffer_name(options_.raster_buffer)) +
       "\n- M: " + properties::numbers_text(v.c.matrix) +
       "\n- C: " + properties::numbers_text(v.c.plane) + "\n\nAnswer " + std::to_string(index) +
       " of the run. The request:\n\n```\n" + request + "\n```\n\nThe answer:\n\n```\n" + answer +
@@ -167,8 +166,7 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
       << "{\"type\": \"raster\", \"finding\": " << protocol::json_string(r.why)
       << ", \"precision\": " << protocol::json_string(protocol::scalar_name<T>())
       << ", \"convention\": " << protocol::json_string(convention_name(v.c.convention))
-      << ", \"buffer\": \""
-      << (options_.raster_buffer == DepthBuffer::fixed24 ? "fixed24" : "float32")
+      << ", \"buffer\": \"" << std::string(depth_buffer_name(options_.raster_buffer))
       << "\", \"size\": " << options_.raster_size
       << ", \"seed\": " << (options_.seed ^ static_cast<std::uint64_t>(index))
       << ", \"projection\": " << hex_list(v.c.matrix) << ", \"plane\": " << hex_list(v.c.plane)

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <string_view>
 
 #include "oblique/depth_convention.h"
 #include "oblique/plane.h"
@@ -30,6 +31,11 @@ using Vector3 = Eigen::Matrix<T, 3, 1>;
 /// How a depth buffer stores window depth d in [0, 1]: fixed24 keeps the integer k = round(d (2^24
 /// - 1)) and reads back k / (2^24 - 1); float32 keeps d rounded to float.
 enum class DepthBuffer { fixed24, float32 };
+
+/// "fixed24" or "float32", as scenes, reports and the protocol name them.
+constexpr std::string_view depth_buffer_name(DepthBuffer buffer) noexcept {
+  return buffer == DepthBuffer::fixed24 ? "fixed24" : "float32";
+}
 
 /// The largest value of a fixed24 depth buffer.
 inline constexpr unsigned kFixed24Max = (1u << 24) - 1;
