@@ -17,6 +17,17 @@
 
 namespace oblique::report {
 
+namespace {
+
+/// `text` as a gnuplot string ('...', a quote doubled).
+std::string gnuplot_string(const std::string& text) {
+  std::string out = "'";
+  for (char ch : text) out += ch == '\'' ? std::string("''") : std::string(1, ch);
+  return out + "'";
+}
+
+}  // namespace
+
 double ProfiledAnswer::worst_ulps() const {
   return *std::max_element(std::begin(ulps), std::end(ulps));
 }
@@ -59,6 +70,103 @@ template ProfiledAnswer profile_answer<double>(const properties::Problem<double>
 template ProfiledAnswer profile_answer<long double>(const properties::Problem<long double>&,
                                                     const Matrix4<long double>&);
 
+template <class T>
+void record_answer(Profile& profile, const properties::Problem<T>& problem,
+                   const ProfileInput<T>& input, Status status, const Matrix4<T>& projection) {
+  if (status != Status::ok) {
+    ++profile.refused;
+    return;
+  }
+  ProfiledAnswer a = profile_answer(problem, projection);
+  a.family = input.family;
+  a.place = input.place;
+  a.request = input.request;
+  profile.answers.push_back(std::move(a));
+}
+
+template void record_answer<float>(Profile&, const properties::Problem<float>&,
+                                   const ProfileInput<float>&, Status, const Matrix4<float>&);
+template void record_answer<double>(Profile&, const properties::Problem<double>&,
+                                    const ProfileInput<double>&, Status, const Matrix4<double>&);
+template void record_answer<long double>(Profile&, const properties::Problem<long double>&,
+                                         const ProfileInput<long double>&, Status,
+                                         const Matrix4<long double>&);
+
+RoundTrip time_round_trip(protocol::ChildProcess& child, const std::string& requests,
+                          std::size_t count, std::chrono::milliseconds idle) {
+  RoundTrip out;
+  if (!child.running()) {
+    if (!child.start()) return out;
+    out.outcome = child.exchange(requests.substr(0, requests.find('\n') + 1), 1, out.lines, idle,
+                                 protocol::Clock::now() + idle);
+    if (out.outcome != protocol::ChildProcess::Outcome::done) return out;
+    out.lines.clear();
+  }
+  const auto start = protocol::Clock::now();
+  out.outcome =
+      child.exchange(requests, count, out.lines, idle, start + idle * static_cast<long>(count));
+  if (out.outcome == protocol::ChildProcess::Outcome::done)
+    out.ns = std::chrono::duration<double, std::nano>(protocol::Clock::now() - start).count() /
+             static_cast<double>(count);
+  return out;
+}
+
+std::vector<bool> non_dominated(const std::vector<std::pair<double, double>>& points) {
+  std::vector<bool> out(points.size(), false);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto [ns, bits] = points[i];
+    if (std::isnan(ns) || std::isnan(bits)) continue;
+    out[i] = std::none_of(points.begin(), points.end(), [&](const auto& q) {
+      return q.first <= ns && q.second <= bits && (q.first < ns || q.second < bits);
+    });
+  }
+  return out;
+}
+
+const char* chart_colour(std::size_t index) {
+  static const char* colours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd",
+                                  "#ff7f0e", "#8c564b", "#17becf", "#7f7f7f"};
+  return colours[index % (sizeof colours / sizeof *colours)];
+}
+
+bool stage_time_chart(ReportFiles& files, const std::string& stem, const std::string& title,
+                      const std::string& xlabel, const std::vector<TimePoint>& points) {
+  std::ostream& dat = files.open(stem + "_points.dat");
+  std::vector<std::pair<double, double>> at;
+  for (const TimePoint& p : points) {
+    dat << "# " << p.label << "\n" << p.ns << ' ' << p.worst_bits << ' ' << p.p999_bits << "\n\n\n";
+    at.emplace_back(p.ns, p.worst_bits);
+  }
+  const std::vector<bool> on_front = non_dominated(at);
+  std::vector<std::pair<double, double>> front;
+  for (std::size_t i = 0; i < at.size(); ++i)
+    if (on_front[i]) front.push_back(at[i]);
+  std::sort(front.begin(), front.end());
+  std::ostream& front_file = files.open(stem + "_front.dat");
+  front_file << "# the non-dominated points, by time\n";
+  for (const auto& [ns, bits] : front) front_file << ns << ' ' << bits << '\n';
+  std::ostream& gp = files.open(stem + ".gp");
+  gp << "set terminal pngcairo size 1000,760 noenhanced\nset output '" << stem
+     << ".png'\nset title " << gnuplot_string(title) << "\nset xlabel " << gnuplot_string(xlabel)
+     << "\nset logscale x\nset ylabel 'bits lost: worst answer (filled), 99.9th percentile "
+        "(open)'\nset yrange [-1:*]\nset grid\n"
+        "set key outside below\nplot '"
+     << stem << "_front.dat' using 1:2 with steps lw 2 lc rgb '#aaaaaa' title "
+     << "'non-dominated front'";
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const TimePoint& p = points[i];
+    gp << ", '" << stem << "_points.dat' index " << i << " using 1:2 with points pt "
+       << p.point_type << " ps 2 lc rgb '" << chart_colour(p.colour) << "' title "
+       << gnuplot_string(p.label);
+    if (!std::isnan(p.p999_bits))
+      gp << ", '' index " << i << " using 1:3 with points pt " << p.point_type - 1
+         << " ps 2 lc rgb '" << chart_colour(p.colour) << "' notitle";
+  }
+  gp << "\n";
+  std::ostringstream plot_log;
+  return files.plot_staged(stem + ".gp", stem + ".png", plot_log);
+}
+
 double ns_per_call(std::size_t count, const std::function<void(std::size_t)>& call) {
   if (count == 0) return std::numeric_limits<double>::quiet_NaN();
   using Clock = std::chrono::steady_clock;
@@ -97,15 +205,7 @@ std::vector<Profile> core_profiles(const std::vector<ProfileInput<T>>& inputs) {
       if (methods[m] == Method::closed_form && !has_perspective_shape(in.matrix)) continue;
       asked[m].push_back(&in);
       const ObliqueResult<T> r = apply<T>(in.matrix, in.plane, in.convention, methods[m]);
-      if (!r.ok()) {
-        ++out[m].refused;
-        continue;
-      }
-      ProfiledAnswer a = profile_answer(problem, r.projection);
-      a.family = in.family;
-      a.place = in.place;
-      a.request = in.request;
-      out[m].answers.push_back(std::move(a));
+      record_answer(out[m], problem, in, r.status, r.projection);
     }
   }
   for (std::size_t m = 0; m < 3; ++m) {
@@ -198,19 +298,11 @@ std::vector<const ProfiledAnswer*> all_of(const Profile& p) {
   return out;
 }
 
-/// One colour per method, the same in every chart (the implementation's first).
-const char* colour(std::size_t index) {
-  static const char* colours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd",
-                                  "#ff7f0e", "#8c564b", "#17becf", "#7f7f7f"};
-  return colours[index % (sizeof colours / sizeof *colours)];
-}
-
-std::string quoted_label(const Profile& p) {
+/// A profile's name in the charts' keys.
+std::string chart_label(const Profile& p) {
   std::string label = p.name + " (" + p.scalar + ")";
   if (p.timing == Timing::round_trip) label += ", round trip over the pipe";
-  std::string out;
-  for (char ch : label) out += ch == '\'' ? std::string("''") : std::string(1, ch);
-  return "'" + out + "'";
+  return label;
 }
 
 /// A table of `groups` (rows) by profile (columns): worst bits lost and the answers counted.
@@ -343,44 +435,16 @@ std::optional<std::vector<std::filesystem::path>> write_profile_report(
        << "\n   ```\n";
   }
 
-  // Error against time: one point per profile (worst and 99.9th percentile), one colour each,
-  // named in the key (no labels on the chart to overlap), and the non-dominated front.
-  std::ostream& points = files.open("accuracy_points.dat");
-  std::vector<std::pair<double, double>> front;
+  // Error against time: one point per profile (worst and 99.9th percentile), a colour each.
+  std::vector<TimePoint> points;
   for (std::size_t i = 0; i < profiles.size(); ++i) {
     const Summary s = summary_of(all_of(profiles[i]));
-    points << "# " << profiles[i].name << "\n"
-           << (std::isnan(profiles[i].ns) ? 1.0 : profiles[i].ns) << ' ' << s.worst << ' ' << s.p999
-           << "\n\n\n";
-    bool dominated = std::isnan(profiles[i].ns) || s.answers == 0;
-    for (std::size_t j = 0; j < profiles.size() && !dominated; ++j) {
-      const Summary t = summary_of(all_of(profiles[j]));
-      if (j != i && t.answers > 0 && profiles[j].ns <= profiles[i].ns && t.worst <= s.worst &&
-          (profiles[j].ns < profiles[i].ns || t.worst < s.worst))
-        dominated = true;
-    }
-    if (!dominated) front.emplace_back(profiles[i].ns, s.worst);
+    const bool drawn = s.answers > 0 && !std::isnan(profiles[i].ns);
+    points.push_back({chart_label(profiles[i]), drawn ? profiles[i].ns : NAN, drawn ? s.worst : NAN,
+                      s.p999, i, 7});
   }
-  std::sort(front.begin(), front.end());
-  std::ostream& front_file = files.open("accuracy_front.dat");
-  front_file << "# the non-dominated profiles, by time\n";
-  for (const auto& [ns, bits] : front) front_file << ns << ' ' << bits << '\n';
-
-  std::ostream& gp = files.open("accuracy.gp");
-  gp << "set terminal pngcairo size 900,700 noenhanced\nset output 'accuracy.png'\n"
-        "set title '"
-     << options.title
-     << ": error against time'\nset xlabel 'time per answer, ns (log scale)'\nset logscale x\n"
-        "set ylabel 'bits lost, worst answer (filled) and 99.9th percentile (open)'\n"
-        "set yrange [-0.5:*]\nset key outside below\nset grid\n"
-        "plot 'accuracy_front.dat' using 1:2 with steps lw 2 lc rgb '#aaaaaa' title "
-        "'non-dominated front'";
-  for (std::size_t i = 0; i < profiles.size(); ++i) {
-    gp << ", 'accuracy_points.dat' index " << i << " using 1:2 with points pt 7 ps 2 lc rgb '"
-       << colour(i) << "' title " << quoted_label(profiles[i]) << ", '' index " << i
-       << " using 1:3 with points pt 6 ps 2 lc rgb '" << colour(i) << "' notitle";
-  }
-  gp << "\n";
+  stage_time_chart(files, "accuracy", options.title + ": error against time",
+                   "time per answer, ns (log scale)", points);
 
   // Error against stiffness: the worst bits lost in each decade of kappa, a line per profile.
   std::ostream& stiff = files.open("stiffness.dat");
@@ -397,21 +461,19 @@ std::optional<std::vector<std::filesystem::path>> write_profile_report(
   }
   std::ostream& sgp = files.open("stiffness.gp");
   sgp << "set terminal pngcairo size 900,700 noenhanced\nset output 'stiffness.png'\n"
-         "set title '"
-      << options.title
-      << ": error against the stiffness of the case'\n"
-         "set xlabel 'kappa, the condition number of C . Q (decades)'\nset logscale x\n"
+         "set title "
+      << gnuplot_string(options.title + ": error against the stiffness of the case")
+      << "\nset xlabel 'kappa, the condition number of C . Q (decades)'\nset logscale x\n"
          "set ylabel 'bits lost, worst answer in the decade'\nset yrange [-0.5:*]\n"
          "set key outside below\nset grid\nplot ";
   for (std::size_t i = 0; i < profiles.size(); ++i) {
     sgp << (i ? ", " : "") << "'stiffness.dat' index " << i
-        << " using 1:2 with linespoints pt 7 lw 2 lc rgb '" << colour(i) << "' title "
-        << quoted_label(profiles[i]);
+        << " using 1:2 with linespoints pt 7 lw 2 lc rgb '" << chart_colour(i) << "' title "
+        << gnuplot_string(chart_label(profiles[i]));
   }
   sgp << "\n";
 
   std::ostringstream plot_log;
-  files.plot_staged("accuracy.gp", "accuracy.png", plot_log);
   files.plot_staged("stiffness.gp", "stiffness.png", plot_log);
   if (!files.commit(log)) return std::nullopt;
   return files.written();

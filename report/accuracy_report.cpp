@@ -182,15 +182,21 @@ struct Errors {
   int answered = 0, refused = 0, violating = 0;
 };
 
-/// A fresh process's start is not its time per request: the first request is answered before
-/// the clock starts (and again after a restart).
-bool warmed(protocol::ChildProcess& child, const std::string& first_request,
-            std::chrono::milliseconds idle) {
-  if (child.running()) return true;
-  if (!child.start()) return false;
-  std::vector<std::string> lines;
-  return child.exchange(first_request, 1, lines, idle, protocol::Clock::now() + idle) ==
-         protocol::ChildProcess::Outcome::done;
+/// One answer (status ok) to the case of `problem`, counted in the regime's and its step's
+/// errors: its worst entry in ulps of the row (accuracy_profile.h) and its error over the
+/// checker's bound.
+template <class T>
+void record(const properties::Problem<T>& problem, const Matrix4<T>& answer, Errors& all,
+            Errors& step) {
+  ++all.answered;
+  ++step.answered;
+  const auto closeness = problem.compare_row3(answer);
+  const double ratio = closeness.judged ? closeness.ratio : 0.0;
+  const double u = profile_answer(problem, answer).worst_ulps();
+  for (Errors* e : {&all, &step}) {
+    e->max_bound_ratio = std::max(e->max_bound_ratio, ratio);
+    e->ulps.push_back(u);
+  }
 }
 
 struct Stats {
@@ -284,16 +290,7 @@ void measure_scalar(const Regime& regime, const std::vector<Input>& inputs,
         ++step.refused;
         continue;
       }
-      ++all.answered;
-      ++step.answered;
-      const auto closeness = problem.compare_row3(r.projection);
-      const double ratio = closeness.judged ? closeness.ratio : 0.0;
-      all.max_bound_ratio = std::max(all.max_bound_ratio, ratio);
-      step.max_bound_ratio = std::max(step.max_bound_ratio, ratio);
-      // The answer's error: its worst entry, in ulps of the row (accuracy_profile.h).
-      const double u = profile_answer(problem, r.projection).worst_ulps();
-      all.ulps.push_back(u);
-      step.ulps.push_back(u);
+      record(problem, r.projection, all, step);
     }
     if (timed.empty()) continue;
     // Time per call: every answered case in turn, several passes; a checksum keeps the calls.
@@ -336,20 +333,14 @@ std::string measure_external(const Regime& regime, const std::vector<Input>& inp
     cases.push_back(c);
   }
   if (cases.empty()) return "";
-  std::vector<std::string> lines;
-  const auto idle =
-      std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000));
-  if (!warmed(child, text.substr(0, text.find('\n') + 1), idle))
-    return impl.command + ": no answer to a first request (" + child.end_description() + ")";
-  const auto start = protocol::Clock::now();
-  const auto outcome = child.exchange(text, cases.size(), lines, idle,
-                                      start + idle * static_cast<long>(cases.size()));
-  const double elapsed =
-      std::chrono::duration<double, std::nano>(protocol::Clock::now() - start).count();
-  if (outcome != protocol::ChildProcess::Outcome::done)
-    return impl.command + ": answered " + std::to_string(lines.size()) + " of the " +
+  const RoundTrip trip = time_round_trip(
+      child, text, cases.size(),
+      std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000)));
+  if (trip.outcome != protocol::ChildProcess::Outcome::done)
+    return impl.command + ": answered " + std::to_string(trip.lines.size()) + " of the " +
            std::to_string(cases.size()) + " requests of regime " + regime.name + " (" +
            child.end_description() + ")";
+  const std::vector<std::string>& lines = trip.lines;
   Errors all;
   std::vector<Errors> by_step(regime.values.size());
   for (std::size_t i = 0; i < cases.size(); ++i) {
@@ -371,18 +362,10 @@ std::string measure_external(const Regime& regime, const std::vector<Input>& inp
       ++step.refused;
       continue;
     }
-    ++all.answered;
-    ++step.answered;
-    const auto closeness = problems[i].compare_row3(answer->projection);
-    const double ratio = closeness.judged ? closeness.ratio : 0.0;
-    all.max_bound_ratio = std::max(all.max_bound_ratio, ratio);
-    step.max_bound_ratio = std::max(step.max_bound_ratio, ratio);
-    const double u = profile_answer(problems[i], answer->projection).worst_ulps();
-    all.ulps.push_back(u);
-    step.ulps.push_back(u);
+    record(problems[i], answer->projection, all, step);
   }
-  add_rows(regime, std::string(protocol::scalar_name<T>()), impl.name, true,
-           elapsed / static_cast<double>(cases.size()), all, by_step, report);
+  add_rows(regime, std::string(protocol::scalar_name<T>()), impl.name, true, trip.ns, all, by_step,
+           report);
   return "";
 }
 
@@ -454,14 +437,11 @@ std::map<std::pair<std::string, std::string>, OverallPoint> overall_points(
     ++regimes[key];
   }
   for (auto& [key, p] : points) p.ns_per_call /= regimes[key];
-  for (auto& [key, p] : points) {
-    p.on_front = true;
-    for (const auto& [other_key, q] : points) {
-      if (other_key != key && q.ns_per_call <= p.ns_per_call && q.max_ulps <= p.max_ulps &&
-          (q.ns_per_call < p.ns_per_call || q.max_ulps < p.max_ulps))
-        p.on_front = false;
-    }
-  }
+  std::vector<std::pair<double, double>> at;
+  for (const auto& [key, p] : points) at.emplace_back(p.ns_per_call, p.max_ulps);
+  const std::vector<bool> front = non_dominated(at);
+  std::size_t i = 0;
+  for (auto& [key, p] : points) p.on_front = front[i++];
   return points;
 }
 
@@ -537,49 +517,24 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
     md << " |\n";
   }
 
-  // Chart data: one block per (method, scalar), drawn in the method's colour with the scalar's
-  // point type and named in the key below the chart (no labels on it to overlap); the front of
-  // the non-dominated points as steps.
+  // Error against time: one point per (method, scalar), in the method's colour (the profiles'
+  // colours: an implementation first, then the core's three) with the scalar's point type.
   auto method_colour = [&methods](const std::string& method) {
-    static const char* colours[] = {"#1f77b4", "#2ca02c", "#9467bd", "#d62728",
-                                    "#ff7f0e", "#8c564b", "#17becf", "#7f7f7f"};
-    const auto at = std::find(methods.begin(), methods.end(), method) - methods.begin();
-    return colours[static_cast<std::size_t>(at) % (sizeof colours / sizeof *colours)];
+    const auto at = static_cast<std::size_t>(std::find(methods.begin(), methods.end(), method) -
+                                             methods.begin());
+    return at < 3 ? at + 1 : at == 3 ? 0 : at + 1;
   };
-  auto scalar_point = [](const std::string& scalar) {
-    return scalar == "float" ? 9 : scalar == "double" ? 7 : 5;  // triangle, circle, square
-  };
-  std::ostream& points = files.open("accuracy_points.dat");
-  std::vector<std::pair<double, double>> front_points;
-  std::string plots;
-  int block = 0;
+  std::vector<TimePoint> chart;
   for (const auto& [key, o] : overall) {
-    points << "# " << key.first << " (" << key.second << ")\n"
-           << o.ns_per_call << ' ' << bits_lost(o.max_ulps) << "\n\n\n";
-    if (o.on_front) front_points.emplace_back(o.ns_per_call, bits_lost(o.max_ulps));
-    plots += ", '" + (options.out_dir / "accuracy_points.dat").string() + "' index " +
-             std::to_string(block++) + " using 1:2 with points pt " +
-             std::to_string(scalar_point(key.second)) + " ps 2 lc rgb '" +
-             method_colour(key.first) + "' title '" + key.first + " (" + key.second + ")" +
-             (o.round_trip ? ", round trip" : "") + "'";
+    const int point_type = key.second == "float" ? 9 : key.second == "double" ? 7 : 5;
+    chart.push_back({key.first + " (" + key.second + ")" + (o.round_trip ? ", round trip" : ""),
+                     o.ns_per_call, bits_lost(o.max_ulps), bits_lost(o.p999_ulps),
+                     method_colour(key.first), point_type});
   }
-  std::sort(front_points.begin(), front_points.end());
-  std::ostream& front_file = files.open("accuracy_front.dat");
-  for (const auto& [ns, bits] : front_points) front_file << ns << ' ' << bits << '\n';
-
-  std::ostream& gp = files.open("accuracy.gp");
-  gp << "set terminal pngcairo size 1000,760 noenhanced\n"
-        "set output '"
-     << (options.out_dir / "accuracy.png").string()
-     << "'\n"
-        "set title 'oblique: error against run time (worst over every regime)'\n"
-        "set xlabel 'ns per answer, mean over regimes (log scale): a call in process, or a "
-        "request over the pipe (round trip)'\nset logscale x\n"
-        "set ylabel 'max error, bits lost = log2(ulps of the row + 1)'\nset yrange [-1:*]\n"
-        "set grid\nset key outside below maxrows 4\n"
-        "plot '"
-     << (options.out_dir / "accuracy_front.dat").string()
-     << "' using 1:2 with steps lw 2 lc rgb '#aaaaaa' title 'non-dominated front'" << plots << "\n";
+  stage_time_chart(files, "accuracy", "oblique: error against run time (worst over every regime)",
+                   "ns per answer, mean over regimes (log scale): a call in process, or a request "
+                   "over the pipe (round trip)",
+                   chart);
 
   // Stiffness: one panel per swept regime, error in bits against the parameter, double only.
   std::vector<std::string> swept;
@@ -617,7 +572,7 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
     for (std::size_t m = 0; m < methods.size(); ++m) {
       sgp << (m ? ", " : "") << "'" << (options.out_dir / "stiffness.dat").string() << "' index "
           << panel * methods.size() + m << " using 1:2 with linespoints pt 7 lw 2 lc rgb '"
-          << method_colour(methods[m]) << "' title '" << methods[m] << "'";
+          << chart_colour(method_colour(methods[m])) << "' title '" << methods[m] << "'";
     }
     sgp << "\n";
     ++panel;
@@ -625,7 +580,6 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
   sgp << "unset multiplot\n";
 
   if (!files.commit(log)) return std::nullopt;
-  files.plot("accuracy.gp", "accuracy.png", log);
   files.plot("stiffness.gp", "stiffness.png", log);
   return files.written();
 }

@@ -37,24 +37,17 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& given,
     if (!impl.accepts(c.convention, c.matrix)) continue;
     const Problem<T> problem(c.matrix, c.plane, c.convention);
     if (problem.exact_status() != Status::ok) continue;
-    const std::string family(generators::family_name(c.family));
-    const std::string place(generators::place_name(c.place));
-    const std::string request = protocol::request_line(c.matrix, c.plane, c.convention);
-    inputs.push_back({c.matrix, c.plane, c.convention, family, place, request});
+    inputs.push_back({c.matrix, c.plane, c.convention,
+                      std::string(generators::family_name(c.family)),
+                      std::string(generators::place_name(c.place)),
+                      protocol::request_line(c.matrix, c.plane, c.convention)});
     const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
     if (const properties::Finding* v = judge(problem, outcome, checks).violation()) {
-      if (++violating == 1) first_violation = std::string(check_name(v->check)) + " on " + request;
+      if (++violating == 1)
+        first_violation = std::string(check_name(v->check)) + " on " + inputs.back().request;
       continue;
     }
-    if (outcome.status != Status::ok) {
-      ++mine.refused;
-      continue;
-    }
-    report::ProfiledAnswer a = report::profile_answer(problem, outcome.projection);
-    a.family = family;
-    a.place = place;
-    a.request = request;
-    mine.answers.push_back(std::move(a));
+    report::record_answer(mine, problem, inputs.back(), outcome.status, outcome.projection);
   }
   // The function's own time per call, on the cases it was asked.
   T checksum = 0;

@@ -32,44 +32,26 @@ void AccuracyLook<T>::passed(const VerifyCase<T>& v, const std::string& request,
   if (problem.exact_status() != Status::ok) return;
   const Expected<protocol::TypedAnswer<T>> read = protocol::read_answer<T>(answer);
   if (!read) return;  // judged already: a protocol error never reaches here
-  const std::string family(generators::family_name(v.c.family));
-  const std::string place(generators::place_name(v.c.place));
-  inputs_.push_back({v.c.matrix, v.c.plane, v.c.convention, family, place, request});
-  if (read->status != Status::ok) {
-    ++mine_.refused;
-    return;
-  }
-  report::ProfiledAnswer a = report::profile_answer(problem, read->projection);
-  a.family = family;
-  a.place = place;
-  a.request = request;
-  mine_.answers.push_back(std::move(a));
+  inputs_.push_back({v.c.matrix, v.c.plane, v.c.convention,
+                     std::string(generators::family_name(v.c.family)),
+                     std::string(generators::place_name(v.c.place)), request});
+  report::record_answer(mine_, problem, inputs_.back(), read->status, read->projection);
 }
 
 template <class T>
 bool AccuracyLook<T>::write() {
-  // The round trip: the profiled requests sent at once to a fresh process, timed from the first
-  // byte sent to the last answer read (JSON both ways, the pipe and the program's own work).
+  // The round trip: up to 4,096 of the profiled requests sent at once to a fresh process.
   const std::size_t timed = std::min<std::size_t>(inputs_.size(), 4096);
   if (timed > 0) {
     std::string text;
     for (std::size_t i = 0; i < timed; ++i) text += inputs_[i].request + "\n";
     protocol::ChildProcess child(options_.command);
-    std::vector<std::string> lines;
-    const auto idle =
-        std::chrono::milliseconds(static_cast<long>(options_.request_timeout_seconds * 1000));
-    // A fresh process's start is not its time per request: one answer before the clock starts.
-    if (child.start() &&
-        child.exchange(inputs_[0].request + "\n", 1, lines, idle, protocol::Clock::now() + idle) ==
-            protocol::ChildProcess::Outcome::done) {
-      lines.clear();
-      const auto start = protocol::Clock::now();
-      const auto outcome = child.exchange(text, timed, lines, idle, start + 100 * idle);
-      const double seconds = std::chrono::duration<double>(protocol::Clock::now() - start).count();
-      child.stop();
-      if (outcome == protocol::ChildProcess::Outcome::done)
-        mine_.ns = seconds * 1e9 / static_cast<double>(timed);
-    }
+    mine_.ns =
+        report::time_round_trip(
+            child, text, timed,
+            std::chrono::milliseconds(static_cast<long>(options_.request_timeout_seconds * 1000)))
+            .ns;
+    child.stop();
     if (std::isnan(mine_.ns))
       err_ << "oblique verify: --accuracy: the round trip could not be timed (the program did "
               "not answer the requests again)\n";

@@ -6,6 +6,7 @@
 // `oblique report accuracy --impl` write it with write_profile_report().
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -13,10 +14,13 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "oblique/depth_convention.h"
 #include "oblique/plane.h"
+#include "oblique/protocol/child_process.h"
+#include "oblique/status.h"
 
 namespace oblique::properties {
 template <class T>
@@ -24,6 +28,8 @@ class Problem;
 }
 
 namespace oblique::report {
+
+class ReportFiles;
 
 /// One answer's error: each entry of row 3 against the exact answer.
 struct ProfiledAnswer {
@@ -76,6 +82,13 @@ struct ProfileInput {
   std::string family, place, request;
 };
 
+/// Adds one answer to `profile`, to the case of `problem` (its exact status ok) asked as
+/// `input`: a status is counted as refused, a matrix profiled (profile_answer()) with the input's
+/// family, place and request. Compiled for float, double and long double.
+template <class T>
+void record_answer(Profile& profile, const properties::Problem<T>& problem,
+                   const ProfileInput<T>& input, Status status, const Matrix4<T>& projection);
+
 /// The core's closed form (on the inputs of the standard perspective shape), general and
 /// accurate methods on `inputs`, in T, in this process: each one's errors and ns per call.
 template <class T>
@@ -84,6 +97,42 @@ std::vector<Profile> core_profiles(const std::vector<ProfileInput<T>>& inputs);
 /// The time per call of `call(i)` over i in [0, count): passes over every i repeated until they
 /// take 0.1 s, the median of 5 such measurements, in ns per call.
 double ns_per_call(std::size_t count, const std::function<void(std::size_t)>& call);
+
+/// A program's time per request over the pipe: `requests` (`count` lines) sent at once to
+/// `child` and timed to the last answer (JSON both ways, the pipe and the program's own work).
+/// A process that is not running yet is started and answers the first request before the clock
+/// starts: its start is no request's time. `ns` is NaN unless `outcome` is done; the answers are
+/// in `lines`.
+struct RoundTrip {
+  protocol::ChildProcess::Outcome outcome = protocol::ChildProcess::Outcome::exited;
+  double ns = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::string> lines;
+};
+RoundTrip time_round_trip(protocol::ChildProcess& child, const std::string& requests,
+                          std::size_t count, std::chrono::milliseconds idle);
+
+/// Which of the points (ns, bits lost) are on the error-against-time front: no other point is
+/// as fast and as accurate and better in one. NaN points are on no front.
+std::vector<bool> non_dominated(const std::vector<std::pair<double, double>>& points);
+
+/// The palette of the accuracy charts: one colour a method, the same in every chart.
+const char* chart_colour(std::size_t index);
+
+/// One point of an error-against-time chart.
+struct TimePoint {
+  std::string label;                                            ///< in the key
+  double ns = 0;                                                ///< time per answer
+  double worst_bits = 0;                                        ///< filled
+  double p999_bits = std::numeric_limits<double>::quiet_NaN();  ///< open; NaN: none
+  std::size_t colour = 0;                                       ///< chart_colour()
+  int point_type = 7;                                           ///< gnuplot's pt
+};
+
+/// Stages the error-against-time chart in `files`: STEM.gp, STEM_points.dat, STEM_front.dat
+/// (the non_dominated() points as steps) and, with gnuplot, STEM.png, the points named in the
+/// key below it (no labels on the chart to overlap). Whether the PNG was drawn.
+bool stage_time_chart(ReportFiles& files, const std::string& stem, const std::string& title,
+                      const std::string& xlabel, const std::vector<TimePoint>& points);
 
 struct ProfileReportOptions {
   std::filesystem::path dir;
