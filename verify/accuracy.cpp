@@ -89,9 +89,4 @@ bool AccuracyLook<T>::write() {
 template class AccuracyLook<float>;
 template class AccuracyLook<double>;
 
-bool is_accuracy_case(const protocol::JsonValue& report) {
-  const protocol::JsonValue* type = report.find("type");
-  return type && type->is_string() && type->text == "accuracy";
-}
-
 }  // namespace oblique::verify

@@ -40,7 +40,4 @@ class AccuracyLook {
   long skipped_ = 0;  ///< answers beyond kMaxProfiled
 };
 
-/// Whether a report's JSON is an accuracy profile's worst case ("type": "accuracy").
-bool is_accuracy_case(const protocol::JsonValue& report);
-
 }  // namespace oblique::verify

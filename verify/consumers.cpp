@@ -347,11 +347,6 @@ Verdict replay_in(const VerifyOptions& options, const protocol::JsonValue& repor
 
 }  // namespace
 
-bool is_consumer_report(const protocol::JsonValue& report) {
-  const protocol::JsonValue* type = report.find("type");
-  return type && type->is_string() && type->text == "consumers";
-}
-
 Verdict replay_consumer_report(const VerifyOptions& options, const protocol::JsonValue& report,
                                std::ostream& out, std::ostream& err) {
   const protocol::JsonValue* precision = report.find("precision");

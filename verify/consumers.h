@@ -15,9 +15,6 @@ namespace oblique::verify {
 /// The run: rounds until --time-limit or --cases, stopping at the first violation.
 Verdict verify_consumers(const VerifyOptions& options, std::ostream& out, std::ostream& err);
 
-/// Whether a report's JSON is a consumer finding's.
-bool is_consumer_report(const protocol::JsonValue& report);
-
 /// --replay of a consumer report: its round again through the program; 0 holds, 1 violated.
 Verdict replay_consumer_report(const VerifyOptions& options, const protocol::JsonValue& report,
                                std::ostream& out, std::ostream& err);

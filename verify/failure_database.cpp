@@ -25,6 +25,11 @@ Expected<protocol::JsonValue> read_report(const std::string& path) {
   return j;
 }
 
+bool report_is(const protocol::JsonValue& report, std::string_view type) {
+  const protocol::JsonValue* found = report.find("type");
+  return found && found->is_string() && found->text == type;
+}
+
 Expected<std::optional<protocol::Precision>> report_precision(const std::string& path) {
   const Expected<protocol::JsonValue> j = read_report(path);
   if (!j) return Expected<std::optional<protocol::Precision>>::failure(j.error());
@@ -90,7 +95,7 @@ template <class T>
 void FailureDatabase<T>::accuracy_again(const std::string& path, const VerifyCase<T>& v) {
   const Expected<protocol::JsonValue> j = read_report(path);
   const auto& answer = session_.last_answer();
-  if (!j || !is_accuracy_case(*j) || !answer || answer->status != Status::ok) return;
+  if (!j || !report_is(*j, "accuracy") || !answer || answer->status != Status::ok) return;
   const properties::Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
   if (problem.exact_status() != Status::ok) return;
   const report::ProfiledAnswer now = report::profile_answer(problem, answer->projection);

@@ -6,6 +6,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "cases.h"
 #include "oblique/expected.h"
@@ -15,10 +16,14 @@
 
 namespace oblique::verify {
 
-/// The precision a report names ("precision"), if any; an error when it is not a report.
 /// A report's JSON, or why it cannot be read.
 Expected<protocol::JsonValue> read_report(const std::string& path);
 
+/// Whether a report's JSON is of `type` (its "type": "consumers", "raster", "accuracy"; a
+/// property finding's has none).
+bool report_is(const protocol::JsonValue& report, std::string_view type);
+
+/// The precision a report names ("precision"), if any; an error when it is not a report.
 Expected<std::optional<protocol::Precision>> report_precision(const std::string& path);
 
 /// `field`'s numbers in T, `n` of them, from a report (hex strings or numbers).

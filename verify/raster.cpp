@@ -99,7 +99,7 @@ void RasterLook<T>::finding(const VerifyCase<T>& v, const std::string& answer,
       "oblique verify: raster: the finding's answer on the rasterizer: " + verdict;
   // Beside the finding's report: STEM.raster.md with the pixels (only when STEM.md was written).
   namespace fs = std::filesystem;
-  if (report_md.size() < 4 || report_md.compare(report_md.size() - 3, 3, ".md") != 0) {
+  if (fs::path(report_md).extension() != ".md") {
     err_ << said << "\n";
     return;
   }
@@ -179,11 +179,6 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
 
 template class RasterLook<float>;
 template class RasterLook<double>;
-
-bool is_raster_report(const protocol::JsonValue& report) {
-  const protocol::JsonValue* type = report.find("type");
-  return type && type->is_string() && type->text == "raster";
-}
 
 Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonValue& report,
                              std::ostream& out, std::ostream& err) {

@@ -56,9 +56,6 @@ class RasterLook {
   double worst_depth_ratio_ = 0;
 };
 
-/// Whether a report's JSON is a raster finding's ("type": "raster").
-bool is_raster_report(const protocol::JsonValue& report);
-
 /// --replay of a raster finding's report: the request sent again, the answer drawn. Exit 0 holds,
 /// 1 fails again, 3 inconclusive, 2 when the report or the program cannot be read.
 Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonValue& report,

@@ -353,12 +353,11 @@ Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& 
   }
   if (options.seed == 0) options.seed = std::random_device{}() | 1u;
   if (!options.replay.empty()) {
-    if (const Expected<protocol::JsonValue> report = read_report(options.replay);
-        report && is_consumer_report(*report))
-      return replay_consumer_report(options, *report, out, err);
-    if (const Expected<protocol::JsonValue> report = read_report(options.replay);
-        report && is_raster_report(*report))
-      return replay_raster_report(options, *report, out, err);
+    if (const Expected<protocol::JsonValue> report = read_report(options.replay); report) {
+      if (report_is(*report, "consumers"))
+        return replay_consumer_report(options, *report, out, err);
+      if (report_is(*report, "raster")) return replay_raster_report(options, *report, out, err);
+    }
     // The report's precision, whatever --precision says.
     const Expected<std::optional<protocol::Precision>> precision = report_precision(options.replay);
     if (!precision) {
