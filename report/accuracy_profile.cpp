@@ -14,19 +14,9 @@
 #include "oblique/protocol/json.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/report/report_files.h"
+#include "oblique/report/views.h"
 
 namespace oblique::report {
-
-namespace {
-
-/// `text` as a gnuplot string ('...', a quote doubled).
-std::string gnuplot_string(const std::string& text) {
-  std::string out = "'";
-  for (char ch : text) out += ch == '\'' ? std::string("''") : std::string(1, ch);
-  return out + "'";
-}
-
-}  // namespace
 
 double ProfiledAnswer::worst_ulps() const {
   return *std::max_element(std::begin(ulps), std::end(ulps));
@@ -131,11 +121,17 @@ const char* chart_colour(std::size_t index) {
 
 bool stage_time_chart(ReportFiles& files, const std::string& stem, const std::string& title,
                       const std::string& xlabel, const std::vector<TimePoint>& points) {
+  // A point without a time or an error is not drawn; every block written holds a point, so
+  // the blocks gnuplot counts are the ones named below.
+  std::vector<const TimePoint*> drawn;
+  for (const TimePoint& p : points)
+    if (!std::isnan(p.ns) && !std::isnan(p.worst_bits)) drawn.push_back(&p);
   std::ostream& dat = files.open(stem + "_points.dat");
   std::vector<std::pair<double, double>> at;
-  for (const TimePoint& p : points) {
-    dat << "# " << p.label << "\n" << p.ns << ' ' << p.worst_bits << ' ' << p.p999_bits << "\n\n\n";
-    at.emplace_back(p.ns, p.worst_bits);
+  for (const TimePoint* p : drawn) {
+    dat << "# " << p->label << "\n"
+        << p->ns << ' ' << p->worst_bits << ' ' << p->p999_bits << "\n\n\n";
+    at.emplace_back(p->ns, p->worst_bits);
   }
   const std::vector<bool> on_front = non_dominated(at);
   std::vector<std::pair<double, double>> front;
@@ -153,8 +149,8 @@ bool stage_time_chart(ReportFiles& files, const std::string& stem, const std::st
         "set key outside below\nplot '"
      << stem << "_front.dat' using 1:2 with steps lw 2 lc rgb '#aaaaaa' title "
      << "'non-dominated front'";
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const TimePoint& p = points[i];
+  for (std::size_t i = 0; i < drawn.size(); ++i) {
+    const TimePoint& p = *drawn[i];
     gp << ", '" << stem << "_points.dat' index " << i << " using 1:2 with points pt "
        << p.point_type << " ps 2 lc rgb '" << chart_colour(p.colour) << "' title "
        << gnuplot_string(p.label);
@@ -447,17 +443,25 @@ std::optional<std::vector<std::filesystem::path>> write_profile_report(
                    "time per answer, ns (log scale)", points);
 
   // Error against stiffness: the worst bits lost in each decade of kappa, a line per profile.
+  // A block is written only for a profile with points: gnuplot counts no empty block, and the
+  // lines name the blocks written.
   std::ostream& stiff = files.open("stiffness.dat");
-  for (const Profile& p : profiles) {
+  std::string lines;
+  int blocks = 0;
+  for (std::size_t i = 0; i < profiles.size(); ++i) {
     std::map<int, double> worst_in;
-    for (const ProfiledAnswer& a : p.answers) {
+    for (const ProfiledAnswer& a : profiles[i].answers) {
       double& w = worst_in[kappa_decade(a.kappa)];
       w = std::max(w, std::min(bits_lost(a.worst_ulps()), 1e9));
     }
-    stiff << "# " << p.name << "\n";
+    if (worst_in.empty()) continue;
+    stiff << "# " << profiles[i].name << "\n";
     for (const auto& [decade, bits] : worst_in)
       stiff << std::pow(10.0, decade) << ' ' << bits << '\n';
     stiff << "\n\n";
+    lines += std::string(lines.empty() ? "" : ", ") + "'stiffness.dat' index " +
+             std::to_string(blocks++) + " using 1:2 with linespoints pt 7 lw 2 lc rgb '" +
+             chart_colour(i) + "' title " + gnuplot_string(chart_label(profiles[i]));
   }
   std::ostream& sgp = files.open("stiffness.gp");
   sgp << "set terminal pngcairo size 900,700 noenhanced\nset output 'stiffness.png'\n"
@@ -465,13 +469,8 @@ std::optional<std::vector<std::filesystem::path>> write_profile_report(
       << gnuplot_string(options.title + ": error against the stiffness of the case")
       << "\nset xlabel 'kappa, the condition number of C . Q (decades)'\nset logscale x\n"
          "set ylabel 'bits lost, worst answer in the decade'\nset yrange [-0.5:*]\n"
-         "set key outside below\nset grid\nplot ";
-  for (std::size_t i = 0; i < profiles.size(); ++i) {
-    sgp << (i ? ", " : "") << "'stiffness.dat' index " << i
-        << " using 1:2 with linespoints pt 7 lw 2 lc rgb '" << chart_colour(i) << "' title "
-        << gnuplot_string(chart_label(profiles[i]));
-  }
-  sgp << "\n";
+         "set key outside below\nset grid\n";
+  if (!lines.empty()) sgp << "plot " << lines << "\n";
 
   std::ostringstream plot_log;
   files.plot_staged("stiffness.gp", "stiffness.png", plot_log);

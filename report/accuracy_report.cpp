@@ -21,6 +21,7 @@
 #include "oblique/protocol/protocol.h"
 #include "oblique/report/accuracy_profile.h"
 #include "oblique/report/report_files.h"
+#include "oblique/report/views.h"
 
 namespace oblique::report {
 namespace {
@@ -333,6 +334,12 @@ std::string measure_external(const Regime& regime, const std::vector<Input>& inp
     cases.push_back(c);
   }
   if (cases.empty()) return "";
+  // The count check: one answer line a request, nothing left over from the last regime.
+  if (child.running()) {
+    if (const std::vector<std::string> left = child.unasked_output(); !left.empty())
+      return impl.command + ": wrote lines beyond one answer per request (before regime " +
+             regime.name + "): " + left.front();
+  }
   const RoundTrip trip = time_round_trip(
       child, text, cases.size(),
       std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000)));
@@ -416,6 +423,21 @@ AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& pr
                                   : measure_external<double>(regime, inputs, steps, impl,
                                                              *children[i], options, report);
       if (!report.error.empty()) return report;
+    }
+  }
+  // The count check of the last regime: once their input is closed, the implementations have
+  // nothing more to say (at most a second each to say it).
+  for (std::size_t i = 0; i < children.size(); ++i) {
+    if (!children[i]->running()) continue;
+    const auto grace = std::min<protocol::Clock::duration>(
+        std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000)),
+        std::chrono::seconds(1));
+    const std::vector<std::string> extra =
+        children[i]->close_and_drain(protocol::Clock::now() + grace);
+    if (!extra.empty()) {
+      report.error = options.implementations[i].command +
+                     ": wrote lines beyond one answer per request: " + extra.front();
+      return report;
     }
   }
   return report;
@@ -541,41 +563,47 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
   for (const StiffnessPoint& p : report.stiffness) {
     if (std::find(swept.begin(), swept.end(), p.regime) == swept.end()) swept.push_back(p.regime);
   }
+  // A block is written only where it has points (gnuplot counts no empty one), so each
+  // panel names the blocks it has.
   std::ostream& sdat = files.open("stiffness.dat");
+  std::vector<std::string> panels;
+  int blocks = 0;
   for (const std::string& regime : swept) {
+    std::string plot;
     for (std::size_t m = 0; m < methods.size(); ++m) {
       // The core's methods in double; an implementation in the type it answers in.
       const std::string scalar =
           m < 3 ? "double" : (options.implementations[m - 3].float32 ? "float" : "double");
-      sdat << "# " << regime << ' ' << methods[m] << " (" << scalar << ")\n";
+      std::ostringstream block;
+      block.precision(17);
       for (const StiffnessPoint& p : report.stiffness) {
         if (p.regime == regime && p.method == methods[m] && p.scalar == scalar)
-          sdat << p.value << ' ' << bits_lost(p.max_ulps) << '\n';
+          block << p.value << ' ' << bits_lost(p.max_ulps) << '\n';
       }
-      sdat << "\n\n";
+      if (block.str().empty()) continue;
+      sdat << "# " << regime << ' ' << methods[m] << " (" << scalar << ")\n"
+           << block.str() << "\n\n";
+      plot += std::string(plot.empty() ? "" : ", ") +
+              gnuplot_string((options.out_dir / "stiffness.dat").string()) + " index " +
+              std::to_string(blocks++) + " using 1:2 with linespoints pt 7 lw 2 lc rgb '" +
+              chart_colour(method_colour(methods[m])) + "' title " + gnuplot_string(methods[m]);
     }
+    panels.push_back(plot);
   }
   std::ostream& sgp = files.open("stiffness.gp");
   sgp << "set terminal pngcairo size 1200," << 340 * ((swept.size() + 1) / 2)
-      << " noenhanced\nset output '" << (options.out_dir / "stiffness.png").string()
-      << "'\nset multiplot layout " << (swept.size() + 1) / 2
+      << " noenhanced\nset output " << gnuplot_string((options.out_dir / "stiffness.png").string())
+      << "\nset multiplot layout " << (swept.size() + 1) / 2
       << ",2 title 'oblique: worst error against the stiffness of each regime (the core in "
          "double)'\n"
          "set logscale x\nset ylabel 'max error, bits lost'\nset yrange [-1:*]\nset grid\n"
          "set key top left\n";
-  int panel = 0;
-  std::string parameter;
-  for (const std::string& regime : swept) {
+  for (std::size_t k = 0; k < swept.size(); ++k) {
+    std::string parameter;
     for (const StiffnessPoint& p : report.stiffness)
-      if (p.regime == regime) parameter = p.parameter;
-    sgp << "set title '" << regime << "'\nset xlabel '" << parameter << "'\nplot ";
-    for (std::size_t m = 0; m < methods.size(); ++m) {
-      sgp << (m ? ", " : "") << "'" << (options.out_dir / "stiffness.dat").string() << "' index "
-          << panel * methods.size() + m << " using 1:2 with linespoints pt 7 lw 2 lc rgb '"
-          << chart_colour(method_colour(methods[m])) << "' title '" << methods[m] << "'";
-    }
-    sgp << "\n";
-    ++panel;
+      if (p.regime == swept[k]) parameter = p.parameter;
+    sgp << "set title " << gnuplot_string(swept[k]) << "\nset xlabel " << gnuplot_string(parameter)
+        << "\nplot " << panels[k] << "\n";
   }
   sgp << "unset multiplot\n";
 

@@ -145,6 +145,49 @@ TEST(AccuracyProfile, theReportHasEveryProfileTheWorstAnswersAndKappaInOrder) {
   EXPECT_LT(d2, d10);
 }
 
+// gnuplot counts no empty block: a profile without answers writes none, and the charts name
+// the blocks that were written (before, the next profile's line drew the wrong block).
+TEST(AccuracyProfile, aProfileWithoutAnswersShiftsNoOtherLine) {
+  namespace fs = std::filesystem;
+  report::Profile mine, none, other;
+  mine.name = "mine";
+  none.name = "none";
+  other.name = "other";
+  for (report::Profile* p : {&mine, &none, &other}) {
+    p->scalar = "double";
+    p->timing = report::Timing::in_process;
+    p->ns = 10;
+  }
+  none.ns = NAN;
+  report::ProfiledAnswer a;
+  a.family = "perspective";
+  a.place = "typical";
+  a.kappa = 100;
+  mine.answers.push_back(a);
+  a.ulps[0] = 7;
+  other.answers.push_back(a);
+  other.ns = 20;
+  report::ProfileReportOptions o;
+  o.dir = fs::path(::testing::TempDir()) / "oblique_accuracy_profile_empty_block";
+  fs::remove_all(o.dir);
+  o.title = "mine";
+  std::ostringstream log;
+  ASSERT_TRUE(report::write_profile_report({mine, none, other}, o, log)) << log.str();
+  const std::string stiffness = read(o.dir / "stiffness.gp");
+  EXPECT_NE(stiffness.find("index 1 using 1:2 with linespoints pt 7 lw 2 lc rgb '" +
+                           std::string(report::chart_colour(2)) + "' title 'other (double)'"),
+            std::string::npos)
+      << stiffness;
+  EXPECT_EQ(stiffness.find("index 2"), std::string::npos) << stiffness;
+  EXPECT_EQ(stiffness.find("none"), std::string::npos) << stiffness;
+  const std::string chart = read(o.dir / "accuracy.gp");
+  EXPECT_NE(chart.find("index 1 using 1:2 with points pt 7 ps 2 lc rgb '" +
+                       std::string(report::chart_colour(2)) + "' title 'other (double)'"),
+            std::string::npos)
+      << chart;
+  EXPECT_EQ(chart.find("'none (double)'"), std::string::npos) << chart;
+}
+
 TEST(AccuracyProfile, aFolderThatCannotBeWrittenIsSaidAndNothingIsLeft) {
   namespace fs = std::filesystem;
   const fs::path file = fs::path(::testing::TempDir()) / "oblique_accuracy_profile_a_file";
