@@ -343,6 +343,9 @@ std::string measure_external(const Regime& regime, const std::vector<Input>& inp
   const RoundTrip trip = time_round_trip(
       child, text, cases.size(),
       std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000)));
+  if (trip.outcome == protocol::ChildProcess::Outcome::too_long)
+    return impl.command + ": an answer line longer than 1 MiB in regime " + regime.name +
+           " (not read further)";
   if (trip.outcome != protocol::ChildProcess::Outcome::done)
     return impl.command + ": answered " + std::to_string(trip.lines.size()) + " of the " +
            std::to_string(cases.size()) + " requests of regime " + regime.name + " (" +
