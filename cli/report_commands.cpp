@@ -61,6 +61,11 @@ void setup_report(CLI::App& app, int& exit_code) {
       return;
     }
     exit_code = print_paths(oblique::report::write_accuracy_report(measured, options, std::cerr));
+    // A report that measured nothing of an implementation is no pass for it.
+    for (const std::string& line : oblique::report::unprofiled_implementations(measured)) {
+      std::cerr << "oblique report accuracy: " << line << "\n";
+      if (exit_code == 0) exit_code = 1;
+    }
   });
   CLI::App* depth = report->add_subcommand(
       "depth",

@@ -1,6 +1,8 @@
 // `oblique verify`: another implementation, over the apply protocol; the contract from its file
 // and flags.
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 
@@ -132,12 +134,28 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
   verify
       ->add_option("--raster-every", options.raster_every,
                    "With --rasterize: draw one answer in N (default 1000)")
-      ->check(CLI::PositiveNumber);
-  verify->add_option("--accuracy", options.accuracy_dir,
-                     "Profile every answer that passes: row 3's error against the exact answer "
-                     "by family, place and stiffness, the round trip timed, beside the core's "
-                     "methods on the same cases; the report (accuracy.md, .csv, charts) written "
-                     "into this folder when the run holds");
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            char* end = nullptr;
+            errno = 0;
+            const long n = std::strtol(v.c_str(), &end, 10);
+            return v.empty() || *end != '\0' || errno == ERANGE || n < 1
+                       ? "must be a whole number of at least 1, not " + v
+                       : "";
+          },
+          "N >= 1"));
+  verify
+      ->add_option("--accuracy", options.accuracy_dir,
+                   "Profile every answer that passes: row 3's error against the exact answer "
+                   "by family, place and stiffness, the round trip timed, beside the core's "
+                   "methods on the same cases; the report (accuracy.md, .csv, charts) written "
+                   "into this folder when the run holds")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            return v.empty() ? "names no folder (an empty --accuracy would turn the profile off)"
+                             : "";
+          },
+          "DIR"));
   verify->add_option("--replay", options.replay,
                      "Re-judge the case of a report (its .json) with --impl: exit 0 or 1 (3: a "
                      "raster report the rasterizer cannot judge)");

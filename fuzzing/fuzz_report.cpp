@@ -1,9 +1,8 @@
 #include "oblique/fuzzing/fuzz_report.h"
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -33,22 +32,20 @@ struct Run {
 };
 
 Run run(const FuzzReportOptions& options, const std::string& input) {
-  // coreutils' timeout ends a hang; the target gets the file as its one argument.
-  const std::string command = "timeout -k 2 " + std::to_string(options.timeout_seconds) +
-                              " /bin/sh -c " + protocol::shell_quote(options.target + " \"$1\"") +
-                              " sh " + protocol::shell_quote(input) + " 2>&1 < /dev/null";
+  // The target gets the file as its one argument, in a process group of its own: at the time
+  // limit the group is killed (a target that ignores SIGTERM too), and what it leaves behind
+  // holding its output open is ended once it has exited, not waited for.
+  protocol::ChildProcess child(options.target + " " + protocol::shell_quote(input) + " 2>&1");
   Run r;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) {
+  if (!child.start()) {
     r.status = -1;
     return r;
   }
-  char buffer[4096];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) {
-    if (r.output.size() < (64u << 10)) r.output.append(buffer, n);
-  }
-  const int raw = ::pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
+  const auto limit = std::chrono::duration<double>(options.timeout_seconds);
+  child.run_to_end(
+      r.output, 64u << 10,
+      protocol::Clock::now() + std::chrono::duration_cast<protocol::Clock::duration>(limit),
+      r.status);
   return r;
 }
 
@@ -264,8 +261,7 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
 Expected<std::string> plain_report(const FuzzReportOptions& options, const FuzzFinding& finding,
                                    const std::string& output) {
   report::ReportFiles files(options.report_dir);
-  const std::string name =
-      report::free_stem(options.report_dir, "fuzz-" + stem_of(finding.key), {".md"}) + ".md";
+  const std::string name = files.reserve_stem("fuzz-" + stem_of(finding.key), {".md"}) + ".md";
   std::ostream& md = files.open(name);
   md << "# Fuzz finding: " << finding.key << "\n\n"
      << finding.inputs.size() << " input(s); the smallest, `" << finding.inputs.front()
@@ -345,7 +341,7 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
   }
   if (out.findings.empty()) return out;
   report::ReportFiles files_out(options.report_dir);
-  const std::string name = report::free_stem(options.report_dir, "fuzz-index", {".md"}) + ".md";
+  const std::string name = files_out.reserve_stem("fuzz-index", {".md"}) + ".md";
   std::ostream& index = files_out.open(name);
   index << "# Fuzz findings: " << out.findings.size() << " distinct, in " << out.inputs
         << " inputs\n\nTarget `" << options.target << "`; " << out.holds

@@ -509,14 +509,15 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
 
   // near = lambda C, lambda > 0: each coefficient within g |P_i| + lambda beta_i, where beta_i is
   // row 3's bound in C's units (over a) plus property 1's allowance for what no rasterizer sees.
-  const Vec cx = exact::to_rational(c);
-  const Vec p = exact::to_rational(answer.near_plane);
+  // The answer is checked before it meets exact arithmetic: GMP has no NaN or infinity.
   if (!answer.near_plane.allFinite()) {
     near.holds = false;
     near.ratio = std::numeric_limits<double>::infinity();
     near.detail = "the near plane " + numbers_text(answer.near_plane) + " is not finite";
     return {keeps, near};
   }
+  const Vec cx = exact::to_rational(c);
+  const Vec p = exact::to_rational(answer.near_plane);
   const DepthRange range = clip_depth_range(convention);
   const Rational a = Rational(range.z_high - range.z_low) / problem.corner_dot();
   const Rational invisible = tolerance::kInvisiblePlaneUlps * unit<T>() * max_abs(cx);
@@ -874,7 +875,11 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   // face: a point computed by a solve in T with M' (the oblique volume's corners) or with M (the
   // original's, then clipped by C), M' itself off the exact answer by row 3's bound, and a point
   // where C crosses an edge off C by its rounding (gamma(kPlaneRoundings) |C| . |x| over |n_C|;
-  // along the edge, inside the hull's other facets, it costs nothing).
+  // along the edge, inside the hull's other facets, it costs nothing). The bound comes from the
+  // correct corners (the kept region's exact vertices), never from the answer: corners far from
+  // the right ones must not widen what they are judged by. A correct corner is within delta0 of
+  // its vertex, so the bound is taken once more at each vertex widened by delta0 (every term
+  // grows with |x|): it then holds for any corner a correct computation can give.
   const Mat mo = exact::to_rational(oblique);
   const Mat mx = exact::to_rational(m);
   const std::optional<Mat> inv = exact::inverse(mo);
@@ -890,31 +895,40 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   const Rational u = unit<T>();
   const Vec cx = exact::to_rational(c);
   const Rational c_normal = std::max({exact::abs(cx[0]), exact::abs(cx[1]), exact::abs(cx[2])});
-  Rational delta = 0;
-  for (const Vec& x : points) {
+  // The bound at a vertex x (w = 1) of every corner within `widen` of it in x, y and z; < 0 when
+  // a solve in T cannot determine w there.
+  auto bound_near = [&](const Vec& x, const Rational& widen) -> Rational {
+    Vec size;  // |x| widened
+    for (int i = 0; i < 3; ++i) size[i] = exact::abs(x[i]) + widen;
+    size[3] = 1;
     Rational d = 0;
     for (const auto& [solve, with_m] : {std::pair{&chain, true}, std::pair{&m_chain, false}}) {
-      const Vec q = exact::mul(with_m ? mo : mx, x);  // its clip-space point
-      Vec dv = exact::mul(*solve, exact::abs(q));
-      const Rational row3_part = with_m ? exact::dot(*row3, exact::abs(x)) : Rational(0);
+      const Mat& matrix = with_m ? mo : mx;
+      Vec q = exact::abs(exact::mul(matrix, x));  // its clip-space point, widened below
+      for (int r = 0; r < 4; ++r)
+        for (int k = 0; k < 3; ++k) q[r] += exact::abs(matrix[r][k]) * widen;
+      Vec dv = exact::mul(*solve, q);
+      const Rational row3_part = with_m ? exact::dot(*row3, size) : Rational(0);
       const Mat& inverse = with_m ? *inv : *m_inv;
       for (int i = 0; i < 4; ++i) dv[i] = g * dv[i] + exact::abs(inverse[i][2]) * row3_part;
-      if (dv[3] >= 1) {  // w not determined: no bound from this solve
-        d = -1;
-        break;
-      }
-      for (int i = 0; i < 3; ++i)
-        d += (dv[i] + exact::abs(x[i]) * dv[3]) / (1 - dv[3]) + u * exact::abs(x[i]);
-    }
-    if (d < 0) {
-      f.judged = false;
-      f.detail = "a corner's w is not determined in T";
-      return f;
+      if (dv[3] >= 1) return -1;  // w not determined: no bound from this solve
+      for (int i = 0; i < 3; ++i) d += (dv[i] + size[i] * dv[3]) / (1 - dv[3]) + u * size[i];
     }
     if (c_normal > 0)
-      d += gamma_of<T>(tolerance::kPlaneRoundings) * exact::dot(exact::abs(cx), exact::abs(x)) /
-           c_normal;
-    delta = std::max(delta, d);
+      d += gamma_of<T>(tolerance::kPlaneRoundings) * exact::dot(exact::abs(cx), size) / c_normal;
+    return d;
+  };
+  Rational delta0 = 0, delta = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (const Vec& v : kept) {
+      const Rational d = bound_near(v, pass == 0 ? Rational(0) : delta0);
+      if (d < 0) {
+        f.judged = false;
+        f.detail = "a corner's w is not determined in T";
+        return f;
+      }
+      (pass == 0 ? delta0 : delta) = std::max(pass == 0 ? delta0 : delta, d);
+    }
   }
   // The hull's facets: planes through three corners with every corner on one side.
   struct Facet {

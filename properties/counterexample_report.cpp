@@ -537,8 +537,8 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   for (char& ch : stem) {
     if (ch == '/' || ch == ' ') ch = '_';
   }
-  if (context.keep_existing)
-    stem = report::free_stem(context.directory, stem, {".md", ".json", ".views.dat"});
+  report::ReportFiles files(context.directory);
+  if (context.keep_existing) stem = files.reserve_stem(stem, {".md", ".json", ".views.dat"});
   const std::string md_path = context.directory + "/" + stem + ".md";
   const std::string rc_params = "RC_PARAMS=\"seed=" + std::to_string(context.seed) +
                                 " max_success=" + std::to_string(context.max_success) + "\"";
@@ -592,7 +592,6 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   }
   // The pictures: staged with the rest, rendered in the staging folder (gnuplot missing or
   // failing leaves the data and scripts, and says so).
-  report::ReportFiles files(context.directory);
   nlohmann::json pictures = nullptr;
   if (ce.views.set) md << stage_pictures(files, ce, stem, mark_of(ce), pictures);
   md << "## Replay\n\nThe whole run"

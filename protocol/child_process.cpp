@@ -273,10 +273,13 @@ ChildProcess::Outcome ChildProcess::exchange(std::string_view input, std::size_t
     }
     if (out_ < 0) return Outcome::exited;
 
+    // Once the wait is over, one last look at what the pipe holds already: an answer that came
+    // while we were busy elsewhere (judging, drawing) is an answer, not a hang.
     const auto now = Clock::now();
     const auto until = std::min(deadline, last_progress + idle);
-    if (now >= until) return Outcome::timed_out;
-    const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(until - now).count();
+    const bool last_look = now >= until;
+    const auto wait =
+        last_look ? -1 : std::chrono::duration_cast<std::chrono::milliseconds>(until - now).count();
 
     pollfd fds[3];
     int n = 0;
@@ -292,6 +295,8 @@ ChildProcess::Outcome ChildProcess::exchange(std::string_view input, std::size_t
       if (errno == EINTR) continue;
       return Outcome::exited;
     }
+    if (last_look && !(fds[out_index].revents & (POLLIN | POLLHUP | POLLERR)))
+      return Outcome::timed_out;
     if (in_index >= 0 && (fds[in_index].revents & (POLLOUT | POLLERR | POLLHUP))) {
       const ssize_t w = ::write(in_, unwritten_.data() + written_, unwritten_.size() - written_);
       if (w > 0) {
@@ -369,6 +374,56 @@ std::vector<std::string> ChildProcess::close_and_drain(Clock::time_point until) 
   return split_lines(pending_);
 }
 
+ChildProcess::Outcome ChildProcess::run_to_end(std::string& output, std::size_t keep,
+                                               Clock::time_point deadline, int& status) {
+  close_fd(in_);
+  char buffer[1 << 12];
+  auto take = [&](int& fd, bool is_output) {
+    const ssize_t r = ::read(fd, buffer, sizeof buffer);
+    if (r > 0) {
+      if (!is_output)
+        keep_stderr(buffer, static_cast<std::size_t>(r));
+      else if (output.size() < keep)
+        output.append(buffer, std::min(static_cast<std::size_t>(r), keep - output.size()));
+    } else if (r == 0 || (errno != EAGAIN && errno != EINTR)) {
+      close_fd(fd);
+    }
+  };
+  // Until the child has exited and its output is read to the end (or, once it has exited, for
+  // a moment more: what a descendant still holds open is not waited for).
+  Clock::time_point after_exit{};
+  for (;;) {
+    const auto now = Clock::now();
+    if (now >= deadline) {
+      stop();
+      status = 124;
+      return Outcome::timed_out;
+    }
+    if (reap(false)) {
+      if (after_exit == Clock::time_point{}) after_exit = now + std::chrono::milliseconds(200);
+      if (out_ < 0 || now >= after_exit) break;
+    }
+    pollfd fds[2];
+    int n = 0;
+    if (out_ >= 0) fds[n++] = {out_, POLLIN, 0};
+    if (err_ >= 0) fds[n++] = {err_, POLLIN, 0};
+    // Short waits: a child that exits is noticed soon even while a descendant holds the pipes.
+    const int ready = ::poll(fds, static_cast<nfds_t>(n), n == 0 ? 10 : 20);
+    if (ready < 0 && errno != EINTR) break;
+    for (int i = 0; i < n && ready > 0; ++i) {
+      if (!(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+      if (fds[i].fd == out_)
+        take(out_, true);
+      else
+        take(err_, false);
+    }
+  }
+  const int raw = wait_status_;
+  stop();  // what it left behind
+  status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
+  return Outcome::exited;
+}
+
 bool ChildProcess::reap(bool wait) {
   if (pid_ <= 0 || reaped_) return reaped_;
   const pid_t r = ::waitpid(pid_, &wait_status_, wait ? 0 : WNOHANG);
@@ -415,7 +470,9 @@ std::string ChildProcess::end_description() {
   close_fd(in_);
   for (int i = 0; i < 50 && !reap(false); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  if (!reaped_) return "still running (it stopped answering)";
+  if (!reaped_)
+    return out_ < 0 ? "closed its standard output and is still running"
+                    : "still running (it stopped answering)";
   if (WIFEXITED(wait_status_))
     return "exited with status " + std::to_string(WEXITSTATUS(wait_status_));
   if (WIFSIGNALED(wait_status_)) {

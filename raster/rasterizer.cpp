@@ -10,8 +10,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <mutex>
+#include <string>
 
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
@@ -22,6 +24,31 @@ namespace oblique::raster {
 namespace {
 
 constexpr const char* kPackages = "libegl-mesa0 libgl1-mesa-dri (and libegl1, libopengl0)";
+
+/// What to do when EGL finds no Mesa: install the packages, unless Mesa's EGL is there and only
+/// glvnd's vendor file that points at it is missing (or the environment points glvnd elsewhere).
+std::string install_hint() {
+  for (const char* variable : {"__EGL_VENDOR_LIBRARY_FILENAMES", "__EGL_VENDOR_LIBRARY_DIRS"}) {
+    if (const char* v = std::getenv(variable))
+      return std::string(variable) + " is set (" + v +
+             "): glvnd looks for EGL vendors only there; unset it or point it at Mesa's "
+             "50_mesa.json";
+  }
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  bool library = false;
+  for (const char* dir :
+       {"/usr/lib/x86_64-linux-gnu", "/usr/lib/aarch64-linux-gnu", "/usr/lib64", "/usr/lib"})
+    library = library || fs::exists(fs::path(dir) / "libEGL_mesa.so.0", ec);
+  bool vendor = false;
+  for (const char* dir : {"/usr/share/glvnd/egl_vendor.d", "/etc/glvnd/egl_vendor.d"})
+    vendor = vendor || fs::exists(fs::path(dir) / "50_mesa.json", ec);
+  if (library && !vendor)
+    return "Mesa's EGL (libEGL_mesa.so.0) is installed, but glvnd's vendor file for it "
+           "(/usr/share/glvnd/egl_vendor.d/50_mesa.json) is missing: reinstall libegl-mesa0 "
+           "(apt-get install --reinstall libegl-mesa0)";
+  return std::string("install ") + kPackages;
+}
 
 const char* const kVertexShader = R"(#version 450 core
 layout(location = 0) in vec4 point;
@@ -150,7 +177,7 @@ struct Rasterizer::State {
     EGLint major = 0, minor = 0;
     if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor))
       return Expected<Done>::failure("no EGL device (" + egl_error("eglInitialize") +
-                                     "): install " + kPackages);
+                                     "): " + install_hint());
     use_display(display);
     display_used = true;
     if (!eglBindAPI(EGL_OPENGL_API)) return Expected<Done>::failure(egl_error("eglBindAPI"));
@@ -171,6 +198,15 @@ struct Rasterizer::State {
     renderer = std::string(name ? name : "?") + ", OpenGL " + (version ? version : "?");
     if (options.device == Device::software && renderer.find("llvmpipe") == std::string::npos)
       return Expected<Done>::failure("asked for llvmpipe, the driver gave " + renderer);
+    // A user who asked for a GPU is told when there is none, not given llvmpipe in silence.
+    if (options.device == Device::gpu && (renderer.find("llvmpipe") != std::string::npos ||
+                                          renderer.find("softpipe") != std::string::npos))
+      return Expected<Done>::failure(
+          "asked for a GPU (--device gpu), but EGL gave the software "
+          "renderer " +
+          renderer +
+          ": no GPU is reachable here (--device software draws on "
+          "llvmpipe)");
     return build();
   }
 

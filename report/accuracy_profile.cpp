@@ -353,6 +353,7 @@ std::optional<std::vector<std::filesystem::path>> write_profile_report(
     return std::nullopt;
   }
   ReportFiles files(options.dir);
+  files.supersede("worst-", ".json");  // a run with fewer worst answers leaves none of before
   const Profile& mine = profiles.front();
 
   // accuracy.csv: one row per profile and group (all, family, place, kappa decade).

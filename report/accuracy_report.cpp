@@ -1,6 +1,7 @@
 #include "oblique/report/accuracy_report.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -470,20 +471,42 @@ std::map<std::pair<std::string, std::string>, OverallPoint> overall_points(
   return points;
 }
 
+std::vector<std::string> unprofiled_implementations(const AccuracyReport& report) {
+  std::map<std::string, std::array<long, 3>> by_method;  // answered, refused, violating
+  std::vector<std::string> order;
+  for (const AccuracyRow& r : report.rows) {
+    if (!r.round_trip) continue;
+    if (!by_method.count(r.method)) order.push_back(r.method);
+    auto& n = by_method[r.method];
+    n[0] += r.answered;
+    n[1] += r.refused;
+    n[2] += r.violating;
+  }
+  std::vector<std::string> out;
+  for (const std::string& method : order) {
+    const auto& n = by_method[method];
+    if (n[0] > 0) continue;
+    out.push_back(method + ": no answer profiled (" + std::to_string(n[2]) +
+                  " violating the properties, " + std::to_string(n[1]) +
+                  " refused): nothing of it was measured");
+  }
+  return out;
+}
+
 std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
     const AccuracyReport& report, const AccuracyOptions& options, std::ostream& log) {
   ReportFiles files(options.out_dir);
 
   std::ostream& csv = files.open("accuracy.csv");
   csv << "regime,scalar,method,answered,refused,max_ulps,p999_ulps,mean_ulps,max_bits,p999_bits,"
-         "mean_bits,ns_per_call,max_error_over_bound,timing\n";
+         "mean_bits,ns_per_call,max_error_over_bound,timing,violating\n";
   csv.precision(17);
   for (const AccuracyRow& r : report.rows) {
     csv << r.regime << ',' << r.scalar << ',' << r.method << ',' << r.answered << ',' << r.refused
         << ',' << r.max_ulps << ',' << r.p999_ulps << ',' << r.mean_ulps << ','
         << bits_lost(r.max_ulps) << ',' << bits_lost(r.p999_ulps) << ',' << bits_lost(r.mean_ulps)
         << ',' << r.ns_per_call << ',' << r.max_bound_ratio << ','
-        << (r.round_trip ? "round_trip" : "in_process") << '\n';
+        << (r.round_trip ? "round_trip" : "in_process") << ',' << r.violating << '\n';
   }
 
   std::ostream& stiff = files.open("stiffness.csv");
@@ -531,6 +554,8 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
       const auto it = cells[key].find(m);
       if (it == cells[key].end() || it->second->answered == 0) {
         md << " | n/a";
+        if (it != cells[key].end() && it->second->violating > 0)
+          md << " (none profiled: " << it->second->violating << " violating the properties)";
         continue;
       }
       const AccuracyRow& r = *it->second;
@@ -586,8 +611,7 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
       if (block.str().empty()) continue;
       sdat << "# " << regime << ' ' << methods[m] << " (" << scalar << ")\n"
            << block.str() << "\n\n";
-      plot += std::string(plot.empty() ? "" : ", ") +
-              gnuplot_string((options.out_dir / "stiffness.dat").string()) + " index " +
+      plot += std::string(plot.empty() ? "" : ", ") + "'stiffness.dat'" + " index " +
               std::to_string(blocks++) + " using 1:2 with linespoints pt 7 lw 2 lc rgb '" +
               chart_colour(method_colour(methods[m])) + "' title " + gnuplot_string(methods[m]);
     }
@@ -595,7 +619,8 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
   }
   std::ostream& sgp = files.open("stiffness.gp");
   sgp << "set terminal pngcairo size 1200," << 340 * ((swept.size() + 1) / 2)
-      << " noenhanced\nset output " << gnuplot_string((options.out_dir / "stiffness.png").string())
+      << " noenhanced\nset output "
+      << "'stiffness.png'"
       << "\nset multiplot layout " << (swept.size() + 1) / 2
       << ",2 title 'oblique: worst error against the stiffness of each regime (the core in "
          "double)'\n"
@@ -610,8 +635,11 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
   }
   sgp << "unset multiplot\n";
 
+  // Drawn before the commit, so the pictures come with the rest or not at all.
+  std::ostringstream plot_log;
+  if (!files.plot_staged("stiffness.gp", "stiffness.png", plot_log))
+    log << "report: " << plot_log.str() << "\n";
   if (!files.commit(log)) return std::nullopt;
-  files.plot("stiffness.gp", "stiffness.png", log);
   return files.written();
 }
 

@@ -1,17 +1,25 @@
 #include "oblique/report/report_files.h"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <iterator>
 #include <ostream>
 #include <string>
 #include <system_error>
+
+#include "oblique/protocol/child_process.h"
 
 namespace oblique::report {
 
@@ -29,6 +37,12 @@ ReportFiles::~ReportFiles() {
   staged_.clear();  // closes the streams
   std::error_code ec;
   std::filesystem::remove_all(staging_, ec);
+  // A name reserved but never written: its empty file goes (one written in its place stays).
+  for (const std::filesystem::path& held : reserved_) {
+    if (std::find(written_.begin(), written_.end(), held) == written_.end() &&
+        std::filesystem::file_size(held, ec) == 0 && !ec)
+      std::filesystem::remove(held, ec);
+  }
 }
 
 std::ostream& ReportFiles::open(const std::string& name) {
@@ -70,13 +84,50 @@ bool ReportFiles::commit(std::ostream& log) {
     }
     written_.push_back(dir_ / s.name);
   }
+  std::vector<std::filesystem::path> earlier;
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    for (const auto& [prefix, suffix] : superseded_) {
+      if (name.size() >= prefix.size() + suffix.size() && name.rfind(prefix, 0) == 0 &&
+          name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+          std::find(written_.begin(), written_.end(), it->path()) == written_.end())
+        earlier.push_back(it->path());
+    }
+  }
+  if (!earlier.empty()) {
+    std::sort(earlier.begin(), earlier.end());
+    const std::filesystem::path moved = move_to_earlier(dir_, earlier, ec);
+    if (ec)
+      log << "report: could not move an earlier run's " << earlier.front().filename().string()
+          << " to " << moved.string() << " (" << ec.message() << ")\n";
+    else
+      log << "report: " << earlier.size() << " file(s) of an earlier run moved to "
+          << moved.string() << "\n";
+  }
   return true;
+}
+
+std::filesystem::path move_to_earlier(const std::filesystem::path& dir,
+                                      const std::vector<std::filesystem::path>& files,
+                                      std::error_code& error) {
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", std::gmtime(&now));
+  const std::filesystem::path target =
+      dir / "earlier" / (std::string(stamp) + "-" + std::to_string(::getpid()));
+  error.clear();
+  std::filesystem::create_directories(target, error);
+  for (const std::filesystem::path& file : files) {
+    if (!error) std::filesystem::rename(file, target / file.filename(), error);
+  }
+  return target;
 }
 
 namespace {
 
-/// How long gnuplot may take on one picture before it is stopped (coreutils' `timeout`, then
-/// SIGKILL 5 s later): a hung gnuplot must not hang the report. OBLIQUE_GNUPLOT_SECONDS (a
+/// How long gnuplot may take on one picture before its process group is killed: a hung gnuplot
+/// must not hang the report. OBLIQUE_GNUPLOT_SECONDS (a
 /// positive integer) overrides it.
 int gnuplot_seconds() {
   constexpr int fallback = 60;
@@ -87,30 +138,110 @@ int gnuplot_seconds() {
   return (end != v && *end == '\0' && n > 0 && n <= 86400) ? int(n) : fallback;
 }
 
-/// `gnuplot 'SCRIPT'` with the time limit.
-std::string gnuplot_command(const std::string& script) {
-  return "timeout -k 5 " + std::to_string(gnuplot_seconds()) + " gnuplot '" + script + "'";
+/// Whether `program` is an executable file in one of PATH's folders.
+bool on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  std::string folders = path ? path : "/usr/bin:/bin";
+  for (std::size_t from = 0; from <= folders.size();) {
+    std::size_t colon = folders.find(':', from);
+    if (colon == std::string::npos) colon = folders.size();
+    const std::string folder = folders.substr(from, colon - from);
+    const std::string file = (folder.empty() ? "." : folder) + "/" + program;
+    if (::access(file.c_str(), X_OK) == 0) return true;
+    from = colon + 1;
+  }
+  return false;
 }
 
-/// Whether std::system's `status` is `timeout`'s "the time limit ran out" (124, or 137 after
-/// the SIGKILL).
-bool timed_out(int status) {
-  return WIFEXITED(status) && (WEXITSTATUS(status) == 124 || WEXITSTATUS(status) == 137);
+/// Set by the handler below while a tool runs: the signal that asked us to stop, 0 if none.
+volatile std::sig_atomic_t interrupted_by = 0;
+void note_interrupt(int sig) {
+  interrupted_by = sig;
+}
+
+/// How a tool's run ended.
+struct ToolRun {
+  int status = -1;         ///< waitpid's status; -1: it could not be started
+  bool timed_out = false;  ///< it ran past its time and was killed
+  int interrupt = 0;       ///< SIGINT / SIGTERM / SIGHUP that reached us while it ran (killed)
+};
+
+/// Runs `command` under /bin/sh in `folder`, in a process group of its own, for at most
+/// `seconds` (then the group is killed). Unlike std::system(), an interrupt is not ignored: a
+/// Ctrl-C or SIGTERM while the tool runs kills its group and is returned, so the caller can
+/// leave its files as they were and then die of the signal as the user asked.
+ToolRun run_tool(const std::string& command, const std::filesystem::path& folder, int seconds) {
+  ToolRun out;
+  interrupted_by = 0;
+  struct sigaction old[3];
+  const int signals[3] = {SIGINT, SIGTERM, SIGHUP};
+  for (int i = 0; i < 3; ++i) {
+    ::sigaction(signals[i], nullptr, &old[i]);
+    if (old[i].sa_handler == SIG_IGN) continue;  // not ours to take (a background job's SIGINT)
+    struct sigaction noted {};
+    noted.sa_handler = note_interrupt;
+    sigemptyset(&noted.sa_mask);
+    ::sigaction(signals[i], &noted, nullptr);
+  }
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::setpgid(0, 0);
+    for (int sig : signals) ::signal(sig, SIG_DFL);
+    if (::chdir(folder.c_str()) != 0) ::_exit(126);
+    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  if (pid > 0) {
+    ::setpgid(pid, pid);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+    for (;;) {
+      const pid_t r = ::waitpid(pid, &out.status, WNOHANG);
+      if (r == pid) break;
+      if (r < 0 && errno != EINTR) break;
+      const bool late = std::chrono::steady_clock::now() >= deadline;
+      if (interrupted_by != 0 || late) {
+        ::kill(-pid, SIGKILL);
+        ::waitpid(pid, &out.status, 0);
+        out.interrupt = interrupted_by;
+        out.timed_out = late && out.interrupt == 0;
+        break;
+      }
+      ::usleep(10000);
+    }
+    ::kill(-pid, SIGKILL);  // what it left in its group
+  }
+  for (int i = 0; i < 3; ++i) ::sigaction(signals[i], &old[i], nullptr);
+  return out;
 }
 
 }  // namespace
 
+void ReportFiles::die_of(int sig) {
+  // Nothing of this report is committed after an interrupt: the folder stays as it was.
+  staged_.clear();
+  std::error_code ec;
+  std::filesystem::remove_all(staging_, ec);
+  for (const std::filesystem::path& held : reserved_) {
+    if (std::filesystem::file_size(held, ec) == 0 && !ec) std::filesystem::remove(held, ec);
+  }
+  ::raise(sig);  // with the handler that was there before (or the default: the exit is 128 + sig)
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+  std::_Exit(128 + sig);  // the signal blocked: the status a shell gives its death
+}
+
 void ReportFiles::plot(const std::string& script, const std::string& png, std::ostream& log) {
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+  if (!on_path("gnuplot")) {
     log << "report: gnuplot not found (bash scripts/setup.sh installs it); " << script
         << " is written, " << png << " is not\n";
     return;
   }
-  const std::string command = gnuplot_command((dir_ / script).string());
-  const int status = std::system(command.c_str());
-  if (status == 0) {
+  const ToolRun run = run_tool("gnuplot " + protocol::shell_quote((dir_ / script).string()), dir_,
+                               gnuplot_seconds());
+  if (run.interrupt) die_of(run.interrupt);
+  if (run.status == 0) {
     written_.push_back(dir_ / png);
-  } else if (timed_out(status)) {
+  } else if (run.timed_out) {
     log << "report: gnuplot did not finish within " << gnuplot_seconds() << " s on "
         << (dir_ / script).string() << " (stopped)\n";
   } else {
@@ -127,20 +258,22 @@ bool ReportFiles::plot_staged(const std::string& script, const std::string& png,
   for (Staged& s : staged_) {
     if (!s.external) s.stream.flush();  // the script and its data whole on disk for gnuplot
   }
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+  if (!on_path("gnuplot")) {
     log << "gnuplot not found (bash scripts/setup.sh installs it); " << script << " is written, "
         << png << " is not";
     return false;
   }
   const std::string errors = script + ".stderr";
-  const std::string command = "cd '" + staging_.string() + "' && " + gnuplot_command(script) +
-                              " > /dev/null 2> '" + errors + "'";
-  const int status = std::system(command.c_str());
-  if (timed_out(status)) {
+  const ToolRun run = run_tool("gnuplot " + protocol::shell_quote(script) + " > /dev/null 2> " +
+                                   protocol::shell_quote(errors),
+                               staging_, gnuplot_seconds());
+  if (run.interrupt) die_of(run.interrupt);
+  if (run.timed_out) {
     log << "gnuplot did not finish within " << gnuplot_seconds() << " s on " << script
         << " (stopped; " << png << " is not written)";
     return false;
   }
+  const int status = run.status;
   std::error_code ec;
   if (status == 0 && std::filesystem::file_size(staging_ / png, ec) > 0 && !ec) {
     staged_.push_back(Staged{png, std::ofstream(), true});
@@ -158,18 +291,29 @@ bool ReportFiles::plot_staged(const std::string& script, const std::string& png,
   return false;
 }
 
-std::string free_stem(const std::filesystem::path& dir, const std::string& stem,
-                      const std::vector<std::string>& extensions) {
-  std::string name = stem;
-  auto taken = [&] {
-    std::error_code ec;
-    for (const std::string& extension : extensions) {
-      if (std::filesystem::exists(dir / (name + extension), ec)) return true;
+std::string ReportFiles::reserve_stem(const std::string& stem,
+                                      const std::vector<std::string>& extensions) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  for (int n = 1; n < 100000; ++n) {
+    const std::string name = n == 1 ? stem : stem + "-" + std::to_string(n);
+    bool taken = false;
+    for (const std::string& extension : extensions)
+      taken = taken || std::filesystem::exists(dir_ / (name + extension), ec);
+    if (taken || extensions.empty()) {
+      if (extensions.empty()) return name;
+      continue;
     }
-    return false;
-  };
-  for (int n = 2; taken(); ++n) name = stem + "-" + std::to_string(n);
-  return name;
+    const std::filesystem::path held = dir_ / (name + extensions.front());
+    const int fd = ::open(held.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd >= 0) {
+      ::close(fd);
+      reserved_.push_back(held);
+      return name;
+    }
+    if (errno != EEXIST) return name;  // the folder cannot take it: commit() says why
+  }
+  return stem;
 }
 
 }  // namespace oblique::report

@@ -132,6 +132,7 @@ std::string to_json(const SceneCheck& check) {
       {"depth_buffer", depth_buffer_name(check.depth_buffer)},
       {"max_depth", check.max_depth},
       {"truncated", check.truncated},
+      {"unlisted_out_of_view", check.unlisted},
       {"surfaces", surfaces},
       {"impl_diagnosis", check.impl_diagnosis.ran
                              ? json::parse(properties::diagnosis_json(check.impl_diagnosis))
@@ -274,8 +275,12 @@ std::string to_text(const SceneCheck& check) {
             << printable(consumer_line(c)) << "\n";
     }
   }
+  if (check.unlisted > 0)
+    out << "\n"
+        << check.unlisted
+        << " more surfaces out of view (or with the camera on their wrong side) are not listed\n";
   if (check.truncated)
-    out << "\nmore than " << kMaxPasses << " passes: the rest were not looked at\n";
+    out << "\nmore than " << kMaxPasses << " visible passes: the rest were not looked at\n";
   return out.str();
 }
 

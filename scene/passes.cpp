@@ -182,7 +182,7 @@ class Checker {
     const int level = parent.level + 1;
     for (std::size_t i = 0; i < scene_.surfaces.size(); ++i) {
       if (!parent.path.empty() && parent.path.back() == i) continue;  // not seen through itself
-      if (out_.surfaces.size() >= kMaxPasses) {
+      if (visible_passes_ >= kMaxPasses) {
         out_.truncated = true;
         return;
       }
@@ -225,6 +225,16 @@ class Checker {
       } else {
         visible = !out_of_view(parent.original, parent.view, world_plane, scene_.convention);
       }
+      // The cap is on passes that can be seen: surfaces out of view are only listed while the
+      // list has room, and never keep a visible one from being looked at.
+      if (!visible || result.status == Status::camera_not_behind_plane) {
+        if (out_.surfaces.size() >= kMaxPasses) {
+          ++out_.unlisted;
+          continue;
+        }
+      } else {
+        ++visible_passes_;
+      }
       if (result.status == Status::camera_not_behind_plane) {
         s.reason = reason_for(result.status, surface.kind);
       } else if (!visible) {
@@ -257,6 +267,7 @@ class Checker {
   }
 
  private:
+  std::size_t visible_passes_ = 0;  ///< passes looked at that the parent can see
   const Scene& scene_;
   SceneCheck& out_;
 };

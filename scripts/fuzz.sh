@@ -57,16 +57,25 @@ for target in "${targets[@]}"; do
   cp fuzz/corpus/"$target"/* "$corpus"/ 2>/dev/null || true
   echo "== $target: ${seconds}s, $jobs jobs${impl:+, implementation $impl}"
   before=$(ls "$corpus" | wc -l)
-  # fuzz/TARGET.options (OSS-Fuzz's format: "[libfuzzer]" then "name = value" lines) adds flags,
-  # e.g. fuzz_protocol's max_len, so long lines are explored.
+  # fuzz/TARGET.options (OSS-Fuzz's format: sections "[libfuzzer]", "[asan]", ... of
+  # "name = value" lines): [libfuzzer] adds flags (e.g. fuzz_protocol's max_len, so long lines are
+  # explored), [asan] goes to ASAN_OPTIONS after what the user set there (the user's wins).
   options=()
+  asan_options=""
   if [[ -f "fuzz/$target.options" ]]; then
+    section=""
     while IFS='= ' read -r name value; do
-      [[ -n "$name" && -n "$value" && "$name" != \[* ]] && options+=("-$name=$value")
+      if [[ "$name" == \[*\] ]]; then section="$name"; continue; fi
+      [[ -n "$name" && -n "$value" ]] || continue
+      case "$section" in
+        "[libfuzzer]") options+=("-$name=$value") ;;
+        "[asan]") asan_options+="${asan_options:+:}$name=$value" ;;
+      esac
     done < "fuzz/$target.options"
   fi
   set +e
-  (cd "$crashes" && "../../../../../$binary" -fork="$jobs" -ignore_crashes=1 -max_total_time="$seconds" \
+  (cd "$crashes" && ASAN_OPTIONS="$asan_options${ASAN_OPTIONS:+:$ASAN_OPTIONS}" \
+      "../../../../../$binary" -fork="$jobs" -ignore_crashes=1 -max_total_time="$seconds" \
       -use_value_profile=1 -dict="../../../../../fuzz/$target.dict" -print_final_stats=1 \
       ${options[@]+"${options[@]}"} "../corpus") 2>&1 | tee "$work/$target/log" | grep -E --line-buffered "exec/s|cov:|crash|deadly|ERROR" | \
       awk 'NR % 20 == 1 || /crash|deadly|ERROR/'

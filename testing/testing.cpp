@@ -99,15 +99,7 @@ void move_earlier_reports(const properties::ReportContext& context) {
     if (name.rfind(prefix, 0) == 0 && it->is_regular_file(error)) found.push_back(it->path());
   }
   if (found.empty()) return;
-  char stamp[32];
-  const std::time_t now = std::time(nullptr);
-  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", std::gmtime(&now));
-  const fs::path target =
-      directory / "earlier" / (std::string(stamp) + "-" + std::to_string(::getpid()));
-  fs::create_directories(target, error);
-  for (const fs::path& file : found) {
-    if (!error) fs::rename(file, target / file.filename(), error);
-  }
+  const fs::path target = report::move_to_earlier(directory, found, error);
   if (error) {
     std::cout << "note: could not move the earlier report " << prefix << "md to " << target.string()
               << " (" << error.message() << "); it is left where it was\n";
@@ -121,9 +113,9 @@ void move_earlier_reports(const properties::ReportContext& context) {
 
 std::string write_markdown_report(const std::string& markdown,
                                   const properties::ReportContext& context) {
-  const std::string stem = report::free_stem(
-      context.directory, context.stem.empty() ? context.test_id : context.stem, {".md"});
   report::ReportFiles files(context.directory);
+  const std::string stem =
+      files.reserve_stem(context.stem.empty() ? context.test_id : context.stem, {".md"});
   const std::string pictures =
       tally().markdown_pictures ? tally().markdown_pictures(files, stem) : std::string();
   files.open(stem + ".md") << markdown << "\n"

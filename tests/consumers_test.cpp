@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <stdexcept>
 
 #include "oblique/depth_reconstruction.h"
 #include "oblique/kept_region.h"
@@ -12,6 +13,7 @@
 #include "oblique/pass_camera.h"
 #include "oblique/projection.h"
 #include "oblique/properties/consumers.h"
+#include "oblique/properties/exact.h"
 
 namespace {
 
@@ -218,6 +220,35 @@ TEST(CullingPlanes, keepsVisibleAloneRejectsAFarPlaneThatCullsTheKeptRegion) {
   }
 }
 
+// Hostile answers: a NaN or an infinity in any plane is judged "not finite", never converted to
+// a rational first (GMP ended the process with SIGFPE on the near plane's NaN).
+TEST(CullingPlanes, nonFinitePlanesAreViolationsNotACrash) {
+  for (Convention k : kConventions) {
+    const Matrix4<double> m = perspective(k);
+    const Vector4<double> c = tilted_plane();
+    const Matrix4<double> mo = oblique_of(m, c, k);
+    for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+      auto planes = oblique::frustum_planes(mo, k);
+      planes.near_plane(1) = bad;
+      const auto near_only = oblique::properties::judge_culling_planes(m, c, k, mo, planes);
+      EXPECT_FALSE(find(near_only, ConsumerCheck::culling_near_is_c).holds);
+      EXPECT_FALSE(find(near_only, ConsumerCheck::culling_keeps_visible).holds);
+      for (Vector4<double>* p :
+           {&planes.left, &planes.right, &planes.bottom, &planes.top, &planes.far_plane})
+        p->fill(bad);
+      for (const auto& f : oblique::properties::judge_culling_planes(m, c, k, mo, planes))
+        EXPECT_TRUE(f.judged && !f.holds) << describe(f);
+    }
+  }
+}
+
+TEST(Exact, aNonFiniteNumberIsRefusedNotConverted) {
+  EXPECT_THROW(oblique::exact::to_rational(std::nan("")), std::domain_error);
+  EXPECT_THROW(oblique::exact::to_rational(HUGE_VALF), std::domain_error);
+  EXPECT_THROW(oblique::exact::to_rational(-HUGE_VALL), std::domain_error);
+  EXPECT_EQ(oblique::exact::to_rational(0.5), oblique::exact::Rational(1, 2));
+}
+
 struct PassCase {
   Matrix4<double> view = Matrix4<double>::Identity();
   Vector4<double> plane;
@@ -402,6 +433,32 @@ TEST(Corners, obliqueMatrixCornersBoundWhereAllAreInFront) {
     near_and_eye.push_back(Vector3<double>::Zero());
     corners = near_and_eye;
     EXPECT_FALSE(oblique::properties::judge_corners(m, c, k, mo, corners).holds);
+  }
+}
+
+// Corners far from the right ones are judged by the bound of the right ones: a bound taken from
+// the answer itself grew past w = 0 for corners 1e300 away, and the round was left out, not failed.
+TEST(Corners, farAwayCornersAreJudgedByTheRightOnesBound) {
+  for (Convention k : kConventions) {
+    const Matrix4<double> m = perspective(k);
+    const Vector4<double> c = tilted_plane();
+    const Matrix4<double> mo = oblique_of(m, c, k);
+    std::vector<Vector3<double>> kept, far_away, scaled_up;
+    for (const auto& v : oblique::kept_region_vertices(m, oblique::near_plane(mo, k), k))
+      kept.push_back(v.head<3>());
+    for (int i = 0; i < 8; ++i)
+      far_away.push_back(Vector3<double>(i & 1 ? 1.1e300 : 1e300, i & 2 ? 1.1e300 : 1e300,
+                                         i & 4 ? 1.1e300 : 1e300));
+    const ConsumerFinding far = oblique::properties::judge_corners(m, c, k, mo, far_away);
+    EXPECT_TRUE(far.judged && !far.holds) << describe(far);
+    // The right corners, and a box around them 1e300 wide, still hold: conservative, not wrong.
+    const ConsumerFinding right = oblique::properties::judge_corners(m, c, k, mo, kept);
+    EXPECT_TRUE(right.judged && right.holds) << describe(right);
+    for (int i = 0; i < 8; ++i)
+      scaled_up.push_back(
+          Vector3<double>(i & 1 ? 1e300 : -1e300, i & 2 ? 1e300 : -1e300, i & 4 ? 1e300 : -1e300));
+    const ConsumerFinding big = oblique::properties::judge_corners(m, c, k, mo, scaled_up);
+    EXPECT_TRUE(big.judged && big.holds) << describe(big);
   }
 }
 

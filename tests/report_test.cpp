@@ -210,5 +210,81 @@ TEST(ReportFiles, aHungGnuplotIsStoppedAndThePictureIsNotWritten) {
   EXPECT_FALSE(std::filesystem::exists(root / "report" / "view.png"));
 }
 
+// Two reports picking a name in one folder at the same time never share one: the name is held
+// (an empty file, create-exclusive) from the moment it is picked; a report that is not committed
+// gives it back, and one committed replaces it.
+TEST(ReportFiles, aReservedNameIsNeverPickedTwice) {
+  const std::filesystem::path root =
+      std::filesystem::path(::testing::TempDir()) / "oblique_report_files_reserve_test";
+  std::filesystem::remove_all(root);
+  std::ostringstream log;
+  {
+    ReportFiles first(root), second(root), third(root);
+    const std::string a = first.reserve_stem("verify-status", {".md", ".json"});
+    const std::string b = second.reserve_stem("verify-status", {".md", ".json"});
+    EXPECT_EQ(a, "verify-status");
+    EXPECT_EQ(b, "verify-status-2");
+    EXPECT_TRUE(std::filesystem::exists(root / "verify-status.md"));
+    std::ofstream(root / "verify-status-3.json") << "an earlier report's data";
+    EXPECT_EQ(third.reserve_stem("verify-status", {".md", ".json"}), "verify-status-4");
+    first.open(a + ".md") << "the first report";
+    ASSERT_TRUE(first.commit(log)) << log.str();
+    // second and third are not committed: their names are given back.
+  }
+  EXPECT_EQ(read_file(root / "verify-status.md"), "the first report");
+  EXPECT_FALSE(std::filesystem::exists(root / "verify-status-2.md"));
+  EXPECT_FALSE(std::filesystem::exists(root / "verify-status-4.md"));
+  EXPECT_EQ(read_file(root / "verify-status-3.json"), "an earlier report's data");
+}
+
+// A report that owns files by pattern moves an earlier run's leftovers to earlier/ at commit: a
+// 3-answer profile does not stand beside worst-4..10.json of the run before.
+TEST(ReportFiles, filesOfAnEarlierRunThisOneDidNotWriteAreMovedAside) {
+  const std::filesystem::path root =
+      std::filesystem::path(::testing::TempDir()) / "oblique_report_files_supersede_test";
+  std::filesystem::remove_all(root);
+  std::filesystem::create_directories(root);
+  for (int k = 1; k <= 5; ++k)
+    std::ofstream(root / ("worst-" + std::to_string(k) + ".json")) << "earlier " << k;
+  std::ofstream(root / "notes.txt") << "the user's";
+  std::ostringstream log;
+  {
+    ReportFiles files(root);
+    files.supersede("worst-", ".json");
+    for (int k = 1; k <= 3; ++k) files.open("worst-" + std::to_string(k) + ".json") << "new " << k;
+    ASSERT_TRUE(files.commit(log)) << log.str();
+  }
+  EXPECT_EQ(read_file(root / "worst-3.json"), "new 3");
+  EXPECT_FALSE(std::filesystem::exists(root / "worst-4.json"));
+  EXPECT_FALSE(std::filesystem::exists(root / "worst-5.json"));
+  EXPECT_EQ(read_file(root / "notes.txt"), "the user's");
+  int moved = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(root / "earlier")) {
+    const std::string name = entry.path().filename().string();
+    if (name == "worst-4.json" || name == "worst-5.json") ++moved;
+  }
+  EXPECT_EQ(moved, 2);
+  EXPECT_NE(log.str().find("2 file(s) of an earlier run moved"), std::string::npos) << log.str();
+}
+
+// An implementation none of whose answers could be profiled is named, so the report fails.
+TEST(AccuracyReport, anImplementationWithNothingProfiledIsNamed) {
+  AccuracyReport report;
+  AccuracyRow core;
+  core.method = "closed_form";
+  core.answered = 10;
+  AccuracyRow liar;
+  liar.method = "liar";
+  liar.round_trip = true;
+  liar.violating = 7;
+  AccuracyRow partly = liar;
+  partly.method = "partly";
+  partly.answered = 1;
+  report.rows = {core, liar, liar, partly};
+  const std::vector<std::string> lines = unprofiled_implementations(report);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find("liar: no answer profiled (14 violating"), std::string::npos) << lines[0];
+}
+
 }  // namespace
 }  // namespace oblique::report

@@ -175,6 +175,13 @@ class ConsumerRun {
       return Verdict::error;
     }
     if (!counted()) return Verdict::error;
+    if (!caught_ && total(judged_) == 0) {
+      // An edited report, or a case the program is never asked about: no verdict at all.
+      err_ << "oblique verify: --replay " << options_.replay
+           << ": the round judged nothing (left out: " << summary(left_out_)
+           << "); nothing is verified\n";
+      return Verdict::error;
+    }
     if (!caught_) {
       out_ << "oblique verify: the round holds (" << summary(judged_)
            << " judged; left out: " << summary(left_out_) << ")\n";
@@ -255,11 +262,10 @@ class ConsumerRun {
     const std::string check =
         c.lost ? (c.lost->kind == ProgramFailure::Kind::crash ? "crash" : "timeout")
                : std::string(properties::consumer_check_name(c.finding.check));
-    const std::string stem =
-        report::free_stem(options_.report_dir, "verify-consumer-" + check, {".md", ".json"});
+    report::ReportFiles files(options_.report_dir);
+    const std::string stem = files.reserve_stem("verify-consumer-" + check, {".md", ".json"});
     const std::string json_path =
         (std::filesystem::path(options_.report_dir) / (stem + ".json")).string();
-    report::ReportFiles files(options_.report_dir);
     std::string md;
     if (c.lost) {
       md = "# Counterexample: " + check + "\n\n`" + options_.command + "`: " + c.lost->what +

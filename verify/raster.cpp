@@ -139,11 +139,10 @@ void RasterLook<T>::summary() const {
 template <class T>
 Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request,
                               const std::string& answer, const raster::Result& r, long index) {
-  const std::string stem =
-      report::free_stem(options_.report_dir, "verify-raster", {".md", ".json"});
+  report::ReportFiles files(options_.report_dir);
+  const std::string stem = files.reserve_stem("verify-raster", {".md", ".json"});
   const std::string json_path =
       (std::filesystem::path(options_.report_dir) / (stem + ".json")).string();
-  report::ReportFiles files(options_.report_dir);
   std::string md =
       "# Counterexample: the rasterizer\n\n`" + options_.command +
       "`'s answer passes the properties, but drawn on " + rasterizer_->renderer() +

@@ -166,11 +166,12 @@ Verdict Reporter<T>::index(const std::map<std::string, Kind>& kinds, long done) 
   }
   index << "\nThe whole run again:\n\n```sh\n" << replay_run_command() << "\n```\n";
   namespace fs = std::filesystem;
-  const std::string path =
-      (fs::path(options_.report_dir) /
-       (report::free_stem(options_.report_dir, "verify-index", {".md"}) + ".md"))
-          .string();
-  std::ofstream(path) << index.str();
+  report::ReportFiles files(options_.report_dir);
+  const std::string name = files.reserve_stem("verify-index", {".md"}) + ".md";
+  files.open(name) << index.str();
+  std::ostringstream log;
+  std::string path = (fs::path(options_.report_dir) / name).string();
+  if (!files.commit(log)) path = "(not written: " + log.str() + ")";
   out_ << "oblique verify: " << kinds.size() << " kinds of finding in " << done
        << " cases (--keep-going); index: " << path << "\n";
   for (const auto& [cause, entries] : by_cause) {

@@ -97,8 +97,8 @@ class Verifier {
         // answering: one more line within --timeout of its last one, or the request it owes is
         // a timeout finding (never a pass with an unanswered request).
         time_up = true;
-        outcome =
-            child.exchange({}, answers.size() + 1, answers, idle, child.last_line_time() + idle);
+        // From now: the time we spent judging and drawing is not the implementation's.
+        outcome = child.exchange({}, answers.size() + 1, answers, idle, Clock::now() + idle);
       }
       const std::vector<Judged<T>> judged = judge_batch(draws_, current, answers, options_.threads);
       for (std::size_t k = 0; k < answers.size(); ++k) {
@@ -139,7 +139,8 @@ class Verifier {
         seen.count(current.values[k]);
         if (!options_.accuracy_dir.empty() && !judged[k].finding)
           accuracy_.passed(current.values[k], current.requests[k], answers[k]);
-        if (options_.rasterize && !judged[k].finding) {
+        // Drawing stops at the time limit (the answers left are judged, not drawn).
+        if (options_.rasterize && !judged[k].finding && Clock::now() < deadline) {
           const long index = done + static_cast<long>(k) + 1;
           if (const std::optional<Verdict> drawn =
                   raster_.sample(current.values[k], current.requests[k], answers[k], index)) {

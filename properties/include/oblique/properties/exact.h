@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 #include "oblique/plane.h"
 
@@ -18,14 +19,26 @@ using Rational = mpq_class;
 using Vec = std::array<Rational, 4>;
 using Mat = std::array<Vec, 4>;  // rows
 
+/// Thrown for a NaN or an infinity: a rational has neither, and GMP given one ends the process
+/// (SIGFPE). Callers check a user's numbers first and judge them; reaching this is our bug.
+inline void require_finite(bool finite) {
+  if (!finite)
+    throw std::domain_error(
+        "a NaN or an infinity reached exact arithmetic (a number that should have been judged "
+        "not finite first)");
+}
+
 /// The exact value of a finite float, double or long double.
 inline Rational to_rational(double x) {
+  require_finite(std::isfinite(x));
   return Rational(x);
 }
 inline Rational to_rational(float x) {
+  require_finite(std::isfinite(x));
   return Rational(static_cast<double>(x));
 }
 inline Rational to_rational(long double x) {
+  require_finite(std::isfinite(x));
   int exponent = 0;
   const long double mantissa = std::frexp(std::fabs(x), &exponent);  // |x| = mantissa * 2^exponent
   // The 64-bit significand times 2^64 is an integer below 2^64.

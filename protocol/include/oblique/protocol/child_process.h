@@ -71,6 +71,14 @@ class ChildProcess {
   /// at most until `until`: the lines beyond those asked for (a count check at the end of a run).
   std::vector<std::string> close_and_drain(Clock::time_point until);
 
+  /// For a program that is run once, not asked: closes its standard input and collects its
+  /// standard output (the first `keep` bytes in `output`) until it has exited, then ends what it
+  /// left behind (its process group, and descendants that left it), so output a descendant holds
+  /// open cannot keep us waiting. At `deadline` the whole group is killed and timed_out returned.
+  /// `status` is the exit status as a shell gives it (128 + the signal's number when killed).
+  Outcome run_to_end(std::string& output, std::size_t keep, Clock::time_point deadline,
+                     int& status);
+
   /// When the child last completed an answer line (or was started).
   Clock::time_point last_line_time() const { return last_line_; }
 

@@ -63,6 +63,11 @@ struct AccuracyReport {
 /// worst entry in ulps of the row (accuracy_profile.h), bits = bits_lost(ulps).
 AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& progress);
 
+/// Each implementation over the pipe none of whose answers could be profiled (every one violated
+/// the properties or was refused), said in a line: such a report measured nothing of it, and
+/// `report accuracy` fails.
+std::vector<std::string> unprofiled_implementations(const AccuracyReport& report);
+
 /// Writes accuracy.csv, stiffness.csv, accuracy.md, and the gnuplot scripts accuracy.gp and
 /// stiffness.gp in options.out_dir; runs gnuplot on them when it is installed (PNG charts).
 /// Returns the paths written; all or nothing: empty (the reason on `log`, the folder's earlier

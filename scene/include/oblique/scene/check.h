@@ -99,6 +99,7 @@ struct SceneCheck {
   int max_depth = 1;
   std::vector<SurfaceCheck> surfaces;  ///< every pass, depth first: a pass, then those within it
   bool truncated = false;              ///< more than kMaxPasses passes: the rest not looked at
+  std::size_t unlisted = 0;  ///< surfaces out of view not listed (the list was full): not passes
   /// `--impl --precision`: the scalar type of the requests sent and of the bounds the answers
   /// are judged with (as `oblique verify --precision`).
   protocol::Precision impl_precision = protocol::Precision::float64;
