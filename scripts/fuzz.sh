@@ -14,6 +14,7 @@
 # --impl NAME fuzzes another implementation (OBLIQUE_IMPL, e.g. a planted mutant) instead.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/fuzz_options.sh
 
 seconds=600
 jobs=$(nproc)
@@ -60,24 +61,12 @@ for target in "${targets[@]}"; do
   # fuzz/TARGET.options (OSS-Fuzz's format: sections "[libfuzzer]", "[asan]", ... of
   # "name = value" lines): [libfuzzer] adds flags (e.g. fuzz_protocol's max_len, so long lines are
   # explored), [asan] goes to ASAN_OPTIONS after what the user set there (the user's wins).
-  options=()
-  asan_options=""
-  if [[ -f "fuzz/$target.options" ]]; then
-    section=""
-    while IFS='= ' read -r name value; do
-      if [[ "$name" == \[*\] ]]; then section="$name"; continue; fi
-      [[ -n "$name" && -n "$value" ]] || continue
-      case "$section" in
-        "[libfuzzer]") options+=("-$name=$value") ;;
-        "[asan]") asan_options+="${asan_options:+:}$name=$value" ;;
-      esac
-    done < "fuzz/$target.options"
-  fi
+  read_fuzz_options "$target"
   set +e
   (cd "$crashes" && ASAN_OPTIONS="$asan_options${ASAN_OPTIONS:+:$ASAN_OPTIONS}" \
       "../../../../../$binary" -fork="$jobs" -ignore_crashes=1 -max_total_time="$seconds" \
       -use_value_profile=1 -dict="../../../../../fuzz/$target.dict" -print_final_stats=1 \
-      ${options[@]+"${options[@]}"} "../corpus") 2>&1 | tee "$work/$target/log" | grep -E --line-buffered "exec/s|cov:|crash|deadly|ERROR" | \
+      ${libfuzzer_flags[@]+"${libfuzzer_flags[@]}"} "../corpus") 2>&1 | tee "$work/$target/log" | grep -E --line-buffered "exec/s|cov:|crash|deadly|ERROR" | \
       awk 'NR % 20 == 1 || /crash|deadly|ERROR/'
   set -e
   ((interrupted)) && stop

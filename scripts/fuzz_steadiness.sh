@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Whether continuous fuzzing holds its pace: runs one libFuzzer target of the `fuzz` preset for
+# SECONDS (default 600) on a copy of its corpus, with its dictionary and .options (as
+# scripts/fuzz.sh), one process, and prints the executions per second of each minute against the
+# first minute's, and the peak resident memory.
+#
+#   bash scripts/fuzz_steadiness.sh TARGET [SECONDS]   (after: cmake --build --preset fuzz --target TARGET)
+#
+# The rate of a minute is the executions between libFuzzer's progress lines nearest its ends,
+# over the time between them. Extra ASAN_OPTIONS in the environment apply (after the target's).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+target=${1:?usage: fuzz_steadiness.sh TARGET [SECONDS]}
+seconds=${2:-600}
+binary=build/fuzz/fuzz/$target
+[[ -x "$binary" ]] || { echo "fuzz_steadiness.sh: build $binary first (cmake --build --preset fuzz --target $target)" >&2; exit 2; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$work/corpus"
+cp fuzz/corpus/"$target"/* "$work/corpus/" 2>/dev/null || true
+source scripts/fuzz_options.sh
+read_fuzz_options "$target"
+start=$EPOCHREALTIME
+# Each progress line stamped with the seconds since the start.
+(cd "$work" && ASAN_OPTIONS="$asan_options${ASAN_OPTIONS:+:$ASAN_OPTIONS}" /usr/bin/time -f "peak_rss_kb %M" "$OLDPWD/$binary" -max_total_time="$seconds" \
+    -use_value_profile=1 -dict="$OLDPWD/fuzz/$target.dict" -print_final_stats=1 \
+    -artifact_prefix="$work/" ${libfuzzer_flags[@]+"${libfuzzer_flags[@]}"} corpus 2>&1) |
+  while IFS= read -r line; do
+    printf '%s %s\n' "$EPOCHREALTIME" "$line"
+  done > "$work/log"
+awk -v target="$target" -v start="$start" '
+  / #[0-9]+/ && /exec\/s/ {
+    for (i = 2; i <= NF; ++i) if ($i ~ /^#[0-9]+$/) { n = substr($i, 2) + 0; break }
+    t = $1 - start; times[++k] = t; runs[k] = n
+    for (i = 2; i <= NF; ++i) if ($i == "rss:") rss = $(i + 1)
+  }
+  /peak_rss_kb/ { peak = $NF }
+  END {
+    if (k < 2) { print target ": too few progress lines"; exit 1 }
+    printf "%s: %d executions in %.0f s; peak RSS %.0f MB\n", target, runs[k], times[k], peak / 1024
+    first = 0
+    for (m = 1; m * 60 <= times[k] + 30; ++m) {
+      lo = 0; hi = 0
+      for (j = 1; j <= k; ++j) { if (times[j] <= (m - 1) * 60) lo = j; if (times[j] <= m * 60) hi = j }
+      if (lo == 0) lo = 1
+      if (hi <= lo) continue
+      rate = (runs[hi] - runs[lo]) / (times[hi] - times[lo])
+      if (first == 0) first = rate
+      printf "  minute %2d: %7.1f exec/s (%3.0f%% of the first minute)\n", m, rate, 100 * rate / first
+    }
+  }' "$work/log"
