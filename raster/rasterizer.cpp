@@ -166,12 +166,12 @@ struct Rasterizer::State {
       display = software_display();
       if (display == EGL_NO_DISPLAY)
         return Expected<Done>::failure(
-            std::string("no EGL software device (EGL_MESA_device_software): install ") + kPackages);
+            std::string("no EGL software device (EGL_MESA_device_software): ") + install_hint());
     } else {
       const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
       if (!client || !std::strstr(client, "EGL_MESA_platform_surfaceless"))
-        return Expected<Done>::failure(
-            std::string("no EGL with the surfaceless platform: install ") + kPackages);
+        return Expected<Done>::failure(std::string("no EGL with the surfaceless platform: ") +
+                                       install_hint());
       display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     }
     EGLint major = 0, minor = 0;

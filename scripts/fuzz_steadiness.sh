@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Whether continuous fuzzing holds its pace: runs one libFuzzer target of the `fuzz` preset for
-# SECONDS (default 600) on a copy of its corpus, with its dictionary and .options (as
-# scripts/fuzz.sh), one process, and prints the executions per second of each minute against the
-# first minute's, and the peak resident memory.
+# SECONDS (default 600, loading the corpus included) on a copy of its corpus, with its dictionary
+# and .options (as scripts/fuzz.sh), one process, and prints the executions per second of each
+# minute after the corpus is loaded (libFuzzer's INITED) against the first minute's, and the peak
+# resident memory.
 #
 #   bash scripts/fuzz_steadiness.sh TARGET [SECONDS]   (after: cmake --build --preset fuzz --target TARGET)
 #
@@ -29,15 +30,17 @@ start=$EPOCHREALTIME
     printf '%s %s\n' "$EPOCHREALTIME" "$line"
   done > "$work/log"
 awk -v target="$target" -v start="$start" '
-  / #[0-9]+/ && /exec\/s/ {
+  # Minutes count from the INITED line: loading the corpus is not fuzzing.
+  /INITED/ && inited == "" { inited = $1 - start }
+  inited != "" && / #[0-9]+/ && /exec\/s/ {
     for (i = 2; i <= NF; ++i) if ($i ~ /^#[0-9]+$/) { n = substr($i, 2) + 0; break }
-    t = $1 - start; times[++k] = t; runs[k] = n
-    for (i = 2; i <= NF; ++i) if ($i == "rss:") rss = $(i + 1)
+    t = $1 - start - inited; times[++k] = t; runs[k] = n
   }
   /peak_rss_kb/ { peak = $NF }
   END {
     if (k < 2) { print target ": too few progress lines"; exit 1 }
-    printf "%s: %d executions in %.0f s; peak RSS %.0f MB\n", target, runs[k], times[k], peak / 1024
+    printf "%s: corpus loaded in %.0f s, then %d executions in %.0f s; peak RSS %.0f MB\n",
+           target, inited, runs[k] - runs[1], times[k], peak / 1024
     first = 0
     for (m = 1; m * 60 <= times[k] + 30; ++m) {
       lo = 0; hi = 0
