@@ -877,9 +877,9 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   // where C crosses an edge off C by its rounding (gamma(kPlaneRoundings) |C| . |x| over |n_C|;
   // along the edge, inside the hull's other facets, it costs nothing). The bound comes from the
   // correct corners (the kept region's exact vertices), never from the answer: corners far from
-  // the right ones must not widen what they are judged by. A correct corner is within delta0 of
-  // its vertex, so the bound is taken once more at each vertex widened by delta0 (every term
-  // grows with |x|): it then holds for any corner a correct computation can give.
+  // the right ones must not widen what they are judged by. A correct corner is within its
+  // vertex's bound d of it, so the bound is taken once more at each vertex widened by its own d
+  // (every term grows with |x|): it then holds for any corner a correct computation can give.
   const Mat mo = exact::to_rational(oblique);
   const Mat mx = exact::to_rational(m);
   const std::optional<Mat> inv = exact::inverse(mo);
@@ -918,17 +918,16 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
       d += gamma_of<T>(tolerance::kPlaneRoundings) * exact::dot(exact::abs(cx), size) / c_normal;
     return d;
   };
-  Rational delta0 = 0, delta = 0;
-  for (int pass = 0; pass < 2; ++pass) {
-    for (const Vec& v : kept) {
-      const Rational d = bound_near(v, pass == 0 ? Rational(0) : delta0);
-      if (d < 0) {
-        f.judged = false;
-        f.detail = "a corner's w is not determined in T";
-        return f;
-      }
-      (pass == 0 ? delta0 : delta) = std::max(pass == 0 ? delta0 : delta, d);
+  Rational delta = 0;
+  for (const Vec& v : kept) {
+    const Rational at_vertex = bound_near(v, 0);
+    const Rational d = at_vertex < 0 ? at_vertex : bound_near(v, at_vertex);
+    if (d < 0) {
+      f.judged = false;
+      f.detail = "a corner's w is not determined in T";
+      return f;
     }
+    delta = std::max(delta, d);
   }
   // The hull's facets: planes through three corners with every corner on one side.
   struct Facet {
