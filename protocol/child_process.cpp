@@ -409,7 +409,7 @@ ChildProcess::Outcome ChildProcess::run_to_end(std::string& output, std::size_t 
     if (err_ >= 0) fds[n++] = {err_, POLLIN, 0};
     // Short waits: a child that exits is noticed soon even while a descendant holds the pipes.
     const int ready = ::poll(fds, static_cast<nfds_t>(n), n == 0 ? 10 : 20);
-    if (ready < 0 && errno != EINTR) break;
+    if (ready < 0) continue;  // interrupted: the deadline still ends the wait
     for (int i = 0; i < n && ready > 0; ++i) {
       if (!(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
       if (fds[i].fd == out_)

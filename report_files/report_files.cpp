@@ -37,7 +37,12 @@ ReportFiles::~ReportFiles() {
   staged_.clear();  // closes the streams
   std::error_code ec;
   std::filesystem::remove_all(staging_, ec);
+  release_reservations();
+}
+
+void ReportFiles::release_reservations() {
   // A name reserved but never written: its empty file goes (one written in its place stays).
+  std::error_code ec;
   for (const std::filesystem::path& held : reserved_) {
     if (std::find(written_.begin(), written_.end(), held) == written_.end() &&
         std::filesystem::file_size(held, ec) == 0 && !ec)
@@ -221,9 +226,7 @@ void ReportFiles::die_of(int sig) {
   staged_.clear();
   std::error_code ec;
   std::filesystem::remove_all(staging_, ec);
-  for (const std::filesystem::path& held : reserved_) {
-    if (std::filesystem::file_size(held, ec) == 0 && !ec) std::filesystem::remove(held, ec);
-  }
+  release_reservations();
   ::raise(sig);  // with the handler that was there before (or the default: the exit is 128 + sig)
   ::signal(sig, SIG_DFL);
   ::raise(sig);

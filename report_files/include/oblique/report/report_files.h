@@ -75,6 +75,8 @@ class ReportFiles {
   /// After an interrupt that reached us while a tool ran: removes what this report staged and
   /// reserved, then dies of `sig` as the interrupt asked (never returns).
   [[noreturn]] void die_of(int sig);
+  /// Removes the empty files of names reserved and not written.
+  void release_reservations();
 };
 
 /// Moves `files` (in `dir`) to dir/earlier/<UTC time>-<pid>/, never deleting one; returns that
