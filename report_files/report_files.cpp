@@ -191,7 +191,7 @@ ToolRun run_tool(const std::string& command, const std::filesystem::path& folder
   const pid_t pid = ::fork();
   if (pid == 0) {
     ::setpgid(0, 0);
-    for (int sig : signals) ::signal(sig, SIG_DFL);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) ::signal(sig, SIG_DFL);
     if (::chdir(folder.c_str()) != 0) ::_exit(126);
     ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
