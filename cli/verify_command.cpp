@@ -55,6 +55,11 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
         what);
   };
   using oblique::protocol::name_list;
+  contract_flag("--preset", "preset",
+                "A contract preset to start from (it replaces --contract's fields; the other "
+                "contract flags change it): engine (the projections an engine builds, flipped ones "
+                "included; unit planes; "
+                "answers only)");
   contract_flag("--convention", "conventions",
                 "Conventions to request, a comma list or all (default gl): " +
                     name_list(oblique::convention_names()));
@@ -169,6 +174,9 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
     if (!settings->contract.empty()) contract = oblique::read_contract_file(settings->contract);
     if (contract && settings->answers_only)
       contract = oblique::with_field(std::move(*contract), "statuses", {"answers_only"});
+    // A preset first: the other flags change it.
+    std::stable_partition(settings->fields.begin(), settings->fields.end(),
+                          [](const auto& field) { return field.name == "preset"; });
     for (const auto& field : settings->fields) {
       if (!contract) break;
       contract = oblique::with_field(std::move(*contract), field.name, split_list(field.list));

@@ -330,6 +330,16 @@ std::string_view consumer_check_name(ConsumerCheck check) {
   return kNames[static_cast<int>(check)];
 }
 
+std::string_view not_applicable(ConsumerCheck check, generators::Family family) {
+  using generators::Family;
+  if (check == ConsumerCheck::corners_contain_kept && family == Family::infinite)
+    return "an infinite frustum's kept region is unbounded";
+  if (check == ConsumerCheck::linear_depth &&
+      (family == Family::rotated || family == Family::general))
+    return "its camera does not look along z";
+  return "";
+}
+
 std::optional<ConsumerCheck> parse_consumer_check(std::string_view name) {
   for (ConsumerCheck c : all_consumer_checks) {
     if (consumer_check_name(c) == name) return c;

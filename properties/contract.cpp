@@ -28,9 +28,9 @@ bool contains(const std::vector<E>& list, E value) {
 
 /// The JSON fields of a contract, in the writer's order.
 const std::vector<std::string>& field_names() {
-  static const std::vector<std::string> names = {"families",   "conventions",   "places",
-                                                 "planes",     "statuses",      "defects",
-                                                 "properties", "row3_accuracy", "exclude"};
+  static const std::vector<std::string> names = {
+      "preset",   "families", "conventions", "places",        "planes",
+      "statuses", "defects",  "properties",  "row3_accuracy", "exclude"};
   return names;
 }
 
@@ -227,6 +227,15 @@ std::string read_field(Contract& c, const std::string& key, const JsonValue& val
       if (!item.is(JsonValue::Kind::string)) return "\"exclude\" holds names";
       excluded.push_back(item.text);
     }
+  } else if (key == "preset") {
+    // One name, as a string or a list of one (a command line's --preset engine).
+    const JsonValue* name = &value;
+    if (value.is(JsonValue::Kind::array) && value.items.size() == 1) name = &value.items[0];
+    if (!name->is(JsonValue::Kind::string)) return "\"preset\" is the name of one preset";
+    const std::optional<Contract> preset = preset_contract(name->text);
+    if (!preset)
+      return "\"preset\": " + protocol::unknown_name("preset", name->text, preset_names());
+    c = *preset;
   } else if (key == "answers_only") {
     return "\"answers_only\": true is said \"statuses\": \"answers_only\" in a contract";
   } else {
@@ -237,6 +246,24 @@ std::string read_field(Contract& c, const std::string& key, const JsonValue& val
 
 }  // namespace
 
+Contract engine_contract() {
+  Contract c;
+  c.families.assign(std::begin(generators::perspective_shape_families),
+                    std::end(generators::perspective_shape_families));
+  c.planes = Planes::unit;
+  c.statuses = StatusContract::answers_only;
+  return c;
+}
+
+std::optional<Contract> preset_contract(std::string_view name) {
+  if (name == "engine") return engine_contract();
+  return std::nullopt;
+}
+
+std::vector<std::string> preset_names() {
+  return {"engine"};
+}
+
 Expected<Contract> read_contract(std::string_view text) {
   Expected<JsonValue> tree = protocol::parse_json(text, protocol::JsonLimits{4096, 4});
   if (!tree) return Expected<Contract>::failure(tree.error());
@@ -245,9 +272,13 @@ Expected<Contract> read_contract(std::string_view text) {
                                        protocol::kind_name(tree->kind));
   Contract c;
   std::vector<std::string> excluded;
-  for (const auto& [key, value] : tree->members) {
-    if (std::string error = read_field(c, key, value, excluded); !error.empty())
-      return Expected<Contract>::failure(error);
+  // The preset first, wherever it stands: the other fields change it.
+  for (const bool preset : {true, false}) {
+    for (const auto& [key, value] : tree->members) {
+      if ((key == "preset") != preset) continue;
+      if (std::string error = read_field(c, key, value, excluded); !error.empty())
+        return Expected<Contract>::failure(error);
+    }
   }
   return exclude(std::move(c), excluded);
 }

@@ -180,6 +180,8 @@ std::vector<PanelCase<T>> panel(Convention convention) {
       {y, Family::y_flipped, false},
       {xy, Family::xy_flipped, false},
       {frustum<T>(-0.5, 1.5, -0.25, 1.25, 1, 64, convention), Family::off_axis, false},
+      // leaning left and down (M13, M23 < 0): a VR eye, a tiled screenshot's lower left tile
+      {frustum<T>(-1.5, 0.5, -1.25, 0.25, 1, 64, convention), Family::off_axis, false},
       {s, Family::stereo_shift, false},
       {xs, Family::general, false},
       {ys, Family::general, false},

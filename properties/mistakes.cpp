@@ -88,6 +88,14 @@ constexpr MistakeEntry kCatalogue[] = {
      "from the side, TAA jitter, a tiled or asymmetric view) then gets a Q off the far face.",
      "Keep M13 and M23: Q = M^-1 Q', or Q_x = (sgn C'_x - M13 Q_z) / M11 and likewise for y.",
      "matrices with M13 != 0 or M23 != 0"},
+    {Mistake::abs_off_axis, "abs_off_axis",
+     "the off-axis terms taken as |M13|, |M23|",
+     "The code takes the magnitudes of the off-axis terms (fabs(M13), fabs(M23)) into C' and Q, "
+     "as if a frustum leaned only right and up. It is right while they are >= 0 and gives a Q off "
+     "the far face whenever the frustum has more field of view to the left or below than "
+     "opposite: a VR eye, a tiled screenshot's top or right tiles, a portal seen from one side.",
+     "Keep the signs: Q = M^-1 Q', or Q_x = (sgn C'_x - M13 Q_z) / M11 with M13 as it is.",
+     "matrices with M13 < 0 or M23 < 0"},
     {Mistake::drops_shift, "drops_shift",
      "the stereo / lens-shift terms M14, M24 dropped",
      "The code finds C' and Q from M with M14 = M24 = 0, portal math written for a centred "
@@ -185,6 +193,7 @@ Knobs knobs_of(Mistake mistake) {
       k.left_handed_qw = true;
       break;
     case Mistake::drops_off_axis: k.drops_off_axis = true; break;
+    case Mistake::abs_off_axis: k.abs_off_axis = true; break;
     case Mistake::drops_shift: k.drops_shift = true; break;
     case Mistake::divides_by_m43: k.closed_form = ClosedForm::always; break;
     case Mistake::perspective_rows:
@@ -215,6 +224,7 @@ Knobs knobs_of(const std::vector<Mistake>& mistakes) {
     k.face_fixed = k.face_fixed || one.face_fixed;
     k.face_opposite = k.face_opposite || one.face_opposite;
     k.drops_off_axis = k.drops_off_axis || one.drops_off_axis;
+    k.abs_off_axis = k.abs_off_axis || one.abs_off_axis;
     k.drops_shift = k.drops_shift || one.drops_shift;
     k.closed_form = std::max(k.closed_form, one.closed_form);
     k.assumes_m43_minus_one = k.assumes_m43_minus_one || one.assumes_m43_minus_one;

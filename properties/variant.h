@@ -29,6 +29,7 @@ struct Knobs {
   bool camera_guard = true, corner_guard = true, skips_head_on = false, sign_by_division = false;
   SignFrom x = SignFrom::clip, y = SignFrom::clip;
   bool face_fixed = false, face_opposite = false, drops_off_axis = false, drops_shift = false;
+  bool abs_off_axis = false;
   ClosedForm closed_form = ClosedForm::never;
   bool assumes_m43_minus_one = false, left_handed_qw = false;
   bool zero_one_on_gl = false, gl_on_zero_one = false, note_flip = false;
@@ -194,6 +195,10 @@ Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Conven
   }
   e.solved = m;
   if (knobs.drops_off_axis) e.solved[0][2] = e.solved[1][2] = 0;
+  if (knobs.abs_off_axis) {
+    e.solved[0][2] = magnitude(e.solved[0][2]);
+    e.solved[1][2] = magnitude(e.solved[1][2]);
+  }
   if (knobs.drops_shift) e.solved[0][3] = e.solved[1][3] = 0;
   ch.solve_changed = e.solved != m;
   if (!solve(e.solved, true, c, e.c_clip)) {

@@ -2,6 +2,7 @@
 // consumer properties (oblique/properties/consumers.h), one RapidCheck run per property, for
 // float, double and long double.
 #include <functional>
+#include <iostream>
 #include <sstream>
 
 #include "oblique/oblique.h"
@@ -30,7 +31,7 @@ template <class T>
 void judged(const std::string& consumer, const properties::ConsumerFinding& finding,
             const std::string& inputs, const generators::Case<T>* c) {
   if (!finding.judged) {
-    ++tally().left_out[finding.detail];
+    count_left_out(c ? std::string(generators::family_name(c->family)) : consumer, finding.detail);
     return;
   }
   ++tally().applied[std::string(properties::consumer_check_name(finding.check))];
@@ -53,22 +54,50 @@ void judged(const std::string& consumer, const properties::ConsumerFinding& find
 /// an oblique matrix), one consumer round with only `only` given, and the findings of `check`.
 template <class T>
 void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck check,
-               const Contract& contract) {
+               Contract contract) {
   const bool needs_oblique =
       only.view_position || only.linear_depth || only.culling_planes || only.corners;
+  const std::string property(properties::consumer_check_name(check));
+  if (needs_oblique) {
+    // The families the property has something to judge on (not_applicable()), said once.
+    std::vector<generators::Family> applicable;
+    std::string left;
+    for (generators::Family f : contract.families) {
+      const std::string_view why = properties::not_applicable(check, f);
+      if (why.empty()) {
+        applicable.push_back(f);
+      } else {
+        left += std::string(left.empty() ? "" : ", ") + std::string(generators::family_name(f)) +
+                " (" + std::string(why) + ")";
+      }
+    }
+    if (!left.empty()) std::cout << property << ": not applicable to " << left << "\n";
+    if (applicable.empty()) {
+      ADD_FAILURE() << run_id(property) << ": nothing to judge: " << property
+                    << " is not applicable to any family of the contract (" << left
+                    << "): widen the contract's families or leave this function out";
+      return;
+    }
+    contract.families = std::move(applicable);
+  }
   run(
       [=] {
         generators::Case<T> c{};
         if (needs_oblique) {
           c = *generators::valid_case_for<T>(contract);
           RC_PRE(apply<T>(c.matrix, c.plane, c.convention).status == Status::ok);
-          count_case(c);
+          count_generated(c);
         }
         ++tally().implementations[only.name];
+        bool counted = false;  // a round's first judged finding counts its case judged
         properties::consumer_round<T>(
             c.matrix, c.plane, c.convention, only, generators::rc_pick,
             [&](const properties::ConsumerFinding& f, const std::string& inputs, bool oblique) {
               if (f.check != check) return;
+              if (f.judged && needs_oblique && !counted) {
+                count_judged(c);
+                counted = true;
+              }
               const std::string which =
                   oblique ? "- case: family " + std::string(generators::family_name(c.family)) +
                                 ", place " + std::string(generators::place_name(c.place)) + "\n"
@@ -76,8 +105,7 @@ void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck chec
               judged(only.name, f, which + inputs, oblique ? &c : nullptr);
             });
       },
-      needs_oblique ? Coverage::valid : Coverage::none,
-      std::string(properties::consumer_check_name(check)), contract);
+      needs_oblique ? Coverage::valid : Coverage::none, property, contract);
 }
 
 }  // namespace

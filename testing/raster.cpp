@@ -89,8 +89,10 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
   run(
       [=] {
         const generators::Case<T> c = *generators::valid_case_for<T>(contract);
+        count_generated(c);
+        const std::string family(generators::family_name(c.family));
         if (!impl.accepts(c.convention, c.matrix)) {
-          ++tally().left_out["not an input " + impl.name + " is for"];
+          count_left_out(family, "", impl.name);
           return;
         }
         const Eigen::Matrix4d m = c.matrix.template cast<double>();
@@ -98,20 +100,20 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
         // The judge's reference is the core's answer in double; cases without one have nothing
         // to draw against (the properties judge their statuses).
         if (apply<double>(m, plane, c.convention).status != Status::ok) {
-          ++tally().left_out["no answer to judge against"];
+          count_left_out(family, "no answer to judge against");
           return;
         }
-        count_case(c);
         const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
         if (outcome.status != Status::ok) {
-          ++tally().left_out[impl.name + " answered a status (the properties judge it)"];
+          count_left_out(family, impl.name + " answered a status (the properties judge it)");
           return;
         }
         const Eigen::Matrix4d answer = outcome.projection.template cast<double>();
         if (!answer.template cast<float>().allFinite()) {
-          ++tally().left_out["the answer does not fit float32"];
+          count_left_out(family, "the answer does not fit float32");
           return;
         }
+        count_judged(c);
         const DepthBuffer buffer = *rc::gen::elementOf(settings.buffers);
         const std::uint64_t seed = *rc::gen::inRange<std::uint64_t>(1, std::uint64_t{1} << 32);
         ++tally().implementations[impl.name];

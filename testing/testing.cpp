@@ -2,6 +2,7 @@
 // headers users include), the run's tally and reports, check_properties() for the three scalars.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
@@ -20,6 +21,8 @@ Settings& settings() {
     Settings initial;
     const char* statistics = std::getenv("OBLIQUE_STATISTICS");
     initial.statistics = statistics && *statistics && std::string(statistics) != "0";
+    const char* strict = std::getenv("OBLIQUE_STRICT");
+    initial.strict = strict && *strict && std::string(strict) != "0";
     return initial;
   }();
   return s;
@@ -37,6 +40,19 @@ std::string& current_contract() {
   return json;
 }
 }  // namespace
+
+void count_left_out(const std::string& kind, const std::string& why,
+                    const std::string& refused_by) {
+  Tally& t = tally();
+  if (!refused_by.empty()) {
+    ++t.refused[kind];
+    if (std::find(t.refusing.begin(), t.refusing.end(), refused_by) == t.refusing.end())
+      t.refusing.push_back(refused_by);
+    return;
+  }
+  ++t.left_out[why];
+  ++t.left_out_by_kind[kind];
+}
 
 std::string summary(const std::map<std::string, int>& counts) {
   std::string out;
@@ -157,9 +173,13 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   rc::detail::printResultMessage(result, message);
   const Tally& t = tally();
   std::ostringstream statistics;
-  statistics << "ran: " << summary(t.implementations) << "\nfamilies: " << summary(t.families)
-             << "\nconventions: " << summary(t.conventions) << "\nplaces: " << summary(t.places);
-  if (!t.defects.empty()) statistics << "\ndefects: " << summary(t.defects);
+  statistics << "ran: " << summary(t.implementations)
+             << "\njudged, by family: " << summary(t.families)
+             << "\njudged, by convention: " << summary(t.conventions)
+             << "\njudged, by place: " << summary(t.places);
+  if (!t.defects.empty()) statistics << "\njudged, by defect: " << summary(t.defects);
+  if (!t.generated.empty()) statistics << "\nmade: " << summary(t.generated);
+  if (!t.refused.empty()) statistics << "\nrefused by accepts: " << summary(t.refused);
   if (!t.applied.empty()) statistics << "\napplied: " << summary(t.applied);
   if (!t.left_out.empty()) statistics << "\nleft out: " << summary(t.left_out);
   const std::string name = property.empty() ? "" : property + ": ";
@@ -180,40 +200,123 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     ADD_FAILURE() << name << message.str() << "\n" << statistics.str() << where;
     return;
   }
-  // A pass is one line; the tag table and the statistics with OBLIQUE_STATISTICS=1.
+  // The kinds of case the contract claims, by what the coverage counts (empty: not checked).
+  std::vector<std::string> kinds;
+  std::map<std::string, int> judged_kinds;
+  if (!reproducing && (coverage == Coverage::valid || coverage == Coverage::invalid)) {
+    judged_kinds = coverage == Coverage::valid ? t.families : t.defects;
+    if (coverage == Coverage::valid) {
+      for (auto f : require.families) kinds.emplace_back(generators::family_name(f));
+    } else {
+      for (auto d : require.defects) kinds.emplace_back(generators::defect_name(d));
+    }
+  }
+  auto count = [](const std::map<std::string, int>& counts, const std::string& key) {
+    const auto it = counts.find(key);
+    return it == counts.end() ? 0 : it->second;
+  };
+  // Kinds judged in part only: more than the warning share of their cases left out.
+  std::string partly;
+  for (const std::string& kind : kinds) {
+    const int judged = count(judged_kinds, kind), left = count(t.left_out_by_kind, kind);
+    // (one case left out of a handful is no pattern)
+    if (judged == 0 || left < 2 || left <= settings().left_out_warning * (judged + left)) continue;
+    partly += (partly.empty() ? "" : ", ") + kind + " " + std::to_string(left) + " of " +
+              std::to_string(judged + left);
+  }
+  // Hard places made but never judged (the places' coverage counts what was made: a place is a
+  // property of the plane, and its cases are often the ones within rounding of no answer).
+  std::string unjudged_places;
+  if (!reproducing && coverage != Coverage::invalid && coverage != Coverage::none) {
+    for (auto p : require.places) {
+      const std::string place(generators::place_name(p));
+      if (count(t.generated_places, place) > 0 && count(t.places, place) == 0)
+        unjudged_places += (unjudged_places.empty() ? "" : ", ") + place;
+    }
+  }
+  std::string warning;
+  if (!partly.empty() || !unjudged_places.empty()) {
+    std::ostringstream w;
+    w << "judged in part only:";
+    if (!partly.empty()) {
+      w << " more than " << static_cast<int>(100 * settings().left_out_warning + 0.5)
+        << "% of the cases left out: " << partly << ";";
+    }
+    if (!unjudged_places.empty())
+      w << " hard places made but none judged: " << unjudged_places << ";";
+    w << " why: " << summary(t.left_out);
+    warning = w.str();
+  }
+  // A pass is one line (and its warnings); the tag table and the statistics with
+  // OBLIQUE_STATISTICS=1.
   std::cout << name << "OK, passed " << success.numSuccess << " tests";
   if (!t.left_out.empty()) std::cout << " (left out: " << summary(t.left_out) << ")";
   std::cout << "\n";
+  if (!warning.empty()) {
+    std::cout << "warning: " << id << ": " << warning
+              << (settings().strict ? "" : " [OBLIQUE_STRICT=1 makes it a failure]") << "\n";
+  }
   if (settings().statistics) std::cout << message.str() << "\n" << statistics.str() << "\n";
   if (!property.empty() && !reproducing) move_earlier_reports(report_context(property));
   std::cout << std::flush;
   if (t.implementations.empty()) {
     ADD_FAILURE() << id
                   << ": no implementation ran: check OBLIQUE_IMPL and the contract (or the "
-                     "generator discarded every case)";
+                     "generator discarded every case)"
+                  << (t.refused.empty() ? "" : "; refused by accepts: " + summary(t.refused))
+                  << (t.left_out.empty() ? "" : "; left out: " + summary(t.left_out));
     return;
   }
+  if (settings().strict && !warning.empty())
+    ADD_FAILURE() << id << ": " << warning << " [OBLIQUE_STRICT=1]";
   if (reproducing || coverage == Coverage::none) return;  // one case: nothing to cover
+  // Why a kind the contract claims had no case judged, and what to change.
+  const std::string refusing = [&] {
+    std::string names;
+    for (const std::string& n : t.refusing) names += (names.empty() ? "" : ", ") + n;
+    return names;
+  }();
+  auto why_none = [&](const std::string& kind, const char* what) {
+    const int made = count(t.generated, kind), refused = count(t.refused, kind),
+              left = count(t.left_out_by_kind, kind);
+    std::ostringstream why;
+    why << id << ": the contract claims " << what << " " << kind
+        << ", and no case of it was judged: ";
+    if (made == 0 && refused == 0 && left == 0) {
+      why << "none was made in " << success.numSuccess
+          << " cases: raise max_success (RC_PARAMS=\"max_success=N\")";
+    } else if (refused > 0 && left == 0) {
+      why << (refused == made || made == 0 ? "all " : "") << refused << " refused by accepts ("
+          << refusing << "): widen accepts or leave " << kind << " out of the contract";
+    } else {
+      why << refused << " refused by accepts, " << left
+          << " left out (why, over the run: " << summary(t.left_out)
+          << "): raise max_success, or leave " << kind << " out of the contract";
+    }
+    return why.str();
+  };
+  for (const std::string& kind : kinds) {
+    if (count(judged_kinds, kind) == 0)
+      ADD_FAILURE() << why_none(kind, coverage == Coverage::valid ? "family" : "defect");
+  }
   auto needs = [&](const std::map<std::string, int>& counts, auto names, const char* what) {
-    for (const auto& name : names) {
-      EXPECT_GT(counts.count(std::string(name)) ? counts.at(std::string(name)) : 0, 0)
-          << id << ": no case covered " << what << " " << name << ": raise max_success";
+    for (const auto& n : names) {
+      EXPECT_GT(count(counts, std::string(n)), 0)
+          << id << ": no case of " << what << " " << n << " was "
+          << (&counts == &t.generated_places ? "made" : "judged") << ": raise max_success"
+          << (t.refused.empty() ? "" : " (refused by accepts: " + summary(t.refused) + ")")
+          << (t.left_out.empty() ? "" : " (left out: " + summary(t.left_out) + ")");
     }
   };
-  std::vector<std::string_view> families, conventions, places, defects;
-  for (auto f : require.families) families.push_back(generators::family_name(f));
+  std::vector<std::string_view> conventions, places;
   for (auto c : require.conventions) conventions.push_back(convention_name(c));
   for (auto p : require.places) places.push_back(generators::place_name(p));
-  for (auto d : require.defects) defects.push_back(generators::defect_name(d));
   needs(t.conventions, conventions, "convention");
   switch (coverage) {
     case Coverage::valid:
-      needs(t.families, families, "family");
-      needs(t.places, places, "hard place");
-      break;
     case Coverage::places_only:
-    case Coverage::perspective_shape: needs(t.places, places, "hard place"); break;
-    case Coverage::invalid: needs(t.defects, defects, "defect"); break;
+    case Coverage::perspective_shape: needs(t.generated_places, places, "hard place"); break;
+    case Coverage::invalid:
     case Coverage::none: break;
   }
 }
@@ -241,8 +344,9 @@ void check_properties(const Implementation<T>& impl, const Contract& given) {
         [=] {
           const generators::Case<T> c = *generators::valid_case_for<T>(generate);
           const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-          if (problem.exact_status() == Status::ok) count_case(c);
-          for_each_answer(implementations, c, problem, checks, false, &contract);
+          count_generated(c);
+          if (for_each_answer(implementations, c, problem, checks, false, &contract))
+            count_judged(c);
         },
         coverage, name, generate);
   };
@@ -272,13 +376,16 @@ void check_properties(const Implementation<T>& impl, const Contract& given) {
         const generators::InvalidCase<T> ic = *generators::invalid_case_for<T>(contract);
         const generators::Case<T>& c = ic.base;
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-        ++tally().defects[std::string(generators::defect_name(ic.defect))];
-        ++tally().conventions[std::string(convention_name(c.convention))];
-        RC_TAG(std::string(generators::defect_name(ic.defect)));
+        const std::string defect(generators::defect_name(ic.defect));
+        ++tally().generated[defect];
+        RC_TAG(defect);
         Checks checks;  // an ok answer is allowed only in a gray zone, and then has every property
         checks.properties = contract.properties;
         checks.row3_accuracy = *contract.row3_accuracy;
-        for_each_answer(implementations, c, problem, checks, true, &contract);
+        if (for_each_answer(implementations, c, problem, checks, true, &contract, defect)) {
+          ++tally().defects[defect];
+          ++tally().conventions[std::string(convention_name(c.convention))];
+        }
       },
       Coverage::invalid, "invalid_inputs_get_their_status", contract);
 }

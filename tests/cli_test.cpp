@@ -280,6 +280,8 @@ TEST(Cli, aMistypedSubcommandFlagOrNameGetsTheClosest) {
       {"verify --impl cat --statuses answer_only",
        "unknown status contract or refusal \"answer_only\" (did you mean answers_only?"},
       {"verify --impl cat --exclude infinte", "did you mean infinite?"},
+      {"verify --impl cat --preset engin",
+       "--preset: unknown preset \"engin\" (did you mean engine?"},
       // Files that never end are refused, not read whole.
       {"verify --impl cat --contract /dev/zero", "/dev/zero: larger than"},
       {"verify --impl cat --replay /dev/zero", "/dev/zero: larger than"},

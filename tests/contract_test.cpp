@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <iterator>
 #include <string>
 #include <utility>
 
@@ -112,6 +113,38 @@ TEST(Contract, excludeRemovesFromFilledListsAndRefusesEmptyOnes) {
   const Expected<Contract> none = exclude(one, {"general"});
   ASSERT_FALSE(none);
   EXPECT_EQ(none.error(), "exclude leaves no family");
+}
+
+// The engine preset: the perspective shape's families (flipped ones included), unit planes,
+// answers only; the other fields change it wherever the preset stands.
+TEST(Contract, theEnginePresetIsReadFirstAndChangedByTheOtherFields) {
+  const Contract engine = engine_contract();
+  EXPECT_EQ(engine.families, std::vector<Family>(std::begin(generators::perspective_shape_families),
+                                                 std::end(generators::perspective_shape_families)));
+  EXPECT_EQ(engine.planes, Planes::unit);
+  EXPECT_EQ(engine.statuses, StatusContract::answers_only);
+  EXPECT_TRUE(engine.conventions.empty());
+  for (const char* text : {R"({"preset": "engine", "conventions": ["reversed_z"]})",
+                           R"({"conventions": ["reversed_z"], "preset": ["engine"]})"}) {
+    const Expected<Contract> c = read_contract(text);
+    ASSERT_TRUE(c) << text << ": " << c.error();
+    EXPECT_EQ(c->families, engine.families) << text;
+    EXPECT_EQ(c->planes, Planes::unit) << text;
+    EXPECT_EQ(c->statuses, StatusContract::answers_only) << text;
+    EXPECT_EQ(c->conventions, std::vector<Convention>{Convention::reversed_z}) << text;
+  }
+  const Expected<Contract> wider = with_field(engine, "statuses", {"any_refusal"});
+  ASSERT_TRUE(wider) << wider.error();
+  EXPECT_EQ(wider->statuses, StatusContract::any_refusal);
+  EXPECT_EQ(wider->families, engine.families);
+  for (const auto& [text, says] :
+       {std::pair<std::string, std::string>{R"({"preset": "engin"})",
+                                            "unknown preset \"engin\" (did you mean engine?"},
+        {R"({"preset": 1})", "\"preset\" is the name of one preset"}}) {
+    const Expected<Contract> c = read_contract(text);
+    ASSERT_FALSE(c) << text;
+    EXPECT_NE(c.error().find(says), std::string::npos) << c.error();
+  }
 }
 
 TEST(Contract, aFlagReplacesItsFieldWithTheReadersChecks) {

@@ -15,7 +15,8 @@
 
 namespace oblique::properties::suite {
 
-using testing::count_case;
+using testing::count_generated;
+using testing::count_judged;
 using testing::Coverage;
 using testing::fail_with;
 using testing::tally;
@@ -49,11 +50,12 @@ inline bool runs_only_for(std::initializer_list<std::string_view> names) {
 }
 
 /// Every implementation OBLIQUE_IMPL selects, on the case (testing::for_each_answer); `problem`
-/// is a Problem<T> or a FilteredProblem<T>.
+/// is a Problem<T> or a FilteredProblem<T>; `kind` as there. Whether any answer was judged.
 template <class T, class AnyProblem>
-void for_each_answer(const generators::Case<T>& c, const AnyProblem& problem, Checks checks,
-                     bool judge_statuses = false) {
-  testing::for_each_answer(selected_implementations<T>(), c, problem, checks, judge_statuses);
+bool for_each_answer(const generators::Case<T>& c, const AnyProblem& problem, Checks checks,
+                     bool judge_statuses = false, std::string kind = "") {
+  return testing::for_each_answer(selected_implementations<T>(), c, problem, checks, judge_statuses,
+                                  nullptr, std::move(kind));
 }
 
 }  // namespace oblique::properties::suite

@@ -23,10 +23,10 @@ void property_holds(Property which, Coverage coverage, const rc::Gen<Case<T>>& g
       [=] {
         const Case<T> c = *gen;
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-        if (problem.exact_status() == Status::ok) count_case(c);
+        count_generated(c);
         Checks checks;
         checks.properties = {which};
-        for_each_answer(c, problem, checks);
+        if (for_each_answer(c, problem, checks)) count_judged(c);
       },
       coverage);
 }
@@ -38,13 +38,16 @@ void invalid_inputs_get_their_status() {
         const generators::InvalidCase<T> ic = *generators::invalid_case<T>();
         const Case<T>& c = ic.base;
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-        ++tally().defects[std::string(generators::defect_name(ic.defect))];
-        ++tally().conventions[std::string(convention_name(c.convention))];
-        RC_TAG(std::string(generators::defect_name(ic.defect)));
+        const std::string defect(generators::defect_name(ic.defect));
+        ++tally().generated[defect];
+        RC_TAG(defect);
         // An ok answer is allowed only in a gray zone, and must then have every property.
         Checks checks;
         checks.properties.assign(std::begin(all_properties), std::end(all_properties));
-        for_each_answer(c, problem, checks, /*judge_statuses=*/true);
+        if (for_each_answer(c, problem, checks, /*judge_statuses=*/true, defect)) {
+          ++tally().defects[defect];
+          ++tally().conventions[std::string(convention_name(c.convention))];
+        }
       },
       Coverage::invalid);
 }
@@ -66,7 +69,8 @@ void closed_form_and_general_agree() {
         const Case<T> c = *perspective_shape_case<T>();
         const Problem<T> problem(c.matrix, c.plane, c.convention);
         RC_PRE(problem.exact_status() == Status::ok);
-        count_case(c);
+        count_generated(c);
+        count_judged(c);  // the core's own methods, judged below
         ++tally().implementations["core_closed_form vs core_general"];
         const auto closed = apply<T>(c.matrix, c.plane, c.convention, Method::closed_form);
         const auto general = apply<T>(c.matrix, c.plane, c.convention, Method::general);
@@ -102,7 +106,8 @@ void accurate_method_is_within_its_ulps() {
         const Case<T> c = *generators::valid_case<T>();
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
         RC_PRE(problem.exact_status() == Status::ok);
-        count_case(c);
+        count_generated(c);
+        count_judged(c);  // the core's own methods, judged below
         ++tally().implementations["core_accurate (ulps)"];
         const auto result = apply<T>(c.matrix, c.plane, c.convention, Method::accurate);
         if (!result.ok()) return;  // statuses are judged by the other properties
@@ -124,10 +129,10 @@ void extracted_planes_match() {
       [] {
         const Case<T> c = *generators::valid_case<T>();
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-        if (problem.exact_status() == Status::ok) count_case(c);
+        count_generated(c);
         Checks checks;
         checks.properties = {Property::extracted_planes_match};
-        for_each_answer(c, problem, checks);
+        if (for_each_answer(c, problem, checks)) count_judged(c);
       },
       Coverage::valid);
 }

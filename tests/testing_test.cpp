@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 
 #include "oblique/oblique.h"
@@ -92,20 +93,17 @@ TEST(Testing, aPassIsOneLineAndEarlierReportsAreMovedAside) {
 // The presets admit what adapter.h's table says, family by family, in every convention.
 TEST(Presets, admitTheFamiliesTheirTableLists) {
   using generators::Family;
-  const Family engine[] = {Family::perspective, Family::off_axis, Family::jittered,
-                           Family::infinite};
-  const Family shape_only[] = {Family::y_flipped, Family::x_flipped, Family::xy_flipped};
   rc::Random random(20261203);
   for (Family f : generators::all_families) {
-    const bool in_engine = std::find(std::begin(engine), std::end(engine), f) != std::end(engine);
-    const bool in_shape = in_engine || std::find(std::begin(shape_only), std::end(shape_only), f) !=
-                                           std::end(shape_only);
+    const bool in_shape = std::find(std::begin(generators::perspective_shape_families),
+                                    std::end(generators::perspective_shape_families),
+                                    f) != std::end(generators::perspective_shape_families);
     for (int i = 0; i < 60; ++i) {
       const generators::Case<double> c =
           generators::valid_case_of<double>(f)(random.split(), i % 101).value();
       EXPECT_EQ(perspective_shape_only<double>(c.convention, c.matrix), in_shape)
           << generators::family_name(f) << " " << convention_name(c.convention);
-      EXPECT_EQ(engine_perspective_only<double>(c.convention, c.matrix), in_engine)
+      EXPECT_EQ(engine_perspective_only<double>(c.convention, c.matrix), in_shape)
           << generators::family_name(f) << " " << convention_name(c.convention);
     }
   }
@@ -115,7 +113,8 @@ TEST(Presets, admitTheFamiliesTheirTableLists) {
   EXPECT_FALSE(engine_perspective_only<double>(Convention::gl, left_handed));
 }
 
-/// Lengyel's Listing 5.1 as printed (GL, no guards), pointer-style.
+/// Lengyel's Listing 5.1 as printed (GL, no guards), pointer-style: its corner signs come from
+/// camera-space C, right only while M11 > 0 and M22 > 0 (a y-flip sign bug).
 void listing_5_1(double m[16], const double plane[4]) {
   const Matrix4<double> result =
       seeded::listing_5_1<double>(adapting::load(m, Layout::column_major),
@@ -123,30 +122,117 @@ void listing_5_1(double m[16], const double plane[4]) {
   adapting::store(result, Layout::column_major, m);
 }
 
-// What the presets are for: the printed closed form holds on the matrices an engine builds (and
-// the unit-normal planes it builds: as printed, 2 / (C . Q) overflows for an all-subnormal
-// plane), and is caught on the rest of the perspective shape.
+// What the presets are for: the printed closed form holds on the unflipped matrices an engine
+// builds (and the unit-normal planes it builds: as printed, 2 / (C . Q) overflows for an
+// all-subnormal plane), and is caught by the engine contract, which claims the flipped ones too.
 const auto listing_on_engine_matrices =
     adapt<double>("listing_5_1", Layout::column_major, Convention::gl, listing_5_1,
                   engine_perspective_only<double>);
-Contract unit_planes() {
+Contract unflipped_unit_planes() {
   Contract c;
+  c.families = {generators::Family::perspective, generators::Family::off_axis,
+                generators::Family::jittered, generators::Family::infinite};
   c.planes = Planes::unit;
   return c;
 }
-OBLIQUE_PROPERTY_TEST(Presets, listing51HoldsOnTheMatricesAndPlanesAnEngineBuilds,
-                      listing_on_engine_matrices, unit_planes())
+OBLIQUE_PROPERTY_TEST(Presets, listing51HoldsOnTheUnflippedMatricesAndPlanesAnEngineBuilds,
+                      listing_on_engine_matrices, unflipped_unit_planes())
 
-TEST(Presets, listing51IsCaughtOnTheRestOfThePerspectiveShape) {
-  const auto on_every_shape = adapt<double>("listing_5_1", Layout::column_major, Convention::gl,
-                                            listing_5_1, perspective_shape_only<double>);
+/// The failures check_properties() reports, intercepted, and their messages joined.
+std::string failures_of(const std::function<void()>& run, int* count = nullptr) {
   ::testing::TestPartResultArray failures;
   {
     ::testing::ScopedFakeTestPartResultReporter reporter(
         ::testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &failures);
-    testing::check_properties(on_every_shape, unit_planes());
+    run();
   }
-  EXPECT_GT(failures.size(), 0) << "Listing 5.1 passed on flipped matrices";
+  std::string all;
+  for (int i = 0; i < failures.size(); ++i)
+    all += std::string(failures.GetTestPartResult(i).message()) + "\n";
+  if (count) *count = failures.size();
+  return all;
+}
+
+TEST(Presets, theEngineContractCatchesListing51OnFlippedMatrices) {
+  int n = 0;
+  const std::string all = failures_of(
+      [] { testing::check_properties(listing_on_engine_matrices, engine_contract()); }, &n);
+  EXPECT_GT(n, 0) << "Listing 5.1 passed the engine contract";
+  EXPECT_NE(all.find("listing_5_1 violates"), std::string::npos) << all;
+}
+
+// A closed form that takes |M13|, |M23| (a frustum leaning left or down gets a wrong corner) is
+// caught by the engine contract in the default run: the generators lean frustums every way.
+TEST(Presets, theEngineContractCatchesAClosedFormTakingTheOffAxisMagnitudes) {
+  for (auto mistake : {properties::Mistake::abs_off_axis, properties::Mistake::drops_off_axis}) {
+    const auto impl = properties::mistaken_implementation<double>({mistake});
+    int n = 0;
+    const std::string all =
+        failures_of([&] { testing::check_properties(impl, engine_contract()); }, &n);
+    EXPECT_GT(n, 0) << impl.name << " passed the engine contract";
+    EXPECT_NE(all.find(impl.name + " violates"), std::string::npos) << all;
+  }
+}
+
+// Issue 44: a pass means judged. A correct function whose accepts refuses a family the contract
+// claims (here every y-flipped matrix: the README's example before the engine contract) fails,
+// saying which family, why, and what to change; its statistics count only what was judged.
+bool refuses_y_flipped(Convention convention, const Matrix4<double>& m) {
+  return engine_perspective_only<double>(convention, m) && m(1, 1) > 0;
+}
+const auto correct_but_refusing_y_flipped = adapt<double>(
+    "make_oblique_gl", Layout::column_major, Convention::gl, make_oblique_gl, refuses_y_flipped);
+
+TEST(JudgedCoverage, aClaimedFamilyTheAcceptsRefusesFailsSayingWhy) {
+  Contract claims;
+  claims.families = {generators::Family::perspective, generators::Family::y_flipped};
+  claims.properties = {properties::Property::near_is_clip_plane};
+  claims.statuses = properties::StatusContract::answers_only;
+  int n = 0;
+  const std::string all =
+      failures_of([&] { testing::check_properties(correct_but_refusing_y_flipped, claims); }, &n);
+  EXPECT_EQ(n, 1) << all;
+  EXPECT_NE(all.find("the contract claims family y_flipped, and no case of it was judged: all "),
+            std::string::npos)
+      << all;
+  EXPECT_NE(all.find("refused by accepts (make_oblique_gl): widen accepts or leave y_flipped out "
+                     "of the contract"),
+            std::string::npos)
+      << all;
+  EXPECT_EQ(all.find("family perspective"), std::string::npos) << all;
+  // Claimed without y_flipped, the same function passes.
+  claims.families = {generators::Family::perspective};
+  EXPECT_EQ(failures_of([&] { testing::check_properties(correct_but_refusing_y_flipped, claims); }),
+            "");
+}
+
+TEST(JudgedCoverage, aYFlipSignBugAdaptedAsTheOldReadmeDidNeverPasses) {
+  // Listing 5.1 with an accepts that refuses the matrices it gets wrong, under the default
+  // contract (every family): the refused families fail the run; no "OK".
+  const auto hidden = adapt<double>("listing_5_1", Layout::column_major, Convention::gl,
+                                    listing_5_1, refuses_y_flipped);
+  int n = 0;
+  ::testing::internal::CaptureStdout();
+  const std::string all = failures_of([&] { testing::check_properties(hidden, Contract{}); }, &n);
+  ::testing::internal::GetCapturedStdout();
+  EXPECT_GT(n, 0);
+  EXPECT_NE(all.find("family y_flipped, and no case of it was judged"), std::string::npos) << all;
+}
+
+TEST(JudgedCoverage, theStatisticsCountWhatWasJudged) {
+  Contract claims;
+  claims.families = {generators::Family::perspective};
+  claims.properties = {properties::Property::near_is_clip_plane};
+  claims.statuses = properties::StatusContract::answers_only;
+  testing::settings().statistics = true;
+  ::testing::internal::CaptureStdout();
+  // The generators are asked for perspective matrices only; the function refuses none.
+  testing::check_properties(correct_but_refusing_y_flipped, claims);
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  testing::settings().statistics = false;
+  EXPECT_NE(out.find("judged, by family: perspective "), std::string::npos) << out;
+  EXPECT_NE(out.find("made: perspective "), std::string::npos) << out;
+  EXPECT_EQ(out.find("refused by accepts"), std::string::npos) << out;
 }
 
 // The in-process accuracy profile: the GL function's report beside the core's three methods; a

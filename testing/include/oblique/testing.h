@@ -13,8 +13,11 @@
 // and hard place the contract names), shrunk on failure to a small counterexample
 // written as Markdown + JSON (OBLIQUE_REPORT_DIR, default ./oblique-reports) with the command
 // that replays it. A passing run prints one line (OBLIQUE_STATISTICS=1 adds the families,
-// conventions, places and checks applied), a failure is printed once, and a run that missed a
-// family, convention or hard place of the contract fails. A report an earlier run wrote for a
+// conventions, places and checks applied), a failure is printed once. Coverage counts cases
+// judged, not made: a run in which a family, convention or hard place of the contract had no
+// case reach the function and be judged fails, saying why (refused by accepts, left out, or too
+// few cases); a kind with more than 10% of its cases left out is a warning (OBLIQUE_STRICT=1:
+// a failure). A report an earlier run wrote for a
 // property that now passes is moved to OBLIQUE_REPORT_DIR/earlier/, so the folder shows what the
 // last runs found.
 //
@@ -56,6 +59,12 @@ struct Settings {
   /// Print each passing run's case statistics (families, conventions, places, checks applied,
   /// RapidCheck's tags) too; a pass is otherwise one line. Set by OBLIQUE_STATISTICS=1.
   bool statistics = false;
+  /// A kind of case (family, defect, consumer function) the contract claims with more than this
+  /// share of its cases left out (not judged: within rounding of no answer, beyond a bound) is
+  /// named in a warning line of the run's summary.
+  double left_out_warning = 0.10;
+  /// The warning fails the test instead. Set by OBLIQUE_STRICT=1.
+  bool strict = false;
 };
 
 /// The settings of this test program (set them before the tests run).

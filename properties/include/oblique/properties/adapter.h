@@ -156,12 +156,15 @@ properties::Implementation<T> adapt(
 //
 //   preset                   perspective off_axis jittered infinite y_flipped x_flipped xy_flipped
 //   perspective_shape_only        yes       yes      yes      yes       yes       yes       yes
-//   engine_perspective_only       yes       yes      yes      yes        -         -          -
+//   engine_perspective_only       yes       yes      yes      yes       yes       yes       yes
 //
-// and neither admits orthographic, rotated, general or stereo_shift matrices.
-// perspective_shape_only also admits a left-handed M43 = +1 and any sign of M34, so a closed form
-// written for the matrix an engine builds (Lengyel's Listing 5.1 assumes M43 = -1 and positive
-// M11, M22) fails there: give it engine_perspective_only.
+// and neither admits orthographic, rotated, general or stereo_shift matrices. They differ off
+// the generators' families: perspective_shape_only also admits a left-handed M43 = +1 and any
+// sign of M34, which a closed form written for the matrix an engine builds (Lengyel's Listing
+// 5.1 assumes M43 = -1) need not handle. Give such a function engine_perspective_only and the
+// engine contract (contract.h's engine_contract()), which claims exactly its families: a closed
+// form that takes a sign from camera space (right only while M11 > 0 and M22 > 0) then fails on
+// the flipped matrices engines build, as it should.
 
 /// Only matrices of the standard perspective shape (projection.h's has_perspective_shape(): the
 /// entries a closed form reads, whatever their signs).
@@ -170,16 +173,15 @@ bool perspective_shape_only(Convention, const Matrix4<T>& m) {
   return has_perspective_shape(m);
 }
 
-/// Only the perspective matrix an engine's builder makes (glFrustum, glm::perspective, a
-/// right-handed Direct3D or Vulkan projection before any flip): the perspective shape with
-/// M43 = -1, M11 > 0, M22 > 0 and the near plane in front of the camera (M34 < 0; reversed Z,
-/// where depth runs the other way: M34 > 0). Jittered and off-axis (M13, M23) and infinite ones
-/// included.
+/// Only the perspective matrices engines build (glFrustum, glm::perspective, a right-handed
+/// Direct3D or Vulkan projection, each also flipped: Vulkan's y flip makes M22 < 0, a mirror
+/// pass's x flip M11 < 0): the perspective shape with M43 = -1 and the near plane in front of
+/// the camera (M34 < 0; reversed Z, where depth runs the other way: M34 > 0). Jittered and
+/// off-axis (M13, M23 of either sign) and infinite ones included.
 template <class T>
 bool engine_perspective_only(Convention convention, const Matrix4<T>& m) {
   const bool near_in_front = convention == Convention::reversed_z ? m(2, 3) > T(0) : m(2, 3) < T(0);
-  return has_perspective_shape(m) && m(3, 2) == T(-1) && m(0, 0) > T(0) && m(1, 1) > T(0) &&
-         near_in_front;
+  return has_perspective_shape(m) && m(3, 2) == T(-1) && near_in_front;
 }
 
 }  // namespace oblique

@@ -16,6 +16,7 @@
 #include "oblique/depth_reconstruction.h"
 #include "oblique/frustum_planes.h"
 #include "oblique/plane.h"
+#include "oblique/properties/case_kinds.h"
 #include "oblique/protocol/numbers.h"
 
 namespace oblique::properties {
@@ -43,6 +44,12 @@ inline constexpr ConsumerCheck all_consumer_checks[] = {
 
 std::string_view consumer_check_name(ConsumerCheck check);
 std::optional<ConsumerCheck> parse_consumer_check(std::string_view name);
+
+/// Why `check` has nothing to judge on the matrices of `family`, or "" when it has: the corners
+/// of an infinite frustum's kept region (unbounded), the linear depth of a rotated or general
+/// camera (it does not look along z). A run leaves such families out, saying so, rather than
+/// count each of their cases left out.
+std::string_view not_applicable(ConsumerCheck check, generators::Family family);
 
 /// One consumer property's verdict on one answer.
 struct ConsumerFinding {

@@ -58,6 +58,18 @@ struct Contract {
   std::optional<bool> row3_accuracy;
 };
 
+/// The contract of the oblique function as engines write it: the projections an engine builds
+/// (the perspective shape, right-handed: every off-axis and jittered frustum, finite or
+/// infinite, flipped in x, y or both, as a mirror pass or a Vulkan projection flips it), planes
+/// with a unit normal, and answers only (an engine does not ask about inputs without an answer).
+/// The conventions: the function's own. Give the function engine_perspective_only (adapter.h);
+/// in JSON, {"preset": "engine"}; on verify's command line, --preset engine.
+Contract engine_contract();
+
+/// The contract a preset's name stands for (only "engine" now), or none.
+std::optional<Contract> preset_contract(std::string_view name);
+std::vector<std::string> preset_names();
+
 /// The contract with each empty list filled (families, places, defects, properties: every one;
 /// conventions, statuses, row3_accuracy: the implementation's own) and, for unit planes, the
 /// `scaled` place dropped (a unit normal undoes the scaling) unless it is the only place.
@@ -65,6 +77,7 @@ Contract resolved(Contract contract, const std::vector<Convention>& own_conventi
                   properties::StatusContract own_statuses, bool own_row3_accuracy);
 
 /// The contract's JSON form: an object with any of the fields
+///   "preset": a preset's name (preset_contract()), read first: the other fields change it;
 ///   "families", "conventions" (or "all"), "places", "defects", "properties": lists of names;
 ///   "planes": "any" or "unit";
 ///   "statuses": "exact", "any_refusal", "answers_only", or a list of refusal codes (exact, with

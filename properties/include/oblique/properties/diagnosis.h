@@ -79,7 +79,7 @@ struct Diagnosis {
 };
 
 /// How many cases the diagnosis asks a probe per convention seen (its fixed panel).
-inline constexpr int kPanelCasesPerConvention = 99;
+inline constexpr int kPanelCasesPerConvention = 108;
 
 /// The diagnosis of the answers `seen` (at least one wrong), with more cases asked through
 /// `probe` when given (in the conventions seen).

@@ -142,8 +142,15 @@ Vector4<T> round_plane(const Vector4<Wide>& c) {
 
 /// A projection of `family` in `convention`, its parameters from readable picks:
 /// near 1e-6 .. 10, far / near 1.5 .. ~1e12 (or infinite), symmetric to fully off-axis.
+///
+/// Every sign an engine's matrix takes is drawn: a frustum leans either way in x and y (M13,
+/// M23: a VR eye has more field of view on one side, a tiled screenshot's row above or below the
+/// axis), a stereo eye leans and shifts either way (M14, M24), a box is centred or off-centre
+/// either way, and the flipped and jittered frustums lean too. Which signs: `round`'s pattern
+/// (round % 4: bit 0 the x sign, bit 1 the y sign), so that a run that cycles its rounds draws
+/// every pattern of every family (valid_case_in() passes the run's round); picked when negative.
 template <class T>
-rc::Gen<Matrix4<T>> projection(Family family, Convention convention) {
+rc::Gen<Matrix4<T>> projection(Family family, Convention convention, int round = -1) {
   return rc::gen::exec([=] {
     using detail::decade;
     const int near_exponent = *detail::exponent(-6, 1);
@@ -152,13 +159,20 @@ rc::Gen<Matrix4<T>> projection(Family family, Convention convention) {
     const T f = n * decade<T>(ratio_exponent) * (T(2) + T(*rc::gen::inRange(0, 8)) / T(4));
     const T top = n * (T(1) + T(*rc::gen::inRange(0, 6))) / T(2);
     const T right = top * (T(1) + T(*rc::gen::inRange(0, 8)) / T(4));
+    const int pattern = round >= 0 ? round % 4 : *rc::gen::inRange(0, 4);
+    const T sign_x = pattern & 1 ? T(-1) : T(1), sign_y = pattern & 2 ? T(-1) : T(1);
+    // A lean of 0 (from `low` = 0: centred), 1/4 .. 2 half-widths (beyond 1: the axis outside).
+    auto lean = [](int low) { return T(*rc::gen::inRange(low, 9)) / T(4); };
+    // The frustum leaning by sx, sy half-widths: M13 = sx, M23 = sy.
+    auto leaning = [&](T sx, T sy, bool infinite_far) {
+      const T l = -right * (T(1) - sx), r = right * (T(1) + sx);
+      const T b = -top * (T(1) - sy), t = top * (T(1) + sy);
+      return infinite_far ? infinite_frustum<T>(l, r, b, t, n, convention)
+                          : frustum<T>(l, r, b, t, n, f, convention);
+    };
     switch (family) {
       case Family::perspective: return frustum<T>(-right, right, -top, top, n, f, convention);
-      case Family::off_axis: {
-        const T sx = T(*rc::gen::inRange(1, 9)) / T(4), sy = T(*rc::gen::inRange(0, 9)) / T(4);
-        return frustum<T>(-right * (T(1) - sx), right * (T(1) + sx), -top * (T(1) - sy),
-                          top * (T(1) + sy), n, f, convention);
-      }
+      case Family::off_axis: return leaning(sign_x * lean(1), sign_y * lean(1), false);
       case Family::infinite: return infinite_frustum<T>(-right, right, -top, top, n, convention);
       case Family::orthographic: {
         // Near may be negative: a box reaching behind the eye (then C'_z can be negative).
@@ -166,39 +180,49 @@ rc::Gen<Matrix4<T>> projection(Family family, Convention convention) {
         const T depth = n * decade<T>(*rc::gen::inRange(0, 7)) * T(8);
         const T half =
             decade<T>(*detail::exponent(-2, 3)) * (T(1) + T(*rc::gen::inRange(0, 8)) / T(8));
-        return orthographic<T>(-half * T(1.5), half, -half, half * T(0.75), near_o, near_o + depth,
-                               convention);
+        // Half-widths h .. 2h and h; the centre off by 1/4 .. 1 half-width either way (M14,
+        // M24), or centred (a shadow map's box): in a run's rounds 8, 20, ... (one in three of
+        // its fourth rounds), else one in five.
+        const T hx = half * (T(1) + T(*rc::gen::inRange(0, 5)) / T(4)), hy = half;
+        const bool centred = round >= 0 ? (round / 4) % 3 == 2 : *rc::gen::inRange(0, 5) == 0;
+        auto offset = [&](T sign) {
+          return centred ? T(0) : sign * T(1 + *rc::gen::inRange(0, 4)) / T(4);
+        };
+        const T ox = offset(sign_x), oy = offset(sign_y);
+        return orthographic<T>(hx * (ox - T(1)), hx * (ox + T(1)), hy * (oy - T(1)),
+                               hy * (oy + T(1)), near_o, near_o + depth, convention);
       }
       case Family::y_flipped:
       case Family::x_flipped:
       case Family::xy_flipped: {
-        Matrix4<T> m = frustum<T>(-right, right, -top, top, n, f, convention);
+        // Flipped after building, as engines flip: a leaning frustum's M13, M23 flip with it.
+        Matrix4<T> m = leaning(sign_x * lean(0), sign_y * lean(0), false);
         if (family != Family::y_flipped) m.row(0) *= T(-1);
         if (family != Family::x_flipped) m.row(1) *= T(-1);
         return m;
       }
       case Family::jittered: {
-        Matrix4<T> m = frustum<T>(-right, right, -top, top, n, f, convention);
+        Matrix4<T> m = leaning(sign_x * lean(0), sign_y * lean(0), false);
         // A sub-pixel offset in NDC, as temporal anti-aliasing applies: M_i += j M_4.
         m.row(0) += (T(*rc::gen::inRange(-4, 5)) / T(4096)) * m.row(3);
         m.row(1) += (T(*rc::gen::inRange(-4, 5)) / T(4096)) * m.row(3);
         return m;
       }
       case Family::stereo_shift: {
-        // Which shift: horizontal (a stereo eye), vertical (a lens shift), or both.
-        const int which = *rc::gen::inRange(0, 3);
+        // Which shift: horizontal (a stereo eye), vertical (a lens shift), or both; from the
+        // round too, so that a run draws each with each sign.
+        const int which = round >= 0 ? (round / 4) % 3 : *rc::gen::inRange(0, 3);
         const bool infinite_far = *rc::gen::inRange(0, 2) == 1;
-        // A stereo pair's frustums lean toward each other: off-axis by 0 .. 1/2 in x.
-        const T sx = T(*rc::gen::inRange(0, 5)) / T(8);
-        const T left = -right * (T(1) - sx), right_edge = right * (T(1) + sx);
-        Matrix4<T> m = infinite_far
-                           ? infinite_frustum<T>(left, right_edge, -top, top, n, convention)
-                           : frustum<T>(left, right_edge, -top, top, n, f, convention);
-        // Shifts of n/8 .. 2n either way (an interocular half-distance of 0.032 with n = 0.1 is
-        // 0.32 n), exact multiples of n.
-        auto shift = [&] { return n * T(detail::zigzag(2 + *rc::gen::inRange(0, 32))) / T(8); };
-        const T tx = which != 1 ? shift() : T(0);
-        const T ty = which != 0 ? shift() : T(0);
+        // A stereo pair's frustums lean toward each other: off-axis by 1/8 .. 1/2 in x, either
+        // way (M13), the way of the eye's shift (the left eye, at -x, sees the scene moved by
+        // tx > 0 and leans toward +x).
+        const T sx = sign_x * T(1 + *rc::gen::inRange(0, 4)) / T(8);
+        Matrix4<T> m = leaning(sx, T(0), infinite_far);
+        // Shifts of n/8 .. 2n (an interocular half-distance of 0.032 with n = 0.1 is 0.32 n),
+        // exact multiples of n: tx with the x sign, ty with the y sign.
+        auto shift = [&](T sign) { return sign * n * T(1 + *rc::gen::inRange(0, 16)) / T(8); };
+        const T tx = which != 1 ? shift(sign_x) : T(0);
+        const T ty = which != 0 ? shift(sign_y) : T(0);
         Matrix4<T> translation = Matrix4<T>::Identity();
         translation(0, 3) = tx;
         translation(1, 3) = ty;
@@ -341,9 +365,13 @@ rc::Gen<Case<T>> valid_case_in(std::vector<Family> families, std::vector<Convent
   return rc::gen::exec([families, conventions, places] {
     Case<T> c;
     c.family = *detail::cycled(families);  // every family in every run, not by luck
+    // The family's round in the run (the families cycle by size): its sign pattern, so every
+    // pattern of every family is drawn in every run too.
+    const int round = *rc::gen::withSize(
+        [n = static_cast<int>(families.size())](int size) { return rc::gen::just(size / n); });
     c.convention = *detail::category(conventions);
     c.place = *detail::category(places);
-    c.matrix = *projection<T>(c.family, c.convention);
+    c.matrix = *projection<T>(c.family, c.convention, round);
     c.plane = *plane<T>(c.matrix, c.convention, c.place);
     return c;
   });
@@ -469,7 +497,7 @@ rc::Gen<InvalidCase<T>> invalid_case_for(const Contract& contract) {
 /// and long double: `declare` is `template` there and `extern template` in a program that links
 /// them (OBLIQUE_LINKED_GENERATORS, which the oblique::generators target sets).
 #define OBLIQUE_GENERATOR_INSTANCES(declare, T)                                                    \
-  declare rc::Gen<Matrix4<T>> projection<T>(Family, Convention);                                   \
+  declare rc::Gen<Matrix4<T>> projection<T>(Family, Convention, int);                              \
   declare rc::Gen<Vector4<T>> plane<T>(const Matrix4<T>&, Convention, Place);                      \
   declare rc::Gen<Case<T>> valid_case_in<T>(std::vector<Family>, std::vector<Convention>,          \
                                             std::vector<Place>);                                   \

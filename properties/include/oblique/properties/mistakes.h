@@ -23,6 +23,7 @@ enum class Mistake {
   wrong_face,              ///< Q'_z on the face opposite sgn(C'_z): the near face
   left_handed_qw,          ///< Q_w = (z - M33) / M34 on a right-handed matrix
   drops_off_axis,          ///< M13, M23 left out of C' and Q
+  abs_off_axis,            ///< |M13|, |M23| in C' and Q: a frustum leaning left or down
   drops_shift,             ///< M14, M24 (stereo, lens shift) left out of C' and Q
   divides_by_m43,          ///< the perspective closed form on every matrix (Q_z = 1 / M43)
   perspective_rows,        ///< Listing 5.1's Q (M43 = -1 assumed) on every matrix
@@ -43,6 +44,7 @@ inline constexpr Mistake all_mistakes[] = {
     Mistake::wrong_face,
     Mistake::left_handed_qw,
     Mistake::drops_off_axis,
+    Mistake::abs_off_axis,
     Mistake::drops_shift,
     Mistake::divides_by_m43,
     Mistake::perspective_rows,

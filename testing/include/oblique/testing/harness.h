@@ -32,9 +32,20 @@ using properties::Problem;
 enum class Coverage { valid, places_only, perspective_shape, invalid, none };
 
 /// What the cases of one property run covered, and its last (so most shrunk) failure.
+///
+/// The coverage counts are of cases *judged*: cases whose input reached a function under test and
+/// whose answer was judged (a case counts once however many functions judged it). What was made
+/// but not judged is counted apart, by kind (the case's family; for inputs without an answer,
+/// its defect), so a run can say why a kind it claims was never judged.
 struct Tally {
-  std::map<std::string, int> families, conventions, places, defects, implementations, applied;
-  std::map<std::string, int> left_out;  ///< answers not judged, by properties::not_judged()
+  std::map<std::string, int> families, conventions, places, defects;  ///< judged cases
+  std::map<std::string, int> implementations, applied;
+  std::map<std::string, int> generated;         ///< cases made, by kind, judged or not
+  std::map<std::string, int> generated_places;  ///< cases made, by hard place
+  std::map<std::string, int> refused;           ///< by kind: cases every function's accepts refused
+  std::map<std::string, int> left_out;          ///< answers not judged, by properties::not_judged()
+  std::map<std::string, int> left_out_by_kind;  ///< the same, by kind
+  std::vector<std::string> refusing;            ///< the functions whose accepts refused a case
   std::optional<Counterexample> failure;
   /// The last failure of a run judged by other than the matrix properties (a consumer property,
   /// testing/consumers.cpp; the rasterizer, testing/raster.cpp), as the Markdown of its report.
@@ -94,15 +105,29 @@ bool serves_conventions(const Implementation<T>& impl, const Contract& contract)
   return true;
 }
 
+/// Counts a case made (by its family) and tags it for RapidCheck's table; count_judged() says
+/// whether it reached a function and was judged.
 template <class T>
-void count_case(const generators::Case<T>& c) {
+void count_generated(const generators::Case<T>& c) {
+  ++tally().generated[std::string(generators::family_name(c.family))];
+  ++tally().generated_places[std::string(generators::place_name(c.place))];
+  RC_TAG(std::string(generators::family_name(c.family)), std::string(convention_name(c.convention)),
+         std::string(generators::place_name(c.place)));
+}
+
+/// Counts a case whose answer was judged, by family, convention and place.
+template <class T>
+void count_judged(const generators::Case<T>& c) {
   Tally& t = tally();
   ++t.families[std::string(generators::family_name(c.family))];
   ++t.conventions[std::string(convention_name(c.convention))];
   ++t.places[std::string(generators::place_name(c.place))];
-  RC_TAG(std::string(generators::family_name(c.family)), std::string(convention_name(c.convention)),
-         std::string(generators::place_name(c.place)));
 }
+
+/// Counts a case some function left out: refused by its accepts (`refused_by`, the function's
+/// name) or not judged (`why`, properties::not_judged()'s reason), by `kind`.
+void count_left_out(const std::string& kind, const std::string& why,
+                    const std::string& refused_by = "");
 
 template <class T>
 Counterexample describe(const generators::Case<T>& c, const Implementation<T>& impl) {
@@ -156,26 +181,36 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
 /// Runs each implementation on the case and judges each answer (judge(), with `checks` and the
 /// implementation's status contract, or the statuses and refusals of `contract` when given);
 /// fails the case on the first violation. Inputs properties::not_judged() leaves out for the
-/// contract are skipped and counted (Tally::left_out), except that inputs without an answer are
-/// judged where invalid inputs are the point (judge_statuses): there an answer to an input that
-/// allows none is the finding. `problem` is a Problem<T> or a FilteredProblem<T> (filtered.h:
-/// the same verdicts, most without GMP).
+/// contract are skipped and counted (Tally::left_out, by `kind`: empty, the case's family),
+/// except that inputs without an answer are judged where invalid inputs are the point
+/// (judge_statuses): there an answer to an input that allows none is the finding. Inputs an
+/// implementation's accepts refuses are counted as refused. `problem` is a Problem<T> or a
+/// FilteredProblem<T> (filtered.h: the same verdicts, most without GMP). Returns whether any
+/// implementation's answer was judged (the caller counts the case judged).
 template <class T, class AnyProblem>
-void for_each_answer(const std::vector<Implementation<T>>& implementations,
+bool for_each_answer(const std::vector<Implementation<T>>& implementations,
                      const generators::Case<T>& c, const AnyProblem& problem, Checks checks,
-                     bool judge_statuses = false, const Contract* contract = nullptr) {
+                     bool judge_statuses = false, const Contract* contract = nullptr,
+                     std::string kind = "") {
+  if (kind.empty()) kind = std::string(generators::family_name(c.family));
+  bool judged = false;
+  std::string refused_by, left_out_why;
   for (const Implementation<T>& impl : implementations) {
-    if (!impl.accepts(c.convention, c.matrix)) continue;
+    if (!impl.accepts(c.convention, c.matrix)) {
+      refused_by = impl.name;
+      continue;
+    }
     const StatusContract statuses =
         contract && contract->statuses ? *contract->statuses : impl.status_contract();
     const std::vector<Status> refusals = contract ? contract->refusals : std::vector<Status>{};
     if (const std::string why = properties::not_judged(problem, statuses, refusals); !why.empty()) {
       if (!judge_statuses || problem.exact_status() == Status::ok) {
-        ++tally().left_out[why];
+        left_out_why = why;
         continue;
       }
     }
     ++tally().implementations[impl.name];
+    judged = true;
     const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
     checks.statuses = statuses;
     const Judgement judgement = judge(problem, outcome, checks);
@@ -186,6 +221,11 @@ void for_each_answer(const std::vector<Implementation<T>>& implementations,
     if (const Finding* violation = judgement.violation())
       fail_with(c, impl, *violation, &outcome, &checks);
   }
+  if (!judged && !left_out_why.empty())
+    count_left_out(kind, left_out_why);
+  else if (!judged && !refused_by.empty())
+    count_left_out(kind, "", refused_by);
+  return judged;
 }
 
 }  // namespace oblique::testing

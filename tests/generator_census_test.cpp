@@ -1,0 +1,143 @@
+// The generators' census (issue 44): every sign an engine's matrix takes, in each shape family,
+// is drawn and reaches the judgement in every default run (100 cases, sizes 0 .. 99), whatever
+// the seed, under the engine contract's families and under every family.
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+
+#include <iterator>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "oblique/projection.h"
+#include "oblique/properties/contract.h"
+#include "oblique/properties/filtered.h"
+#include "oblique/properties/generators.h"
+#include "oblique/properties/judge.h"
+
+namespace oblique {
+namespace {
+
+using generators::Family;
+
+std::string sign(double x) {
+  return x < 0 ? "<0" : (x > 0 ? ">0" : "=0");
+}
+
+/// The sign features a case of `c`'s family shows (row-major M(i, j) printed 1-based): the
+/// joint (M13, M23) signs of an off-axis frustum; for the others each entry's sign alone.
+template <class T>
+std::vector<std::string> features(const generators::Case<T>& c) {
+  const auto& m = c.matrix;
+  const std::string family(generators::family_name(c.family));
+  switch (c.family) {
+    case Family::off_axis:
+      return {family + " M13" + sign(double(m(0, 2))) + " M23" + sign(double(m(1, 2)))};
+    case Family::jittered:
+    case Family::y_flipped:
+    case Family::x_flipped:
+    case Family::xy_flipped:
+      return {family + " M13" + sign(double(m(0, 2))), family + " M23" + sign(double(m(1, 2)))};
+    case Family::stereo_shift:
+      return {family + " M13" + sign(double(m(0, 2))), family + " M14" + sign(double(m(0, 3))),
+              family + " M24" + sign(double(m(1, 3)))};
+    case Family::orthographic:
+      return {family + " M14" + sign(double(m(0, 3))), family + " M24" + sign(double(m(1, 3))),
+              family + (m(0, 3) == T(0) && m(1, 3) == T(0) ? " centred" : " off-centre")};
+    default: return {};
+  }
+}
+
+/// The features each default run must show for `families`.
+std::set<std::string> required(const std::vector<Family>& families) {
+  std::set<std::string> out;
+  for (Family f : families) {
+    const std::string name(generators::family_name(f));
+    switch (f) {
+      case Family::off_axis:
+        for (const char* x : {"<0", ">0"})
+          for (const char* y : {"<0", ">0"}) out.insert(name + " M13" + x + " M23" + y);
+        break;
+      case Family::jittered:
+      case Family::y_flipped:
+      case Family::x_flipped:
+      case Family::xy_flipped:
+        for (const char* s : {"<0", ">0"}) {
+          out.insert(name + " M13" + s);
+          out.insert(name + " M23" + s);
+        }
+        break;
+      case Family::stereo_shift:
+        for (const char* s : {"<0", ">0"}) {
+          out.insert(name + " M13" + s);
+          out.insert(name + " M14" + s);
+          out.insert(name + " M24" + s);
+        }
+        break;
+      case Family::orthographic:
+        for (const char* s : {"<0", ">0"}) {
+          out.insert(name + " M14" + s);
+          out.insert(name + " M24" + s);
+        }
+        out.insert(name + " centred");
+        out.insert(name + " off-centre");
+        break;
+      default: break;
+    }
+  }
+  return out;
+}
+
+/// For `runs` seeds: the default run's cases of the contract, and the features of those whose
+/// answer would be judged (properties::not_judged() leaves nothing out for the contract's
+/// statuses); each run must show every required feature.
+template <class T>
+void every_run_shows_every_pattern(Contract contract, int runs) {
+  contract = resolved(contract, {Convention::gl}, properties::StatusContract::exact, false);
+  contract.conventions = generators::every_convention();
+  const std::set<std::string> needed = required(contract.families);
+  ASSERT_FALSE(needed.empty());
+  const auto gen = generators::valid_case_for<T>(contract);
+  for (int run = 0; run < runs; ++run) {
+    rc::Random random(20261205u + static_cast<std::uint64_t>(run));
+    std::map<std::string, int> judged;
+    for (int size = 0; size < 100; ++size) {
+      const generators::Case<T> c = gen(random.split(), size).value();
+      const properties::FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
+      if (!properties::not_judged(problem, *contract.statuses, contract.refusals).empty()) continue;
+      for (const std::string& f : features(c)) ++judged[f];
+    }
+    for (const std::string& f : needed)
+      EXPECT_GT(judged[f], 0) << "run " << run << " (" << contract_json(contract)
+                              << "): no case of " << f << " was judged";
+  }
+}
+
+TEST(GeneratorCensus, everySignPatternOfTheEngineFamiliesIsJudgedInEveryRun) {
+  every_run_shows_every_pattern<double>(engine_contract(), 30);
+  every_run_shows_every_pattern<float>(engine_contract(), 30);
+}
+
+TEST(GeneratorCensus, everySignPatternOfEveryFamilyIsJudgedInEveryRun) {
+  Contract every;
+  every.statuses = properties::StatusContract::exact;
+  every_run_shows_every_pattern<double>(every, 30);
+  every_run_shows_every_pattern<float>(every, 30);
+}
+
+// The census itself: a family's features are what its matrices show (a generator drawing one
+// lean only would fail above).
+TEST(GeneratorCensus, theFeaturesReadTheMatrix) {
+  generators::Case<double> c;
+  c.family = Family::off_axis;
+  c.matrix = frustum<double>(-3, 1, -1, 2, 1, 10, Convention::gl);  // leans left and up
+  EXPECT_EQ(features(c), std::vector<std::string>{"off_axis M13<0 M23>0"});
+  c.family = Family::orthographic;
+  c.matrix = orthographic<double>(-1, 1, -1, 1, 1, 10, Convention::gl);
+  EXPECT_EQ(features(c), (std::vector<std::string>{"orthographic M14=0", "orthographic M24=0",
+                                                   "orthographic centred"}));
+}
+
+}  // namespace
+}  // namespace oblique
