@@ -480,15 +480,33 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
                                 &answer.top,  &answer.near_plane, &answer.far_plane};
   const char* plane_names[] = {"left", "right", "bottom", "top", "near", "far"};
   double worst = 0;
+  std::string culls_nothing;  // the non-finite planes that cull none of the kept region
   for (int k = 0; k < 6 && keeps.judged; ++k) {
     const Vector4<T>& plane = *planes[k];
     if (!plane.allFinite()) {
-      keeps.judged = true;
-      keeps.holds = false;
-      worst = std::numeric_limits<double>::infinity();
-      keeps.detail =
-          std::string("the ") + plane_names[k] + " plane " + numbers_text(plane) + " is not finite";
-      break;
+      // Judged by what it does: an engine culls x when P . x < 0, which a NaN never is, and a
+      // plane (0, 0, 0, +inf) (the far plane at infinity of a head-on clip plane, normalised)
+      // is +inf or NaN at every point: both cull nothing, which is conservative. A non-finite
+      // plane that culls a vertex of the kept region (-inf there) violates.
+      for (const Vec& v : kept) {
+        double value = 0;
+        for (int i = 0; i < 4; ++i) value += static_cast<double>(plane[i]) * v[i].get_d();
+        if (!(value < 0)) continue;
+        keeps.holds = false;
+        worst = std::numeric_limits<double>::infinity();
+        keeps.detail = std::string("the ") + plane_names[k] + " plane " + numbers_text(plane) +
+                       " (not finite) culls the kept region's vertex " + text(v) +
+                       ": P . v = " + protocol::format_number(value);
+        keeps.points.clear();
+        if (v[3] != 0) keeps.points.push_back(approx_point(v));
+        keeps.points_what =
+            "the kept region's vertex the " + std::string(plane_names[k]) + " plane culls";
+        break;
+      }
+      if (!keeps.holds) break;
+      culls_nothing += std::string(culls_nothing.empty() ? "" : ", ") + plane_names[k] + " " +
+                       numbers_text(plane);
+      continue;
     }
     const Vec p = exact::to_rational(plane);
     for (const Vec& v : kept) {
@@ -513,9 +531,12 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
     }
   }
   keeps.ratio = worst;
-  if (keeps.holds && keeps.judged)
+  if (keeps.holds && keeps.judged) {
     keeps.detail = "every one of the kept region's " + std::to_string(kept.size()) +
                    " vertices is inside all six planes";
+    if (!culls_nothing.empty())
+      keeps.detail += " (not finite, culling none of it: " + culls_nothing + ")";
+  }
 
   // near = lambda C, lambda > 0: each coefficient within g |P_i| + lambda beta_i, where beta_i is
   // row 3's bound in C's units (over a) plus property 1's allowance for what no rasterizer sees.

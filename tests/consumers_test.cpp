@@ -222,22 +222,51 @@ TEST(CullingPlanes, keepsVisibleAloneRejectsAFarPlaneThatCullsTheKeptRegion) {
 
 // Hostile answers: a NaN or an infinity in any plane is judged "not finite", never converted to
 // a rational first (GMP ended the process with SIGFPE on the near plane's NaN).
-TEST(CullingPlanes, nonFinitePlanesAreViolationsNotACrash) {
+// Non-finite planes are judged by what they cull (an engine culls x when P . x < 0), never
+// converted: a near plane that is not finite is never C; a NaN plane culls nothing (NaN < 0 is
+// false), conservative; +-inf in an entry culls the kept region's vertices where that term is
+// -inf, and then violates.
+TEST(CullingPlanes, nonFinitePlanesAreJudgedByWhatTheyCullNotACrash) {
   for (Convention k : kConventions) {
     const Matrix4<double> m = perspective(k);
     const Vector4<double> c = tilted_plane();
     const Matrix4<double> mo = oblique_of(m, c, k);
     for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
       auto planes = oblique::frustum_planes(mo, k);
-      planes.near_plane(1) = bad;
+      planes.near_plane(1) = bad;  // the kept region has vertices with y < 0 and y > 0
       const auto near_only = oblique::properties::judge_culling_planes(m, c, k, mo, planes);
       EXPECT_FALSE(find(near_only, ConsumerCheck::culling_near_is_c).holds);
-      EXPECT_FALSE(find(near_only, ConsumerCheck::culling_keeps_visible).holds);
+      const ConsumerFinding keeps = find(near_only, ConsumerCheck::culling_keeps_visible);
+      EXPECT_TRUE(keeps.judged);
+      EXPECT_EQ(keeps.holds, std::isnan(bad)) << describe(keeps);
       for (Vector4<double>* p :
            {&planes.left, &planes.right, &planes.bottom, &planes.top, &planes.far_plane})
         p->fill(bad);
-      for (const auto& f : oblique::properties::judge_culling_planes(m, c, k, mo, planes))
-        EXPECT_TRUE(f.judged && !f.holds) << describe(f);
+      for (const auto& f : oblique::properties::judge_culling_planes(m, c, k, mo, planes)) {
+        EXPECT_TRUE(f.judged) << describe(f);
+        EXPECT_EQ(f.holds, f.check == ConsumerCheck::culling_keeps_visible && std::isnan(bad))
+            << describe(f);
+      }
+    }
+  }
+}
+
+// The false alarm of issue 44: a head-on clip plane whose far plane an engine's float
+// normalisation takes to (0, 0, 0, inf) or NaN (the far plane's normal rounds to zero). Both cull
+// nothing: culling_keeps_visible holds; (0, 0, 0, -inf), which culls everything, violates.
+TEST(CullingPlanes, aFarPlaneAtInfinityThatCullsNothingHolds) {
+  for (Convention k : kConventions) {
+    const Matrix4<double> m = perspective(k);
+    const Vector4<double> c(0, 0, -1, -2);  // head-on
+    const Matrix4<double> mo = oblique_of(m, c, k);
+    for (const double w : {HUGE_VAL, std::nan(""), -HUGE_VAL}) {
+      auto planes = oblique::frustum_planes(mo, k);
+      planes.far_plane = Vector4<double>(0, 0, 0, w);
+      const ConsumerFinding keeps =
+          find(oblique::properties::judge_culling_planes(m, c, k, mo, planes),
+               ConsumerCheck::culling_keeps_visible);
+      EXPECT_TRUE(keeps.judged) << describe(keeps);
+      EXPECT_EQ(keeps.holds, !(w < 0)) << convention_name(k) << " " << describe(keeps);
     }
   }
 }
