@@ -123,6 +123,16 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       "--consumers", settings->consumers,
       "Ask the code around the matrix instead: a comma list of request kinds, or all: " +
           name_list(oblique::protocol::consumer_kind_names()) + " (docs/verify.md)");
+  verify
+      ->add_option_function<std::string>(
+          "--mirror-design",
+          [settings](const std::string& name) {
+            settings->options.mirror_design = *oblique::properties::parse_mirror_design(name);
+          },
+          "With --consumers mirror_view: the design its mirror pass's camera has: reflected_view "
+          "(view R, the default) or proper_camera (diag(-1, 1, 1, 1) view R, the horizontal flip "
+          "done in the projection or the texture lookup)")
+      ->check(CLI::IsMember({"reflected_view", "proper_camera"}));
   verify->add_flag("--rasterize", options.rasterize,
                    "Also draw answers on a real rasterizer (EGL + OpenGL 4.5, llvmpipe): the "
                    "first, one in --raster-every, and every finding's; an answer that passes the "

@@ -751,9 +751,20 @@ ConsumerFinding compare_matrix(ConsumerCheck check, const Mat& reference, const 
 
 }  // namespace
 
+std::string_view mirror_design_name(MirrorDesign d) {
+  return d == MirrorDesign::proper_camera ? "proper_camera" : "reflected_view";
+}
+
+std::optional<MirrorDesign> parse_mirror_design(std::string_view name) {
+  for (MirrorDesign d : {MirrorDesign::reflected_view, MirrorDesign::proper_camera}) {
+    if (mirror_design_name(d) == name) return d;
+  }
+  return std::nullopt;
+}
+
 template <class T>
 ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& world_plane,
-                                  const Matrix4<T>& answer) {
+                                  const Matrix4<T>& answer, MirrorDesign design) {
   const Mat v = exact::to_rational(view);
   const Vec plane = exact::to_rational(world_plane);
   const Rational nn = plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2];
@@ -780,12 +791,40 @@ ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& worl
     r[i][3] = -2 * plane[3] * plane[i] / nn;
     r_abs[i][3] = exact::abs(r[i][3]);
   }
-  const Mat reference = mul(v, r);
+  // The two designs: view R, and diag(-1, 1, 1, 1) view R (row 1 negated, exactly: the bound
+  // is the same).
+  const Mat reflected = mul(v, r);
+  Mat proper = reflected;
+  for (Rational& x : proper[0]) x = -x;
+  const bool proper_declared = design == MirrorDesign::proper_camera;
+  const Mat& reference = proper_declared ? proper : reflected;
   Mat bound = mul(exact::abs(v), r_abs);
   const Rational g = gamma_of<T>(tolerance::kPassViewRoundings);
   for (auto& row : bound)
     for (auto& x : row) x *= g;
   ConsumerFinding f = compare_matrix(ConsumerCheck::mirror_view, reference, bound, answer);
+  if (f.holds) {
+    f.detail = std::string("the ") + (proper_declared ? "proper_camera" : "reflected_view") +
+               " design's matrix (" + (proper_declared ? "diag(-1, 1, 1, 1) view R" : "view R") +
+               "), " + f.detail;
+  } else if (answer.allFinite() &&
+             compare_matrix(ConsumerCheck::mirror_view, proper_declared ? reflected : proper, bound,
+                            answer)
+                 .holds) {
+    // The other design: named as such, not as a broken mirror.
+    f.detail =
+        proper_declared
+            ? "the answer is the reflected_view design, view R (an improper camera, det < 0), "
+              "while the proper_camera design is declared (diag(-1, 1, 1, 1) view R, the flip done "
+              "in the projection or the texture): with both, the image is flipped twice. " +
+                  f.detail
+            : "the answer is the proper_camera design, diag(-1, 1, 1, 1) view R (a proper camera, "
+              "det > 0, looking at the reflected scene), not the reflected view R: right only "
+              "when the horizontal flip is done in the projection or the texture lookup; if it "
+              "is, declare the design (Consumers::mirror_design = MirrorDesign::proper_camera; "
+              "verify --mirror-design proper_camera). " +
+                  f.detail;
+  }
   if (!f.holds) {
     const Eigen::Matrix4d main_view = view.template cast<double>();
     const ConsumerFinding::Drawn main = camera_drawn("the main camera", main_view, 1);
@@ -1163,7 +1202,7 @@ void ask_mirror_view(const Consumers<T>& consumers, const Matrix4<T>& view,
                      const Vector4<T>& mirror, const properties::Settle& settle) {
   using properties::numbers_text;
   const Matrix4<T> answer = consumers.mirror_view(view, mirror);
-  settle(properties::judge_mirror_view(view, mirror, answer),
+  settle(properties::judge_mirror_view(view, mirror, answer, consumers.mirror_design),
          "- view: " + numbers_text(view) + "\n- mirror plane: " + numbers_text(mirror) +
              "\n- answered: " + numbers_text(answer) + "\n",
          false);
@@ -1239,7 +1278,7 @@ Consumers<T> reference_consumers() {
                                                            const std::vector<Vector4<T>>&,         \
                                                            const Vector4<T>&, const Vector4<T>&);  \
   template ConsumerFinding judge_mirror_view(const Matrix4<T>&, const Vector4<T>&,                 \
-                                             const Matrix4<T>&);                                   \
+                                             const Matrix4<T>&, MirrorDesign);                     \
   template ConsumerFinding judge_portal_view(const Matrix4<T>&, const Matrix4<T>&,                 \
                                              const Matrix4<T>&, const Matrix4<T>&);                \
   template ConsumerFinding judge_corners(const Matrix4<T>&, const Vector4<T>&, Convention,         \

@@ -361,6 +361,41 @@ TEST(PassCamera, mirrorAndPortalViews) {
   EXPECT_NEAR(seen.z(), -8, 1e-12);
 }
 
+// The mirror pass built as a proper camera (issue 44's false alarm): diag(-1, 1, 1, 1) view R,
+// the horizontal flip done in the projection or the texture lookup. Named as that design when it
+// is not declared (and the declared design answered the other way is named too); declared, it
+// holds; a broken mirror is neither.
+TEST(PassCamera, theProperCameraMirrorDesignIsNamedAndHoldsWhenDeclared) {
+  using oblique::properties::judge_mirror_view;
+  using oblique::properties::MirrorDesign;
+  const PassCase p = mirror_case();
+  Matrix4<double> proper = p.pass_view;
+  proper.row(0) *= -1;
+  EXPECT_GT(proper.block(0, 0, 3, 3).determinant(), 0);
+  const ConsumerFinding undeclared = judge_mirror_view(p.view, p.plane, proper);
+  EXPECT_FALSE(undeclared.holds);
+  EXPECT_NE(undeclared.detail.find("the answer is the proper_camera design"), std::string::npos)
+      << undeclared.detail;
+  const ConsumerFinding declared =
+      judge_mirror_view(p.view, p.plane, proper, MirrorDesign::proper_camera);
+  EXPECT_TRUE(declared.holds) << describe(declared);
+  const ConsumerFinding other =
+      judge_mirror_view(p.view, p.plane, p.pass_view, MirrorDesign::proper_camera);
+  EXPECT_FALSE(other.holds);
+  EXPECT_NE(other.detail.find("the answer is the reflected_view design"), std::string::npos)
+      << other.detail;
+  // A broken mirror (the main view, or the flip on y) is named as neither design.
+  Matrix4<double> y_flip = p.pass_view;
+  y_flip.row(1) *= -1;
+  for (const Matrix4<double>& wrong : {p.view, y_flip}) {
+    for (MirrorDesign d : {MirrorDesign::reflected_view, MirrorDesign::proper_camera}) {
+      const ConsumerFinding f = judge_mirror_view(p.view, p.plane, wrong, d);
+      EXPECT_FALSE(f.holds);
+      EXPECT_EQ(f.detail.find("design"), std::string::npos) << f.detail;
+    }
+  }
+}
+
 // What a report draws for a pass camera's finding: the cameras, the planes and the points, where
 // they are. A mirror 5 units ahead of an eye at the origin: the mirror pass's eye is 10 units
 // ahead, looking back.

@@ -65,7 +65,9 @@ class ConsumerRun {
         err_(err),
         program_(options.command, std::chrono::milliseconds(
                                       static_cast<long>(options.request_timeout_seconds * 1000))),
-        asked_(program_.consumers(kinds_, options.command)) {}
+        asked_(program_.consumers(kinds_, options.command)) {
+    asked_.mirror_design = options.mirror_design;
+  }
 
   /// One round: the program asked each kind on `round` (its picks drawn from `engine` and
   /// recorded, or replayed from round.picks when `engine` is null). Returns false for a protocol

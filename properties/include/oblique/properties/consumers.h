@@ -132,11 +132,26 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
                                                 const Vector4<T>& front_point,
                                                 const Vector4<T>& answer);
 
+/// How a mirror pass's camera is built; both are designs engines ship.
+enum class MirrorDesign {
+  /// view R, R the reflection in the mirror's plane: an improper camera (det < 0) whose images
+  /// come out mirrored by themselves (the winding flips).
+  reflected_view,
+  /// diag(-1, 1, 1, 1) view R: a proper camera (det > 0) looking at the reflected scene, the
+  /// horizontal flip done elsewhere (in the projection, M11 < 0, or in the texture lookup).
+  proper_camera,
+};
+std::string_view mirror_design_name(MirrorDesign d);
+std::optional<MirrorDesign> parse_mirror_design(std::string_view name);
+
 /// The mirror pass's view the consumer built from the main `view` and the mirror's world plane:
-/// view R within gamma(kPassViewRoundings) |view| |R|.
+/// the `design`'s matrix (view R, or diag(-1, 1, 1, 1) view R) within gamma(kPassViewRoundings)
+/// |view| |R|. An answer of the other design is violated, the finding naming that design and
+/// how to declare it.
 template <class T>
 ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& world_plane,
-                                  const Matrix4<T>& answer);
+                                  const Matrix4<T>& answer,
+                                  MirrorDesign design = MirrorDesign::reflected_view);
 
 /// The portal pass's view from the main `view` and the two portals' frames: view frame turn
 /// linked^-1 within gamma(kPassViewRoundings) |view| |frame| |linked^-1| |linked| |linked^-1|.
@@ -198,6 +213,9 @@ struct Consumers {
       camera_plane;
   /// A mirror pass's view from the main view and the mirror's world plane.
   std::function<Matrix4<T>(const Matrix4<T>& view, const Vector4<T>& mirror_plane)> mirror_view;
+  /// Which design mirror_view builds (judge_mirror_view() above): the reflected view, or a proper
+  /// camera whose horizontal flip is done in the projection or the texture lookup.
+  properties::MirrorDesign mirror_design = properties::MirrorDesign::reflected_view;
   /// A portal pass's view from the main view, this portal's frame and the linked portal's frame
   /// (columns right, up, normal, centre).
   std::function<Matrix4<T>(const Matrix4<T>& view, const Matrix4<T>& frame,

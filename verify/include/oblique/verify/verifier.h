@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "oblique/depth_reconstruction.h"
+#include "oblique/properties/consumers.h"
 #include "oblique/properties/contract.h"
 #include "oblique/protocol/consumer_messages.h"
 #include "oblique/protocol/protocol.h"
@@ -49,6 +50,8 @@ struct VerifyOptions {
   /// --consumers: ask these request kinds of the code around the matrix (consumer_messages.h)
   /// instead of the oblique matrix, round by round, judged by the consumer properties.
   std::vector<protocol::ConsumerKind> consumers;
+  /// --mirror-design: the design the program's mirror_view builds (properties/consumers.h).
+  properties::MirrorDesign mirror_design = properties::MirrorDesign::reflected_view;
 
   /// --rasterize: the first answer, one in `raster_every` after it, and every finding's answer
   /// drawn on a real rasterizer (oblique::raster) in `raster_size` x `raster_size` frames.
