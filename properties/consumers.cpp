@@ -800,8 +800,24 @@ ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& worl
   const Mat& reference = proper_declared ? proper : reflected;
   Mat bound = mul(exact::abs(v), r_abs);
   const Rational g = gamma_of<T>(tolerance::kPassViewRoundings);
-  for (auto& row : bound)
+  for (auto& row : bound) {
     for (auto& x : row) x *= g;
+  }
+  // A pass camera built as a camera (a look-at of the reflected eye: normalised axes, cross
+  // products) errs relative to its rows, not to each entry: an entry that is 1e-19 exactly may
+  // come out 0. So each entry of the 3 x 3 block is held within its row's largest bound, and the
+  // translation, t_i = -row_i . eye, within that times |eye|_1 more (eye: the pass camera's
+  // position, exact). What a point at unit distance sees is the same either way.
+  const std::optional<Mat> to_world = exact::inverse(reference);
+  Rational eye_size = 0;
+  if (to_world) {
+    for (int k = 0; k < 3; ++k) eye_size += exact::abs((*to_world)[k][3]);
+  }
+  for (auto& row : bound) {
+    const Rational largest = std::max({row[0], row[1], row[2]});
+    for (int j = 0; j < 3; ++j) row[j] = largest;
+    row[3] += largest * eye_size;
+  }
   ConsumerFinding f = compare_matrix(ConsumerCheck::mirror_view, reference, bound, answer);
   if (f.holds) {
     f.detail = std::string("the ") + (proper_declared ? "proper_camera" : "reflected_view") +
