@@ -9,6 +9,7 @@
 #
 # The rate of a minute is the executions between libFuzzer's progress lines nearest its ends,
 # over the time between them. Extra ASAN_OPTIONS in the environment apply (after the target's).
+# A finding or a crash ends the run early: exit 1, the log and crash file kept in a new folder.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target=${1:?usage: fuzz_steadiness.sh TARGET [SECONDS]}
@@ -23,12 +24,23 @@ source scripts/fuzz_options.sh
 read_fuzz_options "$target"
 start=$EPOCHREALTIME
 # Each progress line stamped with the seconds since the start.
+status=0
 (cd "$work" && ASAN_OPTIONS="$asan_options${ASAN_OPTIONS:+:$ASAN_OPTIONS}" /usr/bin/time -f "peak_rss_kb %M" "$OLDPWD/$binary" -max_total_time="$seconds" \
     -use_value_profile=1 -dict="$OLDPWD/fuzz/$target.dict" -print_final_stats=1 \
     -artifact_prefix="$work/" ${libfuzzer_flags[@]+"${libfuzzer_flags[@]}"} corpus 2>&1) |
   while IFS= read -r line; do
     printf '%s %s\n' "$EPOCHREALTIME" "$line"
-  done > "$work/log"
+  done > "$work/log" || status=$?
+if ((status != 0)); then
+  # A finding (or a crash of the target) ends the run early: say so and keep what it left, never
+  # a silent exit.
+  kept=$(mktemp -d "${TMPDIR:-/tmp}/fuzz_steadiness.XXXXXX")
+  cp -r "$work"/. "$kept"/
+  echo "fuzz_steadiness.sh: $target ended with status $status before $seconds s; its log and" \
+       "any crash file are kept in $kept:" >&2
+  grep -v ' #[0-9]' "$kept/log" | tail -n 40 >&2
+  exit 1
+fi
 awk -v target="$target" -v start="$start" '
   # Minutes count from the INITED line: loading the corpus is not fuzzing.
   /INITED/ && inited == "" { inited = $1 - start }
