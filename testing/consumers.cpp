@@ -67,8 +67,7 @@ void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck chec
       if (why.empty()) {
         applicable.push_back(f);
       } else {
-        left += std::string(left.empty() ? "" : ", ") + std::string(generators::family_name(f)) +
-                " (" + std::string(why) + ")";
+        append_item(left, std::string(generators::family_name(f)) + " (" + std::string(why) + ")");
       }
     }
     if (!left.empty()) std::cout << property << ": not applicable to " << left << "\n";

@@ -54,10 +54,13 @@ void count_left_out(const std::string& kind, const std::string& why,
   ++t.left_out_by_kind[kind];
 }
 
+void append_item(std::string& list, const std::string& item) {
+  list += (list.empty() ? "" : ", ") + item;
+}
+
 std::string summary(const std::map<std::string, int>& counts) {
   std::string out;
-  for (const auto& [name, count] : counts)
-    out += (out.empty() ? "" : ", ") + name + " " + std::to_string(count);
+  for (const auto& [name, count] : counts) append_item(out, name + " " + std::to_string(count));
   return out;
 }
 
@@ -221,8 +224,7 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     const int judged = count(judged_kinds, kind), left = count(t.left_out_by_kind, kind);
     // (one case left out of a handful is no pattern)
     if (judged == 0 || left < 2 || left <= settings().left_out_warning * (judged + left)) continue;
-    partly += (partly.empty() ? "" : ", ") + kind + " " + std::to_string(left) + " of " +
-              std::to_string(judged + left);
+    append_item(partly, kind + " " + std::to_string(left) + " of " + std::to_string(judged + left));
   }
   // Hard places made but never judged (the places' coverage counts what was made: a place is a
   // property of the plane, and its cases are often the ones within rounding of no answer).
@@ -231,7 +233,7 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     for (auto p : require.places) {
       const std::string place(generators::place_name(p));
       if (count(t.generated_places, place) > 0 && count(t.places, place) == 0)
-        unjudged_places += (unjudged_places.empty() ? "" : ", ") + place;
+        append_item(unjudged_places, place);
     }
   }
   std::string warning;
@@ -271,11 +273,8 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     ADD_FAILURE() << id << ": " << warning << " [OBLIQUE_STRICT=1]";
   if (reproducing || coverage == Coverage::none) return;  // one case: nothing to cover
   // Why a kind the contract claims had no case judged, and what to change.
-  const std::string refusing = [&] {
-    std::string names;
-    for (const std::string& n : t.refusing) names += (names.empty() ? "" : ", ") + n;
-    return names;
-  }();
+  std::string refusing;
+  for (const std::string& n : t.refusing) append_item(refusing, n);
   auto why_none = [&](const std::string& kind, const char* what) {
     const int made = count(t.generated, kind), refused = count(t.refused, kind),
               left = count(t.left_out_by_kind, kind);

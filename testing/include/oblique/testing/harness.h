@@ -61,6 +61,9 @@ struct Tally {
 /// The tally of the property run under way.
 Tally& tally();
 
+/// Appends `item` to a comma-separated list.
+void append_item(std::string& list, const std::string& item);
+
 /// "name count, name count, ..." of `counts`.
 std::string summary(const std::map<std::string, int>& counts);
 
