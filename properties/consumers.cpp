@@ -59,6 +59,135 @@ Mat mul(const Mat& a, const Mat& b) {
   return out;
 }
 
+/// The rows r and columns c of m's 3 x 3 minor without row i and column j.
+void minor_indices(int i, int j, int (&r)[3], int (&c)[3]) {
+  for (int k = 0, n = 0; k < 4; ++k)
+    if (k != i) r[n++] = k;
+  for (int k = 0, n = 0; k < 4; ++k)
+    if (k != j) c[n++] = k;
+}
+
+/// The six products of the minor of m without row i and column j, with their signs in its
+/// determinant: permanent = false gives the determinant, true the permanent of its magnitudes
+/// (the sum of the magnitudes of the products the cofactor of m_ij adds up).
+Rational minor_sum(const Mat& m, int i, int j, bool permanent) {
+  int r[3], c[3];
+  minor_indices(i, j, r, c);
+  constexpr int kOrders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {1, 0, 2}, {2, 1, 0}};
+  Rational sum = 0;
+  for (int k = 0; k < 6; ++k) {
+    const auto& o = kOrders[k];
+    const Rational p = m[r[0]][c[o[0]]] * m[r[1]][c[o[1]]] * m[r[2]][c[o[2]]];
+    if (permanent)
+      sum += exact::abs(p);
+    else
+      sum += k < 3 ? p : Rational(-p);
+  }
+  return sum;
+}
+
+/// One pivot order of an elimination with partial pivoting in T on m (consumers' solves), from
+/// step k on: a holds the rows in pivot order, reduced through step k - 1, exactly; sum[r] bounds
+/// the part of row r of |L||U| the steps before k gave; row_of[r] is the row of m at position r.
+/// Entry by entry, `out` becomes the largest bound on |L^||U^| (rows in m's order) over every
+/// pivot order rounding in T could take: at each step every candidate within the elimination's
+/// error e = g sum of the largest is followed. The computed factors are bounded from the exact
+/// ones: |u^| <= |u| + e and |l^| <= (|a_rk| + e_rk) / (|a_kk| - e_kk) (1 + u), at most 1 (the
+/// pivot is the largest in T). False where a pivot is not determined in T (within e of 0).
+bool lu_orders(Mat a, Mat sum, std::array<int, 4> row_of, int k, const Rational& g,
+               const Rational& u, Mat& out) {
+  Rational largest = -1;
+  int at = k;
+  for (int r = k; r < 4; ++r) {
+    if (exact::abs(a[r][k]) > largest) {
+      largest = exact::abs(a[r][k]);
+      at = r;
+    }
+  }
+  const Rational reach = largest - g * sum[at][k];
+  for (int r = k; r < 4; ++r) {
+    const Rational e = g * sum[r][k];
+    if (exact::abs(a[r][k]) + e < reach) continue;
+    if (exact::abs(a[r][k]) <= e) return false;
+    Mat b = a, s = sum;
+    std::array<int, 4> order = row_of;
+    std::swap(b[r], b[k]);
+    std::swap(s[r], s[k]);
+    std::swap(order[r], order[k]);
+    Vec u_bar{};  // |u^| of the pivot row
+    for (int c = k; c < 4; ++c) u_bar[c] = exact::abs(b[k][c]) + g * s[k][c];
+    for (int c = 0; c < 4; ++c) {
+      const Rational row = s[k][c] + u_bar[c];
+      out[order[k]][c] = std::max(out[order[k]][c], row);
+    }
+    const Rational pivot_low = exact::abs(b[k][k]) - g * s[k][k];
+    for (int q = k + 1; q < 4; ++q) {
+      const Rational l_bar = std::min(
+          Rational(1), Rational((exact::abs(b[q][k]) + g * s[q][k]) / pivot_low * (1 + u)));
+      const Rational l = b[q][k] / b[k][k];
+      for (int c = k; c < 4; ++c) {
+        s[q][c] += l_bar * u_bar[c];
+        if (c > k) b[q][c] -= l * b[k][c];
+      }
+      b[q][k] = 0;
+    }
+    if (k < 3 && !lu_orders(b, s, order, k + 1, g, u, out)) return false;
+  }
+  return true;
+}
+
+/// The bound on |L^||U^| for m's LU factors with partial pivoting computed in T (lu_orders()),
+/// rows in m's order; the worst case, lu_bound(), where a pivot is not determined in T.
+template <class T>
+Mat lu_magnitudes(const Mat& m) {
+  Mat out{};
+  for (auto& row : out) row.fill(0);
+  Mat sum{};
+  for (auto& row : sum) row.fill(0);
+  if (!lu_orders(m, sum, {0, 1, 2, 3}, 0, gamma_of<T>(tolerance::kSolveRoundings), unit<T>(), out))
+    return lu_bound(m);
+  return out;
+}
+
+/// A bound S, entry by entry, on the error of v = M^-1 b computed in T by a correct
+/// implementation: |v^ - v| <= S |b| (tolerance.h, "a solve with a projection"). The larger of
+/// the two ways engines compute it, each bounded from this matrix rather than the worst case:
+///  - an inverse by cofactors (adjugate over determinant), then applied: each cofactor within
+///    gamma(kCofactorRoundings) of the permanent of its minor of |M|, the determinant within
+///    that of the permanent of |M|; then 4 roundings applying it;
+///  - an elimination with partial pivoting (an inverse, or an LU solve): backward error
+///    gamma(kConsumerSolveRoundings) |L^||U^|, so gamma |M^-1| G |M^-1| with G = lu_magnitudes().
+/// Empty where the determinant computed by cofactors is not determined in T.
+template <class T>
+std::optional<Mat> solve_error(const Mat& m, const Mat& inv) {
+  const Rational g = gamma_of<T>(tolerance::kCofactorRoundings);
+  Mat perm;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) perm[i][j] = minor_sum(m, i, j, true);
+  Rational det = 0, det_perm = 0;  // along row 0
+  for (int j = 0; j < 4; ++j) {
+    det += (j % 2 == 0 ? 1 : -1) * m[0][j] * minor_sum(m, 0, j, false);
+    det_perm += exact::abs(m[0][j]) * perm[0][j];
+  }
+  const Rational size = exact::abs(det);
+  const Rational det_error = g * det_perm;
+  if (det_error >= size) return std::nullopt;
+  // Applying the inverse: 4 roundings, and the window depth's conversion to NDC 2 more.
+  const Rational g_apply = gamma_of<T>(6);
+  const Mat lu = mul(mul(exact::abs(inv), lu_magnitudes<T>(m)), exact::abs(inv));
+  const Rational g_lu = gamma_of<T>(tolerance::kConsumerSolveRoundings);
+  Mat out;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const Rational x = exact::abs(inv[i][j]);
+      // adj_ij is the cofactor of m_ji; then the quotient (or the reciprocal and a product).
+      const Rational e = (1 + g) * (g * perm[j][i] + x * det_error) / (size - det_error) + g * x;
+      out[i][j] = std::max(Rational(e + g_apply * (x + e)), Rational(g_lu * lu[i][j]));
+    }
+  }
+  return out;
+}
+
 Rational max_abs(const Vec& v) {
   Rational m = 0;
   for (const Rational& x : v) m = std::max(m, exact::abs(x));
@@ -168,14 +297,21 @@ std::pair<Rational, Rational> depth_interval(const DepthSample<T>& s) {
   return {lo, hi};
 }
 
-/// What judge_view_position() and judge_linear_depth() share: the segment of the ray and the
-/// bound on each coordinate of a reconstruction computed in T.
+/// What judge_view_position() and judge_linear_depth() share: the segment of the ray the stored
+/// depth stands for, and how far a reconstruction computed in T may be from it. A solve in T
+/// gives homogeneous coordinates v^ within `box` of v = M'^-1 (x, y, z, 1), z in the depth's
+/// interval, and its divide by w rounds once more; the answer is judged against that set, which
+/// stays bounded in homogeneous coordinates even where rounding can reach w = 0 (a point that
+/// float cannot place along its ray is still judged by the ray and the depths it can reach).
 struct Segment {
   bool judged = false;
   std::string why;
-  Vec a, b;       ///< the ends (w = 1)
-  Vec bound;      ///< per coordinate (x, y, z)
-  int axis = -1;  ///< view_axis_sign of the original
+  Vec a, b;                  ///< the ends (w = 1)
+  Vec ha, hb;                ///< the ends in homogeneous coordinates, v at the interval's ends
+  Vec box;                   ///< |v^ - v| (with the divide's rounding), per coordinate (x, y, z, w)
+  std::optional<Vec> bound;  ///< per coordinate (x, y, z) of the point, where w is determined
+  bool w_reaches_zero = false;  ///< whether box_w reaches the segment's w (it keeps its sign)
+  int axis = -1;                ///< view_axis_sign of the original
   bool axis_is_z = true;
 };
 
@@ -200,6 +336,15 @@ std::optional<ConsumerFinding> before_the_answer(ConsumerCheck check, const Segm
     return f;
   }
   if (finite) return std::nullopt;
+  if (seg.w_reaches_zero) {
+    // A correct solve in T can give w^ = 0 here, and its divide then gives an infinity (or
+    // 0 / 0): what it answered is one of the answers float arithmetic allows.
+    f.holds = true;
+    f.ratio = 1;
+    f.detail = "answered " + answered + ": a solve in T can reach w = 0 at this depth (w within " +
+               text(seg.box[3]) + " of the segment's), and then divides by 0";
+    return f;
+  }
   f.holds = false;
   f.ratio = std::numeric_limits<double>::infinity();
   f.detail = "answered " + answered + ", not finite";
@@ -225,11 +370,18 @@ Segment ray_segment(const DepthSample<T>& s) {
   }
   const auto [lo, hi] = depth_interval(s);
   const Rational x = exact::to_rational(s.ndc_x), y = exact::to_rational(s.ndc_y);
-  const Mat chain = mul(mul(exact::abs(*inv), lu_bound(m)), exact::abs(*inv));
-  const Rational g = gamma_of<T>(tolerance::kConsumerSolveRoundings);
+  const std::optional<Mat> error = solve_error<T>(m, *inv);
+  if (!error) {
+    out.why =
+        "the projection's determinant is within T's rounding of 0: its inverse is not "
+        "determined in T";
+    return out;
+  }
   const Rational u = unit<T>();
   Vec ends[2];
-  out.bound = {0, 0, 0, 0};
+  out.box = {0, 0, 0, 0};
+  Vec bound{0, 0, 0, 0};
+  bool determined = true;
   const Rational depths[2] = {lo, hi};
   for (int e = 0; e < 2; ++e) {
     const Vec b{x, y, ndc_of(depths[e], s.convention), 1};
@@ -239,23 +391,33 @@ Segment ray_segment(const DepthSample<T>& s) {
       return out;
     }
     ends[e] = v;
-    const Vec dv = exact::mul(chain, exact::abs(b));
-    if (g * dv[3] >= exact::abs(v[3])) {
-      out.why = "the solve's rounding in T can reach w = 0: the point is not determined in T";
-      return out;
+    // |v^ - v| <= dv; the divide v^_i / v^_w rounds once: the answer times v^_w is within
+    // u |v^_i| <= u (|v_i| + dv_i) of v^_i. Along the segment, |b| and |v| are at most the
+    // larger of their ends' (both linear in the depth, which keeps its sign or passes 0).
+    const Vec dv = exact::mul(*error, exact::abs(b));
+    for (int i = 0; i < 4; ++i) {
+      const Rational divide = i < 3 ? Rational(u * (exact::abs(v[i]) + dv[i])) : Rational(0);
+      out.box[i] = std::max(out.box[i], Rational(dv[i] + divide));
+    }
+    if (dv[3] >= exact::abs(v[3])) {
+      determined = false;
+      continue;
     }
     for (int i = 0; i < 3; ++i) {
       const Rational p = v[i] / v[3];
       const Rational bound_i =
-          (g * dv[i] + exact::abs(p) * g * dv[3]) / (exact::abs(v[3]) - g * dv[3]) +
-          u * exact::abs(p);
-      out.bound[i] = std::max(out.bound[i], bound_i);
+          (dv[i] + exact::abs(p) * dv[3]) / (exact::abs(v[3]) - dv[3]) + u * exact::abs(p);
+      bound[i] = std::max(bound[i], bound_i);
     }
   }
   if (ends[0][3] * ends[1][3] < 0) {
     out.why = "the stored depth's interval reaches the ray's point at infinity";
     return out;
   }
+  if (determined) out.bound = bound;
+  out.w_reaches_zero = out.box[3] >= std::min(exact::abs(ends[0][3]), exact::abs(ends[1][3]));
+  out.ha = ends[0];
+  out.hb = ends[1];
   for (int i = 0; i < 4; ++i) {
     out.a[i] = ends[0][i] / ends[0][3];
     out.b[i] = ends[1][i] / ends[1][3];
@@ -264,39 +426,106 @@ Segment ray_segment(const DepthSample<T>& s) {
   return out;
 }
 
-/// Whether some point a + t (b - a), t in [0, 1], is within `bound` of `answer` in every
-/// coordinate of `coordinates`; the ratio of the worst coordinate at the point nearest answer.
-std::pair<bool, double> near_segment(const Vec& a, const Vec& b, const Vec& bound,
-                                     const Vec& answer, const std::vector<int>& coordinates) {
-  Rational t_lo = 0, t_hi = 1;
-  bool feasible = true;
-  Rational num = 0, den = 0;
-  for (int i : coordinates) {
-    const Rational d = b[i] - a[i];
-    const Rational r = answer[i] - a[i];
-    num += r * d;
-    den += d * d;
-    if (d == 0) {
-      if (exact::abs(r) > bound[i]) feasible = false;
+/// Whether some lambda and t in [0, 1] put lambda p within `scale` box of v(t) = a + t (b - a)
+/// in every coordinate of `coordinates` and lambda within `scale` box_w of v_w(t): whether the
+/// point p is the divide of a homogeneous point within the box of the segment. Exact for
+/// Rational. Each constraint bounds lambda by lines in t (or, where p_i = 0, bounds t alone);
+/// max(lower lines) - min(upper lines) is convex in t, so it is least at an end of t's range or
+/// where two of the lines cross.
+template <class R>
+bool on_projected_segment(const std::array<R, 4>& a, const std::array<R, 4>& b,
+                          const std::array<R, 4>& box, const std::array<R, 4>& p,
+                          const std::vector<int>& coordinates, const R& scale) {
+  struct Line {
+    R at0, slope;  // at0 + slope t
+    R at(const R& t) const { return at0 + slope * t; }
+  };
+  std::vector<Line> lower, upper;
+  R t_lo = 0, t_hi = 1;
+  std::vector<int> all = coordinates;
+  all.push_back(3);
+  for (int i : all) {
+    const R d = b[i] - a[i];
+    const R low = a[i] - scale * box[i], high = a[i] + scale * box[i];
+    if (p[i] == 0) {
+      // low + d t <= 0 <= high + d t
+      if (d == 0) {
+        if (low > 0 || high < 0) return false;
+        continue;
+      }
+      R t1 = -high / d, t2 = -low / d;
+      if (t1 > t2) std::swap(t1, t2);
+      t_lo = std::max(t_lo, t1);
+      t_hi = std::min(t_hi, t2);
       continue;
     }
-    Rational t1 = (r - bound[i]) / d, t2 = (r + bound[i]) / d;
-    if (t1 > t2) std::swap(t1, t2);
-    t_lo = std::max(t_lo, t1);
-    t_hi = std::min(t_hi, t2);
+    Line l{low / p[i], d / p[i]}, h{high / p[i], d / p[i]};
+    if (p[i] < 0) std::swap(l, h);
+    lower.push_back(l);
+    upper.push_back(h);
   }
-  if (t_lo > t_hi) feasible = false;
-  Rational t = den == 0 ? Rational(0) : Rational(num / den);
-  t = std::clamp(t, Rational(0), Rational(1));
-  double worst = 0;
-  for (int i : coordinates) {
-    const Rational at = a[i] + t * (b[i] - a[i]);
-    worst = std::max(worst, ratio_of(answer[i] - at, bound[i]));
+  if (t_lo > t_hi) return false;
+  auto gap = [&](const R& t) {
+    R most = lower.front().at(t), least = upper.front().at(t);
+    for (const Line& l : lower) most = std::max(most, l.at(t));
+    for (const Line& h : upper) least = std::min(least, h.at(t));
+    return most <= least;
+  };
+  if (gap(t_lo) || gap(t_hi)) return true;
+  std::vector<Line> lines = lower;
+  lines.insert(lines.end(), upper.begin(), upper.end());
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    for (std::size_t j = i + 1; j < lines.size(); ++j) {
+      const R ds = lines[i].slope - lines[j].slope;
+      if (ds == 0) continue;
+      const R t = (lines[j].at0 - lines[i].at0) / ds;
+      if (t > t_lo && t < t_hi && gap(t)) return true;
+    }
   }
-  // The nearest point is a witness: within there means feasible; the verdict is the exact one.
-  if (feasible) worst = std::min(worst, 1.0);
-  if (!feasible) worst = std::max(worst, std::nextafter(1.0, 2.0));
-  return {feasible, worst};
+  return false;
+}
+
+/// How far a reconstruction in T may be from the segment, for a finding's detail: per
+/// coordinate of the point where w is determined, else in homogeneous coordinates.
+std::string within_text(const Segment& seg, const std::vector<int>& coordinates) {
+  if (seg.bound) {
+    if (coordinates.size() == 1) return ", within " + text((*seg.bound)[coordinates.front()]);
+    return ", each coordinate within " + text(*seg.bound, 3);
+  }
+  return "; a solve in T can reach w = 0 there, so the answer is judged in homogeneous "
+         "coordinates: (x, y, z, w) within " +
+         text(seg.box, 4) + " of the segment's";
+}
+
+/// The verdict of on_projected_segment() at scale 1, exactly, with the ratio residual / bound:
+/// the least scale of the box that holds p (by bisection in double, kept on the verdict's side
+/// of 1).
+std::pair<bool, double> judge_on_segment(const Segment& seg, const Vec& p,
+                                         const std::vector<int>& coordinates) {
+  const bool holds = on_projected_segment<Rational>(seg.ha, seg.hb, seg.box, p, coordinates, 1);
+  std::array<double, 4> a, b, box, q;
+  for (int i = 0; i < 4; ++i) {
+    a[i] = seg.ha[i].get_d();
+    b[i] = seg.hb[i].get_d();
+    box[i] = seg.box[i].get_d();
+    q[i] = p[i].get_d();
+  }
+  auto within = [&](double scale) {
+    return on_projected_segment<double>(a, b, box, q, coordinates, scale);
+  };
+  double hi = 1;
+  for (int k = 0; k < 64 && !within(hi); ++k) hi *= 2;
+  double ratio = std::numeric_limits<double>::infinity();
+  if (within(hi)) {
+    double lo = 0;
+    for (int k = 0; k < 60; ++k) {
+      const double mid = (lo + hi) / 2;
+      (within(mid) ? hi : lo) = mid;
+    }
+    ratio = hi;
+  }
+  if (holds) return {true, std::min(ratio, 1.0)};
+  return {false, std::max(ratio, std::nextafter(1.0, 2.0))};
 }
 
 constexpr const char* kNotProper =
@@ -393,14 +622,13 @@ ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& a
     return *early;
   ConsumerFinding f;
   f.check = ConsumerCheck::view_position;
-  const auto [ok, ratio] = near_segment(seg.a, seg.b, seg.bound, point_of(answer), {0, 1, 2});
+  const auto [ok, ratio] = judge_on_segment(seg, point_of(answer), {0, 1, 2});
   f.holds = ok;
   f.ratio = ratio;
   f.points = {answer.template cast<double>(), approx_point(seg.a), approx_point(seg.b)};
   f.points_what = "the answer, and the ends of the pixel ray's segment the stored depth stands for";
   f.detail = "answered " + numbers_text(answer) + "; the stored depth stands for the points from " +
-             text(seg.a, 3) + " to " + text(seg.b, 3) + ", each coordinate within " +
-             text(seg.bound, 3);
+             text(seg.a, 3) + " to " + text(seg.b, 3) + within_text(seg, {0, 1, 2});
   return f;
 }
 
@@ -419,16 +647,16 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
     return f;
   }
   const Rational sign = seg.axis;
-  const Vec a{0, 0, sign * seg.a[2], 1}, b{0, 0, sign * seg.b[2], 1};
-  const Vec given{0, 0, exact::to_rational(answer), 1};
-  const auto [ok, ratio] = near_segment(a, b, seg.bound, given, {2});
+  // The answer is axis z: the point's z is axis times it.
+  const Vec given{0, 0, sign * exact::to_rational(answer), 1};
+  const auto [ok, ratio] = judge_on_segment(seg, given, {2});
   f.holds = ok;
   f.ratio = ratio;
   f.points = {approx_point(seg.a), approx_point(seg.b)};
   f.points_what = "the ends of the pixel ray's segment the stored depth stands for";
   f.detail = "answered " + protocol::format_number(answer) +
-             "; the stored depth stands for linear depths from " + text(a[2]) + " to " +
-             text(b[2]) + ", within " + text(seg.bound[2]);
+             "; the stored depth stands for linear depths from " + text(Rational(sign * seg.a[2])) +
+             " to " + text(Rational(sign * seg.b[2])) + within_text(seg, {2});
   return f;
 }
 
@@ -1136,9 +1364,17 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
           "\n- M: " + numbers_text(m) + "\n- C: " + numbers_text(c) +
           "\n- M' (the core's answer, what the consumer was given): " + numbers_text(mo) + "\n";
       if (depth) {
-        const Vector4<T> point = consumer_cases::kept_point<T>(m, c, convention, pick);
+        Vector4<T> point = consumer_cases::kept_point<T>(m, c, convention, pick);
         const DepthBuffer buffer = pick(0, 2) ? DepthBuffer::float32 : DepthBuffer::fixed24;
-        const auto s = depth_sample(mo, m, convention, buffer, point);
+        auto s = depth_sample(mo, m, convention, buffer, point);
+        // A vertex of the region rounds to either side of its plane, and a point pushed toward
+        // infinity can pass behind the eye: moved inward step by step (to the centre at most),
+        // it is still a point of the region, near where it was, with a sample to judge.
+        for (int k : {20, 10, 4, 1, 0}) {
+          if (s) break;
+          point = consumer_cases::toward_centre(m, c, convention, point, std::ldexp(1.0L, -k));
+          s = depth_sample(mo, m, convention, buffer, point);
+        }
         if (!s) {
           left_out({{bool(consumers.view_position), ConsumerCheck::view_position},
                     {bool(consumers.linear_depth), ConsumerCheck::linear_depth}},

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "oblique/depth_reconstruction.h"
@@ -152,6 +153,67 @@ TEST(DepthReconstruction, linearDepthIsNotJudgedOffTheZAxis) {
       oblique::properties::judge_view_position(
           *sample, oblique::view_position(mo, sample->ndc_x, sample->ndc_y, sample->depth, k))
           .holds);
+}
+
+// A clip plane 2e-6 from the eye, in float (found by the float consumer suite, seed 11): M'_34 is
+// -7.7e-7, and a solve in float can reach w = 0 anywhere along the pixel's ray, so it cannot place
+// the point on it, nor say on which side of the eye it is. Judged, not left out, by what float
+// can reach: the ray's line. The answer's distance is not judged here (it is where w is
+// determined: rightAnswersHoldAndTheOriginalMatrixIsCaught).
+TEST(DepthReconstruction, aPointFloatCannotPlaceIsJudgedByItsRay) {
+  const Convention k = Convention::zero_one;
+  Matrix4<float> m;
+  m << -0.22222221f, -0.0f, 0.25000003f, -0.0f, -0.0f, -0.5f, -1.0f, -0.0f, 0.0f, 0.0f, -1.0000004f,
+      -1.3750004e-05f, 0.0f, 0.0f, -1.0f, 0.0f;
+  const Vector4<float> c(-0.5f, -0.5f, 0.25f, -1.9642875e-06f);
+  const auto result = oblique::apply<float>(m, c, k);
+  ASSERT_EQ(result.status, oblique::Status::ok);
+  const Matrix4<float>& mo = result.projection;
+  const Vector4<float> point(-136.18764f, 96.84452f, -24.211132f, 1.0f);
+  const auto sample = oblique::properties::depth_sample(mo, m, k, DepthBuffer::fixed24, point);
+  ASSERT_TRUE(sample.has_value());
+  auto judge = [&](const Vector3<float>& answer) {
+    return oblique::properties::judge_view_position(*sample, answer);
+  };
+  const float inf = std::numeric_limits<float>::infinity();
+  const ConsumerFinding at_infinity = judge(Vector3<float>(inf, inf, inf));
+  ASSERT_TRUE(at_infinity.judged) << at_infinity.detail;
+  EXPECT_TRUE(at_infinity.holds) << describe(at_infinity);
+  EXPECT_NE(at_infinity.detail.find("can reach w = 0"), std::string::npos) << at_infinity.detail;
+  for (const float along : {1.0f, 4.0f, 0.25f}) {
+    const ConsumerFinding on_ray = judge(along * point.head<3>());
+    EXPECT_TRUE(on_ray.judged && on_ray.holds) << along << ": " << describe(on_ray);
+  }
+  // Off the ray: violated, in x or in y.
+  for (const Vector3<float>& off : {Vector3<float>(-point.x(), point.y(), point.z()),
+                                    Vector3<float>(point.x(), 1.01f * point.y(), point.z())}) {
+    const ConsumerFinding f = judge(off);
+    EXPECT_TRUE(f.judged && !f.holds) << describe(f);
+  }
+  EXPECT_TRUE(oblique::properties::judge_linear_depth(*sample, inf).holds);
+  EXPECT_TRUE(oblique::properties::judge_linear_depth(*sample, -point.z()).holds);
+}
+
+// Where float places the point, an infinity is not one of the answers it can give.
+TEST(DepthReconstruction, infinityIsViolatedWhereFloatPlacesThePoint) {
+  for (Convention k : kConventions) {
+    const Matrix4<float> m = perspective(k).cast<float>();
+    const Vector4<float> c = tilted_plane().cast<float>();
+    const auto result = oblique::apply<float>(m, c, k);
+    ASSERT_EQ(result.status, oblique::Status::ok);
+    const auto sample = oblique::properties::depth_sample(
+        result.projection, m, k, DepthBuffer::float32,
+        Vector4<float>(kept_centre(perspective(k), tilted_plane(), k).cast<float>()));
+    ASSERT_TRUE(sample.has_value());
+    const float inf = std::numeric_limits<float>::infinity();
+    const ConsumerFinding f =
+        oblique::properties::judge_view_position(*sample, Vector3<float>(inf, inf, inf));
+    EXPECT_TRUE(f.judged && !f.holds) << describe(f);
+    const ConsumerFinding right = oblique::properties::judge_view_position(
+        *sample,
+        oblique::view_position(result.projection, sample->ndc_x, sample->ndc_y, sample->depth, k));
+    EXPECT_TRUE(right.judged && right.holds) << describe(right);
+  }
 }
 
 TEST(CullingPlanes, rightPlanesHoldInEveryConvention) {

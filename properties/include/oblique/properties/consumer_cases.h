@@ -17,7 +17,7 @@ namespace oblique::consumer_cases {
 /// A point of the kept region of (m, c): a weighted mean of one to all of its finite vertices
 /// (one vertex: the corner itself; two: a point of an edge, ...), moved along a direction at
 /// infinity when the region has one, computed in long double and rounded to T. Rounding may put
-/// it just outside; the properties judge it where it is.
+/// it just outside (toward_centre() brings it back).
 template <class T, class Pick>
 Vector4<T> kept_point(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
                       Pick&& pick) {
@@ -47,6 +47,36 @@ Vector4<T> kept_point(const Matrix4<T>& m, const Vector4<T>& c, Convention conve
     }
     return Vector4<T>(p.template cast<T>());
   }
+}
+
+/// `point` moved `fraction` of the way to a centre of the kept region (computed in long double,
+/// rounded to T): the mean of its finite vertices, moved along the mean of its directions at
+/// infinity where it has some (an infinite frustum's finite vertices all lie on C). What brings a
+/// point rounding left just outside the region, or one pushed behind the eye, back to a point
+/// that leaves a depth sample.
+template <class T>
+Vector4<T> toward_centre(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                         const Vector4<T>& point, long double fraction) {
+  using Wide = long double;
+  const std::vector<Vector4<Wide>> vertices =
+      kept_region_vertices<Wide>(m.template cast<Wide>(), c.template cast<Wide>(), convention);
+  Vector4<Wide> centre = Vector4<Wide>::Zero(), away = Vector4<Wide>::Zero();
+  int n = 0;
+  for (const auto& v : vertices) {
+    if (v.w() == 0) {
+      if (v.template head<3>().norm() > 0) away += v / v.template head<3>().norm();
+      continue;
+    }
+    centre += v;
+    ++n;
+  }
+  if (n == 0) return point;
+  centre /= Wide(n);
+  if (away.template head<3>().norm() > 0)
+    centre +=
+        away / away.template head<3>().norm() * std::max(Wide(1), centre.template head<3>().norm());
+  const Vector4<Wide> p = point.template cast<Wide>();
+  return Vector4<T>((p + fraction * (centre - p)).template cast<T>());
 }
 
 /// A rotation by angles picked in sixteenths of pi about x, then y, then z.

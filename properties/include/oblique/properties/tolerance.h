@@ -64,11 +64,16 @@ constexpr double kAccurateUlps = 2;
 //    |L||U| is not bounded by |M| entry by entry (a zero of M, and projections have many, need
 //    not be one of L U: fuzz_consumers found a reference 56,000 times off such a bound), but
 //    with partial pivoting |l_ij| <= 1 and |u_ij| <= rho max|m|, rho <= 2^(n-1), so every entry
-//    of |L||U| is at most n rho max|m| = 32 max|m| (lu_entry_bound()). So
-//    |v^ - v| <= gamma(kConsumerSolveRoundings) |M^-1| G |M^-1| |b| for v = M^-1 b, G the 4 x 4
-//    matrix of lu_entry_bound(M), and
-//    p = v / v_w within (|dv_i| + |p_i| |dv_w|) / (|v_w| - |dv_w|) + u |p_i|; where |dv_w| >=
-//    |v_w| the point is not determined in T and is not judged.
+//    of |L||U| is at most n rho max|m| = 32 max|m| (lu_entry_bound()): the worst case, used for
+//    the corners and the pass cameras. Depth reconstruction bounds it from the matrix at hand
+//    instead (consumers.cpp, solve_error()): |L^||U^| from the exact factors of every pivot
+//    order rounding can choose, each computed factor within the elimination's error of its exact
+//    value; and, for an inverse by cofactors (what Eigen, GLM and most engines do), each
+//    cofactor within gamma(kCofactorRoundings) of the permanent of its minor of |M| and the
+//    determinant within that of the permanent of |M|. The larger of the two gives
+//    |v^ - v| <= S |b|, and the answer p with p v^_w within u |v^| of v^ (the divide) is judged
+//    in homogeneous coordinates: that set stays bounded where rounding can reach w = 0.
+//    Elsewhere p = v / v_w is within (|dv_i| + |p_i| |dv_w|) / (|v_w| - |dv_w|) + u |p_i|.
 //  - a view volume's corner (corners_contain_kept): that solve's bound with M' (row 3's own error
 //    bound carried through |M'^-1|) and with M (the original's corners, clipped by C), and, for a
 //    point where C crosses an edge, gamma(kPlaneRoundings) |C| . |x| / max|n_C| across C.
@@ -83,6 +88,11 @@ constexpr double kAccurateUlps = 2;
 //    more for a plane the implementation normalises.
 constexpr int kConsumerSolveRoundings = kSolveRoundings + 4 + 2;
 constexpr int kPlaneRoundings = 8;
+/// An inverse by cofactors: each cofactor a sum of six products of three (2 roundings each,
+/// then 5 in a sum taken in order: 7); the determinant from a row and its cofactors (7, 1 for the
+/// product, 3 for the sum: 11); the quotient, or a reciprocal and a product (1 more): 12, taken
+/// for the cofactors and the determinant alike.
+constexpr int kCofactorRoundings = 12;
 constexpr int kPassViewRoundings = 17 + 4;
 constexpr int kCameraPlaneRoundings = kSolveRoundings + 4;
 
