@@ -636,7 +636,7 @@ template <class T>
 ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
   const Segment seg = ray_segment(s);
   if (auto early = before_the_answer(ConsumerCheck::linear_depth, seg,
-                                     std::isfinite(static_cast<double>(answer)),
+                                     std::isfinite(answer),
                                      protocol::format_number(answer)))
     return *early;
   ConsumerFinding f;
