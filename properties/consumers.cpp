@@ -311,16 +311,24 @@ struct Segment {
   Vec box;                   ///< |v^ - v| (with the divide's rounding), per coordinate (x, y, z, w)
   std::optional<Vec> bound;  ///< per coordinate (x, y, z) of the point, where w is determined
   bool w_reaches_zero = false;  ///< whether box_w reaches the segment's w (it keeps its sign)
-  int axis = -1;                ///< view_axis_sign of the original
+  int axis = -1;  ///< view_axis_sign of the original; 0 where rounding in T decides it
   bool axis_is_z = true;
 };
 
 /// view_axis_sign() in exact arithmetic, from the inverse of the original projection: the sign
-/// of the z of its view volume's centre.
-int axis_sign(const Mat& original_inverse, Convention convention) {
+/// of the z of its view volume's centre. Given `error` (solve_error()'s S for the original), 0
+/// where a solve in T can give the other sign: the centre's z or w within its error of 0, or no
+/// S (the inverse not determined in T).
+int axis_sign(const Mat& original_inverse, Convention convention,
+              const std::optional<std::optional<Mat>>& error = std::nullopt) {
   const DepthRange range = clip_depth_range(convention);
-  const Vec centre =
-      exact::mul(original_inverse, {0, 0, Rational(range.z_low + range.z_high, 2), 1});
+  const Vec b{0, 0, Rational(range.z_low + range.z_high, 2), 1};
+  const Vec centre = exact::mul(original_inverse, b);
+  if (error) {
+    if (!*error) return 0;
+    const Vec dv = exact::mul(**error, exact::abs(b));
+    if (exact::abs(centre[2]) <= dv[2] || exact::abs(centre[3]) <= dv[3]) return 0;
+  }
   return (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
 }
 
@@ -366,7 +374,8 @@ Segment ray_segment(const DepthSample<T>& s) {
     // general matrix) linear depth has no axis to be measured along.
     const Mat original = exact::to_rational(s.original);
     out.axis_is_z = original[3][0] == 0 && original[3][1] == 0;
-    out.axis = axis_sign(*original_inv, s.convention);
+    if (out.axis_is_z)
+      out.axis = axis_sign(*original_inv, s.convention, solve_error<T>(original, *original_inv));
   }
   const auto [lo, hi] = depth_interval(s);
   const Rational x = exact::to_rational(s.ndc_x), y = exact::to_rational(s.ndc_y);
@@ -635,8 +644,7 @@ ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& a
 template <class T>
 ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
   const Segment seg = ray_segment(s);
-  if (auto early = before_the_answer(ConsumerCheck::linear_depth, seg,
-                                     std::isfinite(answer),
+  if (auto early = before_the_answer(ConsumerCheck::linear_depth, seg, std::isfinite(answer),
                                      protocol::format_number(answer)))
     return *early;
   ConsumerFinding f;
@@ -644,6 +652,14 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
   if (!seg.axis_is_z) {
     f.judged = false;
     f.detail = "the camera does not look along z (M's fourth row is not (0, 0, a, b))";
+    return f;
+  }
+  if (seg.axis == 0) {
+    // Which way the camera looks (the sign of its view volume's centre's z) is rounding in T.
+    f.judged = false;
+    f.detail =
+        "the camera's axis is not determined in T (its view volume's centre is within a "
+        "solve's rounding of z = 0 or of w = 0)";
     return f;
   }
   const Rational sign = seg.axis;
