@@ -23,10 +23,11 @@ oblique::Consumers<T> right() {
 /// Depth reconstruction alone.
 template <class T>
 oblique::Consumers<T> depth_only() {
+  const oblique::Consumers<T> all = right<T>();
   oblique::Consumers<T> c;
-  c.name = "engine_consumers";
-  c.view_position = engine_consumers::view_position<T>;
-  c.linear_depth = engine_consumers::linear_depth<T>;
+  c.name = all.name;
+  c.view_position = all.view_position;
+  c.linear_depth = all.linear_depth;
   return c;
 }
 
