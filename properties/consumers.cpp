@@ -335,7 +335,8 @@ int axis_sign(const Mat& original_inverse, Convention convention,
 /// What a depth judge says before it looks at the answer: not judged where the stored depth
 /// has no segment to judge by, violated where the answer is not finite; empty otherwise.
 std::optional<ConsumerFinding> before_the_answer(ConsumerCheck check, const Segment& seg,
-                                                 bool finite, const std::string& answered) {
+                                                 bool finite, bool none_finite,
+                                                 const std::string& answered) {
   ConsumerFinding f;
   f.check = check;
   if (!seg.judged) {
@@ -344,9 +345,10 @@ std::optional<ConsumerFinding> before_the_answer(ConsumerCheck check, const Segm
     return f;
   }
   if (finite) return std::nullopt;
-  if (seg.w_reaches_zero) {
+  if (seg.w_reaches_zero && none_finite) {
     // A correct solve in T can give w^ = 0 here, and its divide then gives an infinity (or
-    // 0 / 0): what it answered is one of the answers float arithmetic allows.
+    // 0 / 0) in every coordinate: what it answered is one of the answers float arithmetic
+    // allows. A finite coordinate beside a non-finite one is not.
     f.holds = true;
     f.ratio = 1;
     f.detail = "answered " + answered + ": a solve in T can reach w = 0 at this depth (w within " +
@@ -627,7 +629,7 @@ template <class T>
 ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& answer) {
   const Segment seg = ray_segment(s);
   if (auto early = before_the_answer(ConsumerCheck::view_position, seg, answer.allFinite(),
-                                     numbers_text(answer)))
+                                     !answer.array().isFinite().any(), numbers_text(answer)))
     return *early;
   ConsumerFinding f;
   f.check = ConsumerCheck::view_position;
@@ -645,7 +647,7 @@ template <class T>
 ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
   const Segment seg = ray_segment(s);
   if (auto early = before_the_answer(ConsumerCheck::linear_depth, seg, std::isfinite(answer),
-                                     protocol::format_number(answer)))
+                                     !std::isfinite(answer), protocol::format_number(answer)))
     return *early;
   ConsumerFinding f;
   f.check = ConsumerCheck::linear_depth;

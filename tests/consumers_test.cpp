@@ -180,6 +180,10 @@ TEST(DepthReconstruction, aPointFloatCannotPlaceIsJudgedByItsRay) {
   ASSERT_TRUE(at_infinity.judged) << at_infinity.detail;
   EXPECT_TRUE(at_infinity.holds) << describe(at_infinity);
   EXPECT_NE(at_infinity.detail.find("can reach w = 0"), std::string::npos) << at_infinity.detail;
+  // A finite coordinate beside a non-finite one is no divide by w^ = 0.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const ConsumerFinding mixed = judge(Vector3<float>(nan, 0.0f, 0.0f));
+  EXPECT_TRUE(mixed.judged && !mixed.holds) << describe(mixed);
   for (const float along : {1.0f, 4.0f, 0.25f}) {
     const ConsumerFinding on_ray = judge(along * point.head<3>());
     EXPECT_TRUE(on_ray.judged && on_ray.holds) << along << ": " << describe(on_ray);
