@@ -117,6 +117,9 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                      "A JSON contract file (fields: families, conventions, places, planes, "
                      "statuses, defects, properties, row3_accuracy, exclude; see the README); "
                      "flags replace the fields they name");
+  verify->add_flag("--strict", options.strict,
+                   "A claimed family, convention or consumer kind with more than 10% of its "
+                   "cases left out fails the run (exit 2) instead of a warning");
   verify->add_flag("--keep-going", options.keep_going,
                    "Go on after a finding; report each kind (property x family x place) once");
   verify->add_option(

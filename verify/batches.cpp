@@ -17,7 +17,7 @@ std::string Batch<T>::text() const {
 
 template <class T>
 Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
-                    std::map<std::string, long>& left_out) {
+                    LeftOut& left_out) {
   Batch<T> b;
   for (std::size_t k = 0, tries = 0; k < size && tries < 64 * size + 64; ++tries) {
     rc::Shrinkable<VerifyCase<T>> drawn =
@@ -27,7 +27,7 @@ Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
       auto problem = std::make_unique<properties::FilteredProblem<T>>(value.c.matrix, value.c.plane,
                                                                       value.c.convention);
       if (const std::string why = draws.left_out(*problem); !why.empty()) {
-        ++left_out[why];
+        left_out.count(value, why);
         continue;
       }
       b.problems.push_back(std::move(problem));
@@ -76,11 +76,10 @@ std::vector<Judged<T>> judge_batch(const Draws<T>& draws, const Batch<T>& b,
   return out;
 }
 
-#define OBLIQUE_VERIFY_BATCHES(T)                                                  \
-  template struct Batch<T>;                                                        \
-  template Batch<T> draw_batch<T>(const Draws<T>&, rc::Random&, std::size_t,       \
-                                  std::map<std::string, long>&);                   \
-  template std::vector<Judged<T>> judge_batch<T>(const Draws<T>&, const Batch<T>&, \
+#define OBLIQUE_VERIFY_BATCHES(T)                                                       \
+  template struct Batch<T>;                                                             \
+  template Batch<T> draw_batch<T>(const Draws<T>&, rc::Random&, std::size_t, LeftOut&); \
+  template std::vector<Judged<T>> judge_batch<T>(const Draws<T>&, const Batch<T>&,      \
                                                  const std::vector<std::string>&, int);
 OBLIQUE_VERIFY_BATCHES(float)
 OBLIQUE_VERIFY_BATCHES(double)

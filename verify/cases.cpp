@@ -115,6 +115,77 @@ std::string Seen::summary(const std::map<std::string, long>& counts) {
   return out.empty() ? "none" : out;
 }
 
+template <class T>
+void LeftOut::count(const VerifyCase<T>& v, const std::string& reason) {
+  ++why[reason];
+  ++families[std::string(generators::family_name(v.c.family))];
+  ++conventions[std::string(convention_name(v.c.convention))];
+}
+
+namespace {
+
+long count_of(const std::map<std::string, long>& counts, const std::string& key) {
+  const auto it = counts.find(key);
+  return it == counts.end() ? 0 : it->second;
+}
+
+/// The contract's families and conventions by name, each with its judged and left-out counts.
+struct Claim {
+  std::string what, name;
+  long judged, left;
+};
+
+std::vector<Claim> claims(const Contract& contract, const Seen& seen, const LeftOut& left_out) {
+  std::vector<Claim> out;
+  for (generators::Family f : contract.families) {
+    const std::string name(generators::family_name(f));
+    out.push_back(
+        {"family", name, count_of(seen.families, name), count_of(left_out.families, name)});
+  }
+  for (Convention c : contract.conventions) {
+    const std::string name(convention_name(c));
+    out.push_back({"convention", name, count_of(seen.conventions, name),
+                   count_of(left_out.conventions, name)});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> unjudged_claims(const Contract& contract, const Seen& seen,
+                                         const LeftOut& left_out, long done) {
+  std::vector<std::string> out;
+  for (const Claim& c : claims(contract, seen, left_out)) {
+    if (c.judged > 0) continue;
+    std::string line =
+        "the contract claims " + c.what + " " + c.name + ", and no case of it was judged: ";
+    if (c.left == 0) {
+      line += "none was drawn in " + std::to_string(done) +
+              " cases: raise --cases or --time-limit, or leave " + c.name + " out of the contract";
+    } else {
+      line += "all " + std::to_string(c.left) +
+              " drawn were left out by the contract (why, over the run: " +
+              Seen::summary(left_out.why) +
+              "): list the statuses those inputs get (\"statuses\", " + "\"refusals\"), or leave " +
+              c.name + " out of the contract";
+    }
+    out.push_back(std::move(line));
+  }
+  return out;
+}
+
+std::string partly_judged(const Contract& contract, const Seen& seen, const LeftOut& left_out,
+                          double share) {
+  std::string out;
+  for (const Claim& c : claims(contract, seen, left_out)) {
+    if (c.judged == 0 || c.left < 2 || c.left <= share * static_cast<double>(c.judged + c.left))
+      continue;
+    out += (out.empty() ? "" : ", ") + c.what + " " + c.name + " " + std::to_string(c.left) +
+           " of " + std::to_string(c.judged + c.left);
+  }
+  return out;
+}
+
 #define OBLIQUE_VERIFY_CASES(T)                                                    \
   template struct VerifyCase<T>;                                                   \
   template class Draws<T>;                                                         \
@@ -122,7 +193,8 @@ std::string Seen::summary(const std::map<std::string, long>& counts) {
   template std::optional<Found<T>> judge<T>(const properties::FilteredProblem<T>&, \
                                             const protocol::TypedAnswer<T>&,       \
                                             const properties::Checks&);            \
-  template void Seen::count<T>(const VerifyCase<T>&);
+  template void Seen::count<T>(const VerifyCase<T>&);                              \
+  template void LeftOut::count<T>(const VerifyCase<T>&, const std::string&);
 OBLIQUE_VERIFY_CASES(float)
 OBLIQUE_VERIFY_CASES(double)
 #undef OBLIQUE_VERIFY_CASES

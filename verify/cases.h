@@ -86,4 +86,24 @@ struct Seen {
   static std::string summary(const std::map<std::string, long>& counts);
 };
 
+/// Drawn cases the contract left out (not sent: it does not judge their status), by why and by
+/// the family and convention drawn.
+struct LeftOut {
+  std::map<std::string, long> why, families, conventions;
+
+  template <class T>
+  void count(const VerifyCase<T>& v, const std::string& reason);
+};
+
+/// One line for each family and convention the contract claims of which no case was judged in
+/// `done` cases: none drawn (raise the budget), or every one left out (why, and what to change).
+/// Empty when each had a case judged.
+std::vector<std::string> unjudged_claims(const Contract& contract, const Seen& seen,
+                                         const LeftOut& left_out, long done);
+
+/// The claimed families and conventions of which more than `share` of the drawn cases were left
+/// out: "family NAME L of D, ..." (empty: none). A single case left out is no pattern.
+std::string partly_judged(const Contract& contract, const Seen& seen, const LeftOut& left_out,
+                          double share);
+
 }  // namespace oblique::verify

@@ -1,5 +1,6 @@
 #include "consumers.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <optional>
 #include <ostream>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include "failure_database.h"
@@ -86,11 +88,23 @@ class ConsumerRun {
     };
     const properties::Settle settle = [&](const properties::ConsumerFinding& f,
                                           const std::string& inputs, bool about) {
-      if (!f.judged) {
-        ++left_out_[f.detail];
+      const std::string check(properties::consumer_check_name(f.check));
+      asked_checks_.insert(f.check);
+      if (const std::string_view why = properties::not_applicable(f.check, round.c.family);
+          !f.judged && !why.empty()) {
+        // Nothing to judge on this family (corners of an infinite frustum, ...): said once in
+        // the summary, not counted as left out. (A judged answer on it is settled as any.)
+        not_applicable_[check + " on " + std::string(generators::family_name(round.c.family)) +
+                        " (" + std::string(why) + ")"] += 1;
         return;
       }
-      ++judged_[std::string(properties::consumer_check_name(f.check))];
+      if (!f.judged) {
+        ++left_out_[f.detail];
+        ++left_out_checks_[check];
+        return;
+      }
+      ++judged_[check];
+      ++judged_families_[std::string(generators::family_name(round.c.family))];
       if (f.holds || caught_) return;
       caught_ =
           Caught<T>{f,     inputs,      program_.last_request(), program_.last_answer(), about, {},
@@ -156,7 +170,38 @@ class ConsumerRun {
     if (caught_) return report(seconds);
     if (total(judged_) == 0) {
       err_ << "oblique verify: no answer was judged in " << index
-           << " rounds (left out: " << summary(left_out_) << "): nothing was verified\n";
+           << " rounds (left out: " << summary(left_out_)
+           << (not_applicable_.empty() ? "" : "; not applicable: " + summary(not_applicable_))
+           << "): nothing was verified\n";
+      return Verdict::error;
+    }
+    // A pass means judged: every property asked and every family the contract claims had an
+    // answer judged.
+    std::vector<std::string> unjudged;
+    for (const auto& [check, left] : left_out_checks_) {
+      if (judged_.count(check)) continue;
+      unjudged.push_back(check + ": all " + std::to_string(left) +
+                         " left out (why, over the run: " + summary(left_out_) +
+                         "): raise --cases or --time-limit, or narrow --families to cases it has");
+    }
+    for (generators::Family f : contract.families) {
+      const std::string name(generators::family_name(f));
+      const bool applicable = std::any_of(
+          asked_checks_.begin(), asked_checks_.end(),
+          [f](properties::ConsumerCheck c) { return properties::not_applicable(c, f).empty(); });
+      if (!applicable || judged_families_.count(name)) continue;
+      unjudged.push_back(
+          "the contract claims family " + name + ", and no answer on it was judged: " +
+          (families.count(name) ? std::to_string(families[name]) +
+                                      " rounds of it, every answer left out (why, over the run: " +
+                                      summary(left_out_) + "): leave " + name + " out of --families"
+                                : "none was drawn in " + std::to_string(index) +
+                                      " rounds: raise --cases or --time-limit"));
+    }
+    if (!unjudged.empty()) {
+      for (const std::string& u : unjudged) err_ << "oblique verify: " << u << "\n";
+      err_ << "oblique verify: no violation in " << total(judged_)
+           << " answers judged, but not all that was claimed was judged; not a pass\n";
       return Verdict::error;
     }
     std::ostringstream line;
@@ -167,6 +212,23 @@ class ConsumerRun {
          << options_.seed << ", " << line.str() << " s)\n  judged: " << summary(judged_)
          << "\n  conventions: " << summary(conventions) << "\n  families: " << summary(families)
          << "\n  left out: " << summary(left_out_) << "\n";
+    if (!not_applicable_.empty())
+      out_ << "  not applicable (rounds): " << summary(not_applicable_) << "\n";
+    // Judged in part only: a property with more than the warning share of its samples left out.
+    std::string partly;
+    for (const auto& [check, left] : left_out_checks_) {
+      const long judged = judged_.count(check) ? judged_.at(check) : 0;
+      if (left < 2 || left <= kLeftOutWarning * static_cast<double>(judged + left)) continue;
+      partly += (partly.empty() ? "" : ", ") + check + " " + std::to_string(left) + " of " +
+                std::to_string(judged + left);
+    }
+    if (!partly.empty()) {
+      out_ << "warning: judged in part only: more than "
+           << static_cast<int>(100 * kLeftOutWarning + 0.5) << "% left out: " << partly
+           << (options_.strict ? " [--strict: not a pass]" : " [--strict makes it a failure]")
+           << "\n";
+      if (options_.strict) return Verdict::error;
+    }
     return Verdict::holds;
   }
 
@@ -306,6 +368,9 @@ class ConsumerRun {
   ConsumerProgram<T> program_;
   Consumers<T> asked_;
   std::map<std::string, long> judged_, left_out_;
+  /// Left out by property, and the families with an answer judged.
+  std::map<std::string, long> left_out_checks_, judged_families_, not_applicable_;
+  std::set<properties::ConsumerCheck> asked_checks_;
   std::optional<Caught<T>> caught_;
 };
 

@@ -108,9 +108,8 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
 }
 
 template <class T>
-Verdict Reporter<T>::passed(long done, double elapsed, const Seen& seen,
-                            const std::map<std::string, long>& left_out, bool stopped_by_time,
-                            long dropped) {
+Verdict Reporter<T>::passed(long done, double elapsed, const Seen& seen, const LeftOut& left_out,
+                            bool stopped_by_time, long dropped) {
   out_ << "oblique verify: " << done << " cases, no violation (" << protocol::scalar_name<T>()
        << ", seed " << options_.seed << ", " << std::fixed;
   out_.precision(1);
@@ -123,14 +122,14 @@ Verdict Reporter<T>::passed(long done, double elapsed, const Seen& seen,
        << "\n  conventions: " << Seen::summary(seen.conventions)
        << "\n  places (with an answer): " << Seen::summary(seen.places)
        << "\n  inputs without an answer: " << Seen::summary(seen.defects) << "\n";
-  if (!left_out.empty() || !draws_.notes().empty()) {
+  if (!left_out.why.empty() || !draws_.notes().empty()) {
     out_ << "  left out by the contract:";
     std::string sep = " ";
     for (const std::string& note : draws_.notes()) {
       out_ << sep << note;
       sep = ", ";
     }
-    for (const auto& [why, n] : left_out) {
+    for (const auto& [why, n] : left_out.why) {
       out_ << sep << why << " " << n << " drawn";
       sep = ", ";
     }
@@ -144,6 +143,15 @@ Verdict Reporter<T>::passed(long done, double elapsed, const Seen& seen,
                                " requests in flight not judged)"
                          : "")
          << "\n";
+  // Judged in part only: a claimed kind with more than the warning share of its cases left out.
+  if (const std::string partly = partly_judged(draws_.contract(), seen, left_out, kLeftOutWarning);
+      !partly.empty()) {
+    out_ << "warning: judged in part only: more than "
+         << static_cast<int>(100 * kLeftOutWarning + 0.5) << "% of the cases left out: " << partly
+         << (options_.strict ? " [--strict: not a pass]" : " [--strict makes it a failure]")
+         << "\n";
+    if (options_.strict) return Verdict::error;
+  }
   return Verdict::holds;
 }
 

@@ -75,7 +75,7 @@ class Verifier {
     std::size_t batch = 16;
     auto last_progress = session_.start();
     std::map<std::string, Kind> kinds;
-    std::map<std::string, long> left_out;
+    LeftOut left_out;
     Seen seen;
     bool stopped_by_time = false;
     long dropped = 0;
@@ -221,8 +221,18 @@ class Verifier {
            << options_.time_limit_seconds << " s); nothing is verified\n";
       return Verdict::error;
     }
+    // A pass means judged: every family and convention the contract claims had a case judged.
+    if (const std::vector<std::string> unjudged =
+            unjudged_claims(draws_.contract(), seen, left_out, done);
+        !unjudged.empty()) {
+      for (const std::string& line : unjudged) err_ << "oblique verify: " << line << "\n";
+      err_ << "oblique verify: no violation in " << done
+           << " cases, but not all the contract claims was judged; not a pass\n";
+      return Verdict::error;
+    }
     const Verdict verdict = reporter_.passed(done, session_.seconds_since_start(), seen, left_out,
                                              stopped_by_time, dropped);
+    if (verdict != Verdict::holds) return verdict;
     if (options_.rasterize) raster_.summary();
     if (!options_.accuracy_dir.empty() && verdict == Verdict::holds && !accuracy_.write())
       return Verdict::error;
@@ -235,8 +245,7 @@ class Verifier {
   }
 
   /// The next batch (at most `size`, within --cases), sent to the implementation at once.
-  Batch<T> next_batch(rc::Random& random, long& generated, std::size_t size,
-                      std::map<std::string, long>& left_out) {
+  Batch<T> next_batch(rc::Random& random, long& generated, std::size_t size, LeftOut& left_out) {
     const std::size_t n =
         std::min<std::size_t>(size, static_cast<std::size_t>(case_limit() - generated));
     Batch<T> b = draw_batch(draws_, random, n, left_out);

@@ -62,7 +62,7 @@ struct Settings {
   /// A kind of case (family, defect, consumer function) the contract claims with more than this
   /// share of its cases left out (not judged: within rounding of no answer, beyond a bound) is
   /// named in a warning line of the run's summary.
-  double left_out_warning = 0.10;
+  double left_out_warning = kLeftOutWarning;
   /// The warning fails the test instead. Set by OBLIQUE_STRICT=1.
   bool strict = false;
 };

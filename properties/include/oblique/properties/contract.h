@@ -70,6 +70,11 @@ Contract engine_contract();
 std::optional<Contract> preset_contract(std::string_view name);
 std::vector<std::string> preset_names();
 
+/// A kind of case (family, convention, consumer kind) the contract claims with more than this
+/// share of its drawn cases left out (not judged: within rounding of no answer, beyond a bound)
+/// is named in a warning line of every way in's summary (a failure under their strict flags).
+inline constexpr double kLeftOutWarning = 0.10;
+
 /// The contract with each empty list filled (families, places, defects, properties: every one;
 /// conventions, statuses, row3_accuracy: the implementation's own) and, for unit planes, the
 /// `scaled` place dropped (a unit normal undoes the scaling) unless it is the only place.

@@ -39,6 +39,9 @@ struct VerifyOptions {
   /// Threads that judge answers (default: the machine's hardware threads).
   int threads = default_threads();
 
+  /// A claimed family, convention or consumer kind with more than kLeftOutWarning of
+  /// its drawn cases left out fails the run (exit 2) instead of a warning line.
+  bool strict = false;
   /// Go on after a finding: each distinct kind (property x family x place) is shrunk once and
   /// reported, plus an index; the exit status is 1 if any was found.
   bool keep_going = false;
@@ -69,9 +72,12 @@ struct VerifyOptions {
 
 /// How a run ended; the CLI exits with its value.
 enum class Verdict {
-  holds = 0,         ///< no violation within the budget (or the kept regressions hold)
-  violated = 1,      ///< a violation, or a crash or hang of the implementation: a report written
-  error = 2,         ///< usage, protocol or I/O errors: nothing was verified
+  holds = 0,     ///< no violation within the budget (or the kept regressions hold)
+  violated = 1,  ///< a violation, or a crash or hang of the implementation: a report written
+  /// usage, protocol or I/O errors: nothing was verified; or the run did not judge what the
+  /// contract claims (a claimed family, convention or consumer kind with no case judged, or with
+  /// too many left out under --strict)
+  error = 2,
   inconclusive = 3,  ///< --rasterize: the rasterizer cannot judge (no EGL, a self-check tripped)
 };
 
