@@ -1,7 +1,7 @@
 cmake_minimum_required(VERSION 3.25)
 # Runs `oblique verify` on an implementation and checks the outcome:
 #   cmake -DOBLIQUE=... -DIMPL=... -DARGS="--cases;2000" -DEXIT=0|1|2 [-DKINDS="a;b"]
-#         [-DMATCH=regex] [-DCAUSE=name] -DREPORTS=dir -P expect_verify.cmake
+#         [-DMATCH=regex] [-DNOT_MATCH=regex] [-DCAUSE=name] -DREPORTS=dir -P expect_verify.cmake
 # EXIT 1 also requires the report (Markdown + JSON) to name one of KINDS, carry the replay
 # command, and the replay command to get an answer from the implementation; with
 # -DALL_KINDS="a;b" (--keep-going) an index and a report for each of ALL_KINDS instead. CAUSE:
@@ -15,6 +15,9 @@ if(NOT result EQUAL EXIT)
 endif()
 if(DEFINED MATCH AND NOT "${output}${errors}" MATCHES "${MATCH}")
   message(FATAL_ERROR "the output does not match '${MATCH}'")
+endif()
+if(NOT_MATCH AND "${output}${errors}" MATCHES "${NOT_MATCH}")
+  message(FATAL_ERROR "the output matches '${NOT_MATCH}', which it must not")
 endif()
 if(CAUSE)
   string(REPLACE "+" "\\+" cause_pattern "${CAUSE}")

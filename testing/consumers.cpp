@@ -86,6 +86,12 @@ void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck chec
           c = *generators::valid_case_for<T>(contract);
           RC_PRE(apply<T>(c.matrix, c.plane, c.convention).status == Status::ok);
           count_generated(c);
+          // A camera the functions are not for: counted refused, never judged (a claimed family
+          // with every case refused fails the run, saying so).
+          if (only.accepts && !only.accepts(c.convention, c.matrix)) {
+            count_left_out(std::string(generators::family_name(c.family)), "", only.name);
+            return;
+          }
         }
         ++tally().implementations[only.name];
         bool counted = false;  // a round's first judged finding counts its case judged
@@ -126,6 +132,8 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
     any = true;
     oblique::Consumers<T> only;
     only.name = consumers.name;
+    only.accepts = consumers.accepts;
+    only.mirror_design = consumers.mirror_design;
     only.*member = consumers.*member;
     for (const Check check : checks) run_check(only, check, contract);
   };

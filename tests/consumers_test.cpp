@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include "oblique/depth_reconstruction.h"
@@ -602,6 +603,45 @@ TEST(Corners, aPointCloudIsRefusedNotHung) {
   const ConsumerFinding f = oblique::properties::judge_corners(m, c, k, mo, cloud);
   EXPECT_FALSE(f.judged);
   EXPECT_NE(f.detail.find("1000 distinct points"), std::string::npos) << f.detail;
+}
+
+// Consumers::accepts: a refused camera's round asks none of the functions that take its
+// projection (each finding left out, "refused by accepts"), and still asks the others.
+TEST(ConsumerRound, aCameraAcceptsRefusesIsNotAskedOfTheProjectionsFunctions) {
+  auto consumers = oblique::properties::reference_consumers<double>();
+  consumers.name = "upright_only";
+  int asked_depth = 0;
+  const auto depth = consumers.linear_depth;
+  consumers.linear_depth = [&](const oblique::properties::DepthSample<double>& s) {
+    ++asked_depth;
+    return depth(s);
+  };
+  const Convention k = Convention::gl;
+  const Matrix4<double> m = perspective(k);
+  const Vector4<double> c = tilted_plane();
+  int picked = 0;
+  const oblique::properties::Pick pick = [&](int lo, int hi) { return lo + (picked++ % (hi - lo)); };
+  for (const bool refuse : {true, false}) {
+    consumers.accepts = [refuse](Convention, const Matrix4<double>&) { return !refuse; };
+    std::map<ConsumerCheck, ConsumerFinding> seen;
+    asked_depth = 0;
+    oblique::properties::consumer_round<double>(
+        m, c, k, consumers, pick,
+        [&](const ConsumerFinding& f, const std::string&, bool) { seen[f.check] = f; });
+    for (ConsumerCheck check :
+         {ConsumerCheck::view_position, ConsumerCheck::linear_depth,
+          ConsumerCheck::culling_keeps_visible, ConsumerCheck::culling_near_is_c,
+          ConsumerCheck::corners_contain_kept}) {
+      ASSERT_TRUE(seen.count(check)) << consumer_check_name(check);
+      const bool refused = !seen[check].judged &&
+                           seen[check].detail == "refused by accepts (upright_only)";
+      EXPECT_EQ(refused, refuse) << consumer_check_name(check) << ": " << seen[check].detail;
+    }
+    if (refuse) EXPECT_EQ(asked_depth, 0);
+    // The pass-camera functions do not take the projection: asked either way.
+    EXPECT_TRUE(seen.count(ConsumerCheck::mirror_view) && seen[ConsumerCheck::mirror_view].judged);
+    EXPECT_TRUE(seen.count(ConsumerCheck::plane_on_surface));
+  }
 }
 
 TEST(ConsumerChecks, namesRoundTrip) {

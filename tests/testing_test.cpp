@@ -219,6 +219,33 @@ TEST(JudgedCoverage, aYFlipSignBugAdaptedAsTheOldReadmeDidNeverPasses) {
   EXPECT_NE(all.find("family y_flipped, and no case of it was judged"), std::string::npos) << all;
 }
 
+// The same for the code around the matrix: Consumers::accepts refusing every y-flipped camera
+// fails a contract that claims y_flipped, saying why; without that claim it passes.
+TEST(JudgedCoverage, aConsumerAcceptsThatRefusesAClaimedFamilyFailsSayingWhy) {
+  Consumers<double> depth;
+  depth.name = "depth_for_upright_cameras";
+  depth.linear_depth = properties::reference_consumers<double>().linear_depth;
+  depth.accepts = [](Convention, const Matrix4<double>& m) { return m(1, 1) > 0; };
+  Contract claims;
+  claims.families = {generators::Family::perspective, generators::Family::y_flipped};
+  int n = 0;
+  ::testing::internal::CaptureStdout();
+  const std::string all = failures_of([&] { testing::check_consumers(depth, claims); }, &n);
+  ::testing::internal::GetCapturedStdout();
+  EXPECT_EQ(n, 1) << all;
+  EXPECT_NE(all.find("the contract claims family y_flipped, and no case of it was judged: all "),
+            std::string::npos)
+      << all;
+  EXPECT_NE(all.find("refused by accepts (depth_for_upright_cameras): widen accepts or leave "
+                     "y_flipped out of the contract"),
+            std::string::npos)
+      << all;
+  claims.families = {generators::Family::perspective};
+  ::testing::internal::CaptureStdout();
+  EXPECT_EQ(failures_of([&] { testing::check_consumers(depth, claims); }), "");
+  ::testing::internal::GetCapturedStdout();
+}
+
 TEST(JudgedCoverage, theStatisticsCountWhatWasJudged) {
   Contract claims;
   claims.families = {generators::Family::perspective};

@@ -1,6 +1,9 @@
 #include "cases.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <type_traits>
 
 #include "oblique/properties/judge.h"
 #include "oblique/protocol/protocol.h"
@@ -99,6 +102,30 @@ std::optional<Found<T>> judge(const properties::FilteredProblem<T>& problem,
 }
 
 template <class T>
+bool consistent_with_float(const generators::Case<T>& c, const Matrix4<T>& answer,
+                           const properties::Checks& checks) {
+  if constexpr (std::is_same_v<T, float>) {
+    return false;
+  } else {
+    const Matrix4<float> answer_f = answer.template cast<float>();
+    if (!answer_f.allFinite()) return false;
+    for (int i = 0; i < 16; ++i) {
+      const T x = answer(i / 4, i % 4);
+      if (static_cast<T>(answer_f(i / 4, i % 4)) == x) continue;
+      char nine[40];
+      std::snprintf(nine, sizeof nine, "%.9Lg", static_cast<long double>(x));
+      if (static_cast<T>(std::strtold(nine, nullptr)) != x) return false;
+    }
+    const Matrix4<float> m = c.matrix.template cast<float>();
+    const Vector4<float> plane = c.plane.template cast<float>();
+    if (!m.allFinite() || !plane.allFinite()) return false;
+    const properties::FilteredProblem<float> problem(m, plane, c.convention);
+    const properties::Outcome<float> outcome{Status::ok, answer_f};
+    return properties::judge(problem, outcome, checks).violation() == nullptr;
+  }
+}
+
+template <class T>
 void Seen::count(const VerifyCase<T>& v) {
   ++families[std::string(generators::family_name(v.c.family))];
   ++conventions[std::string(convention_name(v.c.convention))];
@@ -186,14 +213,16 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
   return out;
 }
 
-#define OBLIQUE_VERIFY_CASES(T)                                                    \
-  template struct VerifyCase<T>;                                                   \
-  template class Draws<T>;                                                         \
-  template std::string request_text<T>(const generators::Case<T>&);                \
-  template std::optional<Found<T>> judge<T>(const properties::FilteredProblem<T>&, \
-                                            const protocol::TypedAnswer<T>&,       \
-                                            const properties::Checks&);            \
-  template void Seen::count<T>(const VerifyCase<T>&);                              \
+#define OBLIQUE_VERIFY_CASES(T)                                                         \
+  template struct VerifyCase<T>;                                                        \
+  template class Draws<T>;                                                              \
+  template std::string request_text<T>(const generators::Case<T>&);                     \
+  template std::optional<Found<T>> judge<T>(const properties::FilteredProblem<T>&,      \
+                                            const protocol::TypedAnswer<T>&,            \
+                                            const properties::Checks&);                 \
+  template bool consistent_with_float<T>(const generators::Case<T>&, const Matrix4<T>&, \
+                                         const properties::Checks&);                    \
+  template void Seen::count<T>(const VerifyCase<T>&);                                   \
   template void LeftOut::count<T>(const VerifyCase<T>&, const std::string&);
 OBLIQUE_VERIFY_CASES(float)
 OBLIQUE_VERIFY_CASES(double)

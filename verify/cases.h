@@ -76,6 +76,15 @@ std::optional<Found<T>> judge(const properties::FilteredProblem<T>& problem,
                               const protocol::TypedAnswer<T>& answer,
                               const properties::Checks& checks);
 
+/// Whether a wrong answer under T wider than float is what float arithmetic gives: every entry
+/// of `answer` is a float or has at most 9 significant digits (how a float prints: shortest or
+/// %.9g), and the answer rounded to float holds under float's bounds on the input rounded to
+/// float (the input a float engine reads). Always false for T = float. The hint that the run
+/// wants --precision float.
+template <class T>
+bool consistent_with_float(const generators::Case<T>& c, const Matrix4<T>& answer,
+                           const properties::Checks& checks);
+
 /// What the judged cases covered, for the summary of a passing run.
 struct Seen {
   std::map<std::string, long> families, conventions, places, defects;

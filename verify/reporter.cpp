@@ -66,6 +66,15 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
   if (!found.answer_line.empty())
     ce.notes.emplace_back("answer", escape_bytes(found.answer_line.substr(0, 2000)));
   if (!found.process.empty()) ce.notes.emplace_back("process", found.process);
+  // A float engine judged under double's bounds: every entry a float, and the answer holds under
+  // float's bounds on the input as a float engine reads it.
+  const bool float_like =
+      found.result && consistent_with_float(v.c, *found.result, draws_.checks());
+  const std::string float_hint =
+      "the answer's entries are floats (9 significant digits or fewer), and it holds under "
+      "float's bounds on this input "
+      "rounded to float: if your code computes in float, run with --precision float";
+  if (float_like) ce.notes.emplace_back("precision", float_hint);
   ce.notes.emplace_back("shrinking", std::to_string(steps) + " steps" +
                                          (out_of_time ? ", stopped by the time limit" : ""));
   ce.notes.emplace_back("found after", std::to_string(found_after_cases) + " cases, " +
@@ -97,6 +106,7 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
 
   out_ << "  " << check_name(f.check) << ": " << relation_text(f) << "\n" << sides_text(f, "  ");
   if (diagnosis.ran) out_ << "  " << properties::likely_cause_line(diagnosis) << "\n";
+  if (float_like) out_ << "  hint: " << float_hint << "\n";
   out_ << "  input (" << ce.family << ", " << ce.convention << ", " << ce.place << "): " << request
        << "\n  found after " << found_after_cases << " cases, " << seconds_text(found_after_seconds)
        << " s\n";

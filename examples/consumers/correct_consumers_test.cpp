@@ -31,6 +31,18 @@ oblique::Consumers<T> depth_only() {
   return c;
 }
 
+/// A mirror pass built as a proper camera (a look-at of the reflected eye; the horizontal flip
+/// done in the projection or the texture lookup), the design declared: a right design, not a
+/// broken mirror. (Undeclared, WrongConsumers.mirrorByReflectedLookAt catches it.)
+template <class T>
+oblique::Consumers<T> proper_camera_mirror() {
+  oblique::Consumers<T> c;
+  c.name = "proper_camera_mirror";
+  c.mirror_view = engine_consumers::mirror_by_reflected_look_at<T>;
+  c.mirror_design = oblique::properties::MirrorDesign::proper_camera;
+  return c;
+}
+
 }  // namespace
 
 // Depth reconstruction in float is judged, not left out: CTest runs this one alone, longer, under
@@ -40,3 +52,7 @@ OBLIQUE_CONSUMERS_TEST(RightConsumersStrict, floatDepthIsJudged, depth_only<floa
                        oblique::Contract{})
 OBLIQUE_CONSUMERS_TEST(RightConsumers, floatHasEveryProperty, right<float>(), oblique::Contract{})
 OBLIQUE_CONSUMERS_TEST(RightConsumers, doubleHasEveryProperty, right<double>(), oblique::Contract{})
+OBLIQUE_CONSUMERS_TEST(RightConsumers, properCameraMirrorDeclaredFloat, proper_camera_mirror<float>(),
+                       oblique::Contract{})
+OBLIQUE_CONSUMERS_TEST(RightConsumers, properCameraMirrorDeclaredDouble,
+                       proper_camera_mirror<double>(), oblique::Contract{})

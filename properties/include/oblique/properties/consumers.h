@@ -226,6 +226,12 @@ struct Consumers {
   std::function<std::vector<Vector3<T>>(const Matrix4<T>& oblique, const Matrix4<T>& original,
                                         Convention convention)>
       corners;
+  /// The cameras the functions that take a projection (view_position, linear_depth,
+  /// culling_planes, corners) are meant for, by the camera's own projection M and its convention,
+  /// as adapt()'s accepts (the presets of adapter.h serve). Empty: every camera. A refused
+  /// camera's round asks none of them; runs count it refused by accepts, never judged, and a
+  /// family the contract claims with every case refused fails the run, saying so.
+  std::function<bool(Convention convention, const Matrix4<T>& projection)> accepts;
 };
 
 }  // namespace oblique
