@@ -122,7 +122,8 @@ Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::str
     for (const protocol::ConsumerKind k : kinds_of(c)) kinds.push_back(k);
   properties::ConsumerProgram<T> program(
       command, std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000)));
-  const Consumers<T> asked = program.consumers(kinds, command);
+  Consumers<T> asked = program.consumers(kinds, command);
+  asked.mirror_design = scene.mirror_design;  // the design the scene's engine declares
   try {
     for (SurfaceCheck& s : check.surfaces) {
       if (s.render) s.impl_consumers = judge_consumers<T>(scene, s, asked);

@@ -69,7 +69,7 @@ ParsedScene parse_scene(std::string_view text_in) {
       fail("(top level)", std::string("must be an object, not ") + type_of(root));
     only_keys(root, "",
               {"name", "convention", "depth_buffer", "camera", "surfaces", "max_depth", "viewport",
-               "consumers"});
+               "consumers", "mirror_design"});
     scene.name = text(root, "", "name");
     const std::string convention = text(root, "", "convention");
     const auto c = parse_convention(convention);
@@ -116,6 +116,14 @@ ParsedScene parse_scene(std::string_view text_in) {
             scene.consumers.end())
           scene.consumers.push_back(*consumer);
       }
+    }
+    if (has(root, "mirror_design")) {
+      const std::string design = text(root, "", "mirror_design");
+      const auto parsed_design = properties::parse_mirror_design(design);
+      if (!parsed_design)
+        fail("mirror_design",
+             "unknown mirror design \"" + design + "\" (reflected_view or proper_camera)");
+      scene.mirror_design = *parsed_design;
     }
     scene.camera = read_camera(root, scene.convention);
     const json& surfaces = member(root, "", "surfaces");

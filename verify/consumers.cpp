@@ -315,7 +315,9 @@ class ConsumerRun {
            ", \"convention\": " + protocol::json_string(convention_name(c.round.c.convention)) +
            ", \"family\": " + protocol::json_string(generators::family_name(c.round.c.family)) +
            ", \"projection\": " + hex_list(m) + ", \"plane\": " + hex_list(plane) +
-           ", \"picks\": " + picks + ", \"request\": " + protocol::json_string(c.request) +
+           ", \"picks\": " + picks + ", \"mirror_design\": " +
+           protocol::json_string(properties::mirror_design_name(asked_.mirror_design)) +
+           ", \"request\": " + protocol::json_string(c.request) +
            ", \"answer\": " + protocol::json_string(c.answer) +
            ", \"seed\": " + std::to_string(options_.seed) +
            ", \"round\": " + std::to_string(c.index) + "}\n";
@@ -411,11 +413,22 @@ Verdict replay_in(const VerifyOptions& options, const protocol::JsonValue& repor
     for (int i = 0; i < 4; ++i) round.c.plane(i) = c[static_cast<std::size_t>(i)];
     round.c.convention = *parsed_convention;
   }
+  // The design the run judged mirror_view by (absent in reports before it was recorded: the
+  // command line's).
+  VerifyOptions replayed = options;
+  if (const protocol::JsonValue* design = report.find("mirror_design"); error.empty() && design) {
+    const std::optional<properties::MirrorDesign> parsed =
+        design->is_string() ? properties::parse_mirror_design(design->text) : std::nullopt;
+    if (parsed)
+      replayed.mirror_design = *parsed;
+    else
+      error = "\"mirror_design\" is reflected_view or proper_camera";
+  }
   if (!error.empty()) {
     err << "oblique verify: --replay " << options.replay << ": " << error << "\n";
     return Verdict::error;
   }
-  return ConsumerRun<T>(options, kinds, out, err).replay(std::move(round));
+  return ConsumerRun<T>(replayed, kinds, out, err).replay(std::move(round));
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "oblique/depth_reconstruction.h"
 #include "oblique/pass_camera.h"
 #include "oblique/plane.h"
+#include "oblique/properties/consumers.h"
 
 namespace oblique::scene {
 
@@ -81,6 +82,9 @@ struct Scene {
   std::optional<std::array<int, 2>> viewport;  ///< width, height in pixels
   /// What each rendered pass feeds its matrix to ("consumers"): only these are checked.
   std::vector<SceneConsumer> consumers;
+  /// How the engine builds a mirror pass's camera ("mirror_design": reflected_view, the default,
+  /// or proper_camera): what `check --impl` judges the program's mirror_view by.
+  properties::MirrorDesign mirror_design = properties::MirrorDesign::reflected_view;
 };
 
 /// A scene, or why the text is not one (naming the field, or the line and column).
