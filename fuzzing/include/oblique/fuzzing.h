@@ -35,8 +35,12 @@ namespace oblique::fuzzing {
 /// The body of a libFuzzer target for one function: decodes the input (in the function's scalar
 /// type, whatever the scalar byte says, in one of the contract's conventions), runs the function
 /// and judges its answer under the contract (oblique/properties/contract.h: its conventions,
-/// statuses, refusals, properties and row3_accuracy; the decoder makes its own projections and
-/// planes, so families, places, planes and defects do not apply); aborts on a violation. Returns 0,
+/// families, planes, statuses, refusals, properties and row3_accuracy: an input of a family the
+/// contract does not claim is not given to the function, under unit planes the plane's normal is
+/// scaled to length 1, and inputs without an answer are judged as the statuses say; the decoder
+/// makes its own planes, so the contract's places are not chosen); aborts on a violation. Inputs
+/// left out (by the contract, by `accepts`, or within rounding of no answer) are counted and
+/// printed at exit with those judged. Returns 0,
 /// as LLVMFuzzerTestOneInput does. Compiled in oblique::fuzzing for float, double and long double
 /// (in a namespace named by Eigen's layout: oblique/eigen_layout.h).
 inline namespace OBLIQUE_EIGEN_LAYOUT {
@@ -45,7 +49,8 @@ int test_one_input(const std::uint8_t* data, std::size_t size,
                    const properties::Implementation<T>& impl, const Contract& contract = {});
 /// The body of a libFuzzer target for the code around the matrix (oblique::Consumers, as
 /// oblique::testing::check_consumers takes it): decodes M and C as test_one_input() does (in one
-/// of the contract's conventions), takes the core's oblique matrix for them, and with choices read
+/// of the contract's conventions and families, unit planes scaled; `consumers.accepts` honoured
+/// by consumer_round()), takes the core's oblique matrix for them, and with choices read
 /// from the input's end (a point of the kept region, the depth buffer, a main view, a mirror's
 /// plane, portal frames) asks each function given and judges its answer by its properties
 /// (oblique/properties/consumers.h). On a violation prints the finding and every input

@@ -9,6 +9,7 @@
 // subnormals, DBL_MIN, DBL_MAX, powers of two and ties are picked by index.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -27,6 +28,7 @@
 #include "oblique/projection.h"
 #include "oblique/properties/adapter.h"
 #include "oblique/properties/filtered.h"
+#include "oblique/properties/generators.h"
 #include "oblique/properties/implementations.h"
 #include "oblique/properties/judge.h"
 #include "oblique/protocol/numbers.h"
@@ -125,6 +127,26 @@ inline const char* family_label(int family) {
   const char* names[] = {"frustum", "infinite",     "orthographic", "y_flipped", "rotated",
                          "raw",     "stereo_shift", "x_flipped",    "xy_flipped"};
   return names[family % 9];
+}
+
+/// The generator families (oblique/properties/case_kinds.h) a decoded case is one of, for a
+/// contract's families: a built frustum is perspective when centred (M13 = M23 = 0), else
+/// off_axis or jittered (the decoder does not tell them apart); raw numbers are general.
+inline std::vector<generators::Family> contract_families(const FuzzCase& c) {
+  using generators::Family;
+  switch (c.family) {
+    case 0:
+      if (c.matrix(0, 2) == 0 && c.matrix(1, 2) == 0) return {Family::perspective};
+      return {Family::off_axis, Family::jittered};
+    case 1: return {Family::infinite};
+    case 2: return {Family::orthographic};
+    case 3: return {Family::y_flipped};
+    case 4: return {Family::rotated};
+    case 6: return {Family::stereo_shift};
+    case 7: return {Family::x_flipped};
+    case 8: return {Family::xy_flipped};
+    default: return {Family::general};
+  }
 }
 
 inline constexpr std::uint8_t kShiftMarker = 0x53;  // 'S'
@@ -382,6 +404,32 @@ inline void print_counts() {
   std::fprintf(stderr, "%s\n", line.c_str());
 }
 
+/// Whether the decoded case is one the contract claims, made so where it can be: a family it
+/// lists (else counted, "family F: not in the contract"), and under unit planes its plane's
+/// normal scaled to length 1 in double (a plane without a finite normal is counted left out).
+/// The decoder makes its own planes, so the contract's places are not chosen here.
+inline bool in_contract(FuzzCase& c, const Contract& contract) {
+  const std::vector<generators::Family> families = contract_families(c);
+  const bool claimed = std::any_of(families.begin(), families.end(), [&](generators::Family f) {
+    return std::find(contract.families.begin(), contract.families.end(), f) !=
+           contract.families.end();
+  });
+  if (!claimed) {
+    ++counts().left_out["family " + std::string(generators::family_name(families.front())) +
+                        ": not in the contract"];
+    return false;
+  }
+  if (contract.planes == Planes::unit) {
+    const double norm = c.plane.head<3>().norm();
+    if (!std::isfinite(norm) || norm == 0 || !c.plane.allFinite()) {
+      ++counts().left_out["a plane without a finite normal (unit planes)"];
+      return false;
+    }
+    c.plane /= norm;
+  }
+  return true;
+}
+
 /// Runs `impl` on the case (in T) when it accepts it, and judges the answer with `checks`.
 /// Inputs properties::not_judged() leaves out for `checks.statuses` and `refusals` (under exact:
 /// the refusals it implements, empty: all) are not given to it (and
@@ -395,7 +443,10 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
            const std::vector<Status>& refusals = {}) {
   const Matrix4<T>& m = judge.matrix();
   const Vector4<T>& plane = judge.plane();
-  if (!impl.accepts(c.convention, m)) return;
+  if (!impl.accepts(c.convention, m)) {
+    ++counts().left_out["refused by accepts (" + impl.name + ")"];
+    return;
+  }
   if (const std::string why = properties::not_judged(judge.problem(), checks.statuses, refusals);
       !why.empty() && !(unanswerable && judge.problem().exact_status() != Status::ok)) {
     ++counts().left_out[why];
