@@ -50,7 +50,7 @@ std::string relation_text(const Finding& f) {
                                         : "an input without an answer is refused";
     case Check::finite_result: return "an ok answer is finite";
     case Check::near_is_clip_plane:
-      return "some lambda > 0 has |near'_i - lambda C_i| <= gamma(3) (lambda |C_i| + |t M4_i|) "
+      return "some lambda > 0 has |near'_i - lambda C_i| <= gamma(3) (lambda |C_i| + |M4_i|) "
              "for every i (or, where that fails, within u lambda max|C_j| more: a change no "
              "rasterizer sees)";
     case Check::side_rows_unchanged:

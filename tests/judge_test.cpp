@@ -289,6 +289,61 @@ TEST(NearPlane, aComponentFarBelowThePlanesNormMayBeLostButNotVisiblyChanged) {
   near_plane_allowance<long double>();
 }
 
+// A [0, 1] row 3 formed in T from the GL one, (M'_3(gl) + M_4) / 2 (the same near plane: an
+// engine that builds the GL row and converts), is judged by what its rounding does: the GL row's
+// |M_4| term carried through the conversion (tolerance.h, kConversionRoundings). Its entry where
+// M_4 is not 0 may be many ulps of the row's largest entry off where lambda C is small (an
+// orthographic box whose far corner lies far along C: the w entry, M_4w = 1), and still holds; a
+// change of that entry well past the allowance, 64 u (|M_4| + lambda max|C|), is seen by a
+// rasterizer and fails.
+template <class T>
+void zero_one_row_from_gl(bool box) {
+  auto make = [box](Convention k) {
+    return box ? orthographic<T>(T(-10), T(10), T(-10), T(10), T(0.1), T(1000), k)
+               : frustum<T>(T(-0.0577), T(0.0577), T(-0.0577), T(0.0577), T(0.1), T(100), k);
+  };
+  const Matrix4<T> m = make(Convention::zero_one), m_gl = make(Convention::gl);
+  ASSERT_EQ(m.row(3), m_gl.row(3));
+  const int entry = box ? 3 : 2;  // where M_4 is not 0
+  Checks near_only;
+  near_only.properties = {Property::near_is_clip_plane};
+  const T u = std::numeric_limits<T>::epsilon() / 2;
+  int judged = 0;
+  for (const T tilt : {T(0), T(0.01), T(0.1), T(0.5)}) {
+    for (const T h : {T(0.05), T(0.5), T(1.6), T(5), T(20)}) {
+      const Vector4<T> plane(T(0.3) * tilt, T(1), -tilt, -h);
+      const ObliqueResult<T> gl = apply<T>(m_gl, plane, Convention::gl);
+      if (!gl.ok()) continue;
+      Matrix4<T> converted = m;
+      for (int j = 0; j < 4; ++j)
+        converted(2, j) = (gl.projection(2, j) + m(3, j)) * T(0.5);  // in T, as the engine does
+      const Problem<T> problem(m, plane, Convention::zero_one);
+      if (problem.exact_status() != Status::ok) continue;
+      ++judged;
+      const Judgement held = judge(problem, Outcome<T>{Status::ok, converted}, near_only);
+      EXPECT_TRUE(held.holds()) << (box ? "box" : "frustum") << ", tilt " << tilt << ", h " << h
+                                << ": " << residual_text(*held.violation());
+      // A change a rasterizer sees: 64 u (|M_4| + lambda max|C|) more in that entry (past its own
+      // allowance and what a change of lambda within the other entries' can absorb).
+      T row_max = 0;
+      for (int j = 0; j < 4; ++j) row_max = std::max(row_max, std::abs(converted(2, j)));
+      Matrix4<T> moved = converted;
+      moved(2, entry) += 64 * u * (std::abs(m(3, entry)) + row_max);
+      const Judgement seen = judge(problem, Outcome<T>{Status::ok, moved}, near_only);
+      ASSERT_NE(seen.violation(), nullptr) << "tilt " << tilt << ", h " << h;
+      EXPECT_EQ(check_name(seen.violation()->check), "near_is_clip_plane");
+    }
+  }
+  EXPECT_GE(judged, 15);
+}
+
+TEST(NearPlane, aZeroOneRowConvertedFromTheGlRowHoldsAndAVisibleChangeDoesNot) {
+  for (const bool box : {false, true}) {
+    zero_one_row_from_gl<float>(box);
+    zero_one_row_from_gl<double>(box);
+  }
+}
+
 // Every check has its own name, read back to itself; a property's check is the property's.
 TEST(Findings, everyCheckHasOneNameReadBackToItself) {
   std::set<std::string> names;

@@ -594,11 +594,11 @@ class FilteredProblem {
       const NumVec far =
           filtering::combine(cert::constant(fr.m3), r[2], cert::constant(fr.m4), r[3]);
       const Num& g = constants_.entry_gamma;
-      const Num t_near = cert::constant(std::abs(nr.m4));
+      const Num t_near = cert::constant(1);  // row 3's own error, as the exact checker's
       const Num underflow = cert::constant(tolerance::kEntryRoundings) * underflow_row_;
       // 1. The interval test: every entry's lower bound on lambda below every upper bound, and
       //    every upper bound above 0 (there is one: C_w < 0). Each entry's bounds are formed in
-      //    its own scale (near'_i and t M4_i by 2^-e_i, C_i by 2^-f_i, so an entry far below the
+      //    its own scale (near'_i and M4_i by 2^-e_i, C_i by 2^-f_i, so an entry far below the
       //    others keeps its bits): lows_i = low_i 2^k_i, k_i = e_i - f_i.
       std::array<Num, 4> lows, highs;
       std::array<int, 4> k{};

@@ -312,10 +312,14 @@ class Problem {
     const exact::Vec far = exact::combine(fr.m3, r[2], fr.m4, r[3]);
     const int p = tolerance::precision_bits<T>();
     const exact::Rational entry_gamma = tolerance::gamma(tolerance::kEntryRoundings, p);
-    const exact::Rational t_near = exact::abs(exact::Rational(nr.m4));
+    // Row 3's own error per entry, in every convention: gamma(kEntryRoundings) (|a C_i| + |M4_i|)
+    // (as row3_accuracy's bound): an implementation may form any convention's row from another's
+    // (a [0, 1] row as (M'_3(gl) + M_4) / 2), and then carries the |M_4| term (tolerance.h,
+    // "a row formed through another convention's").
+    const exact::Rational t_near = 1;
 
     // 1. near' = lambda C for some lambda > 0, every entry within its own rounding:
-    //    |near'_i - lambda C_i| <= g (lambda |C_i| + |t M4_i|) + w lambda, g =
+    //    |near'_i - lambda C_i| <= g (lambda |C_i| + |M4_i|) + w lambda, g =
     //    gamma(kEntryRoundings), first with w = 0; an answer that fails so is tried again with the
     //    allowance for what no rasterizer sees, w = kInvisiblePlaneUlps u max_j |C_j|
     //    (tolerance.h). Each entry bounds lambda to an interval; the property holds when they
@@ -329,7 +333,7 @@ class Problem {
     exact::Rational lambda_low = 0, lambda_high = 0;
     bool feasible = false;
     auto fit = [&](const exact::Rational& w) {
-      // With y_i = sgn(C_i) near'_i, c_i = |C_i|, b_i = g |t M4_i| + underflow:
+      // With y_i = sgn(C_i) near'_i, c_i = |C_i|, b_i = g |M4_i| + underflow:
       //   lambda >= (y_i - b_i) / (c_i (1 + g) + w), and lambda (c_i (1 - g) - w) <= y_i + b_i.
       // The largest |C_k| always gives an upper bound (c_k (1 - g) > w); the first sets it (a
       // negative upper bound is an answer, not "none yet": it makes the test fail).

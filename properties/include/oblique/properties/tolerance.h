@@ -52,6 +52,17 @@ constexpr int kEntryRoundings = 3;
 /// rasterizer sees, u max|C| or more in one coefficient, is still a violation.
 constexpr int kInvisiblePlaneUlps = 1;
 
+// A row formed through another convention's: an engine may build the GL row and convert it,
+// M'_3(zero_one) = (M'_3(gl) + M_4) / 2 (the same near plane). The GL row's entries are within
+// gamma(2) (a_gl |C_i| + |M4_i|); the sum with M_4 rounds once more (u |a_gl C_i|, where M4_i is
+// not 0; elsewhere it is exact) and the halving is exact, so with lambda = a_gl / 2 each entry is
+// within gamma(3) (lambda |C_i| + |M4_i|): row 3's bound of every convention (Problem::row3_error,
+// row3_accuracy), which property 1 now uses for [0, 1] too (it had no |M_4| term there). What a
+// rasterizer sees of it: a [0, 1] rasterizer's near test evaluates M'_3 . v in float, a GL one
+// M'_3 . v + M_4 . v; an |M_4| term in the row's error is the size of what the GL pipeline's own
+// evaluation of w adds to its near test, and the tilt it allows (3e-7 on an orthographic box in
+// float, where lambda C is small beside M_4w = 1) is no more than that.
+
 /// The accurate method's promise: every entry of M' within this many units in the last place of
 /// the correctly rounded exact answer (exact::ulp_distance).
 constexpr double kAccurateUlps = 2;
