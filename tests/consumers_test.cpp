@@ -620,7 +620,9 @@ TEST(ConsumerRound, aCameraAcceptsRefusesIsNotAskedOfTheProjectionsFunctions) {
   const Matrix4<double> m = perspective(k);
   const Vector4<double> c = tilted_plane();
   int picked = 0;
-  const oblique::properties::Pick pick = [&](int lo, int hi) { return lo + (picked++ % (hi - lo)); };
+  const oblique::properties::Pick pick = [&](int lo, int hi) {
+    return lo + (picked++ % (hi - lo));
+  };
   for (const bool refuse : {true, false}) {
     consumers.accepts = [refuse](Convention, const Matrix4<double>&) { return !refuse; };
     std::map<ConsumerCheck, ConsumerFinding> seen;
@@ -633,8 +635,8 @@ TEST(ConsumerRound, aCameraAcceptsRefusesIsNotAskedOfTheProjectionsFunctions) {
           ConsumerCheck::culling_keeps_visible, ConsumerCheck::culling_near_is_c,
           ConsumerCheck::corners_contain_kept}) {
       ASSERT_TRUE(seen.count(check)) << consumer_check_name(check);
-      const bool refused = !seen[check].judged &&
-                           seen[check].detail == "refused by accepts (upright_only)";
+      const bool refused =
+          !seen[check].judged && seen[check].detail == "refused by accepts (upright_only)";
       EXPECT_EQ(refused, refuse) << consumer_check_name(check) << ": " << seen[check].detail;
     }
     if (refuse) EXPECT_EQ(asked_depth, 0);

@@ -52,7 +52,7 @@ OBLIQUE_CONSUMERS_TEST(RightConsumersStrict, floatDepthIsJudged, depth_only<floa
                        oblique::Contract{})
 OBLIQUE_CONSUMERS_TEST(RightConsumers, floatHasEveryProperty, right<float>(), oblique::Contract{})
 OBLIQUE_CONSUMERS_TEST(RightConsumers, doubleHasEveryProperty, right<double>(), oblique::Contract{})
-OBLIQUE_CONSUMERS_TEST(RightConsumers, properCameraMirrorDeclaredFloat, proper_camera_mirror<float>(),
-                       oblique::Contract{})
+OBLIQUE_CONSUMERS_TEST(RightConsumers, properCameraMirrorDeclaredFloat,
+                       proper_camera_mirror<float>(), oblique::Contract{})
 OBLIQUE_CONSUMERS_TEST(RightConsumers, properCameraMirrorDeclaredDouble,
                        proper_camera_mirror<double>(), oblique::Contract{})

@@ -76,7 +76,7 @@ constexpr double kAccurateUlps = 2;
 //    not be one of L U: fuzz_consumers found a reference 56,000 times off such a bound), but
 //    with partial pivoting |l_ij| <= 1 and |u_ij| <= rho max|m|, rho <= 2^(n-1), so every entry
 //    of |L||U| is at most n rho max|m| = 32 max|m| (lu_entry_bound()): the worst case, used for
-//    the pass cameras. Depth reconstruction and the corners bound it from the matrix at hand
+//    the corners and the pass cameras. Depth reconstruction bounds it from the matrix at hand
 //    instead (consumers.cpp, solve_error()): |L^||U^| from the exact factors of every pivot
 //    order rounding can choose, each computed factor within the elimination's error of its exact
 //    value; and, for an inverse by cofactors (what Eigen, GLM and most engines do), each
