@@ -7,8 +7,10 @@ oblique=$1
 dir=$2
 impl=$3
 shift 3
-rm -rf "$dir"
-out=$("$oblique" verify --impl "$impl" --accuracy "$dir" "$@" 2>&1) || {
+rm -rf "$dir" "$dir.reports"
+# Its own report folder: two of these run at once under ctest -j, and the default ./oblique-reports
+# was one both probed (one run's probe removed the folder the other had just found).
+out=$("$oblique" verify --impl "$impl" --accuracy "$dir" --report-dir "$dir.reports" "$@" 2>&1) || {
   printf '%s\n' "$out"
   echo "expect_accuracy.sh: the run did not hold"
   exit 1

@@ -290,12 +290,23 @@ std::string check_report_directory(const std::string& directory) {
       for (const fs::path& p : levels) fs::remove(p, ignored);  // empty directories only
     }
   } tidy{created};
-  fs::create_directories(directory, ec);
-  if (ec) return "cannot be created (" + ec.message() + ")";
-  if (!fs::is_directory(directory, ec)) return "is not a directory";
   const std::string probe =
       (fs::path(directory) / (".oblique-verify-probe-" + std::to_string(::getpid()))).string();
-  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  // A run beside this one probing the same new directory removes it when it is done: one that
+  // vanishes between being made and being written to is made again (a few times), never called
+  // "not a directory".
+  int fd = -1;
+  for (int attempt = 0;; ++attempt) {
+    fs::create_directories(directory, ec);
+    if (ec) return "cannot be created (" + ec.message() + ")";
+    const bool is_directory = fs::is_directory(directory, ec);
+    if (is_directory) fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    const bool vanished = !is_directory ? !fs::exists(directory, ec) : fd < 0 && errno == ENOENT;
+    if (fd >= 0 || !vanished || attempt == 7) {
+      if (!is_directory && !vanished) return "is not a directory";
+      break;
+    }
+  }
   if (fd < 0) return std::string("cannot be written (") + std::strerror(errno) + ")";
   const bool written = ::write(fd, "x", 1) == 1;
   ::close(fd);
