@@ -8,6 +8,7 @@ dir=$2
 impl=$3
 shift 3
 rm -rf "$dir" "$dir.reports"
+mkdir -p "$dir.reports"  # made here: verify then neither makes nor removes it or its parent
 # Its own report folder: two of these run at once under ctest -j, and the default ./oblique-reports
 # was one both probed (one run's probe removed the folder the other had just found).
 out=$("$oblique" verify --impl "$impl" --accuracy "$dir" --report-dir "$dir.reports" "$@" 2>&1) || {
