@@ -298,6 +298,7 @@ std::string check_report_directory(const std::string& directory) {
   int fd = -1;
   for (int attempt = 0;; ++attempt) {
     fs::create_directories(directory, ec);
+    if (ec && ec == std::errc::no_such_file_or_directory && attempt < 7) continue;  // (the same)
     if (ec) return "cannot be created (" + ec.message() + ")";
     const bool is_directory = fs::is_directory(directory, ec);
     if (is_directory) fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
