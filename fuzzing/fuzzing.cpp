@@ -5,7 +5,6 @@
 #include "oblique/fuzzing/driver.h"
 
 namespace oblique::fuzzing {
-
 inline namespace OBLIQUE_EIGEN_LAYOUT {
 
 template <class T>

@@ -193,7 +193,7 @@ std::vector<std::string> unjudged_claims(const Contract& contract, const Seen& s
       line += "all " + std::to_string(c.left) +
               " drawn were left out by the contract (why, over the run: " +
               Seen::summary(left_out.why) +
-              "): list the statuses those inputs get (\"statuses\", " + "\"refusals\"), or leave " +
+              "): list the statuses those inputs get (\"statuses\", \"refusals\"), or leave " +
               c.name + " out of the contract";
     }
     out.push_back(std::move(line));
@@ -211,6 +211,12 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
            " of " + std::to_string(c.judged + c.left);
   }
   return out;
+}
+
+std::string partly_judged_warning(const std::string& partly, bool strict) {
+  return "warning: judged in part only: more than " +
+         std::to_string(static_cast<int>(100 * kLeftOutWarning + 0.5)) + "% left out: " + partly +
+         (strict ? " [--strict: not a pass]" : " [--strict makes it a failure]") + "\n";
 }
 
 #define OBLIQUE_VERIFY_CASES(T)                                                         \

@@ -223,10 +223,7 @@ class ConsumerRun {
                 std::to_string(judged + left);
     }
     if (!partly.empty()) {
-      out_ << "warning: judged in part only: more than "
-           << static_cast<int>(100 * kLeftOutWarning + 0.5) << "% left out: " << partly
-           << (options_.strict ? " [--strict: not a pass]" : " [--strict makes it a failure]")
-           << "\n";
+      out_ << partly_judged_warning(partly, options_.strict);
       if (options_.strict) return Verdict::error;
     }
     return Verdict::holds;

@@ -156,10 +156,7 @@ Verdict Reporter<T>::passed(long done, double elapsed, const Seen& seen, const L
   // Judged in part only: a claimed kind with more than the warning share of its cases left out.
   if (const std::string partly = partly_judged(draws_.contract(), seen, left_out, kLeftOutWarning);
       !partly.empty()) {
-    out_ << "warning: judged in part only: more than "
-         << static_cast<int>(100 * kLeftOutWarning + 0.5) << "% of the cases left out: " << partly
-         << (options_.strict ? " [--strict: not a pass]" : " [--strict makes it a failure]")
-         << "\n";
+    out_ << partly_judged_warning(partly, options_.strict);
     if (options_.strict) return Verdict::error;
   }
   return Verdict::holds;
