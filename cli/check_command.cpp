@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "oblique/properties/contract.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/raster/raster.h"
 #include "oblique/scene/check.h"
@@ -23,6 +24,7 @@ struct CheckSettings {
   bool rasterize = false;           ///< --rasterize
   std::string device = "software";  ///< --device
   int raster_size = 1000;           ///< --raster-size
+  bool strict = false;              ///< --strict
 };
 
 /// The exit status of a raster check that could not judge (no EGL, a self-check tripped).
@@ -206,7 +208,20 @@ int run_check(const CheckSettings& settings) {
         paths << "picture: " << file.string() << "\n";
     }
   }
+  // A pass means judged: a consumer the scene names with nothing judged is no pass; one mostly
+  // left out is said (and fails under --strict).
+  const oblique::scene::ConsumerCoverage coverage =
+      oblique::scene::consumer_coverage(*parsed.scene, check, !settings.impl.empty());
+  if (!coverage.partly.empty())
+    (settings.as_json ? std::cerr : std::cout)
+        << oblique::partly_judged_warning(coverage.partly, settings.strict);
   if (!check.passes() || raster_status == 1) return 1;
+  if (!coverage.unjudged.empty() || (settings.strict && !coverage.partly.empty())) {
+    for (const std::string& line : coverage.unjudged)
+      std::cerr << "oblique check: " << line << "\n";
+    std::cerr << "oblique check: not all the consumers the scene names were judged; not a pass\n";
+    return 2;
+  }
   return raster_status;
 }
 
@@ -219,7 +234,8 @@ void setup_check(CLI::App& app, int& exit_code) {
       "oblique projection, the properties that apply, the depth precision left and the scissor "
       "rectangle. Exit 0: every rendered pass passes; 1: a property fails (ours, or the "
       "implementation's with --impl, or on the rasterizer); 2: the scene cannot be read, the "
-      "implementation does not answer, or the output or picture cannot be written; 3: "
+      "implementation does not answer, or the output or picture cannot be written, or a "
+      "consumer the scene names had nothing judged (with --strict: more than 10% left out); 3: "
       "--rasterize could not judge (inconclusive).");
   check->add_option("SCENE", settings->scene_path, "The scene file (JSON; see the README)")
       ->required();
@@ -255,6 +271,9 @@ void setup_check(CLI::App& app, int& exit_code) {
       ->add_option("--raster-size", settings->raster_size,
                    "With --rasterize: the frame is N x N pixels, one sample each")
       ->check(CLI::Range(16, 4096));
+  check->add_flag("--strict", settings->strict,
+                  "A consumer the scene names with more than 10% of its answers left out fails "
+                  "the check (exit 2) instead of a warning");
   check->callback([settings, &exit_code] { exit_code = run_check(*settings); });
 }
 

@@ -8,6 +8,9 @@
 //                 Q_y = (Q'_y - m23 Q_z) / m22
 //   a  = (z_high - z_low) / (C . Q), and the near plane a C:
 //        gl M'_3 = a C - M_4; zero_one M'_3 = a C; reversed_z M'_3 = M_4 - a C.
+// make_oblique_zero_one_from_gl is the [0, 1] engine that keeps one GL code path, as engines
+// ported from OpenGL do: the matrix taken to GL's depth range, the GL row formed, and the row
+// converted back (M'_3 = (M'_3(gl) + M_4) / 2), in float.
 // C is first scaled by a power of two so that its largest component is in [0.5, 1) (the answer
 // does not change): C . Q and a then neither overflow nor underflow for planes at the ends of
 // float's range; a component far below the largest may be lost, which no rasterizer sees.
@@ -59,6 +62,13 @@ void make_oblique_zero_one(float m[16], const float plane[4]) {
 }
 void make_oblique_reversed_z(float m[16], const float plane[4]) {
   make_oblique(m, plane, Depth::reversed_z);
+}
+void make_oblique_zero_one_from_gl(float m[16], const float plane[4]) {
+  // The row for GL's [-1, 1] from M built for [0, 1]: that M's GL form has row 3 2 M_3 - M_4
+  // (z_gl = 2 z - w), the GL row is made from it, and z = (z_gl + w) / 2 takes it back.
+  for (int j = 0; j < 4; ++j) m[4 * j + 2] = 2.0f * m[4 * j + 2] - m[4 * j + 3];
+  make_oblique(m, plane, Depth::gl);
+  for (int j = 0; j < 4; ++j) m[4 * j + 2] = (m[4 * j + 2] + m[4 * j + 3]) / 2.0f;
 }
 
 }  // namespace oblique::false_alarms

@@ -12,5 +12,7 @@ namespace oblique::false_alarms {
 void make_oblique_gl(float m[16], const float plane[4]);
 void make_oblique_zero_one(float m[16], const float plane[4]);
 void make_oblique_reversed_z(float m[16], const float plane[4]);
+/// [0, 1] through the GL function: to GL's range, the GL row, and back ((M'_3 + M_4) / 2).
+void make_oblique_zero_one_from_gl(float m[16], const float plane[4]);
 
 }  // namespace oblique::false_alarms

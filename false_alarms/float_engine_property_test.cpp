@@ -19,6 +19,10 @@ const auto zero_one =
 const auto reversed_z =
     adapt<float>("make_oblique_reversed_z", Layout::column_major, Convention::reversed_z,
                  make_oblique_reversed_z, perspective_shape_only<float>);
+// A [0, 1] engine that keeps one GL code path: its row formed in GL's range and converted.
+const auto zero_one_from_gl =
+    adapt<float>("make_oblique_zero_one_from_gl", Layout::column_major, Convention::zero_one,
+                 make_oblique_zero_one_from_gl, perspective_shape_only<float>);
 
 // Every family of the perspective shape and every place, in the function's own convention;
 // answers only (from the void adapter).
@@ -32,6 +36,8 @@ Contract perspective_shapes() {
 OBLIQUE_PROPERTY_TEST(FloatEngine, glHasEveryProperty, gl, perspective_shapes())
 OBLIQUE_PROPERTY_TEST(FloatEngine, zeroOneHasEveryProperty, zero_one, perspective_shapes())
 OBLIQUE_PROPERTY_TEST(FloatEngine, reversedZHasEveryProperty, reversed_z, perspective_shapes())
+OBLIQUE_PROPERTY_TEST(FloatEngine, zeroOneThroughGlHasEveryProperty, zero_one_from_gl,
+                      perspective_shapes())
 
 }  // namespace
 }  // namespace oblique::false_alarms

@@ -1221,11 +1221,15 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
     f.detail = "a singular matrix";
     return f;
   }
-  // Partial pivoting's worst case (lu_bound()): solve_error() here judged the core's own corners
-  // of a near-singular M' violated (fuzz_consumers corpus; docs/noticed-and-left-for-later.md).
-  const Mat chain = mul(mul(exact::abs(*inv), lu_bound(mo)), exact::abs(*inv));
-  const Mat m_chain = mul(mul(exact::abs(*m_inv), lu_bound(mx)), exact::abs(*m_inv));
-  const Rational g = gamma_of<T>(tolerance::kConsumerSolveRoundings);
+  // Each solve's error from the matrix at hand (solve_error(): cofactors or elimination, the
+  // larger), not partial pivoting's worst case.
+  const std::optional<Mat> chain = solve_error<T>(mo, *inv);
+  const std::optional<Mat> m_chain = solve_error<T>(mx, *m_inv);
+  if (!chain || !m_chain) {
+    f.judged = false;
+    f.detail = "a projection's determinant is within T's rounding of 0";
+    return f;
+  }
   const Rational u = unit<T>();
   const Vec cx = exact::to_rational(c);
   const Rational c_normal = std::max({exact::abs(cx[0]), exact::abs(cx[1]), exact::abs(cx[2])});
@@ -1236,7 +1240,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
     for (int i = 0; i < 3; ++i) size[i] = exact::abs(x[i]) + widen;
     size[3] = 1;
     Rational d = 0;
-    for (const auto& [solve, with_m] : {std::pair{&chain, true}, std::pair{&m_chain, false}}) {
+    for (const auto& [solve, with_m] : {std::pair{&*chain, true}, std::pair{&*m_chain, false}}) {
       const Mat& matrix = with_m ? mo : mx;
       Vec q = exact::abs(exact::mul(matrix, x));  // its clip-space point, widened below
       for (int r = 0; r < 4; ++r)
@@ -1244,7 +1248,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
       Vec dv = exact::mul(*solve, q);
       const Rational row3_part = with_m ? exact::dot(*row3, size) : Rational(0);
       const Mat& inverse = with_m ? *inv : *m_inv;
-      for (int i = 0; i < 4; ++i) dv[i] = g * dv[i] + exact::abs(inverse[i][2]) * row3_part;
+      for (int i = 0; i < 4; ++i) dv[i] += exact::abs(inverse[i][2]) * row3_part;
       if (dv[3] >= 1) return -1;  // w not determined: no bound from this solve
       for (int i = 0; i < 3; ++i) d += (dv[i] + size[i] * dv[3]) / (1 - dv[3]) + u * size[i];
     }
@@ -1298,10 +1302,63 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
     }
   }
   double worst = 0;
-  if (facets.empty()) {
+  if (n == 0) {
     f.holds = false;
     worst = std::numeric_limits<double>::infinity();
-    f.detail = "the " + std::to_string(n) + " corners bound no region (fewer than 3 apart)";
+    f.detail = "no corners were given";
+  } else if (facets.empty()) {
+    // Every given point on one line (or one point): the hull is the segment between the two
+    // farthest apart, and each vertex of the kept region must be within delta of it. (A correct
+    // computation in T gives such corners where a solve with a matrix near singular in T
+    // collapses them; delta, from that matrix, is then as large.)
+    Vec lo = points[0], hi = points[0];
+    if (n >= 2) {
+      Vec e;
+      for (int d = 0; d < 4; ++d) e[d] = points[1][d] - points[0][d];
+      Rational t_lo = 0, t_hi = 0;
+      for (const Vec& x : points) {
+        Rational t = 0;
+        for (int d = 0; d < 3; ++d) t += (x[d] - points[0][d]) * e[d];
+        if (t < t_lo) t_lo = t, lo = x;
+        if (t > t_hi) t_hi = t, hi = x;
+      }
+    }
+    for (const Vec& v : kept) {
+      Vec d, r;
+      Rational dd = 0, t = 0;
+      for (int k = 0; k < 3; ++k) {
+        d[k] = hi[k] - lo[k];
+        r[k] = v[k] - lo[k];
+        dd += d[k] * d[k];
+        t += r[k] * d[k];
+      }
+      if (dd > 0) t = std::clamp(Rational(t / dd), Rational(0), Rational(1));
+      Rational dist2 = 0;
+      for (int k = 0; k < 3; ++k) {
+        const Rational off = r[k] - (dd > 0 ? t * d[k] : Rational(0));
+        dist2 += off * off;
+      }
+      if (dist2 <= delta * delta) {
+        worst =
+            std::max(worst, delta > 0 ? std::sqrt(Rational(dist2 / (delta * delta)).get_d()) : 0.0);
+        continue;
+      }
+      const double distance = std::sqrt(dist2.get_d());
+      const double r_v =
+          delta > 0 ? distance / delta.get_d() : std::numeric_limits<double>::infinity();
+      if (f.holds) {
+        f.holds = false;
+        f.detail = "the " + std::to_string(n) +
+                   " distinct corners lie on one line, and the kept region's vertex " + text(v, 3) +
+                   " is " + protocol::format_number(distance) + " from their segment (allowed " +
+                   text(delta) + ")";
+        f.points = {approx_point(v)};
+        for (const Vec& x : points) f.points.push_back(approx_point(x));
+        f.points_what =
+            "the kept region's vertex off the corners' segment (first), and the given corners";
+      }
+      worst = std::max(worst, r_v);
+    }
   }
   for (const Vec& v : kept) {
     for (const Facet& facet : facets) {

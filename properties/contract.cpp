@@ -246,10 +246,15 @@ std::string read_field(Contract& c, const std::string& key, const JsonValue& val
 
 }  // namespace
 
+std::string partly_judged_warning(const std::string& partly, bool strict) {
+  return "warning: judged in part only: more than " +
+         std::to_string(static_cast<int>(100 * kLeftOutWarning + 0.5)) + "% left out: " + partly +
+         (strict ? " [--strict: not a pass]" : " [--strict makes it a failure]") + "\n";
+}
+
 Contract engine_contract() {
   Contract c;
-  c.families.assign(std::begin(generators::perspective_shape_families),
-                    std::end(generators::perspective_shape_families));
+  c.families.assign(std::begin(generators::engine_families), std::end(generators::engine_families));
   c.planes = Planes::unit;
   c.statuses = StatusContract::answers_only;
   return c;

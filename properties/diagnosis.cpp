@@ -185,7 +185,7 @@ std::vector<PanelCase<T>> panel(Convention convention) {
       {s, Family::stereo_shift, false},
       {xs, Family::general, false},
       {ys, Family::general, false},
-      {left, Family::general, true},
+      {left, Family::left_handed, true},
       {orthographic<T>(-2, 2, -1.5, 1.5, 1, 64, convention), Family::orthographic, false},
       // an orthographic volume reaching behind the eye: C'_z < 0 for the last plane below
       {orthographic<T>(-2, 2, -2, 2, -5, 10, convention), Family::orthographic, false},

@@ -7,6 +7,7 @@
 
 #include "oblique/properties/consumer_cases.h"
 #include "oblique/properties/consumer_program.h"
+#include "oblique/properties/contract.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/scene/check.h"
 
@@ -46,6 +47,7 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
                                            const std::string& inputs, bool) {
       if (!f.judged) {
         ++r.left_out;
+        ++r.left_out_why[f.detail];
         return;
       }
       ++r.judged;
@@ -147,6 +149,57 @@ Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::str
 }
 
 }  // namespace
+
+ConsumerCoverage consumer_coverage(const Scene& scene, const SceneCheck& check, bool impl) {
+  ConsumerCoverage out;
+  for (const SceneConsumer consumer : scene.consumers) {
+    const std::string name(scene_consumer_name(consumer));
+    long rendered = 0, applies = 0, judged = 0, left_out = 0;
+    std::map<std::string, long> why;
+    std::string note;
+    for (const SurfaceCheck& s : check.surfaces) {
+      if (!s.render) continue;
+      ++rendered;
+      for (const ConsumerResult& r : impl ? s.impl_consumers : s.consumers) {
+        if (r.consumer != consumer) continue;
+        if (!r.note.empty()) {
+          note = r.note;
+          continue;
+        }
+        ++applies;
+        judged += r.judged;
+        left_out += r.left_out;
+        for (const auto& [reason, n] : r.left_out_why) why[reason] += n;
+      }
+    }
+    const std::string claim = "the scene names consumer " + name + ", and ";
+    if (judged == 0) {
+      if (rendered == 0) {
+        out.unjudged.push_back(claim +
+                               "no pass was rendered to ask it on (each surface's reason is "
+                               "above): move the camera or the surfaces so that one renders, or "
+                               "leave " +
+                               name + " out of \"consumers\"");
+      } else if (applies == 0) {
+        out.unjudged.push_back(claim + "it applies to none of the " + std::to_string(rendered) +
+                               " rendered passes (" + note + "): leave " + name +
+                               " out of \"consumers\", or add a surface it applies to");
+      } else {
+        std::string reasons;
+        for (const auto& [reason, n] : why)
+          reasons += (reasons.empty() ? "" : "; ") + reason + " " + std::to_string(n);
+        out.unjudged.push_back(claim + "none of its answers was judged: all " +
+                               std::to_string(left_out) + " left out (why: " + reasons +
+                               "): ask in a wider precision (--precision), or leave " + name +
+                               " out of \"consumers\"");
+      }
+    } else if (left_out >= 2 && left_out > kLeftOutWarning * double(judged + left_out)) {
+      out.partly += (out.partly.empty() ? "" : ", ") + name + " " + std::to_string(left_out) +
+                    " of " + std::to_string(judged + left_out);
+    }
+  }
+  return out;
+}
 
 Expected<Done> judge_implementation_consumers(const Scene& scene, SceneCheck& check,
                                               const std::string& command, double timeout_seconds) {

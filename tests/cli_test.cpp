@@ -43,8 +43,9 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
   std::uniform_real_distribution<double> unit(0, 1);
   auto log_uniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, unit(random)); };
   std::vector<Case> out;
-  const char* families[] = {"perspective", "off_axis", "infinite", "orthographic", "y_flipped",
-                            "jittered",    "rotated",  "general",  "x_flipped",    "xy_flipped"};
+  const char* families[] = {"perspective", "off_axis",   "infinite",   "orthographic",
+                            "y_flipped",   "jittered",   "rotated",    "general",
+                            "x_flipped",   "xy_flipped", "left_handed"};
   constexpr int kFamilies = sizeof families / sizeof families[0];
   for (int i = 0; i < count; ++i) {
     Case k;
@@ -55,7 +56,7 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
     const double shift = unit(random) - 0.5;
     if (k.family == "perspective" || k.family == "y_flipped" || k.family == "jittered" ||
         k.family == "rotated" || k.family == "general" || k.family == "x_flipped" ||
-        k.family == "xy_flipped") {
+        k.family == "xy_flipped" || k.family == "left_handed") {
       k.m = frustum<double>(-right, right, -top, top, n, f, k.convention);
     } else if (k.family == "off_axis") {
       k.m = frustum<double>(-right + shift * right, right + shift * right, -top, top * 0.5, n, f,
@@ -67,6 +68,7 @@ std::vector<Case> generated_cases(unsigned seed, int count) {
     }
     if (k.family == "y_flipped" || k.family == "xy_flipped") k.m.row(1) *= -1;
     if (k.family == "x_flipped" || k.family == "xy_flipped") k.m.row(0) *= -1;
+    if (k.family == "left_handed") k.m.col(2) *= -1;  // camera z negated: M43 = +1
     if (k.family == "jittered") k.m.row(0) += (shift / 960) * k.m.row(3);
     if (k.family == "rotated" || k.family == "general") {
       Matrix4<double> r = Matrix4<double>::Identity();

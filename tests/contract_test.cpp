@@ -119,8 +119,8 @@ TEST(Contract, excludeRemovesFromFilledListsAndRefusesEmptyOnes) {
 // answers only; the other fields change it wherever the preset stands.
 TEST(Contract, theEnginePresetIsReadFirstAndChangedByTheOtherFields) {
   const Contract engine = engine_contract();
-  EXPECT_EQ(engine.families, std::vector<Family>(std::begin(generators::perspective_shape_families),
-                                                 std::end(generators::perspective_shape_families)));
+  EXPECT_EQ(engine.families, std::vector<Family>(std::begin(generators::engine_families),
+                                                 std::end(generators::engine_families)));
   EXPECT_EQ(engine.planes, Planes::unit);
   EXPECT_EQ(engine.statuses, StatusContract::answers_only);
   EXPECT_TRUE(engine.conventions.empty());

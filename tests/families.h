@@ -40,6 +40,10 @@ std::vector<NamedProjection<T>> fixed_families(Convention convention) {
   out.push_back({"x_flipped", mirrored, tilted});
   mirrored.row(1) *= T(-1);
   out.push_back({"xy_flipped", mirrored, tilted});
+  // A left-handed camera looking down +z (M43 = +1), off-axis; the plane mirrored in z with it.
+  Matrix4<T> left_handed = frustum<T>(T(-0.1), T(0.7), T(-0.2), T(0.3), T(1), T(100), convention);
+  left_handed.col(2) *= T(-1);
+  out.push_back({"left_handed", left_handed, Vector4<T>(T(0.25), T(-0.375), T(1), T(-3))});
   const Matrix4<T> p = frustum<T>(T(-1), T(1), T(-0.75), T(0.75), T(1), T(50), convention);
   Matrix4<T> r = Matrix4<T>::Identity();
   r.template topLeftCorner<3, 3>() =

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "oblique/frustum_planes.h"
 #include "oblique/projection.h"
 #include "oblique/properties/contract.h"
 #include "oblique/properties/filtered.h"
@@ -39,6 +40,11 @@ std::vector<std::string> features(const generators::Case<T>& c) {
     case Family::x_flipped:
     case Family::xy_flipped:
       return {family + " M13" + sign(double(m(0, 2))), family + " M23" + sign(double(m(1, 2)))};
+    case Family::left_handed:
+      return {family + " M13" + sign(double(m(0, 2))), family + " M23" + sign(double(m(1, 2))),
+              family + " M43" + sign(double(m(3, 2))),
+              family + (far_plane(m, c.convention).template head<3>().isZero(0) ? " infinite"
+                                                                                : " finite")};
     case Family::stereo_shift:
       return {family + " M13" + sign(double(m(0, 2))), family + " M14" + sign(double(m(0, 3))),
               family + " M24" + sign(double(m(1, 3)))};
@@ -67,6 +73,15 @@ std::set<std::string> required(const std::vector<Family>& families) {
           out.insert(name + " M13" + s);
           out.insert(name + " M23" + s);
         }
+        break;
+      case Family::left_handed:
+        for (const char* s : {"<0", ">0"}) {
+          out.insert(name + " M13" + s);
+          out.insert(name + " M23" + s);
+        }
+        out.insert(name + " M43>0");
+        out.insert(name + " finite");
+        out.insert(name + " infinite");
         break;
       case Family::stereo_shift:
         for (const char* s : {"<0", ">0"}) {

@@ -213,6 +213,83 @@ TEST(Scenes, heldOutScenesGetTheRightDecisionsAndExactMatrices) {
   }
 }
 
+// A pass means judged (issue 44): what check judged of each consumer the scene names, summed
+// over the rendered passes, of the implementation's answers (--impl) or the core's.
+ConsumerResult consumer_result(SceneConsumer consumer, long judged, long left_out,
+                               const std::string& note = "") {
+  ConsumerResult r;
+  r.consumer = consumer;
+  r.judged = judged;
+  r.left_out = left_out;
+  if (left_out > 0) r.left_out_why["the stored depth's interval reaches w = 0"] = left_out;
+  r.note = note;
+  return r;
+}
+
+TEST(SceneConsumers, aNamedConsumerWithNothingJudgedSaysWhyAndWhatToChange) {
+  Scene scene;
+  scene.consumers = {SceneConsumer::reconstruction, SceneConsumer::culling,
+                     SceneConsumer::pass_view};
+  SceneCheck check;
+  SurfaceCheck skipped;
+  skipped.reason = "out of view";
+  check.surfaces = {skipped};
+  ConsumerCoverage none = consumer_coverage(scene, check, false);
+  ASSERT_EQ(none.unjudged.size(), 3u);
+  EXPECT_NE(none.unjudged[0].find("the scene names consumer reconstruction, and no pass was "
+                                  "rendered to ask it on"),
+            std::string::npos)
+      << none.unjudged[0];
+
+  SurfaceCheck clip;
+  clip.render = true;
+  clip.consumers = {
+      consumer_result(SceneConsumer::reconstruction, 64, 0),
+      consumer_result(SceneConsumer::culling, 0, 5),
+      consumer_result(SceneConsumer::pass_view, 0, 0, "a clip pass renders with the main view")};
+  check.surfaces = {skipped, clip};
+  const ConsumerCoverage some = consumer_coverage(scene, check, false);
+  ASSERT_EQ(some.unjudged.size(), 2u);
+  EXPECT_NE(some.unjudged[0].find("consumer culling, and none of its answers was judged: all 5 "
+                                  "left out (why: the stored depth's interval reaches w = 0 5)"),
+            std::string::npos)
+      << some.unjudged[0];
+  EXPECT_NE(some.unjudged[1].find("consumer pass_view, and it applies to none of the 1 rendered "
+                                  "passes (a clip pass renders with the main view): leave "
+                                  "pass_view out of \"consumers\""),
+            std::string::npos)
+      << some.unjudged[1];
+  EXPECT_TRUE(some.partly.empty());
+
+  // With --impl, the implementation's answers are the verdict: the core's do not count.
+  EXPECT_EQ(consumer_coverage(scene, check, true).unjudged.size(), 3u);
+  clip.impl_consumers = clip.consumers;
+  clip.impl_consumers[1] = consumer_result(SceneConsumer::culling, 3, 0);
+  check.surfaces = {clip};
+  scene.consumers = {SceneConsumer::reconstruction, SceneConsumer::culling};
+  EXPECT_TRUE(consumer_coverage(scene, check, true).unjudged.empty());
+  EXPECT_EQ(consumer_coverage(scene, check, false).unjudged.size(), 1u);
+}
+
+TEST(SceneConsumers, aNamedConsumerMostlyLeftOutIsNamedWithItsShare) {
+  Scene scene;
+  scene.consumers = {SceneConsumer::reconstruction, SceneConsumer::cascades};
+  SceneCheck check;
+  SurfaceCheck a, b;
+  a.render = b.render = true;
+  // reconstruction: 14 of 128 left out over two passes (10.9%); cascades 1 of 2 (one is no
+  // pattern).
+  a.consumers = {consumer_result(SceneConsumer::reconstruction, 57, 7),
+                 consumer_result(SceneConsumer::cascades, 1, 1)};
+  b.consumers = {consumer_result(SceneConsumer::reconstruction, 57, 7),
+                 consumer_result(SceneConsumer::cascades, 1, 0)};
+  check.surfaces = {a, b};
+  EXPECT_EQ(consumer_coverage(scene, check, false).partly, "reconstruction 14 of 128");
+  b.consumers[0] = consumer_result(SceneConsumer::reconstruction, 63, 1);  // 8 of 128: 6.3%
+  check.surfaces = {a, b};
+  EXPECT_EQ(consumer_coverage(scene, check, false).partly, "");
+}
+
 TEST(Scenes, infiniteEdgePropertyIsCheckedOnlyForInfiniteProjections) {
   auto names = [](const SceneCheck& check) {
     std::vector<std::string> out;

@@ -213,12 +213,6 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
   return out;
 }
 
-std::string partly_judged_warning(const std::string& partly, bool strict) {
-  return "warning: judged in part only: more than " +
-         std::to_string(static_cast<int>(100 * kLeftOutWarning + 0.5)) + "% left out: " + partly +
-         (strict ? " [--strict: not a pass]" : " [--strict makes it a failure]") + "\n";
-}
-
 #define OBLIQUE_VERIFY_CASES(T)                                                         \
   template struct VerifyCase<T>;                                                        \
   template class Draws<T>;                                                              \

@@ -115,8 +115,4 @@ std::vector<std::string> unjudged_claims(const Contract& contract, const Seen& s
 std::string partly_judged(const Contract& contract, const Seen& seen, const LeftOut& left_out,
                           double share);
 
-/// The summary's warning line for kinds judged in part only (`partly`: "KIND L of D, ..."), for
-/// matrix and consumer runs alike, saying what --strict does.
-std::string partly_judged_warning(const std::string& partly, bool strict);
-
 }  // namespace oblique::verify

@@ -4,7 +4,8 @@
 that `oblique verify` drives: one JSON request per input line, one JSON answer per output line.
 
     oblique verify --impl 'python3 lengyel_perspective.py' \
-        --families perspective,off_axis,infinite,y_flipped,jittered --convention all
+        --families perspective,off_axis,infinite,y_flipped,jittered,x_flipped,xy_flipped,left_handed \
+        --convention all
 """
 import json
 import math

@@ -117,16 +117,18 @@ struct FuzzCase {
   /// 0..4 built (frustum, infinite, orthographic, y-flipped frustum, rotated), 5 raw, 6 a
   /// frustum or infinite frustum times a camera shift T(tx, ty, 0): M14, M24 != 0 (stereo, lens
   /// shift; generators::Family::stereo_shift), 7 an x-flipped frustum (M11 < 0, a mirror camera;
-  /// generators::Family::x_flipped), 8 an x- and y-flipped one (generators::Family::xy_flipped).
+  /// generators::Family::x_flipped), 8 an x- and y-flipped one (generators::Family::xy_flipped),
+  /// 9 a left-handed frustum or infinite frustum (camera z negated, M43 = +1;
+  /// generators::Family::left_handed).
   int family = 0;
   Matrix4<double> matrix = Matrix4<double>::Identity();
   Vector4<double> plane = Vector4<double>::Zero();
 };
 
 inline const char* family_label(int family) {
-  const char* names[] = {"frustum", "infinite",     "orthographic", "y_flipped", "rotated",
-                         "raw",     "stereo_shift", "x_flipped",    "xy_flipped"};
-  return names[family % 9];
+  const char* names[] = {"frustum", "infinite",     "orthographic", "y_flipped",  "rotated",
+                         "raw",     "stereo_shift", "x_flipped",    "xy_flipped", "left_handed"};
+  return names[family % 10];
 }
 
 /// The generator families (oblique/properties/case_kinds.h) a decoded case is one of, for a
@@ -145,12 +147,14 @@ inline std::vector<generators::Family> contract_families(const FuzzCase& c) {
     case 6: return {Family::stereo_shift};
     case 7: return {Family::x_flipped};
     case 8: return {Family::xy_flipped};
+    case 9: return {Family::left_handed};
     default: return {Family::general};
   }
 }
 
-inline constexpr std::uint8_t kShiftMarker = 0x53;  // 'S'
-inline constexpr std::uint8_t kFlipXMarker = 0x58;  // 'X'
+inline constexpr std::uint8_t kShiftMarker = 0x53;       // 'S'
+inline constexpr std::uint8_t kFlipXMarker = 0x58;       // 'X'
+inline constexpr std::uint8_t kLeftHandedMarker = 0x4c;  // 'L'
 
 /// Builds the case; builder parameters that break a builder's preconditions fall back to raw.
 /// With `conventions` (non-empty), the convention byte picks one of them instead of any of the
@@ -194,7 +198,8 @@ inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
   }
   for (int i = 0; i < 4; ++i) c.plane(i) = number(in);
   // After the plane, the byte kShiftMarker shifts a frustum or infinite frustum by (tx, ty, 0)
-  // (two more numbers); kFlipXMarker negates row 1 of a frustum or y-flipped frustum (M11 < 0).
+  // (two more numbers); kFlipXMarker negates row 1 of a frustum or y-flipped frustum (M11 < 0);
+  // kLeftHandedMarker negates column 3 of a frustum or infinite frustum (camera z, M43 = +1).
   // Inputs that end earlier, or go on with another byte, decode as before (the family byte
   // keeps its meaning: new families come behind markers, not from a larger modulus).
   const bool shiftable = c.family == 0 || c.family == 1, flippable = c.family == 0 || c.family == 3;
@@ -210,6 +215,9 @@ inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
       c.matrix = c.matrix * shift;
       c.family = 6;
     }
+  } else if (shiftable && marker == kLeftHandedMarker) {
+    c.matrix.col(2) = Vector4<double>::Zero() - c.matrix.col(2);
+    c.family = 9;
   }
   return c;
 }

@@ -154,17 +154,17 @@ properties::Implementation<T> adapt(
 // Presets for `adapt`'s `accepts`, the inputs a closed form is meant for. What each admits, by
 // generator family (oblique/properties/case_kinds.h):
 //
-//   preset                   perspective off_axis jittered infinite y_flipped x_flipped xy_flipped
-//   perspective_shape_only        yes       yes      yes      yes       yes       yes       yes
-//   engine_perspective_only       yes       yes      yes      yes       yes       yes       yes
+//   preset                   perspective off_axis jittered infinite y/x/xy_flipped left_handed
+//   perspective_shape_only        yes       yes      yes      yes        yes           yes
+//   engine_perspective_only       yes       yes      yes      yes        yes           no
 //
-// and neither admits orthographic, rotated, general or stereo_shift matrices. They differ off
-// the generators' families: perspective_shape_only also admits a left-handed M43 = +1 and any
-// sign of M34, which a closed form written for the matrix an engine builds (Lengyel's Listing
-// 5.1 assumes M43 = -1) need not handle. Give such a function engine_perspective_only and the
-// engine contract (contract.h's engine_contract()), which claims exactly its families: a closed
-// form that takes a sign from camera space (right only while M11 > 0 and M22 > 0) then fails on
-// the flipped matrices engines build, as it should.
+// and neither admits orthographic, rotated, general or stereo_shift matrices.
+// perspective_shape_only admits a left-handed M43 = +1 and any sign of M34, which a closed form
+// written for the matrix a right-handed engine builds (Lengyel's Listing 5.1 assumes M43 = -1)
+// need not handle. Give such a function engine_perspective_only and the engine contract
+// (contract.h's engine_contract()), which claims exactly its families: a closed form that takes
+// a sign from camera space (right only while M11 > 0 and M22 > 0) then fails on the flipped
+// matrices engines build, as it should.
 
 /// Only matrices of the standard perspective shape (projection.h's has_perspective_shape(): the
 /// entries a closed form reads, whatever their signs).

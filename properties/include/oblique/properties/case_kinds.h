@@ -33,15 +33,25 @@ enum class Family {
   /// Both axes flipped (M11 < 0 and M22 < 0): a mirror camera's x flip on a y-flipped (Vulkan)
   /// projection.
   xy_flipped,
+  /// A left-handed camera looking down +z (Direct3D's LH projections): a frustum leaning either
+  /// way, finite or infinite, with camera z negated, so M43 = +1 and M13, M23, M33 change sign.
+  /// The perspective shape; code that assumes M43 = -1 (Listing 5.1's Q) is wrong only here.
+  left_handed,
 };
 inline constexpr Family all_families[] = {
-    Family::perspective,  Family::off_axis,  Family::infinite,  Family::orthographic,
-    Family::y_flipped,    Family::jittered,  Family::rotated,   Family::general,
-    Family::stereo_shift, Family::x_flipped, Family::xy_flipped};
+    Family::perspective,  Family::off_axis,  Family::infinite,   Family::orthographic,
+    Family::y_flipped,    Family::jittered,  Family::rotated,    Family::general,
+    Family::stereo_shift, Family::x_flipped, Family::xy_flipped, Family::left_handed};
 
 /// The families whose matrices have the perspective shape (has_perspective_shape()): the inputs
 /// of the closed form.
 inline constexpr Family perspective_shape_families[] = {
+    Family::perspective, Family::off_axis,  Family::infinite,   Family::y_flipped,
+    Family::jittered,    Family::x_flipped, Family::xy_flipped, Family::left_handed};
+
+/// The perspective shape as engines build it, right-handed (M43 = -1): the families of the
+/// engine contract (contract.h's engine_contract()) and of engine_perspective_only (adapter.h).
+inline constexpr Family engine_families[] = {
     Family::perspective, Family::off_axis,  Family::infinite,  Family::y_flipped,
     Family::jittered,    Family::x_flipped, Family::xy_flipped};
 
@@ -58,6 +68,7 @@ constexpr std::string_view family_name(Family f) noexcept {
     case Family::stereo_shift: return "stereo_shift";
     case Family::x_flipped: return "x_flipped";
     case Family::xy_flipped: return "xy_flipped";
+    case Family::left_handed: return "left_handed";
   }
   return "unknown";
 }

@@ -75,6 +75,11 @@ std::vector<std::string> preset_names();
 /// is named in a warning line of every way in's summary (a failure under their strict flags).
 inline constexpr double kLeftOutWarning = 0.10;
 
+/// The summary's warning line for kinds judged in part only (`partly`: "KIND L of D, ..."), for
+/// the command-line ways in (verify's matrix and consumer runs, check's consumers), saying what
+/// their --strict does.
+std::string partly_judged_warning(const std::string& partly, bool strict);
+
 /// The contract with each empty list filled (families, places, defects, properties: every one;
 /// conventions, statuses, row3_accuracy: the implementation's own) and, for unit planes, the
 /// `scaled` place dropped (a unit normal undoes the scaling) unless it is the only place.

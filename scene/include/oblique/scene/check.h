@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,7 +49,8 @@ struct ConsumerResult {
   SceneConsumer consumer = SceneConsumer::reconstruction;
   long judged = 0;    ///< answers judged
   long left_out = 0;  ///< cases no implementation in the precision can settle (not judged)
-  std::string note;   ///< why nothing applies (a clip pass has no view of its own), else empty
+  std::map<std::string, long> left_out_why;  ///< the left-out cases by why
+  std::string note;  ///< why nothing applies (a clip pass has no view of its own), else empty
   std::optional<properties::ConsumerFinding> violation;  ///< the first
   std::string inputs;      ///< the violation's inputs (a Markdown list)
   double worst_ratio = 0;  ///< the largest residual / bound judged
@@ -153,6 +155,18 @@ inline constexpr int kConsumerSamples = 64;
 /// impl_consumers. Fails, saying why, when the program does not answer as the protocol says.
 Expected<Done> judge_implementation_consumers(const Scene& scene, SceneCheck& check,
                                               const std::string& command, double timeout_seconds);
+
+/// What a check judged of the consumers the scene names (its claims about the engine), over every
+/// rendered pass: the implementation's (`impl`, with --impl) or the core's references.
+struct ConsumerCoverage {
+  /// One line per named consumer of which nothing was judged: why (no pass rendered, none it
+  /// applies to, every answer left out and why) and what to change.
+  std::vector<std::string> unjudged;
+  /// "NAME L of D, ..." for the consumers with more than kLeftOutWarning of their answers left
+  /// out (a single one is no pattern); empty when none.
+  std::string partly;
+};
+ConsumerCoverage consumer_coverage(const Scene& scene, const SceneCheck& check, bool impl);
 
 /// A table a person reads.
 std::string to_text(const SceneCheck& check);
