@@ -219,7 +219,11 @@ int run_check(const CheckSettings& settings) {
   if (!coverage.unjudged.empty() || (settings.strict && !coverage.partly.empty())) {
     for (const std::string& line : coverage.unjudged)
       std::cerr << "oblique check: " << line << "\n";
-    std::cerr << "oblique check: not all the consumers the scene names were judged; not a pass\n";
+    std::cerr << (coverage.unjudged.empty()
+                      ? "oblique check: --strict: a consumer the scene names was judged in part "
+                        "only; not a pass\n"
+                      : "oblique check: not all the consumers the scene names were judged; not a "
+                        "pass\n");
     return 2;
   }
   return raster_status;
