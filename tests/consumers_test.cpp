@@ -567,6 +567,34 @@ TEST(Corners, obliqueMatrixCornersBoundWhereAllAreInFront) {
   }
 }
 
+// Corners on one line bound no solid: judged by each kept vertex's distance to their segment
+// against the bound. Two far-apart right corners (a diagonal of the kept region) leave the other
+// vertices far off it: violated. Where a solve in T collapses the right corners onto a line (M
+// singular in T, the bound as large) they hold: the fuzz_consumers regression
+// corners_collapsed_onto_a_line, which the judge once failed whatever the bound.
+TEST(Corners, cornersOnOneLineAreJudgedByTheirDistanceToIt) {
+  for (Convention k : kConventions) {
+    const Matrix4<double> m = perspective(k);
+    const Vector4<double> c = tilted_plane();
+    const Matrix4<double> mo = oblique_of(m, c, k);
+    std::vector<Vector3<double>> kept;
+    for (const auto& v : oblique::kept_region_vertices(m, oblique::near_plane(mo, k), k))
+      kept.push_back(v.head<3>());
+    ASSERT_GE(kept.size(), 4u);
+    std::size_t a = 0, b = 1;  // the two vertices farthest apart
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      for (std::size_t j = i + 1; j < kept.size(); ++j)
+        if ((kept[i] - kept[j]).norm() > (kept[a] - kept[b]).norm()) a = i, b = j;
+    const std::vector<Vector3<double>> diagonal = {kept[a], kept[b], (kept[a] + kept[b]) / 2};
+    const ConsumerFinding f = oblique::properties::judge_corners(m, c, k, mo, diagonal);
+    EXPECT_FALSE(f.holds) << describe(f);
+    EXPECT_NE(f.detail.find("lie on one line"), std::string::npos) << f.detail;
+    EXPECT_GT(f.ratio, 1);
+    EXPECT_FALSE(oblique::properties::judge_corners(m, c, k, mo, {kept[a]}).holds);
+    EXPECT_FALSE(oblique::properties::judge_corners(m, c, k, mo, {}).holds);
+  }
+}
+
 // Corners far from the right ones are judged by the bound of the right ones: a bound taken from
 // the answer itself grew past w = 0 for corners 1e300 away, and the round was left out, not failed.
 TEST(Corners, farAwayCornersAreJudgedByTheRightOnesBound) {
