@@ -5,18 +5,22 @@
 #   bash scripts/false_alarms.sh [--minutes M] [--jobs J] [--seed S] [--no-build]
 #
 # Each run below takes M minutes (default 10) of one job; J (default: the number of cores) run
-# at a time, so the whole takes about 9 M / J minutes, then the buggy examples (at most 7 min).
+# at a time, so the whole takes about 11 M / J minutes, then the buggy examples (at most 7 min).
 # S (default: from the clock) is the first seed, each run gets its own. The runs:
 #   verify: the bundled `correct` (double and float, any refusal) and `engine_no_statuses` (double
 #           and float, examples/engine_contract.json: answers only, unit planes), every
 #           convention and family;
 #   testing: the float engine of false_alarms/ through oblique::testing (every family and place,
-#           each convention, answers only), RC_PARAMS max_success per property;
+#           each convention, answers only), RC_PARAMS max_success per property; and, a run of
+#           its own, its [0, 1] variant that forms GL's row and converts it (engines ported from
+#           OpenGL);
 #   fuzz driver: the same engine through oblique::fuzzing, on mutated fuzz_oblique corpus inputs;
 #   consumers: the right code around the matrix (examples/consumers) through
 #           oblique::testing::check_consumers, float and double, every family and convention;
 #   consumers over the protocol: the same functions as a program (consumers_program) under
-#           `oblique verify --consumers all`, double and float, every family and convention.
+#           `oblique verify --consumers all`, double and float, every family and convention; and
+#           an engine whose mirror pass is a proper camera (the flip in the projection), declared
+#           with --mirror-design proper_camera.
 # Then each buggy example under verify (must be caught: exit 1), with its time to the finding, and
 # each wrong consumer (must be caught by its property), in-process and over the protocol.
 # Logs and a summary go to a new folder build/false-alarms/<UTC time>/ (nothing is overwritten);
@@ -74,11 +78,13 @@ runs=(
   "correct, float, any refusal|verify|$ex/example_correct --float|--precision float --convention all"
   "engine_no_statuses, double, contract file|verify|$ex/example_engine_no_statuses|--contract examples/engine_contract.json"
   "engine_no_statuses, float, contract file|verify|$ex/example_engine_no_statuses --float|--precision float --contract examples/engine_contract.json"
-  "float engine, oblique::testing|testing||"
+  "float engine, oblique::testing|testing||FloatEngine.glHasEveryProperty:FloatEngine.zeroOneHasEveryProperty:FloatEngine.reversedZHasEveryProperty"
+  "float engine making [0, 1] through GL's row, oblique::testing|testing||FloatEngine.zeroOneThroughGlHasEveryProperty"
   "float engine, fuzz driver|fuzzing||"
   "right consumers, oblique::testing|consumers||"
   "right consumers, verify, double|consumers_verify|$ex/example_consumers_program|--convention all"
   "right consumers, verify, float|consumers_verify|$ex/example_consumers_program --float|--precision float --convention all"
+  "proper-camera mirror engine, verify, double|consumers_verify|$ex/example_consumers_program --wrong mirror_by_reflected_look_at|--convention all --mirror-design proper_camera"
 )
 secs=$((minutes * 60))
 
@@ -100,9 +106,14 @@ run_one() {
     testing)
       # RapidCheck runs each property to max_success; the six properties of one convention's test
       # draw the same cases (one seed), so a case counts once, by its near_is_clip_plane run. About
-      # 3,000 cases per second per job (all six properties) set max_success from the time.
-      RC_PARAMS="max_success=$((secs * 1000)) seed=$s" OBLIQUE_REPORT_DIR="$out/reports$n" \
-        "$bin/false_alarms/float_engine_property_test" > "$log" 2>&1 || rc=$?
+      # 3,000 cases per second per job (all six properties) set max_success from the time, shared
+      # by the tests the filter (`args`) selects.
+      local tests
+      tests=$("$bin/false_alarms/float_engine_property_test" --gtest_list_tests --gtest_filter="$args" |
+              grep -c '^  ')
+      RC_PARAMS="max_success=$((secs * 3000 / (tests > 0 ? tests : 1))) seed=$s" \
+        OBLIQUE_REPORT_DIR="$out/reports$n" \
+        "$bin/false_alarms/float_engine_property_test" --gtest_filter="$args" > "$log" 2>&1 || rc=$?
       judged=$(grep -o '^near_is_clip_plane: OK, passed [0-9]* tests' "$log" |
                awk '{s += $4} END {print s + 0}')
       # What each near_is_clip_plane run's line says it left out: "(left out: why N, why N)".
