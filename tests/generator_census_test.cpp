@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
 
+#include <initializer_list>
 #include <iterator>
 #include <map>
 #include <set>
@@ -60,6 +61,11 @@ std::set<std::string> required(const std::vector<Family>& families) {
   std::set<std::string> out;
   for (Family f : families) {
     const std::string name(generators::family_name(f));
+    // Each of `entries` seen negative and positive.
+    auto either_sign = [&](std::initializer_list<const char*> entries) {
+      for (const char* entry : entries)
+        for (const char* s : {"<0", ">0"}) out.insert(name + " " + entry + s);
+    };
     switch (f) {
       case Family::off_axis:
         for (const char* x : {"<0", ">0"})
@@ -68,33 +74,16 @@ std::set<std::string> required(const std::vector<Family>& families) {
       case Family::jittered:
       case Family::y_flipped:
       case Family::x_flipped:
-      case Family::xy_flipped:
-        for (const char* s : {"<0", ">0"}) {
-          out.insert(name + " M13" + s);
-          out.insert(name + " M23" + s);
-        }
-        break;
+      case Family::xy_flipped: either_sign({"M13", "M23"}); break;
       case Family::left_handed:
-        for (const char* s : {"<0", ">0"}) {
-          out.insert(name + " M13" + s);
-          out.insert(name + " M23" + s);
-        }
+        either_sign({"M13", "M23"});
         out.insert(name + " M43>0");
         out.insert(name + " finite");
         out.insert(name + " infinite");
         break;
-      case Family::stereo_shift:
-        for (const char* s : {"<0", ">0"}) {
-          out.insert(name + " M13" + s);
-          out.insert(name + " M14" + s);
-          out.insert(name + " M24" + s);
-        }
-        break;
+      case Family::stereo_shift: either_sign({"M13", "M14", "M24"}); break;
       case Family::orthographic:
-        for (const char* s : {"<0", ">0"}) {
-          out.insert(name + " M14" + s);
-          out.insert(name + " M24" + s);
-        }
+        either_sign({"M14", "M24"});
         out.insert(name + " centred");
         out.insert(name + " off-centre");
         break;
