@@ -19,8 +19,9 @@ int test_one_input(const std::uint8_t* data, std::size_t size,
   checks.properties = contract.properties;
   // As in the property suite: a function without statuses is judged where an answer exists and
   // the input is decidable in T (properties::not_judged()).
-  check<T>(c, impl, checks, checks.statuses != properties::StatusContract::answers_only,
-           contract.refusals);
+  CaseJudge<T> judge(c);
+  check<T>(c, judge, impl, checks, checks.statuses != properties::StatusContract::answers_only,
+           contract.refusals, contract.defects);
   return 0;
 }
 

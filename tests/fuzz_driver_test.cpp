@@ -1,5 +1,5 @@
-// The fuzz driver honours the contract (oblique/fuzzing.h): a family it does not claim is not
-// given to the function, and under unit planes the plane reaches it with a unit normal.
+// The fuzz driver honours the contract (oblique/fuzzing.h): a family or a defect it does not claim
+// is not given to the function, and under unit planes the plane reaches it with a unit normal.
 #include "oblique/fuzzing.h"
 
 #include <gtest/gtest.h>
@@ -62,6 +62,30 @@ TEST(FuzzDriverContract, underUnitPlanesThePlaneArrivesWithAUnitNormal) {
   any.conventions = {Convention::gl};
   EXPECT_DEATH(fuzzing::test_one_input(scaled.data(), scaled.size(), right_for_unit_planes, any),
                "oblique property violated: .* by right_for_unit_planes");
+}
+
+TEST(FuzzDriverContract, aDefectTheContractLeavesOutIsNotGivenToTheFunction) {
+  // Never refuses: wrong on every input without an answer. The plane (0, 0, -1, 2) has the camera
+  // in front of it (C_w = 2: special value 4).
+  const auto never_refuses =
+      adapt<double>("never_refuses", Layout::column_major,
+                    [](const Matrix4<double>& m, const Vector4<double>&, Convention) {
+                      return ObliqueResult<double>{Status::ok, {}, m};
+                    });
+  std::vector<std::uint8_t> in_front = input(kFrustum);
+  in_front[13] = 4;
+  Contract no_camera_in_front;
+  no_camera_in_front.conventions = {Convention::gl};
+  no_camera_in_front.defects = {generators::Defect::misses_view_volume,
+                                generators::Defect::singular, generators::Defect::near_singular,
+                                generators::Defect::non_finite};
+  EXPECT_EQ(
+      fuzzing::test_one_input(in_front.data(), in_front.size(), never_refuses, no_camera_in_front),
+      0);
+  Contract every;
+  every.conventions = {Convention::gl};
+  EXPECT_DEATH(fuzzing::test_one_input(in_front.data(), in_front.size(), never_refuses, every),
+               "oblique property violated: .* by never_refuses");
 }
 
 TEST(FuzzDriverContract, theConsumerDriverUsesOnlyTheContractsFamilies) {

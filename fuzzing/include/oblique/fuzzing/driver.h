@@ -40,11 +40,13 @@ class ByteReader {
  public:
   ByteReader(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
   std::uint8_t byte() { return pos_ < size_ ? data_[pos_++] : 0; }
+  /// The next 8 bytes as a double's bits, the first the lowest (as x86 stores one). Assembled
+  /// in an integer: a byte array filled in a loop drew GCC 12's -Wstringop-overflow false alarm.
   double raw_double() {
-    std::uint8_t bytes[8] = {};
-    for (auto& b : bytes) b = byte();
+    std::uint64_t bits = 0;
+    for (int i = 0; i < 8; ++i) bits |= std::uint64_t{byte()} << (8 * i);
     double d;
-    std::memcpy(&d, bytes, sizeof d);
+    std::memcpy(&d, &bits, sizeof d);
     return d;
   }
 
@@ -415,7 +417,8 @@ inline void print_counts() {
 /// Whether the decoded case is one the contract claims, made so where it can be: a family it
 /// lists (else counted, "family F: not in the contract"), and under unit planes its plane's
 /// normal scaled to length 1 in double (a plane without a finite normal is counted left out).
-/// The decoder makes its own planes, so the contract's places are not chosen here.
+/// The decoder makes its own planes, so the contract's places are not chosen here; its defects
+/// are honoured in check() (defect_of()).
 inline bool in_contract(FuzzCase& c, const Contract& contract) {
   const std::vector<generators::Family> families = contract_families(c);
   const bool claimed = std::any_of(families.begin(), families.end(), [&](generators::Family f) {
@@ -438,22 +441,54 @@ inline bool in_contract(FuzzCase& c, const Contract& contract) {
   return true;
 }
 
+/// The defect (generators::Defect, case_kinds.h) of which an input is an example, read from its
+/// exact status: non-finite numbers (invalid_input), the camera in front (camera_not_behind_plane),
+/// a plane that misses the view volume, a singular M, or an M within rounding of singular (an
+/// answer exists, but singular_projection is acceptable); none for an input with an answer that
+/// no such refusal is within rounding of.
+template <class P>
+std::optional<generators::Defect> defect_of(const P& problem) {
+  using generators::Defect;
+  switch (problem.exact_status()) {
+    case Status::invalid_input: return Defect::non_finite;
+    case Status::camera_not_behind_plane: return Defect::camera_in_front;
+    case Status::plane_misses_view_volume: return Defect::misses_view_volume;
+    case Status::singular_projection: return Defect::singular;
+    default: break;
+  }
+  const std::vector<Status> acceptable = problem.acceptable_statuses();
+  if (std::find(acceptable.begin(), acceptable.end(), Status::singular_projection) !=
+      acceptable.end())
+    return Defect::near_singular;
+  return std::nullopt;
+}
+
 /// Runs `impl` on the case (in T) when it accepts it, and judges the answer with `checks`.
 /// Inputs properties::not_judged() leaves out for `checks.statuses` and `refusals` (under exact:
 /// the refusals it implements, empty: all) are not given to it (and
 /// counted), except that with `unanswerable` inputs without an exact answer are (there an answer
 /// where none exists is the finding). On a violation: prints the case, the checker's view and the
 /// property, then aborts. `judge` carries the case's problem and judgements from one
-/// implementation to the next.
+/// implementation to the next. An input that is an example of a defect not in `defects` (empty:
+/// all; defect_of()) is not given to it either (counted "defect D: not in the contract").
 template <class T>
 void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementation<T>& impl,
            const properties::Checks& checks, bool unanswerable = true,
-           const std::vector<Status>& refusals = {}) {
+           const std::vector<Status>& refusals = {},
+           const std::vector<generators::Defect>& defects = {}) {
   const Matrix4<T>& m = judge.matrix();
   const Vector4<T>& plane = judge.plane();
   if (!impl.accepts(c.convention, m)) {
     ++counts().left_out["refused by accepts (" + impl.name + ")"];
     return;
+  }
+  if (!defects.empty()) {
+    if (const std::optional<generators::Defect> d = defect_of(judge.problem());
+        d && std::find(defects.begin(), defects.end(), *d) == defects.end()) {
+      ++counts().left_out["defect " + std::string(generators::defect_name(*d)) +
+                          ": not in the contract"];
+      return;
+    }
   }
   if (const std::string why = properties::not_judged(judge.problem(), checks.statuses, refusals);
       !why.empty() && !(unanswerable && judge.problem().exact_status() != Status::ok)) {
