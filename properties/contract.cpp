@@ -252,6 +252,13 @@ std::string partly_judged_warning(const std::string& partly, bool strict) {
          (strict ? " [--strict: not a pass]" : " [--strict makes it a failure]") + "\n";
 }
 
+std::string counts_text(const std::map<std::string, long>& counts) {
+  std::string out;
+  for (const auto& [name, n] : counts)
+    out += (out.empty() ? "" : ", ") + name + " " + std::to_string(n);
+  return out.empty() ? "none" : out;
+}
+
 Contract engine_contract() {
   Contract c;
   c.families.assign(std::begin(generators::engine_families), std::end(generators::engine_families));

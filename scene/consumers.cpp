@@ -46,7 +46,6 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
     const properties::Settle settle = [&r](const properties::ConsumerFinding& f,
                                            const std::string& inputs, bool) {
       if (!f.judged) {
-        ++r.left_out;
         ++r.left_out_why[f.detail];
         return;
       }
@@ -168,8 +167,10 @@ ConsumerCoverage consumer_coverage(const Scene& scene, const SceneCheck& check, 
         }
         ++applies;
         judged += r.judged;
-        left_out += r.left_out;
-        for (const auto& [reason, n] : r.left_out_why) why[reason] += n;
+        for (const auto& [reason, n] : r.left_out_why) {
+          why[reason] += n;
+          left_out += n;
+        }
       }
     }
     const std::string claim = "the scene names consumer " + name + ", and ";
@@ -185,11 +186,8 @@ ConsumerCoverage consumer_coverage(const Scene& scene, const SceneCheck& check, 
                                " rendered passes (" + note + "): leave " + name +
                                " out of \"consumers\", or add a surface it applies to");
       } else {
-        std::string reasons;
-        for (const auto& [reason, n] : why)
-          reasons += (reasons.empty() ? "" : "; ") + reason + " " + std::to_string(n);
         out.unjudged.push_back(claim + "none of its answers was judged: all " +
-                               std::to_string(left_out) + " left out (why: " + reasons +
+                               std::to_string(left_out) + " left out (why: " + counts_text(why) +
                                "): ask in a wider precision (--precision), or leave " + name +
                                " out of \"consumers\"");
       }

@@ -47,7 +47,7 @@ std::string consumer_line(const ConsumerResult& c) {
   if (!c.note.empty()) return "- (" + c.note + ")";
   std::string out = c.violation ? "FAIL" : c.judged ? "ok" : "not judged";
   out += " (" + std::to_string(c.judged) + " judged";
-  if (c.left_out) out += ", " + std::to_string(c.left_out) + " left out";
+  if (c.left_out()) out += ", " + std::to_string(c.left_out()) + " left out";
   if (c.consumer == SceneConsumer::cascades && c.depth_waste > 0)
     out += ", depth waste " + fixed2(c.depth_waste);
   out += ")";
@@ -62,7 +62,7 @@ nlohmann::ordered_json consumers_json(const std::vector<ConsumerResult>& list) {
     out[std::string(scene_consumer_name(c.consumer))] = {
         {"holds", c.holds()},
         {"judged", c.judged},
-        {"left_out", c.left_out},
+        {"left_out", c.left_out()},
         {"note", c.note.empty() ? json(nullptr) : json(c.note)},
         {"worst_ratio", c.worst_ratio},
         {"depth_waste",

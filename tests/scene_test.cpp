@@ -220,7 +220,6 @@ ConsumerResult consumer_result(SceneConsumer consumer, long judged, long left_ou
   ConsumerResult r;
   r.consumer = consumer;
   r.judged = judged;
-  r.left_out = left_out;
   if (left_out > 0) r.left_out_why["the stored depth's interval reaches w = 0"] = left_out;
   r.note = note;
   return r;

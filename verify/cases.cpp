@@ -136,10 +136,7 @@ void Seen::count(const VerifyCase<T>& v) {
 }
 
 std::string Seen::summary(const std::map<std::string, long>& counts) {
-  std::string out;
-  for (const auto& [name, n] : counts)
-    out += (out.empty() ? "" : ", ") + name + " " + std::to_string(n);
-  return out.empty() ? "none" : out;
+  return counts_text(counts);
 }
 
 template <class T>

@@ -50,10 +50,7 @@ struct Caught {
 };
 
 std::string summary(const std::map<std::string, long>& counts) {
-  std::string out;
-  for (const auto& [name, n] : counts)
-    out += (out.empty() ? "" : ", ") + name + " " + std::to_string(n);
-  return out.empty() ? "none" : out;
+  return counts_text(counts);
 }
 
 template <class T>

@@ -295,15 +295,17 @@ std::string check_report_directory(const std::string& directory) {
   // A run beside this one probing the same new directory removes it when it is done: one that
   // vanishes between being made and being written to is made again (a few times), never called
   // "not a directory".
+  constexpr int kTries = 8;
   int fd = -1;
-  for (int attempt = 0;; ++attempt) {
+  for (int attempt = 1;; ++attempt) {
     fs::create_directories(directory, ec);
-    if (ec && ec == std::errc::no_such_file_or_directory && attempt < 7) continue;  // (the same)
+    // A parent removed beside us while it was being made: the same race, one level up.
+    if (ec && ec == std::errc::no_such_file_or_directory && attempt < kTries) continue;
     if (ec) return "cannot be created (" + ec.message() + ")";
     const bool is_directory = fs::is_directory(directory, ec);
     if (is_directory) fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
     const bool vanished = !is_directory ? !fs::exists(directory, ec) : fd < 0 && errno == ENOENT;
-    if (fd >= 0 || !vanished || attempt == 7) {
+    if (fd >= 0 || !vanished || attempt == kTries) {
       if (!is_directory && !vanished) return "is not a directory";
       break;
     }

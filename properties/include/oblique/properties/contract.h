@@ -12,6 +12,7 @@
 //   oblique::read_contract(R"({...})").value()
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -79,6 +80,9 @@ inline constexpr double kLeftOutWarning = 0.10;
 /// the command-line ways in (verify's matrix and consumer runs, check's consumers), saying what
 /// their --strict does.
 std::string partly_judged_warning(const std::string& partly, bool strict);
+
+/// Counts by name as a summary says them: "name N, name N" ("none" when empty).
+std::string counts_text(const std::map<std::string, long>& counts);
 
 /// The contract with each empty list filled (families, places, defects, properties: every one;
 /// conventions, statuses, row3_accuracy: the implementation's own) and, for unit planes, the

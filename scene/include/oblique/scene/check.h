@@ -47,9 +47,14 @@ struct Scissor {
 /// (oblique/properties/consumers.h).
 struct ConsumerResult {
   SceneConsumer consumer = SceneConsumer::reconstruction;
-  long judged = 0;    ///< answers judged
-  long left_out = 0;  ///< cases no implementation in the precision can settle (not judged)
-  std::map<std::string, long> left_out_why;  ///< the left-out cases by why
+  long judged = 0;  ///< answers judged
+  /// Cases no implementation in the precision can settle (not judged), by why.
+  std::map<std::string, long> left_out_why;
+  long left_out() const {
+    long n = 0;
+    for (const auto& [why, count] : left_out_why) n += count;
+    return n;
+  }
   std::string note;  ///< why nothing applies (a clip pass has no view of its own), else empty
   std::optional<properties::ConsumerFinding> violation;  ///< the first
   std::string inputs;      ///< the violation's inputs (a Markdown list)
