@@ -26,15 +26,13 @@ void setup_apply(CLI::App& app, int& exit_code) {
   apply
       ->add_option("--convention", settings->convention,
                    "Depth convention of requests that name none")
-      ->check(one_of(oblique::convention_names(), "convention"))
+      ->check(one_of(oblique::names_in(oblique::convention_names), "convention"))
       ->capture_default_str();
   apply
       ->add_option("--method", settings->method,
                    "auto: closed form for the perspective shape, else general; accurate: every "
                    "entry within 2 ulp of the exact answer (measured: correctly rounded)")
-      ->check(one_of(
-          oblique::protocol::names_of<oblique::Method>(oblique::all_methods, oblique::method_name),
-          "method"))
+      ->check(one_of(oblique::names_in(oblique::method_names), "method"))
       ->capture_default_str();
   add_precision_option(
       apply, settings->precision, "Scalar type of the computation",

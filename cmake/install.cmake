@@ -1,4 +1,4 @@
-# The installed package: headers, libraries, exported targets (oblique::core, ::protocol,
+# The installed package: headers, libraries, exported targets (oblique::core, ::accurate, ::batch, ::protocol,
 # ::properties, ::generators, ::report_files, ::counterexample_reports, ::accuracy_profile,
 # ::testing, ::raster,
 # ::testing_raster, ::fuzzing, ::fuzzing_replay),
@@ -11,7 +11,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ ${PROJECT_SOURCE_DIR}/prot
                   ${PROJECT_SOURCE_DIR}/properties/include/ ${PROJECT_SOURCE_DIR}/fuzzing/include/
                   ${PROJECT_SOURCE_DIR}/report_files/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
-set(OBLIQUE_EXPORTED oblique_core oblique_protocol oblique_properties
+set(OBLIQUE_EXPORTED oblique_accurate oblique_core oblique_batch oblique_protocol oblique_properties
     oblique_report_files oblique_counterexample_reports oblique_fuzzing oblique_fuzzing_replay)
 if(TARGET oblique_generators)
   list(APPEND OBLIQUE_EXPORTED oblique_generators)

@@ -7,14 +7,14 @@
 #include <cstring>
 #include <limits>
 
-#include "oblique/kept_region.h"
 #include "oblique/oblique.h"
-#include "oblique/pass_camera.h"
 #include "oblique/properties/consumer_cases.h"
 #include "oblique/properties/exact.h"
 #include "oblique/properties/properties.h"
 #include "oblique/properties/tolerance.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/references/kept_region.h"
+#include "oblique/references/pass_camera.h"
 
 namespace oblique::properties {
 

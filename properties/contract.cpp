@@ -97,18 +97,6 @@ std::optional<Property> parse_property(std::string_view name) noexcept {
   return std::nullopt;
 }
 
-std::vector<std::string> family_names() {
-  return protocol::names_of<generators::Family>(generators::all_families, generators::family_name);
-}
-std::vector<std::string> convention_names() {
-  return protocol::names_of<Convention>(all_conventions, convention_name);
-}
-std::vector<std::string> place_names() {
-  return protocol::names_of<generators::Place>(generators::all_places, generators::place_name);
-}
-std::vector<std::string> defect_names() {
-  return protocol::names_of<generators::Defect>(generators::all_defects, generators::defect_name);
-}
 std::vector<std::string> property_names() {
   return protocol::names_of<Property>(properties::Checks{}.properties, properties::property_name);
 }
@@ -156,11 +144,10 @@ Expected<Contract> exclude(Contract c, const std::vector<std::string>& names) {
       drop(c.defects, *d, generators::all_defects);
       defects_named = true;
     } else {
-      std::vector<std::string> known = family_names();
-      for (auto* more : {place_names, defect_names}) {
-        const std::vector<std::string> m = more();
-        known.insert(known.end(), m.begin(), m.end());
-      }
+      std::vector<std::string> known = names_in(generators::family_names);
+      for (const std::vector<std::string>& more :
+           {names_in(generators::place_names), names_in(generators::defect_names)})
+        known.insert(known.end(), more.begin(), more.end());
       return Expected<Contract>::failure(
           "exclude: " + protocol::unknown_name(
                             "family, hard place or kind of input without an answer", name, known));
@@ -183,22 +170,22 @@ std::string read_field(Contract& c, const std::string& key, const JsonValue& val
                        std::vector<std::string>& excluded) {
   std::string error;
   if (key == "families") {
-    read_names(value, "families", "family", generators::parse_family, family_names(), c.families,
-               error);
+    read_names(value, "families", "family", generators::parse_family,
+               names_in(generators::family_names), c.families, error);
   } else if (key == "conventions") {
     const bool all = value.is(JsonValue::Kind::array) && value.items.size() == 1 &&
                      value.items[0].is(JsonValue::Kind::string) && value.items[0].text == "all";
     if (all)
       c.conventions.assign(std::begin(all_conventions), std::end(all_conventions));
     else
-      read_names(value, "conventions", "convention", parse_convention, convention_names(),
+      read_names(value, "conventions", "convention", parse_convention, names_in(convention_names),
                  c.conventions, error);
   } else if (key == "places") {
-    read_names(value, "places", "hard place", generators::parse_place, place_names(), c.places,
-               error);
+    read_names(value, "places", "hard place", generators::parse_place,
+               names_in(generators::place_names), c.places, error);
   } else if (key == "defects") {
     read_names(value, "defects", "kind of input without an answer", generators::parse_defect,
-               defect_names(), c.defects, error);
+               names_in(generators::defect_names), c.defects, error);
   } else if (key == "properties") {
     read_names(value, "properties", "property", parse_property, property_names(), c.properties,
                error);

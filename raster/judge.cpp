@@ -17,15 +17,6 @@ using Eigen::Matrix4d;
 using Eigen::Vector4d;
 using Eigen::Vector4f;
 
-std::string_view outcome_name(Outcome outcome) noexcept {
-  switch (outcome) {
-    case Outcome::pass: return "pass";
-    case Outcome::fail: return "fail";
-    case Outcome::inconclusive: return "inconclusive";
-  }
-  return "unknown";
-}
-
 std::string_view flag_name(Flag::Kind kind) noexcept {
   switch (kind) {
     case Flag::Kind::drawn_behind_c: return "drawn_behind_c";

@@ -9,9 +9,9 @@
 #include <ostream>
 #include <sstream>
 
-#include "oblique/depth_reconstruction.h"
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
+#include "oblique/references/depth_reconstruction.h"
 #include "oblique/report/report_files.h"
 
 namespace oblique::report {

@@ -138,21 +138,4 @@ ParsedScene parse_scene(std::string_view text_in) {
   return out;
 }
 
-std::string_view scene_consumer_name(SceneConsumer c) {
-  switch (c) {
-    case SceneConsumer::reconstruction: return "reconstruction";
-    case SceneConsumer::culling: return "culling";
-    case SceneConsumer::cascades: return "cascades";
-    case SceneConsumer::camera_plane: return "camera_plane";
-    case SceneConsumer::pass_view: return "pass_view";
-  }
-  return "unknown";
-}
-
-std::optional<SceneConsumer> parse_scene_consumer(std::string_view name) {
-  for (const SceneConsumer c : all_scene_consumers)
-    if (scene_consumer_name(c) == name) return c;
-  return std::nullopt;
-}
-
 }  // namespace oblique::scene

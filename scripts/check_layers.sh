@@ -2,6 +2,10 @@
 # The libraries' layering, checked over their sources (#include lines and detail:: names):
 #   - a library includes headers only of the libraries below it (the table below); the core
 #     includes nothing outside the core but Eigen and the standard library;
+#   - the core's internals (oblique/detail/: the methods' steps, the solver, the accurate method)
+#     are the core's alone: another library includes its front doors (oblique/*.h), its
+#     references (oblique/references/), its numeric primitives (oblique/numeric/) and its
+#     support headers (oblique/util/), never oblique/detail/;
 #   - a library names no other library's detail namespace: every `detail::NAME` in a library's
 #     files is declared in a `namespace detail` block of that same library; a third-party one's
 #     (`rc::detail`, `nlohmann::detail`) appears only in compiled sources, never in a header.
@@ -68,6 +72,8 @@ for lib in "${libraries[@]}"; do
     if [[ -n "$owner" ]]; then
       [[ "$allowed" == *" $owner "* ]] ||
         violation "$file:$line: $lib includes $header, of $owner (allowed: ${below[$lib]:-none})"
+      [[ "$owner" != core || "$lib" == core || "$header" != oblique/detail/* ]] ||
+        violation "$file:$line: $lib includes $header, one of the core's internals (oblique/detail/)"
     elif [[ "$lib" == core && ! "$header" =~ ^Eigen/ && "$header" == *.* ]]; then
       violation "$file:$line: core includes $header (the core uses only Eigen and the standard library)"
     fi
@@ -84,7 +90,7 @@ for lib in "${libraries[@]}"; do
         next
       }
       if (depth == 1) {
-        if (match(line, /(struct|class|union|enum)[[:space:]]+[A-Za-z_][A-Za-z0-9_]*/)) {
+        if (match(line, /(struct|class|union|enum([[:space:]]+(class|struct))?)[[:space:]]+[A-Za-z_][A-Za-z0-9_]*/)) {
           n = split(substr(line, RSTART, RLENGTH), w, /[[:space:]]+/); print w[n]
         } else if (match(line, /using[[:space:]]+[A-Za-z_][A-Za-z0-9_]*[[:space:]]*=/)) {
           s = substr(line, RSTART, RLENGTH); sub(/^using[[:space:]]+/, "", s); sub(/[[:space:]]*=$/, "", s); print s

@@ -39,7 +39,8 @@ template <class T>
 void expect_same(const Matrix4<T>& m, const Vector4<T>& c, Convention convention, Tally& tally) {
   const detail::OrdinaryInput input = detail::ordinary_input(m, c);
   const ObliqueResult<T> now = apply<T>(m, c, convention, Method::accurate);
-  const ObliqueResult<T> full = detail::apply_checked<T>(m, c, convention, Method::accurate, false);
+  const ObliqueResult<T> full =
+      detail::apply_checked<T>(m, c, convention, Method::accurate, detail::Entries::unchecked);
   ++tally.compared;
   tally.by_ordinary_path += input.ordinary;
   const bool same = now.status == full.status && now.detail == full.detail &&

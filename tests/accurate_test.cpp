@@ -2,7 +2,7 @@
 // rounded exact answer (rational oracle, properties::Problem) where its perspective fast path
 // certifies it, within tolerance::kAccurateUlps everywhere; the fast path and the refining path
 // give the same matrix; the closed form and the general method hand it what they cannot settle.
-#include "oblique/accurate/accurate.h"
+#include "oblique/detail/accurate/accurate.h"
 #include "oblique/definitions.h"  // detail::apply_checked(), detail::accurate() (declared compiled)
 
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "oblique/equilibrated_solver.h"
+#include "oblique/detail/equilibrated_solver.h"
 #include "oblique/oblique.h"
 #include "oblique/properties/exact.h"
 #include "oblique/properties/properties.h"
@@ -30,7 +30,8 @@ namespace {
 template <class T>
 ObliqueResult<T> accurate_method(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
                                  bool perspective_shape) {
-  return detail::accurate(m, c, convention, perspective_shape, plane_scale(c), false);
+  return detail::accurate(m, c, convention, detail::Shape(perspective_shape), plane_scale(c),
+                          detail::Entries::unchecked);
 }
 
 template <class T>

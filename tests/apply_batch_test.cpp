@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "oblique/batch.h"
-#include "oblique/detail/batch.h"
+#include "oblique/detail/batch_lanes.h"
 #include "oblique/oblique.h"
 #include "oblique/properties/generators.h"
 #include "printers.h"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/check_layers.sh on small trees of its own: a tree that keeps its layers passes; each
-# planted break (an include up the layers, a third-party header in the core, another library's
-# detail name, a third-party detail name in a header) fails, naming the file and line.
+# planted break (an include up the layers, a third-party header in the core, the core's
+# internals included elsewhere, another library's detail name, a third-party detail name in a
+# header) fails, naming the file and line.
 # Usage: bash tests/check_layers_test.sh   (exit 0: every case behaved)
 set -euo pipefail
 check="$(cd "$(dirname "$0")/.." && pwd)/scripts/check_layers.sh"
@@ -20,13 +21,14 @@ make_tree() {
 #include <cmath>
 #include "oblique/detail/scale.h"
 namespace oblique {
-inline double apply(double x) { return detail::scale(x); }
+inline double apply(double x) { return detail::scale(x, detail::Side::right); }
 }  // namespace oblique
 EOF
   cat > "$work/tree/core/include/oblique/detail/scale.h" <<'EOF'
 #pragma once
 namespace oblique::detail {
-inline double scale(double x) { return 2 * x; }
+enum class Side : bool { left, right };
+inline double scale(double x, Side = Side::left) { return 2 * x; }
 }  // namespace oblique::detail
 EOF
   cat > "$work/tree/protocol/include/oblique/protocol/wire.h" <<'EOF'
@@ -81,6 +83,11 @@ expect "the protocol including the properties" 1 "protocol includes oblique/prop
 make_tree
 sed -i 's|#include <cmath>|#include <gmpxx.h>|' "$work/tree/core/include/oblique/oblique.h"
 expect "a third-party header in the core" 1 "core includes gmpxx.h"
+
+make_tree
+echo '#include "oblique/detail/scale.h"' >> "$work/tree/protocol/include/oblique/protocol/wire.h"
+expect "another library including the core's internals" 1 \
+  "protocol/include/oblique/protocol/wire.h:3: protocol includes oblique/detail/scale.h, one of the core's internals"
 
 make_tree
 echo 'inline double g(double x) { return oblique::detail::scale(x); }' \

@@ -251,7 +251,8 @@ TEST(Cli, verifyHelpListsEveryFamilyAndPlace) {
 TEST(Cli, verifyHelpListsEveryNameOfTheContract) {
   std::string help;
   ASSERT_EQ(shell(std::string(OBLIQUE_CLI) + " verify --help", &help), 0);
-  for (const auto& names : {convention_names(), family_names(), place_names(), defect_names(),
+  for (const auto& names : {names_in(convention_names), names_in(generators::family_names),
+                            names_in(generators::place_names), names_in(generators::defect_names),
                             property_names(), refusal_names(), status_contract_names()}) {
     for (const std::string& name : names)
       EXPECT_NE(help.find(name), std::string::npos) << name << "\n" << help;
@@ -334,8 +335,9 @@ TEST(Cli, fuzzReportGivesOneReportPerDistinctFinding) {
     text << file.rdbuf();
     const std::string md = text.str();
     // A property's report names the likely cause (from its one case: the target is not asked).
-    if (md.rfind("# Counterexample:", 0) == 0)
+    if (md.rfind("# Counterexample:", 0) == 0) {
       EXPECT_NE(md.find("## Likely cause\n"), std::string::npos) << report << "\n" << md;
+    }
     const auto alone = md.find("This one case alone:\n\n```sh\n");
     ASSERT_NE(alone, std::string::npos) << report << "\n" << md;
     const auto start = alone + std::string("This one case alone:\n\n```sh\n").size();

@@ -9,13 +9,13 @@
 #include <map>
 #include <stdexcept>
 
-#include "oblique/depth_reconstruction.h"
-#include "oblique/kept_region.h"
 #include "oblique/oblique.h"
-#include "oblique/pass_camera.h"
 #include "oblique/projection.h"
 #include "oblique/properties/consumers.h"
 #include "oblique/properties/exact.h"
+#include "oblique/references/depth_reconstruction.h"
+#include "oblique/references/kept_region.h"
+#include "oblique/references/pass_camera.h"
 
 namespace {
 
@@ -667,7 +667,9 @@ TEST(ConsumerRound, aCameraAcceptsRefusesIsNotAskedOfTheProjectionsFunctions) {
           !seen[check].judged && seen[check].detail == "refused by accepts (upright_only)";
       EXPECT_EQ(refused, refuse) << consumer_check_name(check) << ": " << seen[check].detail;
     }
-    if (refuse) EXPECT_EQ(asked_depth, 0);
+    if (refuse) {
+      EXPECT_EQ(asked_depth, 0);
+    }
     // The pass-camera functions do not take the projection: asked either way.
     EXPECT_TRUE(seen.count(ConsumerCheck::mirror_view) && seen[ConsumerCheck::mirror_view].judged);
     EXPECT_TRUE(seen.count(ConsumerCheck::plane_on_surface));

@@ -1,5 +1,5 @@
 # A file built with other SIMD flags than the libraries cannot link against their interfaces that
-# take structs holding Eigen matrices (oblique/eigen_layout.h): compiled as is and with -mavx2, a
+# take structs holding Eigen matrices (oblique/util/eigen_layout.h): compiled as is and with -mavx2, a
 # file calling oblique::fuzzing::test_one_input and properties::Checker refers to them in
 # eigen_align16 and in eigen_align32; the libraries define the first (the one of their own build)
 # and not the second. Usage: cmake -DCXX=... -DSOURCE=<repository> -DFUZZING=<lib> -DPROPERTIES=<lib>

@@ -1,7 +1,7 @@
 // EquilibratedSolver (equilibrated_solver.h) on its own claims, against exact rational answers:
 // its solves, their refinement and backward error, the transposed solve's signs and error bound,
 // its refusals of zero rows and columns, and its reciprocal condition number.
-#include "oblique/equilibrated_solver.h"
+#include "oblique/detail/equilibrated_solver.h"
 
 #include <gtest/gtest.h>
 

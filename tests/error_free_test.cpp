@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "oblique/accurate/error_free.h"
+#include "oblique/numeric/error_free.h"
 #include "oblique/properties/exact.h"
 
 namespace oblique::eft {

@@ -1,7 +1,7 @@
 // The accurate method's exact path (exact_cramer.h): big-integer arithmetic, and the oblique
 // answer by Cramer's rule against the rational oracle (properties::Problem) on stiff inputs.
-#include "oblique/accurate/exact_cramer.h"
-#include "oblique/accurate/accurate.h"
+#include "oblique/detail/accurate/exact_cramer.h"
+#include "oblique/detail/accurate/accurate.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "oblique/frustum_planes.h"
+#include "oblique/references/frustum_planes.h"
 
 #include <gtest/gtest.h>
 

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "oblique/frustum_planes.h"
 #include "oblique/projection.h"
 #include "oblique/properties/contract.h"
 #include "oblique/properties/filtered.h"
 #include "oblique/properties/generators.h"
 #include "oblique/properties/judge.h"
+#include "oblique/references/frustum_planes.h"
 
 namespace oblique {
 namespace {

@@ -1,7 +1,7 @@
 // magnitudes.h on hand-picked inputs, subnormals and extreme spreads included: exponents,
 // magnitude_spread and its fast test magnitude_spread_exceeds, scaling by 2^k, finiteness; the
 // exponent-bit helpers against the libm calls they replace.
-#include "oblique/magnitudes.h"
+#include "oblique/numeric/magnitudes.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "families.h"
-#include "oblique/equilibrated_solver.h"
+#include "oblique/detail/equilibrated_solver.h"
 #include "oblique/properties/properties.h"
 #include "printers.h"
 

@@ -1,6 +1,6 @@
 // plane_scaling.h and plane.h on hand-picked planes, subnormal components and extreme spreads:
 // the shift plane_scale chooses, whether scale_plane lost bits, and when a plane is stiff.
-#include "oblique/plane_scaling.h"
+#include "oblique/detail/plane_scaling.h"
 
 #include <gtest/gtest.h>
 

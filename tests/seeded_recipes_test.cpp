@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include "oblique/frustum_planes.h"
 #include "oblique/oblique.h"
 #include "oblique/properties/properties.h"
+#include "oblique/references/frustum_planes.h"
 #include "printers.h"
 
 namespace oblique {

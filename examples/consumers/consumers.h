@@ -4,8 +4,8 @@
 // (docs/consumers.md) and is caught by the property named beside it.
 #pragma once
 
-#include <oblique/kept_region.h>
 #include <oblique/properties/consumers.h>
+#include <oblique/references/kept_region.h>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>

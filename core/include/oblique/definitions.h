@@ -11,15 +11,16 @@
 #include <cstddef>
 #include <cstring>
 
-#include "oblique/accurate/accurate.h"
 #include "oblique/batch.h"
-#include "oblique/detail/batch.h"
+#include "oblique/detail/accurate/accurate.h"
+#include "oblique/detail/batch_lanes.h"
+#include "oblique/detail/closed_form.h"
 #include "oblique/detail/closed_form_steps.h"
+#include "oblique/detail/general_method.h"
 #include "oblique/detail/input_checks.h"
-#include "oblique/general_method.h"
-#include "oblique/magnitudes.h"
+#include "oblique/detail/plane_scaling.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/oblique.h"
-#include "oblique/plane_scaling.h"
 #include "oblique/projection.h"
 
 namespace oblique {
@@ -40,9 +41,10 @@ template <class T>
 OBLIQUE_ALWAYS_INLINE ObliqueResult<T> closed_form_result(const Matrix4<T>& m,
                                                           const Vector4<T>& plane,
                                                           Convention convention,
-                                                          const PlaneScale& scale, bool ordinary) {
+                                                          const PlaneScale& scale,
+                                                          Entries entries) {
   Answer<T> answer;
-  if (closed_form(m, plane, convention, scale, ordinary, answer))
+  if (closed_form(m, plane, convention, scale, entries, answer) != Step::handed_on)
     return answer.result(m, Method::closed_form);
   return handed_to_accurate(m, plane, convention);
 }
@@ -52,8 +54,8 @@ OBLIQUE_ALWAYS_INLINE ObliqueResult<T> closed_form_result(const Matrix4<T>& m,
 template <class T>
 OBLIQUE_NOINLINE ObliqueResult<T> apply_checked(const Matrix4<T>& projection,
                                                 const Vector4<T>& plane, Convention convention,
-                                                Method method, bool ordinary) {
-  if (!ordinary) {
+                                                Method method, Entries entries) {
+  if (entries == Entries::unchecked) {
     if (!all_finite(projection)) {
       return refuse(projection, method, Status::invalid_input,
                     "the projection matrix has a NaN or infinite entry");
@@ -68,23 +70,24 @@ OBLIQUE_NOINLINE ObliqueResult<T> apply_checked(const Matrix4<T>& projection,
                     "precision of the scalar type (max_magnitude_spread)");
     }
   }
-  const bool perspective_shape = ordinary || has_perspective_shape(projection);
+  const Shape shape = Shape(entries == Entries::ordinary || has_perspective_shape(projection));
   if (method == Method::automatic) {
-    method = perspective_shape ? Method::closed_form : Method::general;
+    method = shape == Shape::perspective ? Method::closed_form : Method::general;
   }
   if (method == Method::closed_form) {
-    if (!perspective_shape) {
+    if (shape != Shape::perspective) {
       return refuse(projection, method, Status::invalid_input,
                     "closed_form needs the standard perspective shape (zeros outside "
                     "M11, M13, M22, M23, M33, M34, M43; M43 != 0); use auto or general");
     }
-    return closed_form_result(projection, plane, convention, plane_scale(plane), false);
+    return closed_form_result(projection, plane, convention, plane_scale(plane),
+                              Entries::unchecked);
   }
   if (method == Method::accurate) {
-    return accurate(projection, plane, convention, perspective_shape, plane_scale(plane), false);
+    return accurate(projection, plane, convention, shape, plane_scale(plane), Entries::unchecked);
   }
   Answer<T> answer;
-  if (general(projection, plane, convention, answer))
+  if (general(projection, plane, convention, answer) != Step::handed_on)
     return answer.result(projection, Method::general);
   return handed_to_accurate(projection, plane, convention);
 }
@@ -97,14 +100,15 @@ OBLIQUE_ALWAYS_INLINE void batch_answer(const Matrix4<T>& m, const Vector4<T>& p
   const OrdinaryInput input = ordinary_input(m, plane);
   Answer<T> answer;
   if (input.ordinary && (method == Method::automatic || method == Method::closed_form) &&
-      closed_form(m, plane, convention, ordinary_plane_scale(plane, input), true, answer)) {
+      closed_form(m, plane, convention, ordinary_plane_scale(plane, input), Entries::ordinary,
+                  answer) != Step::handed_on) {
     if (&out != &m) out = m;
     if (answer.status == Status::ok) {
       for (int j = 0; j < 4; ++j) out(2, j) = answer.row3(j);
     }
     status = answer.status;
   } else {
-    const ObliqueResult<T> r = apply_checked(m, plane, convention, method, input.ordinary);
+    const ObliqueResult<T> r = apply_checked(m, plane, convention, method, input.entries());
     out = r.projection;
     status = r.status;
   }
@@ -156,7 +160,7 @@ OBLIQUE_ALWAYS_INLINE std::size_t closed_form_blocks(const Matrix4<T>* projectio
 template <class T>
 OBLIQUE_NOINLINE ObliqueResult<T> accurate_ordinary(const Matrix4<T>& m, const Vector4<T>& plane,
                                                     Convention convention, PlaneScale scale) {
-  return accurate(m, plane, convention, true, scale, true);
+  return accurate(m, plane, convention, Shape::perspective, scale, Entries::ordinary);
 }
 
 }  // namespace detail
@@ -167,13 +171,14 @@ ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Co
   const detail::OrdinaryInput input = detail::ordinary_input(projection, plane);
   if (input.ordinary && (method == Method::automatic || method == Method::closed_form)) {
     return detail::closed_form_result(projection, plane, convention,
-                                      detail::ordinary_plane_scale(plane, input), true);
+                                      detail::ordinary_plane_scale(plane, input),
+                                      detail::Entries::ordinary);
   }
   if (input.ordinary && method == Method::accurate) {
     return detail::accurate_ordinary(projection, plane, convention,
                                      detail::ordinary_plane_scale(plane, input));
   }
-  return detail::apply_checked(projection, plane, convention, method, input.ordinary);
+  return detail::apply_checked(projection, plane, convention, method, input.entries());
 }
 
 /// apply() over `count` requests in one convention: for each i, out[i] and statuses[i] are the
@@ -222,21 +227,30 @@ void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::s
   for (; i < count; ++i) results[i] = apply(projections[i], planes[i], convention, method);
 }
 
-/// The instances oblique::core compiles (core/src/instances.cpp), for T = float, double and long
-/// double: `declare` is `template` there and `extern template` where OBLIQUE_LINKED_INSTANCES is
-/// defined: a program that links oblique::core and includes this header for its declarations
-/// (the core's white-box tests do) then compiles none of them again. Without it, a file including
-/// this header compiles apply() with its own flags, and its copies come first at link.
-#define OBLIQUE_CORE_INSTANCES(declare, T)                                                       \
-  declare ObliqueResult<T> apply<T>(const Matrix4<T>&, const Vector4<T>&, Convention, Method);   \
-  declare void apply_batch<T>(const Matrix4<T>*, const Vector4<T>*, std::size_t, Convention,     \
-                              Method, Matrix4<T>*, Status*);                                     \
-  declare void apply_batch<T>(const Matrix4<T>*, const Vector4<T>*, std::size_t, Convention,     \
-                              Method, ObliqueResult<T>*);                                        \
-  declare ObliqueResult<T> detail::apply_checked<T>(const Matrix4<T>&, const Vector4<T>&,        \
-                                                    Convention, Method, bool);                   \
+/// The instances the core's three libraries compile for T = float, double and long double, one
+/// macro per library: oblique::core apply() (core/src/apply.cpp), oblique::accurate the accurate
+/// method (core/src/accurate.cpp), oblique::batch apply_batch() (core/src/batch.cpp). `declare` is
+/// `template` there and `extern template` where a library uses another's instances, and where
+/// OBLIQUE_LINKED_INSTANCES is defined: a program that links the libraries and includes this
+/// header for its declarations (the core's white-box tests do) then compiles none of them again.
+/// Without it, a file including this header compiles them with its own flags, and its copies
+/// come first at link.
+#define OBLIQUE_APPLY_INSTANCES(declare, T)                                                    \
+  declare ObliqueResult<T> apply<T>(const Matrix4<T>&, const Vector4<T>&, Convention, Method); \
+  declare ObliqueResult<T> detail::apply_checked<T>(const Matrix4<T>&, const Vector4<T>&,      \
+                                                    Convention, Method, detail::Entries);
+#define OBLIQUE_ACCURATE_INSTANCES(declare, T)                                                   \
   declare ObliqueResult<T> detail::accurate<T>(const Matrix4<T>&, const Vector4<T>&, Convention, \
-                                               bool, const PlaneScale&, bool);
+                                               detail::Shape, const PlaneScale&, detail::Entries);
+#define OBLIQUE_BATCH_INSTANCES(declare, T)                                                  \
+  declare void apply_batch<T>(const Matrix4<T>*, const Vector4<T>*, std::size_t, Convention, \
+                              Method, Matrix4<T>*, Status*);                                 \
+  declare void apply_batch<T>(const Matrix4<T>*, const Vector4<T>*, std::size_t, Convention, \
+                              Method, ObliqueResult<T>*);
+#define OBLIQUE_CORE_INSTANCES(declare, T) \
+  OBLIQUE_APPLY_INSTANCES(declare, T)      \
+  OBLIQUE_ACCURATE_INSTANCES(declare, T)   \
+  OBLIQUE_BATCH_INSTANCES(declare, T)
 
 #if defined(OBLIQUE_LINKED_INSTANCES)
 OBLIQUE_CORE_INSTANCES(extern template, float)

@@ -4,6 +4,8 @@
 #include <optional>
 #include <string_view>
 
+#include "oblique/util/enum_names.h"
+
 namespace oblique {
 
 /// The clip-space depth range a projection matrix targets.
@@ -14,23 +16,19 @@ enum class Convention {
                ///< far plane
 };
 
-inline constexpr Convention all_conventions[] = {Convention::gl, Convention::zero_one,
-                                                 Convention::reversed_z};
+inline constexpr EnumName<Convention> convention_names[] = {
+    {Convention::gl, "gl"},
+    {Convention::zero_one, "zero_one"},
+    {Convention::reversed_z, "reversed_z"},
+};
+inline constexpr auto all_conventions = values_in(convention_names);
 
-constexpr std::string_view convention_name(Convention c) noexcept {
-  switch (c) {
-    case Convention::gl: return "gl";
-    case Convention::zero_one: return "zero_one";
-    case Convention::reversed_z: return "reversed_z";
-  }
-  return "unknown";
+constexpr std::string_view convention_name(Convention value) noexcept {
+  return name_in(convention_names, value);
 }
-
+/// Inverse of convention_name(); none for an unknown name.
 constexpr std::optional<Convention> parse_convention(std::string_view name) noexcept {
-  for (Convention c : all_conventions) {
-    if (convention_name(c) == name) return c;
-  }
-  return std::nullopt;
+  return value_in(convention_names, name);
 }
 
 /// A clip plane as a combination of rows: plane = m3 * M_3 + m4 * M_4 (rows counted from 1).

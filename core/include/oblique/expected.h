@@ -14,7 +14,7 @@ namespace oblique {
 struct Done {};
 
 template <class T>
-class Expected {
+class [[nodiscard]] Expected {
  public:
   Expected(T value) : value_(std::move(value)) {}  // NOLINT: implicit, as std::expected's
 

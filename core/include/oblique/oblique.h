@@ -5,17 +5,26 @@
 // (depth_convention.h), or a status that says why there is no answer (status.h).
 //
 // This header declares apply(); link oblique::core, which compiles it for float, double and long
-// double (a header-only build includes oblique/definitions.h instead). Below the declaration:
-// the closed form that answers the common request, for the standard perspective shape.
+// double (a header-only build includes oblique/definitions.h instead). apply_batch(): batch.h.
+// The references for the code around the matrix (depth, culling planes, the pass camera):
+// oblique/references/. The methods' internals: oblique/detail/.
+//
+// The closed form, which answers the common request (the standard perspective shape: A = M11,
+// B = M13, D = M22, E = M23, G = M33, H = M34, K = M43, zeros elsewhere; paper Eqs. 15, 20):
+//   C'   = M^-T C has the signs of (C_x / A, C_y / D, C_w / H); Q' the clip-space corner by them,
+//   Q    = M^-1 Q' = ((Q'_x - B/K) / A, (Q'_y - E/K) / D, 1/K, (Q'_z - G/K) / H),
+//   a    = (z_high - z_low) / (C . Q),
+//   M'_3 = a C - t M_4      (near = s M_3 + t M_4, per convention: depth_convention.h).
+// Its code, with the care for scaling and underflow: detail/closed_form.h. Any other invertible
+// M goes through one equilibrated LU solve (Method::general); Method::accurate rounds each entry
+// of M'_3 once (near-correct rounding); Method::automatic picks the closed form where it applies.
 #pragma once
 
-#include "oblique/depth_convention.h"          // Convention, clip_depth_range(), near_rows()
-#include "oblique/detail/closed_form_steps.h"  // Answer, ConventionTable, accept_row3(), ...
-#include "oblique/plane.h"                     // Matrix4, Vector4 (Eigen/Core)
-#include "oblique/plane_scaling.h"             // PlaneScale, scale_plane()
-#include "oblique/projection.h"                // perspective(), frustum(), has_perspective_shape()
-#include "oblique/result.h"                    // Method, ObliqueResult
-#include "oblique/status.h"                    // Status
+#include "oblique/depth_convention.h"  // Convention, clip_depth_range(), near_rows()
+#include "oblique/plane.h"             // Matrix4, Vector4 (Eigen/Core)
+#include "oblique/projection.h"        // perspective(), frustum(), has_perspective_shape()
+#include "oblique/result.h"            // Method, ObliqueResult
+#include "oblique/status.h"            // Status
 
 namespace oblique {
 
@@ -30,76 +39,4 @@ template <class T>
 ObliqueResult<T> apply(const Matrix4<T>& projection, const Vector4<T>& plane, Convention convention,
                        Method method = Method::automatic);
 
-namespace detail {
-
-/// The closed form, for the standard perspective shape (has_perspective_shape(): A = M11,
-/// B = M13, D = M22, E = M23, G = M33, H = M34, K = M43, zeros elsewhere); paper Eqs. 15, 20:
-///   C'   = M^-T C has the signs of (C_x / A, C_y / D, C_w / H); Q' the clip-space corner by them,
-///   Q    = M^-1 Q' = ((Q'_x - B/K) / A, (Q'_y - E/K) / D, 1/K, (Q'_z - G/K) / H),
-///   a    = (z_high - z_low) / (C . Q),
-///   M'_3 = a C - t M_4      (near = s M_3 + t M_4: s = 1; t M_4 - a C where s = -1).
-/// Fills `out` and returns true, or returns false for a plane whose scaling lost bits or a C . Q
-/// lost to underflow: the accurate method answers those. `scale`: plane_scale(C); `ordinary`:
-/// every entry of M and C is zero or normal (ordinary_input()).
-template <class T>
-OBLIQUE_ALWAYS_INLINE bool closed_form(const Matrix4<T>& m, const Vector4<T>& plane,
-                                       Convention convention, const PlaneScale& scale,
-                                       bool ordinary, Answer<T>& out) {
-  const T A = m(0, 0), B = m(0, 2), D = m(1, 1), E = m(1, 2), G = m(2, 2), H = m(2, 3), K = m(3, 2);
-  if (A == T(0) || D == T(0) || H == T(0))
-    return out.refuse(Status::singular_projection,
-                      "the projection is singular: M11, M22 or M34 is zero");
-  if (!(plane.w() < T(0))) return out.refuse(Status::camera_not_behind_plane);
-  const ScaledPlane<T> scaled = scale_plane(plane, scale);  // c_hat = C 2^k, for C . Q
-  if (scaled.lossy) return false;
-  // Q'_z from the table by the sign of C'_z, not by a branch (it changes from request to request).
-  const ConventionTable<T>& table = convention_table<T>(convention);
-  const T sign_z = sign(plane.w()) * sign(H);
-  const T corner_z = table.corner_z[(sign_z > T(0)) - (sign_z < T(0)) + 1];
-  const Vector4<T> q((sign(plane.x()) * sign(A) - B / K) / A,
-                     (sign(plane.y()) * sign(D) - E / K) / D, T(1) / K, (corner_z - G / K) / H);
-  return finish(m, plane, q, table, scale, scaled, ordinary, out);
-}
-
-/// From a far corner Q (M_4 . Q = 1) to M'_3 (paper Eqs. 9, 10, 20, every convention):
-///   near' = s M'_3 + t M_4 = a C,   far' . Q = 0,   so   a = (z_high - z_low) / (C . Q).
-/// C . Q is taken with c_hat = C 2^k, so that it neither overflows nor underflows, and a = a_hat
-/// 2^k. Returns false for a C . Q lost to underflow (the accurate method answers). Shared with
-/// the general method. `perspective_ordinary`: M has the perspective shape and every entry of M
-/// and C is zero or normal (the near plane's test may then be decided by signs).
-template <class T>
-OBLIQUE_ALWAYS_INLINE bool finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vector4<T>& q,
-                                  const ConventionTable<T>& table, const PlaneScale& scale,
-                                  const ScaledPlane<T>& scaled, bool perspective_ordinary,
-                                  Answer<T>& out) {
-  out.far_corner = q;
-  if (!all_finite(q))
-    return out.refuse(Status::out_of_range,
-                      "the far corner Q = M^-1 Q' is beyond the range of the scalar type");
-  const Vector4<T>& c_hat = scaled.c_hat;
-  const T d = c_hat.dot(q);
-  if (!std::isfinite(d))
-    return out.refuse(Status::out_of_range, "C . Q is beyond the range of the scalar type");
-  if (dot_lost_to_underflow(d, c_hat, q)) return false;
-  if (!(d > T(0))) return out.refuse(Status::plane_misses_view_volume);
-  const T a_hat = table.depth_span / d;
-  const T a = times_power_of_two(a_hat, scale.shift);
-  // a C rounds once per entry (a_hat c_hat, the same value, where a itself is not normal); the
-  // difference is written either way round so that a zero entry stays +0.
-  const bool a_normal = std::isfinite(a) && std::abs(a) >= std::numeric_limits<T>::min();
-  T ac[4], t_m4[4];
-  for (int i = 0; i < 4; ++i) {
-    ac[i] = a_normal ? a * plane(i) : a_hat * c_hat(i);
-    t_m4[i] = table.t * m(3, i);
-  }
-  const T* const minuend = table.first == 0 ? ac : t_m4;
-  const T* const subtrahend = table.first == 0 ? t_m4 : ac;
-  Vector4<T> row3;
-  for (int i = 0; i < 4; ++i) row3(i) = minuend[i] - subtrahend[i];  // M'_3 = a C - t M_4
-  const bool kept_by_signs =
-      near_plane_proved_kept(plane, ac, table.s * row3(2) + t_m4[2], scale, perspective_ordinary);
-  return accept_row3(row3, m, c_hat, table, kept_by_signs, out);
-}
-
-}  // namespace detail
 }  // namespace oblique

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "oblique/magnitudes.h"
+#include "oblique/numeric/magnitudes.h"
 
 namespace oblique {
 

@@ -7,6 +7,7 @@
 
 #include "oblique/plane.h"
 #include "oblique/status.h"
+#include "oblique/util/enum_names.h"
 
 namespace oblique {
 
@@ -19,28 +20,24 @@ enum class Method {
                 ///< (accurate/accurate.h); closed-form solves for the perspective shape
 };
 
-inline constexpr Method all_methods[] = {Method::automatic, Method::closed_form, Method::general,
-                                         Method::accurate};
+inline constexpr EnumName<Method> method_names[] = {
+    {Method::automatic, "auto"},
+    {Method::closed_form, "closed_form"},
+    {Method::general, "general"},
+    {Method::accurate, "accurate"},
+};
+inline constexpr auto all_methods = values_in(method_names);
 
-constexpr std::string_view method_name(Method m) noexcept {
-  switch (m) {
-    case Method::automatic: return "auto";
-    case Method::closed_form: return "closed_form";
-    case Method::general: return "general";
-    case Method::accurate: return "accurate";
-  }
-  return "unknown";
+constexpr std::string_view method_name(Method value) noexcept {
+  return name_in(method_names, value);
 }
-
+/// Inverse of method_name(); none for an unknown name.
 constexpr std::optional<Method> parse_method(std::string_view name) noexcept {
-  for (Method m : all_methods) {
-    if (method_name(m) == name) return m;
-  }
-  return std::nullopt;
+  return value_in(method_names, name);
 }
 
 template <class T>
-struct ObliqueResult {
+struct [[nodiscard]] ObliqueResult {
   Status status = Status::ok;
   /// A more specific reason than status_message(status); empty when there is none.
   std::string_view detail;

@@ -4,6 +4,8 @@
 #include <optional>
 #include <string_view>
 
+#include "oblique/util/enum_names.h"
+
 namespace oblique {
 
 /// What happened to one request. Inputs that have no answer get a code, never undefined behaviour.
@@ -18,26 +20,23 @@ enum class Status {
   out_of_range,              ///< the answer (or the far corner Q) exceeds the scalar type's range
 };
 
-inline constexpr Status all_statuses[] = {
-    Status::ok,
-    Status::invalid_input,
-    Status::singular_projection,
-    Status::camera_not_behind_plane,
-    Status::plane_misses_view_volume,
-    Status::out_of_range,
+inline constexpr EnumName<Status> status_codes[] = {
+    {Status::ok, "ok"},
+    {Status::invalid_input, "invalid_input"},
+    {Status::singular_projection, "singular_projection"},
+    {Status::camera_not_behind_plane, "camera_not_behind_plane"},
+    {Status::plane_misses_view_volume, "plane_misses_view_volume"},
+    {Status::out_of_range, "out_of_range"},
 };
+inline constexpr auto all_statuses = values_in(status_codes);
 
 /// The code used on the command line and in the JSON protocol, e.g. "camera_not_behind_plane".
-constexpr std::string_view status_code(Status status) noexcept {
-  switch (status) {
-    case Status::ok: return "ok";
-    case Status::invalid_input: return "invalid_input";
-    case Status::singular_projection: return "singular_projection";
-    case Status::camera_not_behind_plane: return "camera_not_behind_plane";
-    case Status::plane_misses_view_volume: return "plane_misses_view_volume";
-    case Status::out_of_range: return "out_of_range";
-  }
-  return "unknown";
+constexpr std::string_view status_code(Status value) noexcept {
+  return name_in(status_codes, value);
+}
+/// Inverse of status_code(); none for an unknown name.
+constexpr std::optional<Status> parse_status(std::string_view name) noexcept {
+  return value_in(status_codes, name);
 }
 
 /// One sentence a person can act on.
@@ -58,14 +57,6 @@ constexpr std::string_view status_message(Status status) noexcept {
              "to the far corner)";
   }
   return "unknown status";
-}
-
-/// Inverse of status_code(); empty for an unknown code.
-constexpr std::optional<Status> parse_status(std::string_view code) noexcept {
-  for (Status s : all_statuses) {
-    if (status_code(s) == code) return s;
-  }
-  return std::nullopt;
 }
 
 }  // namespace oblique

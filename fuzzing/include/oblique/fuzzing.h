@@ -25,10 +25,10 @@
 #include <cstdint>
 
 #include "oblique/depth_convention.h"
-#include "oblique/eigen_layout.h"
 #include "oblique/properties/adapter.h"
 #include "oblique/properties/consumers.h"
 #include "oblique/properties/contract.h"
+#include "oblique/util/eigen_layout.h"
 
 namespace oblique::fuzzing {
 
@@ -42,7 +42,7 @@ namespace oblique::fuzzing {
 /// left out (by the contract, by `accepts`, or within rounding of no answer) are counted and
 /// printed at exit with those judged. Returns 0,
 /// as LLVMFuzzerTestOneInput does. Compiled in oblique::fuzzing for float, double and long double
-/// (in a namespace named by Eigen's layout: oblique/eigen_layout.h).
+/// (in a namespace named by Eigen's layout: oblique/util/eigen_layout.h).
 inline namespace OBLIQUE_EIGEN_LAYOUT {
 template <class T>
 int test_one_input(const std::uint8_t* data, std::size_t size,

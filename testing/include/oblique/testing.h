@@ -33,12 +33,12 @@
 #include <string>
 #include <vector>
 
-#include "oblique/eigen_layout.h"
 #include "oblique/properties/adapter.h"
 #include "oblique/properties/case_kinds.h"
 #include "oblique/properties/checks.h"
 #include "oblique/properties/consumers.h"
 #include "oblique/properties/contract.h"
+#include "oblique/util/eigen_layout.h"
 
 namespace oblique::testing {
 
@@ -77,7 +77,7 @@ Settings& settings();
 /// convention the implementation does not serve.
 ///
 /// Compiled in oblique::testing for float, double and long double (in a namespace named by
-/// Eigen's layout: oblique/eigen_layout.h).
+/// Eigen's layout: oblique/util/eigen_layout.h).
 inline namespace OBLIQUE_EIGEN_LAYOUT {
 template <class T>
 void check_properties(const Implementation<T>& impl, const Contract& contract = Contract{});

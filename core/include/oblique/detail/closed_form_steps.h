@@ -1,5 +1,5 @@
-// The steps of oblique.h's closed form and finish() that are not the formula, shared with the
-// general and the accurate methods: the answer they fill (Answer), a convention's constants
+// The steps of the closed form and finish() (closed_form.h) that are not the formula, shared with
+// the general and the accurate methods: the answer they fill (Answer), a convention's constants
 // (ConventionTable), the clip-space far corner Q' from the signs of C', the test that C . Q
 // survived underflow, and accept_row3(), which keeps a row 3 only if the near plane a consumer
 // extracts from it still keeps C's side.
@@ -13,15 +13,31 @@
 
 #include "oblique/depth_convention.h"
 #include "oblique/detail/config.h"
-#include "oblique/magnitudes.h"
+#include "oblique/detail/plane_scaling.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/plane.h"
-#include "oblique/plane_scaling.h"
 #include "oblique/result.h"
 #include "oblique/status.h"
 
 namespace oblique {
 
 namespace detail {
+
+/// How far a method got with a request: answered (its Answer holds row 3), refused (the Answer
+/// holds the status), or handed on: the method cannot settle the request in T, and the accurate
+/// method answers it (handed_to_accurate()).
+enum class Step : unsigned char { answered, refused, handed_on };
+
+/// What is known of the entries of M and C: nothing yet, or that every one is zero or normal
+/// (ordinary_input()). With M of the perspective shape, ordinary entries let the near plane's
+/// test be decided by signs (near_plane_proved_kept()).
+enum class Entries : bool { unchecked = false, ordinary = true };
+
+/// Whether M has the standard perspective shape (has_perspective_shape()).
+enum class Shape : bool { other = false, perspective = true };
+
+/// Whether the near plane's test is still to run on a row 3, or was proved by signs already.
+enum class NearPlane : bool { to_test = false, proved_kept = true };
 
 /// The smallest |C . Q| the core's dot product of c_hat (C scaled so that its largest component
 /// is about 1) and Q settles whatever its products lost to underflow: min / epsilon =
@@ -126,18 +142,19 @@ OBLIQUE_ALWAYS_INLINE bool near_plane_kept_by_signs(const Vector4<T>& plane, con
   return l_ac_w + l_c_w - l_largest - e - 2 >= std::numeric_limits<T>::min_exponent - 1;
 }
 
-/// near_plane_kept_by_signs() where its preconditions are known to hold (`perspective_ordinary`:
-/// M of the perspective shape, every entry of M and C zero or normal; C scaled by 2^-e), false
-/// elsewhere: the caller then runs the full test. ac as there, near_z = s M'_3z + t M_4z.
+/// near_plane_kept_by_signs() where its preconditions are known to hold (`entries` ordinary with
+/// M of the perspective shape: every entry of M and C zero or normal; C scaled by 2^-e),
+/// NearPlane::to_test elsewhere: the caller then runs the full test. ac as there, near_z =
+/// s M'_3z + t M_4z.
 template <class T>
-OBLIQUE_ALWAYS_INLINE bool near_plane_proved_kept(const Vector4<T>& plane, const T (&ac)[4],
-                                                  T near_z, const PlaneScale& scale,
-                                                  bool perspective_ordinary) {
+OBLIQUE_ALWAYS_INLINE NearPlane near_plane_proved_kept(const Vector4<T>& plane, const T (&ac)[4],
+                                                       T near_z, const PlaneScale& scale,
+                                                       Entries entries) {
   if constexpr (ExponentBits<T>::known) {
-    return perspective_ordinary && scale.shift == -scale.top &&
-           near_plane_kept_by_signs(plane, ac, near_z, scale.top);
+    return NearPlane(entries == Entries::ordinary && scale.shift == -scale.top &&
+                     near_plane_kept_by_signs(plane, ac, near_z, scale.top));
   } else {
-    return false;
+    return NearPlane::to_test;
   }
 }
 
@@ -196,11 +213,11 @@ struct Answer {
   Vector4<T> row3 = Vector4<T>::Zero();
   Vector4<T> far_corner = Vector4<T>::Zero();
 
-  /// Records a refusal; true (the request is answered).
-  bool refuse(Status why_not, std::string_view why = {}) noexcept {
+  /// Records a refusal.
+  Step refuse(Status why_not, std::string_view why = {}) noexcept {
     status = why_not;
     detail = why;
-    return true;
+    return Step::refused;
   }
 
   /// The ObliqueResult for projection m, answered by `method`.
@@ -220,18 +237,18 @@ struct Answer {
 
 /// Keeps row3 as M'_3 in `out` (status ok), or refuses it as out_of_range where it is not finite
 /// or the near plane a consumer extracts from it, s row3 + t M_4, no longer keeps C's side
-/// (near_plane_kept(); `kept_by_signs`: near_plane_kept_by_signs() already proved it does).
-/// c_hat: C scaled by 2^k. True: answered.
+/// (near_plane_kept(); `near_plane`: proved_kept where near_plane_kept_by_signs() proved it).
+/// c_hat: C scaled by 2^k.
 template <class T>
-OBLIQUE_ALWAYS_INLINE bool accept_row3(const Vector4<T>& row3, const Matrix4<T>& m,
+OBLIQUE_ALWAYS_INLINE Step accept_row3(const Vector4<T>& row3, const Matrix4<T>& m,
                                        const Vector4<T>& c_hat, const ConventionTable<T>& table,
-                                       bool kept_by_signs, Answer<T>& out) {
+                                       NearPlane near_plane, Answer<T>& out) {
   if (!all_finite(row3)) return out.refuse(Status::out_of_range, accept_row3_messages::not_finite);
-  if (!kept_by_signs && !near_plane_kept(row3, m.row(3), c_hat, table))
+  if (near_plane == NearPlane::to_test && !near_plane_kept(row3, m.row(3), c_hat, table))
     return out.refuse(Status::out_of_range, accept_row3_messages::near_plane_lost);
   out.status = Status::ok;
   out.row3 = row3;
-  return true;
+  return Step::answered;
 }
 
 /// accept_row3() for a result r under construction (the accurate method's form): r with row 3
@@ -240,7 +257,8 @@ template <class T>
 ObliqueResult<T> accept_row3(ObliqueResult<T> r, const Vector4<T>& row3, const Vector4<T>& c_hat,
                              Convention convention) {
   Answer<T> answer;
-  accept_row3(row3, r.projection, c_hat, convention_table<T>(convention), false, answer);
+  accept_row3(row3, r.projection, c_hat, convention_table<T>(convention), NearPlane::to_test,
+              answer);
   if (answer.status == Status::ok) {
     r.projection.row(2) = row3.transpose();
   } else {

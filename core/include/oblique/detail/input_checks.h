@@ -8,8 +8,9 @@
 #include <cstring>
 #include <type_traits>
 
+#include "oblique/detail/closed_form_steps.h"  // Entries
 #include "oblique/detail/config.h"
-#include "oblique/magnitudes.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/plane.h"
 #include "oblique/projection.h"
 
@@ -22,6 +23,8 @@ struct OrdinaryInput {
   bool ordinary = false;
   unsigned plane_high = 0;
   unsigned plane_low = 0;
+
+  Entries entries() const noexcept { return Entries(ordinary); }
 };
 
 /// x's bits without the sign, shifted left by one: 0 exactly for +-0, and ordered as |x| is

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
+#include "oblique/util/enum_names.h"
 
 namespace oblique::generators {
 
@@ -38,10 +39,15 @@ enum class Family {
   /// The perspective shape; code that assumes M43 = -1 (Listing 5.1's Q) is wrong only here.
   left_handed,
 };
-inline constexpr Family all_families[] = {
-    Family::perspective,  Family::off_axis,  Family::infinite,   Family::orthographic,
-    Family::y_flipped,    Family::jittered,  Family::rotated,    Family::general,
-    Family::stereo_shift, Family::x_flipped, Family::xy_flipped, Family::left_handed};
+inline constexpr EnumName<Family> family_names[] = {
+    {Family::perspective, "perspective"},   {Family::off_axis, "off_axis"},
+    {Family::infinite, "infinite"},         {Family::orthographic, "orthographic"},
+    {Family::y_flipped, "y_flipped"},       {Family::jittered, "jittered"},
+    {Family::rotated, "rotated"},           {Family::general, "general"},
+    {Family::stereo_shift, "stereo_shift"}, {Family::x_flipped, "x_flipped"},
+    {Family::xy_flipped, "xy_flipped"},     {Family::left_handed, "left_handed"},
+};
+inline constexpr auto all_families = values_in(family_names);
 
 /// The families whose matrices have the perspective shape (has_perspective_shape()): the inputs
 /// of the closed form.
@@ -55,29 +61,12 @@ inline constexpr Family engine_families[] = {
     Family::perspective, Family::off_axis,  Family::infinite,  Family::y_flipped,
     Family::jittered,    Family::x_flipped, Family::xy_flipped};
 
-constexpr std::string_view family_name(Family f) noexcept {
-  switch (f) {
-    case Family::perspective: return "perspective";
-    case Family::off_axis: return "off_axis";
-    case Family::infinite: return "infinite";
-    case Family::orthographic: return "orthographic";
-    case Family::y_flipped: return "y_flipped";
-    case Family::jittered: return "jittered";
-    case Family::rotated: return "rotated";
-    case Family::general: return "general";
-    case Family::stereo_shift: return "stereo_shift";
-    case Family::x_flipped: return "x_flipped";
-    case Family::xy_flipped: return "xy_flipped";
-    case Family::left_handed: return "left_handed";
-  }
-  return "unknown";
+constexpr std::string_view family_name(Family value) noexcept {
+  return name_in(family_names, value);
 }
-
-inline std::optional<Family> parse_family(std::string_view name) noexcept {
-  for (Family f : all_families) {
-    if (family_name(f) == name) return f;
-  }
-  return std::nullopt;
+/// Inverse of family_name(); none for an unknown name.
+constexpr std::optional<Family> parse_family(std::string_view name) noexcept {
+  return value_in(family_names, name);
 }
 
 /// Where a valid plane sits: the hard places the suite must cover on every run.
@@ -90,56 +79,43 @@ enum class Place {
   near_standard,       ///< almost the standard near plane of M
   scaled,              ///< a typical plane scaled by 1e-8 .. 1e8
 };
-inline constexpr Place all_places[] = {
-    Place::typical,    Place::zero_in_clip_plane, Place::near_eye, Place::near_far_corner,
-    Place::along_axis, Place::near_standard,      Place::scaled};
+inline constexpr EnumName<Place> place_names[] = {
+    {Place::typical, "typical"},       {Place::zero_in_clip_plane, "zero_in_clip_plane"},
+    {Place::near_eye, "near_eye"},     {Place::near_far_corner, "near_far_corner"},
+    {Place::along_axis, "along_axis"}, {Place::near_standard, "near_standard"},
+    {Place::scaled, "scaled"},
+};
+inline constexpr auto all_places = values_in(place_names);
 
-constexpr std::string_view place_name(Place p) noexcept {
-  switch (p) {
-    case Place::typical: return "typical";
-    case Place::zero_in_clip_plane: return "zero_in_clip_plane";
-    case Place::near_eye: return "near_eye";
-    case Place::near_far_corner: return "near_far_corner";
-    case Place::along_axis: return "along_axis";
-    case Place::near_standard: return "near_standard";
-    case Place::scaled: return "scaled";
-  }
-  return "unknown";
+constexpr std::string_view place_name(Place value) noexcept {
+  return name_in(place_names, value);
+}
+/// Inverse of place_name(); none for an unknown name.
+constexpr std::optional<Place> parse_place(std::string_view name) noexcept {
+  return value_in(place_names, name);
 }
 
 /// What is wrong with an invalid input.
 enum class Defect { camera_in_front, misses_view_volume, singular, near_singular, non_finite };
-inline constexpr Defect all_defects[] = {Defect::camera_in_front, Defect::misses_view_volume,
-                                         Defect::singular, Defect::near_singular,
-                                         Defect::non_finite};
+inline constexpr EnumName<Defect> defect_names[] = {
+    {Defect::camera_in_front, "camera_in_front"},
+    {Defect::misses_view_volume, "misses_view_volume"},
+    {Defect::singular, "singular"},
+    {Defect::near_singular, "near_singular"},
+    {Defect::non_finite, "non_finite"},
+};
+inline constexpr auto all_defects = values_in(defect_names);
 
-constexpr std::string_view defect_name(Defect d) noexcept {
-  switch (d) {
-    case Defect::camera_in_front: return "camera_in_front";
-    case Defect::misses_view_volume: return "misses_view_volume";
-    case Defect::singular: return "singular";
-    case Defect::near_singular: return "near_singular";
-    case Defect::non_finite: return "non_finite";
-  }
-  return "unknown";
+constexpr std::string_view defect_name(Defect value) noexcept {
+  return name_in(defect_names, value);
+}
+/// Inverse of defect_name(); none for an unknown name.
+constexpr std::optional<Defect> parse_defect(std::string_view name) noexcept {
+  return value_in(defect_names, name);
 }
 
 inline std::vector<Place> every_place() {
   return {std::begin(all_places), std::end(all_places)};
-}
-
-inline std::optional<Place> parse_place(std::string_view name) noexcept {
-  for (Place p : all_places) {
-    if (place_name(p) == name) return p;
-  }
-  return std::nullopt;
-}
-
-inline std::optional<Defect> parse_defect(std::string_view name) noexcept {
-  for (Defect d : all_defects) {
-    if (defect_name(d) == name) return d;
-  }
-  return std::nullopt;
 }
 
 inline std::vector<Family> every_family() {

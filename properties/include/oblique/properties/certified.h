@@ -4,7 +4,7 @@
 // comparison) is made only when the whole interval lies on one side, and otherwise throws
 // Undecided, which sends the caller to exact arithmetic.
 //
-// Bounds used (eft = core/include/oblique/accurate/error_free.h, Joldes, Muller and Popescu):
+// Bounds used (eft = core/include/oblique/numeric/error_free.h, Joldes, Muller and Popescu):
 // eft::add within 3u^2 / (1 - 4u), eft::multiply within 7u^2, eft::divide within 18u^2 of the
 // exact result of their operands, u = 2^-53, relative to that result, barring underflow and
 // overflow. Each bound below takes 2^-100 (above 2^6 u^2) for those; any rounding in the subnormal
@@ -18,7 +18,7 @@
 #include <limits>
 #include <type_traits>
 
-#include "oblique/accurate/error_free.h"
+#include "oblique/numeric/error_free.h"
 
 namespace oblique::properties::certified {
 

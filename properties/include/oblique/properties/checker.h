@@ -19,18 +19,18 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
-#include "oblique/eigen_layout.h"
 #include "oblique/plane.h"
 #include "oblique/properties/checks.h"
 #include "oblique/properties/finding.h"
 #include "oblique/status.h"
+#include "oblique/util/eigen_layout.h"
 
 namespace oblique::properties {
 
 template <class T>
 class FilteredProblem;
 
-inline namespace OBLIQUE_EIGEN_LAYOUT {  // (oblique/eigen_layout.h)
+inline namespace OBLIQUE_EIGEN_LAYOUT {  // (oblique/util/eigen_layout.h)
 
 /// Everything the checker knows of one input (M, C, convention), and its judgement of answers to
 /// it: the status contract first, then the properties Checks selects, then (when asked) row 3's

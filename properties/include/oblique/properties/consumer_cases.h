@@ -8,9 +8,9 @@
 #include <cmath>
 #include <vector>
 
-#include "oblique/kept_region.h"
-#include "oblique/pass_camera.h"
 #include "oblique/properties/consumers.h"
+#include "oblique/references/kept_region.h"
+#include "oblique/references/pass_camera.h"
 
 namespace oblique::consumer_cases {
 

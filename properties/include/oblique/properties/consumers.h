@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
-#include "oblique/depth_reconstruction.h"
-#include "oblique/frustum_planes.h"
 #include "oblique/plane.h"
 #include "oblique/properties/case_kinds.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/references/depth_reconstruction.h"
+#include "oblique/references/frustum_planes.h"
 
 namespace oblique::properties {
 

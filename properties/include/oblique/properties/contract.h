@@ -117,11 +117,8 @@ Expected<Contract> exclude(Contract contract, const std::vector<std::string>& na
 /// left out, so read_contract() gives the same contract back).
 std::string contract_json(const Contract& contract);
 
-/// The names each field accepts, for help texts and messages.
-std::vector<std::string> family_names();
-std::vector<std::string> convention_names();
-std::vector<std::string> place_names();
-std::vector<std::string> defect_names();
+/// The names the property, refusal and status fields accept, for help texts and messages (the
+/// families, conventions, places and defects: names_in(family_names) and so on).
 std::vector<std::string> property_names();
 std::vector<std::string> refusal_names();
 std::vector<std::string> status_contract_names();

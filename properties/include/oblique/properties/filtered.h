@@ -31,7 +31,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "oblique/magnitudes.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/properties/certified.h"
 #include "oblique/properties/exact.h"
 #include "oblique/properties/judge.h"

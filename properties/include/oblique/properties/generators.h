@@ -17,12 +17,12 @@
 #include <string_view>
 #include <vector>
 
-#include "oblique/frustum_planes.h"
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
 #include "oblique/properties/case_kinds.h"
 #include "oblique/properties/contract.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/references/frustum_planes.h"
 
 namespace oblique::generators {
 

@@ -12,13 +12,13 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
-#include "oblique/frustum_planes.h"
 #include "oblique/plane.h"
 #include "oblique/properties/exact.h"
 #include "oblique/properties/finding.h"
 #include "oblique/properties/property.h"
 #include "oblique/properties/tolerance.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/references/frustum_planes.h"
 #include "oblique/status.h"
 
 namespace oblique::properties {

@@ -7,31 +7,28 @@
 #include <string_view>
 
 #include "oblique/expected.h"
+#include "oblique/util/enum_names.h"
 
 namespace oblique::protocol {
 
 /// The scalar type a request is computed in.
 enum class Precision { float32, float64, long_double };
 
-inline constexpr Precision all_precisions[] = {Precision::float32, Precision::float64,
-                                               Precision::long_double};
+inline constexpr EnumName<Precision> precision_names[] = {
+    {Precision::float32, "float"},
+    {Precision::float64, "double"},
+    {Precision::long_double, "long_double"},
+};
+inline constexpr auto all_precisions = values_in(precision_names);
 
 /// "float", "double", "long_double": the one table of scalar names (the CLI's --precision values,
 /// the reports' "precision" field).
-constexpr std::string_view precision_name(Precision p) noexcept {
-  switch (p) {
-    case Precision::float32: return "float";
-    case Precision::float64: return "double";
-    case Precision::long_double: return "long_double";
-  }
-  return "unknown";
+constexpr std::string_view precision_name(Precision value) noexcept {
+  return name_in(precision_names, value);
 }
-
+/// Inverse of precision_name(); none for an unknown name.
 constexpr std::optional<Precision> parse_precision(std::string_view name) noexcept {
-  for (Precision p : all_precisions) {
-    if (precision_name(p) == name) return p;
-  }
-  return std::nullopt;
+  return value_in(precision_names, name);
 }
 
 /// The Precision of a scalar type.

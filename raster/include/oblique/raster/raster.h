@@ -18,8 +18,9 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
-#include "oblique/depth_reconstruction.h"
 #include "oblique/expected.h"
+#include "oblique/references/depth_reconstruction.h"
+#include "oblique/util/enum_names.h"
 
 namespace oblique::raster {
 
@@ -31,7 +32,14 @@ enum class Device {
 /// A verdict about the answer, or none: a self-check of the renderer tripped.
 enum class Outcome { pass, fail, inconclusive };
 
-std::string_view outcome_name(Outcome outcome) noexcept;
+inline constexpr EnumName<Outcome> outcome_names[] = {
+    {Outcome::pass, "pass"},
+    {Outcome::fail, "fail"},
+    {Outcome::inconclusive, "inconclusive"},
+};
+constexpr std::string_view outcome_name(Outcome value) noexcept {
+  return name_in(outcome_names, value);
+}
 
 /// The samples of one frame, one per pixel (pixel (i, j), i from the left, j from the bottom, is
 /// sample j * size + i): a point of camera space with w = 1, in float32 as the vertex shader

@@ -15,10 +15,11 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
-#include "oblique/depth_reconstruction.h"
-#include "oblique/pass_camera.h"
 #include "oblique/plane.h"
 #include "oblique/properties/consumers.h"
+#include "oblique/references/depth_reconstruction.h"
+#include "oblique/references/pass_camera.h"
+#include "oblique/util/enum_names.h"
 
 namespace oblique::scene {
 
@@ -26,7 +27,7 @@ using Vector3 = Eigen::Vector3d;
 
 enum class ProjectionType { perspective, infinite, frustum, orthographic, matrix };
 
-// (The depth buffer's format, DepthBuffer: the core's oblique/depth_reconstruction.h.)
+// (The depth buffer's format, DepthBuffer: the core's oblique/references/depth_reconstruction.h.)
 
 struct Camera {
   ProjectionType type = ProjectionType::perspective;
@@ -65,12 +66,21 @@ struct Surface {
 /// portal's view).
 enum class SceneConsumer { reconstruction, culling, cascades, camera_plane, pass_view };
 
-inline constexpr SceneConsumer all_scene_consumers[] = {
-    SceneConsumer::reconstruction, SceneConsumer::culling, SceneConsumer::cascades,
-    SceneConsumer::camera_plane, SceneConsumer::pass_view};
-
-std::string_view scene_consumer_name(SceneConsumer c);
-std::optional<SceneConsumer> parse_scene_consumer(std::string_view name);
+inline constexpr EnumName<SceneConsumer> scene_consumer_names[] = {
+    {SceneConsumer::reconstruction, "reconstruction"},
+    {SceneConsumer::culling, "culling"},
+    {SceneConsumer::cascades, "cascades"},
+    {SceneConsumer::camera_plane, "camera_plane"},
+    {SceneConsumer::pass_view, "pass_view"},
+};
+inline constexpr auto all_scene_consumers = values_in(scene_consumer_names);
+constexpr std::string_view scene_consumer_name(SceneConsumer value) noexcept {
+  return name_in(scene_consumer_names, value);
+}
+/// Inverse of scene_consumer_name(); none for an unknown name.
+constexpr std::optional<SceneConsumer> parse_scene_consumer(std::string_view name) noexcept {
+  return value_in(scene_consumer_names, name);
+}
 
 struct Scene {
   std::string name;
@@ -115,7 +125,7 @@ std::optional<Matrix4<double>> look_at(const Vector3& eye, const Vector3& target
                                        const Vector3& up);
 
 // (A mirror's reflection, a portal's map and the plane in a pass camera's space: the core's
-// oblique/pass_camera.h.)
+// oblique/references/pass_camera.h.)
 
 /// The frame (columns right = up x normal, up, normal, center) of a rectangle; empty when up is
 /// parallel to the normal.

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "oblique/depth_reconstruction.h"
 #include "oblique/properties/consumers.h"
 #include "oblique/properties/contract.h"
 #include "oblique/protocol/consumer_messages.h"
 #include "oblique/protocol/protocol.h"
+#include "oblique/references/depth_reconstruction.h"
 #include "oblique/status.h"
 
 namespace oblique::verify {

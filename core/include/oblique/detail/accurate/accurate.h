@@ -24,18 +24,18 @@
 #include <type_traits>
 #include <utility>
 
-#include "oblique/accurate/error_free.h"
-#include "oblique/accurate/exact_cramer.h"
-#include "oblique/accurate/perspective_fast_path.h"
-#include "oblique/accurate/refined_corner.h"
 #include "oblique/depth_convention.h"
+#include "oblique/detail/accurate/exact_cramer.h"
+#include "oblique/detail/accurate/perspective_fast_path.h"
+#include "oblique/detail/accurate/refined_corner.h"
 #include "oblique/detail/closed_form_steps.h"
 #include "oblique/detail/config.h"
-#include "oblique/equilibrated_solver.h"
-#include "oblique/general_method.h"
-#include "oblique/magnitudes.h"
+#include "oblique/detail/equilibrated_solver.h"
+#include "oblique/detail/general_method.h"
+#include "oblique/detail/plane_scaling.h"
+#include "oblique/numeric/error_free.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/plane.h"
-#include "oblique/plane_scaling.h"
 #include "oblique/projection.h"
 #include "oblique/result.h"
 #include "oblique/status.h"
@@ -81,6 +81,10 @@ OBLIQUE_NOINLINE ObliqueResult<T> accurate_exact(const Matrix4<T>& m, const Matr
   return accept_row3(std::move(r), exact.row3, c_hat, convention);
 }
 
+/// Whether the far corner's first word comes with a bound of its error (the closed form's explicit
+/// solve: a few roundings) or only with an estimate (an LU solve, through rcond).
+enum class FirstWord : bool { estimated = false, bounded = true };
+
 /// The accurate method's last steps, once the far corner's first word is solved: refine Q to
 /// two words (more where C . Q or a row-3 entry cancels beyond them), C . Q and row 3; where
 /// five words do not resolve them, the exact answer.
@@ -90,7 +94,7 @@ OBLIQUE_NOINLINE ObliqueResult<T> accurate_exact(const Matrix4<T>& m, const Matr
 template <class T, class W, class Corner>
 ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw,
                                  const ScaledPlane<W>& scaled, Convention convention, Corner q,
-                                 W contraction_floor, bool first_word_bounded) {
+                                 W contraction_floor, FirstWord first_word) {
   ObliqueResult<T> r = refuse(m, Method::accurate, Status::ok);
   // c_hat is C scaled by 2^k in W; its rounding to T is C scaled by 2^k in T (each is the
   // exact C_i 2^k rounded once), so plane_scale_shift need not run again.
@@ -98,7 +102,7 @@ ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw,
   // In its own type the answer needs a second word of Q. float (run in double) rarely does when
   // the first word comes from the closed form, whose few roundings contraction_floor bounds;
   // an LU solve's error is only estimated by rcond, so it always gets a second word.
-  if ((std::is_same_v<T, W> || !first_word_bounded) && q.finite()) q.add_word();
+  if ((std::is_same_v<T, W> || first_word == FirstWord::estimated) && q.finite()) q.add_word();
   r.far_corner = q.value().template cast<T>();
   if (!q.finite() || !all_finite(r.far_corner)) {
     r.status = Status::out_of_range;
@@ -132,11 +136,12 @@ ObliqueResult<T> accurate_finish(const Matrix4<T>& m, const Matrix4<W>& mw,
 /// Q, C . Q and a carried to about twice the working precision and each entry rounded once.
 /// For the perspective shape the solves are the closed form's, and C' has exact signs. Stiff
 /// planes (stiff_plane()), and signs of C' within their error bound of zero, are settled in
-/// exact arithmetic (exact_cramer.h). `scale`: plane_scale(plane); `ordinary`: every entry of M
-/// and C is zero or normal (ordinary_input(); the near plane's test may then be decided by signs).
+/// exact arithmetic (exact_cramer.h). `scale`: plane_scale(plane); `entries`: whether every entry
+/// of M and C is zero or normal (ordinary_input(); the near plane's test may then be decided by
+/// signs).
 template <class T>
 ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention,
-                          bool perspective_shape, const PlaneScale& scale, bool ordinary) {
+                          Shape shape, const PlaneScale& scale, Entries entries) {
   using W = typename AccurateWorkingType<T>::type;
   const Vector4<W> plane_w = plane.template cast<W>();
   const ScaledPlane<W> scaled = scale_plane(plane_w, scale);
@@ -147,7 +152,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
     return accurate_exact(m, Matrix4<W>(m.template cast<W>()), plane_w,
                           Vector4<T>(c_hat.template cast<T>()), convention);
   };
-  if (perspective_shape) {
+  if (shape == Shape::perspective) {
     const W A = W(m(0, 0)), B = W(m(0, 2)), D = W(m(1, 1)), E = W(m(1, 2)), G = W(m(2, 2)),
             H = W(m(2, 3)), K = W(m(3, 2));
     if (A == W(0) || D == W(0) || H == W(0)) {
@@ -183,14 +188,13 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
         const ConventionTable<T>& table = convention_table<T>(convention);
         T near[4];
         for (int i = 0; i < 4; ++i) near[i] = table.s * fast->row3(i) + table.t * m(3, i);
-        bool kept_by_signs;
+        NearPlane near_plane;
         if constexpr (std::is_same_v<T, float>) {
-          kept_by_signs = near_plane_proved_kept(plane, near, near[2], scale, ordinary);
+          near_plane = near_plane_proved_kept(plane, near, near[2], scale, entries);
         } else {
-          kept_by_signs = !(near[2] * T(sign(plane.z())) < T(0));
+          near_plane = NearPlane(!(near[2] * T(sign(plane.z())) < T(0)));
         }
-        accept_row3(fast->row3, m, Vector4<T>(c_hat.template cast<T>()), table, kept_by_signs,
-                    answer);
+        accept_row3(fast->row3, m, Vector4<T>(c_hat.template cast<T>()), table, near_plane, answer);
         return answer.result(m, Method::accurate);
       }
     }
@@ -203,7 +207,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
                                                              (v.y() - E * z) / D, z,
                                                              (v.z() - G * z) / H);
                                          }),
-                           W(8) * std::numeric_limits<W>::epsilon(), true);
+                           W(8) * std::numeric_limits<W>::epsilon(), FirstWord::bounded);
   }
   const Matrix4<W> mw = m.template cast<W>();
   const EquilibratedSolver<W> solver(mw);
@@ -237,7 +241,7 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   return accurate_finish(
       m, mw, scaled, convention,
       RefinedCorner(mw, corner, [&solver](const Vector4<W>& v) { return solver.solve(v); }),
-      W(16) * std::numeric_limits<W>::epsilon() / solver.rcond(), false);
+      W(16) * std::numeric_limits<W>::epsilon() / solver.rcond(), FirstWord::estimated);
 }
 
 /// The hand-off of the closed form and the general method to the accurate method, for the
@@ -246,7 +250,8 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
 template <class T>
 OBLIQUE_NOINLINE ObliqueResult<T> handed_to_accurate(const Matrix4<T>& m, const Vector4<T>& plane,
                                                      Convention convention) {
-  return accurate(m, plane, convention, has_perspective_shape(m), plane_scale(plane), false);
+  return accurate(m, plane, convention, Shape(has_perspective_shape(m)), plane_scale(plane),
+                  Entries::unchecked);
 }
 
 }  // namespace oblique::detail

@@ -1,10 +1,10 @@
 // apply_batch()'s closed form over a block of requests at once: the requests' entries gathered
 // into one array per entry (structure of arrays), every step of the closed form
-// (detail::closed_form(), oblique.h) for the common request written as one loop over the block with
-// no branch, so that the compiler runs it on packed registers (two doubles or four floats to an
-// SSE2 instruction at the x86-64 baseline, the divisions included) and several requests' chains of
-// divisions are in flight at once. A request that passes every test of that loop is answered from
-// it; every other one by the one-request path, as before.
+// (detail::closed_form(), detail/closed_form.h) for the common request written as one loop over the
+// block with no branch, so that the compiler runs it on packed registers (two doubles or four
+// floats to an SSE2 instruction at the x86-64 baseline, the divisions included) and several
+// requests' chains of divisions are in flight at once. A request that passes every test of that
+// loop is answered from it; every other one by the one-request path, as before.
 #pragma once
 
 #include <cmath>
@@ -14,7 +14,7 @@
 
 #include "oblique/detail/closed_form_steps.h"
 #include "oblique/detail/config.h"
-#include "oblique/magnitudes.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/plane.h"
 
 namespace oblique::detail {
@@ -25,7 +25,8 @@ namespace oblique::detail {
 /// halves: Eigen's redux and predux for Packet2d, Packet4d and Packet4f), the order the lanes
 /// use; and not where the compiler may contract a product and a sum into a fused multiply-add
 /// (FMA enabled), which it might do differently in the lanes and in the closed form
-/// (detail::closed_form(), oblique.h). Elsewhere apply_batch() answers request by request.
+/// (detail::closed_form(), detail/closed_form.h). Elsewhere apply_batch() answers request by
+/// request.
 template <class T>
 constexpr bool closed_form_lanes_available() noexcept {
 #if defined(EIGEN_VECTORIZE_SSE2) && !defined(EIGEN_DONT_VECTORIZE) && !defined(__FMA__)
@@ -68,15 +69,15 @@ struct LaneInputs {
   T cx[W], cy[W], cz[W], cw[W];
 };
 
-/// the closed form (detail::closed_form(), oblique.h) for the W requests of `in` in the convention
-/// of `table` (a ConventionTable<T>, with AcFirst = table.first == 0: M'_3 = a C - t M_4, else t
-/// M_4 - a C; a template parameter, as a subtraction in each arm of a branch, which may trap, would
-/// keep the compiler from packing the loop), without a branch: every lane computes every step, and
-/// fast[k] is set only where request k passes tests that imply each of apply()'s and
-/// the closed form (detail::closed_form(), oblique.h)'s tests on its way to status ok, so that the
-/// lane's row3 and q (q only with FarCorner) are that path's, bit for bit (the same operations, in
-/// the same order, on the same operands). The tests, which may refuse more than that path does
-/// (those requests go to it) but never less:
+/// the closed form (detail::closed_form(), detail/closed_form.h) for the W requests of `in` in the
+/// convention of `table` (a ConventionTable<T>, with AcFirst = table.first == 0: M'_3 = a C - t
+/// M_4, else t M_4 - a C; a template parameter, as a subtraction in each arm of a branch, which may
+/// trap, would keep the compiler from packing the loop), without a branch: every lane computes
+/// every step, and fast[k] is set only where request k passes tests that imply each of apply()'s
+/// and the closed form (detail::closed_form(), detail/closed_form.h)'s tests on its way to status
+/// ok, so that the lane's row3 and q (q only with FarCorner) are that path's, bit for bit (the same
+/// operations, in the same order, on the same operands). The tests, which may refuse more than that
+/// path does (those requests go to it) but never less:
 ///
 /// - ordinary_input(): the nine entries outside the perspective shape are zeros (their bits,
 ///   sign cleared, or-ed together, are those of +0); the sum of the magnitudes of A, B, D, E, G,
@@ -161,7 +162,7 @@ OBLIQUE_ALWAYS_INLINE void closed_form_lanes(const LaneInputs<T, W>& in, const T
     const Bits factor_bits = factor_base - (high_bits & exponent_mask);
     T factor;
     std::memcpy(&factor, &factor_bits, sizeof factor);
-    // the closed form (detail::closed_form(), oblique.h) from here, step for step.
+    // the closed form (detail::closed_form(), detail/closed_form.h) from here, step for step.
     const T c_hat[4] = {cx[k] * factor, cy[k] * factor, cz[k] * factor, cw[k] * factor};
     const T corner_z = H[k] < T(0) ? z_high : z_low;
     // B / K, E / K, G / K and 1 / K; for K = +-2^n (with 2^-n normal: KPowerOfTwo), 1 / K is

@@ -25,9 +25,9 @@
 #include <limits>
 #include <vector>
 
-#include "oblique/accurate/error_free.h"
 #include "oblique/depth_convention.h"
-#include "oblique/magnitudes.h"
+#include "oblique/numeric/error_free.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/plane.h"
 
 namespace oblique::detail {

@@ -1,19 +1,19 @@
 // The general method, for any invertible M: C' = M^-T C and Q = M^-1 Q' through one equilibrated
-// LU factorisation (equilibrated_solver.h), then oblique.h's finish(); and what it shares with
-// the accurate method: the refusal of a solver that cannot be trusted, and the signs of C' kept
-// only outside their error bounds.
+// LU factorisation (equilibrated_solver.h), then detail/closed_form.h's finish(); and what it
+// shares with the accurate method: the refusal of a solver that cannot be trusted, and the signs of
+// C' kept only outside their error bounds.
 #pragma once
 
 #include <cmath>
 #include <limits>
 
 #include "oblique/depth_convention.h"
+#include "oblique/detail/closed_form.h"  // finish()
 #include "oblique/detail/closed_form_steps.h"
-#include "oblique/equilibrated_solver.h"
-#include "oblique/magnitudes.h"
-#include "oblique/oblique.h"
+#include "oblique/detail/equilibrated_solver.h"
+#include "oblique/detail/plane_scaling.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/plane.h"
-#include "oblique/plane_scaling.h"
 #include "oblique/status.h"
 
 namespace oblique {
@@ -40,22 +40,24 @@ Vector4<T> trusted_signs(const Vector4<T>& c_clip, const Vector4<T>& error_bound
   return signs;
 }
 
-/// Refuses (in `out`, returning true) a matrix the equilibrated solver cannot be trusted with;
-/// false where it can.
+/// Refuses (in `out`) a matrix the equilibrated solver cannot be trusted with, and says whether
+/// it did.
 template <class T, class W>
 bool solver_refused(const EquilibratedSolver<W>& solver, Answer<T>& out) {
   switch (solver.failure()) {
     case EquilibratedSolver<W>::Failure::zero_row:
-      return out.refuse(Status::singular_projection, "the projection is singular: a row is zero");
+      out.refuse(Status::singular_projection, "the projection is singular: a row is zero");
+      return true;
     case EquilibratedSolver<W>::Failure::zero_column:
-      return out.refuse(Status::singular_projection,
-                        "the projection is singular: a column is zero");
+      out.refuse(Status::singular_projection, "the projection is singular: a column is zero");
+      return true;
     case EquilibratedSolver<W>::Failure::none: break;
   }
   if (!(solver.rcond() > singular_rcond_threshold<W>())) {
-    return out.refuse(Status::singular_projection,
-                      "the projection is singular or numerically singular (reciprocal condition "
-                      "number after equilibration at most 16 epsilon)");
+    out.refuse(Status::singular_projection,
+               "the projection is singular or numerically singular (reciprocal condition "
+               "number after equilibration at most 16 epsilon)");
+    return true;
   }
   return false;
 }
@@ -65,17 +67,17 @@ bool solver_refused(const EquilibratedSolver<W>& solver, Answer<T>& out) {
 ///   C' = M^-T C   has the signs of   R^-1 C',
 ///   Q  = M^-1 Q',
 /// with the signs of Q' those of C' (each one outside C'_k's error bound, or C'_k exactly 0).
-/// Fills `out` and returns true, or returns false where the accurate method must answer (a stiff
+/// Fills `out` (answered or refused), or hands on where the accurate method must answer (a stiff
 /// plane, a sign of C' within its error bound, a stalled refinement, C . Q lost to underflow).
 template <class T>
-bool general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention, Answer<T>& out) {
+Step general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention, Answer<T>& out) {
   const EquilibratedSolver<T> solver(m);
-  if (solver_refused(solver, out)) return true;
+  if (solver_refused(solver, out)) return Step::refused;
   if (!(plane.w() < T(0))) return out.refuse(Status::camera_not_behind_plane);
   const PlaneScale scale = plane_scale(plane);
   const ScaledPlane<T> scaled = scale_plane(plane, scale);
   // Stiff planes: C' and C . Q may rest on components below the others' rounding.
-  if (stiff_plane(scale, scaled)) return false;
+  if (stiff_plane(scale, scaled)) return Step::handed_on;
   T transposed_error = T(0);
   const Vector4<T> c_clip = solver.solve_transposed_unscaled(scaled.c_hat, &transposed_error);
   if (!all_finite(c_clip)) {
@@ -90,7 +92,7 @@ bool general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention
   // (the checker allows that much), and it avoids a corner that may be far out.
   const Vector4<T> bound = solver.transposed_error_bound(c_clip);
   for (int i = 0; i < 3; ++i) {
-    if (c_clip(i) != T(0) && std::abs(c_clip(i)) <= bound(i)) return false;
+    if (c_clip(i) != T(0) && std::abs(c_clip(i)) <= bound(i)) return Step::handed_on;
   }
   const Vector4<T> corner =
       clip_corner(sign(c_clip.x()), sign(c_clip.y()), sign(c_clip.z()), convention);
@@ -100,8 +102,9 @@ bool general(const Matrix4<T>& m, const Vector4<T>& plane, Convention convention
   // (the signs' and the checker's) assume one.
   if (all_finite(q) &&
       (transposed_error > backward_error_limit<T>() || corner_error > backward_error_limit<T>()))
-    return false;
-  return finish(m, plane, q, convention_table<T>(convention), scale, scaled, false, out);
+    return Step::handed_on;
+  return finish(m, plane, q, convention_table<T>(convention), scale, scaled, Entries::unchecked,
+                out);
 }
 
 }  // namespace detail

@@ -10,11 +10,11 @@
 #include <limits>
 #include <utility>
 
-#include "oblique/accurate/error_free.h"
 #include "oblique/depth_convention.h"
-#include "oblique/magnitudes.h"
+#include "oblique/detail/plane_scaling.h"
+#include "oblique/numeric/error_free.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/plane.h"
-#include "oblique/plane_scaling.h"
 
 namespace oblique::detail {
 

@@ -9,7 +9,7 @@
 #include <type_traits>
 
 #include "oblique/detail/config.h"
-#include "oblique/magnitudes.h"
+#include "oblique/numeric/magnitudes.h"
 
 namespace oblique::eft {
 

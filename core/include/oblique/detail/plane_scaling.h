@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "oblique/detail/config.h"
-#include "oblique/magnitudes.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/plane.h"
 
 namespace oblique {

@@ -12,13 +12,13 @@
 #include <optional>
 #include <type_traits>
 
-#include "oblique/accurate/error_free.h"
 #include "oblique/depth_convention.h"
 #include "oblique/detail/closed_form_steps.h"
 #include "oblique/detail/config.h"
-#include "oblique/magnitudes.h"
+#include "oblique/detail/plane_scaling.h"
+#include "oblique/numeric/error_free.h"
+#include "oblique/numeric/magnitudes.h"
 #include "oblique/plane.h"
-#include "oblique/plane_scaling.h"
 
 namespace oblique::detail {
 
@@ -303,7 +303,7 @@ template <class V, class W, class M>
 OBLIQUE_EFT_INLINE PerspectiveInput<V> perspective_input(const Vector4<W>& c, const Matrix4<M>& m,
                                                          const Vector4<W>& corner,
                                                          Convention convention) {
-  const ConventionTable<V>& constants = convention_table<V>(convention);  // oblique.h's
+  const ConventionTable<V>& constants = convention_table<V>(convention);  // closed_form.h's
   const V a_x = V(m(0, 0)), a_y = V(m(1, 1)), a_w = V(m(2, 3));
   return {V(m(3, 2)),
           {a_x, a_y, a_w},

@@ -16,7 +16,7 @@
 #include <cmath>
 #include <limits>
 
-#include "oblique/accurate/error_free.h"
+#include "oblique/numeric/error_free.h"
 #include "oblique/plane.h"
 
 namespace oblique::detail {
