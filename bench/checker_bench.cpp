@@ -1,5 +1,5 @@
 // checker_bench: the checker's cost per judged answer, exact (Problem + judge(), GMP) against
-// filtered (FilteredProblem + judge(), properties/filtered.h), on the property suite's mix: 1024
+// filtered (FilteredProblem + judge(), oracle/filtered.h), on the property suite's mix: 1024
 // generated cases of every family, convention and hard place (fixed seed), each with the core's
 // answer, judged with every property (the suite's checks) or with the core's checks (row 3's
 // accuracy and the ulps promise too, as fuzz_oblique judges the core).
@@ -13,10 +13,10 @@
 #include <map>
 #include <vector>
 
+#include "oblique/cases/generators.h"
+#include "oblique/mistakes/implementations.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/filtered.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/implementations.h"
+#include "oblique/oracle/filtered.h"
 
 namespace {
 

@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "oblique/batch.h"
+#include "oblique/cases/generators.h"
+#include "oblique/cases/seeded_recipes.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/seeded_recipes.h"
 
 namespace {
 

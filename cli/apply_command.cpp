@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "commands.h"
-#include "oblique/properties/contract.h"
+#include "oblique/cases/contract.h"
 #include "oblique/protocol/apply.h"
 #include "oblique/protocol/names.h"
 

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "commands.h"
-#include "oblique/properties/contract.h"
+#include "oblique/cases/contract.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/raster/raster.h"
 #include "oblique/scene/check.h"

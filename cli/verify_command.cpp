@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "commands.h"
-#include "oblique/properties/contract.h"
+#include "oblique/cases/contract.h"
 #include "oblique/protocol/names.h"
 #include "oblique/verify/verifier.h"
 
@@ -96,7 +96,8 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                    "Send only inputs with an exact answer (an implementation without statuses; "
                    "the same as --statuses answers_only)");
   contract_flag("--statuses", "statuses",
-                "How its statuses are judged: " + name_list(oblique::status_contract_names()) +
+                "How its statuses are judged: " +
+                    name_list(oblique::names_in(oblique::status_contract_names)) +
                     " (default any_refusal), or a comma list of the refusal codes it implements "
                     "(inputs needing others are not sent, these must be exact): " +
                     name_list(oblique::refusal_names()));

@@ -1,4 +1,4 @@
-# The installed package: headers, libraries, exported targets (oblique::core, ::accurate, ::batch, ::protocol,
+# The installed package: headers, libraries, exported targets (oblique::core, ::accurate, ::batch, ::protocol, ::cases, ::oracle, ::mistakes,
 # ::properties, ::generators, ::report_files, ::counterexample_reports, ::accuracy_profile,
 # ::testing, ::raster,
 # ::testing_raster, ::fuzzing, ::fuzzing_replay),
@@ -8,10 +8,11 @@ include(CMakePackageConfigHelpers)
 set(OBLIQUE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/oblique)
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ ${PROJECT_SOURCE_DIR}/protocol/include/
-                  ${PROJECT_SOURCE_DIR}/properties/include/ ${PROJECT_SOURCE_DIR}/fuzzing/include/
+                  ${PROJECT_SOURCE_DIR}/cases/include/ ${PROJECT_SOURCE_DIR}/oracle/include/
+                  ${PROJECT_SOURCE_DIR}/mistakes/include/ ${PROJECT_SOURCE_DIR}/fuzzing/include/
                   ${PROJECT_SOURCE_DIR}/report_files/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
-set(OBLIQUE_EXPORTED oblique_accurate oblique_core oblique_batch oblique_protocol oblique_properties
+set(OBLIQUE_EXPORTED oblique_accurate oblique_core oblique_batch oblique_protocol oblique_cases oblique_oracle oblique_mistakes oblique_properties
     oblique_report_files oblique_counterexample_reports oblique_fuzzing oblique_fuzzing_replay)
 if(TARGET oblique_generators)
   list(APPEND OBLIQUE_EXPORTED oblique_generators)
@@ -21,8 +22,9 @@ if(TARGET oblique_testing)
           FILES_MATCHING PATTERN "*.h")
   list(APPEND OBLIQUE_EXPORTED oblique_testing)
 endif()
-# The accuracy profile (oblique::testing's profile_accuracy() writes it).
+# The accuracy profile (oblique::testing's profile_accuracy() writes it) and counterexample reports.
 install(FILES ${PROJECT_SOURCE_DIR}/report/include/oblique/report/accuracy_profile.h
+              ${PROJECT_SOURCE_DIR}/report/include/oblique/report/counterexample_report.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/oblique/report)
 list(APPEND OBLIQUE_EXPORTED oblique_accuracy_profile)
 # The rasterizer (its EGL and OpenGL are found again by the package when it was built with them).

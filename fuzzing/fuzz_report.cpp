@@ -12,11 +12,11 @@
 #include <optional>
 #include <sstream>
 
-#include "oblique/properties/counterexample_report.h"
-#include "oblique/properties/diagnosis.h"
-#include "oblique/properties/properties.h"
+#include "oblique/mistakes/diagnosis.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/report/counterexample_report.h"
 #include "oblique/report/report_files.h"
 
 namespace oblique::fuzzing {

@@ -1,13 +1,13 @@
 // The frame's samples and the judgement of what the rasterizer gave back (no GL here: the tests
-// judge made-up read-backs too). Bounds: oblique/properties/tolerance.h, "The rasterizer".
+// judge made-up read-backs too). Bounds: oblique/oracle/tolerance.h, "The rasterizer".
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
 
-#include "oblique/properties/properties.h"
-#include "oblique/properties/tolerance.h"
+#include "oblique/oracle/problem.h"
+#include "oblique/oracle/tolerance.h"
 #include "oblique/raster/raster.h"
 
 namespace oblique::raster {
@@ -16,17 +16,6 @@ namespace tol = oblique::tolerance;
 using Eigen::Matrix4d;
 using Eigen::Vector4d;
 using Eigen::Vector4f;
-
-std::string_view flag_name(Flag::Kind kind) noexcept {
-  switch (kind) {
-    case Flag::Kind::drawn_behind_c: return "drawn_behind_c";
-    case Flag::Kind::clipped_kept: return "clipped_kept";
-    case Flag::Kind::wrong_pixel: return "wrong_pixel";
-    case Flag::Kind::renderer_disagrees: return "renderer_disagrees";
-    case Flag::Kind::depth_off: return "depth_off";
-  }
-  return "unknown";
-}
 
 namespace {
 

@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "oblique/oblique.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/projection.h"
-#include "oblique/properties/properties.h"
 #include "oblique/protocol/json.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/report/report_files.h"

@@ -14,9 +14,9 @@
 #include <sstream>
 
 #include "oblique/oblique.h"
+#include "oblique/oracle/judge.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/projection.h"
-#include "oblique/properties/judge.h"
-#include "oblique/properties/properties.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/protocol/protocol.h"

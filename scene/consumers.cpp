@@ -5,9 +5,9 @@
 #include <cmath>
 #include <random>
 
-#include "oblique/properties/consumer_cases.h"
-#include "oblique/properties/consumer_program.h"
-#include "oblique/properties/contract.h"
+#include "oblique/cases/contract.h"
+#include "oblique/oracle/consumer_cases.h"
+#include "oblique/oracle/consumer_program.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/scene/check.h"
 

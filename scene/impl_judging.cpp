@@ -5,9 +5,9 @@
 #include <csignal>
 #include <limits>
 
-#include "oblique/properties/diagnosis.h"
-#include "oblique/properties/judge.h"
-#include "oblique/properties/properties.h"
+#include "oblique/mistakes/diagnosis.h"
+#include "oblique/oracle/judge.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/scene/check.h"

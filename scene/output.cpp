@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "oblique/properties/counterexample_report.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/report/counterexample_report.h"
 #include "oblique/scene/check.h"
 
 namespace oblique::scene {
@@ -19,15 +19,6 @@ namespace {
 
 std::string number(double x) {
   return protocol::format_number<double>(x);
-}
-
-const char* kind_name(SurfaceKind k) {
-  switch (k) {
-    case SurfaceKind::mirror: return "mirror";
-    case SurfaceKind::clip: return "clip";
-    case SurfaceKind::portal: return "portal";
-  }
-  return "?";
 }
 
 std::string fixed2(double x) {
@@ -87,7 +78,7 @@ std::string to_json(const SceneCheck& check) {
     }
     surfaces.push_back({
         {"name", s.name},
-        {"kind", kind_name(s.kind)},
+        {"kind", std::string(name_in(surface_kind_names, s.kind))},
         {"path", s.path},
         {"level", s.level},
         {"action", s.render ? "render" : "skip"},
@@ -192,14 +183,15 @@ std::string to_text(const SceneCheck& check) {
     const SurfaceCheck& s = check.surfaces[i];
     const bool own_line = names[i].size() > width;
     if (own_line) out << names[i] << "\n";
-    out << cell(own_line ? "" : names[i], width) << "  " << cell(kind_name(s.kind), 6) << "  "
+    out << cell(own_line ? "" : names[i], width) << "  "
+        << cell(std::string(name_in(surface_kind_names, s.kind)), 6) << "  "
         << cell(s.render ? "render" : "skip", 6) << "  "
         << cell(s.render ? (s.properties_hold() ? "pass" : "FAIL") : "-", 10) << "  "
         << cell(s.depth ? fixed2(s.depth->bits_lost) : "-", 15) << "  " << s.reason << "\n";
   }
   for (const SurfaceCheck& s : check.surfaces) {
     if (!s.render) continue;
-    out << "\n" << printable(s.name) << " (" << kind_name(s.kind) << "): ";
+    out << "\n" << printable(s.name) << " (" << name_in(surface_kind_names, s.kind) << "): ";
     out << "render, " << method_name(s.method) << " method, "
         << (s.properties_hold() ? "every property holds" : "A PROPERTY FAILS") << "\n";
     out << "  view:       ";

@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "oblique/properties/properties.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/scene/check.h"
 
 namespace oblique::scene {

@@ -76,12 +76,8 @@ Surface read_surface(const json& s, const std::string& path) {
   only_keys(s, path, {"name", "kind", "plane", "polygon", "rectangle", "linked"});
   out.name = text(s, path, "name");
   const std::string kind = text(s, path, "kind");
-  if (kind == "mirror") {
-    out.kind = SurfaceKind::mirror;
-  } else if (kind == "clip") {
-    out.kind = SurfaceKind::clip;
-  } else if (kind == "portal") {
-    out.kind = SurfaceKind::portal;
+  if (const std::optional<SurfaceKind> k = value_in(surface_kind_names, kind)) {
+    out.kind = *k;
   } else {
     fail(path + ".kind", "unknown kind \"" + kind + "\" (mirror, clip or portal)");
   }

@@ -27,16 +27,18 @@ declare -A below=(
   [core]=""
   [protocol]="core"
   [report_files]="core protocol"
-  [properties]="core protocol report_files"
-  [testing]="core protocol report_files properties raster report"
-  [fuzzing]="core protocol report_files properties"
-  [verify]="core protocol report_files properties raster report"
-  [scene]="core protocol report_files properties"
-  [report]="core protocol report_files properties"
-  [raster]="core protocol report_files properties"
-  [cli]="core protocol report_files properties fuzzing verify scene report raster"
+  [cases]="core protocol"
+  [oracle]="core protocol cases"
+  [mistakes]="core protocol cases oracle"
+  [report]="core protocol report_files cases oracle mistakes"
+  [raster]="core protocol report_files cases oracle mistakes"
+  [fuzzing]="core protocol report_files cases oracle mistakes report"
+  [scene]="core protocol report_files cases oracle mistakes report"
+  [testing]="core protocol report_files cases oracle mistakes report raster"
+  [verify]="core protocol report_files cases oracle mistakes report raster"
+  [cli]="core protocol report_files cases oracle mistakes report raster fuzzing verify scene"
 )
-libraries=(core protocol report_files properties testing fuzzing verify scene report raster cli)
+libraries=(core protocol report_files cases oracle mistakes report raster fuzzing scene testing verify cli)
 
 sources_of() {  # the library's own files, tests left out
   find "$1" -type f \( -name '*.h' -o -name '*.cpp' \) ! -name '*_test.cpp' | sort

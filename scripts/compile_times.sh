@@ -6,7 +6,7 @@
 #   calls_apply.cpp       a function calling oblique::apply<double> (linking oblique::core)
 #   includes_oblique.cpp  #include <oblique/oblique.h> alone
 #   fuzz_target.cpp       the README's fuzz target (oblique/fuzzing.h; held to the one-test target)
-#   judges.cpp            a test judging an answer with oblique/properties/checker.h (the same)
+#   judges.cpp            a test judging an answer with oblique/oracle/checker.h (the same)
 # Usage: bash scripts/compile_times.sh [--build DIR] [--runs N] [--fresh-clone]
 #   --build DIR    the configured and built tree to install from (default build/release)
 #   --runs N       compiles per file (default 3); the fastest is reported, with its peak memory
@@ -90,7 +90,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 EOF
 cat > "$work/project/judges.cpp" <<'EOF'
 #include <oblique/oblique.h>
-#include <oblique/properties/checker.h>
+#include <oblique/oracle/checker.h>
 bool holds(const oblique::Matrix4<float>& m, const oblique::Vector4<float>& plane,
            const oblique::Matrix4<float>& mine) {
   const oblique::properties::Checker<float> checker(m, plane, oblique::Convention::gl);

@@ -6,8 +6,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "oblique/properties/judge.h"
-#include "oblique/properties/properties.h"
+#include "oblique/oracle/judge.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/report/accuracy_profile.h"
 #include "oblique/testing/harness.h"

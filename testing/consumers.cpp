@@ -1,12 +1,12 @@
 // check_consumers(): the code around the matrix (oblique::Consumers) against the
-// consumer properties (oblique/properties/consumers.h), one RapidCheck run per property, for
+// consumer properties (oblique/oracle/consumers.h), one RapidCheck run per property, for
 // float, double and long double.
 #include <functional>
 #include <iostream>
 #include <sstream>
 
 #include "oblique/oblique.h"
-#include "oblique/properties/consumer_generators.h"
+#include "oblique/oracle/consumer_generators.h"
 #include "oblique/report/report_files.h"
 #include "oblique/testing/harness.h"
 

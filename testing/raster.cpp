@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "oblique/oblique.h"
-#include "oblique/properties/consumers.h"
+#include "oblique/oracle/consumers.h"
 #include "oblique/raster/raster_report.h"
 #include "oblique/testing/harness.h"
 

@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "oblique/oblique.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/projection.h"
-#include "oblique/properties/properties.h"
 
 namespace oblique {
 namespace {

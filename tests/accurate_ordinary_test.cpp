@@ -14,9 +14,9 @@
 #include <limits>
 #include <vector>
 
+#include "oblique/cases/generators.h"
 #include "oblique/definitions.h"  // detail::apply_checked(), detail::accurate() (declared compiled)
 #include "oblique/oblique.h"
-#include "oblique/properties/generators.h"
 #include "printers.h"
 #include "same_bits.h"
 

@@ -18,9 +18,9 @@
 
 #include "oblique/detail/equilibrated_solver.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/exact.h"
-#include "oblique/properties/properties.h"
-#include "oblique/properties/tolerance.h"
+#include "oblique/oracle/exact.h"
+#include "oblique/oracle/problem.h"
+#include "oblique/oracle/tolerance.h"
 #include "printers.h"
 
 namespace oblique {

@@ -1,6 +1,6 @@
 // oblique::adapt: every function shape it takes gives the same Outcome as the core, in both
 // layouts and scalar types, with the status contract its return type implies.
-#include "oblique/properties/adapter.h"
+#include "oblique/oracle/adapter.h"
 
 #include <gtest/gtest.h>
 

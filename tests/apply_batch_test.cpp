@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "oblique/batch.h"
+#include "oblique/cases/generators.h"
 #include "oblique/detail/batch_lanes.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/generators.h"
 #include "printers.h"
 #include "same_bits.h"
 #include "special_values.h"

@@ -10,11 +10,11 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
 
-# A clean tree: core, protocol over core, properties over both, with detail namespaces.
+# A clean tree: core, protocol over core, oracle over both, with detail namespaces.
 make_tree() {
   rm -rf "$work/tree"
   mkdir -p "$work/tree/core/include/oblique/detail" "$work/tree/protocol/include/oblique/protocol" \
-           "$work/tree/properties/include/oblique/properties"
+           "$work/tree/oracle/include/oblique/oracle"
   cat > "$work/tree/core/include/oblique/oblique.h" <<'EOF'
 #pragma once
 #include <Eigen/Core>
@@ -40,11 +40,11 @@ EOF
 #include "oblique/protocol/wire.h"
 void f(const nlohmann::detail::exception&);  // a third-party detail in a compiled source
 EOF
-  cat > "$work/tree/properties/include/oblique/properties/judge.h" <<'EOF'
+  cat > "$work/tree/oracle/include/oblique/oracle/judge.h" <<'EOF'
 #pragma once
 #include "oblique/oblique.h"
 #include "oblique/protocol/wire.h"
-namespace oblique::properties {
+namespace oblique::oracle {
 namespace detail {
 template <class T>
 T twice(T x) {
@@ -52,7 +52,7 @@ T twice(T x) {
 }
 }  // namespace detail
 inline double judged(double x) { return detail::twice(x); }  // its own detail: fine
-}  // namespace oblique::properties
+}  // namespace oblique::oracle
 EOF
 }
 
@@ -72,13 +72,13 @@ make_tree
 expect "a tree that keeps its layers" 0 "every library keeps to its layer"
 
 make_tree
-sed -i 's|#include <cmath>|#include "oblique/properties/judge.h"|' "$work/tree/core/include/oblique/oblique.h"
-expect "the core including the properties" 1 \
-  "core/include/oblique/oblique.h:3: core includes oblique/properties/judge.h, of properties"
+sed -i 's|#include <cmath>|#include "oblique/oracle/judge.h"|' "$work/tree/core/include/oblique/oblique.h"
+expect "the core including the oracle" 1 \
+  "core/include/oblique/oblique.h:3: core includes oblique/oracle/judge.h, of oracle"
 
 make_tree
-echo '#include "oblique/properties/judge.h"' >> "$work/tree/protocol/include/oblique/protocol/wire.h"
-expect "the protocol including the properties" 1 "protocol includes oblique/properties/judge.h"
+echo '#include "oblique/oracle/judge.h"' >> "$work/tree/protocol/include/oblique/protocol/wire.h"
+expect "the protocol including the oracle" 1 "protocol includes oblique/oracle/judge.h"
 
 make_tree
 sed -i 's|#include <cmath>|#include <gmpxx.h>|' "$work/tree/core/include/oblique/oblique.h"
@@ -95,10 +95,10 @@ echo 'inline double g(double x) { return oblique::detail::scale(x); }' \
 expect "the core's detail named with its namespace" 1 "protocol uses oblique::detail::scale"
 
 make_tree
-printf 'namespace oblique::properties {\ninline double h(double x) { return detail::scale(x); }\n}\n' \
-  >> "$work/tree/properties/include/oblique/properties/judge.h"
+printf 'namespace oblique::oracle {\ninline double h(double x) { return detail::scale(x); }\n}\n' \
+  >> "$work/tree/oracle/include/oblique/oracle/judge.h"
 expect "the core's detail reached from inside oblique::" 1 \
-  "properties uses detail::scale, which it does not declare"
+  "oracle uses detail::scale, which it does not declare"
 
 make_tree
 echo 'void g(const nlohmann::detail::exception&);' >> "$work/tree/protocol/include/oblique/protocol/wire.h"

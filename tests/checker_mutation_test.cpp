@@ -1,18 +1,18 @@
 // The checker's own mutation test: for each property, a class of wrong answers built from the
-// core's correct answers on generated cases (properties/wrong_answers.h), and each property,
+// core's correct answers on generated cases (mistakes/wrong_answers.h), and each property,
 // judged alone, must reject every member of its class, in the exact checker and the filtered one.
-#include "oblique/properties/wrong_answers.h"
+#include "oblique/mistakes/wrong_answers.h"
 
 #include <gtest/gtest.h>
 
 #include <map>
 #include <string>
 
+#include "oblique/cases/generators.h"
 #include "oblique/oblique.h"
+#include "oblique/oracle/filtered.h"
+#include "oblique/oracle/judge.h"
 #include "oblique/projection.h"
-#include "oblique/properties/filtered.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/judge.h"
 
 namespace oblique::properties {
 namespace {

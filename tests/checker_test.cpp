@@ -1,22 +1,22 @@
-// The checker as users see it (oblique/properties/checker.h): a header without GMP or the
+// The checker as users see it (oblique/oracle/checker.h): a header without GMP or the
 // checker's own headers, and on generated cases the same statuses, the same reasons to leave an
 // input out and the same judgements, finding by finding, as the filtered checker's judge() and
 // the exact one's, for the core's answers and for answers with row 3 wrong.
-#include "oblique/properties/checker.h"
+#include "oblique/oracle/checker.h"
 
 #if defined(__GNU_MP__) || defined(__GMP_PLUSPLUS__)
-#error "oblique/properties/checker.h includes GMP; it should only declare the checker"
+#error "oblique/oracle/checker.h includes GMP; it should only declare the checker"
 #endif
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 
+#include "oblique/cases/generators.h"
 #include "oblique/oblique.h"
+#include "oblique/oracle/filtered.h"
+#include "oblique/oracle/judge.h"
 #include "oblique/projection.h"
-#include "oblique/properties/filtered.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/judge.h"
 
 namespace oblique::properties {
 namespace {

@@ -18,11 +18,11 @@
 #include <utility>
 #include <vector>
 
+#include "oblique/cases/contract.h"
+#include "oblique/cases/generators.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/contract.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/properties.h"
-#include "oblique/properties/tolerance.h"
+#include "oblique/oracle/problem.h"
+#include "oblique/oracle/tolerance.h"
 #include "oblique/protocol/protocol.h"
 #include "printers.h"
 
@@ -253,7 +253,7 @@ TEST(Cli, verifyHelpListsEveryNameOfTheContract) {
   ASSERT_EQ(shell(std::string(OBLIQUE_CLI) + " verify --help", &help), 0);
   for (const auto& names : {names_in(convention_names), names_in(generators::family_names),
                             names_in(generators::place_names), names_in(generators::defect_names),
-                            property_names(), refusal_names(), status_contract_names()}) {
+                            property_names(), refusal_names(), names_in(status_contract_names)}) {
     for (const std::string& name : names)
       EXPECT_NE(help.find(name), std::string::npos) << name << "\n" << help;
   }

@@ -10,9 +10,9 @@
 #include <stdexcept>
 
 #include "oblique/oblique.h"
+#include "oblique/oracle/consumers.h"
+#include "oblique/oracle/exact.h"
 #include "oblique/projection.h"
-#include "oblique/properties/consumers.h"
-#include "oblique/properties/exact.h"
 #include "oblique/references/depth_reconstruction.h"
 #include "oblique/references/kept_region.h"
 #include "oblique/references/pass_camera.h"

@@ -1,5 +1,5 @@
 // The one contract: its JSON reader and writer, its names and messages, its resolution.
-#include "oblique/properties/contract.h"
+#include "oblique/cases/contract.h"
 
 #include <gtest/gtest.h>
 

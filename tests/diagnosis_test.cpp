@@ -6,11 +6,11 @@
 #include <cmath>
 #include <string>
 
+#include "oblique/cases/generators.h"
+#include "oblique/mistakes/diagnosis.h"
+#include "oblique/mistakes/mistakes.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/checker.h"
-#include "oblique/properties/diagnosis.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/mistakes.h"
+#include "oblique/oracle/checker.h"
 
 namespace {
 

@@ -1,13 +1,14 @@
 # A file built with other SIMD flags than the libraries cannot link against their interfaces that
-# take structs holding Eigen matrices (oblique/util/eigen_layout.h): compiled as is and with -mavx2, a
-# file calling oblique::fuzzing::test_one_input and properties::Checker refers to them in
+# take structs holding Eigen matrices (oblique/util/eigen_layout.h): compiled as is and with
+# -mavx2, a file calling oblique::fuzzing::test_one_input and properties::Checker refers to them in
 # eigen_align16 and in eigen_align32; the libraries define the first (the one of their own build)
-# and not the second. Usage: cmake -DCXX=... -DSOURCE=<repository> -DFUZZING=<lib> -DPROPERTIES=<lib>
-#   -DEIGEN=<include dir> -DWORK=<dir> -P eigen_layout_test.cmake
+# and not the second. Usage: cmake -DCXX=... -DSOURCE=<repository> -DFUZZING=<lib>
+#   -DPROPERTIES=<the oracle library, which holds the checker> -DEIGEN=<include dir> -DWORK=<dir>
+#   -P eigen_layout_test.cmake
 file(MAKE_DIRECTORY ${WORK})
 file(WRITE ${WORK}/uses_libraries.cpp [=[
 #include <oblique/fuzzing.h>
-#include <oblique/properties/checker.h>
+#include <oblique/oracle/checker.h>
 void make_oblique(float m[16], const float plane[4]);
 int fuzz_one(const std::uint8_t* data, std::size_t size) {
   static const auto mine =
@@ -20,7 +21,8 @@ bool holds(const oblique::Matrix4<float>& m, const oblique::Vector4<float>& c) {
       .holds();
 }
 ]=])
-set(includes -I${SOURCE}/core/include -I${SOURCE}/protocol/include -I${SOURCE}/properties/include
+set(includes -I${SOURCE}/core/include -I${SOURCE}/protocol/include -I${SOURCE}/cases/include -I${SOURCE}/oracle/include
+    -I${SOURCE}/mistakes/include -I${SOURCE}/report/include
     -I${SOURCE}/fuzzing/include -isystem ${EIGEN})
 
 function(symbols file out)  # the demangled names nm lists for `file`

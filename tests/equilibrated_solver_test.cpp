@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "oblique/properties/exact.h"
+#include "oblique/oracle/exact.h"
 
 namespace oblique {
 namespace {

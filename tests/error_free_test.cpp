@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "oblique/numeric/error_free.h"
-#include "oblique/properties/exact.h"
+#include "oblique/oracle/exact.h"
 
 namespace oblique::eft {
 namespace {

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "oblique/oblique.h"
-#include "oblique/properties/properties.h"
-#include "oblique/properties/tolerance.h"
+#include "oblique/oracle/problem.h"
+#include "oblique/oracle/tolerance.h"
 #include "printers.h"
 
 namespace oblique {

@@ -1,4 +1,4 @@
-// The filtered checker (properties/filtered.h) against the exact one (properties.h), on the same
+// The filtered checker (oracle/filtered.h) against the exact one (problem.h), on the same
 // generated cases and answers: every disagreement fails.
 //
 // Differential.filteredAgreesWithExact judges, per case (float, double and long double in turn;
@@ -12,7 +12,7 @@
 // double's normal range are what decides.
 // Which cases: OBLIQUE_DIFFERENTIAL_SLICE (seed offset) and OBLIQUE_DIFFERENTIAL_CASES (count), set
 // by CTest per slice (tests/CMakeLists.txt).
-#include "oblique/properties/filtered.h"
+#include "oblique/oracle/filtered.h"
 
 #include <gtest/gtest.h>
 
@@ -27,11 +27,11 @@
 #include <string>
 #include <type_traits>
 
+#include "oblique/cases/generators.h"
+#include "oblique/mistakes/implementations.h"
+#include "oblique/mistakes/wrong_answers.h"
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/implementations.h"
-#include "oblique/properties/wrong_answers.h"
 
 namespace oblique::properties {
 namespace {

@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "oblique/cases/contract.h"
+#include "oblique/cases/generators.h"
+#include "oblique/oracle/filtered.h"
+#include "oblique/oracle/judge.h"
 #include "oblique/projection.h"
-#include "oblique/properties/contract.h"
-#include "oblique/properties/filtered.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/judge.h"
 #include "oblique/references/frustum_planes.h"
 
 namespace oblique {

@@ -1,10 +1,10 @@
-// The one judgement (properties/judge.h): each status contract accepts and rejects what it says,
+// The one judgement (oracle/judge.h): each status contract accepts and rejects what it says,
 // each check is made only when asked, and `every` lists the checks that hold.
-#include "oblique/properties/judge.h"
+#include "oblique/oracle/judge.h"
 
 #include <gtest/gtest.h>
 
-#include "oblique/properties/filtered.h"
+#include "oblique/oracle/filtered.h"
 
 #include <cmath>
 #include <limits>

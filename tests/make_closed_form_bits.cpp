@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "closed_form_bits.h"
+#include "oblique/cases/generators.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/generators.h"
 #include "special_values.h"
 
 namespace oblique {

@@ -10,7 +10,7 @@
 
 #include "families.h"
 #include "oblique/detail/equilibrated_solver.h"
-#include "oblique/properties/properties.h"
+#include "oblique/oracle/problem.h"
 #include "printers.h"
 
 namespace oblique {

@@ -4,7 +4,7 @@
 
 #include <limits>
 
-#include "oblique/properties/exact.h"
+#include "oblique/oracle/exact.h"
 #include "printers.h"
 
 namespace oblique {

@@ -9,8 +9,8 @@
 #include <string_view>
 #include <utility>
 
-#include "oblique/properties/filtered.h"
-#include "oblique/properties/implementations.h"
+#include "oblique/mistakes/implementations.h"
+#include "oblique/oracle/filtered.h"
 #include "oblique/testing/harness.h"
 
 namespace oblique::properties::suite {

@@ -7,7 +7,7 @@
 // Another implementation: OBLIQUE_IMPL=listing_5_1 (see implementations.h for the names); an
 // unknown name fails every test. closedFormAndGeneralAgree and accurateMethodIsWithinTwoUlps are
 // about the core's own methods: they skip, saying so, unless OBLIQUE_IMPL selects them.
-// Answers are judged by the filtered checker (properties/filtered.h), which hands every violation
+// Answers are judged by the filtered checker (oracle/filtered.h), which hands every violation
 // and every close call to the exact one.
 #include "property_suite.h"
 

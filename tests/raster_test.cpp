@@ -6,9 +6,9 @@
 
 #include <cmath>
 
+#include "oblique/mistakes/mistakes.h"
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
-#include "oblique/properties/mistakes.h"
 #include "oblique/raster/raster.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// Replays every counterexample the project has kept (properties/regressions/*.json): the core
+// Replays every counterexample the project has kept (tests/regressions/*.json): the core
 // must answer each with an acceptable status and every property, and the implementation that
 // failed on it (a printed recipe or a mutant) must still fail the same way, so a finding in the
 // README cannot silently stop being true.
@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "oblique/properties/implementations.h"
-#include "oblique/properties/judge.h"
-#include "oblique/properties/properties.h"
+#include "oblique/mistakes/implementations.h"
+#include "oblique/oracle/judge.h"
+#include "oblique/oracle/problem.h"
 
 namespace oblique::properties {
 namespace {

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "oblique/properties/exact.h"
+#include "oblique/oracle/exact.h"
 #include "oblique/report/accuracy_report.h"
 #include "oblique/report/depth_report.h"
 #include "oblique/report/report_files.h"

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "oblique/properties/properties.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/scene/check.h"
 #include "oblique/scene/scene.h"
 

@@ -1,11 +1,11 @@
 // The printed formulas against the properties: where each holds, and a concrete input where it
 // breaks. The README's findings section quotes these cases.
-#include "oblique/properties/seeded_recipes.h"
+#include "oblique/cases/seeded_recipes.h"
 
 #include <gtest/gtest.h>
 
 #include "oblique/oblique.h"
-#include "oblique/properties/properties.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/references/frustum_planes.h"
 #include "printers.h"
 

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "oblique/oblique.h"
-#include "oblique/properties/properties.h"
-#include "oblique/properties/tolerance.h"
+#include "oblique/oracle/problem.h"
+#include "oblique/oracle/tolerance.h"
 #include "printers.h"
 
 namespace oblique {

@@ -13,8 +13,8 @@
 #include <iterator>
 #include <string>
 
+#include "oblique/mistakes/mistakes.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/mistakes.h"
 
 namespace oblique {
 namespace {

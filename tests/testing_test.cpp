@@ -11,10 +11,10 @@
 #include <functional>
 #include <iterator>
 
+#include "oblique/cases/generators.h"
+#include "oblique/cases/seeded_recipes.h"
+#include "oblique/mistakes/mistakes.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/mistakes.h"
-#include "oblique/properties/seeded_recipes.h"
 
 namespace oblique {
 namespace {

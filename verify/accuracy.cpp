@@ -4,7 +4,7 @@
 #include <cmath>
 #include <ostream>
 
-#include "oblique/properties/properties.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/protocol/json.h"
 #include "oblique/protocol/protocol.h"

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <type_traits>
 
-#include "oblique/properties/judge.h"
+#include "oblique/oracle/judge.h"
 #include "oblique/protocol/protocol.h"
 
 namespace oblique::verify {

@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "oblique/cases/checks.h"
+#include "oblique/cases/contract.h"
+#include "oblique/cases/generators.h"
 #include "oblique/expected.h"
-#include "oblique/properties/checks.h"
-#include "oblique/properties/contract.h"
-#include "oblique/properties/filtered.h"
-#include "oblique/properties/finding.h"
-#include "oblique/properties/generators.h"
+#include "oblique/oracle/filtered.h"
+#include "oblique/oracle/finding.h"
 #include "oblique/protocol/protocol.h"
 
 namespace oblique::verify {

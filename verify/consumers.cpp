@@ -12,12 +12,12 @@
 #include <sstream>
 
 #include "failure_database.h"
+#include "oblique/cases/generators.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/consumer_program.h"
-#include "oblique/properties/counterexample_report.h"
-#include "oblique/properties/generators.h"
+#include "oblique/oracle/consumer_program.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/protocol/names.h"
+#include "oblique/report/counterexample_report.h"
 #include "oblique/report/report_files.h"
 #include "reporter.h"
 

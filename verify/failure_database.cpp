@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "accuracy.h"
-#include "oblique/properties/properties.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/protocol/json.h"
 #include "oblique/protocol/protocol.h"
 

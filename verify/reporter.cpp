@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "failure_database.h"
-#include "oblique/properties/counterexample_report.h"
-#include "oblique/properties/properties.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/report/counterexample_report.h"
 #include "oblique/report/report_files.h"
 
 namespace oblique::verify {

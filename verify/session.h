@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cases.h"
-#include "oblique/properties/diagnosis.h"
+#include "oblique/mistakes/diagnosis.h"
 #include "oblique/protocol/child_process.h"
 #include "oblique/verify/verifier.h"
 

@@ -25,7 +25,7 @@
 #include "cases.h"
 #include "consumers.h"
 #include "failure_database.h"
-#include "raster.h"
+#include "rasterize.h"
 #include "reporter.h"
 #include "session.h"
 #include "shrinker.h"

@@ -4,7 +4,7 @@
 // (docs/consumers.md) and is caught by the property named beside it.
 #pragma once
 
-#include <oblique/properties/consumers.h>
+#include <oblique/oracle/consumers.h>
 #include <oblique/references/kept_region.h>
 
 #include <Eigen/Geometry>

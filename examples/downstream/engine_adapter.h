@@ -17,7 +17,7 @@ inline const auto make_oblique =
 // What the engine promises beyond that: the perspective shapes it builds (symmetric, off-axis,
 // infinite, y-flipped, jittered), every plane; it refuses (returns false) the inputs without an
 // answer, in its own words (any_refusal, from the bool). The JSON form, as a verify report
-// prints it (oblique/properties/contract.h).
+// prints it (oblique/cases/contract.h).
 inline const oblique::Contract contract = oblique::read_contract(R"({
   "families": ["perspective", "off_axis", "infinite", "y_flipped", "jittered"]
 })")

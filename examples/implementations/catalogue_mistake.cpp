@@ -1,4 +1,4 @@
-// Any entry of the catalogue of known mistakes (properties/mistakes.h), or two together, served
+// Any entry of the catalogue of known mistakes (mistakes/mistakes.h), or two together, served
 // over the apply protocol: what `oblique verify` and its diagnosis see of an engine with that
 // mistake. CTest runs verify on each entry and expects the report to name it.
 //
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "oblique/properties/mistakes.h"
+#include "oblique/mistakes/mistakes.h"
 #include "oblique/protocol/protocol.h"
 
 namespace {

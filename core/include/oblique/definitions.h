@@ -228,7 +228,7 @@ void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::s
 }
 
 /// The instances the core's three libraries compile for T = float, double and long double, one
-/// macro per library: oblique::core apply() (core/src/apply.cpp), oblique::accurate the accurate
+/// macro per library: oblique::core apply() (core/src/oblique.cpp), oblique::accurate the accurate
 /// method (core/src/accurate.cpp), oblique::batch apply_batch() (core/src/batch.cpp). `declare` is
 /// `template` there and `extern template` where a library uses another's instances, and where
 /// OBLIQUE_LINKED_INSTANCES is defined: a program that links the libraries and includes this

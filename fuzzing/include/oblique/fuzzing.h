@@ -24,17 +24,17 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "oblique/cases/contract.h"
 #include "oblique/depth_convention.h"
-#include "oblique/properties/adapter.h"
-#include "oblique/properties/consumers.h"
-#include "oblique/properties/contract.h"
+#include "oblique/oracle/adapter.h"
+#include "oblique/oracle/consumers.h"
 #include "oblique/util/eigen_layout.h"
 
 namespace oblique::fuzzing {
 
 /// The body of a libFuzzer target for one function: decodes the input (in the function's scalar
 /// type, whatever the scalar byte says, in one of the contract's conventions), runs the function
-/// and judges its answer under the contract (oblique/properties/contract.h: its conventions,
+/// and judges its answer under the contract (oblique/cases/contract.h: its conventions,
 /// families, planes, statuses, refusals, properties and row3_accuracy: an input of a family the
 /// contract does not claim is not given to the function, under unit planes the plane's normal is
 /// scaled to length 1, and inputs without an answer are judged as the statuses say; the decoder
@@ -53,7 +53,7 @@ int test_one_input(const std::uint8_t* data, std::size_t size,
 /// by consumer_round()), takes the core's oblique matrix for them, and with choices read
 /// from the input's end (a point of the kept region, the depth buffer, a main view, a mirror's
 /// plane, portal frames) asks each function given and judges its answer by its properties
-/// (oblique/properties/consumers.h). On a violation prints the finding and every input
+/// (oblique/oracle/consumers.h). On a violation prints the finding and every input
 /// (round-trip decimals), then aborts. Returns 0.
 template <class T>
 int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T>& consumers,

@@ -7,7 +7,7 @@
 //                                            oblique::Convention::gl, make_oblique);
 //   OBLIQUE_PROPERTY_TEST(MakeOblique, hasEveryProperty, mine, oblique::Contract{})
 //
-// The contract (oblique/properties/contract.h) says what the function promises; its empty lists
+// The contract (oblique/cases/contract.h) says what the function promises; its empty lists
 // mean every family, place and property, and the conventions stated to adapt(). Each property
 // of the contract is a RapidCheck run over the project's generators (every family, convention
 // and hard place the contract names), shrunk on failure to a small counterexample
@@ -33,11 +33,11 @@
 #include <string>
 #include <vector>
 
-#include "oblique/properties/adapter.h"
-#include "oblique/properties/case_kinds.h"
-#include "oblique/properties/checks.h"
-#include "oblique/properties/consumers.h"
-#include "oblique/properties/contract.h"
+#include "oblique/cases/case_kinds.h"
+#include "oblique/cases/checks.h"
+#include "oblique/cases/contract.h"
+#include "oblique/oracle/adapter.h"
+#include "oblique/oracle/consumers.h"
 #include "oblique/util/eigen_layout.h"
 
 namespace oblique::testing {
@@ -122,7 +122,7 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& contract = 
   }
 
 /// A GoogleTest test that checks the code around the matrix, `consumers` (oblique::Consumers,
-/// oblique/properties/consumers.h), under `contract` (its families, conventions and places).
+/// oblique/oracle/consumers.h), under `contract` (its families, conventions and places).
 #define OBLIQUE_CONSUMERS_TEST(Suite, Name, consumers, contract)  \
   TEST(Suite, Name) {                                             \
     ::oblique::testing::check_consumers((consumers), (contract)); \

@@ -23,14 +23,14 @@
 #include <string>
 #include <vector>
 
+#include "oblique/cases/generators.h"
 #include "oblique/fuzzing.h"
+#include "oblique/mistakes/implementations.h"
 #include "oblique/oblique.h"
+#include "oblique/oracle/adapter.h"
+#include "oblique/oracle/filtered.h"
+#include "oblique/oracle/judge.h"
 #include "oblique/projection.h"
-#include "oblique/properties/adapter.h"
-#include "oblique/properties/filtered.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/implementations.h"
-#include "oblique/properties/judge.h"
 #include "oblique/protocol/numbers.h"
 
 namespace oblique::fuzzing {
@@ -133,7 +133,7 @@ inline const char* family_label(int family) {
   return names[family % 10];
 }
 
-/// The generator families (oblique/properties/case_kinds.h) a decoded case is one of, for a
+/// The generator families (oblique/cases/case_kinds.h) a decoded case is one of, for a
 /// contract's families: a built frustum is perspective when centred (M13 = M23 = 0), else
 /// off_axis or jittered (the decoder does not tell them apart); raw numbers are general.
 inline std::vector<generators::Family> contract_families(const FuzzCase& c) {

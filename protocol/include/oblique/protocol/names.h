@@ -22,12 +22,4 @@ std::string name_list(const std::vector<std::string>& names);
 std::string unknown_name(std::string_view what, std::string_view name,
                          const std::vector<std::string>& known);
 
-/// The names of a table of values, in the table's order: names_of(all_families, family_name).
-template <class E, class Table, class Name>
-std::vector<std::string> names_of(const Table& all, Name name) {
-  std::vector<std::string> out;
-  for (const E& e : all) out.emplace_back(name(e));
-  return out;
-}
-
 }  // namespace oblique::protocol

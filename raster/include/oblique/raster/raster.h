@@ -6,7 +6,7 @@
 // distance bunched near C, the original near and far planes and the answer's far plane. The
 // rasterizer draws them as 1-pixel points with M' in float32, each writing its id and its depth;
 // the judge reads both back. Its bands (what float32 shading cannot decide) are in
-// oblique/properties/tolerance.h, derived there.
+// oblique/oracle/tolerance.h, derived there.
 #pragma once
 
 #include <Eigen/Core>
@@ -81,7 +81,16 @@ struct Flag {
   double depth_read = 0, depth_exact = 0, depth_bound = 0;
 };
 
-std::string_view flag_name(Flag::Kind kind) noexcept;
+inline constexpr EnumName<Flag::Kind> flag_names[] = {
+    {Flag::Kind::drawn_behind_c, "drawn_behind_c"},
+    {Flag::Kind::clipped_kept, "clipped_kept"},
+    {Flag::Kind::wrong_pixel, "wrong_pixel"},
+    {Flag::Kind::renderer_disagrees, "renderer_disagrees"},
+    {Flag::Kind::depth_off, "depth_off"},
+};
+constexpr std::string_view flag_name(Flag::Kind kind) noexcept {
+  return name_in(flag_names, kind);
+}
 
 /// The depth buffer's precision measured across the kept region: the depths stored there span
 /// [low, high], which the buffer resolves into `values` distinct values (log2: `bits`);

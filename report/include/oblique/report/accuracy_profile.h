@@ -35,7 +35,7 @@ class ReportFiles;
 struct ProfiledAnswer {
   std::string family, place;
   Convention convention = Convention::gl;
-  /// The condition number of C . Q (oblique/properties/tolerance.h): how stiff the case is.
+  /// The condition number of C . Q (oblique/oracle/tolerance.h): how stiff the case is.
   double kappa = 0;
   /// How far M'_3i is from the correctly rounded exact entry, in ulps of the row: the ulp, in
   /// the answer's type, of the row's largest exact entry. A plane's coefficients go together (an

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "oblique/expected.h"
+#include "oblique/mistakes/diagnosis.h"
 #include "oblique/oblique.h"
-#include "oblique/properties/consumers.h"
-#include "oblique/properties/diagnosis.h"
-#include "oblique/properties/judge.h"
+#include "oblique/oracle/consumers.h"
+#include "oblique/oracle/judge.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/scene/scene.h"
 
@@ -44,7 +44,7 @@ struct Scissor {
 };
 
 /// One consumer of a rendered pass (Scene::consumers), asked and judged by its properties
-/// (oblique/properties/consumers.h).
+/// (oblique/oracle/consumers.h).
 struct ConsumerResult {
   SceneConsumer consumer = SceneConsumer::reconstruction;
   long judged = 0;  ///< answers judged

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "oblique/depth_convention.h"
+#include "oblique/oracle/consumers.h"
 #include "oblique/plane.h"
-#include "oblique/properties/consumers.h"
 #include "oblique/references/depth_reconstruction.h"
 #include "oblique/references/pass_camera.h"
 #include "oblique/util/enum_names.h"
@@ -39,6 +39,13 @@ struct Camera {
 };
 
 enum class SurfaceKind { mirror, clip, portal };
+
+/// A surface's "kind" in a scene file.
+inline constexpr EnumName<SurfaceKind> surface_kind_names[] = {
+    {SurfaceKind::mirror, "mirror"},
+    {SurfaceKind::clip, "clip"},
+    {SurfaceKind::portal, "portal"},
+};
 
 struct Surface {
   std::string name;

@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "oblique/properties/counterexample_report.h"
-#include "oblique/properties/diagnosis.h"
-#include "oblique/properties/filtered.h"
-#include "oblique/properties/generators.h"
-#include "oblique/properties/judge.h"
-#include "oblique/properties/properties.h"
+#include "oblique/cases/generators.h"
+#include "oblique/mistakes/diagnosis.h"
+#include "oblique/oracle/filtered.h"
+#include "oblique/oracle/judge.h"
+#include "oblique/oracle/problem.h"
+#include "oblique/report/counterexample_report.h"
 #include "oblique/testing.h"
 
 namespace oblique::testing {

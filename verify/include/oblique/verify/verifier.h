@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "oblique/properties/consumers.h"
-#include "oblique/properties/contract.h"
+#include "oblique/cases/contract.h"
+#include "oblique/oracle/consumers.h"
 #include "oblique/protocol/consumer_messages.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/references/depth_reconstruction.h"
@@ -53,7 +53,7 @@ struct VerifyOptions {
   /// --consumers: ask these request kinds of the code around the matrix (consumer_messages.h)
   /// instead of the oblique matrix, round by round, judged by the consumer properties.
   std::vector<protocol::ConsumerKind> consumers;
-  /// --mirror-design: the design the program's mirror_view builds (properties/consumers.h).
+  /// --mirror-design: the design the program's mirror_view builds (oracle/consumers.h).
   properties::MirrorDesign mirror_design = properties::MirrorDesign::reflected_view;
 
   /// --rasterize: the first answer, one in `raster_every` after it, and every finding's answer

@@ -1,0 +1,442 @@
+// diagnose() and the words of a diagnosis (diagnosis.h).
+#include "oblique/mistakes/diagnosis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "oblique/oracle/exact.h"
+#include "oblique/oracle/tolerance.h"
+#include "oblique/projection.h"
+#include "oblique/protocol/numbers.h"
+#include "variant.h"
+
+namespace oblique::properties {
+
+namespace {
+
+using exact::Rational;
+
+/// A variant's exact answer on one case: a refusal, a non-finite matrix, or a matrix with a
+/// bound on each entry (the rounding a careful implementation of that variant makes in T; 0 for
+/// the rows it keeps). Undecided where the input is within rounding of a choice the variant makes
+/// (C . Q near 0, a scale that cannot be bounded, an answer near overflow).
+struct Exact {
+  variant::Evaluation<Rational> e;
+  bool decided = false;
+  enum class Kind { refusal, non_finite, matrix } kind = Kind::refusal;
+  exact::Mat values{}, bounds{};
+};
+
+template <class T>
+Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                   const variant::Knobs& knobs) {
+  Exact x;
+  x.e = variant::evaluate<Rational>(m, c, convention, knobs);
+  const variant::Evaluation<Rational>& e = x.e;
+  if (e.solve_failed) return x;
+  if (e.status == Status::camera_not_behind_plane) {
+    x.decided = true;
+    return x;
+  }
+  if (e.non_finite) {
+    x.decided = true;
+    x.kind = Exact::Kind::non_finite;
+    return x;
+  }
+  const exact::Mat mx = exact::to_rational(m);
+  x.values = mx;
+  for (auto& row : x.bounds) row.fill(0);
+  if (e.unchanged) {
+    x.decided = true;
+    x.kind = Exact::Kind::matrix;
+    return x;
+  }
+  // The error of C . Q as tolerance.h bounds it, for this variant's corner and the matrix S it
+  // solves with; a closed form adds the magnitudes it sums (|C| . |Q| as it computes Q).
+  const std::optional<exact::Mat> inverse = exact::inverse(e.solved);
+  if (!inverse) return x;
+  const exact::Mat abs_s = exact::abs(e.solved), abs_inv = exact::abs(*inverse);
+  const exact::Vec abs_c = exact::abs(e.c);
+  const Rational numerator =
+      tolerance::corner_dot_numerator(abs_c, exact::abs(e.q), exact::abs(e.c_clip),
+                                      exact::abs(e.q_clip), abs_s, abs_inv) +
+      (e.choices.closed_form ? exact::dot(abs_c, e.q_magnitude) : Rational(0));
+  const int p = tolerance::precision_bits<T>();
+  const Rational d_error = tolerance::corner_dot_error<T>(numerator);
+  const Rational d = exact::abs(e.d);
+  if (d <= d_error) return x;  // the guard and the scale are not decided in T
+  if (e.choices.closed_form && !e.perspective_shape) {
+    // The closed form on another shape is not M^-1 Q': a corner sign read from a C' component
+    // within its solve's error (gamma(12) (|S^-T| |S^T| |C'|)_i) may come out either way in T,
+    // and C . Q with it, by far more than d's error.
+    const exact::Vec spread = exact::mul(exact::transpose(abs_inv),
+                                         exact::mul(exact::transpose(abs_s), exact::abs(e.c_clip)));
+    const Rational solve_gamma = tolerance::gamma(tolerance::kSolveRoundings, p);
+    for (int i = 0; i < 3; ++i) {
+      if (e.sign_of_computed[i] &&
+          exact::abs(e.c_clip[i]) <= solve_gamma * spread[i] + tolerance::underflow_unit<T>())
+        return x;
+    }
+  }
+  if (e.status == Status::plane_misses_view_volume) {
+    x.decided = true;
+    return x;
+  }
+  const Rational scale = *tolerance::scale_error(d_error, d);  // d > d_error: eps < 1
+  const Rational largest = exact::to_rational(std::numeric_limits<T>::max()) / 256;
+  for (int row : {2, 3}) {
+    if (row == 3 && !e.row4_changed) continue;
+    const int r = row == 2 ? e.r3 : 1, t = row == 2 ? e.t3 : 1;
+    for (int i = 0; i < 4; ++i) {
+      const Rational ac = r * e.a * e.c[i];
+      x.values[row][i] = ac + t * mx[3][i];
+      x.bounds[row][i] =
+          tolerance::row3_entry_bound<T>(exact::abs(ac), exact::abs(t * mx[3][i]), scale);
+      if (exact::abs(x.values[row][i]) >= largest) return x;  // near overflow: out_of_range too
+    }
+  }
+  x.decided = true;
+  x.kind = Exact::Kind::matrix;
+  return x;
+}
+
+enum class Match { undecided, agrees, differs };
+
+template <class T>
+Match compare(const Observation<T>& o, const Exact& x) {
+  if (!x.decided) return Match::undecided;
+  // Refusals agree by name; another refusal than the cause's is no evidence either way (a
+  // program may name its refusals otherwise, or refuse out_of_range within rounding).
+  if (x.kind == Exact::Kind::refusal) {
+    if (o.status == Status::ok) return Match::differs;
+    return o.status == x.e.status ? Match::agrees : Match::undecided;
+  }
+  if (o.status != Status::ok) return Match::differs;
+  if (x.kind == Exact::Kind::non_finite) {
+    if (!all_finite(o.projection)) return Match::agrees;
+    // A NaN sign of a C' component that is 0 exactly: computed in T it may round to either sign
+    // (both corners equally far), and the answer is then finite.
+    return x.e.nan_sign_of_computed ? Match::undecided : Match::differs;
+  }
+  if (!all_finite(o.projection)) return Match::differs;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      if (exact::abs(exact::to_rational(o.projection(i, j)) - x.values[i][j]) > x.bounds[i][j])
+        return Match::differs;
+    }
+  }
+  return Match::agrees;
+}
+
+/// Whether two decided answers cannot both be the one a careful implementation gives.
+bool distinct(const Exact& a, const Exact& b) {
+  if (!a.decided || !b.decided) return false;
+  if (a.kind != b.kind) return true;
+  if (a.kind != Exact::Kind::matrix) return false;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      if (exact::abs(a.values[i][j] - b.values[i][j]) > a.bounds[i][j] + b.bounds[i][j])
+        return true;
+    }
+  }
+  return false;
+}
+
+/// A few cases of each shape where the catalogue's mistakes part: mirrored, flipped, off-axis,
+/// shifted, left-handed and orthographic matrices, with planes of every corner sign, head-on,
+/// through and in front of the camera and beyond the far plane.
+template <class T>
+struct PanelCase {
+  Matrix4<T> matrix;
+  Vector4<T> plane;
+  generators::Family family;
+};
+
+template <class T>
+std::vector<PanelCase<T>> panel(Convention convention) {
+  using generators::Family;
+  struct Shape {
+    Matrix4<T> m;
+    Family family;
+    bool left_handed;
+  };
+  const Matrix4<T> p = frustum<T>(-1, 1, -0.75, 0.75, 1, 64, convention);
+  Matrix4<T> x = p, y = p, xy = p, s = p, left = p;
+  x.row(0) *= T(-1);
+  y.row(1) *= T(-1);
+  xy.row(0) *= T(-1);
+  xy.row(1) *= T(-1);
+  s(0, 3) = T(0.25);  // a lens shift: M14, M24
+  s(1, 3) = T(-0.125);
+  Matrix4<T> xs = x, ys = y;
+  xs.col(3) = ys.col(3) = s.col(3);
+  xs(0, 3) = -xs(0, 3);
+  left.col(2) *= T(-1);  // a left-handed camera: z negated
+  const Shape shapes[] = {
+      {p, Family::perspective, false},
+      {x, Family::x_flipped, false},
+      {y, Family::y_flipped, false},
+      {xy, Family::xy_flipped, false},
+      {frustum<T>(-0.5, 1.5, -0.25, 1.25, 1, 64, convention), Family::off_axis, false},
+      // leaning left and down (M13, M23 < 0): a VR eye, a tiled screenshot's lower left tile
+      {frustum<T>(-1.5, 0.5, -1.25, 0.25, 1, 64, convention), Family::off_axis, false},
+      {s, Family::stereo_shift, false},
+      {xs, Family::general, false},
+      {ys, Family::general, false},
+      {left, Family::left_handed, true},
+      {orthographic<T>(-2, 2, -1.5, 1.5, 1, 64, convention), Family::orthographic, false},
+      // an orthographic volume reaching behind the eye: C'_z < 0 for the last plane below
+      {orthographic<T>(-2, 2, -2, 2, -5, 10, convention), Family::orthographic, false},
+  };
+  // Every corner sign, head-on, through and in front of the camera, beyond the far plane.
+  const T planes[][4] = {{0.25, 0.5, -1, -4},   {-0.25, 0.5, -1, -4}, {0.25, -0.5, -1, -4},
+                         {-0.25, -0.5, -1, -4}, {0, 0, -1, -4},       {0.25, 0.5, -1, 0},
+                         {0.25, 0.5, -1, 2},    {0, 0, -1, -100},     {1, 1, 0.125, -1}};
+  static_assert(std::size(shapes) * std::size(planes) == kPanelCasesPerConvention);
+  std::vector<PanelCase<T>> out;
+  for (const Shape& shape : shapes) {
+    for (const auto& c : planes) {
+      out.push_back(PanelCase<T>{
+          shape.m, Vector4<T>(c[0], c[1], shape.left_handed ? -c[2] : c[2], c[3]), shape.family});
+    }
+  }
+  return out;
+}
+
+/// One case and the exact answers of the correct method and of each cause tried on it.
+template <class T>
+struct Case {
+  Observation<T> seen;
+  Exact right;
+};
+
+template <class T>
+bool explains(const std::vector<Mistake>& cause, const std::vector<Case<T>>& cases) {
+  const variant::Knobs knobs = variant::knobs_of(cause);
+  bool evidence = false;
+  for (const Case<T>& k : cases) {
+    const Observation<T>& o = k.seen;
+    const Exact x = exact_answer(o.matrix, o.plane, o.convention, knobs);
+    const Match m = compare(o, x);
+    if (m == Match::differs) return false;
+    if (m == Match::agrees && o.wrong && distinct(x, k.right)) evidence = true;
+  }
+  return evidence;
+}
+
+void add_differences(const variant::Choices& mine, const variant::Choices& right,
+                     std::vector<ChoiceDifference>& out) {
+  auto add = [&out](Choice c, double a, double b) {
+    if (a != b) out.push_back(ChoiceDifference{c, a, b});
+  };
+  add(Choice::camera_guard, mine.refused_camera, right.refused_camera);
+  add(Choice::head_on, mine.head_on_skipped, right.head_on_skipped);
+  if (mine.refused_camera || right.refused_camera || mine.head_on_skipped || right.head_on_skipped)
+    return;
+  add(Choice::solve, mine.solve_changed, right.solve_changed);
+  add(Choice::closed_form, mine.closed_form, right.closed_form);
+  add(Choice::nan_sign, mine.nan_sign, right.nan_sign);
+  add(Choice::corner_guard, mine.refused_corner, right.refused_corner);
+  add(Choice::sign_x, mine.sx, right.sx);
+  add(Choice::sign_y, mine.sy, right.sy);
+  add(Choice::face, mine.z_twice / 2.0, right.z_twice / 2.0);
+  add(Choice::formula, static_cast<int>(mine.formula), static_cast<int>(right.formula));
+  add(Choice::row4, mine.note_flip, right.note_flip);
+}
+
+std::optional<std::array<double, 4>> row_of(const Exact& x, int row) {
+  if (!x.decided || x.kind == Exact::Kind::refusal) return std::nullopt;
+  std::array<double, 4> out;
+  for (int i = 0; i < 4; ++i) {
+    out[i] = x.kind == Exact::Kind::non_finite ? std::numeric_limits<double>::quiet_NaN()
+                                               : x.values[row][i].get_d();
+  }
+  return out;
+}
+
+}  // namespace
+
+template <class T>
+Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& probe) {
+  Diagnosis out;
+  std::vector<Case<T>> cases;
+  auto add_case = [&cases](const Observation<T>& o) {
+    if (!all_finite(o.matrix) || !all_finite(o.plane)) return;  // invalid input: no mistake
+    cases.push_back(Case<T>{o, exact_answer(o.matrix, o.plane, o.convention, variant::Knobs{})});
+  };
+  for (const Observation<T>& o : seen) add_case(o);
+  if (std::none_of(cases.begin(), cases.end(), [](const Case<T>& k) { return k.seen.wrong; }))
+    return out;
+  out.ran = true;
+  if (probe) {
+    std::vector<Convention> conventions;
+    for (const Case<T>& k : cases) {
+      if (std::find(conventions.begin(), conventions.end(), k.seen.convention) == conventions.end())
+        conventions.push_back(k.seen.convention);
+    }
+    for (Convention convention : conventions) {
+      for (const PanelCase<T>& k : panel<T>(convention)) {
+        if (const std::optional<Observation<T>> o =
+                probe(k.matrix, k.plane, convention, k.family)) {
+          add_case(*o);
+          ++out.probed;
+        }
+      }
+    }
+  }
+  // Wrong answers first: most causes are ruled out there.
+  std::stable_partition(cases.begin(), cases.end(), [](const Case<T>& k) { return k.seen.wrong; });
+  out.seen = static_cast<int>(cases.size());
+  out.wrong = static_cast<int>(
+      std::count_if(cases.begin(), cases.end(), [](const Case<T>& k) { return k.seen.wrong; }));
+  for (Mistake m : all_mistakes) {
+    if (explains<T>({m}, cases)) out.causes.push_back({m});
+  }
+  if (out.causes.empty()) {
+    constexpr std::size_t n = std::size(all_mistakes);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i + 1; j < n; ++j) {
+        if (explains<T>({all_mistakes[i], all_mistakes[j]}, cases))
+          out.causes.push_back({all_mistakes[i], all_mistakes[j]});
+      }
+    }
+  }
+  if (out.causes.empty()) return out;
+  const variant::Knobs knobs = variant::knobs_of(out.causes.front());
+  bool evidence_taken = false;
+  for (const Case<T>& k : cases) {
+    const Observation<T>& o = k.seen;
+    const Exact x = exact_answer(o.matrix, o.plane, o.convention, knobs);
+    if (!x.decided) continue;
+    ++out.decided;
+    const bool differs = distinct(x, k.right);
+    if (o.wrong && differs) ++out.wrong_where_it_differs;
+    if (!o.wrong && !differs && k.right.decided) ++out.right_where_it_agrees;
+    if (evidence_taken || !o.wrong || !differs || compare(o, x) != Match::agrees) continue;
+    evidence_taken = true;
+    out.answered = o.status;
+    out.mistaken = x.kind == Exact::Kind::refusal ? x.e.status : Status::ok;
+    out.right = k.right.kind == Exact::Kind::refusal ? k.right.e.status : Status::ok;
+    out.row = x.e.row4_changed ? 3 : 2;
+    if (o.status == Status::ok) {
+      std::array<double, 4> row;
+      for (int i = 0; i < 4; ++i) row[i] = static_cast<double>(o.projection(out.row, i));
+      out.answered_row = row;
+    }
+    out.mistaken_row = row_of(x, out.row);
+    out.right_row = row_of(k.right, out.row);
+    add_differences(x.e.choices, k.right.e.choices, out.differences);
+  }
+  return out;
+}
+
+template Diagnosis diagnose<float>(const std::vector<Observation<float>>&, const Probe<float>&);
+template Diagnosis diagnose<double>(const std::vector<Observation<double>>&, const Probe<double>&);
+template Diagnosis diagnose<long double>(const std::vector<Observation<long double>>&,
+                                         const Probe<long double>&);
+
+std::string cause_name(const std::vector<Mistake>& cause) {
+  std::string out;
+  for (Mistake m : cause) out += (out.empty() ? "" : " + ") + std::string(mistake_entry(m).name);
+  return out;
+}
+
+std::string cause_names(const Diagnosis& d) {
+  if (!d.ran) return "";
+  if (d.causes.empty()) return "no known mistake";
+  std::string out;
+  for (const auto& cause : d.causes) out += (out.empty() ? "" : " or ") + cause_name(cause);
+  return out;
+}
+
+std::string likely_cause_line(const Diagnosis& d) {
+  if (!d.ran) return "";
+  if (d.causes.empty()) return "likely cause: no known mistake reproduces these answers";
+  std::string out = "likely cause: ";
+  for (std::size_t i = 0; i < d.causes.size(); ++i) {
+    out += (i ? " or " : "") + cause_name(d.causes[i]);
+    if (d.causes[i].size() == 1)
+      out += " (" + std::string(mistake_entry(d.causes[i][0]).title) + ")";
+  }
+  if (d.causes.size() == 1 && d.causes[0].size() == 1)
+    out += "; fix: " + std::string(mistake_entry(d.causes[0][0]).fix);
+  return out;
+}
+
+std::string choice_text(const ChoiceDifference& c) {
+  auto number = [](double v) { return protocol::format_number(v); };
+  auto yes = [](double v) { return v != 0 ? std::string("yes") : std::string("no"); };
+  auto convention = [](double v) {
+    return std::string(convention_name(static_cast<Convention>(static_cast<int>(v))));
+  };
+  switch (c.choice) {
+    case Choice::camera_guard:
+      return "refuses for C_w >= 0: " + yes(c.mistaken) + " (right: " + yes(c.right) + ")";
+    case Choice::head_on: return "M returned unchanged: " + yes(c.mistaken) + " (right: no)";
+    case Choice::solve: return "entries of M left out of the solves: " + yes(c.mistaken);
+    case Choice::closed_form: return "Q by the perspective closed form: " + yes(c.mistaken);
+    case Choice::nan_sign: return "a corner sign computed as NaN (x / |x| at 0)";
+    case Choice::corner_guard:
+      return "refuses for C . Q <= 0: " + yes(c.mistaken) + " (right: " + yes(c.right) + ")";
+    case Choice::sign_x:
+      return "the far corner's x sign: " + number(c.mistaken) + " (right: " + number(c.right) + ")";
+    case Choice::sign_y:
+      return "the far corner's y sign: " + number(c.mistaken) + " (right: " + number(c.right) + ")";
+    case Choice::face:
+      return "the far corner's depth Q'_z: " + number(c.mistaken) + " (right: " + number(c.right) +
+             ")";
+    case Choice::formula:
+      return "the formula of " + convention(c.mistaken) + " (right: " + convention(c.right) + ")";
+    case Choice::row4: return "row 4 rewritten: " + yes(c.mistaken);
+  }
+  return "";
+}
+
+std::string likely_cause_markdown(const Diagnosis& d) {
+  if (!d.ran) return "";
+  std::ostringstream md;
+  md << "## Likely cause\n\n";
+  if (d.causes.empty()) {
+    md << "No known mistake reproduces these answers (" << d.seen << " cases judged, " << d.wrong
+       << " answers wrong; catalogue: docs/mistakes.md).\n\n";
+    return md.str();
+  }
+  if (d.causes.size() > 1) {
+    md << "Each of these reproduces every answer seen; the cases asked do not tell them apart:\n\n";
+    for (const auto& cause : d.causes) md << "- `" << cause_name(cause) << "`\n";
+    md << "\nThe first, in detail:\n\n";
+  }
+  for (Mistake m : d.causes.front()) {
+    const MistakeEntry& e = mistake_entry(m);
+    md << "**`" << e.name << "`: " << e.title << ".** " << e.explanation << "\n\n"
+       << "Fix: " << e.fix << "\n\n"
+       << "It shows on " << e.shows << ".\n\n";
+  }
+  md << "Evidence: of " << d.seen << " cases judged (" << d.probed
+     << " of them asked to tell the causes apart), " << d.decided
+     << " have an answer this cause decides; it reproduces each answer. Where its answer is not "
+        "the correct one, the implementation's answer was wrong ("
+     << d.wrong_where_it_differs << " cases); where it is, the answer was right ("
+     << d.right_where_it_agrees << " cases).\n\n";
+  if (!d.differences.empty()) {
+    md << "On the first such case it decides otherwise than the correct method:\n\n";
+    for (const ChoiceDifference& c : d.differences) md << "- " << choice_text(c) << "\n";
+    md << "\n";
+  }
+  auto row = [](const std::optional<std::array<double, 4>>& r, Status s) {
+    if (s != Status::ok) return std::string(status_code(s));
+    if (!r) return std::string("(not decided)");
+    std::string out = "(";
+    for (int i = 0; i < 4; ++i) out += (i ? ", " : "") + protocol::format_number((*r)[i]);
+    return out + ")";
+  };
+  md << "| row " << d.row + 1 << " of M' | |\n|---|---|\n"
+     << "| answered | " << row(d.answered_row, d.answered) << " |\n"
+     << "| with this mistake (exact, rounded) | " << row(d.mistaken_row, d.mistaken) << " |\n"
+     << "| correct (exact, rounded) | " << row(d.right_row, d.right) << " |\n\n";
+  return md.str();
+}
+
+}  // namespace oblique::properties

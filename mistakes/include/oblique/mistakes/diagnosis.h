@@ -1,0 +1,108 @@
+// Diagnosis of a finding: which known mistake (mistakes.h) explains the answers an implementation
+// gave. Every entry of the catalogue, and every two together, is evaluated in exact arithmetic on
+// each case seen; an entry explains the finding when, on every case where its answer is decided
+// (not within rounding of a boundary), the implementation's answer is that answer within the
+// rounding of the implementation's precision (the bounds of tolerance.h) or the same refusal, and
+// on at least one wrong answer it is an answer the correct method does not give. With a probe
+// (the implementation asked again) the cases where the candidates part are asked too, so that
+// one cause is left where the finding alone fits several. No cause is a guess: when none fits,
+// the diagnosis says so. Compiled in oblique::properties (float, double, long double).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "oblique/cases/case_kinds.h"
+#include "oblique/depth_convention.h"
+#include "oblique/mistakes/mistakes.h"
+#include "oblique/plane.h"
+#include "oblique/status.h"
+
+namespace oblique::properties {
+
+/// One case and what the implementation answered, with the checker's verdict on it.
+template <class T>
+struct Observation {
+  Matrix4<T> matrix = Matrix4<T>::Identity();
+  Vector4<T> plane = Vector4<T>::Zero();
+  Convention convention = Convention::gl;
+  Status status = Status::ok;
+  Matrix4<T> projection = Matrix4<T>::Identity();  ///< the answer, when status is ok
+  bool wrong = false;                              ///< the checker found a violation in this answer
+};
+
+/// Asks the implementation about one more case (of `family`): its observation, or none when the
+/// case is not one the implementation promises anything for (its contract leaves it out).
+template <class T>
+using Probe = std::function<std::optional<Observation<T>>(const Matrix4<T>&, const Vector4<T>&,
+                                                          Convention, generators::Family family)>;
+
+/// A choice of the modification, where a cause decided otherwise than the correct method.
+enum class Choice {
+  camera_guard,  ///< refuses when C_w >= 0 (1) or not (0)
+  head_on,       ///< M returned unchanged (1)
+  solve,         ///< entries of M left out of the solves (1)
+  closed_form,   ///< Q by the perspective closed form (1)
+  nan_sign,      ///< a sign computed as NaN (1)
+  corner_guard,  ///< refuses when C . Q <= 0 (1) or not (0)
+  sign_x,        ///< the far corner's x sign
+  sign_y,        ///< the far corner's y sign
+  face,          ///< the far corner's depth Q'_z
+  formula,       ///< whose formula: 0 gl, 1 zero_one, 2 reversed_z
+  row4,          ///< row 4 rewritten (1)
+};
+
+struct ChoiceDifference {
+  Choice choice = Choice::sign_x;
+  double mistaken = 0, right = 0;
+};
+
+struct Diagnosis {
+  bool ran = false;  ///< false where nothing was diagnosed (no wrong answer with a case)
+  /// The causes that explain every answer seen: each one mistake, or two made together. Empty:
+  /// no known mistake reproduces the answers.
+  std::vector<std::vector<Mistake>> causes;
+  int seen = 0, wrong = 0;  ///< cases judged (including probes), answers the checker rejected
+  int probed = 0;           ///< of them, cases asked by the diagnosis
+  /// For the first cause: answers it decides, and of them those where it is not the correct
+  /// answer (each a wrong answer of the implementation) and those where it is (each right).
+  int decided = 0, wrong_where_it_differs = 0, right_where_it_agrees = 0;
+  /// The evidence, on the first wrong answer the first cause reproduces: the statuses and the
+  /// row (0-based) it changes, as answered, as the cause gives it and as it should be.
+  Status answered = Status::ok, mistaken = Status::ok, right = Status::ok;
+  int row = 2;
+  std::optional<std::array<double, 4>> answered_row, mistaken_row, right_row;
+  std::vector<ChoiceDifference> differences;  ///< what the cause decided otherwise there
+};
+
+/// How many cases the diagnosis asks a probe per convention seen (its fixed panel).
+inline constexpr int kPanelCasesPerConvention = 108;
+
+/// The diagnosis of the answers `seen` (at least one wrong), with more cases asked through
+/// `probe` when given (in the conventions seen).
+template <class T>
+Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& probe = {});
+
+extern template Diagnosis diagnose<float>(const std::vector<Observation<float>>&,
+                                          const Probe<float>&);
+extern template Diagnosis diagnose<double>(const std::vector<Observation<double>>&,
+                                           const Probe<double>&);
+extern template Diagnosis diagnose<long double>(const std::vector<Observation<long double>>&,
+                                                const Probe<long double>&);
+
+/// "camera_space_signs" or "no_camera_guard + sign_by_division".
+std::string cause_name(const std::vector<Mistake>& cause);
+/// The causes joined by " or ", "no known mistake", or "" where nothing was diagnosed.
+std::string cause_names(const Diagnosis& diagnosis);
+/// One line for a console: "likely cause: NAME (title); fix: ..." or "likely cause: no known
+/// mistake reproduces these answers".
+std::string likely_cause_line(const Diagnosis& diagnosis);
+/// The report's "Likely cause" section (Markdown, from its heading).
+std::string likely_cause_markdown(const Diagnosis& diagnosis);
+/// What the cause decided otherwise, in words: "the far corner's x sign: 1 (right: -1)".
+std::string choice_text(const ChoiceDifference& difference);
+
+}  // namespace oblique::properties

@@ -1,0 +1,83 @@
+// The catalogue of known mistakes: the wrong variants of the oblique modification that engines
+// and the printed formulas ship, each with its name, what it does, the fix, and where it shows.
+// diagnosis.h names the entry that explains a finding; mistaken_implementation() runs an entry
+// (or two together) as an implementation, for the suite's own tests and fuzzing.
+// docs/mistakes.md lists the catalogue with a worked example each.
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "oblique/oracle/implementation.h"
+
+namespace oblique::properties {
+
+enum class Mistake {
+  zero_one_formula_on_gl,  ///< a = 1 / (C . Q), M'_3 = a C on a [-1, 1] matrix
+  gl_formula_on_zero_one,  ///< a = 2 / (C . Q), M'_3 = a C - M_4 on a [0, 1] matrix
+  camera_space_signs,      ///< the corner's x, y signs from C instead of C' = M^-T C
+  ignores_m11_sign,        ///< the perspective fast path's x sign from C (mirror cameras)
+  ignores_m22_sign,        ///< the perspective fast path's y sign from C (y-flipped cameras)
+  far_face_fixed,          ///< Q'_z = 1 whatever the convention and sgn(C'_z) (Eq. 7)
+  wrong_face,              ///< Q'_z on the face opposite sgn(C'_z): the near face
+  left_handed_qw,          ///< Q_w = (z - M33) / M34 on a right-handed matrix
+  drops_off_axis,          ///< M13, M23 left out of C' and Q
+  abs_off_axis,            ///< |M13|, |M23| in C' and Q: a frustum leaning left or down
+  drops_shift,             ///< M14, M24 (stereo, lens shift) left out of C' and Q
+  divides_by_m43,          ///< the perspective closed form on every matrix (Q_z = 1 / M43)
+  perspective_rows,        ///< Listing 5.1's Q (M43 = -1 assumed) on every matrix
+  skips_head_on,           ///< M returned unchanged for a plane with normal (0, 0, -1)
+  no_camera_guard,         ///< no refusal when C_w >= 0
+  no_corner_guard,         ///< no refusal when C . Q <= 0
+  sign_by_division,        ///< sgn(x) = x / |x|, NaN at 0
+  note_flip_as_printed,    ///< reversed Z through the [0, 1] note's flip, fourth row (0, 0, 1, 1)
+};
+
+inline constexpr Mistake all_mistakes[] = {
+    Mistake::zero_one_formula_on_gl,
+    Mistake::gl_formula_on_zero_one,
+    Mistake::camera_space_signs,
+    Mistake::ignores_m11_sign,
+    Mistake::ignores_m22_sign,
+    Mistake::far_face_fixed,
+    Mistake::wrong_face,
+    Mistake::left_handed_qw,
+    Mistake::drops_off_axis,
+    Mistake::abs_off_axis,
+    Mistake::drops_shift,
+    Mistake::divides_by_m43,
+    Mistake::perspective_rows,
+    Mistake::skips_head_on,
+    Mistake::no_camera_guard,
+    Mistake::no_corner_guard,
+    Mistake::sign_by_division,
+    Mistake::note_flip_as_printed,
+};
+
+/// One entry of the catalogue.
+struct MistakeEntry {
+  Mistake mistake;
+  std::string_view name;         ///< e.g. "zero_one_formula_on_gl"
+  std::string_view title;        ///< a short phrase: "the [0, 1] formula on a [-1, 1] matrix"
+  std::string_view explanation;  ///< what the code does and why it is wrong (a paragraph)
+  std::string_view fix;          ///< the fix, in words and formula
+  std::string_view shows;        ///< the inputs where it gives a wrong answer
+};
+
+const MistakeEntry& mistake_entry(Mistake mistake);
+/// The mistake called `name` (MistakeEntry::name), if any.
+std::optional<Mistake> parse_mistake(std::string_view name);
+
+/// The modification with `mistakes` made (one, or two together), computing in T as an engine
+/// does: the core's general method where the mistakes change none of its choices, the mistaken
+/// formula elsewhere. Named "mistake_" + the names joined by "+". Compiled in oblique::properties.
+template <class T>
+Implementation<T> mistaken_implementation(const std::vector<Mistake>& mistakes);
+
+extern template Implementation<float> mistaken_implementation<float>(const std::vector<Mistake>&);
+extern template Implementation<double> mistaken_implementation<double>(const std::vector<Mistake>&);
+extern template Implementation<long double> mistaken_implementation<long double>(
+    const std::vector<Mistake>&);
+
+}  // namespace oblique::properties

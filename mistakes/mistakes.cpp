@@ -1,0 +1,270 @@
+// The catalogue's entries (mistakes.h) and each mistake's knob in the one computation
+// (variant.h).
+#include "oblique/mistakes/mistakes.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "oblique/oblique.h"
+#include "variant.h"
+
+namespace oblique::properties {
+
+namespace {
+
+// clang-format off
+constexpr MistakeEntry kCatalogue[] = {
+    {Mistake::zero_one_formula_on_gl, "zero_one_formula_on_gl",
+     "the [0, 1] formula on a [-1, 1] matrix",
+     "The code scales C by a = 1 / (C . Q) and writes M'_3 = a C, the formula for [0, 1] depth "
+     "(Direct3D, Vulkan, Metal), on an OpenGL [-1, 1] matrix. There the near plane is M'_3 + M_4, "
+     "so it becomes a C + M_4 instead of a multiple of C, and the far plane misses Q.",
+     "For [-1, 1] depth use a = 2 / (C . Q) and M'_3 = a C - M_4; keep a = 1 / (C . Q), "
+     "M'_3 = a C for [0, 1] depth. Take the convention as an input, not as an assumption.",
+     "every [-1, 1] (gl) matrix"},
+    {Mistake::gl_formula_on_zero_one, "gl_formula_on_zero_one",
+     "the [-1, 1] formula on a [0, 1] matrix",
+     "The code scales C by a = 2 / (C . Q) and writes M'_3 = a C - M_4 (OpenGL's formula) on a "
+     "[0, 1] matrix, whose near plane is M'_3 alone: the near plane becomes a C - M_4, which is no "
+     "multiple of C.",
+     "For [0, 1] depth use a = 1 / (C . Q) and M'_3 = a C (near plane M'_3); the far corner's "
+     "depth is 0 or 1, not -1 or 1.",
+     "every [0, 1] (zero_one) matrix"},
+    {Mistake::camera_space_signs, "camera_space_signs",
+     "the far corner's signs taken from C in camera space",
+     "The far corner Q' = (sgn C'_x, sgn C'_y, ...) needs the signs of the clip-space plane "
+     "C' = M^-T C. The code takes sgn C_x and sgn C_y instead, which agree only for matrices that "
+     "keep the signs of x and y: a mirror camera (M11 < 0), a y-flipped one (M22 < 0, Vulkan), an "
+     "off-axis, shifted or rotated one picks a corner that is not the farthest, and the far plane "
+     "then clips the view volume.",
+     "Solve C' = M^-T C (for the perspective shape, C'_x = C_x / M11 and C'_y = C_y / M22) and "
+     "take Q' = (sgn C'_x, sgn C'_y, z_far, 1).",
+     "matrices where sgn C'_x != sgn C_x or sgn C'_y != sgn C_y"},
+    {Mistake::ignores_m11_sign, "ignores_m11_sign",
+     "the perspective fast path ignores the sign of M11",
+     "On matrices of the perspective shape the code writes sgn C'_x as sgn C_x, true while "
+     "M11 > 0 (C'_x = C_x / M11). A mirror camera made by negating M11 then gets the far corner on "
+     "the wrong side in x. Other matrices, solved in general, are right.",
+     "sgn C'_x = sgn C_x * sgn M11 on the perspective shape, or solve C' = M^-T C.",
+     "perspective-shaped matrices with M11 < 0"},
+    {Mistake::ignores_m22_sign, "ignores_m22_sign",
+     "the perspective fast path ignores the sign of M22",
+     "On matrices of the perspective shape the code writes sgn C'_y as sgn C_y, true while "
+     "M22 > 0. A y-flipped camera (Vulkan's clip space, or a flip for render-to-texture) then "
+     "gets the far corner on the wrong side in y.",
+     "sgn C'_y = sgn C_y * sgn M22 on the perspective shape, or solve C' = M^-T C.",
+     "perspective-shaped matrices with M22 < 0"},
+    {Mistake::far_face_fixed, "far_face_fixed",
+     "the far corner's depth fixed at Q'_z = 1",
+     "The code takes Q' = (sgn C'_x, sgn C'_y, 1, 1) as the paper's Eq. 7 prints it. The far face "
+     "is z = 1 only for forward depth with C'_z > 0: with reversed Z the far face is z = 0, and "
+     "where C'_z < 0 (orthographic volumes reaching behind the eye, general matrices) the farthest "
+     "corner is on the other face. C is then scaled by its value at a nearer corner.",
+     "Q'_z = z_far when sgn C'_z > 0 and z_near when sgn C'_z < 0, with (z_near, z_far) = "
+     "(-1, 1) for [-1, 1], (0, 1) for [0, 1] and (1, 0) for reversed Z.",
+     "reversed-Z matrices, and wherever C'_z < 0"},
+    {Mistake::wrong_face, "wrong_face",
+     "the far corner taken on the near depth face",
+     "The code takes Q'_z on the face opposite sgn C'_z, the near face: reversed-Z code "
+     "(far face z = 0) run on a forward-Z matrix, or the other way round, or a sign slip in "
+     "Q'_z = -sgn C'_z. C is scaled by its value at a nearer corner, the far plane then cuts "
+     "through the view volume, or C . Q <= 0 and the input is refused.",
+     "Q'_z = z_far when sgn C'_z > 0 and z_near when sgn C'_z < 0, with (z_near, z_far) = "
+     "(-1, 1) for [-1, 1], (0, 1) for [0, 1] and (1, 0) for reversed Z.",
+     "every matrix (wherever C'_z != 0)"},
+    {Mistake::left_handed_qw, "left_handed_qw",
+     "a left-handed Q_w formula on a right-handed matrix",
+     "The perspective closed form has Q_z = 1 / M43 and Q_w = (z - M33 Q_z) / M34: "
+     "(z + M33) / M34 for a right-handed matrix (M43 = -1), (z - M33) / M34 for a left-handed one "
+     "(M43 = 1). The code uses the left-handed Q_w on a right-handed matrix, so Q is off the far "
+     "face and C . Q, and the scale, are wrong.",
+     "Q_w = (Q'_z - M33 / M43) / M34, which holds for either handedness.",
+     "perspective-shaped matrices with M43 != 1"},
+    {Mistake::drops_off_axis, "drops_off_axis",
+     "the off-axis terms M13, M23 dropped",
+     "The code finds C' and Q as if the frustum were symmetric (M13 = M23 = 0), e.g. "
+     "Q_x = sgn C'_x / M11 instead of (sgn C'_x + M13) / M11. An off-axis frustum (a portal seen "
+     "from the side, TAA jitter, a tiled or asymmetric view) then gets a Q off the far face.",
+     "Keep M13 and M23: Q = M^-1 Q', or Q_x = (sgn C'_x - M13 Q_z) / M11 and likewise for y.",
+     "matrices with M13 != 0 or M23 != 0"},
+    {Mistake::abs_off_axis, "abs_off_axis",
+     "the off-axis terms taken as |M13|, |M23|",
+     "The code takes the magnitudes of the off-axis terms (fabs(M13), fabs(M23)) into C' and Q, "
+     "as if a frustum leaned only right and up. It is right while they are >= 0 and gives a Q off "
+     "the far face whenever the frustum has more field of view to the left or below than "
+     "opposite: a VR eye, a tiled screenshot's top or right tiles, a portal seen from one side.",
+     "Keep the signs: Q = M^-1 Q', or Q_x = (sgn C'_x - M13 Q_z) / M11 with M13 as it is.",
+     "matrices with M13 < 0 or M23 < 0"},
+    {Mistake::drops_shift, "drops_shift",
+     "the stereo / lens-shift terms M14, M24 dropped",
+     "The code finds C' and Q from M with M14 = M24 = 0, portal math written for a centred "
+     "camera. A stereo eye or lens-shifted projection (translation in clip x or y) then gets a "
+     "corner and a scale for another matrix.",
+     "Solve with the whole matrix: C' = M^-T C and Q = M^-1 Q'.",
+     "matrices with M14 != 0 or M24 != 0"},
+    {Mistake::divides_by_m43, "divides_by_m43",
+     "the perspective closed form on a matrix of another shape",
+     "The code computes Q by the perspective closed form (Q_z = 1 / M43, Q_w = "
+     "(z - M33 Q_z) / M34, ...) whatever the matrix. On an orthographic matrix M43 = 0: Q_z is "
+     "infinite and the answer NaN; on any other shape Q is not M^-1 Q'.",
+     "Use the closed form only for the perspective shape (zeros outside M11, M13, M22, M23, M33, "
+     "M34, M43; M43 != 0) and solve Q = M^-1 Q' otherwise.",
+     "matrices not of the perspective shape (orthographic: a NaN answer)"},
+    {Mistake::perspective_rows, "perspective_rows",
+     "Listing 5.1's perspective rows on a matrix of another shape",
+     "The code computes Q as Listing 5.1 does, Q = ((s_x + M13) / M11, (s_y + M23) / M22, -1, "
+     "(z + M33) / M34), which assumes M_4 = (0, 0, -1, 0). On an orthographic or general matrix "
+     "this is not M^-1 Q': C is scaled by its value at a point that is no corner.",
+     "Use the shortcut only for the perspective shape with M43 = -1; solve Q = M^-1 Q' otherwise.",
+     "matrices not of the perspective shape, or with M43 != -1"},
+    {Mistake::skips_head_on, "skips_head_on",
+     "the modification skipped for a head-on plane",
+     "The code returns M unchanged when the plane's normal is (0, 0, -1), reasoning that the "
+     "near plane is already parallel to it. But the near plane must also lie on C: the original "
+     "near plane is at distance n, the mirror at -C_w / |C_z|. Geometry between them is drawn in "
+     "the reflection.",
+     "Apply the modification for every plane: for C = (0, 0, -1, -d) it moves the near plane to "
+     "z = -d.",
+     "planes with C_x = C_y = 0 and C_z < 0"},
+    {Mistake::no_camera_guard, "no_camera_guard",
+     "no guard when the camera is on or in front of the plane",
+     "The modification needs the camera (the eye, the origin of camera space) strictly on C's "
+     "negative side, C_w < 0: otherwise the near plane C would keep the camera's side, and no "
+     "oblique frustum clips what the user meant. The code answers a matrix anyway.",
+     "Refuse (or fall back to the unmodified matrix plus a user clip plane) when C_w >= 0.",
+     "planes with C_w >= 0"},
+    {Mistake::no_corner_guard, "no_corner_guard",
+     "no guard when the plane misses the view volume",
+     "When C keeps nothing of the view volume (C . Q <= 0 at the farthest corner) the scale "
+     "a = k / (C . Q) is negative or infinite. The code divides anyway: a near plane that keeps "
+     "the wrong side, or infinities when C passes through Q.",
+     "Refuse when C . Q <= 0 (nothing is to be drawn), before dividing.",
+     "planes with C . Q <= 0"},
+    {Mistake::sign_by_division, "sign_by_division",
+     "sgn(x) computed as x / |x|",
+     "The code computes the corner's signs as x / |x|, which is NaN for x = 0. A plane with "
+     "C'_x, C'_y or C'_z exactly 0 (an axis-aligned water plane seen by an axis-aligned camera) "
+     "gets a NaN corner and a NaN matrix.",
+     "sgn(x) = (x > 0) - (x < 0); a zero component may take either sign (every such corner is "
+     "equally far).",
+     "planes with C'_x, C'_y or C'_z exactly 0"},
+    {Mistake::note_flip_as_printed, "note_flip_as_printed",
+     "the reversed-Z route through the [0, 1] note's flip matrix as printed",
+     "The [0, 1] note builds reversed Z as flip * oblique([0, 1] matrix), its flip printed with "
+     "fourth row (0, 0, 1, 1). That row rewrites w (w' = z + w): row 4 of the answer becomes "
+     "a C + M_4 instead of M_4, so the side planes and the perspective divide change.",
+     "Flip with fourth row (0, 0, 0, 1) (z' = w - z), or directly: M'_3 = M_4 - a C with "
+     "a = 1 / (C . Q) and rows 1, 2, 4 unchanged.",
+     "every reversed-Z matrix"},
+};
+// clang-format on
+
+}  // namespace
+
+const MistakeEntry& mistake_entry(Mistake mistake) {
+  for (const MistakeEntry& e : kCatalogue) {
+    if (e.mistake == mistake) return e;
+  }
+  throw std::logic_error("a mistake without a catalogue entry");
+}
+
+std::optional<Mistake> parse_mistake(std::string_view name) {
+  for (const MistakeEntry& e : kCatalogue) {
+    if (e.name == name) return e.mistake;
+  }
+  return std::nullopt;
+}
+
+namespace variant {
+
+Knobs knobs_of(Mistake mistake) {
+  Knobs k;
+  switch (mistake) {
+    case Mistake::zero_one_formula_on_gl: k.zero_one_on_gl = true; break;
+    case Mistake::gl_formula_on_zero_one: k.gl_on_zero_one = true; break;
+    case Mistake::camera_space_signs: k.x = k.y = SignFrom::camera; break;
+    case Mistake::ignores_m11_sign: k.x = SignFrom::camera_on_perspective_shape; break;
+    case Mistake::ignores_m22_sign: k.y = SignFrom::camera_on_perspective_shape; break;
+    case Mistake::far_face_fixed: k.face_fixed = true; break;
+    case Mistake::wrong_face: k.face_opposite = true; break;
+    case Mistake::left_handed_qw:
+      k.closed_form = ClosedForm::perspective_shape;
+      k.left_handed_qw = true;
+      break;
+    case Mistake::drops_off_axis: k.drops_off_axis = true; break;
+    case Mistake::abs_off_axis: k.abs_off_axis = true; break;
+    case Mistake::drops_shift: k.drops_shift = true; break;
+    case Mistake::divides_by_m43: k.closed_form = ClosedForm::always; break;
+    case Mistake::perspective_rows:
+      k.closed_form = ClosedForm::always;
+      k.assumes_m43_minus_one = true;
+      break;
+    case Mistake::skips_head_on: k.skips_head_on = true; break;
+    case Mistake::no_camera_guard: k.camera_guard = false; break;
+    case Mistake::no_corner_guard: k.corner_guard = false; break;
+    case Mistake::sign_by_division: k.sign_by_division = true; break;
+    case Mistake::note_flip_as_printed: k.note_flip = true; break;
+  }
+  return k;
+}
+
+Knobs knobs_of(const std::vector<Mistake>& mistakes) {
+  Knobs k;
+  for (Mistake m : mistakes) {
+    const Knobs one = knobs_of(m);
+    const Knobs none;
+    k.camera_guard = k.camera_guard && one.camera_guard;
+    k.corner_guard = k.corner_guard && one.corner_guard;
+    k.skips_head_on = k.skips_head_on || one.skips_head_on;
+    k.sign_by_division = k.sign_by_division || one.sign_by_division;
+    // camera beats camera_on_perspective_shape beats clip
+    if (one.x != none.x && k.x != SignFrom::camera) k.x = one.x;
+    if (one.y != none.y && k.y != SignFrom::camera) k.y = one.y;
+    k.face_fixed = k.face_fixed || one.face_fixed;
+    k.face_opposite = k.face_opposite || one.face_opposite;
+    k.drops_off_axis = k.drops_off_axis || one.drops_off_axis;
+    k.abs_off_axis = k.abs_off_axis || one.abs_off_axis;
+    k.drops_shift = k.drops_shift || one.drops_shift;
+    k.closed_form = std::max(k.closed_form, one.closed_form);
+    k.assumes_m43_minus_one = k.assumes_m43_minus_one || one.assumes_m43_minus_one;
+    k.left_handed_qw = k.left_handed_qw || one.left_handed_qw;
+    k.zero_one_on_gl = k.zero_one_on_gl || one.zero_one_on_gl;
+    k.gl_on_zero_one = k.gl_on_zero_one || one.gl_on_zero_one;
+    k.note_flip = k.note_flip || one.note_flip;
+  }
+  return k;
+}
+
+}  // namespace variant
+
+template <class T>
+Implementation<T> mistaken_implementation(const std::vector<Mistake>& mistakes) {
+  Implementation<T> impl;
+  impl.name = "mistake_";
+  for (std::size_t i = 0; i < mistakes.size(); ++i)
+    impl.name += (i ? "+" : "") + std::string(mistake_entry(mistakes[i]).name);
+  impl.accepts = [](Convention, const Matrix4<T>&) { return true; };
+  const variant::Knobs knobs = variant::knobs_of(mistakes);
+  impl.run = [knobs](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+    const ObliqueResult<T> right = apply<T>(m, c, convention, Method::general);
+    // Input checks no mistake here changes: non-finite, out of the core's range, singular.
+    if (right.status == Status::invalid_input || right.status == Status::singular_projection ||
+        right.status == Status::out_of_range)
+      return Outcome<T>{right.status, right.projection};
+    const auto mine = variant::evaluate<T>(m, c, convention, knobs);
+    const auto careful = variant::evaluate<T>(m, c, convention, variant::Knobs{});
+    if (mine.choices == careful.choices || mine.solve_failed)
+      return Outcome<T>{right.status, right.projection};
+    if (mine.status != Status::ok) return Outcome<T>{mine.status, m};
+    return Outcome<T>{Status::ok, variant::answer_matrix(m, mine)};
+  };
+  return impl;
+}
+
+template Implementation<float> mistaken_implementation<float>(const std::vector<Mistake>&);
+template Implementation<double> mistaken_implementation<double>(const std::vector<Mistake>&);
+template Implementation<long double> mistaken_implementation<long double>(
+    const std::vector<Mistake>&);
+
+}  // namespace oblique::properties

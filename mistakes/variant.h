@@ -1,0 +1,314 @@
+// The modification as one computation with knobs, each knob one known mistake (mistakes.h):
+// all knobs off is the correct method. Written once for any scalar: computed in float or double
+// it is an engine's code (mistaken_implementation()); in exact rationals it is the answer the
+// mistake gives when nothing rounds, against which diagnosis.cpp compares a user's answer.
+// Internal to oblique::properties.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+#include "oblique/depth_convention.h"
+#include "oblique/mistakes/mistakes.h"
+#include "oblique/oracle/exact.h"
+#include "oblique/plane.h"
+#include "oblique/projection.h"
+#include "oblique/status.h"
+
+namespace oblique::properties::variant {
+
+/// Where the far corner Q comes from the perspective closed form instead of a solve.
+enum class ClosedForm { never, perspective_shape, always };
+/// Where a corner sign is read.
+enum class SignFrom { clip, camera, camera_on_perspective_shape };
+
+struct Knobs {
+  bool camera_guard = true, corner_guard = true, skips_head_on = false, sign_by_division = false;
+  SignFrom x = SignFrom::clip, y = SignFrom::clip;
+  bool face_fixed = false, face_opposite = false, drops_off_axis = false, drops_shift = false;
+  bool abs_off_axis = false;
+  ClosedForm closed_form = ClosedForm::never;
+  bool assumes_m43_minus_one = false, left_handed_qw = false;
+  bool zero_one_on_gl = false, gl_on_zero_one = false, note_flip = false;
+};
+
+Knobs knobs_of(Mistake mistake);
+/// The knobs of several mistakes made together.
+Knobs knobs_of(const std::vector<Mistake>& mistakes);
+
+/// The choices a variant made on one input: two variants whose choices agree give the same
+/// answer when nothing rounds.
+struct Choices {
+  bool refused_camera = false, head_on_skipped = false, solve_changed = false;
+  bool closed_form = false, nan_sign = false, refused_corner = false, unguarded_corner = false;
+  bool note_flip = false;
+  int sx = 0, sy = 0;  ///< the corner's x and y signs
+  int z_twice = 0;     ///< twice the corner's z (a face or, for a zero sign, the middle)
+  Convention formula = Convention::gl;  ///< whose formula: range, a's numerator, row 3's form
+
+  bool operator==(const Choices& o) const {
+    return refused_camera == o.refused_camera && head_on_skipped == o.head_on_skipped &&
+           solve_changed == o.solve_changed && closed_form == o.closed_form &&
+           nan_sign == o.nan_sign && refused_corner == o.refused_corner &&
+           unguarded_corner == o.unguarded_corner && note_flip == o.note_flip && sx == o.sx &&
+           sy == o.sy && z_twice == o.z_twice && formula == o.formula;
+  }
+  bool operator!=(const Choices& o) const { return !(*this == o); }
+};
+
+template <class S>
+using Vec = std::array<S, 4>;
+template <class S>
+using Mat = std::array<Vec<S>, 4>;
+
+/// A variant's answer: a refusal, M unchanged, a non-finite matrix (a division by zero or a NaN
+/// sign), or M with row 3 = r3 (a C) + t3 M_4 and, for note_flip, row 4 = a C + M_4.
+template <class S>
+struct Evaluation {
+  Status status = Status::ok;
+  bool unchanged = false, non_finite = false, solve_failed = false;
+  bool nan_sign_of_computed = false;       ///< a NaN sign of a component of C' (computed), not of C
+  std::array<bool, 3> sign_of_computed{};  ///< the corner's x, y, z signs read from C', not C
+  bool perspective_shape = false;          ///< M has the perspective shape
+  Choices choices;
+  S a{}, d{};
+  Vec<S> c{}, c_clip{}, q_clip{}, q{},
+      q_magnitude{};   ///< q_magnitude: |Q| as the closed form sums it
+  Mat<S> solved{};     ///< the matrix solved with (M with the dropped entries zero)
+  int r3 = 1, t3 = 0;  ///< row 3 = r3 a C + t3 M_4
+  bool row4_changed = false;
+};
+
+template <class S>
+S magnitude(const S& x) {
+  return x < 0 ? S(-x) : x;
+}
+
+template <class S, class T>
+S convert(T x) {
+  if constexpr (std::is_same_v<S, exact::Rational>) {
+    return exact::to_rational(x);
+  } else {
+    return static_cast<S>(x);
+  }
+}
+
+/// Solves A x = b (or A^T x = b) by Gaussian elimination with partial pivoting, and in floating
+/// point one step of iterative refinement (componentwise backward stable, Skeel 1980); false when
+/// a pivot is zero.
+template <class S>
+bool solve(const Mat<S>& a, bool transpose, const Vec<S>& b, Vec<S>& x) {
+  auto eliminate = [&a, transpose](const Vec<S>& rhs, Vec<S>& out) {
+    std::array<std::array<S, 5>, 4> m;
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) m[i][j] = transpose ? a[j][i] : a[i][j];
+      m[i][4] = rhs[i];
+    }
+    for (int k = 0; k < 4; ++k) {
+      int p = k;
+      for (int i = k + 1; i < 4; ++i) {
+        if (magnitude(m[i][k]) > magnitude(m[p][k])) p = i;
+      }
+      if (m[p][k] == 0) return false;
+      std::swap(m[k], m[p]);
+      for (int i = k + 1; i < 4; ++i) {
+        const S f = m[i][k] / m[k][k];
+        for (int j = k; j < 5; ++j) m[i][j] -= f * m[k][j];
+      }
+    }
+    for (int i = 3; i >= 0; --i) {
+      S s = m[i][4];
+      for (int j = i + 1; j < 4; ++j) s -= m[i][j] * out[j];
+      out[i] = s / m[i][i];
+    }
+    return true;
+  };
+  if (!eliminate(b, x)) return false;
+  if constexpr (std::is_floating_point_v<S>) {
+    Vec<S> r, dx;
+    for (int i = 0; i < 4; ++i) {
+      S ax = 0;
+      for (int j = 0; j < 4; ++j) ax += (transpose ? a[j][i] : a[i][j]) * x[j];
+      r[i] = b[i] - ax;
+    }
+    if (!eliminate(r, dx)) return false;
+    for (int i = 0; i < 4; ++i) x[i] += dx[i];
+  }
+  return true;
+}
+
+/// x / y; false (in exact arithmetic) where y = 0: the answer is then not finite.
+template <class S>
+bool divide(const S& x, const S& y, S& out) {
+  if constexpr (std::is_floating_point_v<S>) {
+    out = x / y;
+    return true;
+  } else {
+    if (y == 0) return false;
+    out = x / y;
+    return true;
+  }
+}
+
+/// The modification of (M, C) in `convention` with `knobs`, in S. Precondition: M and C finite.
+template <class S, class T>
+Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Convention convention,
+                       const Knobs& knobs) {
+  Evaluation<S> e;
+  Mat<S> m;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) m[i][j] = convert<S>(matrix(i, j));
+    e.c[i] = convert<S>(plane(i));
+  }
+  if constexpr (std::is_floating_point_v<S>) {
+    // a C does not change when C is scaled: a very tiny or huge C is brought near magnitude 1
+    // by a power of two (exact) first, as careful code does, so that C . Q neither under- nor
+    // overflows (an ordinary C is left alone: scaling it down would lose a subnormal's bits).
+    S largest = 0;
+    for (const S& v : e.c) largest = std::max(largest, std::abs(v));
+    const int exponent = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) : 0;
+    if (std::abs(exponent) > std::numeric_limits<S>::max_exponent / 4) {
+      for (S& v : e.c) v = std::ldexp(v, -exponent);
+    }
+  }
+  const Vec<S>& c = e.c;
+  const bool perspective = has_perspective_shape(matrix);
+  Choices& ch = e.choices;
+  ch.formula = convention;
+  if (knobs.zero_one_on_gl && convention == Convention::gl) ch.formula = Convention::zero_one;
+  if (knobs.gl_on_zero_one && convention == Convention::zero_one) ch.formula = Convention::gl;
+  ch.note_flip = knobs.note_flip && convention == Convention::reversed_z;
+  if (!(c[3] < 0)) {
+    if (knobs.camera_guard) {
+      ch.refused_camera = true;
+      e.status = Status::camera_not_behind_plane;
+      return e;
+    }
+  }
+  if (knobs.skips_head_on && c[0] == 0 && c[1] == 0 && c[2] < 0) {
+    ch.head_on_skipped = true;
+    e.unchanged = true;
+    return e;
+  }
+  e.solved = m;
+  if (knobs.drops_off_axis) e.solved[0][2] = e.solved[1][2] = 0;
+  if (knobs.abs_off_axis) {
+    e.solved[0][2] = magnitude(e.solved[0][2]);
+    e.solved[1][2] = magnitude(e.solved[1][2]);
+  }
+  if (knobs.drops_shift) e.solved[0][3] = e.solved[1][3] = 0;
+  ch.solve_changed = e.solved != m;
+  if (!solve(e.solved, true, c, e.c_clip)) {
+    e.solve_failed = true;
+    e.status = Status::singular_projection;
+    return e;
+  }
+  auto sign = [&](const S& v, bool computed) {
+    if (knobs.sign_by_division && v == 0) {
+      ch.nan_sign = true;
+      e.nan_sign_of_computed = e.nan_sign_of_computed || computed;
+    }
+    return v > 0 ? 1 : (v < 0 ? -1 : 0);
+  };
+  auto read = [&](SignFrom from, int i) {
+    const bool camera =
+        from == SignFrom::camera || (from == SignFrom::camera_on_perspective_shape && perspective);
+    e.sign_of_computed[i] = !camera;
+    return camera ? sign(c[i], false) : sign(e.c_clip[i], true);
+  };
+  e.sign_of_computed[2] = true;
+  e.perspective_shape = perspective;
+  ch.sx = read(knobs.x, 0);
+  ch.sy = read(knobs.y, 1);
+  const int sz = sign(e.c_clip[2], true);
+  const DepthRange range = clip_depth_range(ch.formula);
+  const int face = knobs.face_opposite ? -sz : sz;
+  ch.z_twice = knobs.face_fixed ? 2
+               : face > 0       ? 2 * range.z_high
+               : face < 0       ? 2 * range.z_low
+                                : range.z_low + range.z_high;
+  if (ch.nan_sign) {  // x / |x| at 0: a NaN in Q, C . Q and every entry of row 3
+    e.non_finite = true;
+    return e;
+  }
+  e.q_clip = {S(ch.sx), S(ch.sy), S(ch.z_twice) / S(2), S(1)};
+  ch.closed_form = knobs.closed_form == ClosedForm::always ||
+                   (knobs.closed_form == ClosedForm::perspective_shape && perspective);
+  const Mat<S>& s = e.solved;
+  if (ch.closed_form) {
+    // Q = M^-1 Q' for the perspective shape: Q_z = 1 / M43, Q_w = (z - M33 Q_z) / M34,
+    // Q_x = (s_x - M13 Q_z) / M11, Q_y = (s_y - M23 Q_z) / M22.
+    S qz = S(-1);
+    if (!knobs.assumes_m43_minus_one && !divide(S(1), s[3][2], qz)) {
+      e.non_finite = true;
+      return e;
+    }
+    const S qz_in_w = knobs.left_handed_qw ? S(1) : qz;
+    // Q_k = (Q'_j - M_j3 z) / M_jl for (k, j, z, l) = (x, 1, Q_z, 1), (y, 2, Q_z, 2), (w, 3, Q_z
+    // or, left-handed, 1, 4); q_magnitude sums the same terms' magnitudes.
+    const struct {
+      int k, j, l;
+      const S& z;
+    } parts[3] = {{0, 0, 0, qz}, {1, 1, 1, qz}, {3, 2, 3, qz_in_w}};
+    for (const auto& p : parts) {
+      if (!divide(S(e.q_clip[p.j] - s[p.j][2] * p.z), s[p.j][p.l], e.q[p.k])) {
+        e.non_finite = true;
+        return e;
+      }
+      e.q_magnitude[p.k] = (magnitude(e.q_clip[p.j]) + magnitude(s[p.j][2]) * magnitude(p.z)) /
+                           magnitude(s[p.j][p.l]);
+    }
+    e.q[2] = qz;
+    e.q_magnitude[2] = magnitude(qz);
+  } else if (!solve(e.solved, false, e.q_clip, e.q)) {
+    e.solve_failed = true;
+    e.status = Status::singular_projection;
+    return e;
+  }
+  e.d = c[0] * e.q[0] + c[1] * e.q[1] + c[2] * e.q[2] + c[3] * e.q[3];
+  if constexpr (std::is_floating_point_v<S>) {
+    if (!std::isfinite(e.d)) {  // where exact arithmetic divides by zero: the answer is NaN
+      e.non_finite = true;
+      return e;
+    }
+  }
+  if (!(e.d > 0)) {
+    if (knobs.corner_guard) {
+      ch.refused_corner = true;
+      e.status = Status::plane_misses_view_volume;
+      return e;
+    }
+    ch.unguarded_corner = true;
+  }
+  if (!divide(S(range.z_high - range.z_low), e.d, e.a)) {
+    e.non_finite = true;
+    return e;
+  }
+  const RowCombination near = near_rows(ch.formula);
+  e.r3 = near.m3;
+  e.t3 = -near.m3 * near.m4;
+  e.row4_changed = ch.note_flip;
+  return e;
+}
+
+/// The answer of an evaluation in T (as an engine writes it): row 3 = s (a C - t M_4).
+template <class T>
+Matrix4<T> answer_matrix(const Matrix4<T>& m, const Evaluation<T>& e) {
+  Matrix4<T> out = m;
+  if (e.unchanged) return out;
+  if (e.non_finite) {
+    out.row(2).setConstant(std::numeric_limits<T>::quiet_NaN());
+    return out;
+  }
+  const T s = T(e.r3), t = T(-e.t3 * e.r3);  // row 3 = s (a C - t M_4), s = +-1
+  for (int i = 0; i < 4; ++i) {
+    out(2, i) = s * (e.a * e.c[i] - t * m(3, i));
+    if (e.row4_changed) out(3, i) = e.a * e.c[i] + m(3, i);
+  }
+  return out;
+}
+
+}  // namespace oblique::properties::variant

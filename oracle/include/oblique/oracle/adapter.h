@@ -1,0 +1,187 @@
+// Your oblique-clipping function, as the property suite and the fuzz driver see it. adapt() wraps
+// a function of any of these shapes (T is float, double or long double):
+//
+//   void   f(T m[16], const T plane[4]);                  // in place, answers only
+//   bool   f(T m[16], const T plane[4]);                  // in place, false = refused
+//   Status f(T m[16], const T plane[4]);                  // in place, with oblique's statuses
+//   void|bool|Status f(const T m[16], const T plane[4], T out[16]);   // out of place
+//   ObliqueResult<T> or Outcome<T> f(const Matrix4<T>&, const Vector4<T>&, Convention);
+//
+// with the 16 numbers in `Layout::row_major` (m[4 * row + column]) or `Layout::column_major`
+// (m[4 * column + row], OpenGL's and Listing 5.1's) order. The plane is (a, b, c, d) in camera
+// space, the side seen and kept where a x + b y + c z + d > 0.
+//
+// A function that takes no convention serves one, and says which:
+//   adapt<float>("make_oblique", Layout::column_major, Convention::gl, make_oblique)
+// and a test's default contract (oblique/cases/contract.h) checks it in that convention
+// only. A function that takes the convention serves all three:
+//   adapt<double>("mine", Layout::row_major, mine)
+#pragma once
+
+#include <functional>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "oblique/oracle/implementation.h"
+#include "oblique/projection.h"
+#include "oblique/result.h"
+
+namespace oblique {
+
+/// How a function stores a 4x4 matrix in 16 numbers.
+enum class Layout { row_major, column_major };
+
+namespace adapting {
+
+template <class T>
+void store(const Matrix4<T>& m, Layout layout, T* out) {
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) out[layout == Layout::row_major ? 4 * r + c : 4 * c + r] = m(r, c);
+  }
+}
+
+template <class T>
+Matrix4<T> load(const T* in, Layout layout) {
+  Matrix4<T> m;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) m(r, c) = in[layout == Layout::row_major ? 4 * r + c : 4 * c + r];
+  }
+  return m;
+}
+
+/// A refusal of a function that says only "no" (returns false): judged as any refusal.
+template <class R>
+Status status_of(const R& returned) {
+  if constexpr (std::is_same_v<R, Status>) {
+    return returned;
+  } else {
+    return returned ? Status::ok : Status::invalid_input;
+  }
+}
+
+template <class R>
+constexpr bool kReportsStatuses = std::is_same_v<R, bool> || std::is_same_v<R, Status>;
+template <class R>
+constexpr bool kOwnRefusals = std::is_same_v<R, bool>;
+
+}  // namespace adapting
+
+namespace adapting {
+
+template <class T, class F>
+properties::Implementation<T> wrap(std::string name, Layout layout, F function,
+                                   std::function<bool(Convention, const Matrix4<T>&)> accepts) {
+  properties::Implementation<T> impl;
+  impl.name = std::move(name);
+  impl.accepts = accepts ? std::move(accepts) : [](Convention, const Matrix4<T>&) { return true; };
+  using properties::Outcome;
+  if constexpr (std::is_invocable_v<F&, const Matrix4<T>&, const Vector4<T>&, Convention>) {
+    using R = std::invoke_result_t<F&, const Matrix4<T>&, const Vector4<T>&, Convention>;
+    static_assert(std::is_same_v<R, ObliqueResult<T>> || std::is_same_v<R, Outcome<T>>,
+                  "a matrix-shaped function returns ObliqueResult<T> or Outcome<T>");
+    impl.reports_statuses = true;
+    impl.run = [function](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) mutable {
+      const R r = function(m, c, convention);
+      return Outcome<T>{r.status, r.projection};
+    };
+  } else if constexpr (std::is_invocable_v<F&, T*, const T*>) {
+    using R = std::invoke_result_t<F&, T*, const T*>;
+    impl.reports_statuses = adapting::kReportsStatuses<R>;
+    impl.own_refusals = adapting::kOwnRefusals<R>;
+    impl.run = [function, layout](const Matrix4<T>& m, const Vector4<T>& c, Convention) mutable {
+      T numbers[16];
+      const T plane[4] = {c(0), c(1), c(2), c(3)};
+      adapting::store(m, layout, numbers);
+      Status status = Status::ok;
+      if constexpr (std::is_void_v<R>) {
+        function(numbers, plane);
+      } else {
+        status = adapting::status_of<R>(function(numbers, plane));
+      }
+      return Outcome<T>{status, adapting::load(numbers, layout)};
+    };
+  } else {
+    static_assert(std::is_invocable_v<F&, const T*, const T*, T*>,
+                  "adapt(): the function has none of the shapes in oblique/oracle/adapter.h");
+    using R = std::invoke_result_t<F&, const T*, const T*, T*>;
+    impl.reports_statuses = adapting::kReportsStatuses<R>;
+    impl.own_refusals = adapting::kOwnRefusals<R>;
+    impl.run = [function, layout](const Matrix4<T>& m, const Vector4<T>& c, Convention) mutable {
+      T numbers[16], out[16] = {};
+      const T plane[4] = {c(0), c(1), c(2), c(3)};
+      adapting::store(m, layout, numbers);
+      Status status = Status::ok;
+      if constexpr (std::is_void_v<R>) {
+        function(numbers, plane, out);
+      } else {
+        status = adapting::status_of<R>(function(numbers, plane, out));
+      }
+      return Outcome<T>{status, adapting::load(out, layout)};
+    };
+  }
+  return impl;
+}
+
+}  // namespace adapting
+
+/// Wraps `function` (see the shapes above), which serves `convention` only, as an implementation
+/// named `name` for oblique::testing and oblique::fuzzing. `accepts` limits the inputs it is
+/// given (e.g. perspective_shape_only for a closed form); by default it is given every input of
+/// its convention.
+template <class T, class F>
+properties::Implementation<T> adapt(
+    std::string name, Layout layout, Convention convention, F function,
+    std::function<bool(Convention, const Matrix4<T>&)> accepts = nullptr) {
+  properties::Implementation<T> impl =
+      adapting::wrap<T>(std::move(name), layout, std::move(function), std::move(accepts));
+  impl.conventions = {convention};
+  return impl;
+}
+
+/// Wraps a function that takes the convention (ObliqueResult<T> or Outcome<T> f(const
+/// Matrix4<T>&, const Vector4<T>&, Convention)): it serves every convention.
+template <class T, class F>
+properties::Implementation<T> adapt(
+    std::string name, Layout layout, F function,
+    std::function<bool(Convention, const Matrix4<T>&)> accepts = nullptr) {
+  static_assert(std::is_invocable_v<F&, const Matrix4<T>&, const Vector4<T>&, Convention>,
+                "adapt(): a function that takes no convention serves one; say which: "
+                "adapt<T>(name, layout, Convention::gl, function)");
+  return adapting::wrap<T>(std::move(name), layout, std::move(function), std::move(accepts));
+}
+
+// Presets for `adapt`'s `accepts`, the inputs a closed form is meant for. What each admits, by
+// generator family (oblique/cases/case_kinds.h):
+//
+//   preset                   perspective off_axis jittered infinite y/x/xy_flipped left_handed
+//   perspective_shape_only        yes       yes      yes      yes        yes           yes
+//   engine_perspective_only       yes       yes      yes      yes        yes           no
+//
+// and neither admits orthographic, rotated, general or stereo_shift matrices.
+// perspective_shape_only admits a left-handed M43 = +1 and any sign of M34, which a closed form
+// written for the matrix a right-handed engine builds (Lengyel's Listing 5.1 assumes M43 = -1)
+// need not handle. Give such a function engine_perspective_only and the engine contract
+// (contract.h's engine_contract()), which claims exactly its families: a closed form that takes
+// a sign from camera space (right only while M11 > 0 and M22 > 0) then fails on the flipped
+// matrices engines build, as it should.
+
+/// Only matrices of the standard perspective shape (projection.h's has_perspective_shape(): the
+/// entries a closed form reads, whatever their signs).
+template <class T>
+bool perspective_shape_only(Convention, const Matrix4<T>& m) {
+  return has_perspective_shape(m);
+}
+
+/// Only the perspective matrices engines build (glFrustum, glm::perspective, a right-handed
+/// Direct3D or Vulkan projection, each also flipped: Vulkan's y flip makes M22 < 0, a mirror
+/// pass's x flip M11 < 0): the perspective shape with M43 = -1 and the near plane in front of
+/// the camera (M34 < 0; reversed Z, where depth runs the other way: M34 > 0). Jittered and
+/// off-axis (M13, M23 of either sign) and infinite ones included.
+template <class T>
+bool engine_perspective_only(Convention convention, const Matrix4<T>& m) {
+  const bool near_in_front = convention == Convention::reversed_z ? m(2, 3) > T(0) : m(2, 3) < T(0);
+  return has_perspective_shape(m) && m(3, 2) == T(-1) && near_in_front;
+}
+
+}  // namespace oblique

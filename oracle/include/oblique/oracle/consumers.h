@@ -1,0 +1,288 @@
+// The properties of the code around the oblique matrix ("consumers"): depth reconstruction,
+// culling planes, the pass camera and its plane, and a view volume's corners. Each judge takes the
+// inputs as the consumer got them (in T) and its answer, and decides in exact rational arithmetic
+// against the bounds of tolerance.h. The references are the core's (depth_reconstruction.h,
+// frustum_planes.h, pass_camera.h, kept_region.h); docs/consumers.md has the formulas.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "oblique/cases/case_kinds.h"
+#include "oblique/depth_convention.h"
+#include "oblique/plane.h"
+#include "oblique/protocol/numbers.h"
+#include "oblique/references/depth_reconstruction.h"
+#include "oblique/references/frustum_planes.h"
+#include "oblique/util/enum_names.h"
+
+namespace oblique::properties {
+
+/// The consumer properties, each of which alone rejects its class of wrong answers.
+enum class ConsumerCheck {
+  view_position,          ///< the reconstructed point is the pixel's point within the buffer's
+                          ///< quantisation and the solve's rounding
+  linear_depth,           ///< the same, for its distance along the view axis
+  culling_keeps_visible,  ///< no vertex of the kept region is outside an extracted plane
+  culling_near_is_c,      ///< the extracted near plane is C up to a positive scale
+  plane_on_surface,       ///< world points of the surface lie on the camera-space plane
+  plane_kept_side,        ///< the camera-space plane keeps the surface's front
+  mirror_view,            ///< the mirror pass's view is the main view times the reflection
+  portal_view,            ///< the portal pass's view is the main view times the portal's map
+  corners_contain_kept,   ///< the corners' convex hull contains the kept region
+};
+
+inline constexpr EnumName<ConsumerCheck> consumer_check_names[] = {
+    {ConsumerCheck::view_position, "view_position"},
+    {ConsumerCheck::linear_depth, "linear_depth"},
+    {ConsumerCheck::culling_keeps_visible, "culling_keeps_visible"},
+    {ConsumerCheck::culling_near_is_c, "culling_near_is_c"},
+    {ConsumerCheck::plane_on_surface, "plane_on_surface"},
+    {ConsumerCheck::plane_kept_side, "plane_kept_side"},
+    {ConsumerCheck::mirror_view, "mirror_view"},
+    {ConsumerCheck::portal_view, "portal_view"},
+    {ConsumerCheck::corners_contain_kept, "corners_contain_kept"},
+};
+inline constexpr auto all_consumer_checks = values_in(consumer_check_names);
+
+constexpr std::string_view consumer_check_name(ConsumerCheck check) noexcept {
+  return name_in(consumer_check_names, check);
+}
+/// Inverse of consumer_check_name(); none for an unknown name.
+constexpr std::optional<ConsumerCheck> parse_consumer_check(std::string_view name) noexcept {
+  return value_in(consumer_check_names, name);
+}
+
+/// Why `check` has nothing to judge on the matrices of `family`, or "" when it has: the corners
+/// of an infinite frustum's kept region (unbounded), the linear depth of a rotated or general
+/// camera (it does not look along z). A run leaves such families out, saying so, rather than
+/// count each of their cases left out.
+std::string_view not_applicable(ConsumerCheck check, generators::Family family);
+
+/// One consumer property's verdict on one answer.
+struct ConsumerFinding {
+  ConsumerCheck check = ConsumerCheck::view_position;
+  bool judged = true;  ///< false: the case cannot be decided (why: `detail`)
+  bool holds = true;
+  /// The worst residual over its bound (<= 1 within); for a failed kept-side or near-plane
+  /// check, the margin by which the sign is wrong, over its bound.
+  double ratio = 0;
+  std::string detail;  ///< what was compared, in words and round-trip numbers
+  /// The points the finding is about (camera space), for a report's pictures, and what they are.
+  std::vector<Eigen::Vector3d> points;
+  std::string points_what;
+  /// corners_contain_kept: how much longer than the kept region's the corners' extent along the
+  /// view axis is (1: as tight as it can be); 0 when not measured.
+  double depth_waste = 0;
+  /// For a violated finding about a pass camera or its plane (no oblique matrix's case to draw):
+  /// what a report draws, in `drawn_space`: named sets of line segments and points (cameras as
+  /// an eye with its view direction and up, planes as squares with their kept side's normal).
+  struct Drawn {
+    std::string name;
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> lines;
+    std::vector<Eigen::Vector3d> points;
+  };
+  std::vector<Drawn> drawn;
+  std::string drawn_space;
+};
+
+/// What a depth consumer reads at one pixel.
+template <class T>
+struct DepthSample {
+  Matrix4<T> projection;  ///< M', the matrix the depth was rendered with
+  Matrix4<T> original;    ///< M, the camera's projection before the oblique modification
+  Convention convention = Convention::gl;
+  DepthBuffer buffer = DepthBuffer::fixed24;
+  T ndc_x = 0, ndc_y = 0;  ///< the pixel's NDC
+  /// The window depth as a shader reads it: fixed24, k / (2^24 - 1) rounded to T; float32, the
+  /// stored float.
+  T depth = 0;
+  std::uint32_t stored = 0;  ///< fixed24: k; float32: the float's bits
+};
+
+/// The sample a camera-space point leaves in the buffer under `projection`: its NDC x and y
+/// rounded to T, its window depth stored in `buffer`. Empty when the point is not in front of
+/// the camera or its depth is outside [0, 1].
+template <class T>
+std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const Matrix4<T>& original,
+                                           Convention convention, DepthBuffer buffer,
+                                           const Vector4<T>& point);
+
+/// `answer`, the view position the consumer reconstructed from `sample`, against the segment of
+/// the pixel ray whose window depths the stored value stands for (fixed24: k +- 1/2 over 2^24 - 1;
+/// float32: the half-ulps around it; clamped to [0, 1]), widened by the solve's rounding. Not
+/// judged where that segment reaches infinity.
+template <class T>
+ConsumerFinding judge_view_position(const DepthSample<T>& sample, const Vector3<T>& answer);
+
+/// `answer`, the linear depth (view_axis_sign(original) z) the consumer reconstructed from
+/// `sample`, as judge_view_position() judges the point's z.
+template <class T>
+ConsumerFinding judge_linear_depth(const DepthSample<T>& sample, T answer);
+
+/// The culling planes the consumer extracted from `oblique` (the answer for m, c, convention in T),
+/// each keeping P . x >= 0: culling_keeps_visible (every vertex of the kept region of m and c,
+/// directions at infinity included, on each plane's kept side within its rounding and row 3's
+/// error bound) and culling_near_is_c (near_plane = s C, s > 0, within those bounds).
+template <class T>
+std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vector4<T>& c,
+                                                  Convention convention, const Matrix4<T>& oblique,
+                                                  const FrustumPlanes<T>& answer);
+
+/// The plane the consumer gives in the pass camera's space (pass_view: world -> pass camera) for
+/// the world plane whose front the pass keeps: plane_on_surface (points of the world plane,
+/// `surface_points`, land on it) and plane_kept_side (`front_point`, in front of the world plane,
+/// lands on its positive side).
+template <class T>
+std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
+                                                const Vector4<T>& world_plane,
+                                                const std::vector<Vector4<T>>& surface_points,
+                                                const Vector4<T>& front_point,
+                                                const Vector4<T>& answer);
+
+/// How a mirror pass's camera is built; both are designs engines ship.
+enum class MirrorDesign {
+  /// view R, R the reflection in the mirror's plane: an improper camera (det < 0) whose images
+  /// come out mirrored by themselves (the winding flips).
+  reflected_view,
+  /// diag(-1, 1, 1, 1) view R: a proper camera (det > 0) looking at the reflected scene, the
+  /// horizontal flip done elsewhere (in the projection, M11 < 0, or in the texture lookup).
+  proper_camera,
+};
+inline constexpr EnumName<MirrorDesign> mirror_design_names[] = {
+    {MirrorDesign::reflected_view, "reflected_view"},
+    {MirrorDesign::proper_camera, "proper_camera"},
+};
+constexpr std::string_view mirror_design_name(MirrorDesign d) noexcept {
+  return name_in(mirror_design_names, d);
+}
+/// Inverse of mirror_design_name(); none for an unknown name.
+constexpr std::optional<MirrorDesign> parse_mirror_design(std::string_view name) noexcept {
+  return value_in(mirror_design_names, name);
+}
+
+/// The mirror pass's view the consumer built from the main `view` and the mirror's world plane:
+/// the `design`'s matrix (view R, or diag(-1, 1, 1, 1) view R) within gamma(kPassViewRoundings)
+/// |view| |R|. An answer of the other design is violated, the finding naming that design and
+/// how to declare it.
+template <class T>
+ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& world_plane,
+                                  const Matrix4<T>& answer,
+                                  MirrorDesign design = MirrorDesign::reflected_view);
+
+/// The portal pass's view from the main `view` and the two portals' frames: view frame turn
+/// linked^-1 within gamma(kPassViewRoundings) |view| |frame| |linked^-1| |linked| |linked^-1|.
+template <class T>
+ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& frame,
+                                  const Matrix4<T>& linked, const Matrix4<T>& answer);
+
+/// The most distinct points judge_corners() takes.
+inline constexpr std::size_t kMaxCorners = 32;
+
+/// The points the consumer gives as the corners of the view volume of `oblique` (the answer for
+/// m, c, convention in T): their convex hull must contain every vertex of the kept region, within
+/// the distance their computation from `oblique` in T and row 3's error allow. Not judged for an
+/// infinite m (the kept region is unbounded), or for more than kMaxCorners distinct points.
+/// Reports the depth waste.
+template <class T>
+ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                              const Matrix4<T>& oblique, const std::vector<Vector3<T>>& answer);
+
+/// A vector or matrix as the consumer reports print it: "[a, b; c, d]" (rows separated by "; "),
+/// each number the shortest decimal that reads back as it (protocol::format_number()); a
+/// vector prints as one row.
+template <class T, int R, int C>
+std::string numbers_text(const Eigen::Matrix<T, R, C>& m) {
+  const bool row = C == 1;  // a column vector prints as one row
+  std::string out = "[";
+  for (int i = 0; i < (row ? 1 : R); ++i) {
+    out += i ? "; " : "";
+    for (int j = 0; j < (row ? R : C); ++j)
+      out += (j ? ", " : "") + protocol::format_number(row ? m(j, 0) : m(i, j));
+  }
+  return out + "]";
+}
+
+/// A readable line of a finding: "culling_near_is_c: ... (ratio 3.2)".
+std::string describe(const ConsumerFinding& finding);
+
+}  // namespace oblique::properties
+
+namespace oblique {
+
+/// The code around the oblique matrix, yours: each function given is checked against its
+/// properties (oblique/oracle/consumers.h; docs/consumers.md), the others are not asked.
+/// Camera space and planes as for adapt(): column vectors, a plane keeps P . x >= 0.
+template <class T>
+struct Consumers {
+  std::string name = "consumers";
+  /// The camera-space point of the pixel at NDC (x, y) whose depth buffer holds sample.depth
+  /// (the depth was rendered with sample.projection, the oblique M').
+  std::function<Vector3<T>(const properties::DepthSample<T>& sample)> view_position;
+  /// Its linear depth: the distance in front of the camera along the view axis (-z for a camera
+  /// looking down -z).
+  std::function<T(const properties::DepthSample<T>& sample)> linear_depth;
+  /// The six culling planes of an oblique projection (camera space, kept side positive).
+  std::function<FrustumPlanes<T>(const Matrix4<T>& oblique, Convention convention)> culling_planes;
+  /// The plane in a pass camera's space (pass_view: world -> that camera) whose positive side is
+  /// the world plane's front, which the pass keeps.
+  std::function<Vector4<T>(const Matrix4<T>& pass_view, const Vector4<T>& world_plane)>
+      camera_plane;
+  /// A mirror pass's view from the main view and the mirror's world plane.
+  std::function<Matrix4<T>(const Matrix4<T>& view, const Vector4<T>& mirror_plane)> mirror_view;
+  /// Which design mirror_view builds (judge_mirror_view() above): the reflected view, or a proper
+  /// camera whose horizontal flip is done in the projection or the texture lookup.
+  properties::MirrorDesign mirror_design = properties::MirrorDesign::reflected_view;
+  /// A portal pass's view from the main view, this portal's frame and the linked portal's frame
+  /// (columns right, up, normal, centre).
+  std::function<Matrix4<T>(const Matrix4<T>& view, const Matrix4<T>& frame,
+                           const Matrix4<T>& linked)>
+      portal_view;
+  /// Points whose convex hull bounds what an oblique pass draws (cascade fitting, light lists),
+  /// from its oblique projection and the camera's unmodified one.
+  std::function<std::vector<Vector3<T>>(const Matrix4<T>& oblique, const Matrix4<T>& original,
+                                        Convention convention)>
+      corners;
+  /// The cameras the functions that take a projection (view_position, linear_depth,
+  /// culling_planes, corners) are meant for, by the camera's own projection M and its convention,
+  /// as adapt()'s accepts (the presets of adapter.h serve). Empty: every camera. A refused
+  /// camera's round asks none of them; runs count it refused by accepts, never judged, and a
+  /// family the contract claims with every case refused fails the run, saying so.
+  std::function<bool(Convention convention, const Matrix4<T>& projection)> accepts;
+};
+
+}  // namespace oblique
+
+namespace oblique::properties {
+
+/// The core's references as a Consumers (depth_reconstruction.h, frustum_planes.h, pass_camera.h,
+/// kept_region.h), named "core_references": what `oblique check` judges when no program is
+/// given, and what fuzz_consumers fuzzes.
+template <class T>
+Consumers<T> reference_consumers();
+
+/// Where a consumer round's choices come from: an integer in [lo, hi) (RapidCheck's choices, a
+/// fuzz input's bytes, verify's seeded draws or a report's recorded picks).
+using Pick = std::function<int(int lo, int hi)>;
+
+/// A consumer property's verdict on one answer, with the inputs as text (a Markdown list, every
+/// number round-trip) and whether the case is an oblique matrix's (M, C and the core's M'), which
+/// a report draws.
+using Settle = std::function<void(const ConsumerFinding& finding, const std::string& inputs,
+                                  bool about_oblique_case)>;
+
+/// One round of the code around the matrix, the one way every tool asks and judges it: for each
+/// function `consumers` gives, its case is built from `pick` (consumer_cases.h; depth, culling
+/// and corners on m, c and the core's M' for them), the function is asked, and each finding of its
+/// properties goes to `settle` as soon as it is judged. m and c are used only by the functions
+/// that take an oblique matrix; where the core has no answer for them, `settle` gets one finding
+/// not judged ("no oblique matrix for M and C (STATUS)").
+template <class T>
+void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                    const Consumers<T>& consumers, const Pick& pick, const Settle& settle);
+
+}  // namespace oblique::properties

@@ -1,0 +1,241 @@
+#include "rasterize.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+#include "failure_database.h"
+#include "oblique/oblique.h"
+#include "oblique/oracle/consumers.h"
+#include "oblique/protocol/child_process.h"
+#include "oblique/protocol/numbers.h"
+#include "oblique/protocol/protocol.h"
+#include "oblique/raster/raster_report.h"
+#include "oblique/report/report_files.h"
+#include "reporter.h"
+
+namespace oblique::verify {
+
+namespace {
+
+raster::Options raster_options(const VerifyOptions& options) {
+  raster::Options out;
+  out.device = options.raster_device == "gpu" ? raster::Device::gpu : raster::Device::software;
+  out.size = options.raster_size;
+  return out;
+}
+
+}  // namespace
+
+template <class T>
+RasterLook<T>::RasterLook(const VerifyOptions& options, std::ostream& out, std::ostream& err)
+    : options_(options), out_(out), err_(err) {}
+
+template <class T>
+bool RasterLook<T>::open() {
+  const auto opened = raster::Rasterizer::open(raster_options(options_));
+  if (!opened) {
+    err_ << "oblique verify: raster: inconclusive: " << opened.error() << "\n";
+    return false;
+  }
+  rasterizer_ = *opened;
+  return true;
+}
+
+template <class T>
+std::optional<raster::Result> RasterLook<T>::draw(const VerifyCase<T>& v, const std::string& answer,
+                                                  std::uint64_t seed, std::string* why) {
+  auto not_drawn = [why](std::string reason) {
+    if (why) *why = std::move(reason);
+    return std::nullopt;
+  };
+  const Expected<protocol::TypedAnswer<T>> read = protocol::read_answer<T>(answer);
+  if (!read || read->status != Status::ok) return not_drawn("the answer holds no matrix");
+  raster::Result r =
+      rasterizer_->check(v.c.matrix.template cast<double>(), v.c.plane.template cast<double>(),
+                         read->projection.template cast<double>(), v.c.convention,
+                         options_.raster_buffer, seed, std::numeric_limits<T>::digits);
+  if (!r.rendered) {
+    ++not_drawn_;
+    return not_drawn(r.why);
+  }
+  ++drawn_;
+  worst_depth_ratio_ = std::max(worst_depth_ratio_, r.worst_depth_ratio);
+  return r;
+}
+
+template <class T>
+std::optional<Verdict> RasterLook<T>::sample(const VerifyCase<T>& v, const std::string& request,
+                                             const std::string& answer, long index) {
+  if (index != 1 && index % options_.raster_every != 0) return std::nullopt;
+  const std::optional<raster::Result> r =
+      draw(v, answer, options_.seed ^ static_cast<std::uint64_t>(index));
+  if (!r || r->outcome == raster::Outcome::pass) return std::nullopt;
+  if (r->outcome == raster::Outcome::inconclusive) {
+    err_ << "oblique verify: raster: inconclusive at answer " << index << ": " << r->why
+         << "\n  request: " << request << "\n  the run again: " << rerun_command(options_) << "\n";
+    return Verdict::inconclusive;
+  }
+  return report(v, request, answer, *r, index);
+}
+
+template <class T>
+void RasterLook<T>::finding(const VerifyCase<T>& v, const std::string& answer,
+                            const std::string& report_md) {
+  std::string why;
+  const std::optional<raster::Result> r = draw(v, answer, options_.seed, &why);
+  if (!r) {
+    err_ << "oblique verify: raster: the finding's answer is not drawn: " << why << "\n";
+    return;
+  }
+  const std::string verdict = r->outcome == raster::Outcome::pass   ? "passes (" + r->why + ")"
+                              : r->outcome == raster::Outcome::fail ? "FAIL, " + r->why
+                                                                    : "inconclusive: " + r->why;
+  const std::string said =
+      "oblique verify: raster: the finding's answer on the rasterizer: " + verdict;
+  // Beside the finding's report: STEM.raster.md with the pixels (only when STEM.md was written).
+  namespace fs = std::filesystem;
+  if (fs::path(report_md).extension() != ".md") {
+    err_ << said << "\n";
+    return;
+  }
+  const fs::path md_path(report_md);
+  const std::string stem = md_path.stem().string() + ".raster";
+  report::ReportFiles files(md_path.parent_path());
+  std::string md =
+      "# The finding's answer on the rasterizer\n\nThe answer of [" + md_path.filename().string() +
+      "](" + md_path.filename().string() + "), drawn on " + rasterizer_->renderer() + " in a " +
+      std::to_string(options_.raster_size) + " x " + std::to_string(options_.raster_size) +
+      " frame (depth buffer " + std::string(depth_buffer_name(options_.raster_buffer)) +
+      ", frame seed " + std::to_string(options_.seed) + "): **" + verdict + "**.\n\n";
+  if (r->outcome == raster::Outcome::fail)
+    md += raster::stage_flagged_section(files, stem, *r, options_.raster_size);
+  files.open(stem + ".md") << md;
+  std::ostringstream log;
+  if (files.commit(log))
+    err_ << said << " (" << (md_path.parent_path() / (stem + ".md")).string() << ")\n";
+  else
+    err_ << said << "\noblique verify: raster: " << stem << ".md not written: " << log.str();
+}
+
+template <class T>
+void RasterLook<T>::summary() const {
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "%ld answers drawn %d x %d, none failed; worst depth %.3g of its bound", drawn_,
+                options_.raster_size, options_.raster_size, worst_depth_ratio_);
+  out_ << "raster: " << rasterizer_->renderer() << ": " << line;
+  if (not_drawn_ > 0)
+    out_ << "; " << not_drawn_
+         << " not drawn (the core has no answer to judge against, or the answer is beyond "
+            "float32)";
+  out_ << "\n";
+}
+
+template <class T>
+Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request,
+                              const std::string& answer, const raster::Result& r, long index) {
+  report::ReportFiles files(options_.report_dir);
+  const std::string stem = files.reserve_stem("verify-raster", {".md", ".json"});
+  const std::string json_path =
+      (std::filesystem::path(options_.report_dir) / (stem + ".json")).string();
+  std::string md =
+      "# Counterexample: the rasterizer\n\n`" + options_.command +
+      "`'s answer passes the properties, but drawn on " + rasterizer_->renderer() +
+      " it fails: " + r.why +
+      ".\n\n## The case\n\n- family: " + std::string(generators::family_name(v.c.family)) +
+      ", place " + v.kind() + "\n- convention: " + std::string(convention_name(v.c.convention)) +
+      ", depth buffer " + std::string(depth_buffer_name(options_.raster_buffer)) +
+      "\n- M: " + properties::numbers_text(v.c.matrix) +
+      "\n- C: " + properties::numbers_text(v.c.plane) + "\n\nAnswer " + std::to_string(index) +
+      " of the run. The request:\n\n```\n" + request + "\n```\n\nThe answer:\n\n```\n" + answer +
+      "\n```\n\n";
+  md += raster::stage_flagged_section(files, stem, r, options_.raster_size);
+  md += "\n## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
+        "\n# this request again, its answer drawn (exit 0 holds, 1 fails, 3 inconclusive)\n" +
+        options_.self + " verify --replay " + shell_quote(json_path) + " --impl " +
+        shell_quote(options_.command) + "\n# the one request\necho " + shell_quote(request) +
+        " | " + options_.command + "\n```\n";
+  files.open(stem + ".md") << md;
+  files.open(stem + ".json")
+      << "{\"type\": \"raster\", \"finding\": " << protocol::json_string(r.why)
+      << ", \"precision\": " << protocol::json_string(protocol::scalar_name<T>())
+      << ", \"convention\": " << protocol::json_string(convention_name(v.c.convention))
+      << ", \"buffer\": \"" << std::string(depth_buffer_name(options_.raster_buffer))
+      << "\", \"size\": " << options_.raster_size
+      << ", \"seed\": " << (options_.seed ^ static_cast<std::uint64_t>(index))
+      << ", \"projection\": " << hex_list(v.c.matrix) << ", \"plane\": " << hex_list(v.c.plane)
+      << ", \"request\": " << protocol::json_string(request)
+      << ", \"answer\": " << protocol::json_string(answer) << "}\n";
+  err_ << "oblique verify: raster: answer " << index << " passes the properties but fails on "
+       << rasterizer_->renderer() << ": " << r.why << "\n";
+  return commit_report(files, stem, err_);
+}
+
+template class RasterLook<float>;
+template class RasterLook<double>;
+
+Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonValue& report,
+                             std::ostream& out, std::ostream& err) {
+  auto fail = [&](const std::string& why) {
+    err << "oblique verify: --replay " << options.replay << ": " << why << "\n";
+    return Verdict::error;
+  };
+  const protocol::JsonValue* request = report.find("request");
+  const protocol::JsonValue* convention = report.find("convention");
+  const protocol::JsonValue* buffer = report.find("buffer");
+  const protocol::JsonValue* size = report.find("size");
+  const protocol::JsonValue* seed = report.find("seed");
+  if (!request || !request->is_string()) return fail("\"request\" must be a string");
+  const std::optional<Convention> parsed =
+      convention && convention->is_string() ? parse_convention(convention->text) : std::nullopt;
+  if (!parsed) return fail("\"convention\" is not a convention");
+  std::vector<double> m, c;
+  std::string error;
+  if (!report_numbers<double>(report, "projection", 16, m, error) ||
+      !report_numbers<double>(report, "plane", 4, c, error))
+    return fail(error);
+  VerifyOptions o = options;
+  o.raster_buffer =
+      buffer && buffer->text == "float32" ? DepthBuffer::float32 : DepthBuffer::fixed24;
+  if (size && size->is_number()) o.raster_size = std::atoi(size->text.c_str());
+  const std::uint64_t frame_seed =
+      seed && seed->is_number() ? std::strtoull(seed->text.c_str(), nullptr, 10) : 1;
+  VerifyCase<double> v;
+  for (int i = 0; i < 16; ++i) v.c.matrix(i / 4, i % 4) = m[static_cast<std::size_t>(i)];
+  for (int i = 0; i < 4; ++i) v.c.plane(i) = c[static_cast<std::size_t>(i)];
+  v.c.convention = *parsed;
+  protocol::ChildProcess child(options.command);
+  if (const Expected<Done> started = child.start(); !started)
+    return fail("cannot start the implementation: " + started.error());
+  std::vector<std::string> lines;
+  const auto timeout =
+      std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000));
+  const auto outcome =
+      child.exchange(request->text + "\n", 1, lines, timeout, protocol::Clock::now() + timeout);
+  const std::string ended = child.end_description();
+  child.stop();
+  using Outcome = protocol::ChildProcess::Outcome;
+  if (outcome == Outcome::too_long) return fail("an answer line longer than 1 MiB (not read)");
+  if (outcome == Outcome::timed_out)
+    return fail("no answer within " + std::to_string(timeout.count()) + " ms");
+  if (outcome != Outcome::done)
+    return fail("the implementation ended before answering (" + ended + ")");
+  RasterLook<double> look(o, out, err);
+  if (!look.open()) return Verdict::inconclusive;
+  std::string why;
+  const std::optional<raster::Result> r = look.draw(v, lines.front(), frame_seed, &why);
+  if (!r) return fail(why + ": " + lines.front());
+  out << "oblique verify: raster: " << raster::outcome_name(r->outcome) << ": "
+      << (r->outcome == raster::Outcome::fail ? r->why : r->why) << "\n  answer: " << lines.front()
+      << "\n";
+  return r->outcome == raster::Outcome::pass   ? Verdict::holds
+         : r->outcome == raster::Outcome::fail ? Verdict::violated
+                                               : Verdict::inconclusive;
+}
+
+}  // namespace oblique::verify
