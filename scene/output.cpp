@@ -78,7 +78,7 @@ std::string to_json(const SceneCheck& check) {
     }
     surfaces.push_back({
         {"name", s.name},
-        {"kind", std::string(name_in(surface_kind_names, s.kind))},
+        {"kind", std::string(surface_kind_name(s.kind))},
         {"path", s.path},
         {"level", s.level},
         {"action", s.render ? "render" : "skip"},
@@ -184,14 +184,14 @@ std::string to_text(const SceneCheck& check) {
     const bool own_line = names[i].size() > width;
     if (own_line) out << names[i] << "\n";
     out << cell(own_line ? "" : names[i], width) << "  "
-        << cell(std::string(name_in(surface_kind_names, s.kind)), 6) << "  "
+        << cell(std::string(surface_kind_name(s.kind)), 6) << "  "
         << cell(s.render ? "render" : "skip", 6) << "  "
         << cell(s.render ? (s.properties_hold() ? "pass" : "FAIL") : "-", 10) << "  "
         << cell(s.depth ? fixed2(s.depth->bits_lost) : "-", 15) << "  " << s.reason << "\n";
   }
   for (const SurfaceCheck& s : check.surfaces) {
     if (!s.render) continue;
-    out << "\n" << printable(s.name) << " (" << name_in(surface_kind_names, s.kind) << "): ";
+    out << "\n" << printable(s.name) << " (" << surface_kind_name(s.kind) << "): ";
     out << "render, " << method_name(s.method) << " method, "
         << (s.properties_hold() ? "every property holds" : "A PROPERTY FAILS") << "\n";
     out << "  view:       ";

@@ -46,6 +46,9 @@ inline constexpr EnumName<SurfaceKind> surface_kind_names[] = {
     {SurfaceKind::clip, "clip"},
     {SurfaceKind::portal, "portal"},
 };
+constexpr std::string_view surface_kind_name(SurfaceKind kind) noexcept {
+  return name_in(surface_kind_names, kind);
+}
 
 struct Surface {
   std::string name;
