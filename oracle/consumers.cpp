@@ -3,11 +3,14 @@
 #include "oblique/oracle/consumers.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 #include "oblique/oblique.h"
+#include "oblique/oracle/certified.h"
 #include "oblique/oracle/consumer_cases.h"
 #include "oblique/oracle/exact.h"
 #include "oblique/oracle/problem.h"
@@ -194,6 +197,41 @@ Rational sum_abs(const Vec& v) {
   Rational s = 0;
   for (const Rational& x : v) s += exact::abs(x);
   return s;
+}
+
+/// A rational as a certified number: its double (mpq_get_d truncates toward zero) and, unless
+/// that is the rational exactly, the step to the next double away from zero as its error.
+certified::Num certified_of(const Rational& r) {
+  const double d = r.get_d();
+  if (!std::isfinite(d)) throw certified::Undecided{__LINE__};
+  if (r == d) return certified::constant(d);
+  const double next = std::nextafter(d, r > 0 ? std::numeric_limits<double>::infinity()
+                                              : -std::numeric_limits<double>::infinity());
+  if (!std::isfinite(next)) throw certified::Undecided{__LINE__};
+  return certified::Num{d, 0, std::fabs(next - d)};
+}
+
+/// A rational >= 0 as a certified range: its double (truncated) and the next one up.
+certified::Range range_of(const Rational& r) {
+  const double d = r.get_d();
+  if (r == d) return certified::Range{d, d};
+  const double up = std::nextafter(d, std::numeric_limits<double>::infinity());
+  if (!std::isfinite(up)) throw certified::Undecided{__LINE__};
+  return certified::Range{d, up};
+}
+
+/// 1 - x for a range x below 1 (Undecided where x may reach 1).
+certified::Range one_minus(const certified::Range& x) {
+  if (!(x.hi < 1)) throw certified::Undecided{__LINE__};
+  return certified::widened(1 - x.hi, 1 - x.lo);
+}
+
+/// x / y for ranges, y > 0 (Undecided where y may be 0, or the quotient overflows).
+certified::Range quotient(const certified::Range& x, const certified::Range& y) {
+  if (!(y.lo > 0)) throw certified::Undecided{__LINE__};
+  const certified::Range q = certified::widened(x.lo / y.hi, x.hi / y.lo);
+  if (!std::isfinite(q.hi)) throw certified::Undecided{__LINE__};
+  return q;
 }
 
 template <class T>
@@ -610,9 +648,23 @@ std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const M
   return s;
 }
 
+/// ray_segment() of the last sample judged on this thread: a round asks view_position and
+/// linear_depth of the same sample, and its exact analysis is most of either judge's time.
+template <class T>
+const Segment& ray_segment_of(const DepthSample<T>& s) {
+  thread_local std::optional<std::pair<DepthSample<T>, Segment>> last;
+  const bool same = last && last->first.projection == s.projection &&
+                    last->first.original == s.original && last->first.convention == s.convention &&
+                    last->first.buffer == s.buffer && last->first.ndc_x == s.ndc_x &&
+                    last->first.ndc_y == s.ndc_y && last->first.depth == s.depth &&
+                    last->first.stored == s.stored;
+  if (!same) last.emplace(s, ray_segment(s));
+  return last->second;
+}
+
 template <class T>
 ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& answer) {
-  const Segment seg = ray_segment(s);
+  const Segment& seg = ray_segment_of(s);
   if (auto early = before_the_answer(ConsumerCheck::view_position, seg, answer.allFinite(),
                                      !answer.array().isFinite().any(), numbers_text(answer)))
     return *early;
@@ -630,7 +682,7 @@ ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& a
 
 template <class T>
 ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
-  const Segment seg = ray_segment(s);
+  const Segment& seg = ray_segment_of(s);
   if (auto early = before_the_answer(ConsumerCheck::linear_depth, seg, std::isfinite(answer),
                                      !std::isfinite(answer), protocol::format_number(answer)))
     return *early;
@@ -1132,7 +1184,8 @@ ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& fram
 
 template <class T>
 ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
-                              const Matrix4<T>& oblique, const std::vector<Vector3<T>>& answer) {
+                              const Matrix4<T>& oblique, const std::vector<Vector3<T>>& answer,
+                              Arithmetic arithmetic) {
   ConsumerFinding f;
   f.check = ConsumerCheck::corners_contain_kept;
   const Problem<T> problem(m, c, convention);
@@ -1207,6 +1260,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   const Rational u = unit<T>();
   const Vec cx = exact::to_rational(c);
   const Rational c_normal = std::max({exact::abs(cx[0]), exact::abs(cx[1]), exact::abs(cx[2])});
+  const Rational plane_gamma = gamma_of<T>(tolerance::kPlaneRoundings);
   // The bound at a vertex x (w = 1) of every corner within `widen` of it in x, y and z; < 0 when
   // a solve in T cannot determine w there.
   auto bound_near = [&](const Vec& x, const Rational& widen) -> Rational {
@@ -1226,21 +1280,144 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
       if (dv[3] >= 1) return -1;  // w not determined: no bound from this solve
       for (int i = 0; i < 3; ++i) d += (dv[i] + size[i] * dv[3]) / (1 - dv[3]) + u * size[i];
     }
-    if (c_normal > 0)
-      d += gamma_of<T>(tolerance::kPlaneRoundings) * exact::dot(exact::abs(cx), size) / c_normal;
+    if (c_normal > 0) d += plane_gamma * exact::dot(exact::abs(cx), size) / c_normal;
     return d;
   };
-  Rational delta = 0;
-  for (const Vec& v : kept) {
-    const Rational at_vertex = bound_near(v, 0);
-    const Rational d = at_vertex < 0 ? at_vertex : bound_near(v, at_vertex);
-    if (d < 0) {
-      f.judged = false;
-      f.detail = "a corner's w is not determined in T";
-      return f;
+  // delta, the largest bound over the kept region's vertices, exactly; empty where a solve in T
+  // cannot determine w at one of them.
+  auto exact_delta = [&]() -> std::optional<Rational> {
+    Rational delta = 0;
+    for (const Vec& v : kept) {
+      const Rational at_vertex = bound_near(v, 0);
+      const Rational d = at_vertex < 0 ? at_vertex : bound_near(v, at_vertex);
+      if (d < 0) return std::nullopt;
+      delta = std::max(delta, d);
     }
-    delta = std::max(delta, d);
+    return delta;
+  };
+  // The same bound in certified ranges (every term is a sum, product or quotient of magnitudes,
+  // monotone in each): [delta_low, delta_high] holds delta. Exact arithmetic on the kept region's
+  // vertices and the solves' error matrices (rationals of thousands of bits) is what made this
+  // judge slow; the comparisons below take the exact delta only where the range cannot decide.
+  std::optional<Rational> delta_exact;
+  Rational delta_low, delta_high;
+  bool determined = true;
+  bool ranged = arithmetic == Arithmetic::filtered;
+  if (ranged) {
+    try {
+      using certified::Range;
+      // The inputs converted once: the two matrices (exact numbers and magnitudes), the solves'
+      // error matrices, the inverses' third columns, row 3's bounds and the constants.
+      struct Solve {
+        std::array<std::array<certified::Num, 4>, 4> matrix;
+        std::array<std::array<Range, 4>, 4> magnitude, error;
+        std::array<Range, 4> inverse_column;
+        bool with_m = false;
+      };
+      std::array<Solve, 2> solves;
+      for (int s = 0; s < 2; ++s) {
+        Solve& out = solves[static_cast<std::size_t>(s)];
+        out.with_m = s == 0;
+        const Mat& matrix = out.with_m ? mo : mx;
+        const Mat& error = out.with_m ? *chain : *m_chain;
+        const Mat& inverse = out.with_m ? *inv : *m_inv;
+        for (std::size_t i = 0; i < 4; ++i) {
+          out.inverse_column[i] = range_of(exact::abs(inverse[i][2]));
+          for (std::size_t j = 0; j < 4; ++j) {
+            out.matrix[i][j] = certified_of(matrix[i][j]);
+            out.magnitude[i][j] = range_of(exact::abs(matrix[i][j]));
+            out.error[i][j] = range_of(error[i][j]);
+          }
+        }
+      }
+      std::array<Range, 4> row3_range, c_magnitude;
+      for (std::size_t i = 0; i < 4; ++i) {
+        row3_range[i] = range_of((*row3)[i]);
+        c_magnitude[i] = range_of(exact::abs(cx[i]));
+      }
+      const Range u_range = range_of(u), plane_gamma_range = range_of(plane_gamma),
+                  c_normal_range = range_of(c_normal);
+      const Range no_widening{};
+      auto bound_range = [&](const Vec& x, const Range& widen) -> std::optional<Range> {
+        std::array<certified::Num, 4> point;
+        for (std::size_t i = 0; i < 4; ++i) point[i] = certified_of(x[i]);
+        std::array<Range, 4> size;
+        for (std::size_t i = 0; i < 3; ++i) size[i] = certified::magnitude_of(point[i]) + widen;
+        size[3] = Range{1, 1};
+        Range d{};
+        for (const Solve& solve : solves) {
+          std::array<Range, 4> q;
+          for (std::size_t r = 0; r < 4; ++r) {
+            certified::Num clip{};
+            for (std::size_t k = 0; k < 4; ++k) clip = clip + solve.matrix[r][k] * point[k];
+            q[r] = certified::magnitude_of(clip);
+            for (std::size_t k = 0; k < 3; ++k) q[r] = q[r] + solve.magnitude[r][k] * widen;
+          }
+          Range row3_part{};
+          if (solve.with_m)
+            for (std::size_t i = 0; i < 4; ++i) row3_part = row3_part + row3_range[i] * size[i];
+          std::array<Range, 4> dv;
+          for (std::size_t i = 0; i < 4; ++i) {
+            dv[i] = solve.inverse_column[i] * row3_part;
+            for (std::size_t j = 0; j < 4; ++j) dv[i] = dv[i] + solve.error[i][j] * q[j];
+          }
+          if (dv[3].lo >= 1) return std::nullopt;  // w not determined: no bound from this solve
+          const Range kept_w = one_minus(dv[3]);   // Undecided where dv[3] may reach 1
+          for (std::size_t i = 0; i < 3; ++i)
+            d = d + quotient(dv[i] + size[i] * dv[3], kept_w) + u_range * size[i];
+        }
+        if (c_normal > 0) {
+          Range along{};
+          for (std::size_t i = 0; i < 4; ++i) along = along + c_magnitude[i] * size[i];
+          d = d + quotient(plane_gamma_range * along, c_normal_range);
+        }
+        return d;
+      };
+      Range delta{};
+      for (const Vec& v : kept) {
+        const std::optional<Range> at_vertex = bound_range(v, no_widening);
+        const std::optional<Range> d = at_vertex ? bound_range(v, *at_vertex) : std::nullopt;
+        if (!d) {
+          determined = false;
+          break;
+        }
+        delta = Range{std::max(delta.lo, d->lo), std::max(delta.hi, d->hi)};
+      }
+      if (!std::isfinite(delta.hi)) throw certified::Undecided{__LINE__};
+      delta_low = delta.lo;
+      delta_high = delta.hi;
+    } catch (const certified::Undecided&) {
+      ranged = false;
+      determined = true;
+    }
   }
+  if (!ranged) {
+    delta_exact = exact_delta();
+    determined = delta_exact.has_value();
+    if (delta_exact) delta_low = delta_high = *delta_exact;
+  }
+  if (!determined) {
+    f.judged = false;
+    f.detail = "a corner's w is not determined in T";
+    return f;
+  }
+  // The exact delta, once a comparison needs it (a violation's message, a close call).
+  auto settled_delta = [&]() -> const Rational& {
+    if (!delta_exact) {
+      delta_exact = exact_delta();
+      delta_low = delta_high = *delta_exact;  // the range held it: w is determined
+    }
+    return *delta_exact;
+  };
+  // x <= delta^2 scale, for x and scale >= 0.
+  auto within_delta = [&](const Rational& x, const Rational& scale) {
+    if (x <= delta_low * delta_low * scale) return true;
+    if (x > delta_high * delta_high * scale) return false;
+    const Rational& delta = settled_delta();
+    return x <= delta * delta * scale;
+  };
+  // delta as a double, for ratios: the exact one's when known, else the range's top.
+  auto delta_double = [&] { return delta_exact ? delta_exact->get_d() : delta_high.get_d(); };
   // The hull's facets: planes through three corners with every corner on one side.
   struct Facet {
     Vec origin, normal;  // inward normal (x, y, z; w unused)
@@ -1312,11 +1489,13 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
         const Rational off = r[k] - (dd > 0 ? t * d[k] : Rational(0));
         dist2 += off * off;
       }
-      if (dist2 <= delta * delta) {
+      if (within_delta(dist2, 1)) {
+        const Rational& delta = delta_exact ? *delta_exact : delta_high;
         worst =
             std::max(worst, delta > 0 ? std::sqrt(Rational(dist2 / (delta * delta)).get_d()) : 0.0);
         continue;
       }
+      const Rational& delta = settled_delta();  // violated: the message gives it exactly
       const double distance = std::sqrt(dist2.get_d());
       const double r_v =
           delta > 0 ? distance / delta.get_d() : std::numeric_limits<double>::infinity();
@@ -1344,13 +1523,13 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
       if (s >= 0) continue;
       // Outside by -s / |normal|; allowed delta.
       const double distance = std::sqrt(Rational(s * s / nn).get_d());
-      const double r =
-          delta > 0 ? distance / delta.get_d() : std::numeric_limits<double>::infinity();
-      if (s * s > delta * delta * nn && f.holds) {
+      const double delta = delta_double();
+      const double r = delta > 0 ? distance / delta : std::numeric_limits<double>::infinity();
+      if (f.holds && !within_delta(s * s, nn)) {
         f.holds = false;
         f.detail = "the kept region's vertex " + text(v, 3) + " is " +
                    protocol::format_number(distance) + " outside the corners' hull (allowed " +
-                   text(delta) + ")";
+                   text(settled_delta()) + ")";
         f.points = {approx_point(v)};
         for (const Vec& x : points) f.points.push_back(approx_point(x));
         f.points_what = "the kept region's vertex outside the hull (first), and the given corners";
@@ -1592,7 +1771,8 @@ Consumers<T> reference_consumers() {
   template ConsumerFinding judge_portal_view(const Matrix4<T>&, const Matrix4<T>&,                 \
                                              const Matrix4<T>&, const Matrix4<T>&);                \
   template ConsumerFinding judge_corners(const Matrix4<T>&, const Vector4<T>&, Convention,         \
-                                         const Matrix4<T>&, const std::vector<Vector3<T>>&);       \
+                                         const Matrix4<T>&, const std::vector<Vector3<T>>&,        \
+                                         Arithmetic);                                              \
   template Consumers<T> reference_consumers<T>();                                                  \
   template void consumer_round(const Matrix4<T>&, const Vector4<T>&, Convention,                   \
                                const Consumers<T>&, const Pick&, const Settle&);

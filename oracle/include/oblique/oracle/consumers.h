@@ -180,6 +180,11 @@ template <class T>
 ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& frame,
                                   const Matrix4<T>& linked, const Matrix4<T>& answer);
 
+/// How a judge computes what it compares: certified floating-point bounds first and exact
+/// rational arithmetic where they cannot decide (filtered, the verdict the same), or exact
+/// arithmetic throughout (the reference the filtered judge is tested against).
+enum class Arithmetic { filtered, exact };
+
 /// The most distinct points judge_corners() takes.
 inline constexpr std::size_t kMaxCorners = 32;
 
@@ -190,7 +195,8 @@ inline constexpr std::size_t kMaxCorners = 32;
 /// Reports the depth waste.
 template <class T>
 ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
-                              const Matrix4<T>& oblique, const std::vector<Vector3<T>>& answer);
+                              const Matrix4<T>& oblique, const std::vector<Vector3<T>>& answer,
+                              Arithmetic arithmetic = Arithmetic::filtered);
 
 /// A vector or matrix as the consumer reports print it: "[a, b; c, d]" (rows separated by "; "),
 /// each number the shortest decimal that reads back as it (protocol::format_number()); a

@@ -1,0 +1,129 @@
+// The consumer judges that settle in certified floating-point bounds first (Arithmetic::filtered,
+// the default) against the same judges in exact arithmetic throughout: on generated cases of every
+// family, convention and precision, and on answers near the bound (the right corners shrunk so
+// that a vertex of the kept region lies outside their hull by 0.5 to 3 times the bound), both
+// must give the same verdict, the same message for a violation and the same ratio up to the
+// rounding of the bound.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "oblique/cases/generators.h"
+#include "oblique/oblique.h"
+#include "oblique/oracle/consumers.h"
+#include "oblique/references/frustum_planes.h"
+#include "oblique/references/kept_region.h"
+
+namespace oblique::properties {
+namespace {
+
+template <class T>
+class FilteredConsumers : public ::testing::Test {};
+using Precisions = ::testing::Types<float, double, long double>;
+TYPED_TEST_SUITE(FilteredConsumers, Precisions);
+
+struct Tally {
+  long judged = 0, held = 0, violated = 0, not_judged = 0;
+};
+
+/// `corners` moved away from (factor > 1) or toward (factor < 1) their mean.
+template <class T>
+std::vector<Vector3<T>> moved(const std::vector<Vector3<T>>& corners, long double factor) {
+  Eigen::Matrix<long double, 3, 1> centre = Eigen::Matrix<long double, 3, 1>::Zero();
+  for (const auto& p : corners) centre += p.template cast<long double>();
+  centre /= static_cast<long double>(corners.size());
+  std::vector<Vector3<T>> out;
+  for (const auto& p : corners)
+    out.push_back((centre + (p.template cast<long double>() - centre) * factor).template cast<T>());
+  return out;
+}
+
+template <class T>
+void expect_same_corners_verdict(const Matrix4<T>& m, const Vector4<T>& c, Convention k,
+                                 const Matrix4<T>& mo, const std::vector<Vector3<T>>& corners,
+                                 const std::string& what, Tally& tally) {
+  const ConsumerFinding filtered = judge_corners(m, c, k, mo, corners, Arithmetic::filtered);
+  const ConsumerFinding exact = judge_corners(m, c, k, mo, corners, Arithmetic::exact);
+  const std::string where = what + " (" + describe(exact) + ")";
+  ASSERT_EQ(filtered.judged, exact.judged) << where;
+  ASSERT_EQ(filtered.holds, exact.holds) << where;
+  EXPECT_EQ(filtered.depth_waste, exact.depth_waste) << where;
+  if (!exact.judged) {
+    ++tally.not_judged;
+    EXPECT_EQ(filtered.detail, exact.detail) << where;
+    return;
+  }
+  ++tally.judged;
+  if (exact.holds) {
+    ++tally.held;
+    EXPECT_EQ(filtered.detail, exact.detail) << where;
+    // The filtered ratio divides by the bound's range's top rather than the exact bound.
+    EXPECT_LE(std::fabs(filtered.ratio - exact.ratio), 1e-12 * std::fmax(1.0, exact.ratio))
+        << where;
+  } else {
+    ++tally.violated;
+    EXPECT_EQ(filtered.detail, exact.detail) << where;
+    EXPECT_EQ(filtered.ratio, exact.ratio) << where;
+  }
+}
+
+TYPED_TEST(FilteredConsumers, cornersJudgeAgreesWithTheExactOne) {
+  using T = TypeParam;
+  const auto gen = generators::valid_case<T>();
+  rc::Random random(17301);
+  Tally tally;
+  // The exact judge takes about 0.1 s a case in float, 0.5 s in double and 9 s in long double.
+  const int wanted = std::is_same_v<T, float> ? 24 : std::is_same_v<T, double> ? 12 : 2;
+  int cases = 0, probed = 0;
+  for (int i = 0; cases < wanted && i < 400; ++i) {
+    const generators::Case<T> g = gen(random.split(), i % 101).value();
+    const ObliqueResult<T> r = apply<T>(g.matrix, g.plane, g.convention);
+    if (r.status != Status::ok) continue;
+    std::vector<Vector3<T>> kept;
+    bool bounded = true;
+    for (const auto& v :
+         kept_region_vertices(g.matrix, near_plane(r.projection, g.convention), g.convention)) {
+      bounded = bounded && v.w() != 0;
+      kept.push_back(v.template head<3>() / v.w());
+    }
+    if (!bounded || kept.empty()) continue;
+    ++cases;
+    const std::string what = "case " + std::to_string(i) + ", family " +
+                             std::string(generators::family_name(g.family)) + ", convention " +
+                             std::string(convention_name(g.convention));
+    expect_same_corners_verdict(g.matrix, g.plane, g.convention, r.projection, kept,
+                                what + ": the kept region's vertices", tally);
+    for (int e : {10, 30, 50, 60}) {
+      expect_same_corners_verdict(g.matrix, g.plane, g.convention, r.projection,
+                                  moved(kept, 1 + std::ldexp(1.0L, -e)),
+                                  what + ": grown by 2^-" + std::to_string(e), tally);
+    }
+    // Shrunk so that the farthest vertex outside is at chosen multiples of the bound: the ratio
+    // of the right corners shrunk by the cube root of T's epsilon (well outside the bound) is
+    // about proportional to the shrinking.
+    const long double probe = std::ldexp(1.0L, -std::numeric_limits<T>::digits / 3);
+    const ConsumerFinding far = judge_corners(g.matrix, g.plane, g.convention, r.projection,
+                                              moved(kept, 1 - probe), Arithmetic::exact);
+    if (!far.judged || !(far.ratio > 0) || !std::isfinite(far.ratio)) continue;
+    ++probed;
+    for (long double target : {0.5L, 0.9L, 0.999L, 1.001L, 1.1L, 1.5L, 3.0L}) {
+      const long double step = probe * target / static_cast<long double>(far.ratio);
+      expect_same_corners_verdict(
+          g.matrix, g.plane, g.convention, r.projection, moved(kept, 1 - step),
+          what + ": shrunk to about " + std::to_string(double(target)) + " times the bound", tally);
+      if (::testing::Test::HasFatalFailure()) return;
+    }
+  }
+  EXPECT_EQ(cases, wanted);
+  EXPECT_GE(probed, wanted / 2);
+  // Both verdicts were compared, on answers that hold and on answers just outside the bound.
+  EXPECT_GT(tally.held, 0);
+  EXPECT_GT(tally.violated, 0);
+}
+
+}  // namespace
+}  // namespace oblique::properties
