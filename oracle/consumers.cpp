@@ -12,6 +12,7 @@
 #include "oblique/oblique.h"
 #include "oblique/oracle/certified.h"
 #include "oblique/oracle/consumer_cases.h"
+#include "oblique/oracle/consumer_wire.h"
 #include "oblique/oracle/exact.h"
 #include "oblique/oracle/problem.h"
 #include "oblique/oracle/tolerance.h"
@@ -214,6 +215,7 @@ certified::Num certified_of(const Rational& r) {
 /// A rational >= 0 as a certified range: its double (truncated) and the next one up.
 certified::Range range_of(const Rational& r) {
   const double d = r.get_d();
+  if (!std::isfinite(d)) throw certified::Undecided{__LINE__};  // beyond double (a long double)
   if (r == d) return certified::Range{d, d};
   const double up = std::nextafter(d, std::numeric_limits<double>::infinity());
   if (!std::isfinite(up)) throw certified::Undecided{__LINE__};
@@ -1557,11 +1559,149 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   return f;
 }
 
-namespace {}  // namespace
+namespace {
+
+using protocol::ConsumerKind;
 
 template <class T>
-void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
-                    const Consumers<T>& consumers, const Pick& pick, const Settle& settle) {
+ConsumerAsk<T> depth_ask(ConsumerKind kind, const DepthSample<T>& s, const std::string& inputs) {
+  ConsumerAsk<T> a;
+  a.kind = kind;
+  a.request = [kind, s] { return wire::depth_request(kind, s); };
+  if (kind == ConsumerKind::view_position) {
+    a.call = [s](const Consumers<T>& c) { return wire::numbers_of(c.view_position(s)); };
+    a.judge = [s, inputs](const std::vector<T>& v, const Settle& settle) {
+      const Vector3<T> answer = wire::vector3(v);
+      settle(judge_view_position(s, answer), inputs + "- answered: " + numbers_text(answer) + "\n",
+             true);
+    };
+  } else {
+    a.call = [s](const Consumers<T>& c) { return std::vector<T>{c.linear_depth(s)}; };
+    a.judge = [s, inputs](const std::vector<T>& v, const Settle& settle) {
+      settle(judge_linear_depth(s, v.front()),
+             inputs + "- answered: " + protocol::format_number(v.front()) + "\n", true);
+    };
+  }
+  return a;
+}
+
+template <class T>
+ConsumerAsk<T> culling_ask(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                           const Matrix4<T>& mo, const std::string& base) {
+  ConsumerAsk<T> a;
+  a.kind = ConsumerKind::culling_planes;
+  a.request = [mo, convention] { return wire::culling_request(mo, convention); };
+  a.call = [mo, convention](const Consumers<T>& k) {
+    return wire::numbers_of(k.culling_planes(mo, convention));
+  };
+  a.judge = [m, c, convention, mo, base](const std::vector<T>& v, const Settle& settle) {
+    const FrustumPlanes<T> p = wire::planes(v);
+    const std::string inputs =
+        base + "- the planes: left " + numbers_text(p.left) + ", right " + numbers_text(p.right) +
+        ", bottom " + numbers_text(p.bottom) + ", top " + numbers_text(p.top) + ", near " +
+        numbers_text(p.near_plane) + ", far " + numbers_text(p.far_plane) + "\n";
+    for (const auto& f : judge_culling_planes(m, c, convention, mo, p)) settle(f, inputs, true);
+  };
+  return a;
+}
+
+template <class T>
+ConsumerAsk<T> corners_ask(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                           const Matrix4<T>& mo, const std::string& base) {
+  ConsumerAsk<T> a;
+  a.kind = ConsumerKind::corners;
+  a.request = [mo, m, convention] { return wire::corners_request(mo, m, convention); };
+  a.call = [mo, m, convention](const Consumers<T>& k) {
+    return wire::numbers_of(k.corners(mo, m, convention));
+  };
+  a.judge = [m, c, convention, mo, base](const std::vector<T>& v, const Settle& settle) {
+    const std::vector<Vector3<T>> corners = wire::points(v);
+    std::string listed;
+    for (const auto& x : corners) listed += " " + numbers_text(x);
+    settle(judge_corners(m, c, convention, mo, corners), base + "- the corners:" + listed + "\n",
+           true);
+  };
+  return a;
+}
+
+template <class T>
+ConsumerAsk<T> camera_plane_ask(const consumer_cases::PassPlaneCase<T>& p) {
+  ConsumerAsk<T> a;
+  a.kind = ConsumerKind::camera_plane;
+  a.request = [p] {
+    return wire::view_and_plane_request(ConsumerKind::camera_plane, p.pass_view, p.kept_plane);
+  };
+  a.call = [p](const Consumers<T>& k) {
+    return wire::numbers_of(k.camera_plane(p.pass_view, p.kept_plane));
+  };
+  a.judge = [p](const std::vector<T>& v, const Settle& settle) {
+    const Vector4<T> answer = wire::vector4(v);
+    const std::string inputs = std::string("- pass: ") + consumer_cases::pass_kind_name(p.kind) +
+                               "\n- main view: " + numbers_text(p.main_view) +
+                               "\n- pass view: " + numbers_text(p.pass_view) +
+                               "\n- world plane kept: " + numbers_text(p.kept_plane) +
+                               "\n- answered: " + numbers_text(answer) + "\n";
+    for (const auto& f :
+         judge_camera_plane(p.pass_view, p.kept_plane, p.surface_points, p.front_point, answer))
+      settle(f, inputs, false);
+  };
+  return a;
+}
+
+template <class T>
+ConsumerAsk<T> mirror_view_ask(const Matrix4<T>& view, const Vector4<T>& mirror,
+                               MirrorDesign design) {
+  ConsumerAsk<T> a;
+  a.kind = ConsumerKind::mirror_view;
+  a.request = [view, mirror] {
+    return wire::view_and_plane_request(ConsumerKind::mirror_view, view, mirror);
+  };
+  a.call = [view, mirror](const Consumers<T>& k) {
+    return wire::numbers_of(k.mirror_view(view, mirror));
+  };
+  a.judge = [view, mirror, design](const std::vector<T>& v, const Settle& settle) {
+    const Matrix4<T> answer = wire::matrix4(v);
+    settle(judge_mirror_view(view, mirror, answer, design),
+           "- view: " + numbers_text(view) + "\n- mirror plane: " + numbers_text(mirror) +
+               "\n- answered: " + numbers_text(answer) + "\n",
+           false);
+  };
+  return a;
+}
+
+template <class T>
+ConsumerAsk<T> portal_view_ask(const Matrix4<T>& view, const Matrix4<T>& frame,
+                               const Matrix4<T>& linked) {
+  ConsumerAsk<T> a;
+  a.kind = ConsumerKind::portal_view;
+  a.request = [view, frame, linked] { return wire::portal_request(view, frame, linked); };
+  a.call = [view, frame, linked](const Consumers<T>& k) {
+    return wire::numbers_of(k.portal_view(view, frame, linked));
+  };
+  a.judge = [view, frame, linked](const std::vector<T>& v, const Settle& settle) {
+    const Matrix4<T> answer = wire::matrix4(v);
+    settle(judge_portal_view(view, frame, linked, answer),
+           "- view: " + numbers_text(view) + "\n- frame: " + numbers_text(frame) +
+               "\n- linked frame: " + numbers_text(linked) +
+               "\n- answered: " + numbers_text(answer) + "\n",
+           false);
+  };
+  return a;
+}
+
+/// Asks an in-process Consumers and judges its answer.
+template <class T>
+void ask_and_judge(const ConsumerAsk<T>& a, const Consumers<T>& consumers, const Settle& settle) {
+  a.judge(a.call(consumers), settle);
+}
+
+}  // namespace
+
+template <class T>
+std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>& c,
+                                          Convention convention, const Consumers<T>& consumers,
+                                          const Pick& pick, const Settle& settle) {
+  std::vector<ConsumerAsk<T>> asks;
   const bool needs_oblique = consumers.view_position || consumers.linear_depth ||
                              consumers.culling_planes || consumers.corners;
   // A case none of `checks` can be judged on: one finding left out for each of them.
@@ -1623,48 +1763,36 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
                                      ", y " + protocol::format_number(s->ndc_y) +
                                      ", window depth " + protocol::format_number(s->depth) +
                                      " (stored " + std::to_string(s->stored) + ")\n";
-          if (consumers.view_position) {
-            const Vector3<T> answer = consumers.view_position(*s);
-            settle(judge_view_position(*s, answer),
-                   inputs + "- answered: " + numbers_text(answer) + "\n", true);
-          }
-          if (consumers.linear_depth) {
-            const T answer = consumers.linear_depth(*s);
-            settle(judge_linear_depth(*s, answer),
-                   inputs + "- answered: " + protocol::format_number(answer) + "\n", true);
-          }
+          if (consumers.view_position)
+            asks.push_back(depth_ask(ConsumerKind::view_position, *s, inputs));
+          if (consumers.linear_depth)
+            asks.push_back(depth_ask(ConsumerKind::linear_depth, *s, inputs));
         }
       }
-      if (consumers.culling_planes) {
-        const FrustumPlanes<T> p = consumers.culling_planes(mo, convention);
-        const std::string inputs = base + "- the planes: left " + numbers_text(p.left) +
-                                   ", right " + numbers_text(p.right) + ", bottom " +
-                                   numbers_text(p.bottom) + ", top " + numbers_text(p.top) +
-                                   ", near " + numbers_text(p.near_plane) + ", far " +
-                                   numbers_text(p.far_plane) + "\n";
-        for (const auto& f : judge_culling_planes(m, c, convention, mo, p)) settle(f, inputs, true);
-      }
-      if (consumers.corners) {
-        const std::vector<Vector3<T>> corners = consumers.corners(mo, m, convention);
-        std::string listed;
-        for (const auto& x : corners) listed += " " + numbers_text(x);
-        settle(judge_corners(m, c, convention, mo, corners),
-               base + "- the corners:" + listed + "\n", true);
-      }
+      if (consumers.culling_planes) asks.push_back(culling_ask(m, c, convention, mo, base));
+      if (consumers.corners) asks.push_back(corners_ask(m, c, convention, mo, base));
     }
   }
   if (consumers.camera_plane)
-    consumer_cases::ask_camera_plane(consumers, consumer_cases::pass_plane_case<T>(pick), settle);
+    asks.push_back(camera_plane_ask(consumer_cases::pass_plane_case<T>(pick)));
   if (consumers.mirror_view) {
     const Matrix4<T> view = consumer_cases::rigid_view<T>(pick);
-    consumer_cases::ask_mirror_view(consumers, view, consumer_cases::world_plane<T>(pick), settle);
+    asks.push_back(
+        mirror_view_ask(view, consumer_cases::world_plane<T>(pick), consumers.mirror_design));
   }
   if (consumers.portal_view) {
     const Matrix4<T> view = consumer_cases::rigid_view<T>(pick);
     const Matrix4<T> frame = consumer_cases::portal_frame<T>(pick);
-    consumer_cases::ask_portal_view(consumers, view, frame, consumer_cases::portal_frame<T>(pick),
-                                    settle);
+    asks.push_back(portal_view_ask(view, frame, consumer_cases::portal_frame<T>(pick)));
   }
+  return asks;
+}
+
+template <class T>
+void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
+                    const Consumers<T>& consumers, const Pick& pick, const Settle& settle) {
+  for (const ConsumerAsk<T>& a : consumer_asks(m, c, convention, consumers, pick, settle))
+    ask_and_judge(a, consumers, settle);
 }
 
 }  // namespace oblique::properties
@@ -1674,39 +1802,20 @@ namespace oblique::consumer_cases {
 template <class T>
 void ask_camera_plane(const Consumers<T>& consumers, const PassPlaneCase<T>& p,
                       const properties::Settle& settle) {
-  using properties::numbers_text;
-  const Vector4<T> answer = consumers.camera_plane(p.pass_view, p.kept_plane);
-  const std::string inputs = std::string("- pass: ") + pass_kind_name(p.kind) +
-                             "\n- main view: " + numbers_text(p.main_view) +
-                             "\n- pass view: " + numbers_text(p.pass_view) +
-                             "\n- world plane kept: " + numbers_text(p.kept_plane) +
-                             "\n- answered: " + numbers_text(answer) + "\n";
-  for (const auto& f : properties::judge_camera_plane(p.pass_view, p.kept_plane, p.surface_points,
-                                                      p.front_point, answer))
-    settle(f, inputs, false);
+  properties::ask_and_judge(properties::camera_plane_ask(p), consumers, settle);
 }
 
 template <class T>
 void ask_mirror_view(const Consumers<T>& consumers, const Matrix4<T>& view,
                      const Vector4<T>& mirror, const properties::Settle& settle) {
-  using properties::numbers_text;
-  const Matrix4<T> answer = consumers.mirror_view(view, mirror);
-  settle(properties::judge_mirror_view(view, mirror, answer, consumers.mirror_design),
-         "- view: " + numbers_text(view) + "\n- mirror plane: " + numbers_text(mirror) +
-             "\n- answered: " + numbers_text(answer) + "\n",
-         false);
+  properties::ask_and_judge(properties::mirror_view_ask(view, mirror, consumers.mirror_design),
+                            consumers, settle);
 }
 
 template <class T>
 void ask_portal_view(const Consumers<T>& consumers, const Matrix4<T>& view, const Matrix4<T>& frame,
                      const Matrix4<T>& linked, const properties::Settle& settle) {
-  using properties::numbers_text;
-  const Matrix4<T> answer = consumers.portal_view(view, frame, linked);
-  settle(properties::judge_portal_view(view, frame, linked, answer),
-         "- view: " + numbers_text(view) + "\n- frame: " + numbers_text(frame) +
-             "\n- linked frame: " + numbers_text(linked) + "\n- answered: " + numbers_text(answer) +
-             "\n",
-         false);
+  properties::ask_and_judge(properties::portal_view_ask(view, frame, linked), consumers, settle);
 }
 
 #define OBLIQUE_CONSUMER_ASKS(T)                                                           \
@@ -1775,7 +1884,10 @@ Consumers<T> reference_consumers() {
                                          Arithmetic);                                              \
   template Consumers<T> reference_consumers<T>();                                                  \
   template void consumer_round(const Matrix4<T>&, const Vector4<T>&, Convention,                   \
-                               const Consumers<T>&, const Pick&, const Settle&);
+                               const Consumers<T>&, const Pick&, const Settle&);                   \
+  template std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>&, const Vector4<T>&,         \
+                                                     Convention, const Consumers<T>&, const Pick&, \
+                                                     const Settle&);
 
 OBLIQUE_CONSUMER_INSTANCES(float)
 OBLIQUE_CONSUMER_INSTANCES(double)

@@ -42,6 +42,19 @@ Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
   return b;
 }
 
+void in_slices(std::size_t count, int threads,
+               const std::function<void(std::size_t, std::size_t)>& work, std::size_t min_slice) {
+  const std::size_t slices = std::max<std::size_t>(
+      1, std::min<std::size_t>(static_cast<std::size_t>(std::max(1, threads)), count / min_slice));
+  const std::size_t size = (count + slices - 1) / slices;
+  std::vector<std::future<void>> others;
+  for (std::size_t i = 1; i < slices; ++i)
+    others.push_back(
+        std::async(std::launch::async, work, i * size, std::min(count, (i + 1) * size)));
+  work(0, std::min(count, size));
+  for (auto& other : others) other.get();
+}
+
 template <class T>
 std::vector<Judged<T>> judge_batch(const Draws<T>& draws, const Batch<T>& b,
                                    const std::vector<std::string>& answers, int threads) {
@@ -62,17 +75,7 @@ std::vector<Judged<T>> judge_batch(const Draws<T>& draws, const Batch<T>& b,
       }
     }
   };
-  constexpr std::size_t kMinSlice = 8;  // below this a thread costs more than it saves
-  const std::size_t slices = std::max<std::size_t>(
-      1, std::min<std::size_t>(static_cast<std::size_t>(threads), answers.size() / kMinSlice));
-  const std::size_t size = (answers.size() + slices - 1) / slices;
-  std::vector<std::future<void>> others;
-  for (std::size_t i = 1; i < slices; ++i) {
-    others.push_back(std::async(std::launch::async, judge_range, i * size,
-                                std::min(answers.size(), (i + 1) * size)));
-  }
-  judge_range(0, std::min(answers.size(), size));
-  for (auto& other : others) other.get();
+  in_slices(answers.size(), threads, judge_range);
   return out;
 }
 

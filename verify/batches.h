@@ -6,6 +6,7 @@
 #include <rapidcheck.h>
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -40,6 +41,12 @@ struct Judged {
   std::string protocol_error;
   std::optional<Found<T>> finding;
 };
+
+/// work(from, to) over [0, count) in equal slices on up to `threads` threads (this one among
+/// them), none smaller than `min_slice` items, below which a thread costs more than it saves.
+void in_slices(std::size_t count, int threads,
+               const std::function<void(std::size_t, std::size_t)>& work,
+               std::size_t min_slice = 8);
 
 /// Reads and judges each answer of the batch, in equal slices on up to `threads` threads (GMP
 /// objects are not shared, and the values were taken out of their Shrinkables on this thread).

@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "batches.h"
 #include "failure_database.h"
 #include "oblique/cases/generators.h"
 #include "oblique/oblique.h"
@@ -68,64 +69,152 @@ class ConsumerRun {
     asked_.mirror_design = options.mirror_design;
   }
 
-  /// One round: the program asked each kind on `round` (its picks drawn from `engine` and
-  /// recorded, or replayed from round.picks when `engine` is null). Returns false for a protocol
-  /// error (said on err_).
-  bool play(Round<T>& round, std::mt19937_64* engine, long index) {
+  /// --replay's round: the program asked each kind on `round`, its picks replayed from
+  /// round.picks. Returns false for a protocol error (said on err_).
+  bool play(const Round<T>& round) {
     std::size_t next = 0;
     const properties::Pick pick = [&](int lo, int hi) {
-      if (engine) {
-        const int v = std::uniform_int_distribution<int>(lo, hi - 1)(*engine);
-        round.picks.push_back(v);
-        return v;
-      }
-      // A replay: the recorded picks, in order (clamped, should a report have been edited).
+      // The recorded picks, in order (clamped, should a report have been edited).
       const int v = next < round.picks.size() ? round.picks[next++] : lo;
       return v < lo ? lo : v >= hi ? hi - 1 : v;
     };
     const properties::Settle settle = [&](const properties::ConsumerFinding& f,
                                           const std::string& inputs, bool about) {
-      const std::string check(properties::consumer_check_name(f.check));
-      asked_checks_.insert(f.check);
-      if (const std::string_view why = properties::not_applicable(f.check, round.c.family);
-          !f.judged && !why.empty()) {
-        // Nothing to judge on this family (corners of an infinite frustum, ...): said once in
-        // the summary, not counted as left out. (A judged answer on it is settled as any.)
-        not_applicable_[check + " on " + std::string(generators::family_name(round.c.family)) +
-                        " (" + std::string(why) + ")"] += 1;
-        return;
-      }
-      if (!f.judged) {
-        ++left_out_[f.detail];
-        ++left_out_checks_[check];
-        return;
-      }
-      ++judged_[check];
-      ++judged_families_[std::string(generators::family_name(round.c.family))];
-      if (f.holds || caught_) return;
-      caught_ =
-          Caught<T>{f,     inputs,      program_.last_request(), program_.last_answer(), about, {},
-                    index, std::nullopt};
+      tally(f, round, 0, inputs, about, program_.last_request(), program_.last_answer());
     };
     try {
       properties::consumer_round<T>(round.c.matrix, round.c.plane, round.c.convention, asked_, pick,
                                     settle);
     } catch (const ProgramFailure& failure) {
-      if (failure.kind == ProgramFailure::Kind::protocol) {
-        err_ << "oblique verify: protocol error: " << failure.what
-             << "\n  request: " << failure.request << "\n";
-        for (const std::string& line : failure.lines)
-          err_ << "  read: " << protocol::escape_bytes(line) << "\n";
-        return false;
-      }
-      if (!caught_) {
-        caught_ = Caught<T>{};
-        caught_->lost = failure;
-        caught_->request = failure.request;
-        caught_->index = index;
-      }
+      return lost(failure, round, 0);
     }
-    if (caught_) caught_->round = round;
+    return true;
+  }
+
+  /// A request that got no answer to judge: a protocol error is said on err_ (false); a crash or
+  /// a timeout is the run's finding unless one came before.
+  bool lost(const ProgramFailure& failure, const Round<T>& round, long index) {
+    if (failure.kind == ProgramFailure::Kind::protocol) {
+      err_ << "oblique verify: protocol error: " << failure.what
+           << "\n  request: " << failure.request << "\n";
+      for (const std::string& line : failure.lines)
+        err_ << "  read: " << protocol::escape_bytes(line) << "\n";
+      return false;
+    }
+    if (!caught_) {
+      caught_ = Caught<T>{};
+      caught_->lost = failure;
+      caught_->request = failure.request;
+      caught_->index = index;
+      caught_->round = round;
+    }
+    return true;
+  }
+
+  /// One finding of round `index` counted, and kept as the run's violation when it is the first.
+  void tally(const properties::ConsumerFinding& f, const Round<T>& round, long index,
+             const std::string& inputs, bool about, const std::string& request,
+             const std::string& answer) {
+    const std::string check(properties::consumer_check_name(f.check));
+    asked_checks_.insert(f.check);
+    if (const std::string_view why = properties::not_applicable(f.check, round.c.family);
+        !f.judged && !why.empty()) {
+      // Nothing to judge on this family (corners of an infinite frustum, ...): said once in
+      // the summary, not counted as left out. (A judged answer on it is settled as any.)
+      not_applicable_[check + " on " + std::string(generators::family_name(round.c.family)) + " (" +
+                      std::string(why) + ")"] += 1;
+      return;
+    }
+    if (!f.judged) {
+      ++left_out_[f.detail];
+      ++left_out_checks_[check];
+      return;
+    }
+    ++judged_[check];
+    ++judged_families_[std::string(generators::family_name(round.c.family))];
+    if (f.holds || caught_) return;
+    caught_ = Caught<T>{f, inputs, request, answer, about, round, index, std::nullopt};
+  }
+
+  /// A finding of a planned round, waiting for the round's turn to be counted: `ask` is the
+  /// batch's request it judges (npos: left out before asking).
+  struct Pending {
+    properties::ConsumerFinding finding;
+    std::string inputs;
+    bool about = false;
+    std::size_t ask = static_cast<std::size_t>(-1);
+  };
+  struct Planned {
+    Round<T> round;
+    std::vector<properties::ConsumerAsk<T>> asks;
+    std::size_t first_ask = 0;  ///< its first request's place in the batch
+    std::vector<Pending> pending;
+  };
+
+  /// The rounds index, index + 1, ... planned: cases drawn, picks drawn and recorded.
+  std::vector<Planned> plan(const rc::Gen<generators::Case<T>>& cases, rc::Random& random,
+                            long index, long count) {
+    std::vector<Planned> out(static_cast<std::size_t>(count));
+    for (long k = 0; k < count; ++k) {
+      Planned& p = out[static_cast<std::size_t>(k)];
+      const long i = index + k;
+      p.round.c = cases(random.split(), static_cast<int>(i % 101)).value();
+      std::mt19937_64 engine(options_.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(i));
+      const properties::Pick pick = [&](int lo, int hi) {
+        const int v = std::uniform_int_distribution<int>(lo, hi - 1)(engine);
+        p.round.picks.push_back(v);
+        return v;
+      };
+      const properties::Settle left_out = [&p](const properties::ConsumerFinding& f,
+                                               const std::string& inputs, bool about) {
+        p.pending.push_back(Pending{f, inputs, about});
+      };
+      p.asks = properties::consumer_asks<T>(p.round.c.matrix, p.round.c.plane, p.round.c.convention,
+                                            asked_, pick, left_out);
+    }
+    return out;
+  }
+
+  /// A batch of rounds: every request sent at once, the answers judged on --threads threads,
+  /// then counted round by round in order up to the first violation, crash, timeout or protocol
+  /// error. Returns false for a protocol error (said on err_); `settled` is how many rounds were.
+  bool play_batch(std::vector<Planned>& batch, long index, long& settled) {
+    std::vector<const properties::ConsumerAsk<T>*> asks;
+    for (Planned& p : batch) {
+      p.first_ask = asks.size();
+      for (const auto& a : p.asks) asks.push_back(&a);
+    }
+    const typename ConsumerProgram<T>::Batch answers = program_.answer(asks);
+    in_slices(
+        batch.size(), options_.threads,
+        [&](std::size_t from, std::size_t to) {
+          for (std::size_t r = from; r < to; ++r) {
+            Planned& p = batch[r];
+            for (std::size_t j = 0; j < p.asks.size(); ++j) {
+              const std::size_t g = p.first_ask + j;
+              if (g >= answers.numbers.size()) break;
+              p.asks[j].judge(answers.numbers[g], [&p, g](const properties::ConsumerFinding& f,
+                                                          const std::string& inputs, bool about) {
+                p.pending.push_back(Pending{f, inputs, about, g});
+              });
+            }
+          }
+        },
+        1);
+    settled = 0;
+    for (std::size_t r = 0; r < batch.size(); ++r) {
+      const Planned& p = batch[r];
+      const long i = index + static_cast<long>(r);
+      for (const Pending& f : p.pending) {
+        const bool asked = f.ask < answers.lines.size();
+        tally(f.finding, p.round, i, f.inputs, f.about, asked ? answers.requests[f.ask] : "",
+              asked ? answers.lines[f.ask] : "");
+      }
+      ++settled;
+      if (caught_) return true;
+      if (answers.failure && p.first_ask + p.asks.size() > answers.numbers.size())
+        return lost(*answers.failure, p.round, i);
+    }
     return true;
   }
 
@@ -140,19 +229,26 @@ class ConsumerRun {
     auto last_progress = start;
     long index = 0;
     std::map<std::string, long> conventions, families;
+    // Batches grow from one round (a first violation or crash is met at once) to kMaxBatch.
+    constexpr long kMaxBatch = 64;
+    long batch_size = 1;
     while (std::chrono::steady_clock::now() < deadline &&
            (options_.cases == 0 || index < options_.cases)) {
-      Round<T> round;
-      round.c = cases(random.split(), static_cast<int>(index % 101)).value();
-      std::mt19937_64 engine(options_.seed * 0x9E3779B97F4A7C15ull +
-                             static_cast<std::uint64_t>(index));
-      if (!play(round, &engine, index)) {
+      const long count =
+          options_.cases == 0 ? batch_size : std::min(batch_size, options_.cases - index);
+      batch_size = std::min(kMaxBatch, batch_size * 2);
+      std::vector<Planned> batch = plan(cases, random, index, count);
+      long settled = 0;
+      if (!play_batch(batch, index, settled)) {
         program_.stop();
         return Verdict::error;
       }
-      ++conventions[std::string(convention_name(round.c.convention))];
-      ++families[std::string(generators::family_name(round.c.family))];
-      ++index;
+      for (long r = 0; r < settled; ++r) {
+        const Round<T>& round = batch[static_cast<std::size_t>(r)].round;
+        ++conventions[std::string(convention_name(round.c.convention))];
+        ++families[std::string(generators::family_name(round.c.family))];
+      }
+      index += settled;
       if (caught_) break;
       const auto now = std::chrono::steady_clock::now();
       if (options_.progress && now - last_progress > std::chrono::seconds(5)) {
@@ -227,8 +323,8 @@ class ConsumerRun {
   }
 
   /// --replay: the report's round again; prints every violation.
-  Verdict replay(Round<T> round) {
-    if (!play(round, nullptr, 0)) {
+  Verdict replay(const Round<T>& round) {
+    if (!play(round)) {
       program_.stop();
       return Verdict::error;
     }

@@ -1,7 +1,7 @@
 // `oblique verify --consumers`: a program's code around the matrix (the consumer request kinds),
-// asked and judged round by round with the consumer round every tool shares
-// (properties::consumer_round()), a violation written as a report that replays its round exactly
-// (M and C in exact hex, the round's picks). Internal to oblique::verify.
+// asked in batches of rounds planned as every tool plans them (properties::consumer_asks()),
+// judged on several threads and counted in order, a violation written as a report that replays
+// its round exactly (M and C in exact hex, the round's picks). Internal to oblique::verify.
 #pragma once
 
 #include <iosfwd>

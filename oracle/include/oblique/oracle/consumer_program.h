@@ -1,12 +1,14 @@
 // A user's program that answers the consumer request kinds (oblique/protocol/consumer_messages.h)
 // as an oblique::Consumers<T>: each function of consumers() writes one request line to the
 // program and reads its one answer line, so every tool that checks a Consumers (the consumer
-// round of oblique/oracle/consumers.h) checks the program the same way. Used by
-// `oblique verify --consumers` and `oblique check --impl` on a scene with consumers.
+// round of oblique/oracle/consumers.h) checks the program the same way; or a batch of a round's
+// asks at once (answer()). Used by `oblique verify --consumers` (batches) and `oblique check
+// --impl` on a scene with consumers (one request at a time).
 #pragma once
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,21 @@ class ConsumerProgram {
   /// The functions of `kinds`, named `name`; the others are empty (not asked).
   Consumers<T> consumers(const std::vector<protocol::ConsumerKind>& kinds,
                          const std::string& name) const;
+
+  /// A batch's answers: one line per request, in order, up to the first request that got none
+  /// or whose line is not its kind's answer (`failure` then says why, its request that one); the
+  /// answers before it are to be judged.
+  struct Batch {
+    std::vector<std::string> requests;    ///< the request lines, one per ask
+    std::vector<std::string> lines;       ///< the answer lines, as read
+    std::vector<std::vector<T>> numbers;  ///< each line's numbers (read_consumer_answer())
+    std::optional<ProgramFailure> failure;
+  };
+  /// Writes the request lines of `asks` at once and reads one answer line for each, in order:
+  /// each may take the timeout after the one before it (reads and writes interleave, so a long
+  /// batch cannot deadlock). Lines beyond the batch's answers fail it as a whole (nothing read
+  /// can be matched to its request).
+  Batch answer(const std::vector<const ConsumerAsk<T>*>& asks);
 
   /// The last request written and the answer line read for it (empty before the first).
   const std::string& last_request() const;

@@ -15,6 +15,7 @@
 #include "oblique/cases/case_kinds.h"
 #include "oblique/depth_convention.h"
 #include "oblique/plane.h"
+#include "oblique/protocol/consumer_messages.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/references/depth_reconstruction.h"
 #include "oblique/references/frustum_planes.h"
@@ -280,6 +281,27 @@ using Pick = std::function<int(int lo, int hi)>;
 /// a report draws.
 using Settle = std::function<void(const ConsumerFinding& finding, const std::string& inputs,
                                   bool about_oblique_case)>;
+
+/// One request of a consumer round as data, so that a round is planned apart from being answered
+/// and a program can be sent many requests at once: the function it asks, the protocol's request
+/// line for it (consumer_wire.h), how an in-process Consumers answers it (as the numbers of the
+/// protocol's answer), and how those numbers are judged (each finding to `settle`).
+template <class T>
+struct ConsumerAsk {
+  protocol::ConsumerKind kind = protocol::ConsumerKind::view_position;
+  std::function<protocol::ConsumerRequest()> request;
+  std::function<std::vector<T>(const Consumers<T>&)> call;
+  std::function<void(const std::vector<T>& answer, const Settle& settle)> judge;
+};
+
+/// consumer_round()'s requests, planned and not yet asked: its picks drawn in the same order, the
+/// findings left out before any asking (refused by accepts, no oblique matrix for M and C, no
+/// depth sample) given to `settle` now, and the requests returned in the order the round asks
+/// them. Only which functions `consumers` gives, its accepts, mirror design and name are read.
+template <class T>
+std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>& c,
+                                          Convention convention, const Consumers<T>& consumers,
+                                          const Pick& pick, const Settle& settle);
 
 /// One round of the code around the matrix, the one way every tool asks and judges it: for each
 /// function `consumers` gives, its case is built from `pick` (consumer_cases.h; depth, culling
