@@ -1,6 +1,8 @@
 // oblique: the command-line tool. It wires the subcommands (commands.h: apply, verify, check,
 // fuzz-report, report), says --version, and names what it did not understand with the closest
 // known name.
+#include <fcntl.h>
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -52,9 +54,25 @@ void explain_unknown(CLI::App* where, const std::vector<std::string>& unexpected
   std::cerr << "Run " << who << " --help for the usage.\n";
 }
 
+/// Standard input, output and error closed when we were started get /dev/null, before anything
+/// opens a file: the pipes to a program under test (verify, check --impl, report accuracy,
+/// fuzz-report) then never take fds 0..2, and our output never goes into its input.
+void give_closed_standard_fds_dev_null() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) < 0 && errno == EBADF) {
+      const int null = ::open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+      if (null >= 0 && null != fd) {
+        ::dup2(null, fd);
+        ::close(null);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  give_closed_standard_fds_dev_null();
   CLI::App app{"oblique: oblique near-plane clipping, verified"};
   app.set_version_flag(
       "--version", std::string("oblique ") + OBLIQUE_VERSION + " (commit " + OBLIQUE_COMMIT + ")",

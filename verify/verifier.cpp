@@ -351,17 +351,6 @@ Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& 
     err << "oblique verify: --threads must be between 1 and 256, not " << options.threads << "\n";
     return Verdict::error;
   }
-  // Standard input, output and error closed when we were started: give them /dev/null, so the
-  // pipes to the implementation never take fds 0..2 (and our output never goes into its input).
-  for (int fd = 0; fd <= 2; ++fd) {
-    if (::fcntl(fd, F_GETFD) < 0 && errno == EBADF) {
-      const int null = ::open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
-      if (null >= 0 && null != fd) {
-        ::dup2(null, fd);
-        ::close(null);
-      }
-    }
-  }
   // The report directory is checked before the run: a finding must not be lost after shrinking.
   if (std::string why = options.replay.empty() ? check_report_directory(options.report_dir) : "";
       !why.empty()) {
