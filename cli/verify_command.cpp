@@ -126,7 +126,8 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
   verify->add_option(
       "--consumers", settings->consumers,
       "Ask the code around the matrix instead: a comma list of request kinds, or all: " +
-          name_list(oblique::protocol::consumer_kind_names()) + " (docs/verify.md)");
+          name_list(oblique::names_in(oblique::protocol::consumer_kind_names)) +
+          " (docs/verify.md)");
   verify
       ->add_option_function<std::string>(
           "--mirror-design",
@@ -221,8 +222,9 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
           options.consumers.push_back(*kind);
       } else {
         std::cerr << "oblique verify: --consumers: "
-                  << oblique::protocol::unknown_name("request kind", name,
-                                                     oblique::protocol::consumer_kind_names())
+                  << oblique::protocol::unknown_name(
+                         "request kind", name,
+                         oblique::names_in(oblique::protocol::consumer_kind_names))
                   << "\n";
         exit_code = 2;
         return;

@@ -5,49 +5,17 @@
 
 namespace oblique::protocol {
 
-namespace {
-
-struct KindRow {
-  ConsumerKind kind;
-  std::string_view name, answer;
-};
-
-constexpr KindRow kKinds[] = {
-    {ConsumerKind::view_position, "view_position", "position"},
-    {ConsumerKind::linear_depth, "linear_depth", "depth"},
-    {ConsumerKind::culling_planes, "culling_planes", "planes"},
-    {ConsumerKind::camera_plane, "camera_plane", "plane"},
-    {ConsumerKind::mirror_view, "mirror_view", "view"},
-    {ConsumerKind::portal_view, "portal_view", "view"},
-    {ConsumerKind::corners, "corners", "corners"},
-};
-
-const KindRow& row(ConsumerKind kind) {
-  for (const KindRow& r : kKinds)
-    if (r.kind == kind) return r;
-  return kKinds[0];
-}
-
-}  // namespace
-
-std::string_view consumer_kind_name(ConsumerKind kind) {
-  return row(kind).name;
-}
-
-std::optional<ConsumerKind> parse_consumer_kind(std::string_view name) {
-  for (const KindRow& r : kKinds)
-    if (r.name == name) return r.kind;
-  return std::nullopt;
-}
-
-std::vector<std::string> consumer_kind_names() {
-  std::vector<std::string> out;
-  for (const KindRow& r : kKinds) out.emplace_back(r.name);
-  return out;
-}
-
 std::string_view consumer_answer_field(ConsumerKind kind) {
-  return row(kind).answer;
+  switch (kind) {
+    case ConsumerKind::view_position: return "position";
+    case ConsumerKind::linear_depth: return "depth";
+    case ConsumerKind::culling_planes: return "planes";
+    case ConsumerKind::camera_plane: return "plane";
+    case ConsumerKind::mirror_view:
+    case ConsumerKind::portal_view: return "view";
+    case ConsumerKind::corners: return "corners";
+  }
+  return "position";
 }
 
 ConsumerRequest::ConsumerRequest(ConsumerKind kind)

@@ -26,6 +26,7 @@
 #include "oblique/expected.h"
 #include "oblique/projection.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/util/enum_names.h"
 
 namespace oblique::protocol {
 
@@ -39,15 +40,24 @@ enum class ConsumerKind {
   corners
 };
 
-inline constexpr ConsumerKind all_consumer_kinds[] = {
-    ConsumerKind::view_position, ConsumerKind::linear_depth, ConsumerKind::culling_planes,
-    ConsumerKind::camera_plane,  ConsumerKind::mirror_view,  ConsumerKind::portal_view,
-    ConsumerKind::corners};
+inline constexpr EnumName<ConsumerKind> consumer_kind_names[] = {
+    {ConsumerKind::view_position, "view_position"},
+    {ConsumerKind::linear_depth, "linear_depth"},
+    {ConsumerKind::culling_planes, "culling_planes"},
+    {ConsumerKind::camera_plane, "camera_plane"},
+    {ConsumerKind::mirror_view, "mirror_view"},
+    {ConsumerKind::portal_view, "portal_view"},
+    {ConsumerKind::corners, "corners"},
+};
+inline constexpr auto all_consumer_kinds = values_in(consumer_kind_names);
 
-std::string_view consumer_kind_name(ConsumerKind kind);
-std::optional<ConsumerKind> parse_consumer_kind(std::string_view name);
-/// Every kind's name, in the table's order.
-std::vector<std::string> consumer_kind_names();
+constexpr std::string_view consumer_kind_name(ConsumerKind kind) noexcept {
+  return name_in(consumer_kind_names, kind);
+}
+/// Inverse of consumer_kind_name(); none for an unknown name.
+constexpr std::optional<ConsumerKind> parse_consumer_kind(std::string_view name) noexcept {
+  return value_in(consumer_kind_names, name);
+}
 
 /// The answer's field of a kind ("position", "depth", "planes", ...).
 std::string_view consumer_answer_field(ConsumerKind kind);
