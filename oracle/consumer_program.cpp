@@ -70,7 +70,7 @@ struct ConsumerProgram<T>::State {
   }
 
   /// An answer line's numbers, or why it is not an answer of its kind.
-  Expected<std::vector<T>> numbers_of(const std::string& line, ConsumerKind kind) const {
+  Expected<std::vector<T>> read_answer(const std::string& line, ConsumerKind kind) const {
     const auto [count, group] = wire::answer_shape(kind);
     const Expected<std::vector<T>> numbers =
         protocol::read_consumer_answer<T>(line, kind, count, group);
@@ -96,7 +96,7 @@ struct ConsumerProgram<T>::State {
       extra.insert(extra.begin(), answer);
       fail(ProgramFailure::Kind::protocol, "lines beyond the one answer to this request", extra);
     }
-    const Expected<std::vector<T>> numbers = numbers_of(answer, kind);
+    const Expected<std::vector<T>> numbers = read_answer(answer, kind);
     if (!numbers) fail(ProgramFailure::Kind::protocol, numbers.error(), {answer});
     return *numbers;
   }
@@ -136,7 +136,7 @@ typename ConsumerProgram<T>::Batch ConsumerProgram<T>::answer(
     return out;
   }
   for (std::size_t i = 0; i < out.lines.size(); ++i) {
-    const Expected<std::vector<T>> numbers = s.numbers_of(out.lines[i], asks[i]->kind);
+    const Expected<std::vector<T>> numbers = s.read_answer(out.lines[i], asks[i]->kind);
     if (!numbers) {
       s.request = requests[i];
       out.failure = s.failure(ProgramFailure::Kind::protocol, numbers.error(), {out.lines[i]});
