@@ -79,7 +79,7 @@ TYPED_TEST(ApplyBatch, batchGivesWhatApplyGives) {
     std::vector<Matrix4<T>> matrices;
     std::vector<Vector4<T>> planes;
     for (int i = 0; i < 600; ++i) {
-      const generators::Case<T> c = i % 3 == 2 ? invalid(random.split(), i % 101).value().base
+      const generators::Case<T> c = i % 3 == 2 ? invalid(random.split(), i % 101).value()
                                                : valid(random.split(), i % 101).value();
       matrices.push_back(c.matrix);
       planes.push_back(c.plane);
@@ -125,7 +125,7 @@ std::vector<generators::Case<T>> batch_pool(int size, std::uint64_t seed) {
   for (int i = 0; i < size; ++i) {
     generators::Case<T> c = valid(random.split(), i % 101).value();
     const int pick = i % 11;
-    if (pick == 1) c = invalid(random.split(), i % 101).value().base;
+    if (pick == 1) c = invalid(random.split(), i % 101).value();
     if (pick == 2 || pick == 3) {
       const T special = specials[std::size_t(i / 11) % specials.size()];
       const int entry = (i / 3) % 20;

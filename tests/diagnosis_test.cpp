@@ -37,7 +37,7 @@ Diagnosis first_finding_diagnosed(const Implementation<T>& impl, int cases = 400
   const auto invalid = generators::invalid_case<T>();
   rc::Random random(26001);
   for (int i = 0; i < cases; ++i) {
-    const generators::Case<T> c = i % 4 == 3 ? invalid(random.split(), i % 101).value().base
+    const generators::Case<T> c = i % 4 == 3 ? invalid(random.split(), i % 101).value()
                                              : valid(random.split(), i % 101).value();
     if (!all_finite(c.matrix) || !all_finite(c.plane)) continue;
     const Observation<T> o = observe(impl, c.matrix, c.plane, c.convention);

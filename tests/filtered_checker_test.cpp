@@ -160,7 +160,7 @@ void move_to_the_ends(Case<T>& c, std::uint64_t index) {
 template <class T>
 void one_case(std::uint64_t index, rc::Random& random, Tally& tally) {
   const bool invalid = index % 5 == 4;
-  Case<T> c = invalid ? generators::invalid_case<T>()(random.split(), int(index % 101)).value().base
+  Case<T> c = invalid ? generators::invalid_case<T>()(random.split(), int(index % 101)).value()
                       : generators::valid_case<T>()(random.split(), int(index % 101)).value();
   move_to_the_ends(c, index);
   ++tally.cases;

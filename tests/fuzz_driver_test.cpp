@@ -1,12 +1,18 @@
 // The fuzz driver honours the contract (oblique/fuzzing.h): a family or a defect it does not claim
 // is not given to the function, and under unit planes the plane reaches it with a unit normal.
+// Built inputs (oblique/fuzzing/driver.h's decode()) are the case builder's: of the contract's
+// families, conventions, places and defects, and they reach the judgement.
 #include "oblique/fuzzing.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
+#include <random>
+#include <set>
 #include <vector>
+
+#include "oblique/fuzzing/driver.h"
 
 #include "oblique/oblique.h"
 
@@ -102,6 +108,125 @@ TEST(FuzzDriverContract, theConsumerDriverUsesOnlyTheContractsFamilies) {
   EXPECT_EQ(fuzzing::test_consumers(box.data(), box.size(), wrong_mirror, perspective_only), 0);
   EXPECT_DEATH(fuzzing::test_consumers(box.data(), box.size(), wrong_mirror, Contract{}),
                "identity_mirror");
+}
+
+// A built input: scalar byte `scalar`, a family byte in the built window, the rest random picks.
+std::vector<std::uint8_t> built_input(std::mt19937& random, std::uint8_t scalar) {
+  std::vector<std::uint8_t> in(96);
+  for (auto& b : in) b = static_cast<std::uint8_t>(random());
+  in[0] = scalar;
+  in[3] = static_cast<std::uint8_t>(fuzzing::kBuiltLow +
+                                    random() % (fuzzing::kBuiltHigh - fuzzing::kBuiltLow));
+  return in;
+}
+
+template <class E>
+bool listed(const std::vector<E>& list, E value) {
+  return std::find(list.begin(), list.end(), value) != list.end();
+}
+
+TEST(FuzzDriverBuilder, builtCasesAreOfTheContractsFamiliesConventionsPlacesAndDefects) {
+  using generators::Family;
+  using generators::Place;
+  Contract given;
+  given.families = {Family::orthographic, Family::x_flipped};
+  given.conventions = {Convention::reversed_z};
+  given.places = {Place::near_eye, Place::typical};
+  given.defects = {generators::Defect::singular};
+  const Contract contract =
+      resolved(given, generators::every_convention(), properties::StatusContract::exact, false);
+  std::mt19937 random(4501);
+  std::set<Family> families;
+  std::set<Place> places;
+  int spoiled = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const std::vector<std::uint8_t> bytes = built_input(random, static_cast<std::uint8_t>(i % 3));
+    const fuzzing::FuzzCase c = fuzzing::decode(bytes.data(), bytes.size(), contract);
+    ASSERT_EQ(c.family, fuzzing::kBuilt);
+    const generators::Case<long double>& in = c.input;
+    ASSERT_TRUE(listed(given.families, in.family)) << generators::family_name(in.family);
+    ASSERT_TRUE(listed(given.places, in.place)) << generators::place_name(in.place);
+    ASSERT_EQ(in.convention, Convention::reversed_z);
+    families.insert(in.family);
+    places.insert(in.place);
+    if (in.defect) {
+      ASSERT_EQ(*in.defect, generators::Defect::singular);
+      ++spoiled;
+      continue;
+    }
+    // What the numbers are, not only what the case says: a box keeps w = 1; a mirror camera has
+    // M11 < 0; a plane at near_eye passes within 2^-8 |N| of the eye (rounded to T: 2^-7).
+    if (in.family == Family::orthographic)
+      EXPECT_EQ(in.matrix.row(3), (Vector4<long double>(0, 0, 0, 1).transpose()));
+    else
+      EXPECT_LT(in.matrix(0, 0), 0);
+    if (in.place == Place::near_eye)
+      EXPECT_LE(std::abs(in.plane.w()), std::ldexp(1.0L, -7) * in.plane.head<3>().norm());
+  }
+  EXPECT_EQ(families.size(), 2u);
+  EXPECT_EQ(places.size(), 2u);
+  EXPECT_GT(spoiled, 3000 / 10);  // one in five
+  EXPECT_LT(spoiled, 3000 * 3 / 10);
+}
+
+TEST(FuzzDriverBuilder, builtCasesDrawEveryFamilyPlaceConventionAndDefect) {
+  std::mt19937 random(4502);
+  std::set<generators::Family> families;
+  std::set<generators::Place> places;
+  std::set<Convention> conventions;
+  std::set<generators::Defect> defects;
+  for (int i = 0; i < 4000; ++i) {
+    const std::vector<std::uint8_t> bytes = built_input(random, static_cast<std::uint8_t>(i % 3));
+    const fuzzing::FuzzCase c = fuzzing::decode(bytes.data(), bytes.size());
+    families.insert(c.input.family);
+    places.insert(c.input.place);
+    conventions.insert(c.input.convention);
+    if (c.input.defect) defects.insert(*c.input.defect);
+  }
+  EXPECT_EQ(families.size(), std::size(generators::all_families));
+  EXPECT_EQ(places.size(), std::size(generators::all_places));
+  EXPECT_EQ(conventions.size(), std::size(all_conventions));
+  EXPECT_EQ(defects.size(), std::size(generators::all_defects));
+}
+
+// What reached the function of the next test, and how many of its answers were judged.
+std::vector<Matrix4<double>> given_matrices;
+
+TEST(FuzzDriverBuilder, underANarrowContractBuiltInputsReachTheFunctionAndAreJudged) {
+  // The core, recording what it is given.
+  const auto recording_core =
+      adapt<double>("recording_core", Layout::column_major,
+                    [](const Matrix4<double>& m, const Vector4<double>& c, Convention k) {
+                      given_matrices.push_back(m);
+                      return apply<double>(m, c, k);
+                    });
+  Contract boxes;
+  boxes.families = {generators::Family::orthographic};
+  // Defects that spoil the plane only, so every matrix given is still a box.
+  boxes.defects = {generators::Defect::camera_in_front, generators::Defect::misses_view_volume};
+  std::mt19937 random(4503);
+  given_matrices.clear();
+  const long judged_before = fuzzing::counts().judged;
+  constexpr int kInputs = 400;
+  for (int i = 0; i < kInputs; ++i) {
+    const std::vector<std::uint8_t> bytes = built_input(random, 1);  // double
+    ASSERT_EQ(fuzzing::test_one_input(bytes.data(), bytes.size(), recording_core, boxes), 0);
+  }
+  // Every built input is a box: most reach the function and are judged (some have no answer
+  // that is decidable in double, or are spoiled into one a function is not asked).
+  const long judged = fuzzing::counts().judged - judged_before;
+  EXPECT_GT(judged, kInputs / 2);
+  EXPECT_EQ(static_cast<long>(given_matrices.size()), judged);
+  for (const Matrix4<double>& m : given_matrices)
+    ASSERT_EQ(m.row(3), (Vector4<double>(0, 0, 0, 1).transpose()));
+  // Decoded-number inputs of other shapes are left out, not given.
+  given_matrices.clear();
+  for (int i = 0; i < kInputs; ++i) {
+    std::vector<std::uint8_t> bytes = built_input(random, 1);
+    bytes[3] = 0;  // a frustum
+    ASSERT_EQ(fuzzing::test_one_input(bytes.data(), bytes.size(), recording_core, boxes), 0);
+  }
+  EXPECT_TRUE(given_matrices.empty());
 }
 
 }  // namespace

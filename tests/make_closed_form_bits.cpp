@@ -65,8 +65,8 @@ void write_scalar(int per_source) {
     const auto gen = generators::invalid_case<T>();
     rc::Random random(17002);
     for (int i = 0; i < per_source / 2; ++i) {
-      const generators::InvalidCase<T> c = gen(random.split(), i % 101).value();
-      write(c.base.matrix, c.base.plane, c.base.convention, method_for<T>(i));
+      const generators::Case<T> c = gen(random.split(), i % 101).value();
+      write(c.matrix, c.plane, c.convention, method_for<T>(i));
     }
   }
   {

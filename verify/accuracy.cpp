@@ -21,20 +21,20 @@ AccuracyLook<T>::AccuracyLook(const VerifyOptions& options, std::ostream& out, s
 }
 
 template <class T>
-void AccuracyLook<T>::passed(const VerifyCase<T>& v, const std::string& request,
+void AccuracyLook<T>::passed(const generators::Case<T>& v, const std::string& request,
                              const std::string& answer) {
-  if (v.has_defect) return;
+  if (v.defect) return;
   if (static_cast<long>(mine_.answers.size()) + mine_.refused >= kMaxProfiled) {
     ++skipped_;
     return;
   }
-  const properties::Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+  const properties::Problem<T> problem(v.matrix, v.plane, v.convention);
   if (problem.exact_status() != Status::ok) return;
   const Expected<protocol::TypedAnswer<T>> read = protocol::read_answer<T>(answer);
   if (!read) return;  // judged already: a protocol error never reaches here
-  inputs_.push_back({v.c.matrix, v.c.plane, v.c.convention,
-                     std::string(generators::family_name(v.c.family)),
-                     std::string(generators::place_name(v.c.place)), request});
+  inputs_.push_back({v.matrix, v.plane, v.convention,
+                     std::string(generators::family_name(v.family)),
+                     std::string(generators::place_name(v.place)), request});
   report::record_answer(mine_, problem, inputs_.back(), read->status, read->projection);
 }
 

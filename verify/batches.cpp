@@ -20,12 +20,12 @@ Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
                     LeftOut& left_out) {
   Batch<T> b;
   for (std::size_t k = 0, tries = 0; k < size && tries < 64 * size + 64; ++tries) {
-    rc::Shrinkable<VerifyCase<T>> drawn =
+    rc::Shrinkable<generators::Case<T>> drawn =
         draws.generator()(random.split(), static_cast<int>(tries % 101));
-    VerifyCase<T> value = drawn.value();
+    generators::Case<T> value = drawn.value();
     if (draws.needs_status()) {
-      auto problem = std::make_unique<properties::FilteredProblem<T>>(value.c.matrix, value.c.plane,
-                                                                      value.c.convention);
+      auto problem = std::make_unique<properties::FilteredProblem<T>>(value.matrix, value.plane,
+                                                                      value.convention);
       if (const std::string why = draws.left_out(*problem); !why.empty()) {
         left_out.count(value, why);
         continue;
@@ -37,7 +37,7 @@ Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
     ++k;
     b.cases.push_back(std::move(drawn));
     b.values.push_back(std::move(value));
-    b.requests.push_back(request_text(b.values.back().c));
+    b.requests.push_back(request_text(b.values.back()));
   }
   return b;
 }
@@ -66,11 +66,11 @@ std::vector<Judged<T>> judge_batch(const Draws<T>& draws, const Batch<T>& b,
         out[k].protocol_error = answered.error();
         continue;
       }
-      const VerifyCase<T>& v = b.values[k];
+      const generators::Case<T>& v = b.values[k];
       if (b.problems[k]) {
         out[k].finding = judge(*b.problems[k], *answered, draws.checks());
       } else {
-        const properties::FilteredProblem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+        const properties::FilteredProblem<T> problem(v.matrix, v.plane, v.convention);
         out[k].finding = judge(problem, *answered, draws.checks());
       }
     }

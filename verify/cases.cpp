@@ -12,30 +12,17 @@ namespace oblique::verify {
 
 using generators::Defect;
 
-template <class T>
-std::string VerifyCase<T>::kind() const {
-  return has_defect ? "no answer: " + std::string(generators::defect_name(defect))
-                    : std::string(generators::place_name(c.place));
-}
-
 namespace {
 
 /// A case of the resolved contract: four in five have an answer (the pick shrinks toward those),
 /// the others one of its defects when its statuses are judged.
 template <class T>
-rc::Gen<VerifyCase<T>> verify_case(const Contract& contract) {
+rc::Gen<generators::Case<T>> verify_case(const Contract& contract) {
   const bool defects = *contract.statuses != properties::StatusContract::answers_only;
   return rc::gen::exec([contract, defects] {
-    VerifyCase<T> v;
-    if (!defects || *rc::gen::resize(100, rc::gen::inRange(0, 5)) < 4) {
-      v.c = *generators::valid_case_for<T>(contract);
-    } else {
-      const generators::InvalidCase<T> ic = *generators::invalid_case_for<T>(contract);
-      v.c = ic.base;
-      v.has_defect = true;
-      v.defect = ic.defect;
-    }
-    return v;
+    if (!defects || *rc::gen::resize(100, rc::gen::inRange(0, 5)) < 4)
+      return *generators::valid_case_for<T>(contract);
+    return *generators::invalid_case_for<T>(contract);
   });
 }
 
@@ -126,13 +113,13 @@ bool consistent_with_float(const generators::Case<T>& c, const Matrix4<T>& answe
 }
 
 template <class T>
-void Seen::count(const VerifyCase<T>& v) {
-  ++families[std::string(generators::family_name(v.c.family))];
-  ++conventions[std::string(convention_name(v.c.convention))];
-  if (v.has_defect)
-    ++defects[std::string(generators::defect_name(v.defect))];
+void Seen::count(const generators::Case<T>& v) {
+  ++families[std::string(generators::family_name(v.family))];
+  ++conventions[std::string(convention_name(v.convention))];
+  if (v.defect)
+    ++defects[std::string(generators::defect_name(*v.defect))];
   else
-    ++places[std::string(generators::place_name(v.c.place))];
+    ++places[std::string(generators::place_name(v.place))];
 }
 
 std::string Seen::summary(const std::map<std::string, long>& counts) {
@@ -140,10 +127,10 @@ std::string Seen::summary(const std::map<std::string, long>& counts) {
 }
 
 template <class T>
-void LeftOut::count(const VerifyCase<T>& v, const std::string& reason) {
+void LeftOut::count(const generators::Case<T>& v, const std::string& reason) {
   ++why[reason];
-  ++families[std::string(generators::family_name(v.c.family))];
-  ++conventions[std::string(convention_name(v.c.convention))];
+  ++families[std::string(generators::family_name(v.family))];
+  ++conventions[std::string(convention_name(v.convention))];
 }
 
 namespace {
@@ -211,7 +198,6 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
 }
 
 #define OBLIQUE_VERIFY_CASES(T)                                                         \
-  template struct VerifyCase<T>;                                                        \
   template class Draws<T>;                                                              \
   template std::string request_text<T>(const generators::Case<T>&);                     \
   template std::optional<Found<T>> judge<T>(const properties::FilteredProblem<T>&,      \
@@ -219,8 +205,8 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
                                             const properties::Checks&);                 \
   template bool consistent_with_float<T>(const generators::Case<T>&, const Matrix4<T>&, \
                                          const properties::Checks&);                    \
-  template void Seen::count<T>(const VerifyCase<T>&);                                   \
-  template void LeftOut::count<T>(const VerifyCase<T>&, const std::string&);
+  template void Seen::count<T>(const generators::Case<T>&);                             \
+  template void LeftOut::count<T>(const generators::Case<T>&, const std::string&);
 OBLIQUE_VERIFY_CASES(float)
 OBLIQUE_VERIFY_CASES(double)
 #undef OBLIQUE_VERIFY_CASES

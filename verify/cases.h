@@ -19,17 +19,6 @@
 
 namespace oblique::verify {
 
-/// One generated input: a valid-looking case, or one spoiled by a defect.
-template <class T>
-struct VerifyCase {
-  generators::Case<T> c;
-  bool has_defect = false;
-  generators::Defect defect = generators::Defect::camera_in_front;
-
-  /// The hard place, or "no answer: DEFECT".
-  std::string kind() const;
-};
-
 /// What went wrong with one answer (or with the process while it was answering): the finding
 /// and its evidence.
 template <class T>
@@ -49,7 +38,7 @@ class Draws {
 
   const Contract& contract() const { return contract_; }
   const properties::Checks& checks() const { return checks_; }
-  const rc::Gen<VerifyCase<T>>& generator() const { return generator_; }
+  const rc::Gen<generators::Case<T>>& generator() const { return generator_; }
   /// What the contract leaves out whatever is drawn ("place scaled (unit-normal planes)", ...).
   const std::vector<std::string>& notes() const { return notes_; }
   /// Whether some inputs are left out by their status (the contract lacks a refusal).
@@ -61,7 +50,7 @@ class Draws {
  private:
   Contract contract_;
   properties::Checks checks_;
-  rc::Gen<VerifyCase<T>> generator_;
+  rc::Gen<generators::Case<T>> generator_;
   std::vector<std::string> notes_;
 };
 
@@ -90,7 +79,7 @@ struct Seen {
   std::map<std::string, long> families, conventions, places, defects;
 
   template <class T>
-  void count(const VerifyCase<T>& v);
+  void count(const generators::Case<T>& v);
   /// "name count, ..." or "none".
   static std::string summary(const std::map<std::string, long>& counts);
 };
@@ -101,7 +90,7 @@ struct LeftOut {
   std::map<std::string, long> why, families, conventions;
 
   template <class T>
-  void count(const VerifyCase<T>& v, const std::string& reason);
+  void count(const generators::Case<T>& v, const std::string& reason);
 };
 
 /// One line for each family and convention the contract claims of which no case was judged in

@@ -40,8 +40,8 @@ Expected<std::optional<protocol::Precision>> report_precision(const std::string&
 }
 
 template <class T>
-Expected<VerifyCase<T>> read_report_case(const std::string& path) {
-  using Result = Expected<VerifyCase<T>>;
+Expected<generators::Case<T>> read_report_case(const std::string& path) {
+  using Result = Expected<generators::Case<T>>;
   const Expected<protocol::JsonValue> j = read_report(path);
   if (!j) return Result::failure(j.error());
   const protocol::JsonValue* request = j->find("request");
@@ -54,21 +54,21 @@ Expected<VerifyCase<T>> read_report_case(const std::string& path) {
   }
   const Expected<protocol::Request> parsed = protocol::parse_request(request->text);
   if (!parsed) return Result::failure(path + ": " + parsed.error());
-  VerifyCase<T> v;
+  generators::Case<T> v;
   for (int i = 0; i < 16; ++i) {
     const Expected<T> value = protocol::parse_number<T>(parsed->projection[i]);
     if (!value) return Result::failure(path + ": " + value.error());
-    v.c.matrix(i / 4, i % 4) = *value;
+    v.matrix(i / 4, i % 4) = *value;
   }
   for (int i = 0; i < 4; ++i) {
     const Expected<T> value = protocol::parse_number<T>(parsed->plane[i]);
     if (!value) return Result::failure(path + ": " + value.error());
-    v.c.plane(i) = *value;
+    v.plane(i) = *value;
   }
-  v.c.convention = parsed->convention.value_or(Convention::gl);
+  v.convention = parsed->convention.value_or(Convention::gl);
   if (const protocol::JsonValue* family = j->find("family");
       family && family->is(protocol::JsonValue::Kind::string)) {
-    if (auto f = generators::parse_family(family->text)) v.c.family = *f;
+    if (auto f = generators::parse_family(family->text)) v.family = *f;
   }
   return v;
 }
@@ -92,11 +92,11 @@ void save_regression(const std::string& json_path, const std::string& folder, st
 }
 
 template <class T>
-void FailureDatabase<T>::accuracy_again(const std::string& path, const VerifyCase<T>& v) {
+void FailureDatabase<T>::accuracy_again(const std::string& path, const generators::Case<T>& v) {
   const Expected<protocol::JsonValue> j = read_report(path);
   const auto& answer = session_.last_answer();
   if (!j || !report_is(*j, "accuracy") || !answer || answer->status != Status::ok) return;
-  const properties::Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+  const properties::Problem<T> problem(v.matrix, v.plane, v.convention);
   if (problem.exact_status() != Status::ok) return;
   const report::ProfiledAnswer now = report::profile_answer(problem, answer->projection);
   std::string recorded;
@@ -113,7 +113,7 @@ void FailureDatabase<T>::accuracy_again(const std::string& path, const VerifyCas
 
 template <class T>
 Verdict FailureDatabase<T>::replay(const std::string& path, bool verbose) {
-  const Expected<VerifyCase<T>> v = read_report_case<T>(path);
+  const Expected<generators::Case<T>> v = read_report_case<T>(path);
   if (!v) {
     err_ << "oblique verify: --replay: " << v.error() << "\n";
     return Verdict::error;
@@ -124,7 +124,7 @@ Verdict FailureDatabase<T>::replay(const std::string& path, bool verbose) {
     case Evaluation::pass:
       if (verbose) {
         out_ << "oblique verify: " << path << ": holds (" << protocol::scalar_name<T>() << ", "
-             << convention_name(v->c.convention) << ")\n";
+             << convention_name(v->convention) << ")\n";
         accuracy_again(path, *v);
       }
       return Verdict::holds;
@@ -162,7 +162,7 @@ Verdict FailureDatabase<T>::replay_all(const std::string& folder) {
   std::sort(paths.begin(), paths.end());
   long replayed = 0, other_precision = 0;
   for (const std::string& path : paths) {
-    const Expected<VerifyCase<T>> v = read_report_case<T>(path);
+    const Expected<generators::Case<T>> v = read_report_case<T>(path);
     if (!v) {
       if (v.error().find(" case, not ") != std::string::npos) {
         ++other_precision;
@@ -189,8 +189,8 @@ Verdict FailureDatabase<T>::replay_all(const std::string& folder) {
   return Verdict::holds;
 }
 
-template Expected<VerifyCase<float>> read_report_case<float>(const std::string&);
-template Expected<VerifyCase<double>> read_report_case<double>(const std::string&);
+template Expected<generators::Case<float>> read_report_case<float>(const std::string&);
+template Expected<generators::Case<double>> read_report_case<double>(const std::string&);
 template class FailureDatabase<float>;
 template class FailureDatabase<double>;
 

@@ -47,8 +47,9 @@ bool RasterLook<T>::open() {
 }
 
 template <class T>
-std::optional<raster::Result> RasterLook<T>::draw(const VerifyCase<T>& v, const std::string& answer,
-                                                  std::uint64_t seed, std::string* why) {
+std::optional<raster::Result> RasterLook<T>::draw(const generators::Case<T>& v,
+                                                  const std::string& answer, std::uint64_t seed,
+                                                  std::string* why) {
   auto not_drawn = [why](std::string reason) {
     if (why) *why = std::move(reason);
     return std::nullopt;
@@ -56,8 +57,8 @@ std::optional<raster::Result> RasterLook<T>::draw(const VerifyCase<T>& v, const 
   const Expected<protocol::TypedAnswer<T>> read = protocol::read_answer<T>(answer);
   if (!read || read->status != Status::ok) return not_drawn("the answer holds no matrix");
   raster::Result r =
-      rasterizer_->check(v.c.matrix.template cast<double>(), v.c.plane.template cast<double>(),
-                         read->projection.template cast<double>(), v.c.convention,
+      rasterizer_->check(v.matrix.template cast<double>(), v.plane.template cast<double>(),
+                         read->projection.template cast<double>(), v.convention,
                          options_.raster_buffer, seed, std::numeric_limits<T>::digits);
   if (!r.rendered) {
     ++not_drawn_;
@@ -69,8 +70,9 @@ std::optional<raster::Result> RasterLook<T>::draw(const VerifyCase<T>& v, const 
 }
 
 template <class T>
-std::optional<Verdict> RasterLook<T>::sample(const VerifyCase<T>& v, const std::string& request,
-                                             const std::string& answer, long index) {
+std::optional<Verdict> RasterLook<T>::sample(const generators::Case<T>& v,
+                                             const std::string& request, const std::string& answer,
+                                             long index) {
   if (index != 1 && index % options_.raster_every != 0) return std::nullopt;
   const std::optional<raster::Result> r =
       draw(v, answer, options_.seed ^ static_cast<std::uint64_t>(index));
@@ -84,7 +86,7 @@ std::optional<Verdict> RasterLook<T>::sample(const VerifyCase<T>& v, const std::
 }
 
 template <class T>
-void RasterLook<T>::finding(const VerifyCase<T>& v, const std::string& answer,
+void RasterLook<T>::finding(const generators::Case<T>& v, const std::string& answer,
                             const std::string& report_md) {
   std::string why;
   const std::optional<raster::Result> r = draw(v, answer, options_.seed, &why);
@@ -137,7 +139,7 @@ void RasterLook<T>::summary() const {
 }
 
 template <class T>
-Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request,
+Verdict RasterLook<T>::report(const generators::Case<T>& v, const std::string& request,
                               const std::string& answer, const raster::Result& r, long index) {
   report::ReportFiles files(options_.report_dir);
   const std::string stem = files.reserve_stem("verify-raster", {".md", ".json"});
@@ -147,11 +149,12 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
       "# Counterexample: the rasterizer\n\n`" + options_.command +
       "`'s answer passes the properties, but drawn on " + rasterizer_->renderer() +
       " it fails: " + r.why +
-      ".\n\n## The case\n\n- family: " + std::string(generators::family_name(v.c.family)) +
-      ", place " + v.kind() + "\n- convention: " + std::string(convention_name(v.c.convention)) +
-      ", depth buffer " + std::string(depth_buffer_name(options_.raster_buffer)) +
-      "\n- M: " + properties::numbers_text(v.c.matrix) +
-      "\n- C: " + properties::numbers_text(v.c.plane) + "\n\nAnswer " + std::to_string(index) +
+      ".\n\n## The case\n\n- family: " + std::string(generators::family_name(v.family)) +
+      ", place " + generators::case_kind(v) +
+      "\n- convention: " + std::string(convention_name(v.convention)) + ", depth buffer " +
+      std::string(depth_buffer_name(options_.raster_buffer)) +
+      "\n- M: " + properties::numbers_text(v.matrix) +
+      "\n- C: " + properties::numbers_text(v.plane) + "\n\nAnswer " + std::to_string(index) +
       " of the run. The request:\n\n```\n" + request + "\n```\n\nThe answer:\n\n```\n" + answer +
       "\n```\n\n";
   md += raster::stage_flagged_section(files, stem, r, options_.raster_size);
@@ -164,11 +167,11 @@ Verdict RasterLook<T>::report(const VerifyCase<T>& v, const std::string& request
   files.open(stem + ".json")
       << "{\"type\": \"raster\", \"finding\": " << protocol::json_string(r.why)
       << ", \"precision\": " << protocol::json_string(protocol::scalar_name<T>())
-      << ", \"convention\": " << protocol::json_string(convention_name(v.c.convention))
+      << ", \"convention\": " << protocol::json_string(convention_name(v.convention))
       << ", \"buffer\": \"" << std::string(depth_buffer_name(options_.raster_buffer))
       << "\", \"size\": " << options_.raster_size
       << ", \"seed\": " << (options_.seed ^ static_cast<std::uint64_t>(index))
-      << ", \"projection\": " << hex_list(v.c.matrix) << ", \"plane\": " << hex_list(v.c.plane)
+      << ", \"projection\": " << hex_list(v.matrix) << ", \"plane\": " << hex_list(v.plane)
       << ", \"request\": " << protocol::json_string(request)
       << ", \"answer\": " << protocol::json_string(answer) << "}\n";
   err_ << "oblique verify: raster: answer " << index << " passes the properties but fails on "
@@ -205,10 +208,10 @@ Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonV
   if (size && size->is_number()) o.raster_size = std::atoi(size->text.c_str());
   const std::uint64_t frame_seed =
       seed && seed->is_number() ? std::strtoull(seed->text.c_str(), nullptr, 10) : 1;
-  VerifyCase<double> v;
-  for (int i = 0; i < 16; ++i) v.c.matrix(i / 4, i % 4) = m[static_cast<std::size_t>(i)];
-  for (int i = 0; i < 4; ++i) v.c.plane(i) = c[static_cast<std::size_t>(i)];
-  v.c.convention = *parsed;
+  generators::Case<double> v;
+  for (int i = 0; i < 16; ++i) v.matrix(i / 4, i % 4) = m[static_cast<std::size_t>(i)];
+  for (int i = 0; i < 4; ++i) v.plane(i) = c[static_cast<std::size_t>(i)];
+  v.convention = *parsed;
   protocol::ChildProcess child(options.command);
   if (const Expected<Done> started = child.start(); !started)
     return fail("cannot start the implementation: " + started.error());

@@ -35,20 +35,19 @@ Reporter<T>::Reporter(const VerifyOptions& options, const Draws<T>& draws, std::
     : options_(options), draws_(draws), out_(out), err_(err) {}
 
 template <class T>
-Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int steps,
+Verdict Reporter<T>::finding(const generators::Case<T>& v, const Found<T>& found, int steps,
                              bool out_of_time, long found_after_cases, double found_after_seconds,
                              const properties::Diagnosis& diagnosis) {
   const properties::Finding& f = found.finding;
-  properties::Counterexample ce =
-      properties::make_counterexample(v.c.matrix, v.c.plane, v.c.convention);
+  properties::Counterexample ce = properties::make_counterexample(v.matrix, v.plane, v.convention);
   ce.finding = f;
   ce.implementation = options_.command;
-  ce.family = std::string(generators::family_name(v.c.family));
-  const properties::Problem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+  ce.family = std::string(generators::family_name(v.family));
+  const properties::Problem<T> problem(v.matrix, v.plane, v.convention);
   // "no answer: DEFECT" only where the input has none (a near_singular one may well have one).
-  ce.place = v.has_defect && problem.exact_status() == Status::ok
-                 ? std::string(generators::defect_name(v.defect)) + " (has an answer)"
-                 : v.kind();
+  ce.place = v.defect && problem.exact_status() == Status::ok
+                 ? std::string(generators::defect_name(*v.defect)) + " (has an answer)"
+                 : generators::case_kind(v);
   if (found.result) properties::set_result(ce, *found.result);
   if (diagnosis.ran) ce.diagnosis = diagnosis;
   properties::set_views(ce, problem, found.result ? &*found.result : nullptr);
@@ -68,8 +67,7 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
   if (!found.process.empty()) ce.notes.emplace_back("process", found.process);
   // A float engine judged under double's bounds: every entry a float, and the answer holds under
   // float's bounds on the input as a float engine reads it.
-  const bool float_like =
-      found.result && consistent_with_float(v.c, *found.result, draws_.checks());
+  const bool float_like = found.result && consistent_with_float(v, *found.result, draws_.checks());
   const std::string float_hint =
       "the answer's entries are floats (9 significant digits or fewer), and it holds under "
       "float's bounds on this input "
@@ -80,7 +78,7 @@ Verdict Reporter<T>::finding(const VerifyCase<T>& v, const Found<T>& found, int 
   ce.notes.emplace_back("found after", std::to_string(found_after_cases) + " cases, " +
                                            seconds_text(found_after_seconds) + " s");
 
-  const std::string request = request_text(v.c);
+  const std::string request = request_text(v);
   properties::ReportContext context;
   context.directory = options_.report_dir;
   context.stem = "verify-" + std::string(check_name(f.check));

@@ -26,10 +26,11 @@ double Session<T>::seconds_since_start() const {
 }
 
 template <class T>
-typename Session<T>::Evaluation Session<T>::evaluate(const VerifyCase<T>& v, Found<T>& finding) {
+typename Session<T>::Evaluation Session<T>::evaluate(const generators::Case<T>& v,
+                                                     Found<T>& finding) {
   last_answer_.reset();
   if (out_of_time()) return Evaluation::out_of_time;
-  const properties::FilteredProblem<T> problem(v.c.matrix, v.c.plane, v.c.convention);
+  const properties::FilteredProblem<T> problem(v.matrix, v.plane, v.convention);
   if (draws_.needs_status() && !draws_.left_out(problem).empty())
     return Evaluation::pass;  // not an input the implementation promises anything for
   issue_ = Issue{};
@@ -44,7 +45,7 @@ typename Session<T>::Evaluation Session<T>::evaluate(const VerifyCase<T>& v, Fou
     issue_ = Issue{"lines beyond the one answer to this request", last_request_, left};
     return Evaluation::protocol_error;
   }
-  const std::string request = request_text(v.c);
+  const std::string request = request_text(v);
   last_request_ = request;
   std::vector<std::string> answers;
   const auto outcome = child_.exchange(request + "\n", 1, answers, idle_, deadline_);
@@ -81,13 +82,13 @@ typename Session<T>::Evaluation Session<T>::evaluate(const VerifyCase<T>& v, Fou
 }
 
 template <class T>
-std::optional<properties::Observation<T>> Session<T>::observe(const VerifyCase<T>& v) {
+std::optional<properties::Observation<T>> Session<T>::observe(const generators::Case<T>& v) {
   Found<T> found;
   const Evaluation e = evaluate(v, found);
   if (!last_answer_ || (e != Evaluation::pass && e != Evaluation::finding)) return std::nullopt;
-  return properties::Observation<T>{v.c.matrix,
-                                    v.c.plane,
-                                    v.c.convention,
+  return properties::Observation<T>{v.matrix,
+                                    v.plane,
+                                    v.convention,
                                     last_answer_->status,
                                     last_answer_->projection,
                                     e == Evaluation::finding};

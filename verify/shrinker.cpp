@@ -38,7 +38,7 @@ Verdict Shrinker<T>::confirm(const Batch<T>& batch, std::size_t k,
 }
 
 template <class T>
-Verdict Shrinker<T>::shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<T> finding,
+Verdict Shrinker<T>::shrink(const rc::Shrinkable<generators::Case<T>>& failing, Found<T> finding,
                             long cases_run) {
   using Evaluation = typename Session<T>::Evaluation;
   const long found_after_cases = cases_run;
@@ -47,7 +47,7 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<
   out_ << "oblique verify: " << check_name(finding.finding.check) << " violated after " << cases_run
        << " cases; shrinking";
   out_.flush();
-  rc::Shrinkable<VerifyCase<T>> current = failing;
+  rc::Shrinkable<generators::Case<T>> current = failing;
   int steps = 0, tries = 0;
   bool out_of_time = false;
   // Timeouts cost the whole timeout per try: the case is reported as found.
@@ -87,16 +87,17 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<VerifyCase<T>>& failing, Found<
 }
 
 template <class T>
-properties::Diagnosis Shrinker<T>::diagnose(const VerifyCase<T>& shrunk, const Found<T>& finding) {
+properties::Diagnosis Shrinker<T>::diagnose(const generators::Case<T>& shrunk,
+                                            const Found<T>& finding) {
   using properties::Check;
   const Check check = finding.finding.check;
   if (check == Check::crash || check == Check::timeout || check == Check::protocol) return {};
   // The shrunk case's answer as judged: a matrix, or (a status finding) the refusal.
-  const properties::Observation<T> seen{shrunk.c.matrix,
-                                        shrunk.c.plane,
-                                        shrunk.c.convention,
+  const properties::Observation<T> seen{shrunk.matrix,
+                                        shrunk.plane,
+                                        shrunk.convention,
                                         finding.result ? Status::ok : finding.finding.answered,
-                                        finding.result ? *finding.result : shrunk.c.matrix,
+                                        finding.result ? *finding.result : shrunk.matrix,
                                         true};
   const auto& families = session_.draws().contract().families;
   // A probe the implementation does not answer (it crashed, hung or broke the protocol) ends the
@@ -111,11 +112,11 @@ properties::Diagnosis Shrinker<T>::diagnose(const VerifyCase<T>& shrunk, const F
                                          Convention convention, generators::Family family) {
     if (!answering || std::find(families.begin(), families.end(), family) == families.end())
       return std::optional<properties::Observation<T>>();
-    VerifyCase<T> v;
-    v.c.matrix = m;
-    v.c.plane = c;
-    v.c.convention = convention;
-    v.c.family = family;
+    generators::Case<T> v;
+    v.matrix = m;
+    v.plane = c;
+    v.convention = convention;
+    v.family = family;
     std::optional<properties::Observation<T>> seen = session_.observe(v);
     if (!seen && (!session_.child().running() || !session_.issue().what.empty())) answering = false;
     return seen;
@@ -124,7 +125,7 @@ properties::Diagnosis Shrinker<T>::diagnose(const VerifyCase<T>& shrunk, const F
 }
 
 template <class T>
-Verdict Shrinker<T>::isolate(const std::vector<rc::Shrinkable<VerifyCase<T>>>& cases,
+Verdict Shrinker<T>::isolate(const std::vector<rc::Shrinkable<generators::Case<T>>>& cases,
                              std::size_t answered, long done, ChildProcess::Outcome outcome) {
   using Evaluation = typename Session<T>::Evaluation;
   Found<T> in_batch = session_.lost_finding(outcome);

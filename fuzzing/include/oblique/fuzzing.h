@@ -1,7 +1,10 @@
-// The fuzz driver for your own function: the project's input decoder (scalar type, convention,
-// method, a projection of a family built from decoded parameters or 16 raw numbers, and a
-// plane; every number a special value picked by index or 8 raw bytes), and the exact judgement
-// (properties::judge). A libFuzzer target of a few lines:
+// The fuzz driver for your own function: the project's input decoder, and the exact judgement
+// (properties::judge). The decoder reads an input one of two ways (its fourth byte says which):
+// as the picks of the case builder every way in shares (oblique/cases/case_builder.h), so the
+// case is one of your contract's families, conventions and places as a property run draws them;
+// or as numbers (a projection of a shape built from decoded parameters or 16 raw numbers, and a
+// plane; every number a special value picked by index or 8 raw bytes), the hunt for extreme
+// inputs, a family your contract does not claim left out. A libFuzzer target of a few lines:
 //
 //   #include <oblique/fuzzing.h>
 //   void make_oblique(float m[16], const float plane[4]);   // yours

@@ -23,7 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "oblique/cases/generators.h"
+#include "oblique/cases/case_builder.h"
+#include "oblique/cases/contract.h"
 #include "oblique/fuzzing.h"
 #include "oblique/mistakes/implementations.h"
 #include "oblique/oblique.h"
@@ -112,25 +113,39 @@ inline double number(ByteReader& in) {
   return (selector - kSpecialCount - 64) / 8.0;
 }
 
+/// A decoded fuzz input: the scalar type and method it is run in, and the case, in long double
+/// (which holds each scalar type's numbers exactly).
 struct FuzzCase {
   protocol::Precision scalar = protocol::Precision::float64;
-  Convention convention = Convention::gl;
   Method method = Method::automatic;
-  /// 0..4 built (frustum, infinite, orthographic, y-flipped frustum, rotated), 5 raw, 6 a
+  /// How the numbers were made. kBuilt: by the case builder (case_builder.h) from the bytes as
+  /// its picks, in the scalar type; `input` says the family, place and defect. Else decoded from
+  /// the bytes as numbers (special values, raw doubles), the shapes the hunt for extreme inputs
+  /// uses: 0..4 built (frustum, infinite, orthographic, y-flipped frustum, rotated), 5 raw, 6 a
   /// frustum or infinite frustum times a camera shift T(tx, ty, 0): M14, M24 != 0 (stereo, lens
   /// shift; generators::Family::stereo_shift), 7 an x-flipped frustum (M11 < 0, a mirror camera;
   /// generators::Family::x_flipped), 8 an x- and y-flipped one (generators::Family::xy_flipped),
   /// 9 a left-handed frustum or infinite frustum (camera z negated, M43 = +1;
   /// generators::Family::left_handed).
   int family = 0;
-  Matrix4<double> matrix = Matrix4<double>::Identity();
-  Vector4<double> plane = Vector4<double>::Zero();
+  generators::Case<long double> input;
 };
+inline constexpr int kBuilt = 10;
 
-inline const char* family_label(int family) {
+/// What the case is, in words: a decoded shape ("frustum", "raw", ...), or a built case's
+/// family, place and defect ("built off_axis at near_eye", "built perspective at typical, spoiled:
+/// singular").
+inline std::string family_label(const FuzzCase& c) {
+  if (c.family == kBuilt) {
+    std::string out = "built " + std::string(generators::family_name(c.input.family)) + " at " +
+                      std::string(generators::place_name(c.input.place));
+    if (c.input.defect)
+      out += ", spoiled: " + std::string(generators::defect_name(*c.input.defect));
+    return out;
+  }
   const char* names[] = {"frustum", "infinite",     "orthographic", "y_flipped",  "rotated",
                          "raw",     "stereo_shift", "x_flipped",    "xy_flipped", "left_handed"};
-  return names[family % 10];
+  return names[c.family % 10];
 }
 
 /// The generator families (oblique/cases/case_kinds.h) a decoded case is one of, for a
@@ -138,9 +153,11 @@ inline const char* family_label(int family) {
 /// off_axis or jittered (the decoder does not tell them apart); raw numbers are general.
 inline std::vector<generators::Family> contract_families(const FuzzCase& c) {
   using generators::Family;
+  const Matrix4<long double>& m = c.input.matrix;
   switch (c.family) {
+    case kBuilt: return {c.input.family};
     case 0:
-      if (c.matrix(0, 2) == 0 && c.matrix(1, 2) == 0) return {Family::perspective};
+      if (m(0, 2) == 0 && m(1, 2) == 0) return {Family::perspective};
       return {Family::off_axis, Family::jittered};
     case 1: return {Family::infinite};
     case 2: return {Family::orthographic};
@@ -158,21 +175,26 @@ inline constexpr std::uint8_t kShiftMarker = 0x53;       // 'S'
 inline constexpr std::uint8_t kFlipXMarker = 0x58;       // 'X'
 inline constexpr std::uint8_t kLeftHandedMarker = 0x4c;  // 'L'
 
-/// Builds the case; builder parameters that break a builder's preconditions fall back to raw.
-/// With `conventions` (non-empty), the convention byte picks one of them instead of any of the
-/// three, so a function for one convention is given only inputs of it.
-inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
-                       const std::vector<Convention>& conventions = {}) {
-  ByteReader in(data, size);
-  FuzzCase c;
-  c.scalar = protocol::all_precisions[in.byte() % 3];
-  const int convention_byte = in.byte();
-  c.convention = conventions.empty() ? all_conventions[convention_byte % 3]
-                                     : conventions[convention_byte % conventions.size()];
-  c.method = all_methods[in.byte() % std::size(all_methods)];
-  c.family = in.byte() % 6;
+/// The family byte (the fourth) in [kBuiltLow, kBuiltHigh) makes a built case (FuzzCase::kBuilt).
+/// A window where no kept input's family byte lies (fuzz/regressions, fuzz/corpus when it came
+/// in), so each of them decodes as it did when it was kept; libFuzzer's comparison tracing finds
+/// it.
+inline constexpr int kBuiltLow = 192, kBuiltHigh = 208;
+
+/// Every family, convention, place and defect: the contract of the project's own fuzz target.
+inline const Contract& every_case() {
+  static const Contract every = resolved(Contract{}, generators::every_convention(),
+                                         properties::StatusContract::exact, false);
+  return every;
+}
+
+/// The numbers of a decoded shape (FuzzCase::family 0 .. 9) into m and plane; `c.family` is the
+/// family byte's shape on entry. Builder parameters that break a builder's preconditions fall
+/// back to raw.
+inline void decode_numbers(ByteReader& in, FuzzCase& c, Convention convention, Matrix4<double>& m,
+                           Vector4<double>& plane) {
   if (c.family == 5) {
-    for (int i = 0; i < 16; ++i) c.matrix(i / 4, i % 4) = number(in);
+    for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = number(in);
   } else {
     const double l = number(in), r = number(in), b = number(in), t = number(in);
     const double n = number(in), f = number(in);
@@ -180,25 +202,25 @@ inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
                         std::isfinite(t) && std::isfinite(n) && std::isfinite(f);
     const bool sides = finite && l != r && b != t;
     if (c.family == 2 && sides && n != f) {
-      c.matrix = orthographic(l, r, b, t, n, f, c.convention);
+      m = orthographic(l, r, b, t, n, f, convention);
     } else if (c.family == 1 && sides && n > 0) {
-      c.matrix = infinite_frustum(l, r, b, t, n, c.convention);
+      m = infinite_frustum(l, r, b, t, n, convention);
     } else if (sides && n > 0 && f > n) {
-      c.matrix = frustum(l, r, b, t, n, f, c.convention);
-      if (c.family == 3) c.matrix.row(1) *= -1;
+      m = frustum(l, r, b, t, n, f, convention);
+      if (c.family == 3) m.row(1) *= -1;
       if (c.family == 4) {
         const double angle = number(in);
         const double ca = std::cos(angle), sa = std::sin(angle);
         Matrix4<double> rot = Matrix4<double>::Identity();
         rot(0, 0) = ca, rot(0, 2) = sa, rot(2, 0) = -sa, rot(2, 2) = ca;
-        if (std::isfinite(ca) && std::isfinite(sa)) c.matrix = c.matrix * rot;
+        if (std::isfinite(ca) && std::isfinite(sa)) m = m * rot;
       }
     } else {
       c.family = 5;
-      for (int i = 0; i < 16; ++i) c.matrix(i / 4, i % 4) = number(in);
+      for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = number(in);
     }
   }
-  for (int i = 0; i < 4; ++i) c.plane(i) = number(in);
+  for (int i = 0; i < 4; ++i) plane(i) = number(in);
   // After the plane, the byte kShiftMarker shifts a frustum or infinite frustum by (tx, ty, 0)
   // (two more numbers); kFlipXMarker negates row 1 of a frustum or y-flipped frustum (M11 < 0);
   // kLeftHandedMarker negates column 3 of a frustum or infinite frustum (camera z, M43 = +1).
@@ -207,27 +229,87 @@ inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
   const bool shiftable = c.family == 0 || c.family == 1, flippable = c.family == 0 || c.family == 3;
   const int marker = shiftable || flippable ? in.byte() : -1;
   if (flippable && marker == kFlipXMarker) {
-    c.matrix.row(0) *= -1;
+    m.row(0) *= -1;
     c.family = c.family == 0 ? 7 : 8;
   } else if (shiftable && marker == kShiftMarker) {
     Matrix4<double> shift = Matrix4<double>::Identity();
     shift(0, 3) = number(in);
     shift(1, 3) = number(in);
     if (std::isfinite(shift(0, 3)) && std::isfinite(shift(1, 3))) {
-      c.matrix = c.matrix * shift;
+      m = m * shift;
       c.family = 6;
     }
   } else if (shiftable && marker == kLeftHandedMarker) {
-    c.matrix.col(2) = Vector4<double>::Zero() - c.matrix.col(2);
+    m.col(2) = Vector4<double>::Zero() - m.col(2);
     c.family = 9;
   }
+}
+
+template <class T>
+generators::Case<long double> widened(const generators::Case<T>& c) {
+  generators::Case<long double> out;
+  out.family = c.family;
+  out.convention = c.convention;
+  out.place = c.place;
+  out.defect = c.defect;
+  out.matrix = c.matrix.template cast<long double>();
+  out.plane = c.plane.template cast<long double>();
+  return out;
+}
+
+/// Decodes a fuzz input. Byte 0 picks the scalar type, byte 2 the method. The family byte (byte
+/// 3) in [kBuiltLow, kBuiltHigh): the rest of the input is the case builder's picks (choose_case():
+/// one byte a pick, two for a pick of more than 256 values), so the case is one of `contract`'s
+/// families, conventions and places, as a property run draws them, built in the scalar type and
+/// spoiled by one of its defects one time in five when `defects`. Otherwise it picks a
+/// shape (its value modulo 6; decode_numbers()), byte 1 one of the contract's conventions, and
+/// the rest are numbers: special values and raw doubles, the hunt for extreme inputs.
+/// `contract` is resolved (oblique::resolved(): no list empty).
+inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
+                       const Contract& contract = every_case(), bool defects = true) {
+  ByteReader in(data, size);
+  FuzzCase c;
+  c.scalar = protocol::all_precisions[in.byte() % 3];
+  const int convention_byte = in.byte();
+  c.method = all_methods[in.byte() % std::size(all_methods)];
+  const int family_byte = in.byte();
+  if (family_byte >= kBuiltLow && family_byte < kBuiltHigh) {
+    c.family = kBuilt;
+    const generators::Pick pick = [&in](int lo, int hi) {
+      const auto n = static_cast<unsigned>(hi - lo);
+      unsigned v = in.byte();
+      if (n > 256) v |= unsigned{in.byte()} << 8;
+      return lo + static_cast<int>(v % n);
+    };
+    switch (c.scalar) {
+      case protocol::Precision::float32:
+        c.input = widened(generators::choose_case<float>(contract, defects, pick));
+        break;
+      case protocol::Precision::float64:
+        c.input = widened(generators::choose_case<double>(contract, defects, pick));
+        break;
+      case protocol::Precision::long_double:
+        c.input = widened(generators::choose_case<long double>(contract, defects, pick));
+        break;
+    }
+    return c;
+  }
+  c.family = family_byte % 6;
+  c.input.convention =
+      contract.conventions[static_cast<std::size_t>(convention_byte) % contract.conventions.size()];
+  Matrix4<double> m = Matrix4<double>::Identity();
+  Vector4<double> plane = Vector4<double>::Zero();
+  decode_numbers(in, c, c.input.convention, m, plane);
+  c.input.matrix = m.cast<long double>();
+  c.input.plane = plane.cast<long double>();
+  c.input.family = contract_families(c).front();
   return c;
 }
 
-/// double -> T without undefined behaviour: out-of-range finite values become +-infinity.
+/// long double -> T without undefined behaviour: out-of-range finite values become +-infinity.
 template <class T>
-T narrow(double x) {
-  if (std::isfinite(x) && std::abs(x) > static_cast<double>(std::numeric_limits<T>::max())) {
+T narrow(long double x) {
+  if (std::isfinite(x) && std::abs(x) > static_cast<long double>(std::numeric_limits<T>::max())) {
     return std::signbit(x) ? -std::numeric_limits<T>::infinity()
                            : std::numeric_limits<T>::infinity();
   }
@@ -260,13 +342,23 @@ void print_numbers(const Matrix4<T>& m, const Vector4<T>& plane, std::FILE* out)
 }
 
 /// Prints the decoded case (OBLIQUE_FUZZ_DESCRIBE): what each byte chose, and the numbers as
-/// decoded (in double).
+/// made: a built case's in its scalar type, a decoded shape's in double.
 inline void describe(const FuzzCase& c, std::FILE* out = stderr) {
   std::fprintf(out, "scalar %s, convention %s, method %s, family %s\n",
                std::string(protocol::precision_name(c.scalar)).c_str(),
-               std::string(convention_name(c.convention)).c_str(),
-               std::string(method_name(c.method)).c_str(), family_label(c.family));
-  print_numbers(c.matrix, c.plane, out);
+               std::string(convention_name(c.input.convention)).c_str(),
+               std::string(method_name(c.method)).c_str(), family_label(c).c_str());
+  const auto print_in = [&](auto zero) {
+    using T = decltype(zero);
+    print_numbers<T>(c.input.matrix.cast<T>(), c.input.plane.cast<T>(), out);
+  };
+  if (c.family != kBuilt || c.scalar == protocol::Precision::float64) {
+    print_in(0.0);
+  } else if (c.scalar == protocol::Precision::float32) {
+    print_in(0.0f);
+  } else {
+    print_in(0.0L);
+  }
 }
 
 /// Prints the input as the function was given it: in its scalar type T (the decoder's scalar byte
@@ -276,7 +368,7 @@ void describe_input(const FuzzCase& c, const Matrix4<T>& m, const Vector4<T>& pl
                     std::FILE* out = stderr) {
   std::fprintf(out, "input (%s, %s convention, %s projection):\n",
                std::string(protocol::scalar_name<T>()).c_str(),
-               std::string(convention_name(c.convention)).c_str(), family_label(c.family));
+               std::string(convention_name(c.input.convention)).c_str(), family_label(c).c_str());
   print_numbers(m, plane, out);
 }
 
@@ -337,9 +429,9 @@ void explain(const properties::Problem<T>& problem, const properties::Outcome<T>
 template <class T>
 class CaseJudge {
  public:
-  explicit CaseJudge(const FuzzCase& c) : convention_(c.convention) {
-    for (int i = 0; i < 16; ++i) m_(i / 4, i % 4) = narrow<T>(c.matrix(i / 4, i % 4));
-    for (int i = 0; i < 4; ++i) plane_(i) = narrow<T>(c.plane(i));
+  explicit CaseJudge(const FuzzCase& c) : convention_(c.input.convention) {
+    for (int i = 0; i < 16; ++i) m_(i / 4, i % 4) = narrow<T>(c.input.matrix(i / 4, i % 4));
+    for (int i = 0; i < 4; ++i) plane_(i) = narrow<T>(c.input.plane(i));
   }
   const Matrix4<T>& matrix() const { return m_; }
   const Vector4<T>& plane() const { return plane_; }
@@ -430,13 +522,15 @@ inline bool in_contract(FuzzCase& c, const Contract& contract) {
                         ": not in the contract"];
     return false;
   }
-  if (contract.planes == Planes::unit) {
-    const double norm = c.plane.head<3>().norm();
-    if (!std::isfinite(norm) || norm == 0 || !c.plane.allFinite()) {
+  if (contract.planes == Planes::unit && c.family != kBuilt) {  // the builder scales its own
+    Vector4<double> plane = c.input.plane.cast<double>();
+    const double norm = plane.head<3>().norm();
+    if (!std::isfinite(norm) || norm == 0 || !plane.allFinite()) {
       ++counts().left_out["a plane without a finite normal (unit planes)"];
       return false;
     }
-    c.plane /= norm;
+    plane /= norm;
+    c.input.plane = plane.cast<long double>();
   }
   return true;
 }
@@ -478,7 +572,7 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
            const std::vector<generators::Defect>& defects = {}) {
   const Matrix4<T>& m = judge.matrix();
   const Vector4<T>& plane = judge.plane();
-  if (!impl.accepts(c.convention, m)) {
+  if (!impl.accepts(c.input.convention, m)) {
     ++counts().left_out["refused by accepts (" + impl.name + ")"];
     return;
   }
@@ -496,7 +590,7 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
     return;
   }
   ++counts().judged;
-  const properties::Outcome<T> outcome = impl.run(m, plane, c.convention);
+  const properties::Outcome<T> outcome = impl.run(m, plane, c.input.convention);
   const properties::Judgement judgement = judge.judge(outcome, checks);
   const properties::Finding* violation = judgement.violation();
   if (!violation) return;
@@ -505,7 +599,7 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
   std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, %s projection): it %s\n",
                std::string(properties::check_name(violation->check)).c_str(), impl.name.c_str(),
                std::string(protocol::scalar_name<T>()).c_str(),
-               std::string(convention_name(c.convention)).c_str(), family_label(c.family),
+               std::string(convention_name(c.input.convention)).c_str(), family_label(c).c_str(),
                impl.answer_words(outcome.status).c_str());
   std::abort();
 }

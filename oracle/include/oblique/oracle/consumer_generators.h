@@ -4,14 +4,10 @@
 
 #include <rapidcheck.h>
 
+#include "oblique/cases/generators.h"
 #include "oblique/oracle/consumer_cases.h"
 
 namespace oblique::generators {
-
-/// RapidCheck's pick in [lo, hi), inside rc::gen::exec.
-inline int rc_pick(int lo, int hi) {
-  return *rc::gen::inRange(lo, hi);
-}
 
 template <class T>
 rc::Gen<Vector4<T>> kept_point(const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
