@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "commands.h"
-#include "oblique/protocol/child_process.h"
+#include "oblique/protocol/shell_text.h"
 #include "oblique/raster/raster.h"
 #include "oblique/report/accuracy_report.h"
 #include "oblique/report/depth_report.h"

@@ -12,10 +12,11 @@
 #include <optional>
 #include <sstream>
 
+#include "oblique/client/program.h"
 #include "oblique/mistakes/diagnosis.h"
 #include "oblique/oracle/problem.h"
-#include "oblique/protocol/child_process.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/protocol/shell_text.h"
 #include "oblique/report/counterexample_report.h"
 #include "oblique/report/report_files.h"
 
@@ -35,17 +36,13 @@ Run run(const FuzzReportOptions& options, const std::string& input) {
   // The target gets the file as its one argument, in a process group of its own: at the time
   // limit the group is killed (a target that ignores SIGTERM too), and what it leaves behind
   // holding its output open is ended once it has exited, not waited for.
-  protocol::ChildProcess child(options.target + " " + protocol::shell_quote(input) + " 2>&1");
-  Run r;
-  if (!child.start()) {
-    r.status = -1;
-    return r;
-  }
   const auto limit = std::chrono::duration<double>(options.timeout_seconds);
-  child.run_to_end(
-      r.output, 64u << 10,
-      protocol::Clock::now() + std::chrono::duration_cast<protocol::Clock::duration>(limit),
-      r.status);
+  client::Run ran = client::run_once(
+      options.target + " " + protocol::shell_quote(input) + " 2>&1", 64u << 10,
+      client::Clock::now() + std::chrono::duration_cast<client::Clock::duration>(limit));
+  Run r;
+  r.output = std::move(ran.output);
+  r.status = ran.started ? ran.status : -1;
   return r;
 }
 

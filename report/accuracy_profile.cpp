@@ -82,22 +82,23 @@ template void record_answer<long double>(Profile&, const properties::Problem<lon
                                          const ProfileInput<long double>&, Status,
                                          const Matrix4<long double>&);
 
-RoundTrip time_round_trip(protocol::ChildProcess& child, const std::string& requests,
-                          std::size_t count, std::chrono::milliseconds idle) {
+RoundTrip time_round_trip(client::Program& program, const std::vector<std::string>& requests) {
   RoundTrip out;
-  if (!child.running()) {
-    if (!child.start()) return out;
-    out.outcome = child.exchange(requests.substr(0, requests.find('\n') + 1), 1, out.lines, idle,
-                                 protocol::Clock::now() + idle);
-    if (out.outcome != protocol::ChildProcess::Outcome::done) return out;
-    out.lines.clear();
+  if (requests.empty()) return out;
+  if (!program.running()) {
+    client::Reply warm = program.ask(requests.front());
+    if (warm.failure) {
+      out.failure = std::move(warm.failure);
+      return out;
+    }
   }
-  const auto start = protocol::Clock::now();
-  out.outcome =
-      child.exchange(requests, count, out.lines, idle, start + idle * static_cast<long>(count));
-  if (out.outcome == protocol::ChildProcess::Outcome::done)
-    out.ns = std::chrono::duration<double, std::nano>(protocol::Clock::now() - start).count() /
-             static_cast<double>(count);
+  const auto start = client::Clock::now();
+  client::Reply reply = program.ask(requests);
+  out.lines = std::move(reply.lines);
+  out.failure = std::move(reply.failure);
+  if (!out.failure)
+    out.ns = std::chrono::duration<double, std::nano>(client::Clock::now() - start).count() /
+             static_cast<double>(requests.size());
   return out;
 }
 

@@ -13,11 +13,11 @@
 #include <random>
 #include <sstream>
 
+#include "oblique/client/program.h"
 #include "oblique/oblique.h"
 #include "oblique/oracle/judge.h"
 #include "oblique/oracle/problem.h"
 #include "oblique/projection.h"
-#include "oblique/protocol/child_process.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/report/accuracy_profile.h"
@@ -319,38 +319,42 @@ void measure_scalar(const Regime& regime, const std::vector<Input>& inputs,
 template <class T>
 std::string measure_external(const Regime& regime, const std::vector<Input>& inputs,
                              const std::vector<std::size_t>& steps,
-                             const ExternalImplementation& impl, protocol::ChildProcess& child,
-                             const AccuracyOptions& options, AccuracyReport& report) {
+                             const ExternalImplementation& impl, client::Program& program,
+                             AccuracyReport& report) {
   std::vector<Case<T>> cases;
   std::vector<properties::Problem<T>> problems;
-  std::string text;
+  std::vector<std::string> requests;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     Case<T> c{inputs[i].matrix.template cast<T>(), inputs[i].plane.template cast<T>(),
               inputs[i].convention, steps[i]};
     if (!all_finite(c.matrix) || !all_finite(c.plane)) continue;
     properties::Problem<T> problem(c.matrix, c.plane, c.convention);
     if (problem.exact_status() != Status::ok) continue;
-    text += protocol::request_line(c.matrix, c.plane, c.convention) + "\n";
+    requests.push_back(protocol::request_line(c.matrix, c.plane, c.convention));
     problems.push_back(std::move(problem));
     cases.push_back(c);
   }
   if (cases.empty()) return "";
-  // The count check: one answer line a request, nothing left over from the last regime.
-  if (child.running()) {
-    if (const std::vector<std::string> left = child.unasked_output(); !left.empty())
-      return impl.command + ": wrote lines beyond one answer per request (before regime " +
-             regime.name + "): " + left.front();
-  }
-  const RoundTrip trip = time_round_trip(
-      child, text, cases.size(),
-      std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000)));
-  if (trip.outcome == protocol::ChildProcess::Outcome::too_long)
-    return impl.command + ": an answer line longer than 1 MiB in regime " + regime.name +
-           " (not read further)";
-  if (trip.outcome != protocol::ChildProcess::Outcome::done)
+  // The count check (the client's, before and after each regime's requests): one answer line a
+  // request.
+  const RoundTrip trip = time_round_trip(program, requests);
+  if (trip.failure) {
+    using Cause = client::Failure::Cause;
+    const client::Failure& f = *trip.failure;
+    if (f.cause == Cause::left_over || f.cause == Cause::beyond)
+      return impl.command + ": wrote lines beyond one answer per request (" +
+             (f.cause == Cause::left_over ? "before" : "after") + " regime " + regime.name +
+             "): " + f.lines.front();
+    if (f.cause == Cause::overlong)
+      return impl.command + ": an answer line longer than 1 MiB in regime " + regime.name +
+             " (not read further)";
     return impl.command + ": answered " + std::to_string(trip.lines.size()) + " of the " +
            std::to_string(cases.size()) + " requests of regime " + regime.name + " (" +
-           child.end_description() + ")";
+           (f.cause == Cause::timed_out ? "timed out"
+            : f.ended.empty()           ? f.what
+                                        : f.ended) +
+           ")";
+  }
   const std::vector<std::string>& lines = trip.lines;
   Errors all;
   std::vector<Errors> by_step(regime.values.size());
@@ -394,9 +398,11 @@ AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& pr
   std::mt19937_64 rng(options.seed);
   const auto all = regimes();
   // One process for each implementation, asked regime after regime.
-  std::vector<std::unique_ptr<protocol::ChildProcess>> children;
+  const auto timeout =
+      std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000));
+  std::vector<std::unique_ptr<client::Program>> programs;
   for (const ExternalImplementation& impl : options.implementations)
-    children.push_back(std::make_unique<protocol::ChildProcess>(impl.command));
+    programs.push_back(std::make_unique<client::Program>(impl.command, timeout));
   for (std::size_t r = 0; r < all.size(); ++r) {
     const Regime& regime = all[r];
     if (options.progress)
@@ -422,22 +428,17 @@ AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& pr
     measure_scalar<long double>(regime, inputs, steps, options, report);
     for (std::size_t i = 0; i < options.implementations.size(); ++i) {
       const ExternalImplementation& impl = options.implementations[i];
-      report.error = impl.float32 ? measure_external<float>(regime, inputs, steps, impl,
-                                                            *children[i], options, report)
-                                  : measure_external<double>(regime, inputs, steps, impl,
-                                                             *children[i], options, report);
+      report.error =
+          impl.float32
+              ? measure_external<float>(regime, inputs, steps, impl, *programs[i], report)
+              : measure_external<double>(regime, inputs, steps, impl, *programs[i], report);
       if (!report.error.empty()) return report;
     }
   }
   // The count check of the last regime: once their input is closed, the implementations have
   // nothing more to say (at most a second each to say it).
-  for (std::size_t i = 0; i < children.size(); ++i) {
-    if (!children[i]->running()) continue;
-    const auto grace = std::min<protocol::Clock::duration>(
-        std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000)),
-        std::chrono::seconds(1));
-    const std::vector<std::string> extra =
-        children[i]->close_and_drain(protocol::Clock::now() + grace);
+  for (std::size_t i = 0; i < programs.size(); ++i) {
+    const std::vector<std::string> extra = programs[i]->finish();
     if (!extra.empty()) {
       report.error = options.implementations[i].command +
                      ": wrote lines beyond one answer per request: " + extra.front();

@@ -19,7 +19,7 @@
 #include <string>
 #include <system_error>
 
-#include "oblique/protocol/child_process.h"
+#include "oblique/protocol/shell_text.h"
 
 namespace oblique::report {
 

@@ -6,9 +6,9 @@
 #include <random>
 
 #include "oblique/cases/contract.h"
+#include "oblique/client/consumer_program.h"
 #include "oblique/oracle/consumer_cases.h"
-#include "oblique/oracle/consumer_program.h"
-#include "oblique/protocol/child_process.h"
+#include "oblique/protocol/shell_text.h"
 #include "oblique/scene/check.h"
 
 namespace oblique::scene {
@@ -121,7 +121,7 @@ Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::str
   std::vector<protocol::ConsumerKind> kinds;
   for (const SceneConsumer c : scene.consumers)
     for (const protocol::ConsumerKind k : kinds_of(c)) kinds.push_back(k);
-  properties::ConsumerProgram<T> program(
+  client::ConsumerProgram<T> program(
       command, std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000)));
   Consumers<T> asked = program.consumers(kinds, command);
   asked.mirror_design = scene.mirror_design;  // the design the scene's engine declares
@@ -129,7 +129,7 @@ Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::str
     for (SurfaceCheck& s : check.surfaces) {
       if (s.render) s.impl_consumers = judge_consumers<T>(scene, s, asked);
     }
-  } catch (const properties::ProgramFailure& failure) {
+  } catch (const client::Failure& failure) {
     program.stop();
     std::string why = "the implementation's consumers: " + failure.what +
                       " (request: " + failure.request.substr(0, 200) + ")";

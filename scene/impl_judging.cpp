@@ -2,14 +2,14 @@
 // protocol), and its answers judged as oblique verify judges them.
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <limits>
 
+#include "oblique/client/program.h"
 #include "oblique/mistakes/diagnosis.h"
 #include "oblique/oracle/judge.h"
 #include "oblique/oracle/problem.h"
-#include "oblique/protocol/child_process.h"
 #include "oblique/protocol/protocol.h"
+#include "oblique/protocol/shell_text.h"
 #include "oblique/scene/check.h"
 
 namespace oblique::scene {
@@ -100,42 +100,36 @@ void judge_impl_answer(const Scene& scene, SurfaceCheck& pass, const std::string
 
 Expected<std::size_t> judge_implementation(const Scene& scene, SceneCheck& check,
                                            const std::string& command, double timeout_seconds) {
-  using protocol::ChildProcess;
   std::vector<SurfaceCheck*> rendered;
-  std::string input;
+  std::vector<std::string> requests;
   for (SurfaceCheck& s : check.surfaces) {
     if (!s.render) continue;
     rendered.push_back(&s);
-    input += impl_request(scene, s, check.impl_precision) + "\n";
+    requests.push_back(impl_request(scene, s, check.impl_precision));
   }
   if (rendered.empty()) return std::size_t{0};
-  // An implementation that exits early must not take us down with it: a write to its closed
-  // input fails with EPIPE instead.
-  std::signal(SIGPIPE, SIG_IGN);
-  ChildProcess child(command);
-  if (const Expected<Done> started = child.start(); !started)
-    return Expected<std::size_t>::failure("cannot start the implementation: " + started.error());
-  std::vector<std::string> lines;
   const auto idle = std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000));
-  const auto outcome =
-      child.exchange(input, rendered.size(), lines, idle, protocol::Clock::now() + 4 * idle);
+  client::Program program(command, idle);
+  const client::Reply reply = program.ask(requests, client::Clock::now() + 4 * idle);
+  const std::vector<std::string>& lines = reply.lines;
+  using Cause = client::Failure::Cause;
+  if (reply.failure && reply.failure->cause == Cause::cannot_start)
+    return Expected<std::size_t>::failure("cannot start the implementation (" +
+                                          reply.failure->what + ")");
   // As verify: once its input is closed, a program that has answered every request has nothing
   // more to say; lines beyond one per request mean the answers were out of step (each would be
   // judged against another request's plane), a protocol error, not a finding.
-  const std::vector<std::string> extra =
-      outcome == ChildProcess::Outcome::done
-          ? child.close_and_drain(protocol::Clock::now() +
-                                  std::min(idle, std::chrono::milliseconds(1000)))
-          : std::vector<std::string>{};
-  const std::string ended = outcome == ChildProcess::Outcome::timed_out ? "timed out"
-                            : outcome == ChildProcess::Outcome::too_long
-                                ? "an answer line longer than 1 MiB"
-                                : child.end_description();
-  child.stop();
-  if (outcome != ChildProcess::Outcome::done || lines.size() < rendered.size()) {
+  std::vector<std::string> extra = reply.ok() ? program.finish() : std::vector<std::string>{};
+  if (reply.failure && reply.failure->cause == Cause::beyond) extra = reply.failure->lines;
+  program.stop();
+  if (reply.failure && reply.failure->cause != Cause::beyond) {
+    const client::Failure& f = *reply.failure;
+    const std::string ended = f.cause == Cause::timed_out  ? "timed out"
+                              : f.cause == Cause::overlong ? "an answer line longer than 1 MiB"
+                                                           : f.ended;
     std::string why = "the implementation answered " + std::to_string(lines.size()) + " of " +
                       std::to_string(rendered.size()) + " requests (" + ended + ")";
-    if (!child.stderr_tail().empty()) why += "; its standard error:\n" + child.stderr_tail();
+    if (!f.stderr_tail.empty()) why += "; its standard error:\n" + f.stderr_tail;
     return Expected<std::size_t>::failure(why);
   }
   if (!extra.empty()) {

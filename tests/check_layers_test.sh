@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # scripts/check_layers.sh on small trees of its own: a tree that keeps its layers passes; each
 # planted break (an include up the layers, a third-party header in the core, the core's
-# internals included elsewhere, another library's detail name, a third-party detail name in a
-# header) fails, naming the file and line.
+# internals included elsewhere, a child process outside the client, another library's detail
+# name, a third-party detail name in a header) fails, naming the file and line.
 # Usage: bash tests/check_layers_test.sh   (exit 0: every case behaved)
 set -euo pipefail
 check="$(cd "$(dirname "$0")/.." && pwd)/scripts/check_layers.sh"
@@ -34,6 +34,9 @@ EOF
   cat > "$work/tree/protocol/include/oblique/protocol/wire.h" <<'EOF'
 #pragma once
 #include "oblique/oblique.h"
+EOF
+  cat > "$work/tree/protocol/include/oblique/protocol/child_process.h" <<'EOF'
+#pragma once
 EOF
   cat > "$work/tree/protocol/wire.cpp" <<'EOF'
 #include <nlohmann/json.hpp>
@@ -99,6 +102,11 @@ printf 'namespace oblique::oracle {\ninline double h(double x) { return detail::
   >> "$work/tree/oracle/include/oblique/oracle/judge.h"
 expect "the core's detail reached from inside oblique::" 1 \
   "oracle uses detail::scale, which it does not declare"
+
+make_tree
+echo '#include "oblique/protocol/child_process.h"' >> "$work/tree/oracle/include/oblique/oracle/judge.h"
+expect "a child process outside the client" 1 \
+  "oracle includes oblique/protocol/child_process.h (programs are asked through oblique::client alone)"
 
 make_tree
 echo 'void g(const nlohmann::detail::exception&);' >> "$work/tree/protocol/include/oblique/protocol/wire.h"

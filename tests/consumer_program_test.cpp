@@ -1,7 +1,7 @@
 // ConsumerProgram::answer(): a batch of requests written at once, one answer line read for each,
 // and where the program stops answering (it exits, hangs, or writes a line that is not an
 // answer) the answers before it kept and the request it stopped at named.
-#include "oblique/oracle/consumer_program.h"
+#include "oblique/client/consumer_program.h"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,10 @@
 #include <string>
 #include <vector>
 
-namespace oblique::properties {
+namespace oblique::client {
 namespace {
 
+using properties::ConsumerAsk;
 using protocol::ConsumerKind;
 using protocol::ConsumerRequest;
 
@@ -62,7 +63,7 @@ TEST(ConsumerProgramBatch, aProgramThatExitsMidBatchKeepsTheAnswersBeforeAndName
   const Asked asked(10);
   const auto batch = program.answer(asked.pointers);
   ASSERT_TRUE(batch.failure);
-  EXPECT_EQ(batch.failure->kind, ProgramFailure::Kind::crash);
+  EXPECT_EQ(batch.failure->kind, Failure::Kind::crash);
   EXPECT_NE(batch.failure->what.find("exited with status 4"), std::string::npos)
       << batch.failure->what;
   EXPECT_EQ(batch.numbers.size(), 3u);
@@ -77,7 +78,7 @@ TEST(ConsumerProgramBatch, aLineThatIsNotAnAnswerEndsTheBatchThere) {
   const Asked asked(8);
   const auto batch = program.answer(asked.pointers);
   ASSERT_TRUE(batch.failure);
-  EXPECT_EQ(batch.failure->kind, ProgramFailure::Kind::protocol);
+  EXPECT_EQ(batch.failure->kind, Failure::Kind::protocol);
   EXPECT_EQ(batch.numbers.size(), 4u);
   EXPECT_EQ(batch.lines.size(), 4u);
   EXPECT_EQ(batch.failure->request, batch.requests[4]);
@@ -93,10 +94,10 @@ TEST(ConsumerProgramBatch, aProgramThatStopsAnsweringTimesOutAtTheFirstUnanswere
   const Asked asked(6);
   const auto batch = program.answer(asked.pointers);
   ASSERT_TRUE(batch.failure);
-  EXPECT_EQ(batch.failure->kind, ProgramFailure::Kind::timeout);
+  EXPECT_EQ(batch.failure->kind, Failure::Kind::timeout);
   EXPECT_EQ(batch.numbers.size(), 2u);
   EXPECT_EQ(batch.failure->request, batch.requests[2]);
 }
 
 }  // namespace
-}  // namespace oblique::properties
+}  // namespace oblique::client

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <ostream>
 
+#include "oblique/client/program.h"
 #include "oblique/oracle/problem.h"
-#include "oblique/protocol/child_process.h"
 #include "oblique/protocol/json.h"
 #include "oblique/protocol/protocol.h"
 #include "reporter.h"
@@ -43,15 +43,13 @@ bool AccuracyLook<T>::write() {
   // The round trip: up to 4,096 of the profiled requests sent at once to a fresh process.
   const std::size_t timed = std::min<std::size_t>(inputs_.size(), 4096);
   if (timed > 0) {
-    std::string text;
-    for (std::size_t i = 0; i < timed; ++i) text += inputs_[i].request + "\n";
-    protocol::ChildProcess child(options_.command);
-    mine_.ns =
-        report::time_round_trip(
-            child, text, timed,
-            std::chrono::milliseconds(static_cast<long>(options_.request_timeout_seconds * 1000)))
-            .ns;
-    child.stop();
+    std::vector<std::string> requests;
+    for (std::size_t i = 0; i < timed; ++i) requests.push_back(inputs_[i].request);
+    client::Program program(
+        options_.command,
+        std::chrono::milliseconds(static_cast<long>(options_.request_timeout_seconds * 1000)));
+    mine_.ns = report::time_round_trip(program, requests).ns;
+    program.stop();
     if (std::isnan(mine_.ns))
       err_ << "oblique verify: --accuracy: the round trip could not be timed (the program did "
               "not answer the requests again)\n";

@@ -14,10 +14,10 @@
 #include "batches.h"
 #include "failure_database.h"
 #include "oblique/cases/generators.h"
+#include "oblique/client/consumer_program.h"
 #include "oblique/oblique.h"
-#include "oblique/oracle/consumer_program.h"
-#include "oblique/protocol/child_process.h"
 #include "oblique/protocol/names.h"
+#include "oblique/protocol/shell_text.h"
 #include "oblique/report/counterexample_report.h"
 #include "oblique/report/report_files.h"
 #include "reporter.h"
@@ -26,8 +26,8 @@ namespace oblique::verify {
 
 namespace {
 
-using properties::ConsumerProgram;
-using properties::ProgramFailure;
+using client::ConsumerProgram;
+using client::Failure;
 using protocol::ConsumerKind;
 using protocol::shell_quote;
 
@@ -46,8 +46,8 @@ struct Caught {
   std::string inputs, request, answer;
   bool about_oblique_case = false;
   Round<T> round;
-  long index = 0;                      ///< of the round, from 0
-  std::optional<ProgramFailure> lost;  ///< a crash or a timeout instead of a finding
+  long index = 0;               ///< of the round, from 0
+  std::optional<Failure> lost;  ///< a crash or a timeout instead of a finding
 };
 
 std::string summary(const std::map<std::string, long>& counts) {
@@ -85,7 +85,7 @@ class ConsumerRun {
     try {
       properties::consumer_round<T>(round.c.matrix, round.c.plane, round.c.convention, asked_, pick,
                                     settle);
-    } catch (const ProgramFailure& failure) {
+    } catch (const Failure& failure) {
       return lost(failure, round, 0);
     }
     return true;
@@ -93,8 +93,8 @@ class ConsumerRun {
 
   /// A request that got no answer to judge: a protocol error is said on err_ (false); a crash or
   /// a timeout is the run's finding unless one came before.
-  bool lost(const ProgramFailure& failure, const Round<T>& round, long index) {
-    if (failure.kind == ProgramFailure::Kind::protocol) {
+  bool lost(const Failure& failure, const Round<T>& round, long index) {
+    if (failure.kind == Failure::Kind::protocol) {
       err_ << "oblique verify: protocol error: " << failure.what
            << "\n  request: " << failure.request << "\n";
       for (const std::string& line : failure.lines)
@@ -415,9 +415,9 @@ class ConsumerRun {
 
   Verdict report(double seconds) {
     const Caught<T>& c = *caught_;
-    const std::string check =
-        c.lost ? (c.lost->kind == ProgramFailure::Kind::crash ? "crash" : "timeout")
-               : std::string(properties::consumer_check_name(c.finding.check));
+    const std::string check = c.lost
+                                  ? (c.lost->kind == Failure::Kind::crash ? "crash" : "timeout")
+                                  : std::string(properties::consumer_check_name(c.finding.check));
     report::ReportFiles files(options_.report_dir);
     const std::string stem = files.reserve_stem("verify-consumer-" + check, {".md", ".json"});
     const std::string json_path =

@@ -138,7 +138,7 @@ Verdict FailureDatabase<T>::replay(const std::string& path, bool verbose) {
       return Verdict::violated;
     }
     case Evaluation::protocol_error:
-      session_.child().stop();
+      session_.program().stop();
       return reporter_.issue(session_.issue());
     case Evaluation::out_of_time:
       err_ << "oblique verify: --replay: out of time before the answer\n";
@@ -173,14 +173,14 @@ Verdict FailureDatabase<T>::replay_all(const std::string& folder) {
     }
     const Verdict result = replay(path, /*verbose=*/false);
     if (result != Verdict::holds) {
-      session_.child().stop();
+      session_.program().stop();
       if (result == Verdict::violated)
         out_ << "  (a kept regression fails again; the run is not started)\n";
       return result;
     }
     ++replayed;
   }
-  session_.child().stop();
+  session_.program().stop();
   out_ << "oblique verify: regressions: " << replayed << " kept cases hold"
        << (other_precision
                ? " (" + std::to_string(other_precision) + " of another precision not replayed)"

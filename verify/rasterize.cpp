@@ -9,9 +9,9 @@
 #include <sstream>
 
 #include "failure_database.h"
+#include "oblique/client/program.h"
 #include "oblique/oblique.h"
 #include "oblique/oracle/consumers.h"
-#include "oblique/protocol/child_process.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/raster/raster_report.h"
@@ -212,22 +212,23 @@ Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonV
   for (int i = 0; i < 16; ++i) v.matrix(i / 4, i % 4) = m[static_cast<std::size_t>(i)];
   for (int i = 0; i < 4; ++i) v.plane(i) = c[static_cast<std::size_t>(i)];
   v.convention = *parsed;
-  protocol::ChildProcess child(options.command);
-  if (const Expected<Done> started = child.start(); !started)
-    return fail("cannot start the implementation: " + started.error());
-  std::vector<std::string> lines;
   const auto timeout =
       std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000));
-  const auto outcome =
-      child.exchange(request->text + "\n", 1, lines, timeout, protocol::Clock::now() + timeout);
-  const std::string ended = child.end_description();
-  child.stop();
-  using Outcome = protocol::ChildProcess::Outcome;
-  if (outcome == Outcome::too_long) return fail("an answer line longer than 1 MiB (not read)");
-  if (outcome == Outcome::timed_out)
-    return fail("no answer within " + std::to_string(timeout.count()) + " ms");
-  if (outcome != Outcome::done)
-    return fail("the implementation ended before answering (" + ended + ")");
+  client::Program program(options.command, timeout);
+  const client::Reply reply = program.ask(request->text);
+  program.stop();
+  if (reply.failure) {
+    using Cause = client::Failure::Cause;
+    const client::Failure& f = *reply.failure;
+    if (f.cause == Cause::cannot_start)
+      return fail("cannot start the implementation (" + f.what + ")");
+    if (f.cause == Cause::overlong) return fail("an answer line longer than 1 MiB (not read)");
+    if (f.cause == Cause::timed_out)
+      return fail("no answer within " + std::to_string(timeout.count()) + " ms");
+    if (f.cause != Cause::beyond)
+      return fail("the implementation ended before answering (" + f.ended + ")");
+  }
+  const std::vector<std::string>& lines = reply.lines;
   RasterLook<double> look(o, out, err);
   if (!look.open()) return Verdict::inconclusive;
   std::string why;

@@ -221,8 +221,8 @@ Verdict Reporter<T>::count_error(const std::string& what, const std::vector<std:
 
 template <class T>
 Verdict Reporter<T>::overlong_line(const std::string& request, const std::string& line_start) {
-  err_ << "oblique verify: protocol error: an answer line longer than "
-       << ChildProcess::kMaxLineBytes << " bytes (1 MiB, not read further)\n  request: " << request
+  err_ << "oblique verify: protocol error: an answer line longer than " << client::kMaxLineBytes
+       << " bytes (1 MiB, not read further)\n  request: " << request
        << "\n  line starts: " << escape_bytes(line_start) << "...\n";
   return Verdict::error;
 }

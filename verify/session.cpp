@@ -8,8 +8,8 @@ template <class T>
 Session<T>::Session(const VerifyOptions& options, const Draws<T>& draws)
     : options_(options),
       draws_(draws),
-      child_(options.command),
-      idle_(static_cast<long>(options.request_timeout_seconds * 1000)) {
+      idle_(static_cast<long>(options.request_timeout_seconds * 1000)),
+      program_(options.command, idle_) {
   start_clock();
 }
 
@@ -34,38 +34,46 @@ typename Session<T>::Evaluation Session<T>::evaluate(const generators::Case<T>& 
   if (draws_.needs_status() && !draws_.left_out(problem).empty())
     return Evaluation::pass;  // not an input the implementation promises anything for
   issue_ = Issue{};
-  if (!child_.running()) {
-    if (const Expected<Done> started = child_.start(); !started) {
-      issue_.what = "the implementation could not be restarted: " + started.error();
-      return Evaluation::protocol_error;
+  const std::string request = request_text(v);
+  const std::string before = last_request_;
+  last_request_ = request;
+  // The count check of one evaluation (the client's): nothing left over before the request, one
+  // line after.
+  const client::Reply reply = program_.ask(request, deadline_);
+  if (reply.failure) {
+    using Cause = client::Failure::Cause;
+    const client::Failure& f = *reply.failure;
+    switch (f.cause) {
+      case Cause::cannot_start:
+        issue_.what = "the implementation could not be restarted: " + f.what;
+        return Evaluation::protocol_error;
+      case Cause::cannot_run:
+        issue_ = Issue{"cannot run the implementation: " + f.what, request, {}};
+        return Evaluation::protocol_error;
+      case Cause::left_over:
+        issue_ = Issue{"lines beyond the one answer to this request", before, f.lines};
+        return Evaluation::protocol_error;
+      case Cause::overlong:
+        issue_ = Issue{"an answer line longer than 1 MiB (not read further)", request, f.lines};
+        return Evaluation::protocol_error;
+      case Cause::beyond: {
+        std::vector<std::string> lines = f.lines;
+        lines.insert(lines.begin(), reply.lines.front());
+        issue_ = Issue{"lines beyond the one answer to this request", request, lines};
+        return Evaluation::protocol_error;
+      }
+      case Cause::not_an_answer:  // (the client does not read answers; kept for completeness)
+        issue_ = Issue{f.what, request, f.lines};
+        return Evaluation::protocol_error;
+      case Cause::exited:
+      case Cause::timed_out:
+        if (out_of_time()) return Evaluation::out_of_time;
+        finding = lost_finding(f);
+        program_.stop();
+        return Evaluation::finding;
     }
   }
-  // The count check of one evaluation: nothing left over before the request, one line after.
-  if (std::vector<std::string> left = child_.unasked_output(); !left.empty()) {
-    issue_ = Issue{"lines beyond the one answer to this request", last_request_, left};
-    return Evaluation::protocol_error;
-  }
-  const std::string request = request_text(v);
-  last_request_ = request;
-  std::vector<std::string> answers;
-  const auto outcome = child_.exchange(request + "\n", 1, answers, idle_, deadline_);
-  if (outcome == ChildProcess::Outcome::too_long) {
-    issue_ = Issue{"an answer line longer than 1 MiB (not read further)",
-                   request,
-                   {child_.overlong_start() + "..."}};
-    return Evaluation::protocol_error;
-  }
-  if (outcome != ChildProcess::Outcome::done) {
-    if (out_of_time()) return Evaluation::out_of_time;
-    finding = lost_finding(outcome);
-    child_.stop();
-    return Evaluation::finding;
-  }
-  if (std::vector<std::string> extra = child_.unasked_output(); !extra.empty()) {
-    extra.insert(extra.begin(), answers[0]);
-    issue_ = Issue{"lines beyond the one answer to this request", request, extra};
-    return Evaluation::protocol_error;
-  }
+  const std::vector<std::string>& answers = reply.lines;
   const Expected<protocol::TypedAnswer<T>> answered = protocol::read_answer<T>(answers[0]);
   if (!answered) {
     issue_ = Issue{"an answer that is not an answer of the protocol (" + answered.error() + ")",
@@ -95,13 +103,13 @@ std::optional<properties::Observation<T>> Session<T>::observe(const generators::
 }
 
 template <class T>
-Found<T> Session<T>::lost_finding(ChildProcess::Outcome outcome) {
+Found<T> Session<T>::lost_finding(const client::Failure& failure) {
   Found<T> found;
   properties::Finding& f = found.finding;
   f.shows = properties::Shows::program;
-  if (outcome == ChildProcess::Outcome::exited) {
+  if (failure.kind == client::Failure::Kind::crash) {
     f.check = properties::Check::crash;
-    found.process = child_.end_description();
+    found.process = failure.ended;
     f.message = "it " + found.process + " before answering";
   } else {
     f.check = properties::Check::timeout;
@@ -111,8 +119,7 @@ Found<T> Session<T>::lost_finding(ChildProcess::Outcome outcome) {
         "no answer within the timeout: it hangs on this request, or does not flush its "
         "standard output after each answer line";
   }
-  found.answer_line =
-      child_.stderr_tail().empty() ? "" : "(stderr) " + escape_bytes(child_.stderr_tail());
+  found.answer_line = failure.stderr_tail.empty() ? "" : "(stderr) " + failure.stderr_tail;
   return found;
 }
 

@@ -1,6 +1,7 @@
-// oblique verify's session with the implementation: the child process, the run's clock, and one
-// request sent alone and judged (evaluate()), which confirming, shrinking, isolating a request
-// that hangs or kills the process, and replaying reports all use. Internal to oblique::verify.
+// oblique verify's session with the implementation: the program (oblique::client), the run's clock,
+// and one request sent alone and judged (evaluate()), which confirming, shrinking, isolating a
+// request that hangs or kills the process, and replaying reports all use. Internal to
+// oblique::verify.
 #pragma once
 
 #include <chrono>
@@ -9,14 +10,14 @@
 #include <vector>
 
 #include "cases.h"
+#include "oblique/client/program.h"
 #include "oblique/mistakes/diagnosis.h"
-#include "oblique/protocol/child_process.h"
+#include "oblique/protocol/shell_text.h"
 #include "oblique/verify/verifier.h"
 
 namespace oblique::verify {
 
-using protocol::ChildProcess;
-using protocol::Clock;
+using client::Clock;
 using protocol::escape_bytes;
 using protocol::shell_quote;
 
@@ -31,7 +32,7 @@ class Session {
  public:
   Session(const VerifyOptions& options, const Draws<T>& draws);
 
-  ChildProcess& child() { return child_; }
+  client::Program& program() { return program_; }
   const Draws<T>& draws() const { return draws_; }
 
   /// Starts the run's time limit now.
@@ -56,14 +57,14 @@ class Session {
   /// The answer of the last evaluation, when it gave one.
   const std::optional<protocol::TypedAnswer<T>>& last_answer() const { return last_answer_; }
 
-  /// The finding for a process that exited (a crash) or gave no answer in time (a timeout).
-  Found<T> lost_finding(ChildProcess::Outcome outcome);
+  /// The finding for a program that exited (a crash) or gave no answer in time (a timeout).
+  Found<T> lost_finding(const client::Failure& failure);
 
  private:
   const VerifyOptions& options_;
   const Draws<T>& draws_;
-  ChildProcess child_;
   std::chrono::milliseconds idle_;
+  client::Program program_;
   Clock::time_point start_, deadline_;
   Issue issue_;
   std::string last_request_;

@@ -10,13 +10,13 @@ Verdict Shrinker<T>::confirm(const Batch<T>& batch, std::size_t k,
                              const std::vector<std::string>& answers, Found<T> finding,
                              long cases_run) {
   using Evaluation = typename Session<T>::Evaluation;
-  session_.child().stop();
+  session_.program().stop();
   Found<T> alone;
   switch (session_.evaluate(batch.values[k], alone)) {
     case Evaluation::finding: finding = alone; break;
     case Evaluation::out_of_time: break;  // reported as found in the batch
     case Evaluation::protocol_error:
-      session_.child().stop();
+      session_.program().stop();
       return reporter_.issue(session_.issue());
     case Evaluation::pass: {
       std::vector<std::string> lines;
@@ -24,7 +24,7 @@ Verdict Shrinker<T>::confirm(const Batch<T>& batch, std::size_t k,
       for (std::size_t i = from; i < std::min(answers.size(), k + 3); ++i)
         lines.push_back("answer " + std::to_string(i + 1) + (i == k ? " (judged)" : "") + ": " +
                         answers[i]);
-      session_.child().stop();
+      session_.program().stop();
       return reporter_.count_error(
           "answer " + std::to_string(k + 1) + " of a batch violates " +
               std::string(check_name(finding.finding.check)) +
@@ -43,7 +43,7 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<generators::Case<T>>& failing, 
   using Evaluation = typename Session<T>::Evaluation;
   const long found_after_cases = cases_run;
   const double found_after_seconds = session_.seconds_since_start();
-  session_.child().stop();  // it may still be working on the next batch; shrinking restarts it
+  session_.program().stop();  // it may still be working on the next batch; shrinking restarts it
   out_ << "oblique verify: " << check_name(finding.finding.check) << " violated after " << cases_run
        << " cases; shrinking";
   out_.flush();
@@ -65,7 +65,7 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<generators::Case<T>>& failing, 
       }
       if (e == Evaluation::protocol_error) {
         out_ << "\n";
-        session_.child().stop();
+        session_.program().stop();
         return reporter_.issue(session_.issue());
       }
       if (e == Evaluation::finding && candidate.finding.check == finding.finding.check) {
@@ -81,7 +81,7 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<generators::Case<T>>& failing, 
   out_ << " " << steps << " steps (" << tries << " tries)"
        << (out_of_time ? ", stopped by the time limit" : "") << "\n";
   const properties::Diagnosis diagnosis = diagnose(current.value(), finding);
-  session_.child().stop();
+  session_.program().stop();
   return reporter_.finding(current.value(), finding, steps, out_of_time, found_after_cases,
                            found_after_seconds, diagnosis);
 }
@@ -118,7 +118,8 @@ properties::Diagnosis Shrinker<T>::diagnose(const generators::Case<T>& shrunk,
     v.convention = convention;
     v.family = family;
     std::optional<properties::Observation<T>> seen = session_.observe(v);
-    if (!seen && (!session_.child().running() || !session_.issue().what.empty())) answering = false;
+    if (!seen && (!session_.program().running() || !session_.issue().what.empty()))
+      answering = false;
     return seen;
   };
   return properties::diagnose<T>({seen}, probe);
@@ -126,13 +127,13 @@ properties::Diagnosis Shrinker<T>::diagnose(const generators::Case<T>& shrunk,
 
 template <class T>
 Verdict Shrinker<T>::isolate(const std::vector<rc::Shrinkable<generators::Case<T>>>& cases,
-                             std::size_t answered, long done, ChildProcess::Outcome outcome) {
+                             std::size_t answered, long done, const client::Failure& failure) {
   using Evaluation = typename Session<T>::Evaluation;
-  Found<T> in_batch = session_.lost_finding(outcome);
-  const bool hung = outcome == ChildProcess::Outcome::timed_out;
+  Found<T> in_batch = session_.lost_finding(failure);
+  const bool hung = failure.kind == client::Failure::Kind::timeout;
   const std::string description = hung ? "gave no answer within --timeout" : in_batch.process;
-  const std::string tail = escape_bytes(session_.child().stderr_tail());
-  session_.child().stop();
+  const std::string& tail = failure.stderr_tail;
+  session_.program().stop();
   bool every_one_answered = true;
   for (std::size_t k = answered; k < cases.size(); ++k) {
     Found<T> finding;
@@ -140,7 +141,7 @@ Verdict Shrinker<T>::isolate(const std::vector<rc::Shrinkable<generators::Case<T
       case Evaluation::pass: continue;
       case Evaluation::finding: return shrink(cases[k], finding, done + 1);
       case Evaluation::protocol_error:
-        session_.child().stop();
+        session_.program().stop();
         return reporter_.issue(session_.issue());
       case Evaluation::out_of_time:
         if (k == answered) {
@@ -153,7 +154,7 @@ Verdict Shrinker<T>::isolate(const std::vector<rc::Shrinkable<generators::Case<T
     }
   }
   if (every_one_answered && hung) {
-    session_.child().stop();
+    session_.program().stop();
     return reporter_.count_error(
         "the implementation answered " + std::to_string(answered) + " of a batch's " +
             std::to_string(cases.size()) +

@@ -32,7 +32,7 @@ class Shrinker {
   /// The implementation stopped answering after `answered` cases of the batch: the request that
   /// does it alone is found and shrunk.
   Verdict isolate(const std::vector<rc::Shrinkable<generators::Case<T>>>& cases,
-                  std::size_t answered, long done, ChildProcess::Outcome outcome);
+                  std::size_t answered, long done, const client::Failure& failure);
 
  private:
   /// Which known mistake explains the shrunk case's answer, with the diagnosis's panel of cases

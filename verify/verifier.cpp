@@ -1,7 +1,7 @@
 // `oblique verify`'s run: the options checked, then batches of generated requests sent to the
 // implementation and judged while it answers the next (batches.h), each finding confirmed and
 // shrunk (shrinker.h) and reported (reporter.h). The rooms: cases.h (the contract into draws, an
-// answer read and judged), session.h (the child process, one request alone), failure_database.h
+// answer read and judged), session.h (the program, one request alone), failure_database.h
 // (--replay, --regressions).
 #include "oblique/verify/verifier.h"
 
@@ -52,7 +52,7 @@ class Verifier {
   /// --replay: re-judges one report's case.
   Verdict replay_report(const std::string& path) {
     const Verdict result = database_.replay(path, /*verbose=*/true);
-    session_.child().stop();
+    session_.program().stop();
     return result;
   }
 
@@ -63,10 +63,10 @@ class Verifier {
       session_.start_clock();  // the run's own time limit starts now
     }
     if (options_.rasterize && !raster_.open()) return Verdict::inconclusive;
-    ChildProcess& child = session_.child();
+    client::Program& program = session_.program();
     const Clock::time_point deadline = session_.deadline();
     const auto idle = session_.idle();
-    if (const Expected<Done> started = child.start(); !started) {
+    if (const Expected<Done> started = program.start(); !started) {
       err_ << "oblique verify: cannot start the implementation: " << started.error() << "\n";
       return Verdict::error;
     }
@@ -90,21 +90,21 @@ class Verifier {
       const std::size_t n = current.cases.size();
       std::vector<std::string> answers;
       bool restarted = false;  // --keep-going: a fresh process after a finding in this batch
-      auto outcome = child.exchange({}, n, answers, idle, deadline);
+      std::optional<client::Failure> failure = program.read(n, answers, deadline);
       bool time_up = false;
-      if (outcome == ChildProcess::Outcome::timed_out && Clock::now() >= deadline) {
+      if (failure && failure->kind == client::Failure::Kind::timeout && Clock::now() >= deadline) {
         // The time limit ended the wait, not the implementation; it must still show that it is
         // answering: one more line within --timeout of its last one, or the request it owes is
         // a timeout finding (never a pass with an unanswered request).
         time_up = true;
         // From now: the time we spent judging and drawing is not the implementation's.
-        outcome = child.exchange({}, answers.size() + 1, answers, idle, Clock::now() + idle);
+        failure = program.read(answers.size() + 1, answers, Clock::now() + idle);
       }
       const std::vector<Judged<T>> judged = judge_batch(draws_, current, answers, options_.threads);
       for (std::size_t k = 0; k < answers.size(); ++k) {
         const Judged<T>& j = judged[k];
         if (!j.protocol_error.empty()) {
-          child.stop();
+          program.stop();
           return reporter_.protocol_error(current.requests[k], answers[k], j.protocol_error);
         }
         if (j.finding) {
@@ -127,13 +127,13 @@ class Verifier {
           kinds[key] = Kind{reporter_.last_report(), 1, reporter_.last_cause()};
           if (Clock::now() >= deadline) break;
           // Go on with a fresh process, sent what the old one had queued.
-          if (const Expected<Done> started = child.start(); !started) {
+          if (const Expected<Done> started = program.start(); !started) {
             err_ << "oblique verify: cannot restart the implementation: " << started.error()
                  << "\n";
-            child.stop();
+            program.stop();
             return reporter_.index(kinds, done);
           }
-          child.send(following.text());
+          program.queue(following.text());
           restarted = true;
         }
         seen.count(current.values[k]);
@@ -144,7 +144,7 @@ class Verifier {
           const long index = done + static_cast<long>(k) + 1;
           if (const std::optional<Verdict> drawn =
                   raster_.sample(current.values[k], current.requests[k], answers[k], index)) {
-            child.stop();
+            program.stop();
             return *drawn;
           }
         }
@@ -158,36 +158,33 @@ class Verifier {
         current = std::move(following);
         continue;
       }
-      if (outcome == ChildProcess::Outcome::too_long) {
-        const std::string start = child.overlong_start();
-        child.stop();
+      if (failure && failure->cause == client::Failure::Cause::overlong) {
+        const std::string start = program.overlong_start();
+        program.stop();
         return reporter_.overlong_line(current.requests[answers.size()], start);
       }
-      if (time_up && outcome == ChildProcess::Outcome::done) {
+      if (time_up && !failure) {
         dropped = static_cast<long>(n - answers.size());
         stopped_by_time = true;
         break;  // still answering: the time limit ends the run
       }
-      if (time_up && outcome == ChildProcess::Outcome::timed_out) {
-        return shrinker_.shrink(current.cases[answers.size()],
-                                session_.lost_finding(ChildProcess::Outcome::timed_out), done + 1);
+      if (time_up && failure->kind == client::Failure::Kind::timeout) {
+        return shrinker_.shrink(current.cases[answers.size()], session_.lost_finding(*failure),
+                                done + 1);
       }
-      if (outcome != ChildProcess::Outcome::done) {
-        if (done == 0 && outcome == ChildProcess::Outcome::exited) {
-          const std::string end = child.end_description();
-          if (end == "exited with status 126" || end == "exited with status 127") {
-            err_ << "oblique verify: cannot run the implementation (" << end
-                 << "): " << escape_bytes(child.stderr_tail());
-            child.stop();
-            return Verdict::error;
-          }
+      if (failure) {
+        if (done == 0 && failure->cause == client::Failure::Cause::cannot_run) {
+          err_ << "oblique verify: cannot run the implementation (" << failure->ended
+               << "): " << failure->stderr_tail << "\n";
+          program.stop();
+          return Verdict::error;
         }
-        const Verdict result = shrinker_.isolate(current.cases, answers.size(), done, outcome);
+        const Verdict result = shrinker_.isolate(current.cases, answers.size(), done, *failure);
         if (result == Verdict::violated && options_.keep_going && !kinds.empty() &&
             !reporter_.last_report().empty()) {
           kinds[reporter_.last_kind() + " (ends the run)"] =
               Kind{reporter_.last_report(), 1, reporter_.last_cause()};
-          child.stop();
+          program.stop();
           return reporter_.index(kinds, done);
         }
         return result;
@@ -201,20 +198,18 @@ class Verifier {
              << " per second, no violation\n";
       }
     }
-    if (!stopped_by_time && child.running()) {
+    if (!stopped_by_time && program.running()) {
       // The count check of the last batch: once its input is closed, the implementation has
-      // nothing more to say.
-      const auto grace = std::min<Clock::duration>(idle, std::chrono::seconds(1));
-      const std::vector<std::string> extra = child.close_and_drain(Clock::now() + grace);
+      // nothing more to say (program.finish(): a second at most to say it).
+      const std::vector<std::string> extra = program.finish();
       if (!extra.empty()) {
-        child.stop();
         return reporter_.count_error(
             "the implementation wrote lines beyond one answer per request (" +
                 std::to_string(done) + " requests, all answered)",
             {}, extra);
       }
     }
-    child.stop();
+    program.stop();
     if (!kinds.empty()) return reporter_.index(kinds, done);
     if (done == 0) {
       err_ << "oblique verify: no case was judged within the time limit ("
@@ -250,7 +245,7 @@ class Verifier {
         std::min<std::size_t>(size, static_cast<std::size_t>(case_limit() - generated));
     Batch<T> b = draw_batch(draws_, random, n, left_out);
     generated += static_cast<long>(b.cases.size());
-    session_.child().send(b.text());
+    session_.program().queue(b.text());
     return b;
   }
 

@@ -1,6 +1,7 @@
 // A consumer function's request line and its answer's numbers (protocol/consumer_messages.h): what
 // a round's asks send a program, and how the numbers it answers become the function's result.
-// Shared by the rounds' asks (consumers.h) and a program's Consumers (consumer_program.h).
+// Shared by the rounds' asks (consumers.h) and a program's Consumers
+// (oblique/client/consumer_program.h).
 #pragma once
 
 #include <cstddef>

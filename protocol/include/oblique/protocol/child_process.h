@@ -11,21 +11,11 @@
 #include <vector>
 
 #include "oblique/expected.h"
+#include "oblique/protocol/shell_text.h"
 
 namespace oblique::protocol {
 
 using Clock = std::chrono::steady_clock;
-
-/// Bytes from another program as printable text: valid UTF-8 (newlines and tabs included) kept,
-/// every other byte (invalid or cut UTF-8, control characters) as \xNN.
-std::string escape_bytes(std::string_view bytes);
-
-/// `s` quoted for /bin/sh when it needs it (a word of letters, digits and _./=,:+-@% as it is).
-std::string shell_quote(const std::string& s);
-
-/// A command as tables and charts name it: each word that names a file without its folder
-/// ("python3 /x/y/impl.py --float" is "python3 impl.py --float"), at most 60 characters.
-std::string command_name(const std::string& command);
 
 class ChildProcess {
  public:

@@ -17,9 +17,9 @@
 #include <utility>
 #include <vector>
 
+#include "oblique/client/program.h"
 #include "oblique/depth_convention.h"
 #include "oblique/plane.h"
-#include "oblique/protocol/child_process.h"
 #include "oblique/status.h"
 
 namespace oblique::properties {
@@ -98,18 +98,17 @@ std::vector<Profile> core_profiles(const std::vector<ProfileInput<T>>& inputs);
 /// take 0.1 s, the median of 5 such measurements, in ns per call.
 double ns_per_call(std::size_t count, const std::function<void(std::size_t)>& call);
 
-/// A program's time per request over the pipe: `requests` (`count` lines) sent at once to
-/// `child` and timed to the last answer (JSON both ways, the pipe and the program's own work).
-/// A process that is not running yet is started and answers the first request before the clock
-/// starts: its start is no request's time. `ns` is NaN unless `outcome` is done; the answers are
-/// in `lines`.
+/// A program's time per request over the pipe: `requests` sent at once to `program` and timed
+/// to the last answer (JSON both ways, the pipe and the program's own work). A program that is
+/// not running yet is started and answers the first request before the clock starts: its start
+/// is no request's time. `ns` is NaN unless every request got its answer (`failure` says why
+/// not); the answers are in `lines`.
 struct RoundTrip {
-  protocol::ChildProcess::Outcome outcome = protocol::ChildProcess::Outcome::exited;
+  std::optional<client::Failure> failure;
   double ns = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> lines;
 };
-RoundTrip time_round_trip(protocol::ChildProcess& child, const std::string& requests,
-                          std::size_t count, std::chrono::milliseconds idle);
+RoundTrip time_round_trip(client::Program& program, const std::vector<std::string>& requests);
 
 /// Which of the points (ns, bits lost) are on the error-against-time front: no other point is
 /// as fast and as accurate and better in one. NaN points are on no front.

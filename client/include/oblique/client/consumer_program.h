@@ -1,8 +1,9 @@
 // A user's program that answers the consumer request kinds (oblique/protocol/consumer_messages.h)
-// as an oblique::Consumers<T>: each function of consumers() writes one request line to the
-// program and reads its one answer line, so every tool that checks a Consumers (the consumer
-// round of oblique/oracle/consumers.h) checks the program the same way; or a batch of a round's
-// asks at once (answer()). Used by `oblique verify --consumers` (batches) and `oblique check
+// as an oblique::Consumers<T>: each function of consumers() writes one request line (a Failure
+// thrown when it gets no answer to judge) to the program and reads its one answer line, so every
+// tool that checks a Consumers (the consumer round of oblique/oracle/consumers.h) checks the
+// program the same way; or a batch of a round's asks at once (answer()). Used by `oblique verify
+// --consumers` (batches) and `oblique check
 // --impl` on a scene with consumers (one request at a time).
 #pragma once
 
@@ -12,23 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "oblique/client/program.h"
 #include "oblique/oracle/consumers.h"
 #include "oblique/protocol/consumer_messages.h"
 
-namespace oblique::properties {
+namespace oblique::client {
 
-/// Why a request got no answer to judge; thrown by the functions of ConsumerProgram::consumers().
-struct ProgramFailure {
-  enum class Kind {
-    crash,     ///< the program exited or closed its output
-    timeout,   ///< no answer within the timeout
-    protocol,  ///< the line is not an answer of its kind, or lines beyond the one answer
-  };
-  Kind kind = Kind::protocol;
-  std::string what;     ///< in words, with how the program ended and its standard error's end
-  std::string request;  ///< the request line
-  std::vector<std::string> lines;  ///< what was read
-};
+using properties::ConsumerAsk;
 
 template <class T>
 class ConsumerProgram {
@@ -50,7 +41,7 @@ class ConsumerProgram {
     std::vector<std::string> requests;    ///< the request lines, one per ask
     std::vector<std::string> lines;       ///< the answer lines, as read
     std::vector<std::vector<T>> numbers;  ///< each line's numbers (read_consumer_answer())
-    std::optional<ProgramFailure> failure;
+    std::optional<Failure> failure;
   };
   /// Writes the request lines of `asks` at once and reads one answer line for each, in order:
   /// each may take the timeout after the one before it (reads and writes interleave, so a long
@@ -79,4 +70,4 @@ class ConsumerProgram {
   std::unique_ptr<State> state_;
 };
 
-}  // namespace oblique::properties
+}  // namespace oblique::client

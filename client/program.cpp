@@ -1,0 +1,190 @@
+#include "oblique/client/program.h"
+
+#include <csignal>
+
+#include "oblique/protocol/child_process.h"
+
+namespace oblique::client {
+
+using protocol::ChildProcess;
+static_assert(kMaxLineBytes == ChildProcess::kMaxLineBytes);
+
+struct Program::State {
+  ChildProcess child;
+  std::string command;
+  std::chrono::milliseconds timeout;
+  long answered = 0;
+
+  State(std::string c, std::chrono::milliseconds t) : child(c), command(std::move(c)), timeout(t) {}
+
+  /// A failure of `kind`; for a crash or a timeout how the program ended and the end of its
+  /// standard error are said, and it is stopped when `stop` (a read() leaves that to its caller).
+  Failure failure(Failure::Cause cause, std::string what, std::string request,
+                  std::vector<std::string> lines, bool stop = true) {
+    using Cause = Failure::Cause;
+    const Failure::Kind kind = cause == Cause::exited      ? Failure::Kind::crash
+                               : cause == Cause::timed_out ? Failure::Kind::timeout
+                                                           : Failure::Kind::protocol;
+    Failure f;
+    f.kind = kind;
+    f.cause = cause;
+    f.request = std::move(request);
+    f.lines = std::move(lines);
+    if (kind != Failure::Kind::protocol) {
+      if (kind == Failure::Kind::crash) f.ended = child.end_description();
+      if (stop) child.stop();
+      // A shell that could not run the command, before any answer: nothing was asked.
+      if (answered == 0 &&
+          (f.ended == "exited with status 126" || f.ended == "exited with status 127")) {
+        f.kind = Failure::Kind::protocol;
+        f.cause = Cause::cannot_run;
+        what = "cannot run the program";
+      }
+      if (!f.ended.empty()) what += " (" + f.ended + ")";
+      std::string tail = protocol::escape_bytes(child.stderr_tail());
+      while (!tail.empty() && (tail.back() == '\n' || tail.back() == '\r')) tail.pop_back();
+      f.stderr_tail = tail;
+      if (!tail.empty()) what += "; its standard error ends: " + tail;
+    }
+    f.what = std::move(what);
+    return f;
+  }
+
+  /// Why an exchange ended before every line was read.
+  Failure lost(ChildProcess::Outcome outcome, std::string request, std::vector<std::string> lines,
+               bool stop = true) {
+    if (outcome == ChildProcess::Outcome::too_long)
+      return failure(Failure::Cause::overlong,
+                     "an answer line longer than 1 MiB (not read further)", std::move(request),
+                     {child.overlong_start() + "..."});
+    if (outcome == ChildProcess::Outcome::exited)
+      return failure(Failure::Cause::exited, "the program ended before answering",
+                     std::move(request), std::move(lines), stop);
+    return failure(Failure::Cause::timed_out,
+                   "no answer within " + std::to_string(timeout.count()) + " ms",
+                   std::move(request), std::move(lines), stop);
+  }
+
+  /// The program started if it is not running, and nothing left unread from before; or why not.
+  std::optional<Failure> ready(const std::string& request) {
+    if (!child.running()) {
+      // A program that exits early must not take us down with it: a write to its closed input
+      // fails with EPIPE instead.
+      std::signal(SIGPIPE, SIG_IGN);
+      if (const Expected<Done> started = child.start(); !started)
+        return failure(Failure::Cause::cannot_start,
+                       "the program could not be started: " + started.error(), request, {});
+    }
+    if (std::vector<std::string> left = child.unasked_output(); !left.empty())
+      return failure(Failure::Cause::left_over, "lines beyond the one answer to the request before",
+                     request, std::move(left));
+    return std::nullopt;
+  }
+};
+
+Program::Program(std::string command, std::chrono::milliseconds timeout)
+    : state_(std::make_unique<State>(std::move(command), timeout)) {}
+
+Program::~Program() = default;
+
+Reply Program::ask(const std::string& request, Clock::time_point deadline) {
+  return ask(std::vector<std::string>{request}, deadline);
+}
+
+Reply Program::ask(const std::vector<std::string>& requests, Clock::time_point deadline) {
+  State& s = *state_;
+  Reply out;
+  if (requests.empty()) return out;
+  if (std::optional<Failure> f = s.ready(requests.front())) {
+    out.failure = std::move(f);
+    return out;
+  }
+  std::string input;
+  for (const std::string& r : requests) input += r + "\n";
+  const auto all = s.timeout * static_cast<long>(requests.size());
+  const Clock::time_point end = Clock::now() + all < deadline ? Clock::now() + all : deadline;
+  const auto outcome = s.child.exchange(input, requests.size(), out.lines, s.timeout, end);
+  s.answered += static_cast<long>(out.lines.size());
+  if (outcome != ChildProcess::Outcome::done) {
+    out.failure = s.lost(outcome, requests[out.lines.size()], {});
+  } else if (std::vector<std::string> extra = s.child.unasked_output(); !extra.empty()) {
+    const std::string what = requests.size() == 1
+                                 ? "lines beyond the one answer to this request"
+                                 : "lines beyond one answer per request (a batch of " +
+                                       std::to_string(requests.size()) +
+                                       " requests, this one the last)";
+    out.failure = s.failure(Failure::Cause::beyond, what, requests.back(), std::move(extra));
+  }
+  return out;
+}
+
+Expected<Done> Program::start() {
+  std::signal(SIGPIPE, SIG_IGN);
+  return state_->child.start();
+}
+
+void Program::queue(std::string_view text) {
+  state_->child.send(text);
+}
+
+std::optional<Failure> Program::read(std::size_t count, std::vector<std::string>& lines,
+                                     Clock::time_point deadline) {
+  State& s = *state_;
+  const std::size_t before = lines.size();
+  const auto outcome = s.child.exchange({}, count, lines, s.timeout, deadline);
+  s.answered += static_cast<long>(lines.size() - before);
+  if (outcome == ChildProcess::Outcome::done) return std::nullopt;
+  return s.lost(outcome, "", {}, /*stop=*/false);
+}
+
+std::vector<std::string> Program::unread_output() {
+  return state_->child.unasked_output();
+}
+
+std::vector<std::string> Program::finish() {
+  std::vector<std::string> extra;
+  if (state_->child.running()) {
+    const auto grace = std::min(state_->timeout, std::chrono::milliseconds(1000));
+    extra = state_->child.close_and_drain(Clock::now() + grace);
+  }
+  state_->child.stop();
+  return extra;
+}
+
+void Program::stop() {
+  state_->child.stop();
+}
+
+bool Program::running() const {
+  return state_->child.running();
+}
+
+long Program::answered() const {
+  return state_->answered;
+}
+
+std::chrono::milliseconds Program::timeout() const {
+  return state_->timeout;
+}
+
+const std::string& Program::command() const {
+  return state_->command;
+}
+
+const std::string& Program::overlong_start() const {
+  return state_->child.overlong_start();
+}
+
+Run run_once(const std::string& command, std::size_t keep, Clock::time_point deadline) {
+  ChildProcess child(command);
+  Run r;
+  if (!child.start()) {
+    r.started = false;
+    return r;
+  }
+  r.timed_out =
+      child.run_to_end(r.output, keep, deadline, r.status) == ChildProcess::Outcome::timed_out;
+  return r;
+}
+
+}  // namespace oblique::client
