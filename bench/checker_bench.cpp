@@ -20,16 +20,16 @@
 
 namespace {
 
+using oblique::Answer;
 using oblique::generators::Case;
 using oblique::properties::Checks;
 using oblique::properties::FilteredProblem;
-using oblique::properties::Outcome;
 using oblique::properties::Problem;
 
 template <class T>
 struct Judged {
   Case<T> c;
-  Outcome<T> answer;
+  Answer<T> answer;
 };
 
 /// 1024 cases of the suite's valid-case generator with the core's answers (ok or not), fixed seed.
@@ -42,7 +42,7 @@ const std::vector<Judged<T>>& workload() {
     for (int i = 0; out.size() < 1024; ++i) {
       const Case<T> c = gen(random.split(), i % 101).value();
       const auto r = oblique::apply<T>(c.matrix, c.plane, c.convention);
-      out.push_back(Judged<T>{c, Outcome<T>{r.status, r.projection}});
+      out.push_back(Judged<T>{c, Answer<T>{r.status, r.projection}});
     }
     return out;
   }();

@@ -67,7 +67,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         fail("a line over the limit not refused as too long", answer_line);
     } else {
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-      const Answer alone = answer_request(line, options);
+      const AnswerLine alone = answer_request(line, options);
       if (alone.line != answer_line)
         fail("serve's answer differs from answer_request's", answer_line);
       if (alone.status == oblique::Status::ok) {

@@ -223,7 +223,7 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
     every.row3_accuracy = true;
     bool found = false;
     for (const properties::Finding& f :
-         properties::judge(problem, properties::Outcome<T>{Status::ok, *answer}, every).checks) {
+         properties::judge(problem, Answer<T>{Status::ok, *answer}, every).checks) {
       if (f.check == *check && !f.holds) {
         ce.finding = f;
         found = true;

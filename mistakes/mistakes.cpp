@@ -251,13 +251,13 @@ Implementation<T> mistaken_implementation(const std::vector<Mistake>& mistakes) 
     // Input checks no mistake here changes: non-finite, out of the core's range, singular.
     if (right.status == Status::invalid_input || right.status == Status::singular_projection ||
         right.status == Status::out_of_range)
-      return Outcome<T>{right.status, right.projection};
+      return Answer<T>{right.status, right.projection};
     const auto mine = variant::evaluate<T>(m, c, convention, knobs);
     const auto careful = variant::evaluate<T>(m, c, convention, variant::Knobs{});
     if (mine.choices == careful.choices || mine.solve_failed)
-      return Outcome<T>{right.status, right.projection};
-    if (mine.status != Status::ok) return Outcome<T>{mine.status, m};
-    return Outcome<T>{Status::ok, variant::answer_matrix(m, mine)};
+      return Answer<T>{right.status, right.projection};
+    if (mine.status != Status::ok) return Answer<T>{mine.status, m};
+    return Answer<T>{Status::ok, variant::answer_matrix(m, mine)};
   };
   return impl;
 }

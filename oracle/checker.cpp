@@ -35,7 +35,7 @@ std::string Checker<T>::not_judged(StatusContract contract,
 }
 
 template <class T>
-Judgement Checker<T>::judge(const Outcome<T>& outcome, const Checks& checks) const {
+Judgement Checker<T>::judge(const Answer<T>& outcome, const Checks& checks) const {
   return properties::judge(*problem_, outcome, checks);
 }
 

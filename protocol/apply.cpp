@@ -8,12 +8,12 @@ namespace oblique::protocol {
 
 namespace {
 
-Answer refusal(Status status, std::string_view message) {
-  return Answer{status, refusal_line(status, message)};
+AnswerLine refusal(Status status, std::string_view message) {
+  return AnswerLine{status, refusal_line(status, message)};
 }
 
 template <class T>
-Answer run(const Request& request, const ApplyOptions& options) {
+AnswerLine run(const Request& request, const ApplyOptions& options) {
   Matrix4<T> m;
   Vector4<T> c;
   for (int i = 0; i < 16; ++i) {
@@ -32,12 +32,12 @@ Answer run(const Request& request, const ApplyOptions& options) {
   const Convention convention = request.convention.value_or(options.convention);
   const ObliqueResult<T> result = apply<T>(m, c, convention, options.method);
   if (!result.ok()) return refusal(result.status, result.message());
-  return Answer{Status::ok, ok_answer_line(result.projection)};
+  return AnswerLine{Status::ok, ok_answer_line(result.projection)};
 }
 
 }  // namespace
 
-Answer answer_request(std::string_view line, const ApplyOptions& options) {
+AnswerLine answer_request(std::string_view line, const ApplyOptions& options) {
   const Expected<Request> parsed = parse_request(line);
   if (!parsed) return refusal(Status::invalid_input, "not a valid request: " + parsed.error());
   switch (options.precision) {
@@ -71,7 +71,7 @@ int serve(std::istream& in, std::ostream& out, const ApplyOptions& options) {
       if (length++ < options.max_line_bytes) line.push_back(static_cast<char>(ch));
     }
     if (!any) break;
-    Answer answer;
+    AnswerLine answer;
     if (length > options.max_line_bytes) {
       answer = refusal(
           Status::invalid_input,

@@ -164,11 +164,11 @@ std::string refusal_line(Status status, std::string_view message) {
 }
 
 template <class T>
-Expected<TypedAnswer<T>> read_answer(std::string_view line) {
-  using Result = Expected<TypedAnswer<T>>;
+Expected<Answer<T>> read_answer(std::string_view line) {
+  using Result = Expected<Answer<T>>;
   const Expected<AnswerText> parsed = parse_answer(normalise_non_finite(line));
   if (!parsed) return Result::failure(parsed.error());
-  TypedAnswer<T> a;
+  Answer<T> a;
   a.message = parsed->message;
   const std::optional<Status> status = parse_status(parsed->status);
   if (!status) return Result::failure("unknown status \"" + parsed->status + "\"");
@@ -187,7 +187,7 @@ Expected<TypedAnswer<T>> read_answer(std::string_view line) {
   template std::string request_line<T>(const Matrix4<T>&, const Vector4<T>&, \
                                        std::optional<Convention>, Notation); \
   template std::string ok_answer_line<T>(const Matrix4<T>&);                 \
-  template Expected<TypedAnswer<T>> read_answer<T>(std::string_view);        \
+  template Expected<Answer<T>> read_answer<T>(std::string_view);             \
   template Expected<T> read_answer_number<T>(const std::string&);
 OBLIQUE_PROTOCOL_MESSAGES(float)
 OBLIQUE_PROTOCOL_MESSAGES(double)

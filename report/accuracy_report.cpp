@@ -359,7 +359,7 @@ std::string measure_external(const Regime& regime, const std::vector<Input>& inp
   Errors all;
   std::vector<Errors> by_step(regime.values.size());
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const Expected<protocol::TypedAnswer<T>> answer = protocol::read_answer<T>(lines[i]);
+    const Expected<Answer<T>> answer = protocol::read_answer<T>(lines[i]);
     if (!answer)
       return impl.command + ": answer " + std::to_string(i + 1) + " of regime " + regime.name +
              " is not an answer (" + answer.error() + ")";
@@ -367,7 +367,7 @@ std::string measure_external(const Regime& regime, const std::vector<Input>& inp
     // Only answers that pass the properties are profiled (a refusal is judged as any refusal).
     properties::Checks checks;
     checks.statuses = properties::StatusContract::any_refusal;
-    const properties::Outcome<T> outcome{answer->status, answer->projection};
+    const Answer<T> outcome{answer->status, answer->projection};
     if (properties::judge(problems[i], outcome, checks).violation()) {
       ++all.violating;
       continue;

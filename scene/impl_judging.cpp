@@ -38,9 +38,9 @@ void judge_answer_in(const Scene& scene, SurfaceCheck& pass, const std::string& 
     f.message = why;
     pass.impl_findings.push_back(f);
   };
-  const Expected<protocol::TypedAnswer<T>> answer = protocol::read_answer<T>(line);
+  const Expected<Answer<T>> answer = protocol::read_answer<T>(line);
   if (!answer) return protocol_error(answer.error());
-  const properties::Outcome<T> outcome{answer->status, answer->projection};
+  const Answer<T> outcome{answer->status, answer->projection};
   const properties::Problem<T> problem(request_projection<T>(scene), request_plane<T>(pass),
                                        scene.convention);
   properties::Checks checks;
@@ -57,7 +57,7 @@ properties::Diagnosis diagnose_in(const Scene& scene, const std::vector<SurfaceC
                                   const std::vector<std::string>& lines) {
   std::vector<properties::Observation<T>> seen;
   for (std::size_t i = 0; i < passes.size(); ++i) {
-    const Expected<protocol::TypedAnswer<T>> answer = protocol::read_answer<T>(lines[i]);
+    const Expected<Answer<T>> answer = protocol::read_answer<T>(lines[i]);
     if (!answer) continue;
     properties::Observation<T> o{request_projection<T>(scene),
                                  request_plane<T>(*passes[i]),

@@ -92,7 +92,7 @@ std::vector<properties::Finding> judge(const Matrix4<double>& projection,
   const properties::Problem<double> problem(projection, plane, convention);
   properties::Checks checks;
   checks.every = true;
-  return properties::judge(problem, properties::Outcome<double>{Status::ok, result}, checks).checks;
+  return properties::judge(problem, Answer<double>{Status::ok, result}, checks).checks;
 }
 
 }  // namespace

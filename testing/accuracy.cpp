@@ -41,7 +41,7 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& given,
                       std::string(generators::family_name(c.family)),
                       std::string(generators::place_name(c.place)),
                       protocol::request_line(c.matrix, c.plane, c.convention)});
-    const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
+    const Answer<T> outcome = impl.run(c.matrix, c.plane, c.convention);
     if (const properties::Finding* v = judge(problem, outcome, checks).violation()) {
       if (++violating == 1)
         first_violation = std::string(check_name(v->check)) + " on " + inputs.back().request;

@@ -103,7 +103,7 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
           count_left_out(family, "no answer to judge against");
           return;
         }
-        const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
+        const Answer<T> outcome = impl.run(c.matrix, c.plane, c.convention);
         if (outcome.status != Status::ok) {
           count_left_out(family, impl.name + " answered a status (the properties judge it)");
           return;

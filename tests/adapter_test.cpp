@@ -1,4 +1,4 @@
-// oblique::adapt: every function shape it takes gives the same Outcome as the core, in both
+// oblique::adapt: every function shape it takes gives the same Answer as the core, in both
 // layouts and scalar types, with the status contract its return type implies.
 #include "oblique/oracle/adapter.h"
 
@@ -10,7 +10,6 @@
 namespace oblique {
 namespace {
 
-using properties::Outcome;
 using properties::StatusContract;
 
 template <class T>
@@ -36,7 +35,7 @@ void expect_same_as_core(const properties::Implementation<T>& impl, bool refusal
   const Matrix4<T> m = frustum_matrix<T>();
   const auto core = apply<T>(m, plane_in_view<T>(), Convention::gl);
   ASSERT_TRUE(core.ok());
-  const Outcome<T> got = impl.run(m, plane_in_view<T>(), Convention::gl);
+  const Answer<T> got = impl.run(m, plane_in_view<T>(), Convention::gl);
   EXPECT_EQ(got.status, Status::ok);
   EXPECT_EQ(got.projection, core.projection) << impl.name;
   if (refusal_too) {

@@ -25,7 +25,7 @@ template <class AnyProblem, class T>
 Judgement judge_alone(const AnyProblem& problem, const Matrix4<T>& projection, Property which) {
   Checks checks;
   checks.properties = {which};
-  return judge(problem, Outcome<T>{Status::ok, projection}, checks);
+  return judge(problem, Answer<T>{Status::ok, projection}, checks);
 }
 
 TEST(CheckerMutation, nearPlaneWithOneSignFlippedIsRejected) {

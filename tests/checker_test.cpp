@@ -57,7 +57,7 @@ TYPED_TEST(CheckerTest, judgesAsTheFilteredAndTheExactChecker) {
       EXPECT_EQ(checker.not_judged(contract), not_judged(exact, contract)) << where;
     }
     const ObliqueResult<T> r = apply<T>(c.matrix, c.plane, c.convention);
-    Outcome<T> answer{r.status, r.projection};
+    Answer<T> answer{r.status, r.projection};
     expect_same(checker.judge(answer), judge(filtered, answer), where);
     expect_same(checker.judge(answer), judge(exact, answer), where);
     if (!r.ok()) continue;
@@ -76,14 +76,14 @@ TEST(Checker, namesTheFirstViolation) {
   const Checker<double> checker(m, c, Convention::gl);
   const ObliqueResult<double> r = apply<double>(m, c, Convention::gl);
   ASSERT_TRUE(r.ok()) << r.message();
-  EXPECT_TRUE(checker.judge(Outcome<double>{Status::ok, r.projection}).holds());
+  EXPECT_TRUE(checker.judge(Answer<double>{Status::ok, r.projection}).holds());
   Matrix4<double> wrong = r.projection;
   wrong.row(2) = -wrong.row(2);
-  const Judgement j = checker.judge(Outcome<double>{Status::ok, wrong});
+  const Judgement j = checker.judge(Answer<double>{Status::ok, wrong});
   ASSERT_NE(j.violation(), nullptr);
   EXPECT_EQ(check_name(j.violation()->check), "near_is_clip_plane");
   // Refusing an input that has an answer breaks the exact status contract.
-  const Judgement refused = checker.judge(Outcome<double>{Status::singular_projection, m});
+  const Judgement refused = checker.judge(Answer<double>{Status::singular_projection, m});
   ASSERT_NE(refused.violation(), nullptr);
   EXPECT_EQ(check_name(refused.violation()->check), "status");
 }

@@ -20,7 +20,7 @@ using namespace oblique::properties;
 template <class T>
 Observation<T> observe(const Implementation<T>& impl, const Matrix4<T>& m, const Vector4<T>& c,
                        Convention convention) {
-  const Outcome<T> outcome = impl.run(m, c, convention);
+  const Answer<T> outcome = impl.run(m, c, convention);
   const Checker<T> checker(m, c, convention);
   Checks checks;
   checks.statuses = StatusContract::any_refusal;
@@ -111,7 +111,7 @@ TYPED_TEST(Diagnose, anUnlistedMistakeIsNoKnownMistake) {
   impl.accepts = [](Convention, const Matrix4<T>&) { return true; };
   impl.run = [](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
     const ObliqueResult<T> r = apply<T>(m, c, convention);
-    Outcome<T> out{r.status, r.projection};
+    Answer<T> out{r.status, r.projection};
     if (r.status == Status::ok) {
       const RowCombination near = near_rows(convention);
       const Vector4<T> m4 = m.row(3).transpose();

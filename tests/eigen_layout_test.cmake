@@ -1,12 +1,14 @@
 # A file built with other SIMD flags than the libraries cannot link against their interfaces that
 # take structs holding Eigen matrices (oblique/util/eigen_layout.h): compiled as is and with
-# -mavx2, a file calling oblique::fuzzing::test_one_input and properties::Checker refers to them in
-# eigen_align16 and in eigen_align32; the libraries define the first (the one of their own build)
-# and not the second. Usage: cmake -DCXX=... -DSOURCE=<repository> -DFUZZING=<lib>
-#   -DPROPERTIES=<the oracle library, which holds the checker> -DEIGEN=<include dir> -DWORK=<dir>
+# -mavx2, a file calling oblique::fuzzing::test_one_input, properties::Checker and the case
+# builder refers to them in eigen_align16 and in eigen_align32; the libraries define the first
+# (the one of their own build) and not the second. Usage: cmake -DCXX=... -DSOURCE=<repository>
+#   -DFUZZING=<lib> -DPROPERTIES=<the oracle library, which holds the checker>
+#   -DCASES=<the cases library, which holds the case builder> -DEIGEN=<include dir> -DWORK=<dir>
 #   -P eigen_layout_test.cmake
 file(MAKE_DIRECTORY ${WORK})
 file(WRITE ${WORK}/uses_libraries.cpp [=[
+#include <oblique/cases/case_builder.h>
 #include <oblique/fuzzing.h>
 #include <oblique/oracle/checker.h>
 void make_oblique(float m[16], const float plane[4]);
@@ -17,8 +19,13 @@ int fuzz_one(const std::uint8_t* data, std::size_t size) {
 }
 bool holds(const oblique::Matrix4<float>& m, const oblique::Vector4<float>& c) {
   return oblique::properties::Checker<float>(m, c, oblique::Convention::gl)
-      .judge(oblique::properties::Outcome<float>{oblique::Status::ok, m})
+      .judge(oblique::Answer<float>{oblique::Status::ok, m})
       .holds();
+}
+oblique::generators::Case<float> built() {
+  using namespace oblique::generators;
+  return build_case<float>(Family::perspective, oblique::Convention::gl, Place::typical, 0,
+                           [](int lo, int) { return lo; });
 }
 ]=])
 set(includes -I${SOURCE}/core/include -I${SOURCE}/protocol/include -I${SOURCE}/cases/include -I${SOURCE}/oracle/include
@@ -47,6 +54,7 @@ foreach(variant baseline avx2)
 endforeach()
 symbols(${FUZZING} fuzzing_symbols)
 symbols(${PROPERTIES} properties_symbols)
+symbols(${CASES} cases_symbols)
 
 set(failures "")
 function(expect_in listing text what)  # `text` occurs in `listing` (or, with what = "no ...", not)
@@ -71,6 +79,13 @@ expect_in("${fuzzing_symbols}" "eigen_align32" "no eigen_align32 in oblique::fuz
 expect_in("${properties_symbols}" "W oblique::properties::eigen_align16::Checker<float>::judge("
           "oblique::properties defines Checker::judge in eigen_align16")
 expect_in("${properties_symbols}" "eigen_align32" "no eigen_align32 in oblique::properties")
+expect_in("${baseline_symbols}" "U oblique::generators::Case<float> oblique::generators::eigen_align16::build_case<float>("
+          "the baseline file refers to build_case in eigen_align16")
+expect_in("${avx2_symbols}" "U oblique::generators::Case<float> oblique::generators::eigen_align32::build_case<float>("
+          "the -mavx2 file refers to build_case in eigen_align32")
+expect_in("${cases_symbols}" "W oblique::generators::Case<float> oblique::generators::eigen_align16::build_case<float>("
+          "oblique::cases defines build_case in eigen_align16")
+expect_in("${cases_symbols}" "eigen_align32" "no eigen_align32 in oblique::cases")
 if(failures)
   message(FATAL_ERROR "Eigen's layout in the interfaces' names:\n${failures}")
 endif()

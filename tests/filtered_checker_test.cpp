@@ -65,7 +65,7 @@ bool same(const Judgement& a, const Judgement& b) {
 
 template <class T>
 void compare(const Case<T>& c, const Problem<T>& exact, const FilteredProblem<T>& filtered,
-             const Outcome<T>& outcome, const Checks& checks, const std::string& what,
+             const Answer<T>& outcome, const Checks& checks, const std::string& what,
              Tally& tally) {
   ++tally.judgements;
   const Judgement expected = judge(exact, outcome, checks);
@@ -89,8 +89,8 @@ void compare(const Case<T>& c, const Problem<T>& exact, const FilteredProblem<T>
 }
 
 template <class T>
-Outcome<T> perturbed(const Outcome<T>& answer, int which, const Matrix4<T>& m) {
-  Outcome<T> out = answer;
+Answer<T> perturbed(const Answer<T>& answer, int which, const Matrix4<T>& m) {
+  Answer<T> out = answer;
   Matrix4<T>& p = out.projection;
   const int entry = which / 9 % 4;
   T& x = p(2, entry);
@@ -172,7 +172,7 @@ void one_case(std::uint64_t index, rc::Random& random, Tally& tally) {
 
   const auto known = known_implementations<T>();
   const Implementation<T>& core = known[0];  // core_auto
-  const Outcome<T> answer = core.run(c.matrix, c.plane, c.convention);
+  const Answer<T> answer = core.run(c.matrix, c.plane, c.convention);
   compare(c, exact, filtered, answer, core.checks(true), "core answer", tally);
   if (answer.status == Status::ok) {
     const int which = int(index / 5 % 36);
@@ -185,7 +185,7 @@ void one_case(std::uint64_t index, rc::Random& random, Tally& tally) {
         const auto& w = wrong[index % wrong.size()];
         Checks alone;
         alone.properties = {w.what.catches};
-        compare(c, exact, filtered, Outcome<T>{Status::ok, w.projection},
+        compare(c, exact, filtered, Answer<T>{Status::ok, w.projection},
                 index % 2 ? alone : defaults,
                 "wrong answer for " + std::string(property_name(w.what.catches)), tally);
       }
@@ -194,7 +194,7 @@ void one_case(std::uint64_t index, rc::Random& random, Tally& tally) {
   // Another implementation, in turn: the other methods, the recipes, the planted mutants.
   const Implementation<T>& other = known[1 + index % (known.size() - 1)];
   if (other.accepts(c.convention, c.matrix)) {
-    const Outcome<T> o = other.run(c.matrix, c.plane, c.convention);
+    const Answer<T> o = other.run(c.matrix, c.plane, c.convention);
     Checks checks = other.checks(other.name.rfind("core_", 0) == 0);
     if (index % 3 == 0) checks.statuses = StatusContract::any_refusal;
     compare(c, exact, filtered, o, checks, other.name, tally);
@@ -240,14 +240,14 @@ TEST(Filtered, decidesTheCoresAnswerOnAPlainFrustum) {
   checks.row3_accuracy = true;
   checks.max_ulps = 2;
   const std::optional<Judgement> j =
-      problem.filtered_judgement(Outcome<double>{r.status, r.projection}, checks);
+      problem.filtered_judgement(Answer<double>{r.status, r.projection}, checks);
   ASSERT_TRUE(j.has_value());
   EXPECT_TRUE(j->holds());
   EXPECT_EQ(j->checks.size(), 7u);
   // The sign-flip repro: the filter does not decide it, the exact checker rejects it.
   Matrix4<double> wrong = r.projection;
   wrong(2, 0) = -wrong(2, 0) - 2 * m(3, 0);
-  const Judgement rejected = judge(problem, Outcome<double>{Status::ok, wrong}, checks);
+  const Judgement rejected = judge(problem, Answer<double>{Status::ok, wrong}, checks);
   ASSERT_NE(rejected.violation(), nullptr);
   EXPECT_EQ(check_name(rejected.violation()->check), "near_is_clip_plane");
 }
@@ -272,7 +272,7 @@ void expect_decided_at_scale(int m_shift, int c_shift) {
   Checks checks;
   checks.row3_accuracy = true;
   checks.max_ulps = tolerance::kAccurateUlps;
-  const Outcome<T> outcome{r.status, r.projection};
+  const Answer<T> outcome{r.status, r.projection};
   const std::optional<Judgement> fast = filtered.filtered_judgement(outcome, checks);
   ASSERT_TRUE(fast.has_value()) << "gave up at line " << filtered.undecided_at();
   const Judgement expected = judge(exact, outcome, checks);

@@ -22,10 +22,10 @@ namespace {
 const Matrix4<double> kFrustum = frustum(-1.0, 1.0, -1.0, 1.0, 1.0, 10.0, Convention::gl);
 const Vector4<double> kPlane(0.25, 0.5, -1.0, -2.0);  // the camera behind it, C . Q > 0
 
-Outcome<double> core_answer() {
+Answer<double> core_answer() {
   const ObliqueResult<double> r = apply<double>(kFrustum, kPlane, Convention::gl);
   EXPECT_TRUE(r.ok()) << r.message();
-  return Outcome<double>{r.status, r.projection};
+  return Answer<double>{r.status, r.projection};
 }
 
 Checks with_statuses(StatusContract contract) {
@@ -59,7 +59,7 @@ TEST(Judge, anOkAnswerToAnInputWithoutOneFailsEveryContract) {
   for (StatusContract contract :
        {StatusContract::exact, StatusContract::any_refusal, StatusContract::answers_only}) {
     const Judgement j =
-        judge(problem, Outcome<double>{Status::ok, kFrustum}, with_statuses(contract));
+        judge(problem, Answer<double>{Status::ok, kFrustum}, with_statuses(contract));
     ASSERT_NE(j.violation(), nullptr);
     EXPECT_EQ(check_name(j.violation()->check), "status");
     EXPECT_EQ(j.violation()->answered, Status::ok);
@@ -70,7 +70,7 @@ TEST(Judge, anOkAnswerToAnInputWithoutOneFailsEveryContract) {
 TEST(Judge, aWrongRefusalFailsOnlyTheExactContract) {
   const Vector4<double> in_front(0.0, 0.0, -1.0, 2.0);
   const Problem<double> problem(kFrustum, in_front, Convention::gl);
-  const Outcome<double> wrong_code{Status::singular_projection, kFrustum};
+  const Answer<double> wrong_code{Status::singular_projection, kFrustum};
   const Judgement exact = judge(problem, wrong_code, with_statuses(StatusContract::exact));
   ASSERT_NE(exact.violation(), nullptr);
   EXPECT_EQ(check_name(exact.violation()->check), "status");
@@ -81,7 +81,7 @@ TEST(Judge, aWrongRefusalFailsOnlyTheExactContract) {
 
 TEST(Judge, refusingAnInputWithAnAnswerFailsUnlessStatusesAreNotReported) {
   const Problem<double> problem(kFrustum, kPlane, Convention::gl);
-  const Outcome<double> refused{Status::camera_not_behind_plane, kFrustum};
+  const Answer<double> refused{Status::camera_not_behind_plane, kFrustum};
   for (StatusContract contract : {StatusContract::exact, StatusContract::any_refusal}) {
     const Judgement j = judge(problem, refused, with_statuses(contract));
     ASSERT_NE(j.violation(), nullptr);
@@ -103,7 +103,7 @@ TEST(Judge, aRefusalInItsOwnWordsWhereRoundingAllowsOnePassesAnyRefusal) {
   const auto acceptable = problem.acceptable_statuses();
   ASSERT_NE(std::find(acceptable.begin(), acceptable.end(), Status::plane_misses_view_volume),
             acceptable.end());
-  const Outcome<float> own_words{Status::invalid_input, m};
+  const Answer<float> own_words{Status::invalid_input, m};
   EXPECT_TRUE(judge(problem, own_words, with_statuses(StatusContract::any_refusal)).holds());
   const Judgement exact = judge(problem, own_words, with_statuses(StatusContract::exact));
   ASSERT_NE(exact.violation(), nullptr);
@@ -112,7 +112,7 @@ TEST(Judge, aRefusalInItsOwnWordsWhereRoundingAllowsOnePassesAnyRefusal) {
 
 TEST(Judge, aNonFiniteAnswerIsNamedFirst) {
   const Problem<double> problem(kFrustum, kPlane, Convention::gl);
-  Outcome<double> answer = core_answer();
+  Answer<double> answer = core_answer();
   answer.projection(2, 0) = std::numeric_limits<double>::quiet_NaN();
   const Judgement j = judge(problem, answer);
   ASSERT_NE(j.violation(), nullptr);
@@ -129,7 +129,7 @@ TEST(Judge, aNonFiniteAnswerIsNamedFirst) {
 
 TEST(Judge, onlyTheSelectedPropertiesAreChecked) {
   const Problem<double> problem(kFrustum, kPlane, Convention::gl);
-  Outcome<double> answer = core_answer();
+  Answer<double> answer = core_answer();
   answer.projection(0, 0) *= 2;  // a changed side row; row 3 (and the near plane) untouched
   Checks near_only;
   near_only.properties = {Property::near_is_clip_plane};
@@ -152,7 +152,7 @@ TEST(Judge, aChangedSignOfZeroInTheSideRowsIsNotAViolation) {
   const Problem<double> problem(flipped, kPlane, Convention::gl);
   const ObliqueResult<double> r = apply<double>(flipped, kPlane, Convention::gl);
   ASSERT_TRUE(r.ok()) << r.message();
-  Outcome<double> answer{r.status, r.projection};
+  Answer<double> answer{r.status, r.projection};
   int flips = 0;
   for (int row : {0, 1, 3}) {
     for (int j = 0; j < 4; ++j) {
@@ -173,7 +173,7 @@ TEST(Judge, aChangedSignOfZeroInTheSideRowsIsNotAViolation) {
 
 TEST(Judge, stopsAtTheFirstViolationUnlessEveryIsAsked) {
   const Problem<double> problem(kFrustum, kPlane, Convention::gl);
-  Outcome<double> answer = core_answer();
+  Answer<double> answer = core_answer();
   answer.projection(0, 0) *= 2;
   const Judgement first = judge(problem, answer);
   ASSERT_NE(first.violation(), nullptr);
@@ -187,7 +187,7 @@ TEST(Judge, stopsAtTheFirstViolationUnlessEveryIsAsked) {
 
 TEST(Judge, rowThreeAccuracyAndTheUlpsPromiseAreCheckedWhenAsked) {
   const Problem<double> problem(kFrustum, kPlane, Convention::gl);
-  Outcome<double> answer = core_answer();
+  Answer<double> answer = core_answer();
   answer.projection(2, 3) *= 1 + 1e-9;  // far beyond the bound of careful double arithmetic
   Checks none;
   none.properties.clear();
@@ -199,7 +199,7 @@ TEST(Judge, rowThreeAccuracyAndTheUlpsPromiseAreCheckedWhenAsked) {
   EXPECT_EQ(check_name(j.violation()->check), "row3_accuracy");
   EXPECT_GT(j.violation()->ratio, 1);
 
-  Outcome<double> one_ulp = core_answer();
+  Answer<double> one_ulp = core_answer();
   one_ulp.projection(2, 3) = std::nextafter(one_ulp.projection(2, 3), 0.0);
   Checks ulps = none;
   ulps.max_ulps = 2;
@@ -263,9 +263,9 @@ void near_plane_allowance() {
   const FilteredProblem<T> filtered(m, plane, Convention::gl);
   Checks near_only;
   near_only.properties = {Property::near_is_clip_plane};
-  ASSERT_TRUE(judge(problem, Outcome<T>{r.status, r.projection}, near_only).holds());
+  ASSERT_TRUE(judge(problem, Answer<T>{r.status, r.projection}, near_only).holds());
   // Dropped: near'_1 = M'_31 + M'_41 = 0 instead of lambda tiny.
-  Outcome<T> dropped{Status::ok, r.projection};
+  Answer<T> dropped{Status::ok, r.projection};
   dropped.projection(2, 0) = T(0);
   Checks all;
   all.every = true;
@@ -275,7 +275,7 @@ void near_plane_allowance() {
   }
   // A change of that coefficient a rasterizer sees, 8 u lambda max|C|: a violation.
   const T lambda = r.projection(2, 1) / plane(1);  // near'_2 = M'_32 (M_42 = 0) = lambda C_2
-  Outcome<T> moved{Status::ok, r.projection};
+  Answer<T> moved{Status::ok, r.projection};
   moved.projection(2, 0) = 8 * std::numeric_limits<T>::epsilon() / 2 * lambda * T(2);
   for (const Judgement& j : {judge(problem, moved, near_only), judge(filtered, moved, near_only)}) {
     ASSERT_NE(j.violation(), nullptr);
@@ -320,7 +320,7 @@ void zero_one_row_from_gl(bool box) {
       const Problem<T> problem(m, plane, Convention::zero_one);
       if (problem.exact_status() != Status::ok) continue;
       ++judged;
-      const Judgement held = judge(problem, Outcome<T>{Status::ok, converted}, near_only);
+      const Judgement held = judge(problem, Answer<T>{Status::ok, converted}, near_only);
       EXPECT_TRUE(held.holds()) << (box ? "box" : "frustum") << ", tilt " << tilt << ", h " << h
                                 << ": " << residual_text(*held.violation());
       // A change a rasterizer sees: 64 u (|M_4| + lambda max|C|) more in that entry (past its own
@@ -329,7 +329,7 @@ void zero_one_row_from_gl(bool box) {
       for (int j = 0; j < 4; ++j) row_max = std::max(row_max, std::abs(converted(2, j)));
       Matrix4<T> moved = converted;
       moved(2, entry) += 64 * u * (std::abs(m(3, entry)) + row_max);
-      const Judgement seen = judge(problem, Outcome<T>{Status::ok, moved}, near_only);
+      const Judgement seen = judge(problem, Answer<T>{Status::ok, moved}, near_only);
       ASSERT_NE(seen.violation(), nullptr) << "tilt " << tilt << ", h " << h;
       EXPECT_EQ(check_name(seen.violation()->check), "near_is_clip_plane");
     }
@@ -397,7 +397,7 @@ TEST(Findings, theWordsComeFromTheNumbers) {
 // A check that is a yes or a no has no ratio, not a large number standing for one.
 TEST(Findings, aYesOrNoCheckHasNoRatio) {
   const Problem<double> problem(kFrustum, kPlane, Convention::gl);
-  Outcome<double> changed = core_answer();
+  Answer<double> changed = core_answer();
   changed.projection(0, 0) += 1;
   Checks sides;
   sides.properties = {Property::side_rows_unchanged};

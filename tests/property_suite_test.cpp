@@ -114,7 +114,7 @@ void accurate_method_is_within_its_ulps() {
         Checks checks;
         checks.properties.clear();
         checks.max_ulps = tolerance::kAccurateUlps;
-        const Outcome<T> outcome{result.status, result.projection};
+        const Answer<T> outcome{result.status, result.projection};
         const Judgement judgement = judge(problem, outcome, checks);
         if (const Finding* violation = judgement.violation())
           fail_with(c, core_method<T>(Method::accurate), *violation, &outcome);

@@ -93,7 +93,7 @@ TEST(Protocol, malformedRequestsSayWhatIsWrong) {
     const Expected<Request> parsed = parse_request(line);
     EXPECT_FALSE(parsed) << line;
     EXPECT_NE(parsed.error().find(expected), std::string::npos) << line << " -> " << parsed.error();
-    const Answer answer = answer_request(line, ApplyOptions{});
+    const AnswerLine answer = answer_request(line, ApplyOptions{});
     EXPECT_EQ(answer.status, Status::invalid_input);
     EXPECT_EQ(answer.line.rfind("{\"status\": \"invalid_input\", \"message\": ", 0), 0u)
         << answer.line;
@@ -106,7 +106,7 @@ TEST(Protocol, answersCarryTheCoreResultExactly) {
   std::string line = "{\"projection\": [";
   for (int i = 0; i < 16; ++i) line += (i ? "," : "") + format_number(m(i / 4, i % 4));
   line += "], \"plane\": [0.25, -0.375, -1, \"-0x1.cp+2\"], \"convention\": \"zero_one\"}";
-  const Answer answer = answer_request(line, ApplyOptions{});
+  const AnswerLine answer = answer_request(line, ApplyOptions{});
   ASSERT_EQ(answer.status, Status::ok) << answer.line;
   const auto expected = apply(m, c, Convention::zero_one);
   std::string want = "{\"status\": \"ok\", \"projection\": [";
@@ -205,15 +205,15 @@ TEST(Protocol, longDoubleReadsNumbersBeyondDoubleRange) {
   EXPECT_EQ(parsed->plane[2], "-1e400");
   ApplyOptions options;
   options.precision = Precision::long_double;
-  const Answer answer = answer_request(line, options);
+  const AnswerLine answer = answer_request(line, options);
   EXPECT_EQ(answer.status, Status::ok) << answer.line;
   // In double the same number is named as overflowing, not as a JSON error.
   options.precision = Precision::float64;
-  const Answer in_double = answer_request(line, options);
+  const AnswerLine in_double = answer_request(line, options);
   EXPECT_NE(in_double.line.find("plane[2]: -1e400 overflows"), std::string::npos) << in_double.line;
   // An integer beyond every range, too.
   const std::string huge(400, '9');
-  const Answer integer = answer_request(
+  const AnswerLine integer = answer_request(
       "{\"projection\": [1,0,0,0,0,1,0,0,0,0,-3,-4,0,0,-1,0], \"plane\": [0,0,-1,-" + huge + "]}",
       options);
   EXPECT_NE(integer.line.find("plane[3]: -" + huge + " overflows"), std::string::npos)

@@ -50,7 +50,7 @@ void replay(const nlohmann::json& j, const std::string& name) {
   for (Method method : all_methods) {
     const Implementation<T> core = core_method<T>(method);
     if (!core.accepts(convention, m)) continue;
-    const Outcome<T> outcome = core.run(m, c, convention);
+    const Answer<T> outcome = core.run(m, c, convention);
     const Judgement judgement = judge(problem, outcome, core.checks(/*accuracy=*/true));
     EXPECT_TRUE(judgement.holds())
         << name << ": " << core.name << " violates " << check_name(judgement.violation()->check);
@@ -68,7 +68,7 @@ void replay(const nlohmann::json& j, const std::string& name) {
   if (recorded.rfind("core_", 0) == 0) return;  // a finding about the checker: the core passes
   for (const Implementation<T>& impl : known_implementations<T>()) {
     if (impl.name != recorded) continue;
-    const Outcome<T> outcome = impl.run(m, c, convention);
+    const Answer<T> outcome = impl.run(m, c, convention);
     EXPECT_FALSE(judge(problem, outcome, impl.checks()).holds())
         << name << ": " << recorded << " no longer fails here";
     return;

@@ -247,7 +247,7 @@ TEST(SuiteReportViews, marksThePointTheWrongAnswerClips) {
   c.plane = Vector4<double>(0.2, 0.1, -1, -5);  // through (0, 0, -5), leaning: C_w < 0
   const properties::Problem<double> problem(c.matrix, c.plane, c.convention);
   ASSERT_EQ(problem.exact_status(), Status::ok);
-  properties::Outcome<double> wrong;
+  Answer<double> wrong;
   wrong.projection = c.matrix;
   const exact::Vec row3 = problem.exact_row3();
   for (int i = 0; i < 4; ++i) wrong.projection(2, i) = 1.25 * row3[i].get_d();
@@ -277,7 +277,7 @@ TEST(SuiteReportViews, marksNothingWhenTheAnswerClipsNothing) {
   c.plane = Vector4<double>(0, 0.3, -1, -4);
   const properties::Problem<double> problem(c.matrix, c.plane, c.convention);
   ASSERT_EQ(problem.exact_status(), Status::ok);
-  properties::Outcome<double> wrong;  // row 1 changed: side_rows_unchanged, nothing clipped
+  Answer<double> wrong;  // row 1 changed: side_rows_unchanged, nothing clipped
   wrong.projection = c.matrix;
   const exact::Vec row3 = problem.exact_row3();
   for (int i = 0; i < 4; ++i) wrong.projection(2, i) = row3[i].get_d();

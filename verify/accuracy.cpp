@@ -30,7 +30,7 @@ void AccuracyLook<T>::passed(const generators::Case<T>& v, const std::string& re
   }
   const properties::Problem<T> problem(v.matrix, v.plane, v.convention);
   if (problem.exact_status() != Status::ok) return;
-  const Expected<protocol::TypedAnswer<T>> read = protocol::read_answer<T>(answer);
+  const Expected<Answer<T>> read = protocol::read_answer<T>(answer);
   if (!read) return;  // judged already: a protocol error never reaches here
   inputs_.push_back({v.matrix, v.plane, v.convention,
                      std::string(generators::family_name(v.family)),

@@ -61,17 +61,17 @@ std::vector<Judged<T>> judge_batch(const Draws<T>& draws, const Batch<T>& b,
   std::vector<Judged<T>> out(answers.size());
   auto judge_range = [&](std::size_t from, std::size_t to) {
     for (std::size_t k = from; k < to; ++k) {
-      const Expected<protocol::TypedAnswer<T>> answered = protocol::read_answer<T>(answers[k]);
+      const Expected<Answer<T>> answered = protocol::read_answer<T>(answers[k]);
       if (!answered) {
         out[k].protocol_error = answered.error();
         continue;
       }
       const generators::Case<T>& v = b.values[k];
       if (b.problems[k]) {
-        out[k].finding = judge(*b.problems[k], *answered, draws.checks());
+        out[k].finding = judge_answer(*b.problems[k], *answered, draws.checks());
       } else {
         const properties::FilteredProblem<T> problem(v.matrix, v.plane, v.convention);
-        out[k].finding = judge(problem, *answered, draws.checks());
+        out[k].finding = judge_answer(problem, *answered, draws.checks());
       }
     }
   };

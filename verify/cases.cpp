@@ -75,11 +75,9 @@ std::string request_text(const generators::Case<T>& c) {
 }
 
 template <class T>
-std::optional<Found<T>> judge(const properties::FilteredProblem<T>& problem,
-                              const protocol::TypedAnswer<T>& answer,
-                              const properties::Checks& checks) {
-  const properties::Outcome<T> outcome{answer.status, answer.projection};
-  const properties::Judgement judgement = properties::judge(problem, outcome, checks);
+std::optional<Found<T>> judge_answer(const properties::FilteredProblem<T>& problem,
+                                     const Answer<T>& answer, const properties::Checks& checks) {
+  const properties::Judgement judgement = properties::judge(problem, answer, checks);
   const properties::Finding* violation = judgement.violation();
   if (!violation) return std::nullopt;
   Found<T> f;
@@ -107,7 +105,7 @@ bool consistent_with_float(const generators::Case<T>& c, const Matrix4<T>& answe
     const Vector4<float> plane = c.plane.template cast<float>();
     if (!m.allFinite() || !plane.allFinite()) return false;
     const properties::FilteredProblem<float> problem(m, plane, c.convention);
-    const properties::Outcome<float> outcome{Status::ok, answer_f};
+    const Answer<float> outcome{Status::ok, answer_f};
     return properties::judge(problem, outcome, checks).violation() == nullptr;
   }
 }
@@ -197,15 +195,14 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
   return out;
 }
 
-#define OBLIQUE_VERIFY_CASES(T)                                                         \
-  template class Draws<T>;                                                              \
-  template std::string request_text<T>(const generators::Case<T>&);                     \
-  template std::optional<Found<T>> judge<T>(const properties::FilteredProblem<T>&,      \
-                                            const protocol::TypedAnswer<T>&,            \
-                                            const properties::Checks&);                 \
-  template bool consistent_with_float<T>(const generators::Case<T>&, const Matrix4<T>&, \
-                                         const properties::Checks&);                    \
-  template void Seen::count<T>(const generators::Case<T>&);                             \
+#define OBLIQUE_VERIFY_CASES(T)                                                                  \
+  template class Draws<T>;                                                                       \
+  template std::string request_text<T>(const generators::Case<T>&);                              \
+  template std::optional<Found<T>> judge_answer<T>(const properties::FilteredProblem<T>&,        \
+                                                   const Answer<T>&, const properties::Checks&); \
+  template bool consistent_with_float<T>(const generators::Case<T>&, const Matrix4<T>&,          \
+                                         const properties::Checks&);                             \
+  template void Seen::count<T>(const generators::Case<T>&);                                      \
   template void LeftOut::count<T>(const generators::Case<T>&, const std::string&);
 OBLIQUE_VERIFY_CASES(float)
 OBLIQUE_VERIFY_CASES(double)

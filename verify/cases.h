@@ -61,9 +61,8 @@ std::string request_text(const generators::Case<T>& c);
 /// The suite's judgement under the run's checks: the first violation, or none. `problem` is the
 /// filtered checker (the exact checker's verdicts, most without GMP; used by one thread only).
 template <class T>
-std::optional<Found<T>> judge(const properties::FilteredProblem<T>& problem,
-                              const protocol::TypedAnswer<T>& answer,
-                              const properties::Checks& checks);
+std::optional<Found<T>> judge_answer(const properties::FilteredProblem<T>& problem,
+                                     const Answer<T>& answer, const properties::Checks& checks);
 
 /// Whether a wrong answer under T wider than float is what float arithmetic gives: every entry
 /// of `answer` is a float or has at most 9 significant digits (how a float prints: shortest or

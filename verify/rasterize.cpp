@@ -54,7 +54,7 @@ std::optional<raster::Result> RasterLook<T>::draw(const generators::Case<T>& v,
     if (why) *why = std::move(reason);
     return std::nullopt;
   };
-  const Expected<protocol::TypedAnswer<T>> read = protocol::read_answer<T>(answer);
+  const Expected<Answer<T>> read = protocol::read_answer<T>(answer);
   if (!read || read->status != Status::ok) return not_drawn("the answer holds no matrix");
   raster::Result r =
       rasterizer_->check(v.matrix.template cast<double>(), v.plane.template cast<double>(),

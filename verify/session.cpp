@@ -74,7 +74,7 @@ typename Session<T>::Evaluation Session<T>::evaluate(const generators::Case<T>& 
     }
   }
   const std::vector<std::string>& answers = reply.lines;
-  const Expected<protocol::TypedAnswer<T>> answered = protocol::read_answer<T>(answers[0]);
+  const Expected<Answer<T>> answered = protocol::read_answer<T>(answers[0]);
   if (!answered) {
     issue_ = Issue{"an answer that is not an answer of the protocol (" + answered.error() + ")",
                    request,
@@ -82,7 +82,7 @@ typename Session<T>::Evaluation Session<T>::evaluate(const generators::Case<T>& 
     return Evaluation::protocol_error;
   }
   last_answer_ = *answered;
-  auto judged = judge(problem, *answered, draws_.checks());
+  auto judged = judge_answer(problem, *answered, draws_.checks());
   if (!judged) return Evaluation::pass;
   finding = *judged;
   finding.answer_line = answers[0];

@@ -55,7 +55,7 @@ class Session {
   /// The protocol problem of the last evaluation.
   const Issue& issue() const { return issue_; }
   /// The answer of the last evaluation, when it gave one.
-  const std::optional<protocol::TypedAnswer<T>>& last_answer() const { return last_answer_; }
+  const std::optional<Answer<T>>& last_answer() const { return last_answer_; }
 
   /// The finding for a program that exited (a crash) or gave no answer in time (a timeout).
   Found<T> lost_finding(const client::Failure& failure);
@@ -68,7 +68,7 @@ class Session {
   Clock::time_point start_, deadline_;
   Issue issue_;
   std::string last_request_;
-  std::optional<protocol::TypedAnswer<T>> last_answer_;  ///< of the last evaluation
+  std::optional<Answer<T>> last_answer_;  ///< of the last evaluation
 };
 
 }  // namespace oblique::verify

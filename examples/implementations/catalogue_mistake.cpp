@@ -35,7 +35,7 @@ std::string answer(const properties::Implementation<T>& impl, const std::string&
     if (!v) return protocol::refusal_line(Status::invalid_input, v.error());
     c(i) = *v;
   }
-  const properties::Outcome<T> out = impl.run(m, c, request->convention.value_or(Convention::gl));
+  const oblique::Answer<T> out = impl.run(m, c, request->convention.value_or(Convention::gl));
   if (out.status != Status::ok) return protocol::refusal_line(out.status, "");
   return protocol::ok_answer_line(out.projection);
 }

@@ -1,9 +1,12 @@
 // What apply() is asked for and what it answers: the method that finds the far corner, and the
-// result (status, matrix, far corner, method that ran).
+// result (status, matrix, far corner, method that ran); an Answer, what every judge reads of any
+// implementation's answer.
 #pragma once
 
 #include <optional>
+#include <string>
 #include <string_view>
+#include <utility>
 
 #include "oblique/plane.h"
 #include "oblique/status.h"
@@ -55,6 +58,21 @@ struct [[nodiscard]] ObliqueResult {
   std::string_view message() const noexcept {
     return detail.empty() ? status_message(status) : detail;
   }
+};
+
+/// What an implementation answered for one input, as every judge reads it: apply()'s result
+/// (an ObliqueResult converts), a user's function's, or a program's answer line read back.
+template <class T>
+struct Answer {
+  Status status = Status::ok;
+  Matrix4<T> projection = Matrix4<T>::Zero();  ///< M' when ok
+  std::string message;                         ///< a refusal's own words, when it gave some
+
+  Answer() = default;
+  Answer(Status s, const Matrix4<T>& m, std::string words = {})
+      : status(s), projection(m), message(std::move(words)) {}
+  Answer(const ObliqueResult<T>& r)  // NOLINT(google-explicit-constructor): apply()'s answer
+      : status(r.status), projection(r.projection), message(r.detail) {}
 };
 
 }  // namespace oblique

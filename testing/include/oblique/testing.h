@@ -44,7 +44,6 @@ namespace oblique::testing {
 
 using properties::Checks;
 using properties::Implementation;
-using properties::Outcome;
 using properties::Property;
 using properties::StatusContract;
 

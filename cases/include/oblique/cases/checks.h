@@ -1,5 +1,5 @@
-// What an implementation answered and what is checked of it: the vocabulary of judge() (judge.h)
-// without the checker.
+// What is checked of an implementation's answer (an oblique::Answer, result.h): the vocabulary of
+// judge() (judge.h) without the checker.
 #pragma once
 
 #include <limits>
@@ -7,16 +7,10 @@
 
 #include "oblique/cases/property.h"
 #include "oblique/plane.h"
+#include "oblique/result.h"
 #include "oblique/status.h"
 
 namespace oblique::properties {
-
-/// What an implementation answered for one input.
-template <class T>
-struct Outcome {
-  Status status = Status::ok;
-  Matrix4<T> projection;  ///< M' when ok
-};
 
 /// How an implementation's statuses are judged.
 enum class StatusContract {

@@ -1,6 +1,6 @@
 // The layout of Eigen's fixed-size matrices in this file, as a namespace name. Eigen aligns them
 // to EIGEN_MAX_STATIC_ALIGN_BYTES, which follows the SIMD flags (16 bytes with SSE, 32 with AVX,
-// 64 with AVX-512), so a struct holding a matrix after a smaller member (properties::Outcome, a
+// 64 with AVX-512), so a struct holding a matrix after a smaller member (an Answer, a
 // generated case) is laid out differently in files built with other flags. The compiled
 // libraries' functions that take such structs are declared in an inline namespace of this name:
 // a file whose layout is not the library's gets a link error that names both (eigen_align32

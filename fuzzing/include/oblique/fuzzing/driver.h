@@ -395,7 +395,7 @@ std::string allowed_words(const AnyProblem& problem, const char* scalar) {
 
 /// Prints what the checker knows of the case and the answer, and every check that fails.
 template <class T>
-void explain(const properties::Problem<T>& problem, const properties::Outcome<T>& outcome,
+void explain(const properties::Problem<T>& problem, const Answer<T>& outcome,
              std::FILE* out = stderr) {
   using protocol::format_number;
   std::fprintf(out, "%s (Skeel condition %s, kappa %s)\n",
@@ -441,8 +441,7 @@ class CaseJudge {
     if (!problem_) problem_.emplace(m_, plane_, convention_);
     return *problem_;
   }
-  properties::Judgement judge(const properties::Outcome<T>& outcome,
-                              const properties::Checks& checks) {
+  properties::Judgement judge(const Answer<T>& outcome, const properties::Checks& checks) {
     for (const Judged& j : judged_) {
       if (j.outcome.status == outcome.status &&
           same_bits(j.outcome.projection, outcome.projection) && same_checks(j.checks, checks))
@@ -454,7 +453,7 @@ class CaseJudge {
 
  private:
   struct Judged {
-    properties::Outcome<T> outcome;
+    Answer<T> outcome;
     properties::Checks checks;
     properties::Judgement judgement;
   };
@@ -590,7 +589,7 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
     return;
   }
   ++counts().judged;
-  const properties::Outcome<T> outcome = impl.run(m, plane, c.input.convention);
+  const Answer<T> outcome = impl.run(m, plane, c.input.convention);
   const properties::Judgement judgement = judge.judge(outcome, checks);
   const properties::Finding* violation = judgement.violation();
   if (!violation) return;

@@ -29,7 +29,7 @@ Implementation<T> core_method(Method method) {
   };
   impl.run = [method](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
     const ObliqueResult<T> r = apply<T>(m, c, convention, method);
-    return Outcome<T>{r.status, r.projection};
+    return Answer<T>{r.status, r.projection};
   };
   if (method == Method::accurate) impl.max_ulps = tolerance::kAccurateUlps;
   return impl;
@@ -44,7 +44,7 @@ Implementation<T> recipe(std::string name,
   impl.reports_statuses = false;
   impl.accepts = std::move(accepts);
   impl.run = [formula](const Matrix4<T>& m, const Vector4<T>& c, Convention) {
-    return Outcome<T>{Status::ok, formula(m, c)};
+    return Answer<T>{Status::ok, formula(m, c)};
   };
   return impl;
 }

@@ -5,7 +5,7 @@
 //   bool   f(T m[16], const T plane[4]);                  // in place, false = refused
 //   Status f(T m[16], const T plane[4]);                  // in place, with oblique's statuses
 //   void|bool|Status f(const T m[16], const T plane[4], T out[16]);   // out of place
-//   ObliqueResult<T> or Outcome<T> f(const Matrix4<T>&, const Vector4<T>&, Convention);
+//   ObliqueResult<T> or Answer<T> f(const Matrix4<T>&, const Vector4<T>&, Convention);
 //
 // with the 16 numbers in `Layout::row_major` (m[4 * row + column]) or `Layout::column_major`
 // (m[4 * column + row], OpenGL's and Listing 5.1's) order. The plane is (a, b, c, d) in camera
@@ -75,15 +75,14 @@ properties::Implementation<T> wrap(std::string name, Layout layout, F function,
   properties::Implementation<T> impl;
   impl.name = std::move(name);
   impl.accepts = accepts ? std::move(accepts) : [](Convention, const Matrix4<T>&) { return true; };
-  using properties::Outcome;
   if constexpr (std::is_invocable_v<F&, const Matrix4<T>&, const Vector4<T>&, Convention>) {
     using R = std::invoke_result_t<F&, const Matrix4<T>&, const Vector4<T>&, Convention>;
-    static_assert(std::is_same_v<R, ObliqueResult<T>> || std::is_same_v<R, Outcome<T>>,
-                  "a matrix-shaped function returns ObliqueResult<T> or Outcome<T>");
+    static_assert(std::is_same_v<R, ObliqueResult<T>> || std::is_same_v<R, Answer<T>>,
+                  "a matrix-shaped function returns ObliqueResult<T> or Answer<T>");
     impl.reports_statuses = true;
     impl.run = [function](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) mutable {
       const R r = function(m, c, convention);
-      return Outcome<T>{r.status, r.projection};
+      return Answer<T>{r.status, r.projection};
     };
   } else if constexpr (std::is_invocable_v<F&, T*, const T*>) {
     using R = std::invoke_result_t<F&, T*, const T*>;
@@ -99,7 +98,7 @@ properties::Implementation<T> wrap(std::string name, Layout layout, F function,
       } else {
         status = adapting::status_of<R>(function(numbers, plane));
       }
-      return Outcome<T>{status, adapting::load(numbers, layout)};
+      return Answer<T>{status, adapting::load(numbers, layout)};
     };
   } else {
     static_assert(std::is_invocable_v<F&, const T*, const T*, T*>,
@@ -117,7 +116,7 @@ properties::Implementation<T> wrap(std::string name, Layout layout, F function,
       } else {
         status = adapting::status_of<R>(function(numbers, plane, out));
       }
-      return Outcome<T>{status, adapting::load(out, layout)};
+      return Answer<T>{status, adapting::load(out, layout)};
     };
   }
   return impl;
@@ -139,7 +138,7 @@ properties::Implementation<T> adapt(
   return impl;
 }
 
-/// Wraps a function that takes the convention (ObliqueResult<T> or Outcome<T> f(const
+/// Wraps a function that takes the convention (ObliqueResult<T> or Answer<T> f(const
 /// Matrix4<T>&, const Vector4<T>&, Convention)): it serves every convention.
 template <class T, class F>
 properties::Implementation<T> adapt(

@@ -3,7 +3,7 @@
 //   #include <oblique/oracle/checker.h>
 //
 //   const oblique::properties::Checker<float> checker(m, plane, oblique::Convention::gl);
-//   oblique::properties::Outcome<float> mine{oblique::Status::ok, my_matrix};
+//   oblique::Answer<float> mine{oblique::Status::ok, my_matrix};
 //   const oblique::properties::Judgement j = checker.judge(mine);
 //   if (const oblique::properties::Finding* f = j.violation())
 //     std::printf("%s: %s; %s against %s\n", std::string(check_name(f->check)).c_str(),
@@ -53,7 +53,7 @@ class Checker {
   std::string not_judged(StatusContract contract, const std::vector<Status>& refusals = {}) const;
   /// The checks that applied to `outcome`, in order; Judgement::violation() is the first that
   /// fails.
-  Judgement judge(const Outcome<T>& outcome, const Checks& checks = {}) const;
+  Judgement judge(const Answer<T>& outcome, const Checks& checks = {}) const;
 
   /// The filtered checker itself (include oblique/oracle/filtered.h to use it).
   const FilteredProblem<T>& problem() const { return *problem_; }

@@ -289,7 +289,7 @@ class FilteredProblem {
 
   /// The judgement of `outcome` when the filter decides that every check holds; empty when a
   /// check fails or the filter cannot decide (then judge() asks the exact Problem).
-  std::optional<Judgement> filtered_judgement(const Outcome<T>& outcome,
+  std::optional<Judgement> filtered_judgement(const Answer<T>& outcome,
                                               const Checks& checks) const {
     if (!decided_ || checks.every) return std::nullopt;
     try {
@@ -559,7 +559,7 @@ class FilteredProblem {
   }
 
   // judge() when every check holds; throws Undecided otherwise.
-  Judgement judge_holding(const Outcome<T>& outcome, const Checks& checks) const {
+  Judgement judge_holding(const Answer<T>& outcome, const Checks& checks) const {
     namespace cert = certified;
     Judgement out;
     if (judging::status_finding(status_, acceptable_, outcome.status, checks.statuses))
@@ -929,7 +929,7 @@ FilteredProblem<T>::FilteredProblem(const Matrix4<T>& m, const Vector4<T>& c, Co
 /// judge() on a FilteredProblem: the filter's judgement where it decides that every check holds,
 /// otherwise the exact checker's.
 template <class T>
-Judgement judge(const FilteredProblem<T>& problem, const Outcome<T>& outcome,
+Judgement judge(const FilteredProblem<T>& problem, const Answer<T>& outcome,
                 const Checks& checks = {}) {
   if (std::optional<Judgement> j = problem.filtered_judgement(outcome, checks)) return *j;
   return judge(problem.exact(), outcome, checks);
@@ -946,8 +946,8 @@ Judgement judge(const FilteredProblem<T>& problem, const Outcome<T>& outcome,
 #define OBLIQUE_CHECKER_INSTANCES(declare, T)                                                    \
   declare Problem<T>::Problem(const Matrix4<T>&, const Vector4<T>&, Convention);                 \
   declare FilteredProblem<T>::FilteredProblem(const Matrix4<T>&, const Vector4<T>&, Convention); \
-  declare Judgement judge<T>(const Problem<T>&, const Outcome<T>&, const Checks&);               \
-  declare Judgement judge<T>(const FilteredProblem<T>&, const Outcome<T>&, const Checks&);
+  declare Judgement judge<T>(const Problem<T>&, const Answer<T>&, const Checks&);                \
+  declare Judgement judge<T>(const FilteredProblem<T>&, const Answer<T>&, const Checks&);
 
 #if defined(OBLIQUE_LINKED_CHECKER) && !defined(OBLIQUE_CHECKER_HEADER_ONLY)
 OBLIQUE_CHECKER_INSTANCES(extern template, float)

@@ -27,7 +27,7 @@ struct Implementation {
   std::vector<Convention> conventions{std::begin(all_conventions), std::end(all_conventions)};
   /// The inputs it is meant for; others are not given to it.
   std::function<bool(Convention, const Matrix4<T>&)> accepts;
-  std::function<Outcome<T>(const Matrix4<T>&, const Vector4<T>&, Convention)> run;
+  std::function<Answer<T>(const Matrix4<T>&, const Vector4<T>&, Convention)> run;
   /// The accuracy it promises in ulps of the correctly rounded answer (exact::ulp_distance);
   /// infinity for none beyond the conditioning-aware bounds.
   double max_ulps = std::numeric_limits<double>::infinity();

@@ -93,7 +93,7 @@ Finding row3_accuracy(const Problem<T>& problem, const Matrix4<T>& result) {
 ///     Problem::check_extracted_planes()), row 3's accuracy, the ulps promise.
 /// An ok answer to an input within rounding of having none is judged by 1 and 2 only.
 template <class T>
-Judgement judge(const Problem<T>& problem, const Outcome<T>& outcome, const Checks& checks = {}) {
+Judgement judge(const Problem<T>& problem, const Answer<T>& outcome, const Checks& checks = {}) {
   Judgement out;
   // Records a check; true when the judgement goes on.
   auto record = [&](Finding f) {

@@ -23,13 +23,13 @@ struct ApplyOptions {
 };
 
 /// One answer line (no trailing newline) and the status it carries.
-struct Answer {
+struct AnswerLine {
   Status status = Status::invalid_input;
   std::string line;
 };
 
 /// Parses one request line, runs the core, and formats the answer.
-Answer answer_request(std::string_view line, const ApplyOptions& options);
+AnswerLine answer_request(std::string_view line, const ApplyOptions& options);
 
 /// Answers every line of `in` on `out`, one line each, in order. Each answer is flushed before
 /// reading input that is not yet there, so a client that writes one request and waits gets its

@@ -16,6 +16,7 @@
 #include "oblique/projection.h"
 #include "oblique/protocol/json.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/result.h"
 #include "oblique/status.h"
 
 namespace oblique::protocol {
@@ -59,19 +60,11 @@ struct AnswerText {
 /// The answer of a line, or why the line is not one. Unknown fields are ignored.
 Expected<AnswerText> parse_answer(std::string_view line);
 
-/// An answer line read in T: the status, the matrix of an ok answer, the message of a refusal.
-template <class T>
-struct TypedAnswer {
-  Status status = Status::ok;
-  Matrix4<T> projection = Matrix4<T>::Zero();
-  std::string message;
-};
-
 /// The one reader of another program's answers (oblique verify, oblique check --impl): the line
 /// made strict JSON first (normalise_non_finite()), then parsed; an entry beyond T's range is an
 /// infinity to judge, not a protocol error. Fails, saying why, on a line that is no answer.
 template <class T>
-Expected<TypedAnswer<T>> read_answer(std::string_view line);
+Expected<Answer<T>> read_answer(std::string_view line);
 
 /// The token of a JSON value for parse_number(): a number's text, or a string's contents marked
 /// by a leading '"'; empty for any other value.

@@ -144,7 +144,7 @@ Counterexample describe(const generators::Case<T>& c, const Implementation<T>& i
 /// Fails the current RapidCheck case with `finding` as its report.
 template <class T>
 void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, const Finding& finding,
-               const Outcome<T>* outcome = nullptr, const Checks* checks = nullptr) {
+               const Answer<T>* outcome = nullptr, const Checks* checks = nullptr) {
   Counterexample ce = describe(c, impl);
   ce.finding = finding;
   if (outcome && outcome->status == Status::ok) properties::set_result(ce, outcome->projection);
@@ -161,7 +161,7 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
     every_property.statuses = checks->statuses;
     tally().diagnose_failure = [c, impl, out = *outcome, judged = every_property]() {
       auto observe = [&impl, &judged](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
-                                      const Outcome<T>& answer) {
+                                      const Answer<T>& answer) {
         const Judgement j = judge(Problem<T>(m, p, k), answer, judged);
         return properties::Observation<T>{
             m, p, k, answer.status, answer.projection, j.violation() != nullptr};
@@ -214,7 +214,7 @@ bool for_each_answer(const std::vector<Implementation<T>>& implementations,
     }
     ++tally().implementations[impl.name];
     judged = true;
-    const Outcome<T> outcome = impl.run(c.matrix, c.plane, c.convention);
+    const Answer<T> outcome = impl.run(c.matrix, c.plane, c.convention);
     checks.statuses = statuses;
     const Judgement judgement = judge(problem, outcome, checks);
     for (const Finding& f : judgement.checks) {
