@@ -5,10 +5,10 @@
 oblique=$1
 impl=$2
 dir=$3
-here=$(dirname "$0")
+examples=$(cd "$(dirname "$0")/../../examples" && pwd)
 rm -rf "$dir"
 mkdir -p "$dir"
-"$oblique" verify --impl "sh $here/implementations/leaves_a_grandchild.sh $dir/grandchild.pid $impl" \
+"$oblique" verify --impl "sh $examples/implementations/leaves_a_grandchild.sh $dir/grandchild.pid $impl" \
   --cases 2000 --seed 1 --quiet --report-dir "$dir/reports" || exit 1
 if [ ! -s "$dir/grandchild.pid" ]; then
   echo "expect_no_survivor.sh: the grandchild never wrote its pid"
