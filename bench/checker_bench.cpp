@@ -53,7 +53,7 @@ const std::vector<Judged<T>>& workload() {
 /// method's own ulps promise.
 template <class T>
 Checks core_checks() {
-  return oblique::properties::known_implementations<T>()[0].checks(true);
+  return oblique::mistakes::known_implementations<T>()[0].checks(true);
 }
 
 /// How many of the workload's answers the filter judges alone, and where it gives up on the rest

@@ -12,7 +12,7 @@ namespace {
 
 template <class T>
 void check_all(const oblique::fuzzing::FuzzCase& c) {
-  static const auto implementations = oblique::properties::selected_implementations<T>();
+  static const auto implementations = oblique::mistakes::selected_implementations<T>();
   // One problem for the case, one judgement per distinct answer (the core's methods mostly agree).
   oblique::fuzzing::CaseJudge<T> judge(c);
   for (const auto& impl : implementations) {
@@ -25,7 +25,7 @@ void check_all(const oblique::fuzzing::FuzzCase& c) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const bool selection_checked = [] {
-    const std::string error = oblique::properties::implementation_selection_error();
+    const std::string error = oblique::mistakes::implementation_selection_error();
     if (!error.empty()) {
       std::fprintf(stderr, "%s\n", error.c_str());
       std::exit(2);

@@ -233,9 +233,9 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
     if (!found) return "";
   }
   // The likely cause, from this one case (the target is not asked again here).
-  properties::Observation<T> seen{m, c, *convention, Status::ok, answer ? *answer : m, true};
+  mistakes::Observation<T> seen{m, c, *convention, Status::ok, answer ? *answer : m, true};
   if (*check == properties::Check::status) seen.status = ce.finding.answered;
-  if (answer || seen.status != Status::ok) ce.diagnosis = properties::diagnose<T>({seen});
+  if (answer || seen.status != Status::ok) ce.diagnosis = mistakes::diagnose<T>({seen});
   properties::set_views(ce, problem, answer ? &*answer : nullptr);
   ce.notes.emplace_back("fuzz input", finding.inputs.front());
   ce.notes.emplace_back("inputs with this finding", std::to_string(finding.inputs.size()));

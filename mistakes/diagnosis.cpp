@@ -12,7 +12,9 @@
 #include "oblique/protocol/numbers.h"
 #include "variant.h"
 
-namespace oblique::properties {
+namespace oblique::mistakes {
+
+using namespace oblique::properties;  // NOLINT: the judge whose findings are diagnosed
 
 namespace {
 
@@ -439,4 +441,4 @@ std::string likely_cause_markdown(const Diagnosis& d) {
   return md.str();
 }
 
-}  // namespace oblique::properties
+}  // namespace oblique::mistakes

@@ -9,7 +9,9 @@
 #include "oblique/oblique.h"
 #include "variant.h"
 
-namespace oblique::properties {
+namespace oblique::mistakes {
+
+using namespace oblique::properties;  // NOLINT: the judge the catalogue is checked against
 
 namespace {
 
@@ -267,4 +269,4 @@ template Implementation<double> mistaken_implementation<double>(const std::vecto
 template Implementation<long double> mistaken_implementation<long double>(
     const std::vector<Mistake>&);
 
-}  // namespace oblique::properties
+}  // namespace oblique::mistakes

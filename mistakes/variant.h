@@ -18,7 +18,7 @@
 #include "oblique/projection.h"
 #include "oblique/status.h"
 
-namespace oblique::properties::variant {
+namespace oblique::mistakes::variant {
 
 /// Where the far corner Q comes from the perspective closed form instead of a solve.
 enum class ClosedForm { never, perspective_shape, always };
@@ -311,4 +311,4 @@ Matrix4<T> answer_matrix(const Matrix4<T>& m, const Evaluation<T>& e) {
   return out;
 }
 
-}  // namespace oblique::properties::variant
+}  // namespace oblique::mistakes::variant

@@ -24,6 +24,8 @@
 
 namespace oblique::properties {
 
+using namespace oblique::mistakes;  // NOLINT: the diagnosis a report shows
+
 template <class T>
 Counterexample make_counterexample(const Matrix4<T>& m, const Vector4<T>& c,
                                    Convention convention) {

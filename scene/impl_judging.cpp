@@ -53,22 +53,22 @@ void judge_answer_in(const Scene& scene, SurfaceCheck& pass, const std::string& 
 
 /// The likely cause of the wrong answers among the passes' (every answer judged is a case).
 template <class T>
-properties::Diagnosis diagnose_in(const Scene& scene, const std::vector<SurfaceCheck*>& passes,
-                                  const std::vector<std::string>& lines) {
-  std::vector<properties::Observation<T>> seen;
+mistakes::Diagnosis diagnose_in(const Scene& scene, const std::vector<SurfaceCheck*>& passes,
+                                const std::vector<std::string>& lines) {
+  std::vector<mistakes::Observation<T>> seen;
   for (std::size_t i = 0; i < passes.size(); ++i) {
     const Expected<Answer<T>> answer = protocol::read_answer<T>(lines[i]);
     if (!answer) continue;
-    properties::Observation<T> o{request_projection<T>(scene),
-                                 request_plane<T>(*passes[i]),
-                                 scene.convention,
-                                 answer->status,
-                                 answer->projection,
-                                 false};
+    mistakes::Observation<T> o{request_projection<T>(scene),
+                               request_plane<T>(*passes[i]),
+                               scene.convention,
+                               answer->status,
+                               answer->projection,
+                               false};
     for (const properties::Finding& f : passes[i]->impl_findings) o.wrong = o.wrong || !f.holds;
     seen.push_back(o);
   }
-  return properties::diagnose<T>(seen);
+  return mistakes::diagnose<T>(seen);
 }
 
 }  // namespace

@@ -253,7 +253,7 @@ std::string to_text(const SceneCheck& check) {
       }
     }
     if (check.impl_diagnosis.ran)
-      out << "  " << properties::likely_cause_line(check.impl_diagnosis) << "\n";
+      out << "  " << mistakes::likely_cause_line(check.impl_diagnosis) << "\n";
   }
   bool any_impl_consumers = false;
   for (const SurfaceCheck& s : check.surfaces)

@@ -194,7 +194,7 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
       Counterexample failure = *t.failure;
       if (t.diagnose_failure) {
         failure.diagnosis = t.diagnose_failure();
-        where = "\n" + properties::likely_cause_line(*failure.diagnosis);
+        where = "\n" + mistakes::likely_cause_line(*failure.diagnosis);
       }
       where += "\nreport: " + write_report(failure, report_context(property));
     } else if (!t.markdown_failure.empty()) {

@@ -64,7 +64,7 @@ void every_member_is_rejected(const rc::Gen<Case<T>>& gen, int count, std::uint6
     const std::vector<Status> acceptable = problem.acceptable_statuses();
     if (std::find(acceptable.begin(), acceptable.end(), Status::ok) == acceptable.end()) continue;
     const FilteredProblem<T> filtered(c.matrix, c.plane, c.convention);
-    for (const auto& mutant : wrong_answers::mutants(problem, r.projection, c.plane)) {
+    for (const auto& mutant : mistakes::wrong_answers::mutants(problem, r.projection, c.plane)) {
       const Property p = mutant.what.catches;
       ++members[p];
       const Judgement j = judge_alone(problem, mutant.projection, p);

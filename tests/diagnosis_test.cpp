@@ -16,6 +16,7 @@ namespace {
 
 using namespace oblique;
 using namespace oblique::properties;
+using namespace oblique::mistakes;
 
 template <class T>
 Observation<T> observe(const Implementation<T>& impl, const Matrix4<T>& m, const Vector4<T>& c,

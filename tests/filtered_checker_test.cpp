@@ -34,6 +34,8 @@
 #include "oblique/projection.h"
 
 namespace oblique::properties {
+
+using mistakes::known_implementations;
 namespace {
 
 using generators::Case;
@@ -180,7 +182,7 @@ void one_case(std::uint64_t index, rc::Random& random, Tally& tally) {
             "perturbation " + std::to_string(which % 9), tally);
     Checks defaults;
     if (exact.exact_status() == Status::ok) {
-      const auto wrong = wrong_answers::mutants(exact, answer.projection, c.plane);
+      const auto wrong = mistakes::wrong_answers::mutants(exact, answer.projection, c.plane);
       if (!wrong.empty()) {
         const auto& w = wrong[index % wrong.size()];
         Checks alone;

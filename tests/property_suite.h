@@ -15,6 +15,10 @@
 
 namespace oblique::properties::suite {
 
+using mistakes::implementation_selected;
+using mistakes::implementation_selection_error;
+using mistakes::selected_implementations;
+
 using testing::count_generated;
 using testing::count_judged;
 using testing::Coverage;

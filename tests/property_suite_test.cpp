@@ -12,6 +12,8 @@
 #include "property_suite.h"
 
 namespace oblique::properties::suite {
+
+using mistakes::core_method;
 namespace {
 
 using generators::Case;

@@ -84,9 +84,9 @@ TEST(Raster, theCoresAnswersPassInEveryConventionAndBuffer) {
 }
 
 /// The answer with `mistake` made, for (M, C) in `convention`.
-Matrix4d mistaken(oblique::properties::Mistake mistake, const Matrix4d& m, const Vector4d& c,
+Matrix4d mistaken(oblique::mistakes::Mistake mistake, const Matrix4d& m, const Vector4d& c,
                   Convention convention) {
-  const auto impl = oblique::properties::mistaken_implementation<double>({mistake});
+  const auto impl = oblique::mistakes::mistaken_implementation<double>({mistake});
   return impl.run(m, c, convention).projection;
 }
 
@@ -134,7 +134,7 @@ TEST(Raster, theZeroOneFormulaOnGlIsDrawnBehindC) {
   const Case k = cases(Convention::gl)[0];
   const Matrix4d reference = oblique::apply<double>(k.m, k.c, Convention::gl).projection;
   const Matrix4d wrong =
-      mistaken(oblique::properties::Mistake::zero_one_formula_on_gl, k.m, k.c, Convention::gl);
+      mistaken(oblique::mistakes::Mistake::zero_one_formula_on_gl, k.m, k.c, Convention::gl);
   ASSERT_NE(wrong, reference);
   const auto r = shared()->check(k.m, k.c, wrong, Convention::gl, DepthBuffer::fixed24, 3);
   EXPECT_EQ(r.outcome, Outcome::fail) << r.why;
@@ -146,7 +146,7 @@ TEST(Raster, cameraSpaceSignsOnAYFlippedMatrixClipTheOriginalVolume) {
   const Case k = cases(Convention::zero_one)[2];
   const Matrix4d reference = oblique::apply<double>(k.m, k.c, Convention::zero_one).projection;
   const Matrix4d wrong =
-      mistaken(oblique::properties::Mistake::camera_space_signs, k.m, k.c, Convention::zero_one);
+      mistaken(oblique::mistakes::Mistake::camera_space_signs, k.m, k.c, Convention::zero_one);
   ASSERT_NE(wrong, reference);
   const auto r = shared()->check(k.m, k.c, wrong, Convention::zero_one, DepthBuffer::float32, 3);
   EXPECT_EQ(r.outcome, Outcome::fail) << r.why;

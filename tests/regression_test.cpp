@@ -17,6 +17,9 @@
 #include "oblique/oracle/problem.h"
 
 namespace oblique::properties {
+
+using mistakes::core_method;
+using mistakes::known_implementations;
 namespace {
 
 std::vector<std::filesystem::path> regression_files() {

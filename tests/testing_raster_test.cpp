@@ -45,12 +45,12 @@ std::vector<std::filesystem::path> files_ending(const std::filesystem::path& dir
 /// Runs the raster check on `mistake` under `contract` in a fresh report folder: it must fail
 /// on the rasterizer with `flag` among the samples flagged, and write a report with the pixels'
 /// picture data.
-void expect_caught(properties::Mistake mistake, const Contract& contract, const std::string& flag) {
+void expect_caught(mistakes::Mistake mistake, const Contract& contract, const std::string& flag) {
   namespace fs = std::filesystem;
-  const auto wrong = properties::mistaken_implementation<double>({mistake});
+  const auto wrong = mistakes::mistaken_implementation<double>({mistake});
   const fs::path dir =
       fs::path(::testing::TempDir()) /
-      ("oblique_testing_raster_" + std::string(properties::mistake_entry(mistake).name));
+      ("oblique_testing_raster_" + std::string(mistakes::mistake_entry(mistake).name));
   fs::remove_all(dir);
   ASSERT_EQ(::setenv("OBLIQUE_REPORT_DIR", dir.c_str(), 1), 0);
   EXPECT_NONFATAL_FAILURE(testing::check_on_rasterizer(wrong, contract),
@@ -77,7 +77,7 @@ TEST(TestingRaster, theZeroOneFormulaOnGlIsDrawnBehindC) {
   REQUIRE_RASTERIZER();
   Contract gl;
   gl.conventions = {Convention::gl};
-  expect_caught(properties::Mistake::zero_one_formula_on_gl, gl, "drawn_behind_c");
+  expect_caught(mistakes::Mistake::zero_one_formula_on_gl, gl, "drawn_behind_c");
 }
 
 TEST(TestingRaster, cameraSpaceSignsOnYFlippedMatricesClipTheKeptRegion) {
@@ -85,7 +85,7 @@ TEST(TestingRaster, cameraSpaceSignsOnYFlippedMatricesClipTheKeptRegion) {
   Contract y_flipped;
   y_flipped.families = {generators::Family::y_flipped};
   y_flipped.conventions = {Convention::gl};
-  expect_caught(properties::Mistake::camera_space_signs, y_flipped, "clipped_kept");
+  expect_caught(mistakes::Mistake::camera_space_signs, y_flipped, "clipped_kept");
 }
 
 TEST(TestingRaster, aFrameSizeOutOfRangeIsSaid) {

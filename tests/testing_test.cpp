@@ -166,8 +166,8 @@ TEST(Presets, theEngineContractCatchesListing51OnFlippedMatrices) {
 // A closed form that takes |M13|, |M23| (a frustum leaning left or down gets a wrong corner) is
 // caught by the engine contract in the default run: the generators lean frustums every way.
 TEST(Presets, theEngineContractCatchesAClosedFormTakingTheOffAxisMagnitudes) {
-  for (auto mistake : {properties::Mistake::abs_off_axis, properties::Mistake::drops_off_axis}) {
-    const auto impl = properties::mistaken_implementation<double>({mistake});
+  for (auto mistake : {mistakes::Mistake::abs_off_axis, mistakes::Mistake::drops_off_axis}) {
+    const auto impl = mistakes::mistaken_implementation<double>({mistake});
     int n = 0;
     const std::string all =
         failures_of([&] { testing::check_properties(impl, engine_contract()); }, &n);
@@ -295,7 +295,7 @@ TEST(Accuracy, aProfileWithoutAnswersFails) {
 
 TEST(Accuracy, answersThatViolateThePropertiesFailTheProfile) {
   const auto wrong =
-      properties::mistaken_implementation<double>({properties::Mistake::zero_one_formula_on_gl});
+      mistakes::mistaken_implementation<double>({mistakes::Mistake::zero_one_formula_on_gl});
   Contract gl;
   gl.conventions = {Convention::gl};
   testing::AccuracySettings settings;

@@ -37,7 +37,7 @@ Reporter<T>::Reporter(const VerifyOptions& options, const Draws<T>& draws, std::
 template <class T>
 Verdict Reporter<T>::finding(const generators::Case<T>& v, const Found<T>& found, int steps,
                              bool out_of_time, long found_after_cases, double found_after_seconds,
-                             const properties::Diagnosis& diagnosis) {
+                             const mistakes::Diagnosis& diagnosis) {
   const properties::Finding& f = found.finding;
   properties::Counterexample ce = properties::make_counterexample(v.matrix, v.plane, v.convention);
   ce.finding = f;
@@ -95,7 +95,7 @@ Verdict Reporter<T>::finding(const generators::Case<T>& v, const Found<T>& found
   }
   last_report_ = path;
   last_kind_ = std::string(check_name(f.check));
-  last_cause_ = properties::cause_names(diagnosis);
+  last_cause_ = mistakes::cause_names(diagnosis);
   const std::string json_path = path.size() > 3 && path.compare(path.size() - 3, 3, ".md") == 0
                                     ? path.substr(0, path.size() - 3) + ".json"
                                     : "";
@@ -103,7 +103,7 @@ Verdict Reporter<T>::finding(const generators::Case<T>& v, const Found<T>& found
     save_regression(json_path, options_.save_regressions, out_, err_);
 
   out_ << "  " << check_name(f.check) << ": " << relation_text(f) << "\n" << sides_text(f, "  ");
-  if (diagnosis.ran) out_ << "  " << properties::likely_cause_line(diagnosis) << "\n";
+  if (diagnosis.ran) out_ << "  " << mistakes::likely_cause_line(diagnosis) << "\n";
   if (float_like) out_ << "  hint: " << float_hint << "\n";
   out_ << "  input (" << ce.family << ", " << ce.convention << ", " << ce.place << "): " << request
        << "\n  found after " << found_after_cases << " cases, " << seconds_text(found_after_seconds)

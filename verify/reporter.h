@@ -51,7 +51,7 @@ class Reporter {
   /// it: Verdict::violated.
   Verdict finding(const generators::Case<T>& v, const Found<T>& found, int steps, bool out_of_time,
                   long found_after_cases, double found_after_seconds,
-                  const properties::Diagnosis& diagnosis = {});
+                  const mistakes::Diagnosis& diagnosis = {});
   const std::string& last_report() const { return last_report_; }
   const std::string& last_kind() const { return last_kind_; }
   /// The likely cause of the last finding reported ("" where none was diagnosed).

@@ -90,16 +90,16 @@ typename Session<T>::Evaluation Session<T>::evaluate(const generators::Case<T>& 
 }
 
 template <class T>
-std::optional<properties::Observation<T>> Session<T>::observe(const generators::Case<T>& v) {
+std::optional<mistakes::Observation<T>> Session<T>::observe(const generators::Case<T>& v) {
   Found<T> found;
   const Evaluation e = evaluate(v, found);
   if (!last_answer_ || (e != Evaluation::pass && e != Evaluation::finding)) return std::nullopt;
-  return properties::Observation<T>{v.matrix,
-                                    v.plane,
-                                    v.convention,
-                                    last_answer_->status,
-                                    last_answer_->projection,
-                                    e == Evaluation::finding};
+  return mistakes::Observation<T>{v.matrix,
+                                  v.plane,
+                                  v.convention,
+                                  last_answer_->status,
+                                  last_answer_->projection,
+                                  e == Evaluation::finding};
 }
 
 template <class T>

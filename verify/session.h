@@ -51,7 +51,7 @@ class Session {
   Evaluation evaluate(const generators::Case<T>& v, Found<T>& finding);
   /// Sends one case alone and judges it, for the diagnosis: the answer and whether it is wrong,
   /// or none (left out by the contract, a protocol problem, no answer, no time left).
-  std::optional<properties::Observation<T>> observe(const generators::Case<T>& v);
+  std::optional<mistakes::Observation<T>> observe(const generators::Case<T>& v);
   /// The protocol problem of the last evaluation.
   const Issue& issue() const { return issue_; }
   /// The answer of the last evaluation, when it gave one.

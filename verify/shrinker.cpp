@@ -80,49 +80,49 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<generators::Case<T>>& failing, 
   }
   out_ << " " << steps << " steps (" << tries << " tries)"
        << (out_of_time ? ", stopped by the time limit" : "") << "\n";
-  const properties::Diagnosis diagnosis = diagnose(current.value(), finding);
+  const mistakes::Diagnosis diagnosis = diagnose(current.value(), finding);
   session_.program().stop();
   return reporter_.finding(current.value(), finding, steps, out_of_time, found_after_cases,
                            found_after_seconds, diagnosis);
 }
 
 template <class T>
-properties::Diagnosis Shrinker<T>::diagnose(const generators::Case<T>& shrunk,
-                                            const Found<T>& finding) {
+mistakes::Diagnosis Shrinker<T>::diagnose(const generators::Case<T>& shrunk,
+                                          const Found<T>& finding) {
   using properties::Check;
   const Check check = finding.finding.check;
   if (check == Check::crash || check == Check::timeout || check == Check::protocol) return {};
   // The shrunk case's answer as judged: a matrix, or (a status finding) the refusal.
-  const properties::Observation<T> seen{shrunk.matrix,
-                                        shrunk.plane,
-                                        shrunk.convention,
-                                        finding.result ? Status::ok : finding.finding.answered,
-                                        finding.result ? *finding.result : shrunk.matrix,
-                                        true};
+  const mistakes::Observation<T> seen{shrunk.matrix,
+                                      shrunk.plane,
+                                      shrunk.convention,
+                                      finding.result ? Status::ok : finding.finding.answered,
+                                      finding.result ? *finding.result : shrunk.matrix,
+                                      true};
   const auto& families = session_.draws().contract().families;
   // A probe the implementation does not answer (it crashed, hung or broke the protocol) ends the
   // probing: each further one would cost a restart or the whole --timeout.
   bool answering = true;
   // Said (and flushed) first: a slow implementation takes a while over the panel.
   (out_ << "oblique verify: diagnosing the likely cause (asking the implementation up to "
-        << properties::kPanelCasesPerConvention << " more cases)\n")
+        << mistakes::kPanelCasesPerConvention << " more cases)\n")
       .flush();
-  const properties::Probe<T> probe = [this, &families, &answering](
-                                         const Matrix4<T>& m, const Vector4<T>& c,
-                                         Convention convention, generators::Family family) {
+  const mistakes::Probe<T> probe = [this, &families, &answering](
+                                       const Matrix4<T>& m, const Vector4<T>& c,
+                                       Convention convention, generators::Family family) {
     if (!answering || std::find(families.begin(), families.end(), family) == families.end())
-      return std::optional<properties::Observation<T>>();
+      return std::optional<mistakes::Observation<T>>();
     generators::Case<T> v;
     v.matrix = m;
     v.plane = c;
     v.convention = convention;
     v.family = family;
-    std::optional<properties::Observation<T>> seen = session_.observe(v);
+    std::optional<mistakes::Observation<T>> seen = session_.observe(v);
     if (!seen && (!session_.program().running() || !session_.issue().what.empty()))
       answering = false;
     return seen;
   };
-  return properties::diagnose<T>({seen}, probe);
+  return mistakes::diagnose<T>({seen}, probe);
 }
 
 template <class T>

@@ -37,7 +37,7 @@ class Shrinker {
  private:
   /// Which known mistake explains the shrunk case's answer, with the diagnosis's panel of cases
   /// (those the contract promises) asked too.
-  properties::Diagnosis diagnose(const generators::Case<T>& shrunk, const Found<T>& finding);
+  mistakes::Diagnosis diagnose(const generators::Case<T>& shrunk, const Found<T>& finding);
 
   Session<T>& session_;
   Reporter<T>& reporter_;

@@ -16,6 +16,7 @@ namespace {
 
 using oblique::Convention;
 using oblique::Status;
+namespace mistakes = oblique::mistakes;
 namespace properties = oblique::properties;
 namespace protocol = oblique::protocol;
 
@@ -41,8 +42,8 @@ std::string answer(const properties::Implementation<T>& impl, const std::string&
 }
 
 template <class T>
-int serve(const std::vector<properties::Mistake>& mistakes) {
-  const properties::Implementation<T> impl = properties::mistaken_implementation<T>(mistakes);
+int serve(const std::vector<mistakes::Mistake>& mistakes) {
+  const properties::Implementation<T> impl = mistakes::mistaken_implementation<T>(mistakes);
   std::string line;
   while (std::getline(std::cin, line)) std::cout << answer(impl, line) << std::endl;
   return 0;
@@ -51,11 +52,11 @@ int serve(const std::vector<properties::Mistake>& mistakes) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<properties::Mistake> mistakes;
+  std::vector<mistakes::Mistake> mistakes;
   const std::string names = argc > 1 ? argv[1] : "";
   for (std::size_t start = 0; start <= names.size();) {
     const std::size_t end = std::min(names.find('+', start), names.size());
-    const auto mistake = properties::parse_mistake(names.substr(start, end - start));
+    const auto mistake = mistakes::parse_mistake(names.substr(start, end - start));
     if (!mistake) {
       std::fprintf(stderr, "usage: %s NAME[+NAME] [--float]: no mistake '%s' in the catalogue\n",
                    argv[0], names.substr(start, end - start).c_str());

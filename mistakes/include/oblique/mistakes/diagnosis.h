@@ -21,7 +21,7 @@
 #include "oblique/plane.h"
 #include "oblique/status.h"
 
-namespace oblique::properties {
+namespace oblique::mistakes {
 
 /// One case and what the implementation answered, with the checker's verdict on it.
 template <class T>
@@ -105,4 +105,4 @@ std::string likely_cause_markdown(const Diagnosis& diagnosis);
 /// What the cause decided otherwise, in words: "the far corner's x sign: 1 (right: -1)".
 std::string choice_text(const ChoiceDifference& difference);
 
-}  // namespace oblique::properties
+}  // namespace oblique::mistakes

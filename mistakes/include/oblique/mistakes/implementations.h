@@ -18,7 +18,9 @@
 #include "oblique/oracle/judge.h"
 #include "oblique/oracle/tolerance.h"
 
-namespace oblique::properties {
+namespace oblique::mistakes {
+
+using properties::Implementation;
 
 template <class T>
 Implementation<T> core_method(Method method) {
@@ -127,4 +129,4 @@ std::vector<Implementation<T>> selected_implementations() {
   return out;
 }
 
-}  // namespace oblique::properties
+}  // namespace oblique::mistakes

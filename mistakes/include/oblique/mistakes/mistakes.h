@@ -11,7 +11,9 @@
 
 #include "oblique/oracle/implementation.h"
 
-namespace oblique::properties {
+namespace oblique::mistakes {
+
+using properties::Implementation;
 
 enum class Mistake {
   zero_one_formula_on_gl,  ///< a = 1 / (C . Q), M'_3 = a C on a [-1, 1] matrix
@@ -80,4 +82,4 @@ extern template Implementation<double> mistaken_implementation<double>(const std
 extern template Implementation<long double> mistaken_implementation<long double>(
     const std::vector<Mistake>&);
 
-}  // namespace oblique::properties
+}  // namespace oblique::mistakes

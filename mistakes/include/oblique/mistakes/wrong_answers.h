@@ -31,7 +31,10 @@
 
 #include "oblique/oracle/problem.h"
 
-namespace oblique::properties::wrong_answers {
+namespace oblique::mistakes::wrong_answers {
+
+using properties::Problem;
+using properties::Property;
 
 struct WrongAnswer {
   Property catches = Property::near_is_clip_plane;  ///< the property whose class it belongs to
@@ -141,4 +144,4 @@ std::vector<Mutant<T>> mutants(const Problem<T>& problem, const Matrix4<T>& answ
   return out;
 }
 
-}  // namespace oblique::properties::wrong_answers
+}  // namespace oblique::mistakes::wrong_answers

@@ -50,7 +50,7 @@ struct Counterexample {
   std::vector<std::pair<std::string, std::string>> notes;
   CaseViews views;  ///< the pictures' case (none unless set_views() was called)
   /// Which known mistake explains the answer (diagnose()), for the "Likely cause" section.
-  std::optional<Diagnosis> diagnosis;
+  std::optional<mistakes::Diagnosis> diagnosis;
 };
 
 /// The input's part of a counterexample: the numbers (shortest decimal and exact hex), the
@@ -70,7 +70,7 @@ void set_views(Counterexample& ce, const Problem<T>& problem, const Matrix4<T>* 
 
 /// A diagnosis as the report's JSON has it ("diagnosis"): its causes by name, the counts and the
 /// evidence, as JSON text (for other writers: `oblique check --impl --json`).
-std::string diagnosis_json(const Diagnosis& diagnosis);
+std::string diagnosis_json(const mistakes::Diagnosis& diagnosis);
 
 /// Where the report goes and how it is replayed.
 struct ReportContext {

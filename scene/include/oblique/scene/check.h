@@ -112,7 +112,7 @@ struct SceneCheck {
   protocol::Precision impl_precision = protocol::Precision::float64;
   /// `--impl`: which known mistake explains its answers (all the passes' cases; ran only when
   /// one is wrong).
-  properties::Diagnosis impl_diagnosis;
+  mistakes::Diagnosis impl_diagnosis;
   bool passes() const;
 };
 

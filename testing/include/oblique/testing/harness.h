@@ -54,7 +54,7 @@ struct Tally {
   /// empty when the finding has none.
   std::function<std::string(report::ReportFiles&, const std::string&)> markdown_pictures;
   /// The last failure's diagnosis, run when its report is written (not at every shrinking step).
-  std::function<properties::Diagnosis()> diagnose_failure;
+  std::function<mistakes::Diagnosis()> diagnose_failure;
   std::string property;  ///< the RapidCheck test id of the run
 };
 
@@ -163,15 +163,15 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
       auto observe = [&impl, &judged](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
                                       const Answer<T>& answer) {
         const Judgement j = judge(Problem<T>(m, p, k), answer, judged);
-        return properties::Observation<T>{
+        return mistakes::Observation<T>{
             m, p, k, answer.status, answer.projection, j.violation() != nullptr};
       };
-      const properties::Probe<T> probe = [&](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
-                                             generators::Family) {
-        if (!impl.accepts(k, m)) return std::optional<properties::Observation<T>>();
+      const mistakes::Probe<T> probe = [&](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
+                                           generators::Family) {
+        if (!impl.accepts(k, m)) return std::optional<mistakes::Observation<T>>();
         return std::optional(observe(m, p, k, impl.run(m, p, k)));
       };
-      return properties::diagnose<T>({observe(c.matrix, c.plane, c.convention, out)}, probe);
+      return mistakes::diagnose<T>({observe(c.matrix, c.plane, c.convention, out)}, probe);
     };
   }
   if (finding.check == properties::Check::status)
