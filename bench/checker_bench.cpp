@@ -21,7 +21,7 @@
 namespace {
 
 using oblique::Answer;
-using oblique::generators::Case;
+using oblique::cases::Case;
 using oblique::properties::Checks;
 using oblique::properties::FilteredProblem;
 using oblique::properties::Problem;
@@ -36,7 +36,7 @@ struct Judged {
 template <class T>
 const std::vector<Judged<T>>& workload() {
   static const std::vector<Judged<T>> cases = [] {
-    const auto gen = oblique::generators::valid_case<T>();
+    const auto gen = oblique::cases::valid_case<T>();
     rc::Random random(20261130);
     std::vector<Judged<T>> out;
     for (int i = 0; out.size() < 1024; ++i) {

@@ -31,8 +31,8 @@ using oblique::Matrix4;
 using oblique::Method;
 using oblique::Status;
 using oblique::Vector4;
-using oblique::generators::Case;
-using oblique::generators::Family;
+using oblique::cases::Case;
+using oblique::cases::Family;
 
 /// 1024 valid cases of the perspective-shape families (so every method applies), fixed seed.
 template <class T>
@@ -40,8 +40,7 @@ const std::vector<Case<T>>& workload() {
   static const std::vector<Case<T>> cases = [] {
     const std::vector<Family> families{Family::perspective, Family::off_axis, Family::infinite,
                                        Family::y_flipped, Family::jittered};
-    const auto gen =
-        oblique::generators::valid_case_in<T>(families, oblique::generators::every_convention());
+    const auto gen = oblique::cases::valid_case_in<T>(families, oblique::cases::every_convention());
     rc::Random random(20261123);
     std::vector<Case<T>> out;
     for (int i = 0; out.size() < 1024; ++i) {
@@ -60,7 +59,7 @@ const std::vector<Case<T>>& workload() {
 /// Eq. 20 generalised); no checks, no scaling, no status.
 template <class T>
 Matrix4<T> naive_closed_form(Matrix4<T> m, const Vector4<T>& c, Convention convention) {
-  using oblique::seeded::sgn;
+  using oblique::cases::sgn;
   const oblique::DepthRange range = oblique::clip_depth_range(convention);
   const oblique::RowCombination near = oblique::near_rows(convention);
   const T A = m(0, 0), B = m(0, 2), D = m(1, 1), E = m(1, 2), G = m(2, 2), H = m(2, 3), K = m(3, 2);
@@ -78,7 +77,7 @@ void listing_5_1_per_call(benchmark::State& state) {
   std::size_t i = 0;
   for (auto _ : state) {
     const Case<T>& c = cases[i++ % cases.size()];
-    auto result = oblique::seeded::listing_5_1<T>(c.matrix, c.plane);
+    auto result = oblique::cases::listing_5_1<T>(c.matrix, c.plane);
     benchmark::DoNotOptimize(result);
   }
 }

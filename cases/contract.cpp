@@ -94,15 +94,15 @@ std::vector<std::string> refusal_names() {
 Contract resolved(Contract c, const std::vector<Convention>& own_conventions,
                   StatusContract own_statuses, bool own_row3_accuracy) {
   if (!c.row3_accuracy) c.row3_accuracy = own_row3_accuracy;
-  if (c.families.empty()) c.families = generators::every_family();
+  if (c.families.empty()) c.families = cases::every_family();
   if (c.conventions.empty()) c.conventions = own_conventions;
-  if (c.places.empty()) c.places = generators::every_place();
+  if (c.places.empty()) c.places = cases::every_place();
   if (c.planes == Planes::unit && c.places.size() > 1)
-    c.places.erase(std::remove(c.places.begin(), c.places.end(), generators::Place::scaled),
+    c.places.erase(std::remove(c.places.begin(), c.places.end(), cases::Place::scaled),
                    c.places.end());
   if (!c.statuses) c.statuses = own_statuses;
   if (c.defects.empty())
-    c.defects.assign(std::begin(generators::all_defects), std::end(generators::all_defects));
+    c.defects.assign(std::begin(cases::all_defects), std::end(cases::all_defects));
   if (c.properties.empty()) c.properties = properties::Checks{}.properties;
   return c;
 }
@@ -114,19 +114,19 @@ Expected<Contract> exclude(Contract c, const std::vector<std::string>& names) {
   };
   bool families_named = false, places_named = false, defects_named = false;
   for (const std::string& name : names) {
-    if (auto f = generators::parse_family(name)) {
-      drop(c.families, *f, generators::all_families);
+    if (auto f = cases::parse_family(name)) {
+      drop(c.families, *f, cases::all_families);
       families_named = true;
-    } else if (auto p = generators::parse_place(name)) {
-      drop(c.places, *p, generators::all_places);
+    } else if (auto p = cases::parse_place(name)) {
+      drop(c.places, *p, cases::all_places);
       places_named = true;
-    } else if (auto d = generators::parse_defect(name)) {
-      drop(c.defects, *d, generators::all_defects);
+    } else if (auto d = cases::parse_defect(name)) {
+      drop(c.defects, *d, cases::all_defects);
       defects_named = true;
     } else {
-      std::vector<std::string> known = names_in(generators::family_names);
+      std::vector<std::string> known = names_in(cases::family_names);
       for (const std::vector<std::string>& more :
-           {names_in(generators::place_names), names_in(generators::defect_names)})
+           {names_in(cases::place_names), names_in(cases::defect_names)})
         known.insert(known.end(), more.begin(), more.end());
       return Expected<Contract>::failure(
           "exclude: " + protocol::unknown_name(
@@ -150,8 +150,8 @@ std::string read_field(Contract& c, const std::string& key, const JsonValue& val
                        std::vector<std::string>& excluded) {
   std::string error;
   if (key == "families") {
-    read_names(value, "families", "family", generators::parse_family,
-               names_in(generators::family_names), c.families, error);
+    read_names(value, "families", "family", cases::parse_family, names_in(cases::family_names),
+               c.families, error);
   } else if (key == "conventions") {
     const bool all = value.is(JsonValue::Kind::array) && value.items.size() == 1 &&
                      value.items[0].is(JsonValue::Kind::string) && value.items[0].text == "all";
@@ -161,11 +161,11 @@ std::string read_field(Contract& c, const std::string& key, const JsonValue& val
       read_names(value, "conventions", "convention", parse_convention, names_in(convention_names),
                  c.conventions, error);
   } else if (key == "places") {
-    read_names(value, "places", "hard place", generators::parse_place,
-               names_in(generators::place_names), c.places, error);
+    read_names(value, "places", "hard place", cases::parse_place, names_in(cases::place_names),
+               c.places, error);
   } else if (key == "defects") {
-    read_names(value, "defects", "kind of input without an answer", generators::parse_defect,
-               names_in(generators::defect_names), c.defects, error);
+    read_names(value, "defects", "kind of input without an answer", cases::parse_defect,
+               names_in(cases::defect_names), c.defects, error);
   } else if (key == "properties") {
     read_names(value, "properties", "property", parse_property, property_names(), c.properties,
                error);
@@ -229,7 +229,7 @@ std::string counts_text(const std::map<std::string, long>& counts) {
 
 Contract engine_contract() {
   Contract c;
-  c.families.assign(std::begin(generators::engine_families), std::end(generators::engine_families));
+  c.families.assign(std::begin(cases::engine_families), std::end(cases::engine_families));
   c.planes = Planes::unit;
   c.statuses = StatusContract::answers_only;
   return c;
@@ -309,9 +309,9 @@ std::string contract_json(const Contract& c) {
   auto field = [&](const char* name, const std::string& value) {
     out += std::string(out.empty() ? "{" : ", ") + "\"" + name + "\": " + value;
   };
-  if (!c.families.empty()) field("families", json_names(c.families, generators::family_name));
+  if (!c.families.empty()) field("families", json_names(c.families, cases::family_name));
   if (!c.conventions.empty()) field("conventions", json_names(c.conventions, convention_name));
-  if (!c.places.empty()) field("places", json_names(c.places, generators::place_name));
+  if (!c.places.empty()) field("places", json_names(c.places, cases::place_name));
   if (c.planes == Planes::unit) field("planes", "\"unit\"");
   if (c.statuses) {
     if (*c.statuses == StatusContract::exact && !c.refusals.empty())
@@ -319,7 +319,7 @@ std::string contract_json(const Contract& c) {
     else
       field("statuses", protocol::json_string(status_contract_name(*c.statuses)));
   }
-  if (!c.defects.empty()) field("defects", json_names(c.defects, generators::defect_name));
+  if (!c.defects.empty()) field("defects", json_names(c.defects, cases::defect_name));
   if (!c.properties.empty())
     field("properties", json_names(c.properties, properties::property_name));
   if (c.row3_accuracy) field("row3_accuracy", *c.row3_accuracy ? "true" : "false");

@@ -6,8 +6,8 @@
 #error "compiled once per scalar type, with OBLIQUE_SCALAR defined (oblique_add_instances)"
 #endif
 
-namespace oblique::generators {
+namespace oblique::cases {
 
 OBLIQUE_GENERATOR_INSTANCES(template, OBLIQUE_SCALAR)
 
-}  // namespace oblique::generators
+}  // namespace oblique::cases

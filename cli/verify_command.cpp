@@ -65,7 +65,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                     name_list(oblique::names_in(oblique::convention_names)));
   contract_flag("--families", "families",
                 "Comma list of projection families (default: all): " +
-                    name_list(oblique::names_in(oblique::generators::family_names)));
+                    name_list(oblique::names_in(oblique::cases::family_names)));
   add_precision_option(
       verify, settings->precision, "Scalar type of inputs and bounds",
       {oblique::protocol::Precision::float32, oblique::protocol::Precision::float64});
@@ -104,10 +104,10 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
   contract_flag("--planes", "planes", "unit: planes with a unit normal; any (default)");
   contract_flag("--places", "places",
                 "Comma list of hard places to send (default: all): " +
-                    name_list(oblique::names_in(oblique::generators::place_names)));
+                    name_list(oblique::names_in(oblique::cases::place_names)));
   contract_flag("--defects", "defects",
                 "Comma list of kinds of input without an answer to send (default: all): " +
-                    name_list(oblique::names_in(oblique::generators::defect_names)));
+                    name_list(oblique::names_in(oblique::cases::defect_names)));
   contract_flag("--properties", "properties",
                 "Comma list of the properties judged (default: all): " +
                     name_list(oblique::property_names()));

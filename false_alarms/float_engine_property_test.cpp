@@ -28,8 +28,8 @@ const auto zero_one_from_gl =
 // answers only (from the void adapter).
 Contract perspective_shapes() {
   Contract contract;
-  contract.families = {std::begin(generators::perspective_shape_families),
-                       std::end(generators::perspective_shape_families)};
+  contract.families = {std::begin(cases::perspective_shape_families),
+                       std::end(cases::perspective_shape_families)};
   return contract;
 }
 

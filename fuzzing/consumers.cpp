@@ -37,7 +37,7 @@ template <class T>
 int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T>& consumers,
                    const Contract& given) {
   const Contract contract =
-      resolved(given, generators::every_convention(), properties::StatusContract::exact, false);
+      resolved(given, cases::every_convention(), properties::StatusContract::exact, false);
   // Built cases unspoiled: the code around the matrix is judged where the matrix has an answer.
   FuzzCase c = decode(data, size, contract, /*defects=*/false);
   if (describing()) describe(c);

@@ -153,12 +153,12 @@ template <class T>
 struct PanelCase {
   Matrix4<T> matrix;
   Vector4<T> plane;
-  generators::Family family;
+  cases::Family family;
 };
 
 template <class T>
 std::vector<PanelCase<T>> panel(Convention convention) {
-  using generators::Family;
+  using cases::Family;
   struct Shape {
     Matrix4<T> m;
     Family family;

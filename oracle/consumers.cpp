@@ -602,8 +602,8 @@ std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>& m, const Vec
 
 }  // namespace
 
-std::string_view not_applicable(ConsumerCheck check, generators::Family family) {
-  using generators::Family;
+std::string_view not_applicable(ConsumerCheck check, cases::Family family) {
+  using cases::Family;
   if (check == ConsumerCheck::corners_contain_kept && family == Family::infinite)
     return "an infinite frustum's kept region is unbounded";
   if (check == ConsumerCheck::linear_depth &&

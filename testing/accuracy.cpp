@@ -21,7 +21,7 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& given,
                       const AccuracySettings& settings) {
   const Contract contract = resolved(given, impl.conventions, impl.status_contract(), false);
   if (!serves_conventions(impl, contract)) return;
-  const rc::Gen<generators::Case<T>> generator = generators::valid_case_for<T>(contract);
+  const rc::Gen<cases::Case<T>> generator = cases::valid_case_for<T>(contract);
   rc::Random random(settings.seed);
   report::Profile mine;
   mine.name = impl.name;
@@ -33,13 +33,12 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& given,
   Checks checks = impl.checks(contract.row3_accuracy.value_or(false));
   checks.properties = contract.properties;
   for (int i = 0; i < settings.cases; ++i) {
-    const generators::Case<T> c = generator(random.split(), i % 101).value();
+    const cases::Case<T> c = generator(random.split(), i % 101).value();
     if (!impl.accepts(c.convention, c.matrix)) continue;
     const Problem<T> problem(c.matrix, c.plane, c.convention);
     if (problem.exact_status() != Status::ok) continue;
-    inputs.push_back({c.matrix, c.plane, c.convention,
-                      std::string(generators::family_name(c.family)),
-                      std::string(generators::place_name(c.place)),
+    inputs.push_back({c.matrix, c.plane, c.convention, std::string(cases::family_name(c.family)),
+                      std::string(cases::place_name(c.place)),
                       protocol::request_line(c.matrix, c.plane, c.convention)});
     const Answer<T> outcome = impl.run(c.matrix, c.plane, c.convention);
     if (const properties::Finding* v = judge(problem, outcome, checks).violation()) {

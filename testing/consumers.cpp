@@ -5,8 +5,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "oblique/cases/generators.h"
 #include "oblique/oblique.h"
-#include "oblique/oracle/consumer_generators.h"
 #include "oblique/report/report_files.h"
 #include "oblique/testing/harness.h"
 
@@ -29,9 +29,9 @@ void fail(const std::string& consumer, const properties::ConsumerFinding& findin
 /// is an oblique matrix's: M's volume, C, the core's M' and the finding's points).
 template <class T>
 void judged(const std::string& consumer, const properties::ConsumerFinding& finding,
-            const std::string& inputs, const generators::Case<T>* c) {
+            const std::string& inputs, const cases::Case<T>* c) {
   if (!finding.judged) {
-    count_left_out(c ? std::string(generators::family_name(c->family)) : consumer, finding.detail);
+    count_left_out(c ? std::string(cases::family_name(c->family)) : consumer, finding.detail);
     return;
   }
   ++tally().applied[std::string(properties::consumer_check_name(finding.check))];
@@ -60,14 +60,14 @@ void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck chec
   const std::string property(properties::consumer_check_name(check));
   if (needs_oblique) {
     // The families the property has something to judge on (not_applicable()), said once.
-    std::vector<generators::Family> applicable;
+    std::vector<cases::Family> applicable;
     std::string left;
-    for (generators::Family f : contract.families) {
+    for (cases::Family f : contract.families) {
       const std::string_view why = properties::not_applicable(check, f);
       if (why.empty()) {
         applicable.push_back(f);
       } else {
-        append_item(left, std::string(generators::family_name(f)) + " (" + std::string(why) + ")");
+        append_item(left, std::string(cases::family_name(f)) + " (" + std::string(why) + ")");
       }
     }
     if (!left.empty()) std::cout << property << ": not applicable to " << left << "\n";
@@ -81,22 +81,22 @@ void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck chec
   }
   run(
       [=] {
-        generators::Case<T> c{};
+        cases::Case<T> c{};
         if (needs_oblique) {
-          c = *generators::valid_case_for<T>(contract);
+          c = *cases::valid_case_for<T>(contract);
           RC_PRE(apply<T>(c.matrix, c.plane, c.convention).status == Status::ok);
           count_generated(c);
           // A camera the functions are not for: counted refused, never judged (a claimed family
           // with every case refused fails the run, saying so).
           if (only.accepts && !only.accepts(c.convention, c.matrix)) {
-            count_left_out(std::string(generators::family_name(c.family)), "", only.name);
+            count_left_out(std::string(cases::family_name(c.family)), "", only.name);
             return;
           }
         }
         ++tally().implementations[only.name];
         bool counted = false;  // a round's first judged finding counts its case judged
         properties::consumer_round<T>(
-            c.matrix, c.plane, c.convention, only, generators::rc_pick,
+            c.matrix, c.plane, c.convention, only, cases::rc_pick,
             [&](const properties::ConsumerFinding& f, const std::string& inputs, bool oblique) {
               if (f.check != check) return;
               if (f.judged && needs_oblique && !counted) {
@@ -104,8 +104,8 @@ void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck chec
                 counted = true;
               }
               const std::string which =
-                  oblique ? "- case: family " + std::string(generators::family_name(c.family)) +
-                                ", place " + std::string(generators::place_name(c.place)) + "\n"
+                  oblique ? "- case: family " + std::string(cases::family_name(c.family)) +
+                                ", place " + std::string(cases::place_name(c.place)) + "\n"
                           : "";
               judged(only.name, f, which + inputs, oblique ? &c : nullptr);
             });
@@ -124,7 +124,7 @@ inline namespace OBLIQUE_EIGEN_LAYOUT {
 template <class T>
 void check_consumers(const oblique::Consumers<T>& consumers, const Contract& given) {
   const Contract contract =
-      resolved(given, generators::every_convention(), properties::StatusContract::exact, false);
+      resolved(given, cases::every_convention(), properties::StatusContract::exact, false);
   bool any = false;
   using Check = properties::ConsumerCheck;
   auto with = [&](auto member, std::initializer_list<Check> checks) {

@@ -35,7 +35,7 @@ const Expected<std::shared_ptr<raster::Rasterizer>>& rasterizer_for(
 
 /// The report of a case the rasterizer failed, or could not judge.
 template <class T>
-std::string raster_markdown(const generators::Case<T>& c, const Implementation<T>& impl,
+std::string raster_markdown(const cases::Case<T>& c, const Implementation<T>& impl,
                             const Matrix4<T>& answer, const raster::Result& r,
                             const std::string& renderer, DepthBuffer buffer, int size,
                             std::uint64_t seed) {
@@ -47,8 +47,8 @@ std::string raster_markdown(const generators::Case<T>& c, const Implementation<T
       (failed ? impl.name + "'s answer, drawn on " + renderer + ", fails: " + r.why + ".\n"
               : "The renderer (" + renderer + ") tripped a self-check: " + r.why +
                     ". This is no verdict about " + impl.name + ".\n") +
-      "\n## The case\n\n- family `" + std::string(generators::family_name(c.family)) +
-      "`, place `" + std::string(generators::place_name(c.place)) + "`, convention " +
+      "\n## The case\n\n- family `" + std::string(cases::family_name(c.family)) + "`, place `" +
+      std::string(cases::place_name(c.place)) + "`, convention " +
       std::string(convention_name(c.convention)) + "\n- depth buffer " +
       std::string(depth_buffer_name(buffer)) + ", frame " + std::to_string(size) + " x " +
       std::to_string(size) + ", seed " + std::to_string(seed) +
@@ -88,9 +88,9 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
   const std::shared_ptr<raster::Rasterizer> rasterizer = *opened;
   run(
       [=] {
-        const generators::Case<T> c = *generators::valid_case_for<T>(contract);
+        const cases::Case<T> c = *cases::valid_case_for<T>(contract);
         count_generated(c);
-        const std::string family(generators::family_name(c.family));
+        const std::string family(cases::family_name(c.family));
         if (!impl.accepts(c.convention, c.matrix)) {
           count_left_out(family, "", impl.name);
           return;

@@ -158,7 +158,7 @@ bool left_out_by_reproduce(const std::string& id) {
 void run(const std::function<void()>& testable, Coverage coverage, const std::string& property,
          const Contract& given) {
   const Contract require =
-      resolved(given, generators::every_convention(), properties::StatusContract::exact, false);
+      resolved(given, cases::every_convention(), properties::StatusContract::exact, false);
   tally() = Tally{};
   const std::string id = run_id(property);
   tally().property = property;
@@ -209,9 +209,9 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   if (!reproducing && (coverage == Coverage::valid || coverage == Coverage::invalid)) {
     judged_kinds = coverage == Coverage::valid ? t.families : t.defects;
     if (coverage == Coverage::valid) {
-      for (auto f : require.families) kinds.emplace_back(generators::family_name(f));
+      for (auto f : require.families) kinds.emplace_back(cases::family_name(f));
     } else {
-      for (auto d : require.defects) kinds.emplace_back(generators::defect_name(d));
+      for (auto d : require.defects) kinds.emplace_back(cases::defect_name(d));
     }
   }
   auto count = [](const std::map<std::string, int>& counts, const std::string& key) {
@@ -231,7 +231,7 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   std::string unjudged_places;
   if (!reproducing && coverage != Coverage::invalid && coverage != Coverage::none) {
     for (auto p : require.places) {
-      const std::string place(generators::place_name(p));
+      const std::string place(cases::place_name(p));
       if (count(t.generated_places, place) > 0 && count(t.places, place) == 0)
         append_item(unjudged_places, place);
     }
@@ -309,7 +309,7 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   };
   std::vector<std::string_view> conventions, places;
   for (auto c : require.conventions) conventions.push_back(convention_name(c));
-  for (auto p : require.places) places.push_back(generators::place_name(p));
+  for (auto p : require.places) places.push_back(cases::place_name(p));
   needs(t.conventions, conventions, "convention");
   switch (coverage) {
     case Coverage::valid:
@@ -341,7 +341,7 @@ void check_properties(const Implementation<T>& impl, const Contract& given) {
                          const std::string& name) {
     run(
         [=] {
-          const generators::Case<T> c = *generators::valid_case_for<T>(generate);
+          const cases::Case<T> c = *cases::valid_case_for<T>(generate);
           const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
           count_generated(c);
           if (for_each_answer(implementations, c, problem, checks, false, &contract))
@@ -351,12 +351,12 @@ void check_properties(const Implementation<T>& impl, const Contract& given) {
   };
   for (Property p : contract.properties) {
     const bool infinite = std::find(contract.families.begin(), contract.families.end(),
-                                    generators::Family::infinite) != contract.families.end();
+                                    cases::Family::infinite) != contract.families.end();
     if (p == Property::infinite_edge_parallel && !infinite) continue;
     Contract generate = contract;
     Coverage coverage = Coverage::valid;
     if (p == Property::infinite_edge_parallel) {
-      generate.families = {generators::Family::infinite};
+      generate.families = {cases::Family::infinite};
       coverage = Coverage::places_only;
     }
     Checks checks;
@@ -372,9 +372,9 @@ void check_properties(const Implementation<T>& impl, const Contract& given) {
   if (*contract.statuses == StatusContract::answers_only) return;
   run(
       [=] {
-        const generators::Case<T> c = *generators::invalid_case_for<T>(contract);
+        const cases::Case<T> c = *cases::invalid_case_for<T>(contract);
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-        const std::string defect(generators::defect_name(*c.defect));
+        const std::string defect(cases::defect_name(*c.defect));
         ++tally().generated[defect];
         RC_TAG(defect);
         Checks checks;  // an ok answer is allowed only in a gray zone, and then has every property

@@ -66,11 +66,11 @@ int case_count() {
 
 TYPED_TEST(AccurateOrdinary, generatedCasesOfEveryFamilyAndConvention) {
   using T = TypeParam;
-  const auto gen = generators::valid_case<T>();
+  const auto gen = cases::valid_case<T>();
   rc::Random random(17101);
   Tally tally;
   for (int i = 0; i < case_count<T>(); ++i) {
-    const generators::Case<T> c = gen(random.split(), i % 101).value();
+    const cases::Case<T> c = gen(random.split(), i % 101).value();
     expect_same(c.matrix, c.plane, c.convention, tally);
     if (::testing::Test::HasFatalFailure()) return;
   }
@@ -82,11 +82,11 @@ TYPED_TEST(AccurateOrdinary, generatedCasesOfEveryFamilyAndConvention) {
 
 TYPED_TEST(AccurateOrdinary, generatedInvalidInputs) {
   using T = TypeParam;
-  const auto gen = generators::invalid_case<T>();
+  const auto gen = cases::invalid_case<T>();
   rc::Random random(17102);
   Tally tally;
   for (int i = 0; i < case_count<T>() / 2; ++i) {
-    const generators::Case<T> c = gen(random.split(), i % 101).value();
+    const cases::Case<T> c = gen(random.split(), i % 101).value();
     expect_same(c.matrix, c.plane, c.convention, tally);
     if (::testing::Test::HasFatalFailure()) return;
   }

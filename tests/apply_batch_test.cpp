@@ -72,15 +72,15 @@ void expect_batch_is_apply(const std::vector<Matrix4<T>>& matrices,
 // generated cases of every family, each method, each convention.
 TYPED_TEST(ApplyBatch, batchGivesWhatApplyGives) {
   using T = TypeParam;
-  const auto valid = generators::valid_case<T>();
-  const auto invalid = generators::invalid_case<T>();
+  const auto valid = cases::valid_case<T>();
+  const auto invalid = cases::invalid_case<T>();
   rc::Random random(17004);
   for (Convention convention : all_conventions) {
     std::vector<Matrix4<T>> matrices;
     std::vector<Vector4<T>> planes;
     for (int i = 0; i < 600; ++i) {
-      const generators::Case<T> c = i % 3 == 2 ? invalid(random.split(), i % 101).value()
-                                               : valid(random.split(), i % 101).value();
+      const cases::Case<T> c = i % 3 == 2 ? invalid(random.split(), i % 101).value()
+                                          : valid(random.split(), i % 101).value();
       matrices.push_back(c.matrix);
       planes.push_back(c.plane);
     }
@@ -99,13 +99,12 @@ TYPED_TEST(ApplyBatch, batchGivesWhatApplyGives) {
 /// values in every entry and plane component; planes scaled to the edges of the exponent range;
 /// zeros of both signs in the entries outside the shape, in M13, M23, M33 and in the plane.
 template <class T>
-std::vector<generators::Case<T>> batch_pool(int size, std::uint64_t seed) {
+std::vector<cases::Case<T>> batch_pool(int size, std::uint64_t seed) {
   using limits = std::numeric_limits<T>;
-  const auto valid =
-      generators::valid_case_in<T>({std::begin(generators::perspective_shape_families),
-                                    std::end(generators::perspective_shape_families)},
-                                   generators::every_convention());
-  const auto invalid = generators::invalid_case<T>();
+  const auto valid = cases::valid_case_in<T>(
+      {std::begin(cases::perspective_shape_families), std::end(cases::perspective_shape_families)},
+      cases::every_convention());
+  const auto invalid = cases::invalid_case<T>();
   const std::vector<T> specials = test::special_values<T>();
   const T k_values[] = {T(-1),
                         T(1),
@@ -121,9 +120,9 @@ std::vector<generators::Case<T>> batch_pool(int size, std::uint64_t seed) {
                                 limits::min_exponent - 1, limits::min_exponent - 2,
                                 limits::min_exponent - limits::digits};
   rc::Random random(seed);
-  std::vector<generators::Case<T>> pool;
+  std::vector<cases::Case<T>> pool;
   for (int i = 0; i < size; ++i) {
-    generators::Case<T> c = valid(random.split(), i % 101).value();
+    cases::Case<T> c = valid(random.split(), i % 101).value();
     const int pick = i % 11;
     if (pick == 1) c = invalid(random.split(), i % 101).value();
     if (pick == 2 || pick == 3) {
@@ -169,14 +168,14 @@ std::vector<generators::Case<T>> batch_pool(int size, std::uint64_t seed) {
 TYPED_TEST(ApplyBatch, batchBlocksGiveWhatApplyGives) {
   using T = TypeParam;
   constexpr std::size_t w = std::size_t(detail::closed_form_lane_count<T>);
-  std::vector<generators::Case<T>> pool = batch_pool<T>(int(40 * w) + 5, 17005);
+  std::vector<cases::Case<T>> pool = batch_pool<T>(int(40 * w) + 5, 17005);
   // Runs of the same M43 among ordinary requests: whole blocks on the power-of-two path.
   {
-    const auto valid = generators::valid_case<T>();
+    const auto valid = cases::valid_case<T>();
     rc::Random random(17006);
     for (const T k : {T(-1), T(1), T(4), T(-0.75)}) {
       for (std::size_t i = 0; i < 3 * w; ++i) {
-        generators::Case<T> c = valid(random.split(), int(i % 101)).value();
+        cases::Case<T> c = valid(random.split(), int(i % 101)).value();
         c.matrix(3, 2) = k;
         pool.push_back(c);
       }
@@ -186,7 +185,7 @@ TYPED_TEST(ApplyBatch, batchBlocksGiveWhatApplyGives) {
   for (Convention convention : all_conventions) {
     std::vector<Matrix4<T>> matrices;
     std::vector<Vector4<T>> planes;
-    for (const generators::Case<T>& c : pool) {
+    for (const cases::Case<T>& c : pool) {
       matrices.push_back(c.matrix);
       planes.push_back(c.plane);
     }
@@ -209,7 +208,7 @@ TYPED_TEST(ApplyBatch, batchBlockLanesAreApplysAnswers) {
   using T = TypeParam;
   if constexpr (detail::closed_form_lanes_available<T>()) {
     constexpr int w = detail::closed_form_lane_count<T>;
-    const std::vector<generators::Case<T>> pool =
+    const std::vector<cases::Case<T>> pool =
         batch_pool<T>(std::is_same_v<T, double> ? 40000 : 12000, 17007);
     long lanes_ok = 0, apply_ok = 0;
     for (Convention convention : all_conventions) {

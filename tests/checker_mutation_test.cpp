@@ -17,7 +17,7 @@
 namespace oblique::properties {
 namespace {
 
-using generators::Case;
+using cases::Case;
 
 /// Judges `projection` with `which` alone (an ok answer, the exact status contract), with the
 /// exact checker or the filtered one.
@@ -77,8 +77,8 @@ void every_member_is_rejected(const rc::Gen<Case<T>>& gen, int count, std::uint6
       ++rejected_wrongly;
       ADD_FAILURE() << property_name(p) << " accepts a member of its class (entry "
                     << mutant.what.detail << ") on case " << i << " of seed " << seed << ": "
-                    << generators::family_name(c.family) << " " << convention_name(c.convention)
-                    << " " << generators::place_name(c.place);
+                    << cases::family_name(c.family) << " " << convention_name(c.convention) << " "
+                    << cases::place_name(c.place);
     }
   }
   EXPECT_EQ(rejected_wrongly, 0) << "members accepted by the property of their class";
@@ -87,9 +87,9 @@ void every_member_is_rejected(const rc::Gen<Case<T>>& gen, int count, std::uint6
 TYPED_TEST(CheckerMutationTyped, eachPropertyAloneRejectsItsClass) {
   using T = TypeParam;
   std::map<Property, int> members;
-  every_member_is_rejected<T>(generators::valid_case<T>(), 600, 20261130, members);
-  every_member_is_rejected<T>(generators::valid_case_of<T>(generators::Family::infinite), 200,
-                              20261131, members);
+  every_member_is_rejected<T>(cases::valid_case<T>(), 600, 20261130, members);
+  every_member_is_rejected<T>(cases::valid_case_of<T>(cases::Family::infinite), 200, 20261131,
+                              members);
   // The classes are not empty: each held the property to many wrong answers.
   for (Property p : all_properties) {
     EXPECT_GE(members[p], 50) << property_name(p) << ": too few members";

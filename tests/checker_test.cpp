@@ -45,7 +45,7 @@ TYPED_TEST(CheckerTest, judgesAsTheFilteredAndTheExactChecker) {
   rc::Random random(20261202);
   int violations = 0;
   for (int i = 0; i < 300; ++i) {
-    const generators::Case<T> c = generators::valid_case<T>()(random.split(), i % 101).value();
+    const cases::Case<T> c = cases::valid_case<T>()(random.split(), i % 101).value();
     const Checker<T> checker(c.matrix, c.plane, c.convention);
     const FilteredProblem<T> filtered(c.matrix, c.plane, c.convention);
     const Problem<T> exact(c.matrix, c.plane, c.convention);

@@ -239,20 +239,19 @@ TEST(Cli, verifyHelpListsEveryFamilyAndPlace) {
     }
     return false;
   };
-  for (auto f : generators::all_families)
-    EXPECT_TRUE(listed(families, generators::family_name(f))) << generators::family_name(f) << "\n"
-                                                              << families;
-  for (auto p : generators::all_places)
-    EXPECT_TRUE(listed(places, generators::place_name(p))) << generators::place_name(p) << "\n"
-                                                           << places;
+  for (auto f : cases::all_families)
+    EXPECT_TRUE(listed(families, cases::family_name(f))) << cases::family_name(f) << "\n"
+                                                         << families;
+  for (auto p : cases::all_places)
+    EXPECT_TRUE(listed(places, cases::place_name(p))) << cases::place_name(p) << "\n" << places;
 }
 
 // The help of every contract flag lists the names its JSON field takes (the contract's tables).
 TEST(Cli, verifyHelpListsEveryNameOfTheContract) {
   std::string help;
   ASSERT_EQ(shell(std::string(OBLIQUE_CLI) + " verify --help", &help), 0);
-  for (const auto& names : {names_in(convention_names), names_in(generators::family_names),
-                            names_in(generators::place_names), names_in(generators::defect_names),
+  for (const auto& names : {names_in(convention_names), names_in(cases::family_names),
+                            names_in(cases::place_names), names_in(cases::defect_names),
                             property_names(), refusal_names(), names_in(status_contract_names)}) {
     for (const std::string& name : names)
       EXPECT_NE(help.find(name), std::string::npos) << name << "\n" << help;

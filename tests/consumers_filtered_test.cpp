@@ -73,14 +73,14 @@ void expect_same_corners_verdict(const Matrix4<T>& m, const Vector4<T>& c, Conve
 
 TYPED_TEST(FilteredConsumers, cornersJudgeAgreesWithTheExactOne) {
   using T = TypeParam;
-  const auto gen = generators::valid_case<T>();
+  const auto gen = cases::valid_case<T>();
   rc::Random random(17301);
   Tally tally;
   // The exact judge takes about 0.1 s a case in float, 0.5 s in double and 9 s in long double.
   const int wanted = std::is_same_v<T, float> ? 24 : std::is_same_v<T, double> ? 12 : 2;
   int cases = 0, probed = 0;
   for (int i = 0; cases < wanted && i < 400; ++i) {
-    const generators::Case<T> g = gen(random.split(), i % 101).value();
+    const cases::Case<T> g = gen(random.split(), i % 101).value();
     const ObliqueResult<T> r = apply<T>(g.matrix, g.plane, g.convention);
     if (r.status != Status::ok) continue;
     std::vector<Vector3<T>> kept;
@@ -93,7 +93,7 @@ TYPED_TEST(FilteredConsumers, cornersJudgeAgreesWithTheExactOne) {
     if (!bounded || kept.empty()) continue;
     ++cases;
     const std::string what = "case " + std::to_string(i) + ", family " +
-                             std::string(generators::family_name(g.family)) + ", convention " +
+                             std::string(cases::family_name(g.family)) + ", convention " +
                              std::string(convention_name(g.convention));
     expect_same_corners_verdict(g.matrix, g.plane, g.convention, r.projection, kept,
                                 what + ": the kept region's vertices", tally);

@@ -12,9 +12,9 @@
 namespace oblique {
 namespace {
 
-using generators::Defect;
-using generators::Family;
-using generators::Place;
+using cases::Defect;
+using cases::Family;
+using cases::Place;
 using properties::Property;
 using properties::StatusContract;
 
@@ -104,7 +104,7 @@ TEST(Contract, aFileThatIsNoContractIsRefusedWithTheReason) {
 TEST(Contract, excludeRemovesFromFilledListsAndRefusesEmptyOnes) {
   const Expected<Contract> c = exclude(Contract{}, {"general", "scaled", "singular"});
   ASSERT_TRUE(c) << c.error();
-  EXPECT_EQ(c->families.size(), std::size(generators::all_families) - 1);
+  EXPECT_EQ(c->families.size(), std::size(cases::all_families) - 1);
   EXPECT_EQ(std::count(c->families.begin(), c->families.end(), Family::general), 0);
   EXPECT_EQ(std::count(c->places.begin(), c->places.end(), Place::scaled), 0);
   EXPECT_EQ(std::count(c->defects.begin(), c->defects.end(), Defect::singular), 0);
@@ -119,8 +119,8 @@ TEST(Contract, excludeRemovesFromFilledListsAndRefusesEmptyOnes) {
 // answers only; the other fields change it wherever the preset stands.
 TEST(Contract, theEnginePresetIsReadFirstAndChangedByTheOtherFields) {
   const Contract engine = engine_contract();
-  EXPECT_EQ(engine.families, std::vector<Family>(std::begin(generators::engine_families),
-                                                 std::end(generators::engine_families)));
+  EXPECT_EQ(engine.families, std::vector<Family>(std::begin(cases::engine_families),
+                                                 std::end(cases::engine_families)));
   EXPECT_EQ(engine.planes, Planes::unit);
   EXPECT_EQ(engine.statuses, StatusContract::answers_only);
   EXPECT_TRUE(engine.conventions.empty());
@@ -169,10 +169,10 @@ TEST(Contract, aFlagReplacesItsFieldWithTheReadersChecks) {
 TEST(Contract, resolvedFillsEveryListAndTheImplementationsOwn) {
   const Contract r =
       resolved(Contract{}, {Convention::reversed_z}, StatusContract::any_refusal, true);
-  EXPECT_EQ(r.families.size(), std::size(generators::all_families));
+  EXPECT_EQ(r.families.size(), std::size(cases::all_families));
   EXPECT_EQ(r.conventions, std::vector<Convention>{Convention::reversed_z});
-  EXPECT_EQ(r.places.size(), std::size(generators::all_places));
-  EXPECT_EQ(r.defects.size(), std::size(generators::all_defects));
+  EXPECT_EQ(r.places.size(), std::size(cases::all_places));
+  EXPECT_EQ(r.defects.size(), std::size(cases::all_defects));
   EXPECT_EQ(r.properties, properties::Checks{}.properties);
   EXPECT_EQ(r.statuses, StatusContract::any_refusal);
   EXPECT_EQ(r.row3_accuracy, true);
@@ -180,7 +180,7 @@ TEST(Contract, resolvedFillsEveryListAndTheImplementationsOwn) {
   unit.planes = Planes::unit;
   const Contract u = resolved(unit, {Convention::gl}, StatusContract::exact, false);
   EXPECT_EQ(std::count(u.places.begin(), u.places.end(), Place::scaled), 0);
-  EXPECT_EQ(u.places.size(), std::size(generators::all_places) - 1);
+  EXPECT_EQ(u.places.size(), std::size(cases::all_places) - 1);
   Contract given;
   given.conventions = {Convention::zero_one};
   given.statuses = StatusContract::answers_only;

@@ -34,17 +34,17 @@ Observation<T> observe(const Implementation<T>& impl, const Matrix4<T>& m, const
 /// `impl` asked again; ran == false when none of `cases` showed a wrong answer.
 template <class T>
 Diagnosis first_finding_diagnosed(const Implementation<T>& impl, int cases = 4000) {
-  const auto valid = generators::valid_case<T>();
-  const auto invalid = generators::invalid_case<T>();
+  const auto valid = cases::valid_case<T>();
+  const auto invalid = cases::invalid_case<T>();
   rc::Random random(26001);
   for (int i = 0; i < cases; ++i) {
-    const generators::Case<T> c = i % 4 == 3 ? invalid(random.split(), i % 101).value()
-                                             : valid(random.split(), i % 101).value();
+    const cases::Case<T> c = i % 4 == 3 ? invalid(random.split(), i % 101).value()
+                                        : valid(random.split(), i % 101).value();
     if (!all_finite(c.matrix) || !all_finite(c.plane)) continue;
     const Observation<T> o = observe(impl, c.matrix, c.plane, c.convention);
     if (!o.wrong) continue;
     const Probe<T> probe = [&impl](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
-                                   generators::Family) {
+                                   cases::Family) {
       return std::optional<Observation<T>>(observe(impl, m, p, k));
     };
     return diagnose<T>({o}, probe);
@@ -81,11 +81,11 @@ TYPED_TEST(Diagnose, twoMistakesTogetherAreThePair) {
 // A correct answer one ulp off in row 3, even if a checker took it for wrong, is no mistake.
 TYPED_TEST(Diagnose, aCorrectAnswerWithNoiseIsNeverDiagnosed) {
   using T = TypeParam;
-  const auto valid = generators::valid_case<T>();
+  const auto valid = cases::valid_case<T>();
   rc::Random random(26002);
   int diagnosed = 0;
   for (int i = 0; i < 300; ++i) {
-    const generators::Case<T> c = valid(random.split(), i % 101).value();
+    const cases::Case<T> c = valid(random.split(), i % 101).value();
     const ObliqueResult<T> r = apply<T>(c.matrix, c.plane, c.convention);
     Observation<T> o{c.matrix, c.plane, c.convention, r.status, r.projection, true};
     if (r.status == Status::ok) {

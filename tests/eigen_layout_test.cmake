@@ -22,8 +22,8 @@ bool holds(const oblique::Matrix4<float>& m, const oblique::Vector4<float>& c) {
       .judge(oblique::Answer<float>{oblique::Status::ok, m})
       .holds();
 }
-oblique::generators::Case<float> built() {
-  using namespace oblique::generators;
+oblique::cases::Case<float> built() {
+  using namespace oblique::cases;
   return build_case<float>(Family::perspective, oblique::Convention::gl, Place::typical, 0,
                            [](int lo, int) { return lo; });
 }
@@ -79,11 +79,11 @@ expect_in("${fuzzing_symbols}" "eigen_align32" "no eigen_align32 in oblique::fuz
 expect_in("${properties_symbols}" "W oblique::properties::eigen_align16::Checker<float>::judge("
           "oblique::properties defines Checker::judge in eigen_align16")
 expect_in("${properties_symbols}" "eigen_align32" "no eigen_align32 in oblique::properties")
-expect_in("${baseline_symbols}" "U oblique::generators::Case<float> oblique::generators::eigen_align16::build_case<float>("
+expect_in("${baseline_symbols}" "U oblique::cases::Case<float> oblique::cases::eigen_align16::build_case<float>("
           "the baseline file refers to build_case in eigen_align16")
-expect_in("${avx2_symbols}" "U oblique::generators::Case<float> oblique::generators::eigen_align32::build_case<float>("
+expect_in("${avx2_symbols}" "U oblique::cases::Case<float> oblique::cases::eigen_align32::build_case<float>("
           "the -mavx2 file refers to build_case in eigen_align32")
-expect_in("${cases_symbols}" "W oblique::generators::Case<float> oblique::generators::eigen_align16::build_case<float>("
+expect_in("${cases_symbols}" "W oblique::cases::Case<float> oblique::cases::eigen_align16::build_case<float>("
           "oblique::cases defines build_case in eigen_align16")
 expect_in("${cases_symbols}" "eigen_align32" "no eigen_align32 in oblique::cases")
 if(failures)

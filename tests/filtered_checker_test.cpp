@@ -38,7 +38,7 @@ namespace oblique::properties {
 using mistakes::known_implementations;
 namespace {
 
-using generators::Case;
+using cases::Case;
 
 struct Tally {
   long cases = 0, judgements = 0, filtered = 0, statuses_filtered = 0, disagreements = 0;
@@ -78,8 +78,8 @@ void compare(const Case<T>& c, const Problem<T>& exact, const FilteredProblem<T>
   if (same(expected, got)) return;
   ++tally.disagreements;
   std::ostringstream os;
-  os << generators::family_name(c.family) << " " << convention_name(c.convention) << " "
-     << generators::place_name(c.place) << "\nM =";
+  os << cases::family_name(c.family) << " " << convention_name(c.convention) << " "
+     << cases::place_name(c.place) << "\nM =";
   for (int i = 0; i < 16; ++i) os << " " << protocol::format_number(c.matrix(i / 4, i % 4));
   os << "\nC =";
   for (int i = 0; i < 4; ++i) os << " " << protocol::format_number(c.plane(i));
@@ -162,8 +162,8 @@ void move_to_the_ends(Case<T>& c, std::uint64_t index) {
 template <class T>
 void one_case(std::uint64_t index, rc::Random& random, Tally& tally) {
   const bool invalid = index % 5 == 4;
-  Case<T> c = invalid ? generators::invalid_case<T>()(random.split(), int(index % 101)).value()
-                      : generators::valid_case<T>()(random.split(), int(index % 101)).value();
+  Case<T> c = invalid ? cases::invalid_case<T>()(random.split(), int(index % 101)).value()
+                      : cases::valid_case<T>()(random.split(), int(index % 101)).value();
   move_to_the_ends(c, index);
   ++tally.cases;
   const Problem<T> exact(c.matrix, c.plane, c.convention);

@@ -34,7 +34,7 @@ const auto leaves_m_unchanged = adapt<double>("leaves_m_unchanged", Layout::colu
 
 TEST(FuzzDriverContract, aFamilyTheContractLeavesOutIsNotGivenToTheFunction) {
   Contract perspective_only;
-  perspective_only.families = {generators::Family::perspective};
+  perspective_only.families = {cases::Family::perspective};
   const std::vector<std::uint8_t> box = input(kOrthographic), frustum = input(kFrustum);
   // Not given: no violation to find.
   EXPECT_EQ(fuzzing::test_one_input(box.data(), box.size(), leaves_m_unchanged, perspective_only),
@@ -82,9 +82,8 @@ TEST(FuzzDriverContract, aDefectTheContractLeavesOutIsNotGivenToTheFunction) {
   in_front[13] = 4;
   Contract no_camera_in_front;
   no_camera_in_front.conventions = {Convention::gl};
-  no_camera_in_front.defects = {generators::Defect::misses_view_volume,
-                                generators::Defect::singular, generators::Defect::near_singular,
-                                generators::Defect::non_finite};
+  no_camera_in_front.defects = {cases::Defect::misses_view_volume, cases::Defect::singular,
+                                cases::Defect::near_singular, cases::Defect::non_finite};
   EXPECT_EQ(
       fuzzing::test_one_input(in_front.data(), in_front.size(), never_refuses, no_camera_in_front),
       0);
@@ -103,7 +102,7 @@ TEST(FuzzDriverContract, theConsumerDriverUsesOnlyTheContractsFamilies) {
     return Matrix4<double>::Identity().eval();
   };
   Contract perspective_only;
-  perspective_only.families = {generators::Family::perspective};
+  perspective_only.families = {cases::Family::perspective};
   const std::vector<std::uint8_t> box = input(kOrthographic);
   EXPECT_EQ(fuzzing::test_consumers(box.data(), box.size(), wrong_mirror, perspective_only), 0);
   EXPECT_DEATH(fuzzing::test_consumers(box.data(), box.size(), wrong_mirror, Contract{}),
@@ -126,15 +125,15 @@ bool listed(const std::vector<E>& list, E value) {
 }
 
 TEST(FuzzDriverBuilder, builtCasesAreOfTheContractsFamiliesConventionsPlacesAndDefects) {
-  using generators::Family;
-  using generators::Place;
+  using cases::Family;
+  using cases::Place;
   Contract given;
   given.families = {Family::orthographic, Family::x_flipped};
   given.conventions = {Convention::reversed_z};
   given.places = {Place::near_eye, Place::typical};
-  given.defects = {generators::Defect::singular};
+  given.defects = {cases::Defect::singular};
   const Contract contract =
-      resolved(given, generators::every_convention(), properties::StatusContract::exact, false);
+      resolved(given, cases::every_convention(), properties::StatusContract::exact, false);
   std::mt19937 random(4501);
   std::set<Family> families;
   std::set<Place> places;
@@ -143,25 +142,27 @@ TEST(FuzzDriverBuilder, builtCasesAreOfTheContractsFamiliesConventionsPlacesAndD
     const std::vector<std::uint8_t> bytes = built_input(random, static_cast<std::uint8_t>(i % 3));
     const fuzzing::FuzzCase c = fuzzing::decode(bytes.data(), bytes.size(), contract);
     ASSERT_EQ(c.family, fuzzing::kBuilt);
-    const generators::Case<long double>& in = c.input;
-    ASSERT_TRUE(listed(given.families, in.family)) << generators::family_name(in.family);
-    ASSERT_TRUE(listed(given.places, in.place)) << generators::place_name(in.place);
+    const cases::Case<long double>& in = c.input;
+    ASSERT_TRUE(listed(given.families, in.family)) << cases::family_name(in.family);
+    ASSERT_TRUE(listed(given.places, in.place)) << cases::place_name(in.place);
     ASSERT_EQ(in.convention, Convention::reversed_z);
     families.insert(in.family);
     places.insert(in.place);
     if (in.defect) {
-      ASSERT_EQ(*in.defect, generators::Defect::singular);
+      ASSERT_EQ(*in.defect, cases::Defect::singular);
       ++spoiled;
       continue;
     }
     // What the numbers are, not only what the case says: a box keeps w = 1; a mirror camera has
     // M11 < 0; a plane at near_eye passes within 2^-8 |N| of the eye (rounded to T: 2^-7).
-    if (in.family == Family::orthographic)
+    if (in.family == Family::orthographic) {
       EXPECT_EQ(in.matrix.row(3), (Vector4<long double>(0, 0, 0, 1).transpose()));
-    else
+    } else {
       EXPECT_LT(in.matrix(0, 0), 0);
-    if (in.place == Place::near_eye)
+    }
+    if (in.place == Place::near_eye) {
       EXPECT_LE(std::abs(in.plane.w()), std::ldexp(1.0L, -7) * in.plane.head<3>().norm());
+    }
   }
   EXPECT_EQ(families.size(), 2u);
   EXPECT_EQ(places.size(), 2u);
@@ -171,10 +172,10 @@ TEST(FuzzDriverBuilder, builtCasesAreOfTheContractsFamiliesConventionsPlacesAndD
 
 TEST(FuzzDriverBuilder, builtCasesDrawEveryFamilyPlaceConventionAndDefect) {
   std::mt19937 random(4502);
-  std::set<generators::Family> families;
-  std::set<generators::Place> places;
+  std::set<cases::Family> families;
+  std::set<cases::Place> places;
   std::set<Convention> conventions;
-  std::set<generators::Defect> defects;
+  std::set<cases::Defect> defects;
   for (int i = 0; i < 4000; ++i) {
     const std::vector<std::uint8_t> bytes = built_input(random, static_cast<std::uint8_t>(i % 3));
     const fuzzing::FuzzCase c = fuzzing::decode(bytes.data(), bytes.size());
@@ -183,10 +184,10 @@ TEST(FuzzDriverBuilder, builtCasesDrawEveryFamilyPlaceConventionAndDefect) {
     conventions.insert(c.input.convention);
     if (c.input.defect) defects.insert(*c.input.defect);
   }
-  EXPECT_EQ(families.size(), std::size(generators::all_families));
-  EXPECT_EQ(places.size(), std::size(generators::all_places));
+  EXPECT_EQ(families.size(), std::size(cases::all_families));
+  EXPECT_EQ(places.size(), std::size(cases::all_places));
   EXPECT_EQ(conventions.size(), std::size(all_conventions));
-  EXPECT_EQ(defects.size(), std::size(generators::all_defects));
+  EXPECT_EQ(defects.size(), std::size(cases::all_defects));
 }
 
 // What reached the function of the next test, and how many of its answers were judged.
@@ -201,9 +202,9 @@ TEST(FuzzDriverBuilder, underANarrowContractBuiltInputsReachTheFunctionAndAreJud
                       return apply<double>(m, c, k);
                     });
   Contract boxes;
-  boxes.families = {generators::Family::orthographic};
+  boxes.families = {cases::Family::orthographic};
   // Defects that spoil the plane only, so every matrix given is still a box.
-  boxes.defects = {generators::Defect::camera_in_front, generators::Defect::misses_view_volume};
+  boxes.defects = {cases::Defect::camera_in_front, cases::Defect::misses_view_volume};
   std::mt19937 random(4503);
   given_matrices.clear();
   const long judged_before = fuzzing::counts().judged;

@@ -21,7 +21,7 @@
 namespace oblique {
 namespace {
 
-using generators::Family;
+using cases::Family;
 
 std::string sign(double x) {
   return x < 0 ? "<0" : (x > 0 ? ">0" : "=0");
@@ -30,9 +30,9 @@ std::string sign(double x) {
 /// The sign features a case of `c`'s family shows (row-major M(i, j) printed 1-based): the
 /// joint (M13, M23) signs of an off-axis frustum; for the others each entry's sign alone.
 template <class T>
-std::vector<std::string> features(const generators::Case<T>& c) {
+std::vector<std::string> features(const cases::Case<T>& c) {
   const auto& m = c.matrix;
-  const std::string family(generators::family_name(c.family));
+  const std::string family(cases::family_name(c.family));
   switch (c.family) {
     case Family::off_axis:
       return {family + " M13" + sign(double(m(0, 2))) + " M23" + sign(double(m(1, 2)))};
@@ -60,7 +60,7 @@ std::vector<std::string> features(const generators::Case<T>& c) {
 std::set<std::string> required(const std::vector<Family>& families) {
   std::set<std::string> out;
   for (Family f : families) {
-    const std::string name(generators::family_name(f));
+    const std::string name(cases::family_name(f));
     // Each of `entries` seen negative and positive.
     auto either_sign = [&](std::initializer_list<const char*> entries) {
       for (const char* entry : entries)
@@ -99,15 +99,15 @@ std::set<std::string> required(const std::vector<Family>& families) {
 template <class T>
 void every_run_shows_every_pattern(Contract contract, int runs) {
   contract = resolved(contract, {Convention::gl}, properties::StatusContract::exact, false);
-  contract.conventions = generators::every_convention();
+  contract.conventions = cases::every_convention();
   const std::set<std::string> needed = required(contract.families);
   ASSERT_FALSE(needed.empty());
-  const auto gen = generators::valid_case_for<T>(contract);
+  const auto gen = cases::valid_case_for<T>(contract);
   for (int run = 0; run < runs; ++run) {
     rc::Random random(20261205u + static_cast<std::uint64_t>(run));
     std::map<std::string, int> judged;
     for (int size = 0; size < 100; ++size) {
-      const generators::Case<T> c = gen(random.split(), size).value();
+      const cases::Case<T> c = gen(random.split(), size).value();
       const properties::FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
       if (!properties::not_judged(problem, *contract.statuses, contract.refusals).empty()) continue;
       for (const std::string& f : features(c)) ++judged[f];
@@ -133,7 +133,7 @@ TEST(GeneratorCensus, everySignPatternOfEveryFamilyIsJudgedInEveryRun) {
 // The census itself: a family's features are what its matrices show (a generator drawing one
 // lean only would fail above).
 TEST(GeneratorCensus, theFeaturesReadTheMatrix) {
-  generators::Case<double> c;
+  cases::Case<double> c;
   c.family = Family::off_axis;
   c.matrix = frustum<double>(-3, 1, -1, 2, 1, 10, Convention::gl);  // leans left and up
   EXPECT_EQ(features(c), std::vector<std::string>{"off_axis M13<0 M23>0"});

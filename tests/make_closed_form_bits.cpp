@@ -54,26 +54,25 @@ template <class T>
 void write_scalar(int per_source) {
   using limits = std::numeric_limits<T>;
   {
-    const auto gen = generators::valid_case<T>();
+    const auto gen = cases::valid_case<T>();
     rc::Random random(17001);
     for (int i = 0; i < per_source; ++i) {
-      const generators::Case<T> c = gen(random.split(), i % 101).value();
+      const cases::Case<T> c = gen(random.split(), i % 101).value();
       write(c.matrix, c.plane, c.convention, method_for<T>(i));
     }
   }
   {
-    const auto gen = generators::invalid_case<T>();
+    const auto gen = cases::invalid_case<T>();
     rc::Random random(17002);
     for (int i = 0; i < per_source / 2; ++i) {
-      const generators::Case<T> c = gen(random.split(), i % 101).value();
+      const cases::Case<T> c = gen(random.split(), i % 101).value();
       write(c.matrix, c.plane, c.convention, method_for<T>(i));
     }
   }
   {
-    const auto gen =
-        generators::valid_case_in<T>({std::begin(generators::perspective_shape_families),
-                                      std::end(generators::perspective_shape_families)},
-                                     generators::every_convention());
+    const auto gen = cases::valid_case_in<T>({std::begin(cases::perspective_shape_families),
+                                              std::end(cases::perspective_shape_families)},
+                                             cases::every_convention());
     const std::vector<T> specials = test::special_values<T>();
     const int exponent_edges[] = {limits::max_exponent - 1,
                                   limits::max_exponent - 2,
@@ -84,7 +83,7 @@ void write_scalar(int per_source) {
                                   -limits::max_exponent / 2};
     rc::Random random(17003);
     for (int i = 0; i < per_source; ++i) {
-      generators::Case<T> c = gen(random.split(), i % 101).value();
+      cases::Case<T> c = gen(random.split(), i % 101).value();
       const int pick = i % 4;
       const T special = specials[std::size_t(i / 4) % specials.size()];
       const int entry = (i / 7) % 20;  // 16 matrix entries, then 4 plane components

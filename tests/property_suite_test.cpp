@@ -16,8 +16,8 @@ namespace oblique::properties::suite {
 using mistakes::core_method;
 namespace {
 
-using generators::Case;
-using generators::Family;
+using cases::Case;
+using cases::Family;
 
 template <class T>
 void property_holds(Property which, Coverage coverage, const rc::Gen<Case<T>>& gen) {
@@ -37,9 +37,9 @@ template <class T>
 void invalid_inputs_get_their_status() {
   run_property(
       [] {
-        const Case<T> c = *generators::invalid_case<T>();
+        const Case<T> c = *cases::invalid_case<T>();
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-        const std::string defect(generators::defect_name(*c.defect));
+        const std::string defect(cases::defect_name(*c.defect));
         ++tally().generated[defect];
         RC_TAG(defect);
         // An ok answer is allowed only in a gray zone, and must then have every property.
@@ -56,8 +56,8 @@ void invalid_inputs_get_their_status() {
 template <class T>
 rc::Gen<Case<T>> perspective_shape_case() {
   return rc::gen::exec([] {
-    const auto& families = generators::perspective_shape_families;
-    return *generators::valid_case_of<T>(
+    const auto& families = cases::perspective_shape_families;
+    return *cases::valid_case_of<T>(
         families[*rc::gen::inRange<std::size_t>(0, std::size(families))]);
   });
 }
@@ -104,7 +104,7 @@ void accurate_method_is_within_its_ulps() {
   if (!runs_only_for({"core_accurate"})) GTEST_SKIP();
   run_property(
       [] {
-        const Case<T> c = *generators::valid_case<T>();
+        const Case<T> c = *cases::valid_case<T>();
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
         RC_PRE(problem.exact_status() == Status::ok);
         count_generated(c);
@@ -128,7 +128,7 @@ template <class T>
 void extracted_planes_match() {
   run_property(
       [] {
-        const Case<T> c = *generators::valid_case<T>();
+        const Case<T> c = *cases::valid_case<T>();
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
         count_generated(c);
         Checks checks;
@@ -138,36 +138,35 @@ void extracted_planes_match() {
       Coverage::valid);
 }
 
-#define OBLIQUE_PROPERTY_SUITE(Suite, T)                                                           \
-  TEST(Suite, nearPlaneIsTheClipPlane) {                                                           \
-    property_holds<T>(Property::near_is_clip_plane, Coverage::valid, generators::valid_case<T>()); \
-  }                                                                                                \
-  TEST(Suite, sideRowsAreUnchanged) {                                                              \
-    property_holds<T>(Property::side_rows_unchanged, Coverage::valid,                              \
-                      generators::valid_case<T>());                                                \
-  }                                                                                                \
-  TEST(Suite, farPlanePassesThroughTheFarCorner) {                                                 \
-    property_holds<T>(Property::far_plane_through_corner, Coverage::valid,                         \
-                      generators::valid_case<T>());                                                \
-  }                                                                                                \
-  TEST(Suite, viewVolumeInFrontOfThePlaneIsNotClipped) {                                           \
-    property_holds<T>(Property::no_clipping, Coverage::valid, generators::valid_case<T>());        \
-  }                                                                                                \
-  TEST(Suite, infiniteFarPlaneIsParallelToTheFrustumEdge) {                                        \
-    property_holds<T>(Property::infinite_edge_parallel, Coverage::places_only,                     \
-                      generators::valid_case_of<T>(Family::infinite));                             \
-  }                                                                                                \
-  TEST(Suite, invalidInputsGetTheirStatus) {                                                       \
-    invalid_inputs_get_their_status<T>();                                                          \
-  }                                                                                                \
-  TEST(Suite, closedFormAndGeneralAgree) {                                                         \
-    closed_form_and_general_agree<T>();                                                            \
-  }                                                                                                \
-  TEST(Suite, extractedFrustumPlanesMatch) {                                                       \
-    extracted_planes_match<T>();                                                                   \
-  }                                                                                                \
-  TEST(Suite, accurateMethodIsWithinTwoUlps) {                                                     \
-    accurate_method_is_within_its_ulps<T>();                                                       \
+#define OBLIQUE_PROPERTY_SUITE(Suite, T)                                                       \
+  TEST(Suite, nearPlaneIsTheClipPlane) {                                                       \
+    property_holds<T>(Property::near_is_clip_plane, Coverage::valid, cases::valid_case<T>());  \
+  }                                                                                            \
+  TEST(Suite, sideRowsAreUnchanged) {                                                          \
+    property_holds<T>(Property::side_rows_unchanged, Coverage::valid, cases::valid_case<T>()); \
+  }                                                                                            \
+  TEST(Suite, farPlanePassesThroughTheFarCorner) {                                             \
+    property_holds<T>(Property::far_plane_through_corner, Coverage::valid,                     \
+                      cases::valid_case<T>());                                                 \
+  }                                                                                            \
+  TEST(Suite, viewVolumeInFrontOfThePlaneIsNotClipped) {                                       \
+    property_holds<T>(Property::no_clipping, Coverage::valid, cases::valid_case<T>());         \
+  }                                                                                            \
+  TEST(Suite, infiniteFarPlaneIsParallelToTheFrustumEdge) {                                    \
+    property_holds<T>(Property::infinite_edge_parallel, Coverage::places_only,                 \
+                      cases::valid_case_of<T>(Family::infinite));                              \
+  }                                                                                            \
+  TEST(Suite, invalidInputsGetTheirStatus) {                                                   \
+    invalid_inputs_get_their_status<T>();                                                      \
+  }                                                                                            \
+  TEST(Suite, closedFormAndGeneralAgree) {                                                     \
+    closed_form_and_general_agree<T>();                                                        \
+  }                                                                                            \
+  TEST(Suite, extractedFrustumPlanesMatch) {                                                   \
+    extracted_planes_match<T>();                                                               \
+  }                                                                                            \
+  TEST(Suite, accurateMethodIsWithinTwoUlps) {                                                 \
+    accurate_method_is_within_its_ulps<T>();                                                   \
   }
 
 OBLIQUE_PROPERTY_SUITE(PropertiesFloat, float)

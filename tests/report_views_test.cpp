@@ -240,8 +240,8 @@ TEST(VerifyReportViews, withoutGnuplotTheReportIsWrittenAndSaysThePicturesAreNot
 // The property suite's report: what testing::fail_with records for a wrong answer (the exact
 // third row scaled by 5/4, so the far plane passes in front of Q), written by write_report().
 TEST(SuiteReportViews, marksThePointTheWrongAnswerClips) {
-  generators::Case<double> c;
-  c.family = generators::Family::off_axis;
+  cases::Case<double> c;
+  c.family = cases::Family::off_axis;
   c.convention = Convention::zero_one;
   c.matrix = frustum<double>(-1, 2, -0.5, 1, 0.5, 50, c.convention);
   c.plane = Vector4<double>(0.2, 0.1, -1, -5);  // through (0, 0, -5), leaning: C_w < 0
@@ -271,7 +271,7 @@ TEST(SuiteReportViews, marksThePointTheWrongAnswerClips) {
 
 // The same report for an answer that clips nothing marks nothing, and says so.
 TEST(SuiteReportViews, marksNothingWhenTheAnswerClipsNothing) {
-  generators::Case<double> c;
+  cases::Case<double> c;
   c.convention = Convention::gl;
   c.matrix = frustum<double>(-1, 1, -1, 1, 1, 100, c.convention);
   c.plane = Vector4<double>(0, 0.3, -1, -4);
@@ -310,7 +310,7 @@ TEST(SuiteReportViews, marksNothingWhenTheAnswerClipsNothing) {
 // another case), and the new report says why it has none.
 TEST(SuiteReportViews, aReplacedReportTakesItsPicturesAlong) {
   if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot is not installed";
-  generators::Case<double> c;
+  cases::Case<double> c;
   c.matrix = frustum<double>(-1, 1, -1, 1, 1, 100, c.convention);
   c.plane = Vector4<double>(0, 0.3, -1, -4);
   const properties::Problem<double> problem(c.matrix, c.plane, c.convention);

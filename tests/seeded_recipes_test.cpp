@@ -32,7 +32,7 @@ const Vector4<double> kTilted(0.25, -0.375, -1, -3);
 TEST(SeededRecipes, listing51HoldsOnStandardGlPerspective) {
   const Matrix4<double> m = frustum<double>(-1, 1, -0.75, 0.75, 1, 50, Convention::gl);
   const Problem<double> problem(m, kTilted, Convention::gl);
-  const auto verdicts = problem.check(seeded::listing_5_1(m, kTilted));
+  const auto verdicts = problem.check(cases::listing_5_1(m, kTilted));
   EXPECT_TRUE(verdicts.all_hold()) << describe<double>(verdicts);
 }
 
@@ -43,7 +43,7 @@ TEST(SeededRecipes, listing51ClipsTheViewVolumeOfAYFlippedMatrix) {
   Matrix4<double> m = frustum<double>(-1, 1, -0.75, 0.75, 1, 50, Convention::gl);
   m.row(1) *= -1;
   const Problem<double> problem(m, kTilted, Convention::gl);
-  const auto listing = problem.check(seeded::listing_5_1(m, kTilted));
+  const auto listing = problem.check(cases::listing_5_1(m, kTilted));
   EXPECT_FALSE(listing[Property::no_clipping].holds);
   EXPECT_FALSE(listing[Property::far_plane_through_corner].holds);
   const auto core = problem.check(apply(m, kTilted, Convention::gl).projection);
@@ -55,7 +55,7 @@ TEST(SeededRecipes, listing51ClipsTheViewVolumeOfAYFlippedMatrix) {
 TEST(SeededRecipes, listing51KeepsTheWrongSideWhenThePlaneMissesTheVolume) {
   const Matrix4<double> m = frustum<double>(-1, 1, -0.75, 0.75, 1, 50, Convention::gl);
   const Vector4<double> beyond_far(0, 0, -1, -60);  // keeps z <= -60, past the far plane at 50
-  const Matrix4<double> listing = seeded::listing_5_1(m, beyond_far);
+  const Matrix4<double> listing = cases::listing_5_1(m, beyond_far);
   const Vector4<double> near = near_plane(listing, Convention::gl);
   EXPECT_LT(near.dot(beyond_far), 0) << "the listing's near plane points away from C";
   EXPECT_EQ(apply(m, beyond_far, Convention::gl).status, Status::plane_misses_view_volume);
@@ -64,7 +64,7 @@ TEST(SeededRecipes, listing51KeepsTheWrongSideWhenThePlaneMissesTheVolume) {
 TEST(SeededRecipes, paperEq20HoldsOnPerspectiveAndRotatedMatrices) {
   const Matrix4<double> p = frustum<double>(-0.1, 0.7, -0.2, 0.3, 1, 100, Convention::gl);
   const Problem<double> problem(p, kTilted, Convention::gl);
-  EXPECT_TRUE(problem.check(seeded::paper_eq_20(p, kTilted)).all_hold());
+  EXPECT_TRUE(problem.check(cases::paper_eq_20(p, kTilted)).all_hold());
 }
 
 // Eq. 7 fixes Q'_z = 1. When C'_z < 0 (an orthographic volume reaching behind the eye, near < 0)
@@ -75,7 +75,7 @@ TEST(SeededRecipes, paperEq7PicksTheWrongFaceWhenClipSpaceCzIsNegative) {
   const Vector4<double> c(1, 1, 0.125, -1);
   const Problem<double> problem(m, c, Convention::gl);
   ASSERT_EQ(problem.exact_status(), Status::ok);
-  const auto paper = problem.check(seeded::paper_eq_20(m, c));
+  const auto paper = problem.check(cases::paper_eq_20(m, c));
   EXPECT_FALSE(paper[Property::no_clipping].holds);
   const auto core = problem.check(apply(m, c, Convention::gl).projection);
   EXPECT_TRUE(core.all_hold()) << describe<double>(core);
@@ -84,7 +84,7 @@ TEST(SeededRecipes, paperEq7PicksTheWrongFaceWhenClipSpaceCzIsNegative) {
 TEST(SeededRecipes, zeroOneNoteHoldsOnZeroOneMatrices) {
   const Matrix4<double> m = frustum<double>(-1, 1, -0.75, 0.75, 1, 50, Convention::zero_one);
   const Problem<double> problem(m, kTilted, Convention::zero_one);
-  const auto verdicts = problem.check(seeded::note_zero_one(m, kTilted));
+  const auto verdicts = problem.check(cases::note_zero_one(m, kTilted));
   EXPECT_TRUE(verdicts.all_hold()) << describe<double>(verdicts);
 }
 
@@ -93,13 +93,13 @@ TEST(SeededRecipes, zeroOneNoteHoldsOnZeroOneMatrices) {
 // With the fourth row (0, 0, 0, 1) the route is sound.
 TEST(SeededRecipes, zeroOneNoteFlipMatrixChangesW) {
   const Matrix4<double> forward = frustum<double>(-1, 1, -0.75, 0.75, 1, 50, Convention::zero_one);
-  const Matrix4<double> reversed = seeded::depth_flip<double>() * forward;
+  const Matrix4<double> reversed = cases::depth_flip<double>() * forward;
   const Problem<double> problem(reversed, kTilted, Convention::reversed_z);
-  const auto printed = problem.check(
-      seeded::note_reversed(forward, kTilted, seeded::note_flip_as_printed<double>()));
+  const auto printed =
+      problem.check(cases::note_reversed(forward, kTilted, cases::note_flip_as_printed<double>()));
   EXPECT_FALSE(printed[Property::side_rows_unchanged].holds);
   const auto fixed =
-      problem.check(seeded::note_reversed(forward, kTilted, seeded::depth_flip<double>()));
+      problem.check(cases::note_reversed(forward, kTilted, cases::depth_flip<double>()));
   EXPECT_TRUE(fixed.all_hold()) << describe<double>(fixed);
 }
 
@@ -107,14 +107,14 @@ TEST(SeededRecipes, zeroOneNoteFlipMatrixChangesW) {
 TEST(SeededRecipes, zeroOneFactorOnAGlMatrixBreaksTheNearPlane) {
   const Matrix4<double> m = frustum<double>(-1, 1, -0.75, 0.75, 1, 50, Convention::gl);
   const Problem<double> problem(m, kTilted, Convention::gl);
-  const auto verdicts = problem.check(seeded::note_zero_one(m, kTilted));
+  const auto verdicts = problem.check(cases::note_zero_one(m, kTilted));
   EXPECT_FALSE(verdicts[Property::near_is_clip_plane].holds);
 }
 
 TEST(SeededRecipes, glFormulaOnAZeroOneMatrixBreaksTheNearPlane) {
   const Matrix4<double> m = frustum<double>(-1, 1, -0.75, 0.75, 1, 50, Convention::zero_one);
   const Problem<double> problem(m, kTilted, Convention::zero_one);
-  const auto verdicts = problem.check(seeded::listing_5_1(m, kTilted));
+  const auto verdicts = problem.check(cases::listing_5_1(m, kTilted));
   EXPECT_FALSE(verdicts[Property::near_is_clip_plane].holds);
 }
 

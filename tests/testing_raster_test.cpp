@@ -83,7 +83,7 @@ TEST(TestingRaster, theZeroOneFormulaOnGlIsDrawnBehindC) {
 TEST(TestingRaster, cameraSpaceSignsOnYFlippedMatricesClipTheKeptRegion) {
   REQUIRE_RASTERIZER();
   Contract y_flipped;
-  y_flipped.families = {generators::Family::y_flipped};
+  y_flipped.families = {cases::Family::y_flipped};
   y_flipped.conventions = {Convention::gl};
   expect_caught(mistakes::Mistake::camera_space_signs, y_flipped, "clipped_kept");
 }

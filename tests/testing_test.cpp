@@ -92,21 +92,21 @@ TEST(Testing, aPassIsOneLineAndEarlierReportsAreMovedAside) {
 
 // The presets admit what adapter.h's table says, family by family, in every convention.
 TEST(Presets, admitTheFamiliesTheirTableLists) {
-  using generators::Family;
+  using cases::Family;
   rc::Random random(20261203);
-  for (Family f : generators::all_families) {
+  for (Family f : cases::all_families) {
     auto among = [f](const auto& families) {
       return std::find(std::begin(families), std::end(families), f) != std::end(families);
     };
-    const bool in_shape = among(generators::perspective_shape_families);
-    const bool engine = among(generators::engine_families);
+    const bool in_shape = among(cases::perspective_shape_families);
+    const bool engine = among(cases::engine_families);
     for (int i = 0; i < 60; ++i) {
-      const generators::Case<double> c =
-          generators::valid_case_of<double>(f)(random.split(), i % 101).value();
+      const cases::Case<double> c =
+          cases::valid_case_of<double>(f)(random.split(), i % 101).value();
       EXPECT_EQ(perspective_shape_only<double>(c.convention, c.matrix), in_shape)
-          << generators::family_name(f) << " " << convention_name(c.convention);
+          << cases::family_name(f) << " " << convention_name(c.convention);
       EXPECT_EQ(engine_perspective_only<double>(c.convention, c.matrix), engine)
-          << generators::family_name(f) << " " << convention_name(c.convention);
+          << cases::family_name(f) << " " << convention_name(c.convention);
     }
   }
   Matrix4<double> left_handed = frustum<double>(-1, 1, -1, 1, 1, 10, Convention::gl);
@@ -119,8 +119,8 @@ TEST(Presets, admitTheFamiliesTheirTableLists) {
 /// camera-space C, right only while M11 > 0 and M22 > 0 (a y-flip sign bug).
 void listing_5_1(double m[16], const double plane[4]) {
   const Matrix4<double> result =
-      seeded::listing_5_1<double>(adapting::load(m, Layout::column_major),
-                                  Vector4<double>(plane[0], plane[1], plane[2], plane[3]));
+      cases::listing_5_1<double>(adapting::load(m, Layout::column_major),
+                                 Vector4<double>(plane[0], plane[1], plane[2], plane[3]));
   adapting::store(result, Layout::column_major, m);
 }
 
@@ -132,8 +132,8 @@ const auto listing_on_engine_matrices =
                   engine_perspective_only<double>);
 Contract unflipped_unit_planes() {
   Contract c;
-  c.families = {generators::Family::perspective, generators::Family::off_axis,
-                generators::Family::jittered, generators::Family::infinite};
+  c.families = {cases::Family::perspective, cases::Family::off_axis, cases::Family::jittered,
+                cases::Family::infinite};
   c.planes = Planes::unit;
   return c;
 }
@@ -187,7 +187,7 @@ const auto correct_but_refusing_y_flipped = adapt<double>(
 
 TEST(JudgedCoverage, aClaimedFamilyTheAcceptsRefusesFailsSayingWhy) {
   Contract claims;
-  claims.families = {generators::Family::perspective, generators::Family::y_flipped};
+  claims.families = {cases::Family::perspective, cases::Family::y_flipped};
   claims.properties = {properties::Property::near_is_clip_plane};
   claims.statuses = properties::StatusContract::answers_only;
   int n = 0;
@@ -203,7 +203,7 @@ TEST(JudgedCoverage, aClaimedFamilyTheAcceptsRefusesFailsSayingWhy) {
       << all;
   EXPECT_EQ(all.find("family perspective"), std::string::npos) << all;
   // Claimed without y_flipped, the same function passes.
-  claims.families = {generators::Family::perspective};
+  claims.families = {cases::Family::perspective};
   EXPECT_EQ(failures_of([&] { testing::check_properties(correct_but_refusing_y_flipped, claims); }),
             "");
 }
@@ -229,7 +229,7 @@ TEST(JudgedCoverage, aConsumerAcceptsThatRefusesAClaimedFamilyFailsSayingWhy) {
   depth.linear_depth = properties::reference_consumers<double>().linear_depth;
   depth.accepts = [](Convention, const Matrix4<double>& m) { return m(1, 1) > 0; };
   Contract claims;
-  claims.families = {generators::Family::perspective, generators::Family::y_flipped};
+  claims.families = {cases::Family::perspective, cases::Family::y_flipped};
   int n = 0;
   ::testing::internal::CaptureStdout();
   const std::string all = failures_of([&] { testing::check_consumers(depth, claims); }, &n);
@@ -242,7 +242,7 @@ TEST(JudgedCoverage, aConsumerAcceptsThatRefusesAClaimedFamilyFailsSayingWhy) {
                      "y_flipped out of the contract"),
             std::string::npos)
       << all;
-  claims.families = {generators::Family::perspective};
+  claims.families = {cases::Family::perspective};
   ::testing::internal::CaptureStdout();
   EXPECT_EQ(failures_of([&] { testing::check_consumers(depth, claims); }), "");
   ::testing::internal::GetCapturedStdout();
@@ -250,7 +250,7 @@ TEST(JudgedCoverage, aConsumerAcceptsThatRefusesAClaimedFamilyFailsSayingWhy) {
 
 TEST(JudgedCoverage, theStatisticsCountWhatWasJudged) {
   Contract claims;
-  claims.families = {generators::Family::perspective};
+  claims.families = {cases::Family::perspective};
   claims.properties = {properties::Property::near_is_clip_plane};
   claims.statuses = properties::StatusContract::answers_only;
   testing::settings().statistics = true;

@@ -21,7 +21,7 @@ AccuracyLook<T>::AccuracyLook(const VerifyOptions& options, std::ostream& out, s
 }
 
 template <class T>
-void AccuracyLook<T>::passed(const generators::Case<T>& v, const std::string& request,
+void AccuracyLook<T>::passed(const cases::Case<T>& v, const std::string& request,
                              const std::string& answer) {
   if (v.defect) return;
   if (static_cast<long>(mine_.answers.size()) + mine_.refused >= kMaxProfiled) {
@@ -32,9 +32,8 @@ void AccuracyLook<T>::passed(const generators::Case<T>& v, const std::string& re
   if (problem.exact_status() != Status::ok) return;
   const Expected<Answer<T>> read = protocol::read_answer<T>(answer);
   if (!read) return;  // judged already: a protocol error never reaches here
-  inputs_.push_back({v.matrix, v.plane, v.convention,
-                     std::string(generators::family_name(v.family)),
-                     std::string(generators::place_name(v.place)), request});
+  inputs_.push_back({v.matrix, v.plane, v.convention, std::string(cases::family_name(v.family)),
+                     std::string(cases::place_name(v.place)), request});
   report::record_answer(mine_, problem, inputs_.back(), read->status, read->projection);
 }
 

@@ -24,7 +24,7 @@ class AccuracyLook {
 
   /// An answer that passed the properties, to case `v` (sent as `request`): profiled when it is
   /// a matrix for a case with an answer; a status there is counted as refused.
-  void passed(const generators::Case<T>& v, const std::string& request, const std::string& answer);
+  void passed(const cases::Case<T>& v, const std::string& request, const std::string& answer);
 
   /// The end of a run that holds: times the round trip (the profiled requests sent again to a
   /// fresh process), measures the core's methods on the same cases, writes the report. false

@@ -20,9 +20,9 @@ Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
                     LeftOut& left_out) {
   Batch<T> b;
   for (std::size_t k = 0, tries = 0; k < size && tries < 64 * size + 64; ++tries) {
-    rc::Shrinkable<generators::Case<T>> drawn =
+    rc::Shrinkable<cases::Case<T>> drawn =
         draws.generator()(random.split(), static_cast<int>(tries % 101));
-    generators::Case<T> value = drawn.value();
+    cases::Case<T> value = drawn.value();
     if (draws.needs_status()) {
       auto problem = std::make_unique<properties::FilteredProblem<T>>(value.matrix, value.plane,
                                                                       value.convention);
@@ -66,7 +66,7 @@ std::vector<Judged<T>> judge_batch(const Draws<T>& draws, const Batch<T>& b,
         out[k].protocol_error = answered.error();
         continue;
       }
-      const generators::Case<T>& v = b.values[k];
+      const cases::Case<T>& v = b.values[k];
       if (b.problems[k]) {
         out[k].finding = judge_answer(*b.problems[k], *answered, draws.checks());
       } else {

@@ -20,8 +20,8 @@ namespace oblique::verify {
 /// Generated cases, their values and request lines, for the implementation.
 template <class T>
 struct Batch {
-  std::vector<rc::Shrinkable<generators::Case<T>>> cases;
-  std::vector<generators::Case<T>> values;
+  std::vector<rc::Shrinkable<cases::Case<T>>> cases;
+  std::vector<cases::Case<T>> values;
   std::vector<std::string> requests;
   /// The checker of each case, made when the contract needed it to decide what is sent.
   std::vector<std::unique_ptr<properties::FilteredProblem<T>>> problems;

@@ -10,19 +10,19 @@
 
 namespace oblique::verify {
 
-using generators::Defect;
+using cases::Defect;
 
 namespace {
 
 /// A case of the resolved contract: four in five have an answer (the pick shrinks toward those),
 /// the others one of its defects when its statuses are judged.
 template <class T>
-rc::Gen<generators::Case<T>> verify_case(const Contract& contract) {
+rc::Gen<cases::Case<T>> verify_case(const Contract& contract) {
   const bool defects = *contract.statuses != properties::StatusContract::answers_only;
   return rc::gen::exec([contract, defects] {
     if (!defects || *rc::gen::resize(100, rc::gen::inRange(0, 5)) < 4)
-      return *generators::valid_case_for<T>(contract);
-    return *generators::invalid_case_for<T>(contract);
+      return *cases::valid_case_for<T>(contract);
+    return *cases::invalid_case_for<T>(contract);
   });
 }
 
@@ -40,19 +40,19 @@ Draws<T>::Draws(const Contract& given)
       generator_(verify_case<T>(contract_)) {
   const bool answers_only = *contract_.statuses == properties::StatusContract::answers_only;
   const bool unit = given.planes == Planes::unit;
-  if (unit && !contains(contract_.places, generators::Place::scaled))
+  if (unit && !contains(contract_.places, cases::Place::scaled))
     notes_.push_back("place scaled (unit-normal planes)");
   if (answers_only)
     notes_.push_back("every input without an exact answer (statuses answers_only)");
   else if (!contract_.refusals.empty())
     notes_.push_back("inputs needing a refusal the contract does not list");
-  for (generators::Place p : generators::all_places) {
-    if (!contains(contract_.places, p) && !(unit && p == generators::Place::scaled))
-      notes_.push_back("place " + std::string(generators::place_name(p)));
+  for (cases::Place p : cases::all_places) {
+    if (!contains(contract_.places, p) && !(unit && p == cases::Place::scaled))
+      notes_.push_back("place " + std::string(cases::place_name(p)));
   }
-  for (Defect d : generators::all_defects) {
+  for (Defect d : cases::all_defects) {
     if (!answers_only && !contains(contract_.defects, d))
-      notes_.push_back("no answer: " + std::string(generators::defect_name(d)));
+      notes_.push_back("no answer: " + std::string(cases::defect_name(d)));
   }
   checks_.row3_accuracy = *contract_.row3_accuracy;
   checks_.properties = contract_.properties;
@@ -70,7 +70,7 @@ std::string Draws<T>::left_out(const properties::FilteredProblem<T>& problem) co
 }
 
 template <class T>
-std::string request_text(const generators::Case<T>& c) {
+std::string request_text(const cases::Case<T>& c) {
   return protocol::request_line(c.matrix, c.plane, c.convention);
 }
 
@@ -87,7 +87,7 @@ std::optional<Found<T>> judge_answer(const properties::FilteredProblem<T>& probl
 }
 
 template <class T>
-bool consistent_with_float(const generators::Case<T>& c, const Matrix4<T>& answer,
+bool consistent_with_float(const cases::Case<T>& c, const Matrix4<T>& answer,
                            const properties::Checks& checks) {
   if constexpr (std::is_same_v<T, float>) {
     return false;
@@ -111,13 +111,13 @@ bool consistent_with_float(const generators::Case<T>& c, const Matrix4<T>& answe
 }
 
 template <class T>
-void Seen::count(const generators::Case<T>& v) {
-  ++families[std::string(generators::family_name(v.family))];
+void Seen::count(const cases::Case<T>& v) {
+  ++families[std::string(cases::family_name(v.family))];
   ++conventions[std::string(convention_name(v.convention))];
   if (v.defect)
-    ++defects[std::string(generators::defect_name(*v.defect))];
+    ++defects[std::string(cases::defect_name(*v.defect))];
   else
-    ++places[std::string(generators::place_name(v.place))];
+    ++places[std::string(cases::place_name(v.place))];
 }
 
 std::string Seen::summary(const std::map<std::string, long>& counts) {
@@ -125,9 +125,9 @@ std::string Seen::summary(const std::map<std::string, long>& counts) {
 }
 
 template <class T>
-void LeftOut::count(const generators::Case<T>& v, const std::string& reason) {
+void LeftOut::count(const cases::Case<T>& v, const std::string& reason) {
   ++why[reason];
-  ++families[std::string(generators::family_name(v.family))];
+  ++families[std::string(cases::family_name(v.family))];
   ++conventions[std::string(convention_name(v.convention))];
 }
 
@@ -146,8 +146,8 @@ struct Claim {
 
 std::vector<Claim> claims(const Contract& contract, const Seen& seen, const LeftOut& left_out) {
   std::vector<Claim> out;
-  for (generators::Family f : contract.families) {
-    const std::string name(generators::family_name(f));
+  for (cases::Family f : contract.families) {
+    const std::string name(cases::family_name(f));
     out.push_back(
         {"family", name, count_of(seen.families, name), count_of(left_out.families, name)});
   }
@@ -197,13 +197,13 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
 
 #define OBLIQUE_VERIFY_CASES(T)                                                                  \
   template class Draws<T>;                                                                       \
-  template std::string request_text<T>(const generators::Case<T>&);                              \
+  template std::string request_text<T>(const cases::Case<T>&);                                   \
   template std::optional<Found<T>> judge_answer<T>(const properties::FilteredProblem<T>&,        \
                                                    const Answer<T>&, const properties::Checks&); \
-  template bool consistent_with_float<T>(const generators::Case<T>&, const Matrix4<T>&,          \
+  template bool consistent_with_float<T>(const cases::Case<T>&, const Matrix4<T>&,               \
                                          const properties::Checks&);                             \
-  template void Seen::count<T>(const generators::Case<T>&);                                      \
-  template void LeftOut::count<T>(const generators::Case<T>&, const std::string&);
+  template void Seen::count<T>(const cases::Case<T>&);                                           \
+  template void LeftOut::count<T>(const cases::Case<T>&, const std::string&);
 OBLIQUE_VERIFY_CASES(float)
 OBLIQUE_VERIFY_CASES(double)
 #undef OBLIQUE_VERIFY_CASES

@@ -38,7 +38,7 @@ class Draws {
 
   const Contract& contract() const { return contract_; }
   const properties::Checks& checks() const { return checks_; }
-  const rc::Gen<generators::Case<T>>& generator() const { return generator_; }
+  const rc::Gen<cases::Case<T>>& generator() const { return generator_; }
   /// What the contract leaves out whatever is drawn ("place scaled (unit-normal planes)", ...).
   const std::vector<std::string>& notes() const { return notes_; }
   /// Whether some inputs are left out by their status (the contract lacks a refusal).
@@ -50,13 +50,13 @@ class Draws {
  private:
   Contract contract_;
   properties::Checks checks_;
-  rc::Gen<generators::Case<T>> generator_;
+  rc::Gen<cases::Case<T>> generator_;
   std::vector<std::string> notes_;
 };
 
 /// The request line of a case.
 template <class T>
-std::string request_text(const generators::Case<T>& c);
+std::string request_text(const cases::Case<T>& c);
 
 /// The suite's judgement under the run's checks: the first violation, or none. `problem` is the
 /// filtered checker (the exact checker's verdicts, most without GMP; used by one thread only).
@@ -70,7 +70,7 @@ std::optional<Found<T>> judge_answer(const properties::FilteredProblem<T>& probl
 /// float (the input a float engine reads). Always false for T = float. The hint that the run
 /// wants --precision float.
 template <class T>
-bool consistent_with_float(const generators::Case<T>& c, const Matrix4<T>& answer,
+bool consistent_with_float(const cases::Case<T>& c, const Matrix4<T>& answer,
                            const properties::Checks& checks);
 
 /// What the judged cases covered, for the summary of a passing run.
@@ -78,7 +78,7 @@ struct Seen {
   std::map<std::string, long> families, conventions, places, defects;
 
   template <class T>
-  void count(const generators::Case<T>& v);
+  void count(const cases::Case<T>& v);
   /// "name count, ..." or "none".
   static std::string summary(const std::map<std::string, long>& counts);
 };
@@ -89,7 +89,7 @@ struct LeftOut {
   std::map<std::string, long> why, families, conventions;
 
   template <class T>
-  void count(const generators::Case<T>& v, const std::string& reason);
+  void count(const cases::Case<T>& v, const std::string& reason);
 };
 
 /// One line for each family and convention the contract claims of which no case was judged in

@@ -35,7 +35,7 @@ using protocol::shell_quote;
 /// the picks the round made, in order.
 template <class T>
 struct Round {
-  generators::Case<T> c;
+  cases::Case<T> c;
   std::vector<int> picks;
 };
 
@@ -121,7 +121,7 @@ class ConsumerRun {
         !f.judged && !why.empty()) {
       // Nothing to judge on this family (corners of an infinite frustum, ...): said once in
       // the summary, not counted as left out. (A judged answer on it is settled as any.)
-      not_applicable_[check + " on " + std::string(generators::family_name(round.c.family)) + " (" +
+      not_applicable_[check + " on " + std::string(cases::family_name(round.c.family)) + " (" +
                       std::string(why) + ")"] += 1;
       return;
     }
@@ -131,7 +131,7 @@ class ConsumerRun {
       return;
     }
     ++judged_[check];
-    ++judged_families_[std::string(generators::family_name(round.c.family))];
+    ++judged_families_[std::string(cases::family_name(round.c.family))];
     if (f.holds || caught_) return;
     caught_ = Caught<T>{f, inputs, request, answer, about, round, index, std::nullopt};
   }
@@ -152,8 +152,8 @@ class ConsumerRun {
   };
 
   /// The rounds index, index + 1, ... planned: cases drawn, picks drawn and recorded.
-  std::vector<Planned> plan(const rc::Gen<generators::Case<T>>& cases, rc::Random& random,
-                            long index, long count) {
+  std::vector<Planned> plan(const rc::Gen<cases::Case<T>>& cases, rc::Random& random, long index,
+                            long count) {
     std::vector<Planned> out(static_cast<std::size_t>(count));
     for (long k = 0; k < count; ++k) {
       Planned& p = out[static_cast<std::size_t>(k)];
@@ -221,7 +221,7 @@ class ConsumerRun {
   Verdict run() {
     const Contract contract = resolved(options_.contract, {Convention::gl},
                                        properties::StatusContract::any_refusal, true);
-    const rc::Gen<generators::Case<T>> cases = generators::valid_case_for<T>(contract);
+    const rc::Gen<cases::Case<T>> cases = cases::valid_case_for<T>(contract);
     rc::Random random(options_.seed);
     const auto start = std::chrono::steady_clock::now();
     const auto deadline =
@@ -246,7 +246,7 @@ class ConsumerRun {
       for (long r = 0; r < settled; ++r) {
         const Round<T>& round = batch[static_cast<std::size_t>(r)].round;
         ++conventions[std::string(convention_name(round.c.convention))];
-        ++families[std::string(generators::family_name(round.c.family))];
+        ++families[std::string(cases::family_name(round.c.family))];
       }
       index += settled;
       if (caught_) break;
@@ -277,8 +277,8 @@ class ConsumerRun {
                          " left out (why, over the run: " + summary(left_out_) +
                          "): raise --cases or --time-limit, or narrow --families to cases it has");
     }
-    for (generators::Family f : contract.families) {
-      const std::string name(generators::family_name(f));
+    for (cases::Family f : contract.families) {
+      const std::string name(cases::family_name(f));
       const bool applicable = std::any_of(
           asked_checks_.begin(), asked_checks_.end(),
           [f](properties::ConsumerCheck c) { return properties::not_applicable(c, f).empty(); });
@@ -403,7 +403,7 @@ class ConsumerRun {
            ", \"precision\": " + protocol::json_string(protocol::scalar_name<T>()) +
            ", \"kinds\": " + kinds +
            ", \"convention\": " + protocol::json_string(convention_name(c.round.c.convention)) +
-           ", \"family\": " + protocol::json_string(generators::family_name(c.round.c.family)) +
+           ", \"family\": " + protocol::json_string(cases::family_name(c.round.c.family)) +
            ", \"projection\": " + hex_list(m) + ", \"plane\": " + hex_list(plane) +
            ", \"picks\": " + picks + ", \"mirror_design\": " +
            protocol::json_string(properties::mirror_design_name(asked_.mirror_design)) +

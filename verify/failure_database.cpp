@@ -40,8 +40,8 @@ Expected<std::optional<protocol::Precision>> report_precision(const std::string&
 }
 
 template <class T>
-Expected<generators::Case<T>> read_report_case(const std::string& path) {
-  using Result = Expected<generators::Case<T>>;
+Expected<cases::Case<T>> read_report_case(const std::string& path) {
+  using Result = Expected<cases::Case<T>>;
   const Expected<protocol::JsonValue> j = read_report(path);
   if (!j) return Result::failure(j.error());
   const protocol::JsonValue* request = j->find("request");
@@ -54,7 +54,7 @@ Expected<generators::Case<T>> read_report_case(const std::string& path) {
   }
   const Expected<protocol::Request> parsed = protocol::parse_request(request->text);
   if (!parsed) return Result::failure(path + ": " + parsed.error());
-  generators::Case<T> v;
+  cases::Case<T> v;
   for (int i = 0; i < 16; ++i) {
     const Expected<T> value = protocol::parse_number<T>(parsed->projection[i]);
     if (!value) return Result::failure(path + ": " + value.error());
@@ -68,7 +68,7 @@ Expected<generators::Case<T>> read_report_case(const std::string& path) {
   v.convention = parsed->convention.value_or(Convention::gl);
   if (const protocol::JsonValue* family = j->find("family");
       family && family->is(protocol::JsonValue::Kind::string)) {
-    if (auto f = generators::parse_family(family->text)) v.family = *f;
+    if (auto f = cases::parse_family(family->text)) v.family = *f;
   }
   return v;
 }
@@ -92,7 +92,7 @@ void save_regression(const std::string& json_path, const std::string& folder, st
 }
 
 template <class T>
-void FailureDatabase<T>::accuracy_again(const std::string& path, const generators::Case<T>& v) {
+void FailureDatabase<T>::accuracy_again(const std::string& path, const cases::Case<T>& v) {
   const Expected<protocol::JsonValue> j = read_report(path);
   const auto& answer = session_.last_answer();
   if (!j || !report_is(*j, "accuracy") || !answer || answer->status != Status::ok) return;
@@ -113,7 +113,7 @@ void FailureDatabase<T>::accuracy_again(const std::string& path, const generator
 
 template <class T>
 Verdict FailureDatabase<T>::replay(const std::string& path, bool verbose) {
-  const Expected<generators::Case<T>> v = read_report_case<T>(path);
+  const Expected<cases::Case<T>> v = read_report_case<T>(path);
   if (!v) {
     err_ << "oblique verify: --replay: " << v.error() << "\n";
     return Verdict::error;
@@ -162,7 +162,7 @@ Verdict FailureDatabase<T>::replay_all(const std::string& folder) {
   std::sort(paths.begin(), paths.end());
   long replayed = 0, other_precision = 0;
   for (const std::string& path : paths) {
-    const Expected<generators::Case<T>> v = read_report_case<T>(path);
+    const Expected<cases::Case<T>> v = read_report_case<T>(path);
     if (!v) {
       if (v.error().find(" case, not ") != std::string::npos) {
         ++other_precision;
@@ -189,8 +189,8 @@ Verdict FailureDatabase<T>::replay_all(const std::string& folder) {
   return Verdict::holds;
 }
 
-template Expected<generators::Case<float>> read_report_case<float>(const std::string&);
-template Expected<generators::Case<double>> read_report_case<double>(const std::string&);
+template Expected<cases::Case<float>> read_report_case<float>(const std::string&);
+template Expected<cases::Case<double>> read_report_case<double>(const std::string&);
 template class FailureDatabase<float>;
 template class FailureDatabase<double>;
 

@@ -50,7 +50,7 @@ bool report_numbers(const protocol::JsonValue& report, const char* field, std::s
 
 /// The case of a report (its JSON sidecar): the request, and the family named there.
 template <class T>
-Expected<generators::Case<T>> read_report_case(const std::string& path);
+Expected<cases::Case<T>> read_report_case(const std::string& path);
 
 /// Copies a report's JSON into `folder` (created if missing), never over a file already there.
 void save_regression(const std::string& json_path, const std::string& folder, std::ostream& out,
@@ -71,7 +71,7 @@ class FailureDatabase {
  private:
   /// For an accuracy profile's case (verify --accuracy's worst-K.json) that holds: its row 3's
   /// error measured again on the answer just given, beside the one the profile recorded.
-  void accuracy_again(const std::string& path, const generators::Case<T>& v);
+  void accuracy_again(const std::string& path, const cases::Case<T>& v);
 
   Session<T>& session_;
   Reporter<T>& reporter_;

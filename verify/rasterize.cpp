@@ -47,7 +47,7 @@ bool RasterLook<T>::open() {
 }
 
 template <class T>
-std::optional<raster::Result> RasterLook<T>::draw(const generators::Case<T>& v,
+std::optional<raster::Result> RasterLook<T>::draw(const cases::Case<T>& v,
                                                   const std::string& answer, std::uint64_t seed,
                                                   std::string* why) {
   auto not_drawn = [why](std::string reason) {
@@ -70,9 +70,8 @@ std::optional<raster::Result> RasterLook<T>::draw(const generators::Case<T>& v,
 }
 
 template <class T>
-std::optional<Verdict> RasterLook<T>::sample(const generators::Case<T>& v,
-                                             const std::string& request, const std::string& answer,
-                                             long index) {
+std::optional<Verdict> RasterLook<T>::sample(const cases::Case<T>& v, const std::string& request,
+                                             const std::string& answer, long index) {
   if (index != 1 && index % options_.raster_every != 0) return std::nullopt;
   const std::optional<raster::Result> r =
       draw(v, answer, options_.seed ^ static_cast<std::uint64_t>(index));
@@ -86,7 +85,7 @@ std::optional<Verdict> RasterLook<T>::sample(const generators::Case<T>& v,
 }
 
 template <class T>
-void RasterLook<T>::finding(const generators::Case<T>& v, const std::string& answer,
+void RasterLook<T>::finding(const cases::Case<T>& v, const std::string& answer,
                             const std::string& report_md) {
   std::string why;
   const std::optional<raster::Result> r = draw(v, answer, options_.seed, &why);
@@ -139,24 +138,23 @@ void RasterLook<T>::summary() const {
 }
 
 template <class T>
-Verdict RasterLook<T>::report(const generators::Case<T>& v, const std::string& request,
+Verdict RasterLook<T>::report(const cases::Case<T>& v, const std::string& request,
                               const std::string& answer, const raster::Result& r, long index) {
   report::ReportFiles files(options_.report_dir);
   const std::string stem = files.reserve_stem("verify-raster", {".md", ".json"});
   const std::string json_path =
       (std::filesystem::path(options_.report_dir) / (stem + ".json")).string();
-  std::string md =
-      "# Counterexample: the rasterizer\n\n`" + options_.command +
-      "`'s answer passes the properties, but drawn on " + rasterizer_->renderer() +
-      " it fails: " + r.why +
-      ".\n\n## The case\n\n- family: " + std::string(generators::family_name(v.family)) +
-      ", place " + generators::case_kind(v) +
-      "\n- convention: " + std::string(convention_name(v.convention)) + ", depth buffer " +
-      std::string(depth_buffer_name(options_.raster_buffer)) +
-      "\n- M: " + properties::numbers_text(v.matrix) +
-      "\n- C: " + properties::numbers_text(v.plane) + "\n\nAnswer " + std::to_string(index) +
-      " of the run. The request:\n\n```\n" + request + "\n```\n\nThe answer:\n\n```\n" + answer +
-      "\n```\n\n";
+  std::string md = "# Counterexample: the rasterizer\n\n`" + options_.command +
+                   "`'s answer passes the properties, but drawn on " + rasterizer_->renderer() +
+                   " it fails: " + r.why +
+                   ".\n\n## The case\n\n- family: " + std::string(cases::family_name(v.family)) +
+                   ", place " + cases::case_kind(v) +
+                   "\n- convention: " + std::string(convention_name(v.convention)) +
+                   ", depth buffer " + std::string(depth_buffer_name(options_.raster_buffer)) +
+                   "\n- M: " + properties::numbers_text(v.matrix) +
+                   "\n- C: " + properties::numbers_text(v.plane) + "\n\nAnswer " +
+                   std::to_string(index) + " of the run. The request:\n\n```\n" + request +
+                   "\n```\n\nThe answer:\n\n```\n" + answer + "\n```\n\n";
   md += raster::stage_flagged_section(files, stem, r, options_.raster_size);
   md += "\n## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
         "\n# this request again, its answer drawn (exit 0 holds, 1 fails, 3 inconclusive)\n" +
@@ -208,7 +206,7 @@ Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonV
   if (size && size->is_number()) o.raster_size = std::atoi(size->text.c_str());
   const std::uint64_t frame_seed =
       seed && seed->is_number() ? std::strtoull(seed->text.c_str(), nullptr, 10) : 1;
-  generators::Case<double> v;
+  cases::Case<double> v;
   for (int i = 0; i < 16; ++i) v.matrix(i / 4, i % 4) = m[static_cast<std::size_t>(i)];
   for (int i = 0; i < 4; ++i) v.plane(i) = c[static_cast<std::size_t>(i)];
   v.convention = *parsed;

@@ -28,26 +28,25 @@ class RasterLook {
   /// The answer line to case `v` (sent as `request`), the `index`-th answer of the run from 1:
   /// drawn when its turn comes. A failure on the rasterizer is reported (Verdict::violated), a
   /// tripped self-check ends the run (Verdict::inconclusive); otherwise nullopt.
-  std::optional<Verdict> sample(const generators::Case<T>& v, const std::string& request,
+  std::optional<Verdict> sample(const cases::Case<T>& v, const std::string& request,
                                 const std::string& answer, long index);
 
   /// A finding's answer drawn too; one line on err says what the rasterizer made of it, and
   /// when it was drawn, STEM.raster.md beside the finding's report `report_md` (STEM.md) holds
   /// the verdict and the flagged pixels' picture.
-  void finding(const generators::Case<T>& v, const std::string& answer,
-               const std::string& report_md);
+  void finding(const cases::Case<T>& v, const std::string& answer, const std::string& report_md);
 
   /// One line for a run's end: answers drawn, all passed, the renderer, the worst depth error.
   void summary() const;
 
   /// The answer line to case `v` drawn (frame seed `seed`); nullopt where it holds no matrix, the
   /// case has no answer to judge against, or the frame could not be drawn (`why` says which).
-  std::optional<raster::Result> draw(const generators::Case<T>& v, const std::string& answer,
+  std::optional<raster::Result> draw(const cases::Case<T>& v, const std::string& answer,
                                      std::uint64_t seed, std::string* why = nullptr);
 
  private:
-  Verdict report(const generators::Case<T>& v, const std::string& request,
-                 const std::string& answer, const raster::Result& result, long index);
+  Verdict report(const cases::Case<T>& v, const std::string& request, const std::string& answer,
+                 const raster::Result& result, long index);
 
   const VerifyOptions& options_;
   std::ostream& out_;

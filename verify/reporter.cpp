@@ -35,19 +35,19 @@ Reporter<T>::Reporter(const VerifyOptions& options, const Draws<T>& draws, std::
     : options_(options), draws_(draws), out_(out), err_(err) {}
 
 template <class T>
-Verdict Reporter<T>::finding(const generators::Case<T>& v, const Found<T>& found, int steps,
+Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int steps,
                              bool out_of_time, long found_after_cases, double found_after_seconds,
                              const mistakes::Diagnosis& diagnosis) {
   const properties::Finding& f = found.finding;
   properties::Counterexample ce = properties::make_counterexample(v.matrix, v.plane, v.convention);
   ce.finding = f;
   ce.implementation = options_.command;
-  ce.family = std::string(generators::family_name(v.family));
+  ce.family = std::string(cases::family_name(v.family));
   const properties::Problem<T> problem(v.matrix, v.plane, v.convention);
   // "no answer: DEFECT" only where the input has none (a near_singular one may well have one).
   ce.place = v.defect && problem.exact_status() == Status::ok
-                 ? std::string(generators::defect_name(*v.defect)) + " (has an answer)"
-                 : generators::case_kind(v);
+                 ? std::string(cases::defect_name(*v.defect)) + " (has an answer)"
+                 : cases::case_kind(v);
   if (found.result) properties::set_result(ce, *found.result);
   if (diagnosis.ran) ce.diagnosis = diagnosis;
   properties::set_views(ce, problem, found.result ? &*found.result : nullptr);

@@ -49,7 +49,7 @@ class Reporter {
 
   /// Writes the report of a (shrunk) finding, keeps it as a regression when asked, and prints
   /// it: Verdict::violated.
-  Verdict finding(const generators::Case<T>& v, const Found<T>& found, int steps, bool out_of_time,
+  Verdict finding(const cases::Case<T>& v, const Found<T>& found, int steps, bool out_of_time,
                   long found_after_cases, double found_after_seconds,
                   const mistakes::Diagnosis& diagnosis = {});
   const std::string& last_report() const { return last_report_; }

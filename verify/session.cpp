@@ -26,8 +26,7 @@ double Session<T>::seconds_since_start() const {
 }
 
 template <class T>
-typename Session<T>::Evaluation Session<T>::evaluate(const generators::Case<T>& v,
-                                                     Found<T>& finding) {
+typename Session<T>::Evaluation Session<T>::evaluate(const cases::Case<T>& v, Found<T>& finding) {
   last_answer_.reset();
   if (out_of_time()) return Evaluation::out_of_time;
   const properties::FilteredProblem<T> problem(v.matrix, v.plane, v.convention);
@@ -90,7 +89,7 @@ typename Session<T>::Evaluation Session<T>::evaluate(const generators::Case<T>& 
 }
 
 template <class T>
-std::optional<mistakes::Observation<T>> Session<T>::observe(const generators::Case<T>& v) {
+std::optional<mistakes::Observation<T>> Session<T>::observe(const cases::Case<T>& v) {
   Found<T> found;
   const Evaluation e = evaluate(v, found);
   if (!last_answer_ || (e != Evaluation::pass && e != Evaluation::finding)) return std::nullopt;

@@ -48,10 +48,10 @@ class Session {
   /// Sends one case alone (restarting the implementation when it is not running) and judges
   /// the answer: a finding (in `finding`), a pass (also for an input the contract leaves out),
   /// a protocol problem (issue()), or no time left.
-  Evaluation evaluate(const generators::Case<T>& v, Found<T>& finding);
+  Evaluation evaluate(const cases::Case<T>& v, Found<T>& finding);
   /// Sends one case alone and judges it, for the diagnosis: the answer and whether it is wrong,
   /// or none (left out by the contract, a protocol problem, no answer, no time left).
-  std::optional<mistakes::Observation<T>> observe(const generators::Case<T>& v);
+  std::optional<mistakes::Observation<T>> observe(const cases::Case<T>& v);
   /// The protocol problem of the last evaluation.
   const Issue& issue() const { return issue_; }
   /// The answer of the last evaluation, when it gave one.

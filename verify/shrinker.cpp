@@ -38,7 +38,7 @@ Verdict Shrinker<T>::confirm(const Batch<T>& batch, std::size_t k,
 }
 
 template <class T>
-Verdict Shrinker<T>::shrink(const rc::Shrinkable<generators::Case<T>>& failing, Found<T> finding,
+Verdict Shrinker<T>::shrink(const rc::Shrinkable<cases::Case<T>>& failing, Found<T> finding,
                             long cases_run) {
   using Evaluation = typename Session<T>::Evaluation;
   const long found_after_cases = cases_run;
@@ -47,7 +47,7 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<generators::Case<T>>& failing, 
   out_ << "oblique verify: " << check_name(finding.finding.check) << " violated after " << cases_run
        << " cases; shrinking";
   out_.flush();
-  rc::Shrinkable<generators::Case<T>> current = failing;
+  rc::Shrinkable<cases::Case<T>> current = failing;
   int steps = 0, tries = 0;
   bool out_of_time = false;
   // Timeouts cost the whole timeout per try: the case is reported as found.
@@ -87,8 +87,7 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<generators::Case<T>>& failing, 
 }
 
 template <class T>
-mistakes::Diagnosis Shrinker<T>::diagnose(const generators::Case<T>& shrunk,
-                                          const Found<T>& finding) {
+mistakes::Diagnosis Shrinker<T>::diagnose(const cases::Case<T>& shrunk, const Found<T>& finding) {
   using properties::Check;
   const Check check = finding.finding.check;
   if (check == Check::crash || check == Check::timeout || check == Check::protocol) return {};
@@ -109,10 +108,10 @@ mistakes::Diagnosis Shrinker<T>::diagnose(const generators::Case<T>& shrunk,
       .flush();
   const mistakes::Probe<T> probe = [this, &families, &answering](
                                        const Matrix4<T>& m, const Vector4<T>& c,
-                                       Convention convention, generators::Family family) {
+                                       Convention convention, cases::Family family) {
     if (!answering || std::find(families.begin(), families.end(), family) == families.end())
       return std::optional<mistakes::Observation<T>>();
-    generators::Case<T> v;
+    cases::Case<T> v;
     v.matrix = m;
     v.plane = c;
     v.convention = convention;
@@ -126,7 +125,7 @@ mistakes::Diagnosis Shrinker<T>::diagnose(const generators::Case<T>& shrunk,
 }
 
 template <class T>
-Verdict Shrinker<T>::isolate(const std::vector<rc::Shrinkable<generators::Case<T>>>& cases,
+Verdict Shrinker<T>::isolate(const std::vector<rc::Shrinkable<cases::Case<T>>>& cases,
                              std::size_t answered, long done, const client::Failure& failure) {
   using Evaluation = typename Session<T>::Evaluation;
   Found<T> in_batch = session_.lost_finding(failure);

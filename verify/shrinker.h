@@ -27,17 +27,16 @@ class Shrinker {
                   Found<T> finding, long cases_run);
   /// Shrinks a confirmed finding through the implementation and reports it (violated), or
   /// reports a protocol error met on the way (error).
-  Verdict shrink(const rc::Shrinkable<generators::Case<T>>& failing, Found<T> finding,
-                 long cases_run);
+  Verdict shrink(const rc::Shrinkable<cases::Case<T>>& failing, Found<T> finding, long cases_run);
   /// The implementation stopped answering after `answered` cases of the batch: the request that
   /// does it alone is found and shrunk.
-  Verdict isolate(const std::vector<rc::Shrinkable<generators::Case<T>>>& cases,
-                  std::size_t answered, long done, const client::Failure& failure);
+  Verdict isolate(const std::vector<rc::Shrinkable<cases::Case<T>>>& cases, std::size_t answered,
+                  long done, const client::Failure& failure);
 
  private:
   /// Which known mistake explains the shrunk case's answer, with the diagnosis's panel of cases
   /// (those the contract promises) asked too.
-  mistakes::Diagnosis diagnose(const generators::Case<T>& shrunk, const Found<T>& finding);
+  mistakes::Diagnosis diagnose(const cases::Case<T>& shrunk, const Found<T>& finding);
 
   Session<T>& session_;
   Reporter<T>& reporter_;

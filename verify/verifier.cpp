@@ -110,10 +110,10 @@ class Verifier {
         if (j.finding) {
           Found<T> finding = *j.finding;
           finding.answer_line = answers[k];
-          const generators::Case<T>& v = current.values[k];
+          const cases::Case<T>& v = current.values[k];
           const std::string key = std::string(check_name(finding.finding.check)) + " x " +
-                                  std::string(generators::family_name(v.family)) + " x " +
-                                  generators::case_kind(v);
+                                  std::string(cases::family_name(v.family)) + " x " +
+                                  cases::case_kind(v);
           if (options_.keep_going && kinds.count(key)) {
             ++kinds[key].repeats;  // this kind is reported already
             continue;

@@ -21,7 +21,7 @@ Consumers<float> only(const char* name, F set) {
 
 Contract perspective_in(Convention convention) {
   Contract c;
-  c.families = {oblique::generators::Family::perspective};
+  c.families = {oblique::cases::Family::perspective};
   c.conventions = {convention};
   return c;
 }

@@ -19,7 +19,7 @@
 #include "oblique/plane.h"
 #include "oblique/util/eigen_layout.h"
 
-namespace oblique::generators {
+namespace oblique::cases {
 
 /// One input, the one case type of every way in: the numbers and what they were built as.
 template <class T>
@@ -104,7 +104,7 @@ OBLIQUE_CASE_BUILDER_INSTANCES(extern template, long double)
 #endif
 
 }  // namespace OBLIQUE_EIGEN_LAYOUT
-}  // namespace oblique::generators
+}  // namespace oblique::cases
 
 // A file built with OBLIQUE_CHECKER_HEADER_ONLY compiles the builder with its own flags (its
 // Eigen layout), as it does the checker and the generators.

@@ -10,7 +10,7 @@
 #include "oblique/depth_convention.h"
 #include "oblique/util/enum_names.h"
 
-namespace oblique::generators {
+namespace oblique::cases {
 
 enum class Family {
   perspective,
@@ -125,4 +125,4 @@ inline std::vector<Convention> every_convention() {
   return {std::begin(all_conventions), std::end(all_conventions)};
 }
 
-}  // namespace oblique::generators
+}  // namespace oblique::cases

@@ -2,7 +2,7 @@
 // the oblique::fuzzing driver and `oblique verify` (its --contract file, flags and reports).
 //
 //   oblique::Contract c;                                    // C++: lists empty = every value
-//   c.families = {oblique::generators::Family::perspective};
+//   c.families = {oblique::cases::Family::perspective};
 //   c.statuses = oblique::properties::StatusContract::answers_only;
 //
 //   {"families": ["perspective"], "statuses": "answers_only"}   // the same, as JSON
@@ -36,12 +36,12 @@ enum class Planes {
 
 struct Contract {
   /// The projections it is given (empty: every family). What each admits: case_kinds.h.
-  std::vector<generators::Family> families;
+  std::vector<cases::Family> families;
   /// The depth conventions it is for (empty: the implementation's own, stated to adapt(); for a
   /// program under `oblique verify`: gl, the protocol's default).
   std::vector<Convention> conventions;
   /// The hard places of planes it is given (empty: every place).
-  std::vector<generators::Place> places;
+  std::vector<cases::Place> places;
   Planes planes = Planes::any;
   /// How its statuses are judged (empty: from the implementation: adapt() knows a void, bool or
   /// Status function; a program under `oblique verify`: any_refusal).
@@ -50,7 +50,7 @@ struct Contract {
   /// another are not judged (properties::not_judged()).
   std::vector<Status> refusals;
   /// The kinds of input without an answer it is given, where statuses are judged (empty: all).
-  std::vector<generators::Defect> defects;
+  std::vector<cases::Defect> defects;
   /// The properties judged (empty: every one, extracted_planes_match included).
   std::vector<properties::Property> properties;
   /// Row 3 of an answer within the accuracy careful arithmetic achieves in its scalar type

@@ -18,7 +18,7 @@
 #include "oblique/oblique.h"
 #include "oblique/protocol/numbers.h"
 
-namespace oblique::generators {
+namespace oblique::cases {
 
 /// RapidCheck's pick in [lo, hi), inside rc::gen::exec: the builder's picks (case_builder.h,
 /// consumer_cases.h) as RapidCheck choices, which shrink toward lo.
@@ -156,9 +156,9 @@ OBLIQUE_GENERATOR_INSTANCES(extern template, double)
 OBLIQUE_GENERATOR_INSTANCES(extern template, long double)
 #endif
 
-}  // namespace oblique::generators
+}  // namespace oblique::cases
 
-namespace oblique::generators {
+namespace oblique::cases {
 
 /// How RapidCheck shows a case: every number so that it reads back to the same value.
 template <class T>
@@ -183,7 +183,7 @@ inline void showValue(Defect d, std::ostream& os) {
   os << defect_name(d);
 }
 
-}  // namespace oblique::generators
+}  // namespace oblique::cases
 
 namespace oblique {
 

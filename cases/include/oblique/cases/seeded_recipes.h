@@ -6,7 +6,7 @@
 
 #include "oblique/plane.h"
 
-namespace oblique::seeded {
+namespace oblique::cases {
 
 template <class T>
 T sgn(T x) {
@@ -82,4 +82,4 @@ Matrix4<T> note_reversed(const Matrix4<T>& forward, const Vector4<T>& c, const M
   return flip * note_zero_one(forward, c);
 }
 
-}  // namespace oblique::seeded
+}  // namespace oblique::cases

@@ -123,12 +123,12 @@ struct FuzzCase {
   /// the bytes as numbers (special values, raw doubles), the shapes the hunt for extreme inputs
   /// uses: 0..4 built (frustum, infinite, orthographic, y-flipped frustum, rotated), 5 raw, 6 a
   /// frustum or infinite frustum times a camera shift T(tx, ty, 0): M14, M24 != 0 (stereo, lens
-  /// shift; generators::Family::stereo_shift), 7 an x-flipped frustum (M11 < 0, a mirror camera;
-  /// generators::Family::x_flipped), 8 an x- and y-flipped one (generators::Family::xy_flipped),
+  /// shift; cases::Family::stereo_shift), 7 an x-flipped frustum (M11 < 0, a mirror camera;
+  /// cases::Family::x_flipped), 8 an x- and y-flipped one (cases::Family::xy_flipped),
   /// 9 a left-handed frustum or infinite frustum (camera z negated, M43 = +1;
-  /// generators::Family::left_handed).
+  /// cases::Family::left_handed).
   int family = 0;
-  generators::Case<long double> input;
+  cases::Case<long double> input;
 };
 inline constexpr int kBuilt = 10;
 
@@ -137,10 +137,9 @@ inline constexpr int kBuilt = 10;
 /// singular").
 inline std::string family_label(const FuzzCase& c) {
   if (c.family == kBuilt) {
-    std::string out = "built " + std::string(generators::family_name(c.input.family)) + " at " +
-                      std::string(generators::place_name(c.input.place));
-    if (c.input.defect)
-      out += ", spoiled: " + std::string(generators::defect_name(*c.input.defect));
+    std::string out = "built " + std::string(cases::family_name(c.input.family)) + " at " +
+                      std::string(cases::place_name(c.input.place));
+    if (c.input.defect) out += ", spoiled: " + std::string(cases::defect_name(*c.input.defect));
     return out;
   }
   const char* names[] = {"frustum", "infinite",     "orthographic", "y_flipped",  "rotated",
@@ -151,8 +150,8 @@ inline std::string family_label(const FuzzCase& c) {
 /// The generator families (oblique/cases/case_kinds.h) a decoded case is one of, for a
 /// contract's families: a built frustum is perspective when centred (M13 = M23 = 0), else
 /// off_axis or jittered (the decoder does not tell them apart); raw numbers are general.
-inline std::vector<generators::Family> contract_families(const FuzzCase& c) {
-  using generators::Family;
+inline std::vector<cases::Family> contract_families(const FuzzCase& c) {
+  using cases::Family;
   const Matrix4<long double>& m = c.input.matrix;
   switch (c.family) {
     case kBuilt: return {c.input.family};
@@ -183,8 +182,8 @@ inline constexpr int kBuiltLow = 192, kBuiltHigh = 208;
 
 /// Every family, convention, place and defect: the contract of the project's own fuzz target.
 inline const Contract& every_case() {
-  static const Contract every = resolved(Contract{}, generators::every_convention(),
-                                         properties::StatusContract::exact, false);
+  static const Contract every =
+      resolved(Contract{}, cases::every_convention(), properties::StatusContract::exact, false);
   return every;
 }
 
@@ -246,8 +245,8 @@ inline void decode_numbers(ByteReader& in, FuzzCase& c, Convention convention, M
 }
 
 template <class T>
-generators::Case<long double> widened(const generators::Case<T>& c) {
-  generators::Case<long double> out;
+cases::Case<long double> widened(const cases::Case<T>& c) {
+  cases::Case<long double> out;
   out.family = c.family;
   out.convention = c.convention;
   out.place = c.place;
@@ -275,7 +274,7 @@ inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
   const int family_byte = in.byte();
   if (family_byte >= kBuiltLow && family_byte < kBuiltHigh) {
     c.family = kBuilt;
-    const generators::Pick pick = [&in](int lo, int hi) {
+    const cases::Pick pick = [&in](int lo, int hi) {
       const auto n = static_cast<unsigned>(hi - lo);
       unsigned v = in.byte();
       if (n > 256) v |= unsigned{in.byte()} << 8;
@@ -283,13 +282,13 @@ inline FuzzCase decode(const std::uint8_t* data, std::size_t size,
     };
     switch (c.scalar) {
       case protocol::Precision::float32:
-        c.input = widened(generators::choose_case<float>(contract, defects, pick));
+        c.input = widened(cases::choose_case<float>(contract, defects, pick));
         break;
       case protocol::Precision::float64:
-        c.input = widened(generators::choose_case<double>(contract, defects, pick));
+        c.input = widened(cases::choose_case<double>(contract, defects, pick));
         break;
       case protocol::Precision::long_double:
-        c.input = widened(generators::choose_case<long double>(contract, defects, pick));
+        c.input = widened(cases::choose_case<long double>(contract, defects, pick));
         break;
     }
     return c;
@@ -511,13 +510,13 @@ inline void print_counts() {
 /// The decoder makes its own planes, so the contract's places are not chosen here; its defects
 /// are honoured in check() (defect_of()).
 inline bool in_contract(FuzzCase& c, const Contract& contract) {
-  const std::vector<generators::Family> families = contract_families(c);
-  const bool claimed = std::any_of(families.begin(), families.end(), [&](generators::Family f) {
+  const std::vector<cases::Family> families = contract_families(c);
+  const bool claimed = std::any_of(families.begin(), families.end(), [&](cases::Family f) {
     return std::find(contract.families.begin(), contract.families.end(), f) !=
            contract.families.end();
   });
   if (!claimed) {
-    ++counts().left_out["family " + std::string(generators::family_name(families.front())) +
+    ++counts().left_out["family " + std::string(cases::family_name(families.front())) +
                         ": not in the contract"];
     return false;
   }
@@ -534,14 +533,14 @@ inline bool in_contract(FuzzCase& c, const Contract& contract) {
   return true;
 }
 
-/// The defect (generators::Defect, case_kinds.h) of which an input is an example, read from its
+/// The defect (cases::Defect, case_kinds.h) of which an input is an example, read from its
 /// exact status: non-finite numbers (invalid_input), the camera in front (camera_not_behind_plane),
 /// a plane that misses the view volume, a singular M, or an M within rounding of singular (an
 /// answer exists, but singular_projection is acceptable); none for an input with an answer that
 /// no such refusal is within rounding of.
 template <class P>
-std::optional<generators::Defect> defect_of(const P& problem) {
-  using generators::Defect;
+std::optional<cases::Defect> defect_of(const P& problem) {
+  using cases::Defect;
   switch (problem.exact_status()) {
     case Status::invalid_input: return Defect::non_finite;
     case Status::camera_not_behind_plane: return Defect::camera_in_front;
@@ -568,7 +567,7 @@ template <class T>
 void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementation<T>& impl,
            const properties::Checks& checks, bool unanswerable = true,
            const std::vector<Status>& refusals = {},
-           const std::vector<generators::Defect>& defects = {}) {
+           const std::vector<cases::Defect>& defects = {}) {
   const Matrix4<T>& m = judge.matrix();
   const Vector4<T>& plane = judge.plane();
   if (!impl.accepts(c.input.convention, m)) {
@@ -576,10 +575,10 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
     return;
   }
   if (!defects.empty()) {
-    if (const std::optional<generators::Defect> d = defect_of(judge.problem());
+    if (const std::optional<cases::Defect> d = defect_of(judge.problem());
         d && std::find(defects.begin(), defects.end(), *d) == defects.end()) {
-      ++counts().left_out["defect " + std::string(generators::defect_name(*d)) +
-                          ": not in the contract"];
+      ++counts()
+            .left_out["defect " + std::string(cases::defect_name(*d)) + ": not in the contract"];
       return;
     }
   }

@@ -38,7 +38,7 @@ struct Observation {
 /// case is not one the implementation promises anything for (its contract leaves it out).
 template <class T>
 using Probe = std::function<std::optional<Observation<T>>(const Matrix4<T>&, const Vector4<T>&,
-                                                          Convention, generators::Family family)>;
+                                                          Convention, cases::Family family)>;
 
 /// A choice of the modification, where a cause decided otherwise than the correct method.
 enum class Choice {

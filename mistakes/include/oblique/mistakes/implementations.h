@@ -61,19 +61,19 @@ std::vector<Implementation<T>> known_implementations() {
       [](Convention c, const Matrix4<T>& m) {
         return c == Convention::gl && has_perspective_shape(m);
       },
-      [](const Matrix4<T>& m, const Vector4<T>& c) { return seeded::listing_5_1(m, c); }));
+      [](const Matrix4<T>& m, const Vector4<T>& c) { return cases::listing_5_1(m, c); }));
   out.push_back(recipe<T>(
       "paper_eq_20", [](Convention c, const Matrix4<T>&) { return c == Convention::gl; },
-      [](const Matrix4<T>& m, const Vector4<T>& c) { return seeded::paper_eq_20(m, c); }));
+      [](const Matrix4<T>& m, const Vector4<T>& c) { return cases::paper_eq_20(m, c); }));
   out.push_back(recipe<T>(
       "note_zero_one", [](Convention c, const Matrix4<T>&) { return c == Convention::zero_one; },
-      [](const Matrix4<T>& m, const Vector4<T>& c) { return seeded::note_zero_one(m, c); }));
+      [](const Matrix4<T>& m, const Vector4<T>& c) { return cases::note_zero_one(m, c); }));
   out.push_back(recipe<T>(
       "note_reversed", [](Convention c, const Matrix4<T>&) { return c == Convention::reversed_z; },
       [](const Matrix4<T>& m, const Vector4<T>& c) {
         // The flip is its own inverse (with w kept): forward = flip * M.
-        return seeded::note_reversed(Matrix4<T>(seeded::depth_flip<T>() * m), c,
-                                     seeded::note_flip_as_printed<T>());
+        return cases::note_reversed(Matrix4<T>(cases::depth_flip<T>() * m), c,
+                                    cases::note_flip_as_printed<T>());
       }));
   // The catalogue's mistakes (mistakes.h), each planted in the general method: the suite must
   // catch each, and its report name the mistake.

@@ -1,7 +1,8 @@
 // The inputs the code around the matrix gets (consumers.h), built from integer picks: points of
 // the kept region, main views, surface planes and the pass cameras of mirrors, clip planes and
 // portals. `pick(lo, hi)` returns an integer in [lo, hi): RapidCheck's choices
-// (consumer_generators.h) or a fuzz input's bytes (oblique::fuzzing::test_consumers).
+// (oblique::cases::rc_pick, generators.h) or a fuzz input's bytes
+// (oblique::fuzzing::test_consumers).
 #pragma once
 
 #include <Eigen/Geometry>

@@ -62,7 +62,7 @@ constexpr std::optional<ConsumerCheck> parse_consumer_check(std::string_view nam
 /// of an infinite frustum's kept region (unbounded), the linear depth of a rotated or general
 /// camera (it does not look along z). A run leaves such families out, saying so, rather than
 /// count each of their cases left out.
-std::string_view not_applicable(ConsumerCheck check, generators::Family family);
+std::string_view not_applicable(ConsumerCheck check, cases::Family family);
 
 /// One consumer property's verdict on one answer.
 struct ConsumerFinding {

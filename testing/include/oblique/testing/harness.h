@@ -111,20 +111,20 @@ bool serves_conventions(const Implementation<T>& impl, const Contract& contract)
 /// Counts a case made (by its family) and tags it for RapidCheck's table; count_judged() says
 /// whether it reached a function and was judged.
 template <class T>
-void count_generated(const generators::Case<T>& c) {
-  ++tally().generated[std::string(generators::family_name(c.family))];
-  ++tally().generated_places[std::string(generators::place_name(c.place))];
-  RC_TAG(std::string(generators::family_name(c.family)), std::string(convention_name(c.convention)),
-         std::string(generators::place_name(c.place)));
+void count_generated(const cases::Case<T>& c) {
+  ++tally().generated[std::string(cases::family_name(c.family))];
+  ++tally().generated_places[std::string(cases::place_name(c.place))];
+  RC_TAG(std::string(cases::family_name(c.family)), std::string(convention_name(c.convention)),
+         std::string(cases::place_name(c.place)));
 }
 
 /// Counts a case whose answer was judged, by family, convention and place.
 template <class T>
-void count_judged(const generators::Case<T>& c) {
+void count_judged(const cases::Case<T>& c) {
   Tally& t = tally();
-  ++t.families[std::string(generators::family_name(c.family))];
+  ++t.families[std::string(cases::family_name(c.family))];
   ++t.conventions[std::string(convention_name(c.convention))];
-  ++t.places[std::string(generators::place_name(c.place))];
+  ++t.places[std::string(cases::place_name(c.place))];
 }
 
 /// Counts a case some function left out: refused by its accepts (`refused_by`, the function's
@@ -133,17 +133,17 @@ void count_left_out(const std::string& kind, const std::string& why,
                     const std::string& refused_by = "");
 
 template <class T>
-Counterexample describe(const generators::Case<T>& c, const Implementation<T>& impl) {
+Counterexample describe(const cases::Case<T>& c, const Implementation<T>& impl) {
   Counterexample ce = properties::make_counterexample(c.matrix, c.plane, c.convention);
   ce.implementation = impl.name;
-  ce.family = std::string(generators::family_name(c.family));
-  ce.place = std::string(generators::place_name(c.place));
+  ce.family = std::string(cases::family_name(c.family));
+  ce.place = std::string(cases::place_name(c.place));
   return ce;
 }
 
 /// Fails the current RapidCheck case with `finding` as its report.
 template <class T>
-void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, const Finding& finding,
+void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Finding& finding,
                const Answer<T>* outcome = nullptr, const Checks* checks = nullptr) {
   Counterexample ce = describe(c, impl);
   ce.finding = finding;
@@ -167,7 +167,7 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
             m, p, k, answer.status, answer.projection, j.violation() != nullptr};
       };
       const mistakes::Probe<T> probe = [&](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
-                                           generators::Family) {
+                                           cases::Family) {
         if (!impl.accepts(k, m)) return std::optional<mistakes::Observation<T>>();
         return std::optional(observe(m, p, k, impl.run(m, p, k)));
       };
@@ -191,11 +191,10 @@ void fail_with(const generators::Case<T>& c, const Implementation<T>& impl, cons
 /// FilteredProblem<T> (filtered.h: the same verdicts, most without GMP). Returns whether any
 /// implementation's answer was judged (the caller counts the case judged).
 template <class T, class AnyProblem>
-bool for_each_answer(const std::vector<Implementation<T>>& implementations,
-                     const generators::Case<T>& c, const AnyProblem& problem, Checks checks,
-                     bool judge_statuses = false, const Contract* contract = nullptr,
-                     std::string kind = "") {
-  if (kind.empty()) kind = std::string(generators::family_name(c.family));
+bool for_each_answer(const std::vector<Implementation<T>>& implementations, const cases::Case<T>& c,
+                     const AnyProblem& problem, Checks checks, bool judge_statuses = false,
+                     const Contract* contract = nullptr, std::string kind = "") {
+  if (kind.empty()) kind = std::string(cases::family_name(c.family));
   bool judged = false;
   std::string refused_by, left_out_why;
   for (const Implementation<T>& impl : implementations) {

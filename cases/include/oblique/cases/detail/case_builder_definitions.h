@@ -15,7 +15,7 @@
 #include "oblique/projection.h"
 #include "oblique/references/frustum_planes.h"
 
-namespace oblique::generators {
+namespace oblique::cases {
 inline namespace OBLIQUE_EIGEN_LAYOUT {
 
 namespace building {
@@ -405,4 +405,4 @@ Case<T> choose_case(const Contract& contract, bool defects, const Pick& pick) {
 }
 
 }  // namespace OBLIQUE_EIGEN_LAYOUT
-}  // namespace oblique::generators
+}  // namespace oblique::cases
