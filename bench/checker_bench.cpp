@@ -22,9 +22,9 @@ namespace {
 
 using oblique::Answer;
 using oblique::cases::Case;
-using oblique::properties::Checks;
-using oblique::properties::FilteredProblem;
-using oblique::properties::Problem;
+using oblique::cases::Checks;
+using oblique::oracle::FilteredProblem;
+using oblique::oracle::Problem;
 
 template <class T>
 struct Judged {
@@ -83,7 +83,7 @@ void judge_each(benchmark::State& state, const Checks& checks) {
   for (auto _ : state) {
     const Judged<T>& j = cases[i++ % cases.size()];
     const Checker problem(j.c.matrix, j.c.plane, j.c.convention);
-    auto judgement = oblique::properties::judge(problem, j.answer, checks);
+    auto judgement = oblique::oracle::judge(problem, j.answer, checks);
     benchmark::DoNotOptimize(judgement);
   }
 }

@@ -11,8 +11,8 @@ namespace oblique {
 
 namespace {
 
-using properties::Property;
-using properties::StatusContract;
+using cases::Property;
+using cases::StatusContract;
 using protocol::JsonValue;
 
 /// A contract file is a few lines; anything larger is not one.
@@ -72,15 +72,15 @@ std::optional<Status> parse_refusal(std::string_view name) {
 }  // namespace
 
 std::optional<Property> parse_property(std::string_view name) noexcept {
-  for (Property p : properties::Checks{}.properties) {
-    if (properties::property_name(p) == name) return p;
+  for (Property p : cases::Checks{}.properties) {
+    if (cases::property_name(p) == name) return p;
   }
   return std::nullopt;
 }
 
 std::vector<std::string> property_names() {
   std::vector<std::string> out;
-  for (Property p : properties::Checks{}.properties) out.emplace_back(properties::property_name(p));
+  for (Property p : cases::Checks{}.properties) out.emplace_back(cases::property_name(p));
   return out;
 }
 std::vector<std::string> refusal_names() {
@@ -103,7 +103,7 @@ Contract resolved(Contract c, const std::vector<Convention>& own_conventions,
   if (!c.statuses) c.statuses = own_statuses;
   if (c.defects.empty())
     c.defects.assign(std::begin(cases::all_defects), std::end(cases::all_defects));
-  if (c.properties.empty()) c.properties = properties::Checks{}.properties;
+  if (c.properties.empty()) c.properties = cases::Checks{}.properties;
   return c;
 }
 
@@ -320,8 +320,7 @@ std::string contract_json(const Contract& c) {
       field("statuses", protocol::json_string(status_contract_name(*c.statuses)));
   }
   if (!c.defects.empty()) field("defects", json_names(c.defects, cases::defect_name));
-  if (!c.properties.empty())
-    field("properties", json_names(c.properties, properties::property_name));
+  if (!c.properties.empty()) field("properties", json_names(c.properties, cases::property_name));
   if (c.row3_accuracy) field("row3_accuracy", *c.row3_accuracy ? "true" : "false");
   return out.empty() ? "{}" : out + "}";
 }

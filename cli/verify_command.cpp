@@ -132,7 +132,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       ->add_option_function<std::string>(
           "--mirror-design",
           [settings](const std::string& name) {
-            settings->options.mirror_design = *oblique::properties::parse_mirror_design(name);
+            settings->options.mirror_design = *oblique::oracle::parse_mirror_design(name);
           },
           "With --consumers mirror_view: the design its mirror pass's camera has: reflected_view "
           "(view R, the default) or proper_camera (diag(-1, 1, 1, 1) view R, the horizontal flip "

@@ -6,7 +6,7 @@ namespace oblique::client {
 
 using protocol::ConsumerKind;
 using protocol::ConsumerRequest;
-namespace wire = properties::wire;
+namespace wire = oracle::wire;
 
 template <class T>
 struct ConsumerProgram<T>::State {
@@ -130,12 +130,12 @@ Consumers<T> ConsumerProgram<T>::consumers(const std::vector<ConsumerKind>& kind
   for (const ConsumerKind kind : kinds) {
     switch (kind) {
       case ConsumerKind::view_position:
-        c.view_position = [s, kind](const properties::DepthSample<T>& sample) {
+        c.view_position = [s, kind](const oracle::DepthSample<T>& sample) {
           return wire::vector3(s->ask(wire::depth_request(kind, sample), kind));
         };
         break;
       case ConsumerKind::linear_depth:
-        c.linear_depth = [s, kind](const properties::DepthSample<T>& sample) {
+        c.linear_depth = [s, kind](const oracle::DepthSample<T>& sample) {
           return s->ask(wire::depth_request(kind, sample), kind).front();
         };
         break;

@@ -1,6 +1,6 @@
 // The property suite on the campaign's float engine, one test per convention: a function without
 // statuses (void), so inputs without an answer and inputs undecidable in float are left out
-// (properties::not_judged()) and every other case is judged. The campaign raises the case count
+// (oracle::not_judged()) and every other case is judged. The campaign raises the case count
 // with RC_PARAMS="max_success=N seed=S"; the summary's "left out:" line counts what was left out.
 #include <oblique/testing.h>
 

@@ -6,9 +6,9 @@
 #include "oblique/fuzzing.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const auto f = oblique::properties::reference_consumers<float>();
-  static const auto d = oblique::properties::reference_consumers<double>();
-  static const auto ld = oblique::properties::reference_consumers<long double>();
+  static const auto f = oblique::oracle::reference_consumers<float>();
+  static const auto d = oblique::oracle::reference_consumers<double>();
+  static const auto ld = oblique::oracle::reference_consumers<long double>();
   switch (size ? data[0] % 3 : 1) {
     case 0: return oblique::fuzzing::test_consumers(data, size, f);
     case 1: return oblique::fuzzing::test_consumers(data, size, d);

@@ -15,7 +15,7 @@ namespace oblique::fuzzing {
 namespace {
 
 /// Counts a finding; on a violation prints it with the inputs and aborts.
-void settle(const std::string& consumer, const properties::ConsumerFinding& finding,
+void settle(const std::string& consumer, const oracle::ConsumerFinding& finding,
             const std::string& inputs) {
   if (!finding.judged) {
     ++counts().left_out[finding.detail];
@@ -24,7 +24,7 @@ void settle(const std::string& consumer, const properties::ConsumerFinding& find
   ++counts().judged;
   if (finding.holds) return;
   std::fprintf(stderr, "oblique: %s violates %s\n%s", consumer.c_str(),
-               properties::describe(finding).c_str(), inputs.c_str());
+               oracle::describe(finding).c_str(), inputs.c_str());
   std::fflush(stderr);
   std::abort();
 }
@@ -37,7 +37,7 @@ template <class T>
 int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T>& consumers,
                    const Contract& given) {
   const Contract contract =
-      resolved(given, cases::every_convention(), properties::StatusContract::exact, false);
+      resolved(given, cases::every_convention(), cases::StatusContract::exact, false);
   // Built cases unspoiled: the code around the matrix is judged where the matrix has an answer.
   FuzzCase c = decode(data, size, contract, /*defects=*/false);
   if (describing()) describe(c);
@@ -56,9 +56,9 @@ int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T
     plane(i) = narrow<T>(c.input.plane(i));
     for (int j = 0; j < 4; ++j) m(i, j) = narrow<T>(c.input.matrix(i, j));
   }
-  properties::consumer_round<T>(
+  oracle::consumer_round<T>(
       m, plane, c.input.convention, consumers, pick,
-      [&consumers](const properties::ConsumerFinding& finding, const std::string& inputs, bool) {
+      [&consumers](const oracle::ConsumerFinding& finding, const std::string& inputs, bool) {
         settle(consumers.name, finding, inputs);
       });
   return 0;

@@ -183,7 +183,7 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
   const auto convention = parse_convention(v.convention);
   if (!plane || !convention) return "";
   for (int i = 0; i < 4; ++i) c(i) = (*plane)[static_cast<std::size_t>(i)];
-  properties::Counterexample ce = properties::make_counterexample(m, c, *convention);
+  oracle::Counterexample ce = oracle::make_counterexample(m, c, *convention);
   ce.implementation = v.implementation;
   ce.family = v.family;
   ce.place = "fuzz input";
@@ -198,32 +198,32 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
   }
   if (all_rows) {
     answer = rows;
-    properties::set_result(ce, rows);
+    oracle::set_result(ce, rows);
   }
   // The finding judged again here, from the numbers the driver printed (they round-trip): the
   // checker's own, not the driver's words read back.
-  const std::optional<properties::Check> check = properties::parse_check(v.property);
+  const std::optional<oracle::Check> check = oracle::parse_check(v.property);
   if (!check) return "";
-  const properties::Problem<T> problem(m, c, *convention);
-  if (*check == properties::Check::status) {
+  const oracle::Problem<T> problem(m, c, *convention);
+  if (*check == oracle::Check::status) {
     ce.finding.check = *check;
-    ce.finding.shows = properties::Shows::statuses;
+    ce.finding.shows = oracle::Shows::statuses;
     ce.finding.exact = problem.exact_status();
     ce.finding.allowed = problem.acceptable_statuses();
     const std::optional<Status> answered = status_answered(v.answered);
     if (!answered) return "";
     ce.finding.answered = *answered;
-  } else if (*check == properties::Check::finite_result) {
+  } else if (*check == oracle::Check::finite_result) {
     ce.finding.check = *check;
-    ce.finding.shows = properties::Shows::non_finite_answer;
+    ce.finding.shows = oracle::Shows::non_finite_answer;
   } else {
     if (!answer) return "";
-    properties::Checks every;
+    cases::Checks every;
     every.every = true;
     every.row3_accuracy = true;
     bool found = false;
-    for (const properties::Finding& f :
-         properties::judge(problem, Answer<T>{Status::ok, *answer}, every).checks) {
+    for (const oracle::Finding& f :
+         oracle::judge(problem, Answer<T>{Status::ok, *answer}, every).checks) {
       if (f.check == *check && !f.holds) {
         ce.finding = f;
         found = true;
@@ -234,15 +234,15 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
   }
   // The likely cause, from this one case (the target is not asked again here).
   mistakes::Observation<T> seen{m, c, *convention, Status::ok, answer ? *answer : m, true};
-  if (*check == properties::Check::status) seen.status = ce.finding.answered;
+  if (*check == oracle::Check::status) seen.status = ce.finding.answered;
   if (answer || seen.status != Status::ok) ce.diagnosis = mistakes::diagnose<T>({seen});
-  properties::set_views(ce, problem, answer ? &*answer : nullptr);
+  oracle::set_views(ce, problem, answer ? &*answer : nullptr);
   ce.notes.emplace_back("fuzz input", finding.inputs.front());
   ce.notes.emplace_back("inputs with this finding", std::to_string(finding.inputs.size()));
   ce.notes.emplace_back("what it did", "it " + v.answered);
   ce.notes.emplace_back("what the input allows", line_from(output, "the input has"));
   ce.notes.emplace_back("output", protocol::escape_bytes(output.substr(0, 2000)));
-  properties::ReportContext context;
+  oracle::ReportContext context;
   context.directory = options.report_dir;
   context.stem = "fuzz-" + stem_of(v.property + " " + v.family + " " + v.convention);
   context.replay_case = options.target + " " + protocol::shell_quote(finding.inputs.front());
@@ -250,7 +250,7 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
                        protocol::shell_quote(options.target) + " " +
                        protocol::shell_quote(finding.inputs.front());
   context.keep_existing = true;
-  return properties::write_report(ce, context);
+  return oracle::write_report(ce, context);
 }
 
 /// The report of any other finding (a sanitizer's error, a crash, a hang): the target's output

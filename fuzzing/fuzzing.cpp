@@ -9,27 +9,27 @@ inline namespace OBLIQUE_EIGEN_LAYOUT {
 
 template <class T>
 int test_one_input(const std::uint8_t* data, std::size_t size,
-                   const properties::Implementation<T>& impl, const Contract& given) {
+                   const oracle::Implementation<T>& impl, const Contract& given) {
   const Contract contract = resolved(given, impl.conventions, impl.status_contract(), false);
   // Built cases spoiled by the contract's defects where inputs without an answer are judged.
   FuzzCase c =
-      decode(data, size, contract, *contract.statuses != properties::StatusContract::answers_only);
+      decode(data, size, contract, *contract.statuses != cases::StatusContract::answers_only);
   if (describing()) describe(c);
   if (!in_contract(c, contract)) return 0;
-  properties::Checks checks = impl.checks(*contract.row3_accuracy);
+  cases::Checks checks = impl.checks(*contract.row3_accuracy);
   checks.statuses = *contract.statuses;
   checks.properties = contract.properties;
   // As in the property suite: a function without statuses is judged where an answer exists and
-  // the input is decidable in T (properties::not_judged()).
+  // the input is decidable in T (oracle::not_judged()).
   CaseJudge<T> judge(c);
-  check<T>(c, judge, impl, checks, checks.statuses != properties::StatusContract::answers_only,
+  check<T>(c, judge, impl, checks, checks.statuses != cases::StatusContract::answers_only,
            contract.refusals, contract.defects);
   return 0;
 }
 
 #define OBLIQUE_FUZZING_INSTANCE(T)                                \
   template int test_one_input<T>(const std::uint8_t*, std::size_t, \
-                                 const properties::Implementation<T>&, const Contract&);
+                                 const oracle::Implementation<T>&, const Contract&);
 OBLIQUE_FUZZING_INSTANCE(float)
 OBLIQUE_FUZZING_INSTANCE(double)
 OBLIQUE_FUZZING_INSTANCE(long double)

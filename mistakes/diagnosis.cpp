@@ -14,7 +14,7 @@
 
 namespace oblique::mistakes {
 
-using namespace oblique::properties;  // NOLINT: the judge whose findings are diagnosed
+using namespace oblique::oracle;  // NOLINT: the judge whose findings are diagnosed
 
 namespace {
 

@@ -11,7 +11,7 @@
 
 namespace oblique::mistakes {
 
-using namespace oblique::properties;  // NOLINT: the judge the catalogue is checked against
+using namespace oblique::oracle;  // NOLINT: the judge the catalogue is checked against
 
 namespace {
 

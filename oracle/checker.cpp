@@ -5,7 +5,7 @@
 #include "oblique/oracle/filtered.h"
 #include "oblique/oracle/judge.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 template <class T>
 Checker<T>::Checker(const Matrix4<T>& m, const Vector4<T>& c, Convention convention)
@@ -31,16 +31,16 @@ std::vector<Status> Checker<T>::acceptable_statuses() const {
 template <class T>
 std::string Checker<T>::not_judged(StatusContract contract,
                                    const std::vector<Status>& refusals) const {
-  return properties::not_judged(*problem_, contract, refusals);
+  return oracle::not_judged(*problem_, contract, refusals);
 }
 
 template <class T>
 Judgement Checker<T>::judge(const Answer<T>& outcome, const Checks& checks) const {
-  return properties::judge(*problem_, outcome, checks);
+  return oracle::judge(*problem_, outcome, checks);
 }
 
 template class Checker<float>;
 template class Checker<double>;
 template class Checker<long double>;
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

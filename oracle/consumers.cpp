@@ -20,7 +20,7 @@
 #include "oblique/references/kept_region.h"
 #include "oblique/references/pass_camera.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 namespace {
 
@@ -1795,36 +1795,36 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
     ask_and_judge(a, consumers, settle);
 }
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle
 
 namespace oblique::consumer_cases {
 
 template <class T>
 void ask_camera_plane(const Consumers<T>& consumers, const PassPlaneCase<T>& p,
-                      const properties::Settle& settle) {
-  properties::ask_and_judge(properties::camera_plane_ask(p), consumers, settle);
+                      const oracle::Settle& settle) {
+  oracle::ask_and_judge(oracle::camera_plane_ask(p), consumers, settle);
 }
 
 template <class T>
 void ask_mirror_view(const Consumers<T>& consumers, const Matrix4<T>& view,
-                     const Vector4<T>& mirror, const properties::Settle& settle) {
-  properties::ask_and_judge(properties::mirror_view_ask(view, mirror, consumers.mirror_design),
-                            consumers, settle);
+                     const Vector4<T>& mirror, const oracle::Settle& settle) {
+  oracle::ask_and_judge(oracle::mirror_view_ask(view, mirror, consumers.mirror_design), consumers,
+                        settle);
 }
 
 template <class T>
 void ask_portal_view(const Consumers<T>& consumers, const Matrix4<T>& view, const Matrix4<T>& frame,
-                     const Matrix4<T>& linked, const properties::Settle& settle) {
-  properties::ask_and_judge(properties::portal_view_ask(view, frame, linked), consumers, settle);
+                     const Matrix4<T>& linked, const oracle::Settle& settle) {
+  oracle::ask_and_judge(oracle::portal_view_ask(view, frame, linked), consumers, settle);
 }
 
 #define OBLIQUE_CONSUMER_ASKS(T)                                                           \
   template void ask_camera_plane(const Consumers<T>&, const PassPlaneCase<T>&,             \
-                                 const properties::Settle&);                               \
+                                 const oracle::Settle&);                                   \
   template void ask_mirror_view(const Consumers<T>&, const Matrix4<T>&, const Vector4<T>&, \
-                                const properties::Settle&);                                \
+                                const oracle::Settle&);                                    \
   template void ask_portal_view(const Consumers<T>&, const Matrix4<T>&, const Matrix4<T>&, \
-                                const Matrix4<T>&, const properties::Settle&);
+                                const Matrix4<T>&, const oracle::Settle&);
 OBLIQUE_CONSUMER_ASKS(float)
 OBLIQUE_CONSUMER_ASKS(double)
 OBLIQUE_CONSUMER_ASKS(long double)
@@ -1832,7 +1832,7 @@ OBLIQUE_CONSUMER_ASKS(long double)
 
 }  // namespace oblique::consumer_cases
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 template <class T>
 Consumers<T> reference_consumers() {
@@ -1893,4 +1893,4 @@ OBLIQUE_CONSUMER_INSTANCES(float)
 OBLIQUE_CONSUMER_INSTANCES(double)
 OBLIQUE_CONSUMER_INSTANCES(long double)
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

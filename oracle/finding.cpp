@@ -6,7 +6,7 @@
 
 #include "oblique/protocol/numbers.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 namespace {
 
 using protocol::format_number;
@@ -188,4 +188,4 @@ std::vector<std::pair<std::string, double>> finding_numbers(const Finding& f) {
   }
 }
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

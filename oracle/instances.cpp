@@ -6,8 +6,8 @@
 #error "compiled once per scalar type, with OBLIQUE_SCALAR defined (oblique_add_instances)"
 #endif
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 OBLIQUE_CHECKER_INSTANCES(template, OBLIQUE_SCALAR)
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

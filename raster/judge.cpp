@@ -208,7 +208,7 @@ namespace {
 
 template <class T>
 std::optional<Vector4d> accepted_in(const Matrix4d& m, const Vector4d& c, Convention convention) {
-  const properties::Problem<T> problem(m.cast<T>(), c.cast<T>(), convention);
+  const oracle::Problem<T> problem(m.cast<T>(), c.cast<T>(), convention);
   if (problem.exact_status() != Status::ok) return std::nullopt;
   const std::optional<exact::Vec> bounds = problem.row3_bounds();
   if (!bounds) return std::nullopt;
@@ -223,7 +223,7 @@ std::optional<Vector4d> accepted_in(const Matrix4d& m, const Vector4d& c, Conven
   Vector4d out;
   for (int i = 0; i < 4; ++i) {
     // Rounded up: get_d truncates, so one part in 2^50 more, and the smallest double more.
-    const double b = properties::approx((*bounds)[i] + allowance);
+    const double b = oracle::approx((*bounds)[i] + allowance);
     out(i) = b * (1 + 0x1p-50) + std::numeric_limits<double>::denorm_min();
   }
   return out;

@@ -27,10 +27,10 @@ double bits_lost(double ulps) {
 }
 
 template <class T>
-ProfiledAnswer profile_answer(const properties::Problem<T>& problem, const Matrix4<T>& answer) {
+ProfiledAnswer profile_answer(const oracle::Problem<T>& problem, const Matrix4<T>& answer) {
   ProfiledAnswer out;
   out.convention = problem.convention();
-  out.kappa = properties::approx(problem.kappa());
+  out.kappa = oracle::approx(problem.kappa());
   const exact::Vec row = problem.exact_row3();
   // The row's ulp: that of its largest entry, correctly rounded (the subnormal quantum at 0).
   exact::Rational largest = 0;
@@ -53,15 +53,14 @@ ProfiledAnswer profile_answer(const properties::Problem<T>& problem, const Matri
   return out;
 }
 
-template ProfiledAnswer profile_answer<float>(const properties::Problem<float>&,
-                                              const Matrix4<float>&);
-template ProfiledAnswer profile_answer<double>(const properties::Problem<double>&,
+template ProfiledAnswer profile_answer<float>(const oracle::Problem<float>&, const Matrix4<float>&);
+template ProfiledAnswer profile_answer<double>(const oracle::Problem<double>&,
                                                const Matrix4<double>&);
-template ProfiledAnswer profile_answer<long double>(const properties::Problem<long double>&,
+template ProfiledAnswer profile_answer<long double>(const oracle::Problem<long double>&,
                                                     const Matrix4<long double>&);
 
 template <class T>
-void record_answer(Profile& profile, const properties::Problem<T>& problem,
+void record_answer(Profile& profile, const oracle::Problem<T>& problem,
                    const ProfileInput<T>& input, Status status, const Matrix4<T>& projection) {
   if (status != Status::ok) {
     ++profile.refused;
@@ -74,11 +73,11 @@ void record_answer(Profile& profile, const properties::Problem<T>& problem,
   profile.answers.push_back(std::move(a));
 }
 
-template void record_answer<float>(Profile&, const properties::Problem<float>&,
+template void record_answer<float>(Profile&, const oracle::Problem<float>&,
                                    const ProfileInput<float>&, Status, const Matrix4<float>&);
-template void record_answer<double>(Profile&, const properties::Problem<double>&,
+template void record_answer<double>(Profile&, const oracle::Problem<double>&,
                                     const ProfileInput<double>&, Status, const Matrix4<double>&);
-template void record_answer<long double>(Profile&, const properties::Problem<long double>&,
+template void record_answer<long double>(Profile&, const oracle::Problem<long double>&,
                                          const ProfileInput<long double>&, Status,
                                          const Matrix4<long double>&);
 
@@ -196,7 +195,7 @@ std::vector<Profile> core_profiles(const std::vector<ProfileInput<T>>& inputs) {
   }
   // One exact problem a case, for the three methods.
   for (const ProfileInput<T>& in : inputs) {
-    const properties::Problem<T> problem(in.matrix, in.plane, in.convention);
+    const oracle::Problem<T> problem(in.matrix, in.plane, in.convention);
     if (problem.exact_status() != Status::ok) continue;
     for (std::size_t m = 0; m < 3; ++m) {
       if (methods[m] == Method::closed_form && !has_perspective_shape(in.matrix)) continue;

@@ -188,7 +188,7 @@ struct Errors {
 /// errors: its worst entry in ulps of the row (accuracy_profile.h) and its error over the
 /// checker's bound.
 template <class T>
-void record(const properties::Problem<T>& problem, const Matrix4<T>& answer, Errors& all,
+void record(const oracle::Problem<T>& problem, const Matrix4<T>& answer, Errors& all,
             Errors& step) {
   ++all.answered;
   ++step.answered;
@@ -267,7 +267,7 @@ void measure_scalar(const Regime& regime, const std::vector<Input>& inputs,
                     const std::vector<std::size_t>& steps, const AccuracyOptions& options,
                     AccuracyReport& report) {
   std::vector<Case<T>> cases;
-  std::vector<properties::Problem<T>> problems;
+  std::vector<oracle::Problem<T>> problems;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     Case<T> c{inputs[i].matrix.template cast<T>(), inputs[i].plane.template cast<T>(),
               inputs[i].convention, steps[i]};
@@ -281,7 +281,7 @@ void measure_scalar(const Regime& regime, const std::vector<Input>& inputs,
     std::vector<const Case<T>*> timed;
     for (std::size_t i = 0; i < cases.size(); ++i) {
       const Case<T>& c = cases[i];
-      const properties::Problem<T>& problem = problems[i];
+      const oracle::Problem<T>& problem = problems[i];
       if (method == Method::closed_form && !has_perspective_shape(c.matrix)) continue;
       if (problem.exact_status() != Status::ok) continue;
       timed.push_back(&c);
@@ -322,13 +322,13 @@ std::string measure_external(const Regime& regime, const std::vector<Input>& inp
                              const ExternalImplementation& impl, client::Program& program,
                              AccuracyReport& report) {
   std::vector<Case<T>> cases;
-  std::vector<properties::Problem<T>> problems;
+  std::vector<oracle::Problem<T>> problems;
   std::vector<std::string> requests;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     Case<T> c{inputs[i].matrix.template cast<T>(), inputs[i].plane.template cast<T>(),
               inputs[i].convention, steps[i]};
     if (!all_finite(c.matrix) || !all_finite(c.plane)) continue;
-    properties::Problem<T> problem(c.matrix, c.plane, c.convention);
+    oracle::Problem<T> problem(c.matrix, c.plane, c.convention);
     if (problem.exact_status() != Status::ok) continue;
     requests.push_back(protocol::request_line(c.matrix, c.plane, c.convention));
     problems.push_back(std::move(problem));
@@ -365,10 +365,10 @@ std::string measure_external(const Regime& regime, const std::vector<Input>& inp
              " is not an answer (" + answer.error() + ")";
     Errors& step = by_step[cases[i].step];
     // Only answers that pass the properties are profiled (a refusal is judged as any refusal).
-    properties::Checks checks;
-    checks.statuses = properties::StatusContract::any_refusal;
+    cases::Checks checks;
+    checks.statuses = cases::StatusContract::any_refusal;
     const Answer<T> outcome{answer->status, answer->projection};
-    if (properties::judge(problems[i], outcome, checks).violation()) {
+    if (oracle::judge(problems[i], outcome, checks).violation()) {
       ++all.violating;
       continue;
     }

@@ -22,7 +22,7 @@
 #define OBLIQUE_CXX_FLAGS ""
 #endif
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 using namespace oblique::mistakes;  // NOLINT: the diagnosis a report shows
 
@@ -662,4 +662,4 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   return md_path;
 }
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

@@ -43,8 +43,8 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
   for (const SceneConsumer consumer : scene.consumers) {
     ConsumerResult r;
     r.consumer = consumer;
-    const properties::Settle settle = [&r](const properties::ConsumerFinding& f,
-                                           const std::string& inputs, bool) {
+    const oracle::Settle settle = [&r](const oracle::ConsumerFinding& f, const std::string& inputs,
+                                       bool) {
       if (!f.judged) {
         ++r.left_out_why[f.detail];
         return;
@@ -58,7 +58,7 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
       }
     };
     std::mt19937_64 engine(kSampleSeed);
-    const properties::Pick pick = [&engine](int lo, int hi) {
+    const oracle::Pick pick = [&engine](int lo, int hi) {
       return std::uniform_int_distribution<int>(lo, hi - 1)(engine);
     };
     Consumers<T> only;
@@ -100,7 +100,7 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
         break;
     }
     for (int i = 0; i < rounds; ++i)
-      properties::consumer_round<T>(m, c, scene.convention, only, pick, settle);
+      oracle::consumer_round<T>(m, c, scene.convention, only, pick, settle);
     out.push_back(std::move(r));
   }
   return out;

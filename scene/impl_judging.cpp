@@ -32,23 +32,23 @@ void judge_answer_in(const Scene& scene, SurfaceCheck& pass, const std::string& 
   pass.impl_answer = line;
   pass.impl_findings.clear();
   auto protocol_error = [&](const std::string& why) {
-    properties::Finding f;
-    f.check = properties::Check::protocol;
-    f.shows = properties::Shows::program;
+    oracle::Finding f;
+    f.check = oracle::Check::protocol;
+    f.shows = oracle::Shows::program;
     f.message = why;
     pass.impl_findings.push_back(f);
   };
   const Expected<Answer<T>> answer = protocol::read_answer<T>(line);
   if (!answer) return protocol_error(answer.error());
   const Answer<T> outcome{answer->status, answer->projection};
-  const properties::Problem<T> problem(request_projection<T>(scene), request_plane<T>(pass),
-                                       scene.convention);
-  properties::Checks checks;
-  checks.statuses = properties::StatusContract::any_refusal;
+  const oracle::Problem<T> problem(request_projection<T>(scene), request_plane<T>(pass),
+                                   scene.convention);
+  cases::Checks checks;
+  checks.statuses = cases::StatusContract::any_refusal;
   checks.row3_accuracy = true;
   // As verify: the judgement stops at the first violation (every = true would go on to the
   // properties after a non-finite answer, whose exact arithmetic cannot take infinities).
-  pass.impl_findings = properties::judge(problem, outcome, checks).checks;
+  pass.impl_findings = oracle::judge(problem, outcome, checks).checks;
 }
 
 /// The likely cause of the wrong answers among the passes' (every answer judged is a case).
@@ -65,7 +65,7 @@ mistakes::Diagnosis diagnose_in(const Scene& scene, const std::vector<SurfaceChe
                                answer->status,
                                answer->projection,
                                false};
-    for (const properties::Finding& f : passes[i]->impl_findings) o.wrong = o.wrong || !f.holds;
+    for (const oracle::Finding& f : passes[i]->impl_findings) o.wrong = o.wrong || !f.holds;
     seen.push_back(o);
   }
   return mistakes::diagnose<T>(seen);

@@ -42,7 +42,7 @@ std::string consumer_line(const ConsumerResult& c) {
   if (c.consumer == SceneConsumer::cascades && c.depth_waste > 0)
     out += ", depth waste " + fixed2(c.depth_waste);
   out += ")";
-  if (c.violation) out += ": " + properties::describe(*c.violation);
+  if (c.violation) out += ": " + oracle::describe(*c.violation);
   return out;
 }
 
@@ -58,7 +58,7 @@ nlohmann::ordered_json consumers_json(const std::vector<ConsumerResult>& list) {
         {"worst_ratio", c.worst_ratio},
         {"depth_waste",
          c.consumer == SceneConsumer::cascades ? json(c.depth_waste) : json(nullptr)},
-        {"violation", c.violation ? json(properties::describe(*c.violation)) : json(nullptr)},
+        {"violation", c.violation ? json(oracle::describe(*c.violation)) : json(nullptr)},
         {"inputs", c.violation ? json(c.inputs) : json(nullptr)}};
   }
   return out;
@@ -71,8 +71,8 @@ std::string to_json(const SceneCheck& check) {
   json surfaces = json::array();
   for (const SurfaceCheck& s : check.surfaces) {
     json properties = json::object(), residuals = json::object();
-    for (const properties::Finding& p : s.properties) {
-      const std::string name(properties::check_name(p.check));
+    for (const oracle::Finding& p : s.properties) {
+      const std::string name(oracle::check_name(p.check));
       properties[name] = p.holds;
       residuals[name] = p.ratio ? json(*p.ratio) : json(nullptr);
     }
@@ -105,12 +105,12 @@ std::string to_json(const SceneCheck& check) {
       surfaces.back()["impl_consumers"] = consumers_json(s.impl_consumers);
     if (s.impl_answer) {
       json findings = json::array();
-      for (const properties::Finding& f : s.impl_findings)
-        findings.push_back({{"property", std::string(properties::check_name(f.check))},
+      for (const oracle::Finding& f : s.impl_findings)
+        findings.push_back({{"property", std::string(oracle::check_name(f.check))},
                             {"holds", f.holds},
-                            {"relation", properties::relation_text(f)},
-                            {"residual", properties::residual_text(f)},
-                            {"bound", properties::bound_text(f)}});
+                            {"relation", oracle::relation_text(f)},
+                            {"residual", oracle::residual_text(f)},
+                            {"bound", oracle::bound_text(f)}});
       surfaces.back()["impl"] = {
           {"answer", *s.impl_answer},
           {"precision", std::string(protocol::precision_name(check.impl_precision))},
@@ -126,7 +126,7 @@ std::string to_json(const SceneCheck& check) {
       {"unlisted_out_of_view", check.unlisted},
       {"surfaces", surfaces},
       {"impl_diagnosis", check.impl_diagnosis.ran
-                             ? json::parse(properties::diagnosis_json(check.impl_diagnosis))
+                             ? json::parse(oracle::diagnosis_json(check.impl_diagnosis))
                              : json(nullptr)}};
   return out.dump(-1, ' ', false, json::error_handler_t::replace);
 }
@@ -206,8 +206,8 @@ std::string to_text(const SceneCheck& check) {
       for (int j = 0; j < 4; ++j) out << (j ? ", " : "") << number((*s.projection)(i, j));
       out << "]\n";
     }
-    for (const properties::Finding& p : s.properties) {
-      out << "  " << (p.holds ? "ok   " : "FAIL ") << properties::check_name(p.check);
+    for (const oracle::Finding& p : s.properties) {
+      out << "  " << (p.holds ? "ok   " : "FAIL ") << oracle::check_name(p.check);
       if (p.ratio && *p.ratio > 0) out << "  (residual / bound " << number(*p.ratio) << ")";
       out << "\n";
     }
@@ -243,13 +243,13 @@ std::string to_text(const SceneCheck& check) {
     for (const SurfaceCheck& s : check.surfaces) {
       if (!s.impl_answer) continue;
       bool holds = true;
-      for (const properties::Finding& f : s.impl_findings) holds = holds && f.holds;
+      for (const oracle::Finding& f : s.impl_findings) holds = holds && f.holds;
       out << "  " << printable(s.name) << ": " << (holds ? "pass" : "FAIL") << "\n";
-      for (const properties::Finding& f : s.impl_findings) {
+      for (const oracle::Finding& f : s.impl_findings) {
         if (f.holds) continue;
-        out << "    FAIL " << properties::check_name(f.check) << ": "
-            << properties::relation_text(f) << "\n      " << printable(properties::residual_text(f))
-            << "\n      bound: " << printable(properties::bound_text(f)) << "\n";
+        out << "    FAIL " << oracle::check_name(f.check) << ": " << oracle::relation_text(f)
+            << "\n      " << printable(oracle::residual_text(f))
+            << "\n      bound: " << printable(oracle::bound_text(f)) << "\n";
       }
     }
     if (check.impl_diagnosis.ran)

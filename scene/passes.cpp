@@ -12,7 +12,7 @@
 namespace oblique::scene {
 
 bool SurfaceCheck::properties_hold() const {
-  for (const properties::Finding& p : properties) {
+  for (const oracle::Finding& p : properties) {
     if (!p.holds) return false;
   }
   return true;
@@ -20,7 +20,7 @@ bool SurfaceCheck::properties_hold() const {
 
 bool SurfaceCheck::passes() const {
   if (!properties_hold()) return false;
-  for (const properties::Finding& p : impl_findings) {
+  for (const oracle::Finding& p : impl_findings) {
     if (!p.holds) return false;
   }
   for (const auto* list : {&consumers, &impl_consumers}) {
@@ -86,13 +86,12 @@ std::string reason_for(Status status, SurfaceKind kind) {
 }
 
 /// Every property that applies to the pass, holding or not.
-std::vector<properties::Finding> judge(const Matrix4<double>& projection,
-                                       const Vector4<double>& plane, Convention convention,
-                                       const Matrix4<double>& result) {
-  const properties::Problem<double> problem(projection, plane, convention);
-  properties::Checks checks;
+std::vector<oracle::Finding> judge(const Matrix4<double>& projection, const Vector4<double>& plane,
+                                   Convention convention, const Matrix4<double>& result) {
+  const oracle::Problem<double> problem(projection, plane, convention);
+  cases::Checks checks;
   checks.every = true;
-  return properties::judge(problem, Answer<double>{Status::ok, result}, checks).checks;
+  return oracle::judge(problem, Answer<double>{Status::ok, result}, checks).checks;
 }
 
 }  // namespace
@@ -253,8 +252,7 @@ class Checker {
         s.depth = depth_precision(scene_.camera.projection, result.projection, s.plane_in_camera,
                                   scene_.convention, scene_.depth_buffer);
         if (!scene_.consumers.empty())
-          s.consumers =
-              judge_consumers<double>(scene_, s, properties::reference_consumers<double>());
+          s.consumers = judge_consumers<double>(scene_, s, oracle::reference_consumers<double>());
       }
       // Beyond the depth limit only the passes that would have been rendered are listed.
       if (level > scene_.max_depth && s.reason.rfind("depth limit", 0) != 0) continue;

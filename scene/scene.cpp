@@ -119,7 +119,7 @@ ParsedScene parse_scene(std::string_view text_in) {
     }
     if (has(root, "mirror_design")) {
       const std::string design = text(root, "", "mirror_design");
-      const auto parsed_design = properties::parse_mirror_design(design);
+      const auto parsed_design = oracle::parse_mirror_design(design);
       if (!parsed_design)
         fail("mirror_design",
              "unknown mirror design \"" + design + "\" (reflected_view or proper_camera)");

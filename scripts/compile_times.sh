@@ -93,8 +93,8 @@ cat > "$work/project/judges.cpp" <<'EOF'
 #include <oblique/oracle/checker.h>
 bool holds(const oblique::Matrix4<float>& m, const oblique::Vector4<float>& plane,
            const oblique::Matrix4<float>& mine) {
-  const oblique::properties::Checker<float> checker(m, plane, oblique::Convention::gl);
-  return checker.judge(oblique::properties::Outcome<float>{oblique::Status::ok, mine}).holds();
+  const oblique::oracle::Checker<float> checker(m, plane, oblique::Convention::gl);
+  return checker.judge(oblique::Answer<float>{oblique::Status::ok, mine}).holds();
 }
 EOF
 

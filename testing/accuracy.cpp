@@ -41,7 +41,7 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& given,
                       std::string(cases::place_name(c.place)),
                       protocol::request_line(c.matrix, c.plane, c.convention)});
     const Answer<T> outcome = impl.run(c.matrix, c.plane, c.convention);
-    if (const properties::Finding* v = judge(problem, outcome, checks).violation()) {
+    if (const oracle::Finding* v = judge(problem, outcome, checks).violation()) {
       if (++violating == 1)
         first_violation = std::string(check_name(v->check)) + " on " + inputs.back().request;
       continue;
@@ -71,7 +71,7 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& given,
     return;
   }
   report::ProfileReportOptions o;
-  const properties::ReportContext context = report_context("");
+  const oracle::ReportContext context = report_context("");
   o.dir = settings.directory.empty()
               ? std::filesystem::path(context.directory) / (context.test_id + ".accuracy")
               : std::filesystem::path(settings.directory);

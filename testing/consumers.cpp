@@ -16,35 +16,35 @@ namespace {
 
 /// Fails the current case with the finding, and keeps the report the run writes if it is the
 /// last (most shrunk) failure.
-void fail(const std::string& consumer, const properties::ConsumerFinding& finding,
+void fail(const std::string& consumer, const oracle::ConsumerFinding& finding,
           const std::string& inputs,
           std::function<std::string(report::ReportFiles&, const std::string&)> pictures) {
-  tally().markdown_failure = properties::consumer_report_markdown(consumer, finding, inputs);
+  tally().markdown_failure = oracle::consumer_report_markdown(consumer, finding, inputs);
   tally().markdown_pictures = std::move(pictures);
   tally().failure.reset();
-  RC_FAIL(consumer + " violates " + properties::describe(finding) + "\n" + inputs);
+  RC_FAIL(consumer + " violates " + oracle::describe(finding) + "\n" + inputs);
 }
 
 /// Counts the finding; fails the case when it is violated (with the pictures of the case when it
 /// is an oblique matrix's: M's volume, C, the core's M' and the finding's points).
 template <class T>
-void judged(const std::string& consumer, const properties::ConsumerFinding& finding,
+void judged(const std::string& consumer, const oracle::ConsumerFinding& finding,
             const std::string& inputs, const cases::Case<T>* c) {
   if (!finding.judged) {
     count_left_out(c ? std::string(cases::family_name(c->family)) : consumer, finding.detail);
     return;
   }
-  ++tally().applied[std::string(properties::consumer_check_name(finding.check))];
+  ++tally().applied[std::string(oracle::consumer_check_name(finding.check))];
   if (finding.holds) return;
   std::function<std::string(report::ReportFiles&, const std::string&)> pictures;
   if (c) {
     pictures = [c = *c, finding, consumer](report::ReportFiles& files, const std::string& stem) {
-      return properties::stage_consumer_pictures(files, stem, c.matrix, c.plane, c.convention,
-                                                 finding, consumer);
+      return oracle::stage_consumer_pictures(files, stem, c.matrix, c.plane, c.convention, finding,
+                                             consumer);
     };
   } else if (!finding.drawn.empty()) {
     pictures = [finding, consumer](report::ReportFiles& files, const std::string& stem) {
-      return properties::stage_drawn_pictures(files, stem, finding, consumer);
+      return oracle::stage_drawn_pictures(files, stem, finding, consumer);
     };
   }
   fail(consumer, finding, inputs, std::move(pictures));
@@ -53,17 +53,16 @@ void judged(const std::string& consumer, const properties::ConsumerFinding& find
 /// One property's run: a case of the contract (one with an answer, for the functions that take
 /// an oblique matrix), one consumer round with only `only` given, and the findings of `check`.
 template <class T>
-void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck check,
-               Contract contract) {
+void run_check(const oblique::Consumers<T>& only, oracle::ConsumerCheck check, Contract contract) {
   const bool needs_oblique =
       only.view_position || only.linear_depth || only.culling_planes || only.corners;
-  const std::string property(properties::consumer_check_name(check));
+  const std::string property(oracle::consumer_check_name(check));
   if (needs_oblique) {
     // The families the property has something to judge on (not_applicable()), said once.
     std::vector<cases::Family> applicable;
     std::string left;
     for (cases::Family f : contract.families) {
-      const std::string_view why = properties::not_applicable(check, f);
+      const std::string_view why = oracle::not_applicable(check, f);
       if (why.empty()) {
         applicable.push_back(f);
       } else {
@@ -95,9 +94,9 @@ void run_check(const oblique::Consumers<T>& only, properties::ConsumerCheck chec
         }
         ++tally().implementations[only.name];
         bool counted = false;  // a round's first judged finding counts its case judged
-        properties::consumer_round<T>(
+        oracle::consumer_round<T>(
             c.matrix, c.plane, c.convention, only, cases::rc_pick,
-            [&](const properties::ConsumerFinding& f, const std::string& inputs, bool oblique) {
+            [&](const oracle::ConsumerFinding& f, const std::string& inputs, bool oblique) {
               if (f.check != check) return;
               if (f.judged && needs_oblique && !counted) {
                 count_judged(c);
@@ -124,9 +123,9 @@ inline namespace OBLIQUE_EIGEN_LAYOUT {
 template <class T>
 void check_consumers(const oblique::Consumers<T>& consumers, const Contract& given) {
   const Contract contract =
-      resolved(given, cases::every_convention(), properties::StatusContract::exact, false);
+      resolved(given, cases::every_convention(), cases::StatusContract::exact, false);
   bool any = false;
-  using Check = properties::ConsumerCheck;
+  using Check = oracle::ConsumerCheck;
   auto with = [&](auto member, std::initializer_list<Check> checks) {
     if (!(consumers.*member)) return;
     any = true;

@@ -52,9 +52,8 @@ std::string raster_markdown(const cases::Case<T>& c, const Implementation<T>& im
       std::string(convention_name(c.convention)) + "\n- depth buffer " +
       std::string(depth_buffer_name(buffer)) + ", frame " + std::to_string(size) + " x " +
       std::to_string(size) + ", seed " + std::to_string(seed) +
-      "\n- M: " + properties::numbers_text(c.matrix) +
-      "\n- C: " + properties::numbers_text(c.plane) +
-      "\n- the answer: " + properties::numbers_text(answer) + "\n";
+      "\n- M: " + oracle::numbers_text(c.matrix) + "\n- C: " + oracle::numbers_text(c.plane) +
+      "\n- the answer: " + oracle::numbers_text(answer) + "\n";
   return md;
 }
 

@@ -69,9 +69,9 @@ std::string current_test_id(char separator) {
   return std::string(info->test_suite_name()) + separator + info->name();
 }
 
-properties::ReportContext report_context(const std::string& property) {
+oracle::ReportContext report_context(const std::string& property) {
   const Settings& s = settings();
-  properties::ReportContext context;
+  oracle::ReportContext context;
   const char* dir = std::getenv("OBLIQUE_REPORT_DIR");
   context.directory = dir && *dir                   ? std::string(dir)
                       : !s.report_directory.empty() ? s.report_directory
@@ -106,7 +106,7 @@ namespace {
 /// After a passing run of a property: the report an earlier run wrote for it (every file named
 /// STEM.*) is moved, never deleted, to DIR/earlier/<UTC time>-<pid>/, so the reports folder shows
 /// what the last runs found. A move that fails is said and the files stay.
-void move_earlier_reports(const properties::ReportContext& context) {
+void move_earlier_reports(const oracle::ReportContext& context) {
   namespace fs = std::filesystem;
   if (context.stem.empty()) return;
   std::error_code error;
@@ -131,7 +131,7 @@ void move_earlier_reports(const properties::ReportContext& context) {
 }  // namespace
 
 std::string write_markdown_report(const std::string& markdown,
-                                  const properties::ReportContext& context) {
+                                  const oracle::ReportContext& context) {
   report::ReportFiles files(context.directory);
   const std::string stem =
       files.reserve_stem(context.stem.empty() ? context.test_id : context.stem, {".md"});
@@ -158,7 +158,7 @@ bool left_out_by_reproduce(const std::string& id) {
 void run(const std::function<void()>& testable, Coverage coverage, const std::string& property,
          const Contract& given) {
   const Contract require =
-      resolved(given, cases::every_convention(), properties::StatusContract::exact, false);
+      resolved(given, cases::every_convention(), cases::StatusContract::exact, false);
   tally() = Tally{};
   const std::string id = run_id(property);
   tally().property = property;
@@ -361,7 +361,7 @@ void check_properties(const Implementation<T>& impl, const Contract& given) {
     }
     Checks checks;
     checks.properties = {p};
-    judge_valid(generate, checks, coverage, std::string(properties::property_name(p)));
+    judge_valid(generate, checks, coverage, std::string(cases::property_name(p)));
   }
   if (*contract.row3_accuracy) {
     Checks checks;  // row 3 within the bound of careful arithmetic, and no property

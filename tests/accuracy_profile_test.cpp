@@ -31,7 +31,7 @@ Case tilted(Convention convention) {
 TEST(AccuracyProfile, theCoresAccurateAnswerIsWithinAnUlpOfItsRow) {
   for (const Convention convention : all_conventions) {
     const Case k = tilted(convention);
-    const properties::Problem<double> problem(k.m, k.c, convention);
+    const oracle::Problem<double> problem(k.m, k.c, convention);
     const auto answer = apply<double>(k.m, k.c, convention, Method::accurate);
     ASSERT_TRUE(answer.ok());
     const report::ProfiledAnswer a = report::profile_answer(problem, answer.projection);
@@ -42,7 +42,7 @@ TEST(AccuracyProfile, theCoresAccurateAnswerIsWithinAnUlpOfItsRow) {
 
 TEST(AccuracyProfile, ulpsAreThoseOfTheRowsLargestEntry) {
   const Case k = tilted(Convention::gl);
-  const properties::Problem<double> problem(k.m, k.c, k.convention);
+  const oracle::Problem<double> problem(k.m, k.c, k.convention);
   auto answer = apply<double>(k.m, k.c, k.convention, Method::accurate).projection;
   // Correctly rounded first (the accurate method is within an ulp; make it exact).
   const exact::Vec row = problem.exact_row3();

@@ -1,5 +1,5 @@
 // The accurate method (accurate/accurate.h) on its own claims: every entry of M'_3 the correctly
-// rounded exact answer (rational oracle, properties::Problem) where its perspective fast path
+// rounded exact answer (rational oracle, oracle::Problem) where its perspective fast path
 // certifies it, within tolerance::kAccurateUlps everywhere; the fast path and the refining path
 // give the same matrix; the closed form and the general method hand it what they cannot settle.
 #include "oblique/detail/accurate/accurate.h"
@@ -80,7 +80,7 @@ TYPED_TEST(AccurateMethod, fastPathIsCorrectlyRounded) {
       for (std::size_t j = 0; j < cs.size(); ++j) {
         const Matrix4<T>& m = matrices[i];
         const Vector4<T>& c = cs[j];
-        const properties::Problem<T> problem(m, c, convention);
+        const oracle::Problem<T> problem(m, c, convention);
         if (problem.exact_status() != Status::ok) continue;
         const Vector4<W> c_w = c.template cast<W>();
         const ScaledPlane<W> scaled = scale_plane(c_w, plane_scale(c));
@@ -143,7 +143,7 @@ TYPED_TEST(AccurateMethod, generalMatricesWithinPromisedUlps) {
     const auto cs = planes<T>();
     for (std::size_t i = 0; i < matrices.size(); ++i) {
       for (std::size_t j = 0; j < cs.size(); ++j) {
-        const properties::Problem<T> problem(matrices[i], cs[j], convention);
+        const oracle::Problem<T> problem(matrices[i], cs[j], convention);
         const ObliqueResult<T> r = accurate_method(matrices[i], cs[j], convention, false);
         ASSERT_EQ(r.status, problem.exact_status()) << describe(convention, int(i), int(j));
         if (!r.ok()) continue;
@@ -206,7 +206,7 @@ std::vector<SmallCornerComponents<T>> small_corner_component_cases(int count) {
     // ... on a small component of Q that M11 does not make smaller still: y, z or w.
     const int big = 1 + (s.j + pick(0, 1)) % 3;
     s.c(big) = std::ldexp(s.c(big), pick(p / 4, 2 * p - 16));
-    const properties::Problem<T> problem(s.m, s.c, s.convention);
+    const oracle::Problem<T> problem(s.m, s.c, s.convention);
     if (problem.exact_status() != Status::ok) continue;
     // Of the class: the entry cancels by 2^20 or more, or C . Q rests on the small components.
     const exact::Rational entry = exact::abs(problem.exact_row3()[s.j]);
@@ -224,7 +224,7 @@ template <class T>
 int expect_accurate_answers(const std::vector<SmallCornerComponents<T>>& cases) {
   int answered = 0;
   for (const auto& s : cases) {
-    const properties::Problem<T> problem(s.m, s.c, s.convention);
+    const oracle::Problem<T> problem(s.m, s.c, s.convention);
     const ObliqueResult<T> r = apply<T>(s.m, s.c, s.convention, Method::accurate);
     if (!r.ok()) {
       const std::vector<Status> acceptable = problem.acceptable_statuses();
@@ -277,7 +277,7 @@ std::vector<SmallCornerComponents<T>> stalled_transposed_solve_cases(int count) 
     T backward_error = T(0);
     solver.solve_transposed_unscaled(s.c, &backward_error);
     if (!(backward_error > detail::backward_error_limit<T>())) continue;
-    if (properties::Problem<T>(s.m, s.c, s.convention).exact_status() != Status::ok) continue;
+    if (oracle::Problem<T>(s.m, s.c, s.convention).exact_status() != Status::ok) continue;
     out.push_back(s);
   }
   return out;
@@ -297,7 +297,7 @@ TYPED_TEST(AccurateMethod, stiffPlanesAreHandedToItAndSettled) {
   const Vector4<T> c(tiny, T(0.25), T(-1), T(-0.5));
   for (Convention convention : all_conventions) {
     const Matrix4<T> m = perspective<T>(T(kFovy), T(1.5), T(0.1), T(100), convention);
-    const properties::Problem<T> problem(m, c, convention);
+    const oracle::Problem<T> problem(m, c, convention);
     ASSERT_EQ(problem.exact_status(), Status::ok);
     for (Method method : {Method::general, Method::accurate}) {
       const ObliqueResult<T> r = apply<T>(m, c, convention, method);

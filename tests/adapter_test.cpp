@@ -10,7 +10,7 @@
 namespace oblique {
 namespace {
 
-using properties::StatusContract;
+using cases::StatusContract;
 
 template <class T>
 Matrix4<T> frustum_matrix() {
@@ -31,7 +31,7 @@ Status core_in_place(T* m, const T* c, Layout layout) {
 }
 
 template <class T>
-void expect_same_as_core(const properties::Implementation<T>& impl, bool refusal_too = true) {
+void expect_same_as_core(const oracle::Implementation<T>& impl, bool refusal_too = true) {
   const Matrix4<T> m = frustum_matrix<T>();
   const auto core = apply<T>(m, plane_in_view<T>(), Convention::gl);
   ASSERT_TRUE(core.ok());

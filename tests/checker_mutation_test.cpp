@@ -14,7 +14,7 @@
 #include "oblique/oracle/judge.h"
 #include "oblique/projection.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 namespace {
 
 using cases::Case;
@@ -98,4 +98,4 @@ TYPED_TEST(CheckerMutationTyped, eachPropertyAloneRejectsItsClass) {
 }
 
 }  // namespace
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

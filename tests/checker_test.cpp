@@ -18,7 +18,7 @@
 #include "oblique/oracle/judge.h"
 #include "oblique/projection.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 namespace {
 
 void expect_same(const Judgement& got, const Judgement& want, const std::string& where) {
@@ -89,4 +89,4 @@ TEST(Checker, namesTheFirstViolation) {
 }
 
 }  // namespace
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

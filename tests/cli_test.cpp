@@ -141,7 +141,7 @@ TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
   int ok = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Case& k = cases[i];
-    const properties::Problem<double> problem(k.m, k.c, k.convention);
+    const oracle::Problem<double> problem(k.m, k.c, k.convention);
     const auto answer = protocol::parse_answer(lines[i]);
     const std::string what =
         k.family + " " + std::string(convention_name(k.convention)) + ": " + lines[i];
@@ -154,8 +154,8 @@ TEST(Cli, answersGeneratedCasesOfEveryFamilyAndConvention) {
     for (const auto& v : verdicts.items) {
       EXPECT_TRUE(!v.applies || v.holds)
           << what << "\n"
-          << properties::property_name(v.property()) << " " << properties::residual_text(v)
-          << " vs " << properties::bound_text(v);
+          << cases::property_name(v.property()) << " " << oracle::residual_text(v) << " vs "
+          << oracle::bound_text(v);
     }
     const auto closeness = problem.compare_row3(result);
     EXPECT_TRUE(closeness.within) << what << "\nrow 3 at " << closeness.ratio << " of its bound";
@@ -170,7 +170,7 @@ TEST(Cli, accurateMethodAnswersTheCorrectlyRoundedMatrix) {
   int ok = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Case& k = cases[i];
-    const properties::Problem<double> problem(k.m, k.c, k.convention);
+    const oracle::Problem<double> problem(k.m, k.c, k.convention);
     const auto answer = protocol::parse_answer(lines[i]);
     ASSERT_TRUE(answer) << answer.error();
     if (problem.exact_status() != Status::ok || answer->status != "ok") continue;

@@ -12,7 +12,7 @@
 namespace oblique::client {
 namespace {
 
-using properties::ConsumerAsk;
+using oracle::ConsumerAsk;
 using protocol::ConsumerKind;
 using protocol::ConsumerRequest;
 

@@ -18,7 +18,7 @@
 #include "oblique/references/frustum_planes.h"
 #include "oblique/references/kept_region.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 namespace {
 
 template <class T>
@@ -126,4 +126,4 @@ TYPED_TEST(FilteredConsumers, cornersJudgeAgreesWithTheExactOne) {
 }
 
 }  // namespace
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

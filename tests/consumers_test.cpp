@@ -24,8 +24,8 @@ using oblique::DepthBuffer;
 using oblique::Matrix4;
 using oblique::Vector3;
 using oblique::Vector4;
-using oblique::properties::ConsumerCheck;
-using oblique::properties::ConsumerFinding;
+using oblique::oracle::ConsumerCheck;
+using oblique::oracle::ConsumerFinding;
 
 const Convention kConventions[] = {Convention::gl, Convention::zero_one, Convention::reversed_z};
 
@@ -93,16 +93,16 @@ TEST(DepthReconstruction, rightAnswersHoldAndTheOriginalMatrixIsCaught) {
       const Matrix4<double> m = perspective(k);
       const Vector4<double> c = tilted_plane();
       const Matrix4<double> mo = oblique_of(m, c, k);
-      const auto sample = oblique::properties::depth_sample(mo, m, k, buffer, kept_centre(m, c, k));
+      const auto sample = oblique::oracle::depth_sample(mo, m, k, buffer, kept_centre(m, c, k));
       ASSERT_TRUE(sample.has_value());
       const Vector3<double> right =
           oblique::view_position(mo, sample->ndc_x, sample->ndc_y, sample->depth, k);
-      EXPECT_TRUE(oblique::properties::judge_view_position(*sample, right).holds);
-      EXPECT_TRUE(oblique::properties::judge_view_position(*sample, nudged(right, 4)).holds);
+      EXPECT_TRUE(oblique::oracle::judge_view_position(*sample, right).holds);
+      EXPECT_TRUE(oblique::oracle::judge_view_position(*sample, nudged(right, 4)).holds);
       // The same depth read through M instead of M'.
       const Vector3<double> wrong =
           oblique::view_position(m, sample->ndc_x, sample->ndc_y, sample->depth, k);
-      const ConsumerFinding f = oblique::properties::judge_view_position(*sample, wrong);
+      const ConsumerFinding f = oblique::oracle::judge_view_position(*sample, wrong);
       EXPECT_TRUE(f.judged);
       EXPECT_FALSE(f.holds) << describe(f);
     }
@@ -118,10 +118,10 @@ TEST(DepthReconstruction, textbookLinearisationOnAnObliqueMatrixIsCaughtWithItsE
   const Vector4<double> c = tilted_plane();
   const Matrix4<double> mo = oblique_of(m, c, k);
   const Vector4<double> point = kept_centre(m, c, k);
-  const auto sample = oblique::properties::depth_sample(mo, m, k, DepthBuffer::fixed24, point);
+  const auto sample = oblique::oracle::depth_sample(mo, m, k, DepthBuffer::fixed24, point);
   ASSERT_TRUE(sample.has_value());
   const double textbook = n * f / (f - sample->depth * (f - n));
-  const ConsumerFinding caught = oblique::properties::judge_linear_depth(*sample, textbook);
+  const ConsumerFinding caught = oblique::oracle::judge_linear_depth(*sample, textbook);
   EXPECT_FALSE(caught.holds) << describe(caught);
   const double true_depth = -point.z();
   const double relative_error = std::fabs(textbook - true_depth) / true_depth;
@@ -129,10 +129,10 @@ TEST(DepthReconstruction, textbookLinearisationOnAnObliqueMatrixIsCaughtWithItsE
   std::cout << "textbook linearisation on M': " << textbook << " for a point at depth "
             << true_depth << " (" << 100 * relative_error << "% off; " << describe(caught) << ")\n";
   // The same formula on the unmodified matrix's depth is right: the property accepts it there.
-  const auto plain = oblique::properties::depth_sample(m, m, k, DepthBuffer::fixed24, point);
+  const auto plain = oblique::oracle::depth_sample(m, m, k, DepthBuffer::fixed24, point);
   ASSERT_TRUE(plain.has_value());
   EXPECT_TRUE(
-      oblique::properties::judge_linear_depth(*plain, n * f / (f - plain->depth * (f - n))).holds);
+      oblique::oracle::judge_linear_depth(*plain, n * f / (f - plain->depth * (f - n))).holds);
 }
 
 // A camera whose projection turns its axis off z (the rotated family) has no linear depth along
@@ -147,11 +147,11 @@ TEST(DepthReconstruction, linearDepthIsNotJudgedOffTheZAxis) {
       oblique::plane_in_camera<double>(turn.transpose(), tilted_plane());  // turn^T C
   const Matrix4<double> mo = oblique_of(m, c, k);
   const auto sample =
-      oblique::properties::depth_sample(mo, m, k, DepthBuffer::float32, kept_centre(m, c, k));
+      oblique::oracle::depth_sample(mo, m, k, DepthBuffer::float32, kept_centre(m, c, k));
   ASSERT_TRUE(sample.has_value());
-  EXPECT_FALSE(oblique::properties::judge_linear_depth(*sample, 1.0).judged);
+  EXPECT_FALSE(oblique::oracle::judge_linear_depth(*sample, 1.0).judged);
   EXPECT_TRUE(
-      oblique::properties::judge_view_position(
+      oblique::oracle::judge_view_position(
           *sample, oblique::view_position(mo, sample->ndc_x, sample->ndc_y, sample->depth, k))
           .holds);
 }
@@ -171,10 +171,10 @@ TEST(DepthReconstruction, aPointFloatCannotPlaceIsJudgedByItsRay) {
   ASSERT_EQ(result.status, oblique::Status::ok);
   const Matrix4<float>& mo = result.projection;
   const Vector4<float> point(-136.18764f, 96.84452f, -24.211132f, 1.0f);
-  const auto sample = oblique::properties::depth_sample(mo, m, k, DepthBuffer::fixed24, point);
+  const auto sample = oblique::oracle::depth_sample(mo, m, k, DepthBuffer::fixed24, point);
   ASSERT_TRUE(sample.has_value());
   auto judge = [&](const Vector3<float>& answer) {
-    return oblique::properties::judge_view_position(*sample, answer);
+    return oblique::oracle::judge_view_position(*sample, answer);
   };
   const float inf = std::numeric_limits<float>::infinity();
   const ConsumerFinding at_infinity = judge(Vector3<float>(inf, inf, inf));
@@ -195,8 +195,8 @@ TEST(DepthReconstruction, aPointFloatCannotPlaceIsJudgedByItsRay) {
     const ConsumerFinding f = judge(off);
     EXPECT_TRUE(f.judged && !f.holds) << describe(f);
   }
-  EXPECT_TRUE(oblique::properties::judge_linear_depth(*sample, inf).holds);
-  EXPECT_TRUE(oblique::properties::judge_linear_depth(*sample, -point.z()).holds);
+  EXPECT_TRUE(oblique::oracle::judge_linear_depth(*sample, inf).holds);
+  EXPECT_TRUE(oblique::oracle::judge_linear_depth(*sample, -point.z()).holds);
 }
 
 // Where float places the point, an infinity is not one of the answers it can give.
@@ -206,15 +206,15 @@ TEST(DepthReconstruction, infinityIsViolatedWhereFloatPlacesThePoint) {
     const Vector4<float> c = tilted_plane().cast<float>();
     const auto result = oblique::apply<float>(m, c, k);
     ASSERT_EQ(result.status, oblique::Status::ok);
-    const auto sample = oblique::properties::depth_sample(
+    const auto sample = oblique::oracle::depth_sample(
         result.projection, m, k, DepthBuffer::float32,
         Vector4<float>(kept_centre(perspective(k), tilted_plane(), k).cast<float>()));
     ASSERT_TRUE(sample.has_value());
     const float inf = std::numeric_limits<float>::infinity();
     const ConsumerFinding f =
-        oblique::properties::judge_view_position(*sample, Vector3<float>(inf, inf, inf));
+        oblique::oracle::judge_view_position(*sample, Vector3<float>(inf, inf, inf));
     EXPECT_TRUE(f.judged && !f.holds) << describe(f);
-    const ConsumerFinding right = oblique::properties::judge_view_position(
+    const ConsumerFinding right = oblique::oracle::judge_view_position(
         *sample,
         oblique::view_position(result.projection, sample->ndc_x, sample->ndc_y, sample->depth, k));
     EXPECT_TRUE(right.judged && right.holds) << describe(right);
@@ -227,14 +227,14 @@ TEST(CullingPlanes, rightPlanesHoldInEveryConvention) {
     const Vector4<double> c = tilted_plane();
     const Matrix4<double> mo = oblique_of(m, c, k);
     const auto findings =
-        oblique::properties::judge_culling_planes(m, c, k, mo, oblique::frustum_planes(mo, k));
+        oblique::oracle::judge_culling_planes(m, c, k, mo, oblique::frustum_planes(mo, k));
     for (const auto& f : findings) EXPECT_TRUE(f.judged && f.holds) << describe(f);
     // Normalised planes are the same half-spaces.
     auto planes = oblique::frustum_planes(mo, k);
     for (Vector4<double>* p : {&planes.left, &planes.right, &planes.bottom, &planes.top,
                                &planes.near_plane, &planes.far_plane})
       *p /= p->head<3>().norm();
-    for (const auto& f : oblique::properties::judge_culling_planes(m, c, k, mo, planes))
+    for (const auto& f : oblique::oracle::judge_culling_planes(m, c, k, mo, planes))
       EXPECT_TRUE(f.holds) << describe(f);
   }
 }
@@ -250,7 +250,7 @@ TEST(CullingPlanes, aVolumeWithCornersBehindTheEyeIsNotJudged) {
   const Vector4<float> c(0, 0, -1, -1.1771363f);
   const auto result = oblique::apply<float>(m, c, Convention::gl);
   ASSERT_EQ(result.status, oblique::Status::ok);
-  const auto findings = oblique::properties::judge_culling_planes(
+  const auto findings = oblique::oracle::judge_culling_planes(
       m, c, Convention::gl, result.projection,
       oblique::frustum_planes(result.projection, Convention::gl));
   EXPECT_FALSE(find(findings, ConsumerCheck::culling_keeps_visible).judged);
@@ -265,7 +265,7 @@ TEST(CullingPlanes, nearIsCAloneRejectsGlRowsOnZeroOneAndReversedZ) {
     const Matrix4<double> mo = oblique_of(m, c, k);
     auto planes = oblique::frustum_planes(mo, k);
     planes.near_plane = oblique::near_plane(mo, Convention::gl);
-    const auto findings = oblique::properties::judge_culling_planes(m, c, k, mo, planes);
+    const auto findings = oblique::oracle::judge_culling_planes(m, c, k, mo, planes);
     EXPECT_FALSE(find(findings, ConsumerCheck::culling_near_is_c).holds);
     EXPECT_TRUE(find(findings, ConsumerCheck::culling_keeps_visible).holds)
         << describe(find(findings, ConsumerCheck::culling_keeps_visible));
@@ -281,7 +281,7 @@ TEST(CullingPlanes, keepsVisibleAloneRejectsAFarPlaneThatCullsTheKeptRegion) {
     // The far plane of the unmodified matrix moved in by a tenth: it cuts the kept region.
     planes.far_plane = oblique::far_plane(m, k);
     planes.far_plane.w() *= 0.9;
-    const auto findings = oblique::properties::judge_culling_planes(m, c, k, mo, planes);
+    const auto findings = oblique::oracle::judge_culling_planes(m, c, k, mo, planes);
     EXPECT_FALSE(find(findings, ConsumerCheck::culling_keeps_visible).holds) << convention_name(k);
     EXPECT_TRUE(find(findings, ConsumerCheck::culling_near_is_c).holds);
   }
@@ -301,7 +301,7 @@ TEST(CullingPlanes, nonFinitePlanesAreJudgedByWhatTheyCullNotACrash) {
     for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
       auto planes = oblique::frustum_planes(mo, k);
       planes.near_plane(1) = bad;  // the kept region has vertices with y < 0 and y > 0
-      const auto near_only = oblique::properties::judge_culling_planes(m, c, k, mo, planes);
+      const auto near_only = oblique::oracle::judge_culling_planes(m, c, k, mo, planes);
       EXPECT_FALSE(find(near_only, ConsumerCheck::culling_near_is_c).holds);
       const ConsumerFinding keeps = find(near_only, ConsumerCheck::culling_keeps_visible);
       EXPECT_TRUE(keeps.judged);
@@ -309,7 +309,7 @@ TEST(CullingPlanes, nonFinitePlanesAreJudgedByWhatTheyCullNotACrash) {
       for (Vector4<double>* p :
            {&planes.left, &planes.right, &planes.bottom, &planes.top, &planes.far_plane})
         p->fill(bad);
-      for (const auto& f : oblique::properties::judge_culling_planes(m, c, k, mo, planes)) {
+      for (const auto& f : oblique::oracle::judge_culling_planes(m, c, k, mo, planes)) {
         EXPECT_TRUE(f.judged) << describe(f);
         EXPECT_EQ(f.holds, f.check == ConsumerCheck::culling_keeps_visible && std::isnan(bad))
             << describe(f);
@@ -329,9 +329,8 @@ TEST(CullingPlanes, aFarPlaneAtInfinityThatCullsNothingHolds) {
     for (const double w : {HUGE_VAL, std::nan(""), -HUGE_VAL}) {
       auto planes = oblique::frustum_planes(mo, k);
       planes.far_plane = Vector4<double>(0, 0, 0, w);
-      const ConsumerFinding keeps =
-          find(oblique::properties::judge_culling_planes(m, c, k, mo, planes),
-               ConsumerCheck::culling_keeps_visible);
+      const ConsumerFinding keeps = find(oblique::oracle::judge_culling_planes(m, c, k, mo, planes),
+                                         ConsumerCheck::culling_keeps_visible);
       EXPECT_TRUE(keeps.judged) << describe(keeps);
       EXPECT_EQ(keeps.holds, !(w < 0)) << convention_name(k) << " " << describe(keeps);
     }
@@ -382,46 +381,46 @@ TEST(PassCamera, rightPlaneHoldsAndEachPropertyAloneRejectsItsMistake) {
   const Vector4<double> right = oblique::plane_in_camera(p.pass_view, p.plane);
   EXPECT_LT(right.w(), 0) << "the mirror's camera is behind its plane";
   for (const auto& f :
-       oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front, right))
+       oblique::oracle::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front, right))
     EXPECT_TRUE(f.holds) << describe(f);
   const Vector4<double> unit = right / right.head<3>().norm();
   for (const auto& f :
-       oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front, unit))
+       oblique::oracle::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front, unit))
     EXPECT_TRUE(f.holds) << describe(f);
   // Wrong side: on the surface, but keeping the mirror's back.
-  auto findings = oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front,
-                                                          Vector4<double>(-right));
+  auto findings = oblique::oracle::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front,
+                                                      Vector4<double>(-right));
   EXPECT_TRUE(find(findings, ConsumerCheck::plane_on_surface).holds);
   EXPECT_FALSE(find(findings, ConsumerCheck::plane_kept_side).holds);
   // Wrong space: the normal rotated, the distance kept from world space; on the right side.
   Vector4<double> no_translation;
   no_translation << p.pass_view.topLeftCorner<3, 3>() * p.plane.head<3>(), p.plane.w();
-  findings = oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front,
-                                                     no_translation);
+  findings = oblique::oracle::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front,
+                                                 no_translation);
   EXPECT_FALSE(find(findings, ConsumerCheck::plane_on_surface).holds);
   // The main view's plane (the reflection forgotten): points of the mirror still land on it, but
   // it keeps the wrong side.
-  findings = oblique::properties::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front,
-                                                     oblique::plane_in_camera(p.view, p.plane));
+  findings = oblique::oracle::judge_camera_plane(p.pass_view, p.plane, p.on_plane, p.front,
+                                                 oblique::plane_in_camera(p.view, p.plane));
   EXPECT_TRUE(find(findings, ConsumerCheck::plane_on_surface).holds);
   EXPECT_FALSE(find(findings, ConsumerCheck::plane_kept_side).holds);
 }
 
 TEST(PassCamera, mirrorAndPortalViews) {
   const PassCase p = mirror_case();
-  EXPECT_TRUE(oblique::properties::judge_mirror_view(p.view, p.plane, p.pass_view).holds);
+  EXPECT_TRUE(oblique::oracle::judge_mirror_view(p.view, p.plane, p.pass_view).holds);
   EXPECT_LT(p.pass_view.block(0, 0, 3, 3).determinant(), 0) << "a mirror flips the winding";
   // The main view: not mirrored.
-  EXPECT_FALSE(oblique::properties::judge_mirror_view(p.view, p.plane, p.view).holds);
+  EXPECT_FALSE(oblique::oracle::judge_mirror_view(p.view, p.plane, p.view).holds);
   // A portal: the map carries the linked portal's front to behind this one.
   Matrix4<double> frame = Matrix4<double>::Identity(), linked = Matrix4<double>::Identity();
   frame.block<3, 1>(0, 3) = Vector3<double>(0, 0, -5);
   linked.block<3, 3>(0, 0) << 0, 0, 1, 0, 1, 0, -1, 0, 0;  // turned a quarter about up
   linked.block<3, 1>(0, 3) = Vector3<double>(20, 0, 0);
   const Matrix4<double> right = oblique::portal_view(p.view, frame, linked);
-  EXPECT_TRUE(oblique::properties::judge_portal_view(p.view, frame, linked, right).holds);
+  EXPECT_TRUE(oblique::oracle::judge_portal_view(p.view, frame, linked, right).holds);
   const Matrix4<double> no_turn = p.view * frame * linked.inverse();
-  EXPECT_FALSE(oblique::properties::judge_portal_view(p.view, frame, linked, no_turn).holds);
+  EXPECT_FALSE(oblique::oracle::judge_portal_view(p.view, frame, linked, no_turn).holds);
   // In front of the linked portal is behind this one.
   const Vector4<double> ahead_of_linked = linked * Vector4<double>(0, 0, 3, 1);
   const Vector4<double> seen = oblique::portal_map(frame, linked) * ahead_of_linked;
@@ -433,8 +432,8 @@ TEST(PassCamera, mirrorAndPortalViews) {
 // is not declared (and the declared design answered the other way is named too); declared, it
 // holds; a broken mirror is neither.
 TEST(PassCamera, theProperCameraMirrorDesignIsNamedAndHoldsWhenDeclared) {
-  using oblique::properties::judge_mirror_view;
-  using oblique::properties::MirrorDesign;
+  using oblique::oracle::judge_mirror_view;
+  using oblique::oracle::MirrorDesign;
   const PassCase p = mirror_case();
   Matrix4<double> proper = p.pass_view;
   proper.row(0) *= -1;
@@ -469,7 +468,7 @@ TEST(PassCamera, theProperCameraMirrorDesignIsNamedAndHoldsWhenDeclared) {
 TEST(PassCamera, violatedFindingsCarryWhatTheirPicturesDraw) {
   const Matrix4<double> view = Matrix4<double>::Identity();
   const Vector4<double> mirror(0, 0, 1, 5);  // z = -5, its front toward the eye
-  const ConsumerFinding wrong = oblique::properties::judge_mirror_view(view, mirror, view);
+  const ConsumerFinding wrong = oblique::oracle::judge_mirror_view(view, mirror, view);
   ASSERT_FALSE(wrong.holds);
   EXPECT_EQ(wrong.drawn_space, "world space");
   ASSERT_EQ(wrong.drawn.size(), 4u);
@@ -485,13 +484,12 @@ TEST(PassCamera, violatedFindingsCarryWhatTheirPicturesDraw) {
     EXPECT_NEAR(a.z(), -5, 1e-12);
     EXPECT_GE(b.z(), -5 - 1e-12);
   }
-  EXPECT_TRUE(
-      oblique::properties::judge_mirror_view(view, mirror, oblique::mirror_view(view, mirror))
-          .drawn.empty())
+  EXPECT_TRUE(oblique::oracle::judge_mirror_view(view, mirror, oblique::mirror_view(view, mirror))
+                  .drawn.empty())
       << "a finding that holds draws nothing";
 
   const PassCase p = mirror_case();
-  const auto findings = oblique::properties::judge_camera_plane(
+  const auto findings = oblique::oracle::judge_camera_plane(
       p.pass_view, p.plane, p.on_plane, p.front,
       Vector4<double>(-oblique::plane_in_camera(p.pass_view, p.plane)));
   const ConsumerFinding& side = find(findings, ConsumerCheck::plane_kept_side);
@@ -525,15 +523,15 @@ TEST(Corners, keptRegionVerticesHoldAndTheObliqueMatrixCornersAreCaught) {
     behind += v.w() < 0;
   }
   EXPECT_GT(behind, 0) << "the case has corners behind the eye";
-  const ConsumerFinding right = oblique::properties::judge_corners(m, c, k, mo, kept);
+  const ConsumerFinding right = oblique::oracle::judge_corners(m, c, k, mo, kept);
   EXPECT_TRUE(right.holds) << describe(right);
   EXPECT_NEAR(right.depth_waste, 1, 1e-9);
-  const ConsumerFinding wrong = oblique::properties::judge_corners(m, c, k, mo, naive);
+  const ConsumerFinding wrong = oblique::oracle::judge_corners(m, c, k, mo, naive);
   EXPECT_FALSE(wrong.holds) << describe(wrong);
   // The original volume's corners bound the kept region too, with depth to spare.
   std::vector<Vector3<double>> original;
   for (const auto& v : oblique::view_volume_corners(m, k)) original.push_back(v.head<3>() / v.w());
-  const ConsumerFinding loose = oblique::properties::judge_corners(m, c, k, mo, original);
+  const ConsumerFinding loose = oblique::oracle::judge_corners(m, c, k, mo, original);
   EXPECT_TRUE(loose.holds) << describe(loose);
   EXPECT_GE(loose.depth_waste, 1);
 }
@@ -554,7 +552,7 @@ TEST(Corners, obliqueMatrixCornersBoundWhereAllAreInFront) {
       all_in_front = all_in_front && v.w() > 0;
     }
     ASSERT_TRUE(all_in_front);
-    const ConsumerFinding f = oblique::properties::judge_corners(m, c, k, mo, corners);
+    const ConsumerFinding f = oblique::oracle::judge_corners(m, c, k, mo, corners);
     EXPECT_TRUE(f.holds) << describe(f);
     EXPECT_NEAR(f.depth_waste, 1, 1e-9) << "for a parallel plane M' volume is the kept region";
     // The near face's corners and the eye: the far part is lost.
@@ -563,7 +561,7 @@ TEST(Corners, obliqueMatrixCornersBoundWhereAllAreInFront) {
     for (std::size_t i = first_near; i < first_near + 4; ++i) near_and_eye.push_back(corners[i]);
     near_and_eye.push_back(Vector3<double>::Zero());
     corners = near_and_eye;
-    EXPECT_FALSE(oblique::properties::judge_corners(m, c, k, mo, corners).holds);
+    EXPECT_FALSE(oblique::oracle::judge_corners(m, c, k, mo, corners).holds);
   }
 }
 
@@ -586,12 +584,12 @@ TEST(Corners, cornersOnOneLineAreJudgedByTheirDistanceToIt) {
       for (std::size_t j = i + 1; j < kept.size(); ++j)
         if ((kept[i] - kept[j]).norm() > (kept[a] - kept[b]).norm()) a = i, b = j;
     const std::vector<Vector3<double>> diagonal = {kept[a], kept[b], (kept[a] + kept[b]) / 2};
-    const ConsumerFinding f = oblique::properties::judge_corners(m, c, k, mo, diagonal);
+    const ConsumerFinding f = oblique::oracle::judge_corners(m, c, k, mo, diagonal);
     EXPECT_FALSE(f.holds) << describe(f);
     EXPECT_NE(f.detail.find("lie on one line"), std::string::npos) << f.detail;
     EXPECT_GT(f.ratio, 1);
-    EXPECT_FALSE(oblique::properties::judge_corners(m, c, k, mo, {kept[a]}).holds);
-    EXPECT_FALSE(oblique::properties::judge_corners(m, c, k, mo, {}).holds);
+    EXPECT_FALSE(oblique::oracle::judge_corners(m, c, k, mo, {kept[a]}).holds);
+    EXPECT_FALSE(oblique::oracle::judge_corners(m, c, k, mo, {}).holds);
   }
 }
 
@@ -608,15 +606,15 @@ TEST(Corners, farAwayCornersAreJudgedByTheRightOnesBound) {
     for (int i = 0; i < 8; ++i)
       far_away.push_back(Vector3<double>(i & 1 ? 1.1e300 : 1e300, i & 2 ? 1.1e300 : 1e300,
                                          i & 4 ? 1.1e300 : 1e300));
-    const ConsumerFinding far = oblique::properties::judge_corners(m, c, k, mo, far_away);
+    const ConsumerFinding far = oblique::oracle::judge_corners(m, c, k, mo, far_away);
     EXPECT_TRUE(far.judged && !far.holds) << describe(far);
     // The right corners, and a box around them 1e300 wide, still hold: conservative, not wrong.
-    const ConsumerFinding right = oblique::properties::judge_corners(m, c, k, mo, kept);
+    const ConsumerFinding right = oblique::oracle::judge_corners(m, c, k, mo, kept);
     EXPECT_TRUE(right.judged && right.holds) << describe(right);
     for (int i = 0; i < 8; ++i)
       scaled_up.push_back(
           Vector3<double>(i & 1 ? 1e300 : -1e300, i & 2 ? 1e300 : -1e300, i & 4 ? 1e300 : -1e300));
-    const ConsumerFinding big = oblique::properties::judge_corners(m, c, k, mo, scaled_up);
+    const ConsumerFinding big = oblique::oracle::judge_corners(m, c, k, mo, scaled_up);
     EXPECT_TRUE(big.judged && big.holds) << describe(big);
   }
 }
@@ -628,7 +626,7 @@ TEST(Corners, aPointCloudIsRefusedNotHung) {
   const Matrix4<double> mo = oblique_of(m, c, k);
   std::vector<Vector3<double>> cloud;
   for (int i = 0; i < 1000; ++i) cloud.emplace_back(i, -i, -1 - i);
-  const ConsumerFinding f = oblique::properties::judge_corners(m, c, k, mo, cloud);
+  const ConsumerFinding f = oblique::oracle::judge_corners(m, c, k, mo, cloud);
   EXPECT_FALSE(f.judged);
   EXPECT_NE(f.detail.find("1000 distinct points"), std::string::npos) << f.detail;
 }
@@ -636,11 +634,11 @@ TEST(Corners, aPointCloudIsRefusedNotHung) {
 // Consumers::accepts: a refused camera's round asks none of the functions that take its
 // projection (each finding left out, "refused by accepts"), and still asks the others.
 TEST(ConsumerRound, aCameraAcceptsRefusesIsNotAskedOfTheProjectionsFunctions) {
-  auto consumers = oblique::properties::reference_consumers<double>();
+  auto consumers = oblique::oracle::reference_consumers<double>();
   consumers.name = "upright_only";
   int asked_depth = 0;
   const auto depth = consumers.linear_depth;
-  consumers.linear_depth = [&](const oblique::properties::DepthSample<double>& s) {
+  consumers.linear_depth = [&](const oblique::oracle::DepthSample<double>& s) {
     ++asked_depth;
     return depth(s);
   };
@@ -648,14 +646,12 @@ TEST(ConsumerRound, aCameraAcceptsRefusesIsNotAskedOfTheProjectionsFunctions) {
   const Matrix4<double> m = perspective(k);
   const Vector4<double> c = tilted_plane();
   int picked = 0;
-  const oblique::properties::Pick pick = [&](int lo, int hi) {
-    return lo + (picked++ % (hi - lo));
-  };
+  const oblique::oracle::Pick pick = [&](int lo, int hi) { return lo + (picked++ % (hi - lo)); };
   for (const bool refuse : {true, false}) {
     consumers.accepts = [refuse](Convention, const Matrix4<double>&) { return !refuse; };
     std::map<ConsumerCheck, ConsumerFinding> seen;
     asked_depth = 0;
-    oblique::properties::consumer_round<double>(
+    oblique::oracle::consumer_round<double>(
         m, c, k, consumers, pick,
         [&](const ConsumerFinding& f, const std::string&, bool) { seen[f.check] = f; });
     for (ConsumerCheck check :
@@ -677,10 +673,9 @@ TEST(ConsumerRound, aCameraAcceptsRefusesIsNotAskedOfTheProjectionsFunctions) {
 }
 
 TEST(ConsumerChecks, namesRoundTrip) {
-  for (ConsumerCheck c : oblique::properties::all_consumer_checks)
-    EXPECT_EQ(
-        oblique::properties::parse_consumer_check(oblique::properties::consumer_check_name(c)), c);
-  EXPECT_FALSE(oblique::properties::parse_consumer_check("near_plane").has_value());
+  for (ConsumerCheck c : oblique::oracle::all_consumer_checks)
+    EXPECT_EQ(oblique::oracle::parse_consumer_check(oblique::oracle::consumer_check_name(c)), c);
+  EXPECT_FALSE(oblique::oracle::parse_consumer_check("near_plane").has_value());
 }
 
 }  // namespace

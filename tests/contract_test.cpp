@@ -15,8 +15,8 @@ namespace {
 using cases::Defect;
 using cases::Family;
 using cases::Place;
-using properties::Property;
-using properties::StatusContract;
+using cases::Property;
+using cases::StatusContract;
 
 TEST(Contract, readsEveryField) {
   const Expected<Contract> c = read_contract(R"({
@@ -173,7 +173,7 @@ TEST(Contract, resolvedFillsEveryListAndTheImplementationsOwn) {
   EXPECT_EQ(r.conventions, std::vector<Convention>{Convention::reversed_z});
   EXPECT_EQ(r.places.size(), std::size(cases::all_places));
   EXPECT_EQ(r.defects.size(), std::size(cases::all_defects));
-  EXPECT_EQ(r.properties, properties::Checks{}.properties);
+  EXPECT_EQ(r.properties, cases::Checks{}.properties);
   EXPECT_EQ(r.statuses, StatusContract::any_refusal);
   EXPECT_EQ(r.row3_accuracy, true);
   Contract unit;

@@ -15,7 +15,7 @@
 namespace {
 
 using namespace oblique;
-using namespace oblique::properties;
+using namespace oblique::oracle;
 using namespace oblique::mistakes;
 
 template <class T>

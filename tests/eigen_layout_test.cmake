@@ -1,6 +1,6 @@
 # A file built with other SIMD flags than the libraries cannot link against their interfaces that
 # take structs holding Eigen matrices (oblique/util/eigen_layout.h): compiled as is and with
-# -mavx2, a file calling oblique::fuzzing::test_one_input, properties::Checker and the case
+# -mavx2, a file calling oblique::fuzzing::test_one_input, oracle::Checker and the case
 # builder refers to them in eigen_align16 and in eigen_align32; the libraries define the first
 # (the one of their own build) and not the second. Usage: cmake -DCXX=... -DSOURCE=<repository>
 #   -DFUZZING=<lib> -DPROPERTIES=<the oracle library, which holds the checker>
@@ -18,7 +18,7 @@ int fuzz_one(const std::uint8_t* data, std::size_t size) {
   return oblique::fuzzing::test_one_input(data, size, mine);
 }
 bool holds(const oblique::Matrix4<float>& m, const oblique::Vector4<float>& c) {
-  return oblique::properties::Checker<float>(m, c, oblique::Convention::gl)
+  return oblique::oracle::Checker<float>(m, c, oblique::Convention::gl)
       .judge(oblique::Answer<float>{oblique::Status::ok, m})
       .holds();
 }
@@ -67,16 +67,16 @@ function(expect_in listing text what)  # `text` occurs in `listing` (or, with wh
 endfunction()
 expect_in("${baseline_symbols}" "U int oblique::fuzzing::eigen_align16::test_one_input<float>("
           "the baseline file refers to test_one_input in eigen_align16")
-expect_in("${baseline_symbols}" "U oblique::properties::eigen_align16::Checker<float>::judge("
+expect_in("${baseline_symbols}" "U oblique::oracle::eigen_align16::Checker<float>::judge("
           "the baseline file refers to Checker::judge in eigen_align16")
 expect_in("${avx2_symbols}" "U int oblique::fuzzing::eigen_align32::test_one_input<float>("
           "the -mavx2 file refers to test_one_input in eigen_align32")
-expect_in("${avx2_symbols}" "U oblique::properties::eigen_align32::Checker<float>::judge("
+expect_in("${avx2_symbols}" "U oblique::oracle::eigen_align32::Checker<float>::judge("
           "the -mavx2 file refers to Checker::judge in eigen_align32")
 expect_in("${fuzzing_symbols}" "W int oblique::fuzzing::eigen_align16::test_one_input<float>("
           "oblique::fuzzing defines test_one_input in eigen_align16")
 expect_in("${fuzzing_symbols}" "eigen_align32" "no eigen_align32 in oblique::fuzzing")
-expect_in("${properties_symbols}" "W oblique::properties::eigen_align16::Checker<float>::judge("
+expect_in("${properties_symbols}" "W oblique::oracle::eigen_align16::Checker<float>::judge("
           "oblique::properties defines Checker::judge in eigen_align16")
 expect_in("${properties_symbols}" "eigen_align32" "no eigen_align32 in oblique::properties")
 expect_in("${baseline_symbols}" "U oblique::cases::Case<float> oblique::cases::eigen_align16::build_case<float>("

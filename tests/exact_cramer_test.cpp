@@ -1,5 +1,5 @@
 // The accurate method's exact path (exact_cramer.h): big-integer arithmetic, and the oblique
-// answer by Cramer's rule against the rational oracle (properties::Problem) on stiff inputs.
+// answer by Cramer's rule against the rational oracle (oracle::Problem) on stiff inputs.
 #include "oblique/detail/accurate/exact_cramer.h"
 #include "oblique/detail/accurate/accurate.h"
 
@@ -108,7 +108,7 @@ TYPED_TEST(ExactCramer, agreesWithTheRationalOracleOnStiffPlanes) {
                                std::to_string(double(c(0))) + ", " + std::to_string(double(c(1))) +
                                ", " + std::to_string(double(c(2))) + ", " +
                                std::to_string(double(c(3))) + ")";
-      const properties::Problem<T> problem(m, c, convention);
+      const oracle::Problem<T> problem(m, c, convention);
       const auto exact = detail::exact_oblique<T, W>(m.template cast<W>(),
                                                      Vector4<W>(c.template cast<W>()), convention);
       using Outcome = typename detail::ExactOblique<T, W>::Outcome;
@@ -161,7 +161,7 @@ TYPED_TEST(ExactCramer, stiffPlanesAreHandedToTheAccurateMethod) {
   // C = (DBL_MIN, 0, 0, -DBL_MAX) on an infinite frustum: C . Q = C_x Q_x, lost to the scaling.
   const Matrix4<T> inf = infinite_frustum<T>(T(-1), T(1), T(-1), T(1), T(1), Convention::gl);
   const Vector4<T> c(std::numeric_limits<T>::min(), T(0), T(0), -std::numeric_limits<T>::max());
-  const properties::Problem<T> problem(inf, c, Convention::gl);
+  const oracle::Problem<T> problem(inf, c, Convention::gl);
   const auto closed = apply<T>(inf, c, Convention::gl, Method::closed_form);
   EXPECT_EQ(closed.method, Method::accurate);
   const auto acceptable = problem.acceptable_statuses();

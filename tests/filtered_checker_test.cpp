@@ -33,7 +33,7 @@
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 using mistakes::known_implementations;
 namespace {
@@ -373,4 +373,4 @@ TEST(ExactIntegers, entriesAndDeterminantsAreExact) {
 }
 
 }  // namespace
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

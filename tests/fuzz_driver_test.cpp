@@ -133,7 +133,7 @@ TEST(FuzzDriverBuilder, builtCasesAreOfTheContractsFamiliesConventionsPlacesAndD
   given.places = {Place::near_eye, Place::typical};
   given.defects = {cases::Defect::singular};
   const Contract contract =
-      resolved(given, cases::every_convention(), properties::StatusContract::exact, false);
+      resolved(given, cases::every_convention(), cases::StatusContract::exact, false);
   std::mt19937 random(4501);
   std::set<Family> families;
   std::set<Place> places;

@@ -94,11 +94,11 @@ std::set<std::string> required(const std::vector<Family>& families) {
 }
 
 /// For `runs` seeds: the default run's cases of the contract, and the features of those whose
-/// answer would be judged (properties::not_judged() leaves nothing out for the contract's
+/// answer would be judged (oracle::not_judged() leaves nothing out for the contract's
 /// statuses); each run must show every required feature.
 template <class T>
 void every_run_shows_every_pattern(Contract contract, int runs) {
-  contract = resolved(contract, {Convention::gl}, properties::StatusContract::exact, false);
+  contract = resolved(contract, {Convention::gl}, cases::StatusContract::exact, false);
   contract.conventions = cases::every_convention();
   const std::set<std::string> needed = required(contract.families);
   ASSERT_FALSE(needed.empty());
@@ -108,8 +108,8 @@ void every_run_shows_every_pattern(Contract contract, int runs) {
     std::map<std::string, int> judged;
     for (int size = 0; size < 100; ++size) {
       const cases::Case<T> c = gen(random.split(), size).value();
-      const properties::FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-      if (!properties::not_judged(problem, *contract.statuses, contract.refusals).empty()) continue;
+      const oracle::FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
+      if (!oracle::not_judged(problem, *contract.statuses, contract.refusals).empty()) continue;
       for (const std::string& f : features(c)) ++judged[f];
     }
     for (const std::string& f : needed)
@@ -125,7 +125,7 @@ TEST(GeneratorCensus, everySignPatternOfTheEngineFamiliesIsJudgedInEveryRun) {
 
 TEST(GeneratorCensus, everySignPatternOfEveryFamilyIsJudgedInEveryRun) {
   Contract every;
-  every.statuses = properties::StatusContract::exact;
+  every.statuses = cases::StatusContract::exact;
   every_run_shows_every_pattern<double>(every, 30);
   every_run_shows_every_pattern<float>(every, 30);
 }

@@ -16,7 +16,7 @@
 #include "oblique/projection.h"
 #include "printers.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 namespace {
 
 const Matrix4<double> kFrustum = frustum(-1.0, 1.0, -1.0, 1.0, 1.0, 10.0, Convention::gl);
@@ -211,7 +211,7 @@ TEST(Judge, rowThreeAccuracyAndTheUlpsPromiseAreCheckedWhenAsked) {
   EXPECT_EQ(check_name(strict.violation()->check), "accurate_ulps");
 }
 
-// properties::not_judged(): what the input is decides whether an implementation is judged on it.
+// oracle::not_judged(): what the input is decides whether an implementation is judged on it.
 TEST(NotJudged, anInputWithinRoundingOfTheFarCornerIsLeftOutOnlyForWhatCannotRefuse) {
   // The case a correct engine without statuses was flagged on (wrong side: C . Q rounds to < 0
   // in its double arithmetic): C passes, within rounding, through the far corner of a frustum.
@@ -413,4 +413,4 @@ TEST(Findings, aYesOrNoCheckHasNoRatio) {
 }
 
 }  // namespace
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

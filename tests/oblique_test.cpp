@@ -79,20 +79,20 @@ TYPED_TEST(ObliqueTest, everyFamilyHasTheFiveProperties) {
   using T = TypeParam;
   for (Convention convention : all_conventions) {
     for (const auto& family : testing::fixed_families<T>(convention)) {
-      const properties::Problem<T> problem(family.matrix, family.plane, convention);
+      const oracle::Problem<T> problem(family.matrix, family.plane, convention);
       ASSERT_EQ(problem.exact_status(), Status::ok) << family.family;
       for (Method method : all_methods) {
         if (method == Method::closed_form && !has_perspective_shape(family.matrix)) continue;
         const auto result = apply<T>(family.matrix, family.plane, convention, method);
         ASSERT_TRUE(result.ok()) << family.family << ": " << result.message();
-        const properties::Verdicts verdicts = problem.check(result.projection);
+        const oracle::Verdicts verdicts = problem.check(result.projection);
         for (const auto& v : verdicts.items) {
           EXPECT_TRUE(!v.applies || v.holds)
               << family.family << " " << convention_name(convention) << " " << method_name(method)
-              << ": " << properties::property_name(v.property()) << " "
-              << properties::residual_text(v) << " vs " << properties::bound_text(v);
+              << ": " << cases::property_name(v.property()) << " " << oracle::residual_text(v)
+              << " vs " << oracle::bound_text(v);
         }
-        EXPECT_EQ(verdicts[properties::Property::infinite_edge_parallel].applies,
+        EXPECT_EQ(verdicts[cases::Property::infinite_edge_parallel].applies,
                   family.family == "infinite")
             << family.family;
       }
@@ -286,7 +286,7 @@ std::vector<AlikeRows<T>> alike_rows_cases(int count) {
     bool of_the_class = false;
     for (int i = 0; i < 3; ++i) of_the_class |= y(i) != T(0) && std::abs(y(i)) <= bound(i);
     if (!of_the_class) continue;
-    if (properties::Problem<T>(s.m, s.c, s.convention).exact_status() != Status::ok) continue;
+    if (oracle::Problem<T>(s.m, s.c, s.convention).exact_status() != Status::ok) continue;
     out.push_back(s);
   }
   return out;
@@ -299,7 +299,7 @@ TEST(GeneralMethod, settlesSignsItsBoundCannotVouchFor) {
   using T = float;
   int answered = 0;
   for (const auto& s : alike_rows_cases<T>(100)) {
-    const properties::Problem<T> problem(s.m, s.c, s.convention);
+    const oracle::Problem<T> problem(s.m, s.c, s.convention);
     const std::vector<Status> acceptable = problem.acceptable_statuses();
     for (Method method : {Method::automatic, Method::general}) {
       const ObliqueResult<T> result = apply<T>(s.m, s.c, s.convention, method);
@@ -312,9 +312,9 @@ TEST(GeneralMethod, settlesSignsItsBoundCannotVouchFor) {
       for (const auto& v : problem.check(result.projection).items) {
         EXPECT_TRUE(!v.applies || v.holds)
             << convention_name(s.convention) << " " << method_name(method) << ": "
-            << properties::property_name(v.property()) << " " << properties::residual_text(v)
-            << " vs " << properties::bound_text(v)
-            << std::setprecision(std::numeric_limits<T>::max_digits10) << "\nM =\n"
+            << cases::property_name(v.property()) << " " << oracle::residual_text(v) << " vs "
+            << oracle::bound_text(v) << std::setprecision(std::numeric_limits<T>::max_digits10)
+            << "\nM =\n"
             << s.m << "\nC = " << s.c.transpose();
       }
     }
@@ -355,7 +355,7 @@ void expect_underflowing_dot_products_settled() {
                              : s + pick(2 - limits::max_exponent, limits::min_exponent + p - 1);
     const auto small = [&] { return std::ldexp(T(pick(-16, 16)) / T(8), kw + e); };
     const Vector4<T> c(small(), small(), T(0), -std::ldexp(T(pick(8, 15)) / T(8), kw));
-    const properties::Problem<T> problem(m, c, convention);
+    const oracle::Problem<T> problem(m, c, convention);
     if (problem.exact_status() != Status::ok) continue;
     ++judged;
     const std::vector<Status> acceptable = problem.acceptable_statuses();
@@ -372,9 +372,8 @@ void expect_underflowing_dot_products_settled() {
       for (const auto& v : problem.check(result.projection).items) {
         EXPECT_TRUE(!v.applies || v.holds)
             << convention_name(convention) << " " << method_name(method) << ": "
-            << properties::property_name(v.property()) << " " << properties::residual_text(v)
-            << " vs " << properties::bound_text(v) << std::setprecision(limits::max_digits10)
-            << "\nM =\n"
+            << cases::property_name(v.property()) << " " << oracle::residual_text(v) << " vs "
+            << oracle::bound_text(v) << std::setprecision(limits::max_digits10) << "\nM =\n"
             << m << "\nC = " << c.transpose();
       }
     }
@@ -401,12 +400,12 @@ namespace {
 // The checker judges any matrix, a non-finite one included, without trapping (GMP would).
 TEST(Checker, nonFiniteResultViolatesThePropertiesInsteadOfCrashing) {
   const Matrix4<double> m = frustum<double>(-1, 1, -1, 1, 1, 10, Convention::gl);
-  const properties::Problem<double> problem(m, Vector4<double>(0.5, 0, -1, -2), Convention::gl);
+  const oracle::Problem<double> problem(m, Vector4<double>(0.5, 0, -1, -2), Convention::gl);
   Matrix4<double> bad = m;
   bad(2, 2) = std::numeric_limits<double>::quiet_NaN();
   const auto verdicts = problem.check(bad);
-  EXPECT_FALSE(verdicts[properties::Property::near_is_clip_plane].holds);
-  EXPECT_TRUE(verdicts[properties::Property::side_rows_unchanged].holds);
+  EXPECT_FALSE(verdicts[cases::Property::near_is_clip_plane].holds);
+  EXPECT_TRUE(verdicts[cases::Property::side_rows_unchanged].holds);
   EXPECT_FALSE(problem.compare_row3(bad).within);
 }
 

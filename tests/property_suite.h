@@ -13,7 +13,7 @@
 #include "oblique/oracle/filtered.h"
 #include "oblique/testing/harness.h"
 
-namespace oblique::properties::suite {
+namespace oblique::oracle::suite {
 
 using mistakes::implementation_selected;
 using mistakes::implementation_selection_error;
@@ -62,4 +62,4 @@ bool for_each_answer(const cases::Case<T>& c, const AnyProblem& problem, Checks 
                                   nullptr, std::move(kind));
 }
 
-}  // namespace oblique::properties::suite
+}  // namespace oblique::oracle::suite

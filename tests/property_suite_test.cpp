@@ -11,7 +11,7 @@
 // and every close call to the exact one.
 #include "property_suite.h"
 
-namespace oblique::properties::suite {
+namespace oblique::oracle::suite {
 
 using mistakes::core_method;
 namespace {
@@ -174,4 +174,4 @@ OBLIQUE_PROPERTY_SUITE(PropertiesDouble, double)
 OBLIQUE_PROPERTY_SUITE(PropertiesLongDouble, long double)
 
 }  // namespace
-}  // namespace oblique::properties::suite
+}  // namespace oblique::oracle::suite

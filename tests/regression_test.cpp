@@ -16,7 +16,7 @@
 #include "oblique/oracle/judge.h"
 #include "oblique/oracle/problem.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 using mistakes::core_method;
 using mistakes::known_implementations;
@@ -99,4 +99,4 @@ TEST(Regressions, everyKeptCounterexampleStillHolds) {
 }
 
 }  // namespace
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

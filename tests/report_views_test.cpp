@@ -245,24 +245,24 @@ TEST(SuiteReportViews, marksThePointTheWrongAnswerClips) {
   c.convention = Convention::zero_one;
   c.matrix = frustum<double>(-1, 2, -0.5, 1, 0.5, 50, c.convention);
   c.plane = Vector4<double>(0.2, 0.1, -1, -5);  // through (0, 0, -5), leaning: C_w < 0
-  const properties::Problem<double> problem(c.matrix, c.plane, c.convention);
+  const oracle::Problem<double> problem(c.matrix, c.plane, c.convention);
   ASSERT_EQ(problem.exact_status(), Status::ok);
   Answer<double> wrong;
   wrong.projection = c.matrix;
   const exact::Vec row3 = problem.exact_row3();
   for (int i = 0; i < 4; ++i) wrong.projection(2, i) = 1.25 * row3[i].get_d();
-  const properties::Judgement judgement = properties::judge(problem, wrong);
+  const oracle::Judgement judgement = oracle::judge(problem, wrong);
   ASSERT_NE(judgement.violation(), nullptr) << "the wrong answer passes: the test shows nothing";
-  properties::Implementation<double> impl;
+  oracle::Implementation<double> impl;
   impl.name = "scaled_third_row";
   testing::tally() = testing::Tally{};
   EXPECT_ANY_THROW(testing::fail_with(c, impl, *judgement.violation(), &wrong));
   ASSERT_TRUE(testing::tally().failure.has_value());
-  properties::ReportContext context;
+  oracle::ReportContext context;
   context.directory = ::testing::TempDir() + "oblique_suite_views";
   context.test_id = "SuiteReportViews.marksThePointTheWrongAnswerClips";
   fs::remove_all(context.directory);
-  const std::string md = properties::write_report(*testing::tally().failure, context);
+  const std::string md = oracle::write_report(*testing::tally().failure, context);
   const fs::path json = fs::path(md).replace_extension(".json");
   const Json j = expect_marked_clipped_point(json);
   EXPECT_EQ(j.at("property"), std::string(check_name(judgement.violation()->check)));
@@ -275,26 +275,26 @@ TEST(SuiteReportViews, marksNothingWhenTheAnswerClipsNothing) {
   c.convention = Convention::gl;
   c.matrix = frustum<double>(-1, 1, -1, 1, 1, 100, c.convention);
   c.plane = Vector4<double>(0, 0.3, -1, -4);
-  const properties::Problem<double> problem(c.matrix, c.plane, c.convention);
+  const oracle::Problem<double> problem(c.matrix, c.plane, c.convention);
   ASSERT_EQ(problem.exact_status(), Status::ok);
   Answer<double> wrong;  // row 1 changed: side_rows_unchanged, nothing clipped
   wrong.projection = c.matrix;
   const exact::Vec row3 = problem.exact_row3();
   for (int i = 0; i < 4; ++i) wrong.projection(2, i) = row3[i].get_d();
   wrong.projection(0, 0) *= 2;
-  const properties::Judgement judgement = properties::judge(problem, wrong);
+  const oracle::Judgement judgement = oracle::judge(problem, wrong);
   ASSERT_NE(judgement.violation(), nullptr);
-  properties::Counterexample ce = properties::make_counterexample(c.matrix, c.plane, c.convention);
+  oracle::Counterexample ce = oracle::make_counterexample(c.matrix, c.plane, c.convention);
   ce.finding = *judgement.violation();
   ce.implementation = "widened";
-  properties::set_result(ce, wrong.projection);
-  properties::set_views(ce, problem, &wrong.projection);
+  oracle::set_result(ce, wrong.projection);
+  oracle::set_views(ce, problem, &wrong.projection);
   EXPECT_FALSE(ce.views.clipped.has_value());
-  properties::ReportContext context;
+  oracle::ReportContext context;
   context.directory = ::testing::TempDir() + "oblique_suite_views_nothing";
   context.test_id = "SuiteReportViews.marksNothing";
   fs::remove_all(context.directory);
-  const std::string md = properties::write_report(ce, context);
+  const std::string md = oracle::write_report(ce, context);
   const Json j = Json::parse(read_text(fs::path(md).replace_extension(".json")));
   EXPECT_TRUE(j.at("pictures").at("marked_point").is_null());
   EXPECT_NE(j.at("pictures").at("marked").get<std::string>().find("nothing"), std::string::npos);
@@ -313,17 +313,17 @@ TEST(SuiteReportViews, aReplacedReportTakesItsPicturesAlong) {
   cases::Case<double> c;
   c.matrix = frustum<double>(-1, 1, -1, 1, 1, 100, c.convention);
   c.plane = Vector4<double>(0, 0.3, -1, -4);
-  const properties::Problem<double> problem(c.matrix, c.plane, c.convention);
-  properties::Counterexample ce = properties::make_counterexample(c.matrix, c.plane, c.convention);
-  ce.finding.check = properties::Check::status;
-  ce.finding.shows = properties::Shows::statuses;
+  const oracle::Problem<double> problem(c.matrix, c.plane, c.convention);
+  oracle::Counterexample ce = oracle::make_counterexample(c.matrix, c.plane, c.convention);
+  ce.finding.check = oracle::Check::status;
+  ce.finding.shows = oracle::Shows::statuses;
   ce.implementation = "refuses";
-  properties::set_views(ce, problem, static_cast<const Matrix4<double>*>(nullptr));
-  properties::ReportContext context;
+  oracle::set_views(ce, problem, static_cast<const Matrix4<double>*>(nullptr));
+  oracle::ReportContext context;
   context.directory = ::testing::TempDir() + "oblique_suite_views_replaced";
   context.test_id = "SuiteReportViews.replaced";
   fs::remove_all(context.directory);
-  const fs::path md = properties::write_report(ce, context);
+  const fs::path md = oracle::write_report(ce, context);
   const fs::path top = fs::path(context.directory) / (md.stem().string() + ".top.png");
   ASSERT_TRUE(fs::exists(top));
   const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
@@ -332,7 +332,7 @@ TEST(SuiteReportViews, aReplacedReportTakesItsPicturesAlong) {
   setenv("PATH", empty.c_str(), 1);
   std::string again;
   try {
-    again = properties::write_report(ce, context);
+    again = oracle::write_report(ce, context);
   } catch (...) {
   }
   setenv("PATH", path.c_str(), 1);

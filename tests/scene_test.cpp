@@ -61,8 +61,8 @@ void expect_exact(const Scene& scene, const SceneCheck& check) {
   for (const SurfaceCheck& s : check.surfaces) {
     if (!s.render) continue;
     EXPECT_TRUE(s.passes()) << s.name;
-    const properties::Problem<double> problem(scene.camera.projection, s.plane_in_camera,
-                                              scene.convention);
+    const oracle::Problem<double> problem(scene.camera.projection, s.plane_in_camera,
+                                          scene.convention);
     ASSERT_EQ(problem.exact_status(), Status::ok) << s.name;
     EXPECT_TRUE(problem.compare_row3(*s.projection).within) << s.name;
     for (int i : {0, 1, 3})
@@ -292,8 +292,8 @@ TEST(SceneConsumers, aNamedConsumerMostlyLeftOutIsNamedWithItsShare) {
 TEST(Scenes, infiniteEdgePropertyIsCheckedOnlyForInfiniteProjections) {
   auto names = [](const SceneCheck& check) {
     std::vector<std::string> out;
-    for (const properties::Finding& p : check.surfaces.at(0).properties)
-      out.push_back(std::string(properties::check_name(p.check)));
+    for (const oracle::Finding& p : check.surfaces.at(0).properties)
+      out.push_back(std::string(oracle::check_name(p.check)));
     return out;
   };
   const std::string mirror = surface("mirror", "[0, 1, 0]", "[0, 0, 0]");

@@ -12,16 +12,16 @@
 namespace oblique {
 namespace {
 
-using properties::Problem;
-using properties::Property;
+using cases::Property;
+using oracle::Problem;
 
 template <class T>
-std::string describe(const properties::Verdicts& verdicts) {
+std::string describe(const oracle::Verdicts& verdicts) {
   std::string out;
   for (const auto& v : verdicts.items) {
     if (v.applies && !v.holds) {
-      out += std::string(properties::property_name(v.property())) + ": " +
-             properties::residual_text(v) + " vs " + properties::bound_text(v) + "\n";
+      out += std::string(cases::property_name(v.property())) + ": " + oracle::residual_text(v) +
+             " vs " + oracle::bound_text(v) + "\n";
     }
   }
   return out;

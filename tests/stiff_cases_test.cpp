@@ -24,7 +24,7 @@ TYPED_TEST_SUITE(StiffCases, Scalars);
 template <class T>
 void expect_correct(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
                     const std::string& what) {
-  const properties::Problem<T> problem(m, c, convention);
+  const oracle::Problem<T> problem(m, c, convention);
   ASSERT_EQ(problem.exact_status(), Status::ok) << what;
   for (Method method :
        {Method::automatic, Method::closed_form, Method::general, Method::accurate}) {
@@ -36,8 +36,8 @@ void expect_correct(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
     for (const auto& v : verdicts.items) {
       EXPECT_TRUE(!v.applies || v.holds)
           << what << " " << convention_name(convention) << " " << method_name(method) << ": "
-          << properties::property_name(v.property()) << " " << properties::residual_text(v)
-          << " vs " << properties::bound_text(v);
+          << cases::property_name(v.property()) << " " << oracle::residual_text(v) << " vs "
+          << oracle::bound_text(v);
     }
     const auto closeness = problem.compare_row3(result.projection);
     EXPECT_TRUE(closeness.within) << what << " " << convention_name(convention) << " "

@@ -20,7 +20,7 @@ namespace oblique {
 namespace {
 
 template <class T>
-properties::Implementation<T> core() {
+oracle::Implementation<T> core() {
   return adapt<T>(
       "the_core", Layout::row_major,
       [](const Matrix4<T>& m, const Vector4<T>& c, Convention k) { return apply<T>(m, c, k); });

@@ -53,8 +53,8 @@ TEST(Testing, theGlFunctionJudgedInAnotherConventionFails) {
   zero_one.conventions = {Convention::zero_one};
   // Its near plane is M4 + M3' = lambda C in GL; in [0, 1] depth the near plane is M3' alone.
   // (Both conventions' far plane is M4 - M3', so far_plane_through_corner may well hold.)
-  zero_one.properties = {properties::Property::near_is_clip_plane};
-  zero_one.statuses = properties::StatusContract::answers_only;  // one run, so one failure
+  zero_one.properties = {cases::Property::near_is_clip_plane};
+  zero_one.statuses = cases::StatusContract::answers_only;  // one run, so one failure
   EXPECT_NONFATAL_FAILURE(testing::check_properties(claims_all, zero_one),
                           "violates near_is_clip_plane");
 }
@@ -72,8 +72,8 @@ TEST(Testing, aPassIsOneLineAndEarlierReportsAreMovedAside) {
   std::ofstream(dir / (id + ".no_clipping.md")) << "another property's\n";
   ASSERT_EQ(::setenv("OBLIQUE_REPORT_DIR", dir.c_str(), 1), 0);
   Contract one;
-  one.properties = {properties::Property::near_is_clip_plane};
-  one.statuses = properties::StatusContract::answers_only;
+  one.properties = {cases::Property::near_is_clip_plane};
+  one.statuses = cases::StatusContract::answers_only;
   ::testing::internal::CaptureStdout();
   testing::check_properties(gl_only, one);
   const std::string out = ::testing::internal::GetCapturedStdout();
@@ -188,8 +188,8 @@ const auto correct_but_refusing_y_flipped = adapt<double>(
 TEST(JudgedCoverage, aClaimedFamilyTheAcceptsRefusesFailsSayingWhy) {
   Contract claims;
   claims.families = {cases::Family::perspective, cases::Family::y_flipped};
-  claims.properties = {properties::Property::near_is_clip_plane};
-  claims.statuses = properties::StatusContract::answers_only;
+  claims.properties = {cases::Property::near_is_clip_plane};
+  claims.statuses = cases::StatusContract::answers_only;
   int n = 0;
   const std::string all =
       failures_of([&] { testing::check_properties(correct_but_refusing_y_flipped, claims); }, &n);
@@ -226,7 +226,7 @@ TEST(JudgedCoverage, aYFlipSignBugAdaptedAsTheOldReadmeDidNeverPasses) {
 TEST(JudgedCoverage, aConsumerAcceptsThatRefusesAClaimedFamilyFailsSayingWhy) {
   Consumers<double> depth;
   depth.name = "depth_for_upright_cameras";
-  depth.linear_depth = properties::reference_consumers<double>().linear_depth;
+  depth.linear_depth = oracle::reference_consumers<double>().linear_depth;
   depth.accepts = [](Convention, const Matrix4<double>& m) { return m(1, 1) > 0; };
   Contract claims;
   claims.families = {cases::Family::perspective, cases::Family::y_flipped};
@@ -251,8 +251,8 @@ TEST(JudgedCoverage, aConsumerAcceptsThatRefusesAClaimedFamilyFailsSayingWhy) {
 TEST(JudgedCoverage, theStatisticsCountWhatWasJudged) {
   Contract claims;
   claims.families = {cases::Family::perspective};
-  claims.properties = {properties::Property::near_is_clip_plane};
-  claims.statuses = properties::StatusContract::answers_only;
+  claims.properties = {cases::Property::near_is_clip_plane};
+  claims.statuses = cases::StatusContract::answers_only;
   testing::settings().statistics = true;
   ::testing::internal::CaptureStdout();
   // The generators are asked for perspective matrices only; the function refuses none.

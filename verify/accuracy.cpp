@@ -28,7 +28,7 @@ void AccuracyLook<T>::passed(const cases::Case<T>& v, const std::string& request
     ++skipped_;
     return;
   }
-  const properties::Problem<T> problem(v.matrix, v.plane, v.convention);
+  const oracle::Problem<T> problem(v.matrix, v.plane, v.convention);
   if (problem.exact_status() != Status::ok) return;
   const Expected<Answer<T>> read = protocol::read_answer<T>(answer);
   if (!read) return;  // judged already: a protocol error never reaches here

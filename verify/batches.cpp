@@ -24,8 +24,8 @@ Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
         draws.generator()(random.split(), static_cast<int>(tries % 101));
     cases::Case<T> value = drawn.value();
     if (draws.needs_status()) {
-      auto problem = std::make_unique<properties::FilteredProblem<T>>(value.matrix, value.plane,
-                                                                      value.convention);
+      auto problem =
+          std::make_unique<oracle::FilteredProblem<T>>(value.matrix, value.plane, value.convention);
       if (const std::string why = draws.left_out(*problem); !why.empty()) {
         left_out.count(value, why);
         continue;
@@ -70,7 +70,7 @@ std::vector<Judged<T>> judge_batch(const Draws<T>& draws, const Batch<T>& b,
       if (b.problems[k]) {
         out[k].finding = judge_answer(*b.problems[k], *answered, draws.checks());
       } else {
-        const properties::FilteredProblem<T> problem(v.matrix, v.plane, v.convention);
+        const oracle::FilteredProblem<T> problem(v.matrix, v.plane, v.convention);
         out[k].finding = judge_answer(problem, *answered, draws.checks());
       }
     }

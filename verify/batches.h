@@ -24,14 +24,14 @@ struct Batch {
   std::vector<cases::Case<T>> values;
   std::vector<std::string> requests;
   /// The checker of each case, made when the contract needed it to decide what is sent.
-  std::vector<std::unique_ptr<properties::FilteredProblem<T>>> problems;
+  std::vector<std::unique_ptr<oracle::FilteredProblem<T>>> problems;
 
   /// The requests, one line each.
   std::string text() const;
 };
 
 /// Draws up to `size` cases the contract sends (at most 64 draws per case, then fewer); what it
-/// leaves out is counted in `left_out` by properties::not_judged()'s reason and by its family.
+/// leaves out is counted in `left_out` by oracle::not_judged()'s reason and by its family.
 template <class T>
 Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size, LeftOut& left_out);
 

@@ -18,7 +18,7 @@ namespace {
 /// the others one of its defects when its statuses are judged.
 template <class T>
 rc::Gen<cases::Case<T>> verify_case(const Contract& contract) {
-  const bool defects = *contract.statuses != properties::StatusContract::answers_only;
+  const bool defects = *contract.statuses != cases::StatusContract::answers_only;
   return rc::gen::exec([contract, defects] {
     if (!defects || *rc::gen::resize(100, rc::gen::inRange(0, 5)) < 4)
       return *cases::valid_case_for<T>(contract);
@@ -35,10 +35,10 @@ bool contains(const std::vector<E>& list, E value) {
 
 template <class T>
 Draws<T>::Draws(const Contract& given)
-    : contract_(resolved(given, {Convention::gl}, properties::StatusContract::any_refusal,
+    : contract_(resolved(given, {Convention::gl}, cases::StatusContract::any_refusal,
                          /*own_row3_accuracy=*/true)),
       generator_(verify_case<T>(contract_)) {
-  const bool answers_only = *contract_.statuses == properties::StatusContract::answers_only;
+  const bool answers_only = *contract_.statuses == cases::StatusContract::answers_only;
   const bool unit = given.planes == Planes::unit;
   if (unit && !contains(contract_.places, cases::Place::scaled))
     notes_.push_back("place scaled (unit-normal planes)");
@@ -61,12 +61,12 @@ Draws<T>::Draws(const Contract& given)
 
 template <class T>
 bool Draws<T>::needs_status() const {
-  return !properties::has_every_refusal(*contract_.statuses, contract_.refusals);
+  return !oracle::has_every_refusal(*contract_.statuses, contract_.refusals);
 }
 
 template <class T>
-std::string Draws<T>::left_out(const properties::FilteredProblem<T>& problem) const {
-  return properties::not_judged(problem, checks_.statuses, contract_.refusals);
+std::string Draws<T>::left_out(const oracle::FilteredProblem<T>& problem) const {
+  return oracle::not_judged(problem, checks_.statuses, contract_.refusals);
 }
 
 template <class T>
@@ -75,10 +75,10 @@ std::string request_text(const cases::Case<T>& c) {
 }
 
 template <class T>
-std::optional<Found<T>> judge_answer(const properties::FilteredProblem<T>& problem,
-                                     const Answer<T>& answer, const properties::Checks& checks) {
-  const properties::Judgement judgement = properties::judge(problem, answer, checks);
-  const properties::Finding* violation = judgement.violation();
+std::optional<Found<T>> judge_answer(const oracle::FilteredProblem<T>& problem,
+                                     const Answer<T>& answer, const cases::Checks& checks) {
+  const oracle::Judgement judgement = oracle::judge(problem, answer, checks);
+  const oracle::Finding* violation = judgement.violation();
   if (!violation) return std::nullopt;
   Found<T> f;
   f.finding = *violation;
@@ -88,7 +88,7 @@ std::optional<Found<T>> judge_answer(const properties::FilteredProblem<T>& probl
 
 template <class T>
 bool consistent_with_float(const cases::Case<T>& c, const Matrix4<T>& answer,
-                           const properties::Checks& checks) {
+                           const cases::Checks& checks) {
   if constexpr (std::is_same_v<T, float>) {
     return false;
   } else {
@@ -104,9 +104,9 @@ bool consistent_with_float(const cases::Case<T>& c, const Matrix4<T>& answer,
     const Matrix4<float> m = c.matrix.template cast<float>();
     const Vector4<float> plane = c.plane.template cast<float>();
     if (!m.allFinite() || !plane.allFinite()) return false;
-    const properties::FilteredProblem<float> problem(m, plane, c.convention);
+    const oracle::FilteredProblem<float> problem(m, plane, c.convention);
     const Answer<float> outcome{Status::ok, answer_f};
-    return properties::judge(problem, outcome, checks).violation() == nullptr;
+    return oracle::judge(problem, outcome, checks).violation() == nullptr;
   }
 }
 
@@ -195,14 +195,14 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
   return out;
 }
 
-#define OBLIQUE_VERIFY_CASES(T)                                                                  \
-  template class Draws<T>;                                                                       \
-  template std::string request_text<T>(const cases::Case<T>&);                                   \
-  template std::optional<Found<T>> judge_answer<T>(const properties::FilteredProblem<T>&,        \
-                                                   const Answer<T>&, const properties::Checks&); \
-  template bool consistent_with_float<T>(const cases::Case<T>&, const Matrix4<T>&,               \
-                                         const properties::Checks&);                             \
-  template void Seen::count<T>(const cases::Case<T>&);                                           \
+#define OBLIQUE_VERIFY_CASES(T)                                                             \
+  template class Draws<T>;                                                                  \
+  template std::string request_text<T>(const cases::Case<T>&);                              \
+  template std::optional<Found<T>> judge_answer<T>(const oracle::FilteredProblem<T>&,       \
+                                                   const Answer<T>&, const cases::Checks&); \
+  template bool consistent_with_float<T>(const cases::Case<T>&, const Matrix4<T>&,          \
+                                         const cases::Checks&);                             \
+  template void Seen::count<T>(const cases::Case<T>&);                                      \
   template void LeftOut::count<T>(const cases::Case<T>&, const std::string&);
 OBLIQUE_VERIFY_CASES(float)
 OBLIQUE_VERIFY_CASES(double)

@@ -23,7 +23,7 @@ namespace oblique::verify {
 /// and its evidence.
 template <class T>
 struct Found {
-  properties::Finding finding;  ///< kind: "status", a property, ..., or "crash", "timeout"
+  oracle::Finding finding;  ///< kind: "status", a property, ..., or "crash", "timeout"
   std::optional<Matrix4<T>> result;
   std::string answer_line, process;
 };
@@ -37,19 +37,19 @@ class Draws {
   explicit Draws(const Contract& given);
 
   const Contract& contract() const { return contract_; }
-  const properties::Checks& checks() const { return checks_; }
+  const cases::Checks& checks() const { return checks_; }
   const rc::Gen<cases::Case<T>>& generator() const { return generator_; }
   /// What the contract leaves out whatever is drawn ("place scaled (unit-normal planes)", ...).
   const std::vector<std::string>& notes() const { return notes_; }
   /// Whether some inputs are left out by their status (the contract lacks a refusal).
   bool needs_status() const;
-  /// Why the contract leaves out this input ("" when it is sent): properties::not_judged(), the
+  /// Why the contract leaves out this input ("" when it is sent): oracle::not_judged(), the
   /// rule every tool shares.
-  std::string left_out(const properties::FilteredProblem<T>& problem) const;
+  std::string left_out(const oracle::FilteredProblem<T>& problem) const;
 
  private:
   Contract contract_;
-  properties::Checks checks_;
+  cases::Checks checks_;
   rc::Gen<cases::Case<T>> generator_;
   std::vector<std::string> notes_;
 };
@@ -61,8 +61,8 @@ std::string request_text(const cases::Case<T>& c);
 /// The suite's judgement under the run's checks: the first violation, or none. `problem` is the
 /// filtered checker (the exact checker's verdicts, most without GMP; used by one thread only).
 template <class T>
-std::optional<Found<T>> judge_answer(const properties::FilteredProblem<T>& problem,
-                                     const Answer<T>& answer, const properties::Checks& checks);
+std::optional<Found<T>> judge_answer(const oracle::FilteredProblem<T>& problem,
+                                     const Answer<T>& answer, const cases::Checks& checks);
 
 /// Whether a wrong answer under T wider than float is what float arithmetic gives: every entry
 /// of `answer` is a float or has at most 9 significant digits (how a float prints: shortest or
@@ -71,7 +71,7 @@ std::optional<Found<T>> judge_answer(const properties::FilteredProblem<T>& probl
 /// wants --precision float.
 template <class T>
 bool consistent_with_float(const cases::Case<T>& c, const Matrix4<T>& answer,
-                           const properties::Checks& checks);
+                           const cases::Checks& checks);
 
 /// What the judged cases covered, for the summary of a passing run.
 struct Seen {

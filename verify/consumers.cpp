@@ -42,7 +42,7 @@ struct Round {
 /// The first violation of a run, with its evidence.
 template <class T>
 struct Caught {
-  properties::ConsumerFinding finding;
+  oracle::ConsumerFinding finding;
   std::string inputs, request, answer;
   bool about_oblique_case = false;
   Round<T> round;
@@ -73,18 +73,18 @@ class ConsumerRun {
   /// round.picks. Returns false for a protocol error (said on err_).
   bool play(const Round<T>& round) {
     std::size_t next = 0;
-    const properties::Pick pick = [&](int lo, int hi) {
+    const oracle::Pick pick = [&](int lo, int hi) {
       // The recorded picks, in order (clamped, should a report have been edited).
       const int v = next < round.picks.size() ? round.picks[next++] : lo;
       return v < lo ? lo : v >= hi ? hi - 1 : v;
     };
-    const properties::Settle settle = [&](const properties::ConsumerFinding& f,
-                                          const std::string& inputs, bool about) {
+    const oracle::Settle settle = [&](const oracle::ConsumerFinding& f, const std::string& inputs,
+                                      bool about) {
       tally(f, round, 0, inputs, about, program_.last_request(), program_.last_answer());
     };
     try {
-      properties::consumer_round<T>(round.c.matrix, round.c.plane, round.c.convention, asked_, pick,
-                                    settle);
+      oracle::consumer_round<T>(round.c.matrix, round.c.plane, round.c.convention, asked_, pick,
+                                settle);
     } catch (const Failure& failure) {
       return lost(failure, round, 0);
     }
@@ -112,12 +112,12 @@ class ConsumerRun {
   }
 
   /// One finding of round `index` counted, and kept as the run's violation when it is the first.
-  void tally(const properties::ConsumerFinding& f, const Round<T>& round, long index,
+  void tally(const oracle::ConsumerFinding& f, const Round<T>& round, long index,
              const std::string& inputs, bool about, const std::string& request,
              const std::string& answer) {
-    const std::string check(properties::consumer_check_name(f.check));
+    const std::string check(oracle::consumer_check_name(f.check));
     asked_checks_.insert(f.check);
-    if (const std::string_view why = properties::not_applicable(f.check, round.c.family);
+    if (const std::string_view why = oracle::not_applicable(f.check, round.c.family);
         !f.judged && !why.empty()) {
       // Nothing to judge on this family (corners of an infinite frustum, ...): said once in
       // the summary, not counted as left out. (A judged answer on it is settled as any.)
@@ -139,14 +139,14 @@ class ConsumerRun {
   /// A finding of a planned round, waiting for the round's turn to be counted: `ask` is the
   /// batch's request it judges (npos: left out before asking).
   struct Pending {
-    properties::ConsumerFinding finding;
+    oracle::ConsumerFinding finding;
     std::string inputs;
     bool about = false;
     std::size_t ask = static_cast<std::size_t>(-1);
   };
   struct Planned {
     Round<T> round;
-    std::vector<properties::ConsumerAsk<T>> asks;
+    std::vector<oracle::ConsumerAsk<T>> asks;
     std::size_t first_ask = 0;  ///< its first request's place in the batch
     std::vector<Pending> pending;
   };
@@ -160,17 +160,17 @@ class ConsumerRun {
       const long i = index + k;
       p.round.c = cases(random.split(), static_cast<int>(i % 101)).value();
       std::mt19937_64 engine(options_.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(i));
-      const properties::Pick pick = [&](int lo, int hi) {
+      const oracle::Pick pick = [&](int lo, int hi) {
         const int v = std::uniform_int_distribution<int>(lo, hi - 1)(engine);
         p.round.picks.push_back(v);
         return v;
       };
-      const properties::Settle left_out = [&p](const properties::ConsumerFinding& f,
-                                               const std::string& inputs, bool about) {
+      const oracle::Settle left_out = [&p](const oracle::ConsumerFinding& f,
+                                           const std::string& inputs, bool about) {
         p.pending.push_back(Pending{f, inputs, about});
       };
-      p.asks = properties::consumer_asks<T>(p.round.c.matrix, p.round.c.plane, p.round.c.convention,
-                                            asked_, pick, left_out);
+      p.asks = oracle::consumer_asks<T>(p.round.c.matrix, p.round.c.plane, p.round.c.convention,
+                                        asked_, pick, left_out);
     }
     return out;
   }
@@ -179,7 +179,7 @@ class ConsumerRun {
   /// then counted round by round in order up to the first violation, crash, timeout or protocol
   /// error. Returns false for a protocol error (said on err_); `settled` is how many rounds were.
   bool play_batch(std::vector<Planned>& batch, long index, long& settled) {
-    std::vector<const properties::ConsumerAsk<T>*> asks;
+    std::vector<const oracle::ConsumerAsk<T>*> asks;
     for (Planned& p : batch) {
       p.first_ask = asks.size();
       for (const auto& a : p.asks) asks.push_back(&a);
@@ -193,7 +193,7 @@ class ConsumerRun {
             for (std::size_t j = 0; j < p.asks.size(); ++j) {
               const std::size_t g = p.first_ask + j;
               if (g >= answers.numbers.size()) break;
-              p.asks[j].judge(answers.numbers[g], [&p, g](const properties::ConsumerFinding& f,
+              p.asks[j].judge(answers.numbers[g], [&p, g](const oracle::ConsumerFinding& f,
                                                           const std::string& inputs, bool about) {
                 p.pending.push_back(Pending{f, inputs, about, g});
               });
@@ -219,8 +219,8 @@ class ConsumerRun {
   }
 
   Verdict run() {
-    const Contract contract = resolved(options_.contract, {Convention::gl},
-                                       properties::StatusContract::any_refusal, true);
+    const Contract contract =
+        resolved(options_.contract, {Convention::gl}, cases::StatusContract::any_refusal, true);
     const rc::Gen<cases::Case<T>> cases = cases::valid_case_for<T>(contract);
     rc::Random random(options_.seed);
     const auto start = std::chrono::steady_clock::now();
@@ -281,7 +281,7 @@ class ConsumerRun {
       const std::string name(cases::family_name(f));
       const bool applicable = std::any_of(
           asked_checks_.begin(), asked_checks_.end(),
-          [f](properties::ConsumerCheck c) { return properties::not_applicable(c, f).empty(); });
+          [f](oracle::ConsumerCheck c) { return oracle::not_applicable(c, f).empty(); });
       if (!applicable || judged_families_.count(name)) continue;
       unjudged.push_back(
           "the contract claims family " + name + ", and no answer on it was judged: " +
@@ -345,7 +345,7 @@ class ConsumerRun {
       out_ << "oblique verify: " << caught_->lost->what << "\n  request: " << caught_->request
            << "\n";
     } else {
-      out_ << "oblique verify: violated: " << properties::describe(caught_->finding)
+      out_ << "oblique verify: violated: " << oracle::describe(caught_->finding)
            << "\n  request: " << caught_->request << "\n  answer: " << caught_->answer << "\n";
     }
     return Verdict::violated;
@@ -369,7 +369,7 @@ class ConsumerRun {
         << program_.answered() << " answer lines read before)";
     if (caught_ && !caught_->lost)
       err_ << "; the answers were out of step with the requests, so the "
-           << properties::consumer_check_name(caught_->finding.check)
+           << oracle::consumer_check_name(caught_->finding.check)
            << " violation judged on one of them is not reported";
     err_ << "\n";
     for (std::size_t i = 0; i < extra.size() && i < 5; ++i)
@@ -399,14 +399,14 @@ class ConsumerRun {
     const Eigen::Matrix<T, 1, 4> plane = c.round.c.plane.transpose();
     return "{\"type\": \"consumers\", \"check\": " + protocol::json_string(check) +
            ", \"finding\": " +
-           protocol::json_string(c.lost ? c.lost->what : properties::describe(c.finding)) +
+           protocol::json_string(c.lost ? c.lost->what : oracle::describe(c.finding)) +
            ", \"precision\": " + protocol::json_string(protocol::scalar_name<T>()) +
            ", \"kinds\": " + kinds +
            ", \"convention\": " + protocol::json_string(convention_name(c.round.c.convention)) +
            ", \"family\": " + protocol::json_string(cases::family_name(c.round.c.family)) +
            ", \"projection\": " + hex_list(m) + ", \"plane\": " + hex_list(plane) +
            ", \"picks\": " + picks + ", \"mirror_design\": " +
-           protocol::json_string(properties::mirror_design_name(asked_.mirror_design)) +
+           protocol::json_string(oracle::mirror_design_name(asked_.mirror_design)) +
            ", \"request\": " + protocol::json_string(c.request) +
            ", \"answer\": " + protocol::json_string(c.answer) +
            ", \"seed\": " + std::to_string(options_.seed) +
@@ -415,9 +415,8 @@ class ConsumerRun {
 
   Verdict report(double seconds) {
     const Caught<T>& c = *caught_;
-    const std::string check = c.lost
-                                  ? (c.lost->kind == Failure::Kind::crash ? "crash" : "timeout")
-                                  : std::string(properties::consumer_check_name(c.finding.check));
+    const std::string check = c.lost ? (c.lost->kind == Failure::Kind::crash ? "crash" : "timeout")
+                                     : std::string(oracle::consumer_check_name(c.finding.check));
     report::ReportFiles files(options_.report_dir);
     const std::string stem = files.reserve_stem("verify-consumer-" + check, {".md", ".json"});
     const std::string json_path =
@@ -427,7 +426,7 @@ class ConsumerRun {
       md = "# Counterexample: " + check + "\n\n`" + options_.command + "`: " + c.lost->what +
            ".\n\n";
     } else {
-      md = properties::consumer_report_markdown(options_.command, c.finding, c.inputs) + "\n";
+      md = oracle::consumer_report_markdown(options_.command, c.finding, c.inputs) + "\n";
     }
     char elapsed[32];
     std::snprintf(elapsed, sizeof elapsed, "%.3f", seconds);
@@ -436,11 +435,10 @@ class ConsumerRun {
           "), after " + elapsed + " s. The request:\n\n```\n" + c.request +
           "\n```\n\nThe answer:\n\n```\n" + (c.answer.empty() ? "(none)" : c.answer) + "\n```\n\n";
     if (!c.lost && !c.about_oblique_case)
-      md += properties::stage_drawn_pictures(files, stem, c.finding, options_.command);
+      md += oracle::stage_drawn_pictures(files, stem, c.finding, options_.command);
     if (!c.lost && c.about_oblique_case)
-      md +=
-          properties::stage_consumer_pictures<T>(files, stem, c.round.c.matrix, c.round.c.plane,
-                                                 c.round.c.convention, c.finding, options_.command);
+      md += oracle::stage_consumer_pictures<T>(files, stem, c.round.c.matrix, c.round.c.plane,
+                                               c.round.c.convention, c.finding, options_.command);
     md += "## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
           "\n# this round again, judged (exit 0 holds, 1 violated)\n" + options_.self +
           " verify --replay " + shell_quote(json_path) + " --impl " +
@@ -449,7 +447,7 @@ class ConsumerRun {
     files.open(stem + ".md") << md;
     files.open(stem + ".json") << report_json(check);
     err_ << "oblique verify: "
-         << (c.lost ? c.lost->what : "violated: " + properties::describe(c.finding)) << "\n";
+         << (c.lost ? c.lost->what : "violated: " + oracle::describe(c.finding)) << "\n";
     return commit_report(files, stem, err_);
   }
 
@@ -462,7 +460,7 @@ class ConsumerRun {
   std::map<std::string, long> judged_, left_out_;
   /// Left out by property, and the families with an answer judged.
   std::map<std::string, long> left_out_checks_, judged_families_, not_applicable_;
-  std::set<properties::ConsumerCheck> asked_checks_;
+  std::set<oracle::ConsumerCheck> asked_checks_;
   std::optional<Caught<T>> caught_;
 };
 
@@ -507,8 +505,8 @@ Verdict replay_in(const VerifyOptions& options, const protocol::JsonValue& repor
   // command line's).
   VerifyOptions replayed = options;
   if (const protocol::JsonValue* design = report.find("mirror_design"); error.empty() && design) {
-    const std::optional<properties::MirrorDesign> parsed =
-        design->is_string() ? properties::parse_mirror_design(design->text) : std::nullopt;
+    const std::optional<oracle::MirrorDesign> parsed =
+        design->is_string() ? oracle::parse_mirror_design(design->text) : std::nullopt;
     if (parsed)
       replayed.mirror_design = *parsed;
     else

@@ -1,5 +1,5 @@
 // `oblique verify --consumers`: a program's code around the matrix (the consumer request kinds),
-// asked in batches of rounds planned as every tool plans them (properties::consumer_asks()),
+// asked in batches of rounds planned as every tool plans them (oracle::consumer_asks()),
 // judged on several threads and counted in order, a violation written as a report that replays
 // its round exactly (M and C in exact hex, the round's picks). Internal to oblique::verify.
 #pragma once

@@ -96,7 +96,7 @@ void FailureDatabase<T>::accuracy_again(const std::string& path, const cases::Ca
   const Expected<protocol::JsonValue> j = read_report(path);
   const auto& answer = session_.last_answer();
   if (!j || !report_is(*j, "accuracy") || !answer || answer->status != Status::ok) return;
-  const properties::Problem<T> problem(v.matrix, v.plane, v.convention);
+  const oracle::Problem<T> problem(v.matrix, v.plane, v.convention);
   if (problem.exact_status() != Status::ok) return;
   const report::ProfiledAnswer now = report::profile_answer(problem, answer->projection);
   std::string recorded;
@@ -129,7 +129,7 @@ Verdict FailureDatabase<T>::replay(const std::string& path, bool verbose) {
       }
       return Verdict::holds;
     case Evaluation::finding: {
-      const properties::Finding& f = found.finding;
+      const oracle::Finding& f = found.finding;
       out_ << "oblique verify: " << path << ": violated: " << check_name(f.check) << ": "
            << relation_text(f) << "\n"
            << sides_text(f, "  ");

@@ -144,17 +144,16 @@ Verdict RasterLook<T>::report(const cases::Case<T>& v, const std::string& reques
   const std::string stem = files.reserve_stem("verify-raster", {".md", ".json"});
   const std::string json_path =
       (std::filesystem::path(options_.report_dir) / (stem + ".json")).string();
-  std::string md = "# Counterexample: the rasterizer\n\n`" + options_.command +
-                   "`'s answer passes the properties, but drawn on " + rasterizer_->renderer() +
-                   " it fails: " + r.why +
-                   ".\n\n## The case\n\n- family: " + std::string(cases::family_name(v.family)) +
-                   ", place " + cases::case_kind(v) +
-                   "\n- convention: " + std::string(convention_name(v.convention)) +
-                   ", depth buffer " + std::string(depth_buffer_name(options_.raster_buffer)) +
-                   "\n- M: " + properties::numbers_text(v.matrix) +
-                   "\n- C: " + properties::numbers_text(v.plane) + "\n\nAnswer " +
-                   std::to_string(index) + " of the run. The request:\n\n```\n" + request +
-                   "\n```\n\nThe answer:\n\n```\n" + answer + "\n```\n\n";
+  std::string md =
+      "# Counterexample: the rasterizer\n\n`" + options_.command +
+      "`'s answer passes the properties, but drawn on " + rasterizer_->renderer() +
+      " it fails: " + r.why +
+      ".\n\n## The case\n\n- family: " + std::string(cases::family_name(v.family)) + ", place " +
+      cases::case_kind(v) + "\n- convention: " + std::string(convention_name(v.convention)) +
+      ", depth buffer " + std::string(depth_buffer_name(options_.raster_buffer)) +
+      "\n- M: " + oracle::numbers_text(v.matrix) + "\n- C: " + oracle::numbers_text(v.plane) +
+      "\n\nAnswer " + std::to_string(index) + " of the run. The request:\n\n```\n" + request +
+      "\n```\n\nThe answer:\n\n```\n" + answer + "\n```\n\n";
   md += raster::stage_flagged_section(files, stem, r, options_.raster_size);
   md += "\n## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
         "\n# this request again, its answer drawn (exit 0 holds, 1 fails, 3 inconclusive)\n" +

@@ -38,19 +38,19 @@ template <class T>
 Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int steps,
                              bool out_of_time, long found_after_cases, double found_after_seconds,
                              const mistakes::Diagnosis& diagnosis) {
-  const properties::Finding& f = found.finding;
-  properties::Counterexample ce = properties::make_counterexample(v.matrix, v.plane, v.convention);
+  const oracle::Finding& f = found.finding;
+  oracle::Counterexample ce = oracle::make_counterexample(v.matrix, v.plane, v.convention);
   ce.finding = f;
   ce.implementation = options_.command;
   ce.family = std::string(cases::family_name(v.family));
-  const properties::Problem<T> problem(v.matrix, v.plane, v.convention);
+  const oracle::Problem<T> problem(v.matrix, v.plane, v.convention);
   // "no answer: DEFECT" only where the input has none (a near_singular one may well have one).
   ce.place = v.defect && problem.exact_status() == Status::ok
                  ? std::string(cases::defect_name(*v.defect)) + " (has an answer)"
                  : cases::case_kind(v);
-  if (found.result) properties::set_result(ce, *found.result);
+  if (found.result) oracle::set_result(ce, *found.result);
   if (diagnosis.ran) ce.diagnosis = diagnosis;
-  properties::set_views(ce, problem, found.result ? &*found.result : nullptr);
+  oracle::set_views(ce, problem, found.result ? &*found.result : nullptr);
   ce.notes.emplace_back("implementation", options_.command);
   ce.notes.emplace_back("exact status", std::string(status_code(problem.exact_status())));
   if (problem.exact_status() == Status::ok) {
@@ -79,7 +79,7 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
                                            seconds_text(found_after_seconds) + " s");
 
   const std::string request = request_text(v);
-  properties::ReportContext context;
+  oracle::ReportContext context;
   context.directory = options_.report_dir;
   context.stem = "verify-" + std::string(check_name(f.check));
   context.seed = options_.seed;
@@ -89,7 +89,7 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
   context.keep_existing = true;
   std::string path;
   try {
-    path = properties::write_report(ce, context);
+    path = oracle::write_report(ce, context);
   } catch (const std::exception& e) {
     path = "(not written: " + std::string(e.what()) + ")";
   }

@@ -29,7 +29,7 @@ template <class T>
 typename Session<T>::Evaluation Session<T>::evaluate(const cases::Case<T>& v, Found<T>& finding) {
   last_answer_.reset();
   if (out_of_time()) return Evaluation::out_of_time;
-  const properties::FilteredProblem<T> problem(v.matrix, v.plane, v.convention);
+  const oracle::FilteredProblem<T> problem(v.matrix, v.plane, v.convention);
   if (draws_.needs_status() && !draws_.left_out(problem).empty())
     return Evaluation::pass;  // not an input the implementation promises anything for
   issue_ = Issue{};
@@ -104,14 +104,14 @@ std::optional<mistakes::Observation<T>> Session<T>::observe(const cases::Case<T>
 template <class T>
 Found<T> Session<T>::lost_finding(const client::Failure& failure) {
   Found<T> found;
-  properties::Finding& f = found.finding;
-  f.shows = properties::Shows::program;
+  oracle::Finding& f = found.finding;
+  f.shows = oracle::Shows::program;
   if (failure.kind == client::Failure::Kind::crash) {
-    f.check = properties::Check::crash;
+    f.check = oracle::Check::crash;
     found.process = failure.ended;
     f.message = "it " + found.process + " before answering";
   } else {
-    f.check = properties::Check::timeout;
+    f.check = oracle::Check::timeout;
     f.bound = options_.request_timeout_seconds;
     found.process = "no answer line";
     f.message =

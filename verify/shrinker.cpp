@@ -51,7 +51,7 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<cases::Case<T>>& failing, Found
   int steps = 0, tries = 0;
   bool out_of_time = false;
   // Timeouts cost the whole timeout per try: the case is reported as found.
-  bool progress = finding.finding.check != properties::Check::timeout;
+  bool progress = finding.finding.check != oracle::Check::timeout;
   while (progress && !out_of_time) {
     progress = false;
     auto shrinks = current.shrinks();
@@ -88,7 +88,7 @@ Verdict Shrinker<T>::shrink(const rc::Shrinkable<cases::Case<T>>& failing, Found
 
 template <class T>
 mistakes::Diagnosis Shrinker<T>::diagnose(const cases::Case<T>& shrunk, const Found<T>& finding) {
-  using properties::Check;
+  using oracle::Check;
   const Check check = finding.finding.check;
   if (check == Check::crash || check == Check::timeout || check == Check::protocol) return {};
   // The shrunk case's answer as judged: a matrix, or (a status finding) the refusal.

@@ -22,7 +22,7 @@ using oblique::Vector4;
 
 /// The pixel's camera-space point: the inverse of the matrix the depth was rendered with.
 template <class T>
-Vector3<T> view_position(const oblique::properties::DepthSample<T>& s) {
+Vector3<T> view_position(const oblique::oracle::DepthSample<T>& s) {
   const T z = s.convention == Convention::gl ? T(2) * s.depth - T(1) : s.depth;
   const Vector4<T> v = s.projection.inverse() * Vector4<T>(s.ndc_x, s.ndc_y, z, T(1));
   return v.template head<3>() / v.w();
@@ -31,7 +31,7 @@ Vector3<T> view_position(const oblique::properties::DepthSample<T>& s) {
 /// Its distance along the view axis (the camera looks down -z unless the projection is
 /// left-handed).
 template <class T>
-T linear_depth(const oblique::properties::DepthSample<T>& s) {
+T linear_depth(const oblique::oracle::DepthSample<T>& s) {
   const int axis = oblique::view_axis_sign(s.original, s.convention);
   return T(axis) * view_position(s).z();
 }
@@ -88,8 +88,8 @@ std::vector<Vector3<T>> corners(const Matrix4<T>& m, const Matrix4<T>& original,
 /// view_position: the depth decompressed with the camera's unmodified matrix (Unity
 /// Graphics#3919, three.js#21403, ioq3#641). Caught by view_position.
 template <class T>
-Vector3<T> reconstructs_with_original(const oblique::properties::DepthSample<T>& s) {
-  oblique::properties::DepthSample<T> wrong = s;
+Vector3<T> reconstructs_with_original(const oblique::oracle::DepthSample<T>& s) {
+  oblique::oracle::DepthSample<T> wrong = s;
   wrong.projection = s.original;
   return view_position(wrong);
 }
@@ -97,7 +97,7 @@ Vector3<T> reconstructs_with_original(const oblique::properties::DepthSample<T>&
 /// linear_depth: the textbook n f / (f - d (f - n)) with n and f read off the unmodified
 /// perspective matrix ([0, 1] depth, right-handed). Caught by linear_depth.
 template <class T>
-T linearises_with_near_far(const oblique::properties::DepthSample<T>& s) {
+T linearises_with_near_far(const oblique::oracle::DepthSample<T>& s) {
   const T n = s.original(2, 3) / s.original(2, 2);
   const T f = s.original(2, 3) / (s.original(2, 2) + T(1));
   return n * f / (f - s.depth * (f - n));

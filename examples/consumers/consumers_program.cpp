@@ -76,7 +76,7 @@ std::string answer(const json& request, const std::string& wrong) {
   }
   const std::string kind = request.at("kind").get<std::string>();
   if (kind == "view_position" || kind == "linear_depth") {
-    oblique::properties::DepthSample<T> s;
+    oblique::oracle::DepthSample<T> s;
     s.projection = numbers<T, 4, 4>(request.at("projection"));
     s.original = numbers<T, 4, 4>(request.at("original"));
     s.convention = convention(request);

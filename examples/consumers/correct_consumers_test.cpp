@@ -39,7 +39,7 @@ oblique::Consumers<T> proper_camera_mirror() {
   oblique::Consumers<T> c;
   c.name = "proper_camera_mirror";
   c.mirror_view = engine_consumers::mirror_by_reflected_look_at<T>;
-  c.mirror_design = oblique::properties::MirrorDesign::proper_camera;
+  c.mirror_design = oblique::oracle::MirrorDesign::proper_camera;
   return c;
 }
 

@@ -9,7 +9,7 @@ namespace {
 oblique::Consumers<float> engine_consumers() {
   oblique::Consumers<float> c;
   c.name = "engine::view_position";
-  c.view_position = [](const oblique::properties::DepthSample<float>& s) {
+  c.view_position = [](const oblique::oracle::DepthSample<float>& s) {
     float m[16], out[3];
     for (int r = 0; r < 4; ++r)
       for (int k = 0; k < 4; ++k) m[4 * k + r] = s.projection(r, k);  // column-major

@@ -17,11 +17,11 @@ namespace {
 using oblique::Convention;
 using oblique::Status;
 namespace mistakes = oblique::mistakes;
-namespace properties = oblique::properties;
+namespace oracle = oblique::oracle;
 namespace protocol = oblique::protocol;
 
 template <class T>
-std::string answer(const properties::Implementation<T>& impl, const std::string& line) {
+std::string answer(const oracle::Implementation<T>& impl, const std::string& line) {
   const oblique::Expected<protocol::Request> request = protocol::parse_request(line);
   if (!request) return protocol::refusal_line(Status::invalid_input, request.error());
   oblique::Matrix4<T> m;
@@ -43,7 +43,7 @@ std::string answer(const properties::Implementation<T>& impl, const std::string&
 
 template <class T>
 int serve(const std::vector<mistakes::Mistake>& mistakes) {
-  const properties::Implementation<T> impl = mistakes::mistaken_implementation<T>(mistakes);
+  const oracle::Implementation<T> impl = mistakes::mistaken_implementation<T>(mistakes);
   std::string line;
   while (std::getline(std::cin, line)) std::cout << answer(impl, line) << std::endl;
   return 0;

@@ -1,5 +1,5 @@
 // The fuzz driver for your own function: the project's input decoder, and the exact judgement
-// (properties::judge). The decoder reads an input one of two ways (its fourth byte says which):
+// (oracle::judge). The decoder reads an input one of two ways (its fourth byte says which):
 // as the picks of the case builder every way in shares (oblique/cases/case_builder.h), so the
 // case is one of your contract's families, conventions and places as a property run draws them;
 // or as numbers (a projection of a shape built from decoded parameters or 16 raw numbers, and a
@@ -49,7 +49,7 @@ namespace oblique::fuzzing {
 inline namespace OBLIQUE_EIGEN_LAYOUT {
 template <class T>
 int test_one_input(const std::uint8_t* data, std::size_t size,
-                   const properties::Implementation<T>& impl, const Contract& contract = {});
+                   const oracle::Implementation<T>& impl, const Contract& contract = {});
 /// The body of a libFuzzer target for the code around the matrix (oblique::Consumers, as
 /// oblique::testing::check_consumers takes it): decodes M and C as test_one_input() does (in one
 /// of the contract's conventions and families, unit planes scaled; `consumers.accepts` honoured

@@ -42,10 +42,10 @@
 
 namespace oblique::testing {
 
-using properties::Checks;
-using properties::Implementation;
-using properties::Property;
-using properties::StatusContract;
+using cases::Checks;
+using cases::Property;
+using cases::StatusContract;
+using oracle::Implementation;
 
 /// Where reports go and what their replay commands name.
 struct Settings {

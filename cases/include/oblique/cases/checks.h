@@ -10,7 +10,7 @@
 #include "oblique/result.h"
 #include "oblique/status.h"
 
-namespace oblique::properties {
+namespace oblique::cases {
 
 /// How an implementation's statuses are judged.
 enum class StatusContract {
@@ -42,4 +42,4 @@ struct Checks {
   bool every = false;
 };
 
-}  // namespace oblique::properties
+}  // namespace oblique::cases

@@ -3,7 +3,7 @@
 //
 //   oblique::Contract c;                                    // C++: lists empty = every value
 //   c.families = {oblique::cases::Family::perspective};
-//   c.statuses = oblique::properties::StatusContract::answers_only;
+//   c.statuses = oblique::cases::StatusContract::answers_only;
 //
 //   {"families": ["perspective"], "statuses": "answers_only"}   // the same, as JSON
 //
@@ -45,14 +45,14 @@ struct Contract {
   Planes planes = Planes::any;
   /// How its statuses are judged (empty: from the implementation: adapt() knows a void, bool or
   /// Status function; a program under `oblique verify`: any_refusal).
-  std::optional<properties::StatusContract> statuses;
+  std::optional<cases::StatusContract> statuses;
   /// Under StatusContract::exact: the refusals it implements (empty: every one). Inputs needing
-  /// another are not judged (properties::not_judged()).
+  /// another are not judged (oracle::not_judged()).
   std::vector<Status> refusals;
   /// The kinds of input without an answer it is given, where statuses are judged (empty: all).
   std::vector<cases::Defect> defects;
   /// The properties judged (empty: every one, extracted_planes_match included).
-  std::vector<properties::Property> properties;
+  std::vector<cases::Property> properties;
   /// Row 3 of an answer within the accuracy careful arithmetic achieves in its scalar type
   /// (Problem::row3_bounds()): a promise beyond the properties, which plain float arithmetic
   /// breaks on extreme inputs (a subnormal C_w). Empty: the implementation's (a function given
@@ -89,7 +89,7 @@ std::string counts_text(const std::map<std::string, long>& counts);
 /// conventions, statuses, row3_accuracy: the implementation's own) and, for unit planes, the
 /// `scaled` place dropped (a unit normal undoes the scaling) unless it is the only place.
 Contract resolved(Contract contract, const std::vector<Convention>& own_conventions,
-                  properties::StatusContract own_statuses, bool own_row3_accuracy);
+                  cases::StatusContract own_statuses, bool own_row3_accuracy);
 
 /// The contract's JSON form: an object with any of the fields
 ///   "preset": a preset's name (preset_contract()), read first: the other fields change it;
@@ -124,20 +124,20 @@ std::vector<std::string> property_names();
 std::vector<std::string> refusal_names();
 
 /// How a contract's statuses are judged, by name ("statuses").
-inline constexpr EnumName<properties::StatusContract> status_contract_names[] = {
-    {properties::StatusContract::exact, "exact"},
-    {properties::StatusContract::any_refusal, "any_refusal"},
-    {properties::StatusContract::answers_only, "answers_only"},
+inline constexpr EnumName<cases::StatusContract> status_contract_names[] = {
+    {cases::StatusContract::exact, "exact"},
+    {cases::StatusContract::any_refusal, "any_refusal"},
+    {cases::StatusContract::answers_only, "answers_only"},
 };
-constexpr std::string_view status_contract_name(properties::StatusContract s) noexcept {
+constexpr std::string_view status_contract_name(cases::StatusContract s) noexcept {
   return name_in(status_contract_names, s);
 }
 /// Inverse of status_contract_name(); none for an unknown name.
-constexpr std::optional<properties::StatusContract> parse_status_contract(
+constexpr std::optional<cases::StatusContract> parse_status_contract(
     std::string_view name) noexcept {
   return value_in(status_contract_names, name);
 }
 
-std::optional<properties::Property> parse_property(std::string_view name) noexcept;
+std::optional<cases::Property> parse_property(std::string_view name) noexcept;
 
 }  // namespace oblique

@@ -4,7 +4,7 @@
 
 #include <string_view>
 
-namespace oblique::properties {
+namespace oblique::cases {
 
 enum class Property {
   near_is_clip_plane,        ///< 1. near(M') = lambda C with lambda > 0
@@ -31,4 +31,4 @@ constexpr std::string_view property_name(Property p) noexcept {
   return "unknown";
 }
 
-}  // namespace oblique::properties
+}  // namespace oblique::cases

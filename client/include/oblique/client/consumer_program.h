@@ -19,7 +19,7 @@
 
 namespace oblique::client {
 
-using properties::ConsumerAsk;
+using oracle::ConsumerAsk;
 
 template <class T>
 class ConsumerProgram {

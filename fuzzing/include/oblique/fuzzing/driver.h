@@ -183,7 +183,7 @@ inline constexpr int kBuiltLow = 192, kBuiltHigh = 208;
 /// Every family, convention, place and defect: the contract of the project's own fuzz target.
 inline const Contract& every_case() {
   static const Contract every =
-      resolved(Contract{}, cases::every_convention(), properties::StatusContract::exact, false);
+      resolved(Contract{}, cases::every_convention(), cases::StatusContract::exact, false);
   return every;
 }
 
@@ -387,15 +387,14 @@ std::string allowed_words(const AnyProblem& problem, const char* scalar) {
     out += exact == Status::ok ? "; it lies within rounding in " + std::string(scalar) +
                                      " of a boundary, so a refusal is right too: "
                                : "; right too: ";
-    out += properties::status_list(refusals);
+    out += oracle::status_list(refusals);
   }
   return out;
 }
 
 /// Prints what the checker knows of the case and the answer, and every check that fails.
 template <class T>
-void explain(const properties::Problem<T>& problem, const Answer<T>& outcome,
-             std::FILE* out = stderr) {
+void explain(const oracle::Problem<T>& problem, const Answer<T>& outcome, std::FILE* out = stderr) {
   using protocol::format_number;
   std::fprintf(out, "%s (Skeel condition %s, kappa %s)\n",
                allowed_words(problem, std::string(protocol::scalar_name<T>()).c_str()).c_str(),
@@ -411,14 +410,14 @@ void explain(const properties::Problem<T>& problem, const Answer<T>& outcome,
   std::string row;
   for (const auto& v : problem.exact_row3()) row += " " + format_number(v.get_d());
   std::fprintf(out, "exact row 3:%s\n", row.c_str());
-  properties::Checks every;
+  cases::Checks every;
   every.every = true;
-  for (const auto& f : properties::judge(problem, outcome, every).checks) {
+  for (const auto& f : oracle::judge(problem, outcome, every).checks) {
     if (!f.holds)
       std::fprintf(out, "%s: %s; residual %s, bound %s\n",
-                   std::string(properties::check_name(f.check)).c_str(),
-                   properties::relation_text(f).c_str(), properties::residual_text(f).c_str(),
-                   properties::bound_text(f).c_str());
+                   std::string(oracle::check_name(f.check)).c_str(),
+                   oracle::relation_text(f).c_str(), oracle::residual_text(f).c_str(),
+                   oracle::bound_text(f).c_str());
   }
 }
 
@@ -436,25 +435,25 @@ class CaseJudge {
   const Vector4<T>& plane() const { return plane_; }
   Convention convention() const { return convention_; }
   /// The filtered checker on the case (the exact one's verdicts, most without GMP; filtered.h).
-  const properties::FilteredProblem<T>& problem() {
+  const oracle::FilteredProblem<T>& problem() {
     if (!problem_) problem_.emplace(m_, plane_, convention_);
     return *problem_;
   }
-  properties::Judgement judge(const Answer<T>& outcome, const properties::Checks& checks) {
+  oracle::Judgement judge(const Answer<T>& outcome, const cases::Checks& checks) {
     for (const Judged& j : judged_) {
       if (j.outcome.status == outcome.status &&
           same_bits(j.outcome.projection, outcome.projection) && same_checks(j.checks, checks))
         return j.judgement;
     }
-    judged_.push_back(Judged{outcome, checks, properties::judge(problem(), outcome, checks)});
+    judged_.push_back(Judged{outcome, checks, oracle::judge(problem(), outcome, checks)});
     return judged_.back().judgement;
   }
 
  private:
   struct Judged {
     Answer<T> outcome;
-    properties::Checks checks;
-    properties::Judgement judgement;
+    cases::Checks checks;
+    oracle::Judgement judgement;
   };
   /// Bit for bit, the value bits only: x87's long double holds 10 bytes of value in 16, and the
   /// other 6 are whatever the memory held (comparing them made equal answers count as distinct,
@@ -467,7 +466,7 @@ class CaseJudge {
     }
     return true;
   }
-  static bool same_checks(const properties::Checks& a, const properties::Checks& b) {
+  static bool same_checks(const cases::Checks& a, const cases::Checks& b) {
     return a.statuses == b.statuses && a.properties == b.properties &&
            a.row3_accuracy == b.row3_accuracy && a.every == b.every &&
            std::memcmp(&a.max_ulps, &b.max_ulps, sizeof a.max_ulps) == 0;
@@ -476,11 +475,11 @@ class CaseJudge {
   Matrix4<T> m_;
   Vector4<T> plane_;
   Convention convention_;
-  std::optional<properties::FilteredProblem<T>> problem_;
+  std::optional<oracle::FilteredProblem<T>> problem_;
   std::vector<Judged> judged_;
 };
 
-/// Inputs left out of the judgement in this process, by properties::not_judged()'s reason, and
+/// Inputs left out of the judgement in this process, by oracle::not_judged()'s reason, and
 /// those judged; printed to stderr at exit ("oblique: N inputs judged, ...").
 struct Counts {
   long judged = 0;
@@ -556,7 +555,7 @@ std::optional<cases::Defect> defect_of(const P& problem) {
 }
 
 /// Runs `impl` on the case (in T) when it accepts it, and judges the answer with `checks`.
-/// Inputs properties::not_judged() leaves out for `checks.statuses` and `refusals` (under exact:
+/// Inputs oracle::not_judged() leaves out for `checks.statuses` and `refusals` (under exact:
 /// the refusals it implements, empty: all) are not given to it (and
 /// counted), except that with `unanswerable` inputs without an exact answer are (there an answer
 /// where none exists is the finding). On a violation: prints the case, the checker's view and the
@@ -564,8 +563,8 @@ std::optional<cases::Defect> defect_of(const P& problem) {
 /// implementation to the next. An input that is an example of a defect not in `defects` (empty:
 /// all; defect_of()) is not given to it either (counted "defect D: not in the contract").
 template <class T>
-void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementation<T>& impl,
-           const properties::Checks& checks, bool unanswerable = true,
+void check(const FuzzCase& c, CaseJudge<T>& judge, const oracle::Implementation<T>& impl,
+           const cases::Checks& checks, bool unanswerable = true,
            const std::vector<Status>& refusals = {},
            const std::vector<cases::Defect>& defects = {}) {
   const Matrix4<T>& m = judge.matrix();
@@ -582,20 +581,20 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
       return;
     }
   }
-  if (const std::string why = properties::not_judged(judge.problem(), checks.statuses, refusals);
+  if (const std::string why = oracle::not_judged(judge.problem(), checks.statuses, refusals);
       !why.empty() && !(unanswerable && judge.problem().exact_status() != Status::ok)) {
     ++counts().left_out[why];
     return;
   }
   ++counts().judged;
   const Answer<T> outcome = impl.run(m, plane, c.input.convention);
-  const properties::Judgement judgement = judge.judge(outcome, checks);
-  const properties::Finding* violation = judgement.violation();
+  const oracle::Judgement judgement = judge.judge(outcome, checks);
+  const oracle::Finding* violation = judgement.violation();
   if (!violation) return;
   describe_input<T>(c, m, plane);
   explain(judge.problem().exact(), outcome);
   std::fprintf(stderr, "oblique property violated: %s by %s (%s, %s, %s projection): it %s\n",
-               std::string(properties::check_name(violation->check)).c_str(), impl.name.c_str(),
+               std::string(oracle::check_name(violation->check)).c_str(), impl.name.c_str(),
                std::string(protocol::scalar_name<T>()).c_str(),
                std::string(convention_name(c.input.convention)).c_str(), family_label(c).c_str(),
                impl.answer_words(outcome.status).c_str());
@@ -604,9 +603,8 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const properties::Implementat
 
 /// check() for one implementation.
 template <class T>
-void check(const FuzzCase& c, const properties::Implementation<T>& impl,
-           const properties::Checks& checks, bool unanswerable = true,
-           const std::vector<Status>& refusals = {}) {
+void check(const FuzzCase& c, const oracle::Implementation<T>& impl, const cases::Checks& checks,
+           bool unanswerable = true, const std::vector<Status>& refusals = {}) {
   CaseJudge<T> judge(c);
   check<T>(c, judge, impl, checks, unanswerable, refusals);
 }

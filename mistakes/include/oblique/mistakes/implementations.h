@@ -20,7 +20,7 @@
 
 namespace oblique::mistakes {
 
-using properties::Implementation;
+using oracle::Implementation;
 
 template <class T>
 Implementation<T> core_method(Method method) {

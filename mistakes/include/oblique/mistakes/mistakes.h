@@ -13,7 +13,7 @@
 
 namespace oblique::mistakes {
 
-using properties::Implementation;
+using oracle::Implementation;
 
 enum class Mistake {
   zero_one_formula_on_gl,  ///< a = 1 / (C . Q), M'_3 = a C on a [-1, 1] matrix

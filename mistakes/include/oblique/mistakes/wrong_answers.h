@@ -33,8 +33,8 @@
 
 namespace oblique::mistakes::wrong_answers {
 
-using properties::Problem;
-using properties::Property;
+using cases::Property;
+using oracle::Problem;
 
 struct WrongAnswer {
   Property catches = Property::near_is_clip_plane;  ///< the property whose class it belongs to

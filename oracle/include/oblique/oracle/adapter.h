@@ -70,9 +70,9 @@ constexpr bool kOwnRefusals = std::is_same_v<R, bool>;
 namespace adapting {
 
 template <class T, class F>
-properties::Implementation<T> wrap(std::string name, Layout layout, F function,
-                                   std::function<bool(Convention, const Matrix4<T>&)> accepts) {
-  properties::Implementation<T> impl;
+oracle::Implementation<T> wrap(std::string name, Layout layout, F function,
+                               std::function<bool(Convention, const Matrix4<T>&)> accepts) {
+  oracle::Implementation<T> impl;
   impl.name = std::move(name);
   impl.accepts = accepts ? std::move(accepts) : [](Convention, const Matrix4<T>&) { return true; };
   if constexpr (std::is_invocable_v<F&, const Matrix4<T>&, const Vector4<T>&, Convention>) {
@@ -129,10 +129,10 @@ properties::Implementation<T> wrap(std::string name, Layout layout, F function,
 /// given (e.g. perspective_shape_only for a closed form); by default it is given every input of
 /// its convention.
 template <class T, class F>
-properties::Implementation<T> adapt(
+oracle::Implementation<T> adapt(
     std::string name, Layout layout, Convention convention, F function,
     std::function<bool(Convention, const Matrix4<T>&)> accepts = nullptr) {
-  properties::Implementation<T> impl =
+  oracle::Implementation<T> impl =
       adapting::wrap<T>(std::move(name), layout, std::move(function), std::move(accepts));
   impl.conventions = {convention};
   return impl;
@@ -141,7 +141,7 @@ properties::Implementation<T> adapt(
 /// Wraps a function that takes the convention (ObliqueResult<T> or Answer<T> f(const
 /// Matrix4<T>&, const Vector4<T>&, Convention)): it serves every convention.
 template <class T, class F>
-properties::Implementation<T> adapt(
+oracle::Implementation<T> adapt(
     std::string name, Layout layout, F function,
     std::function<bool(Convention, const Matrix4<T>&)> accepts = nullptr) {
   static_assert(std::is_invocable_v<F&, const Matrix4<T>&, const Vector4<T>&, Convention>,

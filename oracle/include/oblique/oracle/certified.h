@@ -20,7 +20,7 @@
 
 #include "oblique/numeric/error_free.h"
 
-namespace oblique::properties::certified {
+namespace oblique::oracle::certified {
 
 /// Thrown when the floating-point filter cannot decide: the caller asks exact arithmetic. `line`
 /// is where (for the statistics of what the filter leaves to exact arithmetic).
@@ -305,4 +305,4 @@ inline double approx(const Num& x) {
   return x.hi + x.lo;
 }
 
-}  // namespace oblique::properties::certified
+}  // namespace oblique::oracle::certified

@@ -2,10 +2,10 @@
 //
 //   #include <oblique/oracle/checker.h>
 //
-//   const oblique::properties::Checker<float> checker(m, plane, oblique::Convention::gl);
+//   const oblique::oracle::Checker<float> checker(m, plane, oblique::Convention::gl);
 //   oblique::Answer<float> mine{oblique::Status::ok, my_matrix};
-//   const oblique::properties::Judgement j = checker.judge(mine);
-//   if (const oblique::properties::Finding* f = j.violation())
+//   const oblique::oracle::Judgement j = checker.judge(mine);
+//   if (const oblique::oracle::Finding* f = j.violation())
 //     std::printf("%s: %s; %s against %s\n", std::string(check_name(f->check)).c_str(),
 //                 relation_text(*f).c_str(), residual_text(*f).c_str(), bound_text(*f).c_str());
 //
@@ -25,7 +25,14 @@
 #include "oblique/status.h"
 #include "oblique/util/eigen_layout.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
+
+// The case vocabulary's checks and properties (oblique/cases/checks.h), in the judge's words.
+using cases::all_properties;
+using cases::Checks;
+using cases::Property;
+using cases::property_name;
+using cases::StatusContract;
 
 template <class T>
 class FilteredProblem;
@@ -64,4 +71,4 @@ class Checker {
 
 }  // namespace OBLIQUE_EIGEN_LAYOUT
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

@@ -197,16 +197,16 @@ PassPlaneCase<T> pass_plane_case(Pick&& pick) {
 /// consumers.camera_plane on a pass: plane_on_surface and plane_kept_side.
 template <class T>
 void ask_camera_plane(const Consumers<T>& consumers, const PassPlaneCase<T>& pass,
-                      const properties::Settle& settle);
+                      const oracle::Settle& settle);
 
 /// consumers.mirror_view on a main view and a mirror's world plane.
 template <class T>
 void ask_mirror_view(const Consumers<T>& consumers, const Matrix4<T>& view,
-                     const Vector4<T>& mirror, const properties::Settle& settle);
+                     const Vector4<T>& mirror, const oracle::Settle& settle);
 
 /// consumers.portal_view on a main view and two portals' frames.
 template <class T>
 void ask_portal_view(const Consumers<T>& consumers, const Matrix4<T>& view, const Matrix4<T>& frame,
-                     const Matrix4<T>& linked, const properties::Settle& settle);
+                     const Matrix4<T>& linked, const oracle::Settle& settle);
 
 }  // namespace oblique::consumer_cases

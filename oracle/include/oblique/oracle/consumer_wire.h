@@ -12,7 +12,7 @@
 #include "oblique/oracle/consumers.h"
 #include "oblique/protocol/consumer_messages.h"
 
-namespace oblique::properties::wire {
+namespace oblique::oracle::wire {
 
 /// How many numbers a kind's answer holds, and in groups of how many (count 0: any multiple).
 inline std::pair<std::size_t, std::size_t> answer_shape(protocol::ConsumerKind kind) {
@@ -137,4 +137,4 @@ std::vector<T> numbers_of(const std::vector<Vector3<T>>& points) {
   return out;
 }
 
-}  // namespace oblique::properties::wire
+}  // namespace oblique::oracle::wire

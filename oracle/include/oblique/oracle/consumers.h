@@ -21,7 +21,7 @@
 #include "oblique/references/frustum_planes.h"
 #include "oblique/util/enum_names.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 /// The consumer properties, each of which alone rejects its class of wrong answers.
 enum class ConsumerCheck {
@@ -217,7 +217,7 @@ std::string numbers_text(const Eigen::Matrix<T, R, C>& m) {
 /// A readable line of a finding: "culling_near_is_c: ... (ratio 3.2)".
 std::string describe(const ConsumerFinding& finding);
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle
 
 namespace oblique {
 
@@ -229,10 +229,10 @@ struct Consumers {
   std::string name = "consumers";
   /// The camera-space point of the pixel at NDC (x, y) whose depth buffer holds sample.depth
   /// (the depth was rendered with sample.projection, the oblique M').
-  std::function<Vector3<T>(const properties::DepthSample<T>& sample)> view_position;
+  std::function<Vector3<T>(const oracle::DepthSample<T>& sample)> view_position;
   /// Its linear depth: the distance in front of the camera along the view axis (-z for a camera
   /// looking down -z).
-  std::function<T(const properties::DepthSample<T>& sample)> linear_depth;
+  std::function<T(const oracle::DepthSample<T>& sample)> linear_depth;
   /// The six culling planes of an oblique projection (camera space, kept side positive).
   std::function<FrustumPlanes<T>(const Matrix4<T>& oblique, Convention convention)> culling_planes;
   /// The plane in a pass camera's space (pass_view: world -> that camera) whose positive side is
@@ -243,7 +243,7 @@ struct Consumers {
   std::function<Matrix4<T>(const Matrix4<T>& view, const Vector4<T>& mirror_plane)> mirror_view;
   /// Which design mirror_view builds (judge_mirror_view() above): the reflected view, or a proper
   /// camera whose horizontal flip is done in the projection or the texture lookup.
-  properties::MirrorDesign mirror_design = properties::MirrorDesign::reflected_view;
+  oracle::MirrorDesign mirror_design = oracle::MirrorDesign::reflected_view;
   /// A portal pass's view from the main view, this portal's frame and the linked portal's frame
   /// (columns right, up, normal, centre).
   std::function<Matrix4<T>(const Matrix4<T>& view, const Matrix4<T>& frame,
@@ -264,7 +264,7 @@ struct Consumers {
 
 }  // namespace oblique
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 /// The core's references as a Consumers (depth_reconstruction.h, frustum_planes.h, pass_camera.h,
 /// kept_region.h), named "core_references": what `oblique check` judges when no program is
@@ -313,4 +313,4 @@ template <class T>
 void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
                     const Consumers<T>& consumers, const Pick& pick, const Settle& settle);
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

@@ -37,7 +37,7 @@
 #include "oblique/oracle/judge.h"
 #include "oblique/oracle/problem.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 namespace filtering {
 
@@ -955,4 +955,4 @@ OBLIQUE_CHECKER_INSTANCES(extern template, double)
 OBLIQUE_CHECKER_INSTANCES(extern template, long double)
 #endif
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

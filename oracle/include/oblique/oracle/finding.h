@@ -16,7 +16,14 @@
 #include "oblique/protocol/numbers.h"
 #include "oblique/status.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
+
+// The case vocabulary's checks and properties (oblique/cases/checks.h), in the judge's words.
+using cases::all_properties;
+using cases::Checks;
+using cases::Property;
+using cases::property_name;
+using cases::StatusContract;
 
 /// What a finding is about: the status, a finite answer, a property (check_of()), row 3's
 /// accuracy, an ulps promise; and what the tools that run a program see of it (crash, timeout,
@@ -192,4 +199,4 @@ std::string not_judged(Status exact, const std::vector<Status>& acceptable, Stat
   return "inputs undecidable in " + scalar + " (" + where + ")";
 }
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

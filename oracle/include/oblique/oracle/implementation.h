@@ -12,7 +12,14 @@
 #include "oblique/depth_convention.h"
 #include "oblique/plane.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
+
+// The case vocabulary's checks and properties (oblique/cases/checks.h), in the judge's words.
+using cases::all_properties;
+using cases::Checks;
+using cases::Property;
+using cases::property_name;
+using cases::StatusContract;
 
 template <class T>
 struct Implementation {
@@ -56,4 +63,4 @@ struct Implementation {
   }
 };
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

@@ -15,7 +15,14 @@
 #include "oblique/oracle/problem.h"
 #include "oblique/protocol/numbers.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
+
+// The case vocabulary's checks and properties (oblique/cases/checks.h), in the judge's words.
+using cases::all_properties;
+using cases::Checks;
+using cases::Property;
+using cases::property_name;
+using cases::StatusContract;
 
 /// not_judged() for `problem` (a Problem<T> or a FilteredProblem<T>).
 template <class AnyProblem>
@@ -146,4 +153,4 @@ Judgement judge(const Problem<T>& problem, const Answer<T>& outcome, const Check
   return out;
 }
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

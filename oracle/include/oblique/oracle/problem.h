@@ -21,7 +21,14 @@
 #include "oblique/references/frustum_planes.h"
 #include "oblique/status.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
+
+// The case vocabulary's checks and properties (oblique/cases/checks.h), in the judge's words.
+using cases::all_properties;
+using cases::Checks;
+using cases::Property;
+using cases::property_name;
+using cases::StatusContract;
 
 /// One property's verdict on one result (all_properties lists the five that check() judges):
 /// its Finding (check_of(property)), whether it applies, and the point it is about.
@@ -583,4 +590,4 @@ Problem<T>::Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
   for (const auto& v : row_sums) skeel_condition_ = std::max(skeel_condition_, v.get_d());
 }
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

@@ -22,7 +22,7 @@
 #include "oblique/plane.h"
 #include "oblique/status.h"
 
-namespace oblique::properties {
+namespace oblique::oracle {
 template <class T>
 class Problem;
 }
@@ -71,7 +71,7 @@ struct Profile {
 /// The error of `answer` (status ok) to the case of `problem`, whose exact status is ok.
 /// Compiled for float, double and long double.
 template <class T>
-ProfiledAnswer profile_answer(const properties::Problem<T>& problem, const Matrix4<T>& answer);
+ProfiledAnswer profile_answer(const oracle::Problem<T>& problem, const Matrix4<T>& answer);
 
 /// One case, as the core's methods are asked it.
 template <class T>
@@ -86,7 +86,7 @@ struct ProfileInput {
 /// `input`: a status is counted as refused, a matrix profiled (profile_answer()) with the input's
 /// family, place and request. Compiled for float, double and long double.
 template <class T>
-void record_answer(Profile& profile, const properties::Problem<T>& problem,
+void record_answer(Profile& profile, const oracle::Problem<T>& problem,
                    const ProfileInput<T>& input, Status status, const Matrix4<T>& projection);
 
 /// The core's closed form (on the inputs of the standard perspective shape), general and

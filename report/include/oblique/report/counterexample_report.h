@@ -19,7 +19,7 @@ namespace oblique::report {
 class ReportFiles;
 }  // namespace oblique::report
 
-namespace oblique::properties {
+namespace oblique::oracle {
 
 /// The case in eye space (the space C is given in), for the report's top view (x, z) and side
 /// view (z, y): set by set_views(), drawn by write_report().
@@ -118,4 +118,4 @@ std::string stage_consumer_pictures(report::ReportFiles& files, const std::strin
                                     const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
                                     const ConsumerFinding& finding, const std::string& consumer);
 
-}  // namespace oblique::properties
+}  // namespace oblique::oracle

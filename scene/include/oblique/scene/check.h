@@ -56,9 +56,9 @@ struct ConsumerResult {
     return n;
   }
   std::string note;  ///< why nothing applies (a clip pass has no view of its own), else empty
-  std::optional<properties::ConsumerFinding> violation;  ///< the first
-  std::string inputs;      ///< the violation's inputs (a Markdown list)
-  double worst_ratio = 0;  ///< the largest residual / bound judged
+  std::optional<oracle::ConsumerFinding> violation;  ///< the first
+  std::string inputs;                                ///< the violation's inputs (a Markdown list)
+  double worst_ratio = 0;                            ///< the largest residual / bound judged
   double depth_waste = 0;  ///< cascades: how much deeper the corners reach than the kept region
   bool holds() const { return !violation; }
 };
@@ -75,8 +75,8 @@ struct SurfaceCheck {
   Vector4<double> plane_in_camera;  ///< the surface plane in the pass camera's space
   std::optional<Matrix4<double>> projection;  ///< the oblique projection, when rendered
   Method method = Method::automatic;
-  /// The properties that apply to its camera and convention, judged (properties::judge()).
-  std::vector<properties::Finding> properties;
+  /// The properties that apply to its camera and convention, judged (oracle::judge()).
+  std::vector<oracle::Finding> properties;
   std::optional<DepthPrecision> depth;
   std::optional<Scissor> scissor;  ///< rendered bounded surfaces
 
@@ -91,7 +91,7 @@ struct SurfaceCheck {
 
   /// `--impl`: the user's answer to this pass's request, judged (empty when not asked).
   std::optional<std::string> impl_answer;
-  std::vector<properties::Finding> impl_findings;
+  std::vector<oracle::Finding> impl_findings;
 
   /// Every property of our oblique matrix holds.
   bool properties_hold() const;

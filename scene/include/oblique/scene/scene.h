@@ -104,7 +104,7 @@ struct Scene {
   std::vector<SceneConsumer> consumers;
   /// How the engine builds a mirror pass's camera ("mirror_design": reflected_view, the default,
   /// or proper_camera): what `check --impl` judges the program's mirror_view by.
-  properties::MirrorDesign mirror_design = properties::MirrorDesign::reflected_view;
+  oracle::MirrorDesign mirror_design = oracle::MirrorDesign::reflected_view;
 };
 
 /// A scene, or why the text is not one (naming the field, or the line and column).

@@ -22,11 +22,11 @@
 
 namespace oblique::testing {
 
-using properties::Counterexample;
-using properties::FilteredProblem;
-using properties::Finding;
-using properties::Judgement;
-using properties::Problem;
+using oracle::Counterexample;
+using oracle::FilteredProblem;
+using oracle::Finding;
+using oracle::Judgement;
+using oracle::Problem;
 
 /// Which kinds of case a run must have covered.
 enum class Coverage { valid, places_only, perspective_shape, invalid, none };
@@ -43,7 +43,7 @@ struct Tally {
   std::map<std::string, int> generated;         ///< cases made, by kind, judged or not
   std::map<std::string, int> generated_places;  ///< cases made, by hard place
   std::map<std::string, int> refused;           ///< by kind: cases every function's accepts refused
-  std::map<std::string, int> left_out;          ///< answers not judged, by properties::not_judged()
+  std::map<std::string, int> left_out;          ///< answers not judged, by oracle::not_judged()
   std::map<std::string, int> left_out_by_kind;  ///< the same, by kind
   std::vector<std::string> refusing;            ///< the functions whose accepts refused a case
   std::optional<Counterexample> failure;
@@ -71,7 +71,7 @@ std::string summary(const std::map<std::string, int>& counts);
 std::string current_test_id(char separator);
 
 /// Where the current test's reports go and the commands that replay them (`property`: the run).
-properties::ReportContext report_context(const std::string& property);
+oracle::ReportContext report_context(const std::string& property);
 
 /// The RapidCheck test id of one property run of the current test: "Suite/Name" or
 /// "Suite/Name/property". RC_PARAMS="reproduce=..." names runs by these ids.
@@ -84,7 +84,7 @@ bool left_out_by_reproduce(const std::string& id);
 /// command appended) as a new file in the context's directory (never over an earlier one); its
 /// path, or why it was not written.
 std::string write_markdown_report(const std::string& markdown,
-                                  const properties::ReportContext& context);
+                                  const oracle::ReportContext& context);
 
 /// Runs `testable` (RC_ macros and generators inside) as a RapidCheck property of the current test
 /// (RapidCheck id run_id(property)); fails the test with the report's path on a counterexample, and
@@ -128,13 +128,13 @@ void count_judged(const cases::Case<T>& c) {
 }
 
 /// Counts a case some function left out: refused by its accepts (`refused_by`, the function's
-/// name) or not judged (`why`, properties::not_judged()'s reason), by `kind`.
+/// name) or not judged (`why`, oracle::not_judged()'s reason), by `kind`.
 void count_left_out(const std::string& kind, const std::string& why,
                     const std::string& refused_by = "");
 
 template <class T>
 Counterexample describe(const cases::Case<T>& c, const Implementation<T>& impl) {
-  Counterexample ce = properties::make_counterexample(c.matrix, c.plane, c.convention);
+  Counterexample ce = oracle::make_counterexample(c.matrix, c.plane, c.convention);
   ce.implementation = impl.name;
   ce.family = std::string(cases::family_name(c.family));
   ce.place = std::string(cases::place_name(c.place));
@@ -147,10 +147,10 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
                const Answer<T>* outcome = nullptr, const Checks* checks = nullptr) {
   Counterexample ce = describe(c, impl);
   ce.finding = finding;
-  if (outcome && outcome->status == Status::ok) properties::set_result(ce, outcome->projection);
+  if (outcome && outcome->status == Status::ok) oracle::set_result(ce, outcome->projection);
   // The report's pictures: the case's volumes and the point the answer clips (exact Problem).
-  properties::set_views(ce, Problem<T>(c.matrix, c.plane, c.convention),
-                        outcome && outcome->status == Status::ok ? &outcome->projection : nullptr);
+  oracle::set_views(ce, Problem<T>(c.matrix, c.plane, c.convention),
+                    outcome && outcome->status == Status::ok ? &outcome->projection : nullptr);
   tally().failure = ce;
   tally().diagnose_failure = nullptr;
   if (outcome && checks) {
@@ -174,7 +174,7 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
       return mistakes::diagnose<T>({observe(c.matrix, c.plane, c.convention, out)}, probe);
     };
   }
-  if (finding.check == properties::Check::status)
+  if (finding.check == oracle::Check::status)
     RC_FAIL(impl.name + " " + impl.answer_words(outcome ? outcome->status : Status::ok) +
             "; right: " + bound_text(finding));
   RC_FAIL(impl.name + " violates " + std::string(check_name(finding.check)) + ": " +
@@ -183,7 +183,7 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
 
 /// Runs each implementation on the case and judges each answer (judge(), with `checks` and the
 /// implementation's status contract, or the statuses and refusals of `contract` when given);
-/// fails the case on the first violation. Inputs properties::not_judged() leaves out for the
+/// fails the case on the first violation. Inputs oracle::not_judged() leaves out for the
 /// contract are skipped and counted (Tally::left_out, by `kind`: empty, the case's family),
 /// except that inputs without an answer are judged where invalid inputs are the point
 /// (judge_statuses): there an answer to an input that allows none is the finding. Inputs an
@@ -205,7 +205,7 @@ bool for_each_answer(const std::vector<Implementation<T>>& implementations, cons
     const StatusContract statuses =
         contract && contract->statuses ? *contract->statuses : impl.status_contract();
     const std::vector<Status> refusals = contract ? contract->refusals : std::vector<Status>{};
-    if (const std::string why = properties::not_judged(problem, statuses, refusals); !why.empty()) {
+    if (const std::string why = oracle::not_judged(problem, statuses, refusals); !why.empty()) {
       if (!judge_statuses || problem.exact_status() == Status::ok) {
         left_out_why = why;
         continue;
@@ -217,7 +217,7 @@ bool for_each_answer(const std::vector<Implementation<T>>& implementations, cons
     checks.statuses = statuses;
     const Judgement judgement = judge(problem, outcome, checks);
     for (const Finding& f : judgement.checks) {
-      if (f.check != properties::Check::status && f.check != properties::Check::finite_result)
+      if (f.check != oracle::Check::status && f.check != oracle::Check::finite_result)
         ++tally().applied[std::string(check_name(f.check))];
     }
     if (const Finding* violation = judgement.violation())

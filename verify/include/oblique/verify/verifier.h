@@ -54,7 +54,7 @@ struct VerifyOptions {
   /// instead of the oblique matrix, round by round, judged by the consumer properties.
   std::vector<protocol::ConsumerKind> consumers;
   /// --mirror-design: the design the program's mirror_view builds (oracle/consumers.h).
-  properties::MirrorDesign mirror_design = properties::MirrorDesign::reflected_view;
+  oracle::MirrorDesign mirror_design = oracle::MirrorDesign::reflected_view;
 
   /// --rasterize: the first answer, one in `raster_every` after it, and every finding's answer
   /// drawn on a real rasterizer (oblique::raster) in `raster_size` x `raster_size` frames.
