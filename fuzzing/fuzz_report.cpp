@@ -183,7 +183,7 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
   const auto convention = parse_convention(v.convention);
   if (!plane || !convention) return "";
   for (int i = 0; i < 4; ++i) c(i) = (*plane)[static_cast<std::size_t>(i)];
-  oracle::Counterexample ce = oracle::make_counterexample(m, c, *convention);
+  report::Counterexample ce = report::make_counterexample(m, c, *convention);
   ce.implementation = v.implementation;
   ce.family = v.family;
   ce.place = "fuzz input";
@@ -198,7 +198,7 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
   }
   if (all_rows) {
     answer = rows;
-    oracle::set_result(ce, rows);
+    report::set_result(ce, rows);
   }
   // The finding judged again here, from the numbers the driver printed (they round-trip): the
   // checker's own, not the driver's words read back.
@@ -236,13 +236,13 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
   mistakes::Observation<T> seen{m, c, *convention, Status::ok, answer ? *answer : m, true};
   if (*check == oracle::Check::status) seen.status = ce.finding.answered;
   if (answer || seen.status != Status::ok) ce.diagnosis = mistakes::diagnose<T>({seen});
-  oracle::set_views(ce, problem, answer ? &*answer : nullptr);
+  report::set_views(ce, problem, answer ? &*answer : nullptr);
   ce.notes.emplace_back("fuzz input", finding.inputs.front());
   ce.notes.emplace_back("inputs with this finding", std::to_string(finding.inputs.size()));
   ce.notes.emplace_back("what it did", "it " + v.answered);
   ce.notes.emplace_back("what the input allows", line_from(output, "the input has"));
   ce.notes.emplace_back("output", protocol::escape_bytes(output.substr(0, 2000)));
-  oracle::ReportContext context;
+  report::ReportContext context;
   context.directory = options.report_dir;
   context.stem = "fuzz-" + stem_of(v.property + " " + v.family + " " + v.convention);
   context.replay_case = options.target + " " + protocol::shell_quote(finding.inputs.front());
@@ -250,7 +250,7 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
                        protocol::shell_quote(options.target) + " " +
                        protocol::shell_quote(finding.inputs.front());
   context.keep_existing = true;
-  return oracle::write_report(ce, context);
+  return report::write_report(ce, context);
 }
 
 /// The report of any other finding (a sanitizer's error, a crash, a hang): the target's output

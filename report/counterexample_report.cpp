@@ -22,7 +22,9 @@
 #define OBLIQUE_CXX_FLAGS ""
 #endif
 
-namespace oblique::oracle {
+namespace oblique::report {
+
+using namespace oblique::oracle;  // NOLINT: the judge whose findings are reported
 
 using namespace oblique::mistakes;  // NOLINT: the diagnosis a report shows
 
@@ -662,4 +664,4 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   return md_path;
 }
 
-}  // namespace oblique::oracle
+}  // namespace oblique::report

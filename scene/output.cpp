@@ -126,7 +126,7 @@ std::string to_json(const SceneCheck& check) {
       {"unlisted_out_of_view", check.unlisted},
       {"surfaces", surfaces},
       {"impl_diagnosis", check.impl_diagnosis.ran
-                             ? json::parse(oracle::diagnosis_json(check.impl_diagnosis))
+                             ? json::parse(report::diagnosis_json(check.impl_diagnosis))
                              : json(nullptr)}};
   return out.dump(-1, ' ', false, json::error_handler_t::replace);
 }

@@ -71,7 +71,7 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& given,
     return;
   }
   report::ProfileReportOptions o;
-  const oracle::ReportContext context = report_context("");
+  const report::ReportContext context = report_context("");
   o.dir = settings.directory.empty()
               ? std::filesystem::path(context.directory) / (context.test_id + ".accuracy")
               : std::filesystem::path(settings.directory);

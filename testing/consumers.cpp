@@ -19,7 +19,7 @@ namespace {
 void fail(const std::string& consumer, const oracle::ConsumerFinding& finding,
           const std::string& inputs,
           std::function<std::string(report::ReportFiles&, const std::string&)> pictures) {
-  tally().markdown_failure = oracle::consumer_report_markdown(consumer, finding, inputs);
+  tally().markdown_failure = report::consumer_report_markdown(consumer, finding, inputs);
   tally().markdown_pictures = std::move(pictures);
   tally().failure.reset();
   RC_FAIL(consumer + " violates " + oracle::describe(finding) + "\n" + inputs);
@@ -39,12 +39,12 @@ void judged(const std::string& consumer, const oracle::ConsumerFinding& finding,
   std::function<std::string(report::ReportFiles&, const std::string&)> pictures;
   if (c) {
     pictures = [c = *c, finding, consumer](report::ReportFiles& files, const std::string& stem) {
-      return oracle::stage_consumer_pictures(files, stem, c.matrix, c.plane, c.convention, finding,
+      return report::stage_consumer_pictures(files, stem, c.matrix, c.plane, c.convention, finding,
                                              consumer);
     };
   } else if (!finding.drawn.empty()) {
     pictures = [finding, consumer](report::ReportFiles& files, const std::string& stem) {
-      return oracle::stage_drawn_pictures(files, stem, finding, consumer);
+      return report::stage_drawn_pictures(files, stem, finding, consumer);
     };
   }
   fail(consumer, finding, inputs, std::move(pictures));

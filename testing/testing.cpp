@@ -69,9 +69,9 @@ std::string current_test_id(char separator) {
   return std::string(info->test_suite_name()) + separator + info->name();
 }
 
-oracle::ReportContext report_context(const std::string& property) {
+report::ReportContext report_context(const std::string& property) {
   const Settings& s = settings();
-  oracle::ReportContext context;
+  report::ReportContext context;
   const char* dir = std::getenv("OBLIQUE_REPORT_DIR");
   context.directory = dir && *dir                   ? std::string(dir)
                       : !s.report_directory.empty() ? s.report_directory
@@ -106,7 +106,7 @@ namespace {
 /// After a passing run of a property: the report an earlier run wrote for it (every file named
 /// STEM.*) is moved, never deleted, to DIR/earlier/<UTC time>-<pid>/, so the reports folder shows
 /// what the last runs found. A move that fails is said and the files stay.
-void move_earlier_reports(const oracle::ReportContext& context) {
+void move_earlier_reports(const report::ReportContext& context) {
   namespace fs = std::filesystem;
   if (context.stem.empty()) return;
   std::error_code error;
@@ -131,7 +131,7 @@ void move_earlier_reports(const oracle::ReportContext& context) {
 }  // namespace
 
 std::string write_markdown_report(const std::string& markdown,
-                                  const oracle::ReportContext& context) {
+                                  const report::ReportContext& context) {
   report::ReportFiles files(context.directory);
   const std::string stem =
       files.reserve_stem(context.stem.empty() ? context.test_id : context.stem, {".md"});

@@ -258,11 +258,11 @@ TEST(SuiteReportViews, marksThePointTheWrongAnswerClips) {
   testing::tally() = testing::Tally{};
   EXPECT_ANY_THROW(testing::fail_with(c, impl, *judgement.violation(), &wrong));
   ASSERT_TRUE(testing::tally().failure.has_value());
-  oracle::ReportContext context;
+  report::ReportContext context;
   context.directory = ::testing::TempDir() + "oblique_suite_views";
   context.test_id = "SuiteReportViews.marksThePointTheWrongAnswerClips";
   fs::remove_all(context.directory);
-  const std::string md = oracle::write_report(*testing::tally().failure, context);
+  const std::string md = report::write_report(*testing::tally().failure, context);
   const fs::path json = fs::path(md).replace_extension(".json");
   const Json j = expect_marked_clipped_point(json);
   EXPECT_EQ(j.at("property"), std::string(check_name(judgement.violation()->check)));
@@ -284,17 +284,17 @@ TEST(SuiteReportViews, marksNothingWhenTheAnswerClipsNothing) {
   wrong.projection(0, 0) *= 2;
   const oracle::Judgement judgement = oracle::judge(problem, wrong);
   ASSERT_NE(judgement.violation(), nullptr);
-  oracle::Counterexample ce = oracle::make_counterexample(c.matrix, c.plane, c.convention);
+  report::Counterexample ce = report::make_counterexample(c.matrix, c.plane, c.convention);
   ce.finding = *judgement.violation();
   ce.implementation = "widened";
-  oracle::set_result(ce, wrong.projection);
-  oracle::set_views(ce, problem, &wrong.projection);
+  report::set_result(ce, wrong.projection);
+  report::set_views(ce, problem, &wrong.projection);
   EXPECT_FALSE(ce.views.clipped.has_value());
-  oracle::ReportContext context;
+  report::ReportContext context;
   context.directory = ::testing::TempDir() + "oblique_suite_views_nothing";
   context.test_id = "SuiteReportViews.marksNothing";
   fs::remove_all(context.directory);
-  const std::string md = oracle::write_report(ce, context);
+  const std::string md = report::write_report(ce, context);
   const Json j = Json::parse(read_text(fs::path(md).replace_extension(".json")));
   EXPECT_TRUE(j.at("pictures").at("marked_point").is_null());
   EXPECT_NE(j.at("pictures").at("marked").get<std::string>().find("nothing"), std::string::npos);
@@ -314,16 +314,16 @@ TEST(SuiteReportViews, aReplacedReportTakesItsPicturesAlong) {
   c.matrix = frustum<double>(-1, 1, -1, 1, 1, 100, c.convention);
   c.plane = Vector4<double>(0, 0.3, -1, -4);
   const oracle::Problem<double> problem(c.matrix, c.plane, c.convention);
-  oracle::Counterexample ce = oracle::make_counterexample(c.matrix, c.plane, c.convention);
+  report::Counterexample ce = report::make_counterexample(c.matrix, c.plane, c.convention);
   ce.finding.check = oracle::Check::status;
   ce.finding.shows = oracle::Shows::statuses;
   ce.implementation = "refuses";
-  oracle::set_views(ce, problem, static_cast<const Matrix4<double>*>(nullptr));
-  oracle::ReportContext context;
+  report::set_views(ce, problem, static_cast<const Matrix4<double>*>(nullptr));
+  report::ReportContext context;
   context.directory = ::testing::TempDir() + "oblique_suite_views_replaced";
   context.test_id = "SuiteReportViews.replaced";
   fs::remove_all(context.directory);
-  const fs::path md = oracle::write_report(ce, context);
+  const fs::path md = report::write_report(ce, context);
   const fs::path top = fs::path(context.directory) / (md.stem().string() + ".top.png");
   ASSERT_TRUE(fs::exists(top));
   const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
@@ -332,7 +332,7 @@ TEST(SuiteReportViews, aReplacedReportTakesItsPicturesAlong) {
   setenv("PATH", empty.c_str(), 1);
   std::string again;
   try {
-    again = oracle::write_report(ce, context);
+    again = report::write_report(ce, context);
   } catch (...) {
   }
   setenv("PATH", path.c_str(), 1);

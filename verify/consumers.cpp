@@ -426,7 +426,7 @@ class ConsumerRun {
       md = "# Counterexample: " + check + "\n\n`" + options_.command + "`: " + c.lost->what +
            ".\n\n";
     } else {
-      md = oracle::consumer_report_markdown(options_.command, c.finding, c.inputs) + "\n";
+      md = report::consumer_report_markdown(options_.command, c.finding, c.inputs) + "\n";
     }
     char elapsed[32];
     std::snprintf(elapsed, sizeof elapsed, "%.3f", seconds);
@@ -435,9 +435,9 @@ class ConsumerRun {
           "), after " + elapsed + " s. The request:\n\n```\n" + c.request +
           "\n```\n\nThe answer:\n\n```\n" + (c.answer.empty() ? "(none)" : c.answer) + "\n```\n\n";
     if (!c.lost && !c.about_oblique_case)
-      md += oracle::stage_drawn_pictures(files, stem, c.finding, options_.command);
+      md += report::stage_drawn_pictures(files, stem, c.finding, options_.command);
     if (!c.lost && c.about_oblique_case)
-      md += oracle::stage_consumer_pictures<T>(files, stem, c.round.c.matrix, c.round.c.plane,
+      md += report::stage_consumer_pictures<T>(files, stem, c.round.c.matrix, c.round.c.plane,
                                                c.round.c.convention, c.finding, options_.command);
     md += "## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
           "\n# this round again, judged (exit 0 holds, 1 violated)\n" + options_.self +

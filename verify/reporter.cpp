@@ -39,7 +39,7 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
                              bool out_of_time, long found_after_cases, double found_after_seconds,
                              const mistakes::Diagnosis& diagnosis) {
   const oracle::Finding& f = found.finding;
-  oracle::Counterexample ce = oracle::make_counterexample(v.matrix, v.plane, v.convention);
+  report::Counterexample ce = report::make_counterexample(v.matrix, v.plane, v.convention);
   ce.finding = f;
   ce.implementation = options_.command;
   ce.family = std::string(cases::family_name(v.family));
@@ -48,9 +48,9 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
   ce.place = v.defect && problem.exact_status() == Status::ok
                  ? std::string(cases::defect_name(*v.defect)) + " (has an answer)"
                  : cases::case_kind(v);
-  if (found.result) oracle::set_result(ce, *found.result);
+  if (found.result) report::set_result(ce, *found.result);
   if (diagnosis.ran) ce.diagnosis = diagnosis;
-  oracle::set_views(ce, problem, found.result ? &*found.result : nullptr);
+  report::set_views(ce, problem, found.result ? &*found.result : nullptr);
   ce.notes.emplace_back("implementation", options_.command);
   ce.notes.emplace_back("exact status", std::string(status_code(problem.exact_status())));
   if (problem.exact_status() == Status::ok) {
@@ -79,7 +79,7 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
                                            seconds_text(found_after_seconds) + " s");
 
   const std::string request = request_text(v);
-  oracle::ReportContext context;
+  report::ReportContext context;
   context.directory = options_.report_dir;
   context.stem = "verify-" + std::string(check_name(f.check));
   context.seed = options_.seed;
@@ -89,7 +89,7 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
   context.keep_existing = true;
   std::string path;
   try {
-    path = oracle::write_report(ce, context);
+    path = report::write_report(ce, context);
   } catch (const std::exception& e) {
     path = "(not written: " + std::string(e.what()) + ")";
   }

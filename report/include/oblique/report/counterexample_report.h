@@ -16,10 +16,11 @@
 #include "oblique/projection.h"
 
 namespace oblique::report {
-class ReportFiles;
-}  // namespace oblique::report
 
-namespace oblique::oracle {
+class ReportFiles;
+using oracle::ConsumerFinding;
+using oracle::Finding;
+using oracle::Problem;
 
 /// The case in eye space (the space C is given in), for the report's top view (x, z) and side
 /// view (z, y): set by set_views(), drawn by write_report().
@@ -110,12 +111,12 @@ std::string consumer_report_markdown(const std::string& consumer, const Consumer
 /// `stem`. Returns the report's "## Pictures" section.
 /// The pictures of a consumer finding about a pass camera or its plane (finding.drawn, in its
 /// space: the cameras, the planes, the points); "" when it has nothing drawn.
-std::string stage_drawn_pictures(report::ReportFiles& files, const std::string& stem,
+std::string stage_drawn_pictures(ReportFiles& files, const std::string& stem,
                                  const ConsumerFinding& finding, const std::string& consumer);
 
 template <class T>
-std::string stage_consumer_pictures(report::ReportFiles& files, const std::string& stem,
+std::string stage_consumer_pictures(ReportFiles& files, const std::string& stem,
                                     const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
                                     const ConsumerFinding& finding, const std::string& consumer);
 
-}  // namespace oblique::oracle
+}  // namespace oblique::report

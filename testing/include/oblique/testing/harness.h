@@ -22,11 +22,11 @@
 
 namespace oblique::testing {
 
-using oracle::Counterexample;
 using oracle::FilteredProblem;
 using oracle::Finding;
 using oracle::Judgement;
 using oracle::Problem;
+using report::Counterexample;
 
 /// Which kinds of case a run must have covered.
 enum class Coverage { valid, places_only, perspective_shape, invalid, none };
@@ -71,7 +71,7 @@ std::string summary(const std::map<std::string, int>& counts);
 std::string current_test_id(char separator);
 
 /// Where the current test's reports go and the commands that replay them (`property`: the run).
-oracle::ReportContext report_context(const std::string& property);
+report::ReportContext report_context(const std::string& property);
 
 /// The RapidCheck test id of one property run of the current test: "Suite/Name" or
 /// "Suite/Name/property". RC_PARAMS="reproduce=..." names runs by these ids.
@@ -84,7 +84,7 @@ bool left_out_by_reproduce(const std::string& id);
 /// command appended) as a new file in the context's directory (never over an earlier one); its
 /// path, or why it was not written.
 std::string write_markdown_report(const std::string& markdown,
-                                  const oracle::ReportContext& context);
+                                  const report::ReportContext& context);
 
 /// Runs `testable` (RC_ macros and generators inside) as a RapidCheck property of the current test
 /// (RapidCheck id run_id(property)); fails the test with the report's path on a counterexample, and
@@ -134,7 +134,7 @@ void count_left_out(const std::string& kind, const std::string& why,
 
 template <class T>
 Counterexample describe(const cases::Case<T>& c, const Implementation<T>& impl) {
-  Counterexample ce = oracle::make_counterexample(c.matrix, c.plane, c.convention);
+  Counterexample ce = report::make_counterexample(c.matrix, c.plane, c.convention);
   ce.implementation = impl.name;
   ce.family = std::string(cases::family_name(c.family));
   ce.place = std::string(cases::place_name(c.place));
@@ -147,9 +147,9 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
                const Answer<T>* outcome = nullptr, const Checks* checks = nullptr) {
   Counterexample ce = describe(c, impl);
   ce.finding = finding;
-  if (outcome && outcome->status == Status::ok) oracle::set_result(ce, outcome->projection);
+  if (outcome && outcome->status == Status::ok) report::set_result(ce, outcome->projection);
   // The report's pictures: the case's volumes and the point the answer clips (exact Problem).
-  oracle::set_views(ce, Problem<T>(c.matrix, c.plane, c.convention),
+  report::set_views(ce, Problem<T>(c.matrix, c.plane, c.convention),
                     outcome && outcome->status == Status::ok ? &outcome->projection : nullptr);
   tally().failure = ce;
   tally().diagnose_failure = nullptr;
