@@ -11,19 +11,11 @@
 #include <utility>
 #include <vector>
 
-#include "oblique/cases/checks.h"
-#include "oblique/cases/property.h"
+#include "oblique/oracle/vocabulary.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/status.h"
 
 namespace oblique::oracle {
-
-// The case vocabulary's checks and properties (oblique/cases/checks.h), in the judge's words.
-using cases::all_properties;
-using cases::Checks;
-using cases::Property;
-using cases::property_name;
-using cases::StatusContract;
 
 /// What a finding is about: the status, a finite answer, a property (check_of()), row 3's
 /// accuracy, an ulps promise; and what the tools that run a program see of it (crash, timeout,

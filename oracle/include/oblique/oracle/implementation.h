@@ -8,18 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "oblique/cases/checks.h"
 #include "oblique/depth_convention.h"
+#include "oblique/oracle/vocabulary.h"
 #include "oblique/plane.h"
 
 namespace oblique::oracle {
-
-// The case vocabulary's checks and properties (oblique/cases/checks.h), in the judge's words.
-using cases::all_properties;
-using cases::Checks;
-using cases::Property;
-using cases::property_name;
-using cases::StatusContract;
 
 template <class T>
 struct Implementation {

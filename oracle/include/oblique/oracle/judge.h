@@ -10,19 +10,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "oblique/cases/checks.h"
 #include "oblique/oracle/finding.h"
 #include "oblique/oracle/problem.h"
+#include "oblique/oracle/vocabulary.h"
 #include "oblique/protocol/numbers.h"
 
 namespace oblique::oracle {
-
-// The case vocabulary's checks and properties (oblique/cases/checks.h), in the judge's words.
-using cases::all_properties;
-using cases::Checks;
-using cases::Property;
-using cases::property_name;
-using cases::StatusContract;
 
 /// not_judged() for `problem` (a Problem<T> or a FilteredProblem<T>).
 template <class AnyProblem>

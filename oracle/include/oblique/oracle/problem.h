@@ -11,24 +11,17 @@
 #include <string_view>
 #include <vector>
 
-#include "oblique/cases/property.h"
 #include "oblique/depth_convention.h"
 #include "oblique/oracle/exact.h"
 #include "oblique/oracle/finding.h"
 #include "oblique/oracle/tolerance.h"
+#include "oblique/oracle/vocabulary.h"
 #include "oblique/plane.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/references/frustum_planes.h"
 #include "oblique/status.h"
 
 namespace oblique::oracle {
-
-// The case vocabulary's checks and properties (oblique/cases/checks.h), in the judge's words.
-using cases::all_properties;
-using cases::Checks;
-using cases::Property;
-using cases::property_name;
-using cases::StatusContract;
 
 /// One property's verdict on one result (all_properties lists the five that check() judges):
 /// its Finding (check_of(property)), whether it applies, and the point it is about.
