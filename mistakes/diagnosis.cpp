@@ -18,7 +18,7 @@ using namespace oblique::oracle;  // NOLINT: the judge whose findings are diagno
 
 namespace {
 
-using exact::Rational;
+using oracle::exact::Rational;
 
 /// A variant's exact answer on one case: a refusal, a non-finite matrix, or a matrix with a
 /// bound on each entry (the rounding a careful implementation of that variant makes in T; 0 for
@@ -28,7 +28,7 @@ struct Exact {
   variant::Evaluation<Rational> e;
   bool decided = false;
   enum class Kind { refusal, non_finite, matrix } kind = Kind::refusal;
-  exact::Mat values{}, bounds{};
+  oracle::exact::Mat values{}, bounds{};
 };
 
 template <class T>
@@ -47,7 +47,7 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
     x.kind = Exact::Kind::non_finite;
     return x;
   }
-  const exact::Mat mx = exact::to_rational(m);
+  const oracle::exact::Mat mx = oracle::exact::to_rational(m);
   x.values = mx;
   for (auto& row : x.bounds) row.fill(0);
   if (e.unchanged) {
@@ -57,28 +57,32 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
   }
   // The error of C . Q as tolerance.h bounds it, for this variant's corner and the matrix S it
   // solves with; a closed form adds the magnitudes it sums (|C| . |Q| as it computes Q).
-  const std::optional<exact::Mat> inverse = exact::inverse(e.solved);
+  const std::optional<oracle::exact::Mat> inverse = oracle::exact::inverse(e.solved);
   if (!inverse) return x;
-  const exact::Mat abs_s = exact::abs(e.solved), abs_inv = exact::abs(*inverse);
-  const exact::Vec abs_c = exact::abs(e.c);
+  const oracle::exact::Mat abs_s = oracle::exact::abs(e.solved),
+                           abs_inv = oracle::exact::abs(*inverse);
+  const oracle::exact::Vec abs_c = oracle::exact::abs(e.c);
   const Rational numerator =
-      tolerance::corner_dot_numerator(abs_c, exact::abs(e.q), exact::abs(e.c_clip),
-                                      exact::abs(e.q_clip), abs_s, abs_inv) +
-      (e.choices.closed_form ? exact::dot(abs_c, e.q_magnitude) : Rational(0));
-  const int p = tolerance::precision_bits<T>();
-  const Rational d_error = tolerance::corner_dot_error<T>(numerator);
-  const Rational d = exact::abs(e.d);
+      oracle::tolerance::corner_dot_numerator(abs_c, oracle::exact::abs(e.q),
+                                              oracle::exact::abs(e.c_clip),
+                                              oracle::exact::abs(e.q_clip), abs_s, abs_inv) +
+      (e.choices.closed_form ? oracle::exact::dot(abs_c, e.q_magnitude) : Rational(0));
+  const int p = oracle::tolerance::precision_bits<T>();
+  const Rational d_error = oracle::tolerance::corner_dot_error<T>(numerator);
+  const Rational d = oracle::exact::abs(e.d);
   if (d <= d_error) return x;  // the guard and the scale are not decided in T
   if (e.choices.closed_form && !e.perspective_shape) {
     // The closed form on another shape is not M^-1 Q': a corner sign read from a C' component
     // within its solve's error (gamma(12) (|S^-T| |S^T| |C'|)_i) may come out either way in T,
     // and C . Q with it, by far more than d's error.
-    const exact::Vec spread = exact::mul(exact::transpose(abs_inv),
-                                         exact::mul(exact::transpose(abs_s), exact::abs(e.c_clip)));
-    const Rational solve_gamma = tolerance::gamma(tolerance::kSolveRoundings, p);
+    const oracle::exact::Vec spread = oracle::exact::mul(
+        oracle::exact::transpose(abs_inv),
+        oracle::exact::mul(oracle::exact::transpose(abs_s), oracle::exact::abs(e.c_clip)));
+    const Rational solve_gamma = oracle::tolerance::gamma(oracle::tolerance::kSolveRoundings, p);
     for (int i = 0; i < 3; ++i) {
       if (e.sign_of_computed[i] &&
-          exact::abs(e.c_clip[i]) <= solve_gamma * spread[i] + tolerance::underflow_unit<T>())
+          oracle::exact::abs(e.c_clip[i]) <=
+              solve_gamma * spread[i] + oracle::tolerance::underflow_unit<T>())
         return x;
     }
   }
@@ -86,17 +90,18 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
     x.decided = true;
     return x;
   }
-  const Rational scale = *tolerance::scale_error(d_error, d);  // d > d_error: eps < 1
-  const Rational largest = exact::to_rational(std::numeric_limits<T>::max()) / 256;
+  const Rational scale = *oracle::tolerance::scale_error(d_error, d);  // d > d_error: eps < 1
+  const Rational largest = oracle::exact::to_rational(std::numeric_limits<T>::max()) / 256;
   for (int row : {2, 3}) {
     if (row == 3 && !e.row4_changed) continue;
     const int r = row == 2 ? e.r3 : 1, t = row == 2 ? e.t3 : 1;
     for (int i = 0; i < 4; ++i) {
       const Rational ac = r * e.a * e.c[i];
       x.values[row][i] = ac + t * mx[3][i];
-      x.bounds[row][i] =
-          tolerance::row3_entry_bound<T>(exact::abs(ac), exact::abs(t * mx[3][i]), scale);
-      if (exact::abs(x.values[row][i]) >= largest) return x;  // near overflow: out_of_range too
+      x.bounds[row][i] = oracle::tolerance::row3_entry_bound<T>(
+          oracle::exact::abs(ac), oracle::exact::abs(t * mx[3][i]), scale);
+      if (oracle::exact::abs(x.values[row][i]) >= largest)
+        return x;  // near overflow: out_of_range too
     }
   }
   x.decided = true;
@@ -125,7 +130,8 @@ Match compare(const Observation<T>& o, const Exact& x) {
   if (!all_finite(o.projection)) return Match::differs;
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) {
-      if (exact::abs(exact::to_rational(o.projection(i, j)) - x.values[i][j]) > x.bounds[i][j])
+      if (oracle::exact::abs(oracle::exact::to_rational(o.projection(i, j)) - x.values[i][j]) >
+          x.bounds[i][j])
         return Match::differs;
     }
   }
@@ -139,7 +145,7 @@ bool distinct(const Exact& a, const Exact& b) {
   if (a.kind != Exact::Kind::matrix) return false;
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) {
-      if (exact::abs(a.values[i][j] - b.values[i][j]) > a.bounds[i][j] + b.bounds[i][j])
+      if (oracle::exact::abs(a.values[i][j] - b.values[i][j]) > a.bounds[i][j] + b.bounds[i][j])
         return true;
     }
   }

@@ -89,8 +89,8 @@ S magnitude(const S& x) {
 
 template <class S, class T>
 S convert(T x) {
-  if constexpr (std::is_same_v<S, exact::Rational>) {
-    return exact::to_rational(x);
+  if constexpr (std::is_same_v<S, oracle::exact::Rational>) {
+    return oracle::exact::to_rational(x);
   } else {
     return static_cast<S>(x);
   }

@@ -24,24 +24,24 @@ namespace oblique::oracle {
 
 namespace {
 
-using exact::Mat;
-using exact::Rational;
-using exact::Vec;
+using oracle::exact::Mat;
+using oracle::exact::Rational;
+using oracle::exact::Vec;
 
 template <class T>
 Rational gamma_of(int roundings) {
-  return tolerance::gamma(roundings, tolerance::precision_bits<T>());
+  return oracle::tolerance::gamma(roundings, oracle::tolerance::precision_bits<T>());
 }
 
 template <class T>
 Rational unit() {
-  return tolerance::unit_roundoff(tolerance::precision_bits<T>());
+  return oracle::tolerance::unit_roundoff(oracle::tolerance::precision_bits<T>());
 }
 
-/// The 4 x 4 matrix whose every entry is tolerance::lu_entry_bound(m): what |L||U| of m's LU
-/// factors is at most, entry by entry.
+/// The 4 x 4 matrix whose every entry is oracle::tolerance::lu_entry_bound(m): what |L||U| of m's
+/// LU factors is at most, entry by entry.
 Mat lu_bound(const Mat& m) {
-  const Rational b = tolerance::lu_entry_bound(m);
+  const Rational b = oracle::tolerance::lu_entry_bound(m);
   Mat out;
   for (auto& row : out) row.fill(b);
   return out;
@@ -79,7 +79,7 @@ Rational minor_sum(const Mat& m, int i, int j, bool permanent) {
     const auto& o = kOrders[k];
     const Rational p = m[r[0]][c[o[0]]] * m[r[1]][c[o[1]]] * m[r[2]][c[o[2]]];
     if (permanent)
-      sum += exact::abs(p);
+      sum += oracle::exact::abs(p);
     else
       sum += k < 3 ? p : Rational(-p);
   }
@@ -99,31 +99,31 @@ bool lu_orders(Mat a, Mat sum, std::array<int, 4> row_of, int k, const Rational&
   Rational largest = -1;
   int at = k;
   for (int r = k; r < 4; ++r) {
-    if (exact::abs(a[r][k]) > largest) {
-      largest = exact::abs(a[r][k]);
+    if (oracle::exact::abs(a[r][k]) > largest) {
+      largest = oracle::exact::abs(a[r][k]);
       at = r;
     }
   }
   const Rational reach = largest - g * sum[at][k];
   for (int r = k; r < 4; ++r) {
     const Rational e = g * sum[r][k];
-    if (exact::abs(a[r][k]) + e < reach) continue;
-    if (exact::abs(a[r][k]) <= e) return false;
+    if (oracle::exact::abs(a[r][k]) + e < reach) continue;
+    if (oracle::exact::abs(a[r][k]) <= e) return false;
     Mat b = a, s = sum;
     std::array<int, 4> order = row_of;
     std::swap(b[r], b[k]);
     std::swap(s[r], s[k]);
     std::swap(order[r], order[k]);
     Vec u_bar{};  // |u^| of the pivot row
-    for (int c = k; c < 4; ++c) u_bar[c] = exact::abs(b[k][c]) + g * s[k][c];
+    for (int c = k; c < 4; ++c) u_bar[c] = oracle::exact::abs(b[k][c]) + g * s[k][c];
     for (int c = 0; c < 4; ++c) {
       const Rational row = s[k][c] + u_bar[c];
       out[order[k]][c] = std::max(out[order[k]][c], row);
     }
-    const Rational pivot_low = exact::abs(b[k][k]) - g * s[k][k];
+    const Rational pivot_low = oracle::exact::abs(b[k][k]) - g * s[k][k];
     for (int q = k + 1; q < 4; ++q) {
       const Rational l_bar = std::min(
-          Rational(1), Rational((exact::abs(b[q][k]) + g * s[q][k]) / pivot_low * (1 + u)));
+          Rational(1), Rational((oracle::exact::abs(b[q][k]) + g * s[q][k]) / pivot_low * (1 + u)));
       const Rational l = b[q][k] / b[k][k];
       for (int c = k; c < 4; ++c) {
         s[q][c] += l_bar * u_bar[c];
@@ -144,7 +144,8 @@ Mat lu_magnitudes(const Mat& m) {
   for (auto& row : out) row.fill(0);
   Mat sum{};
   for (auto& row : sum) row.fill(0);
-  if (!lu_orders(m, sum, {0, 1, 2, 3}, 0, gamma_of<T>(tolerance::kSolveRoundings), unit<T>(), out))
+  if (!lu_orders(m, sum, {0, 1, 2, 3}, 0, gamma_of<T>(oracle::tolerance::kSolveRoundings),
+                 unit<T>(), out))
     return lu_bound(m);
   return out;
 }
@@ -160,26 +161,26 @@ Mat lu_magnitudes(const Mat& m) {
 /// Empty where the determinant computed by cofactors is not determined in T.
 template <class T>
 std::optional<Mat> solve_error(const Mat& m, const Mat& inv) {
-  const Rational g = gamma_of<T>(tolerance::kCofactorRoundings);
+  const Rational g = gamma_of<T>(oracle::tolerance::kCofactorRoundings);
   Mat perm;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) perm[i][j] = minor_sum(m, i, j, true);
   Rational det = 0, det_perm = 0;  // along row 0
   for (int j = 0; j < 4; ++j) {
     det += (j % 2 == 0 ? 1 : -1) * m[0][j] * minor_sum(m, 0, j, false);
-    det_perm += exact::abs(m[0][j]) * perm[0][j];
+    det_perm += oracle::exact::abs(m[0][j]) * perm[0][j];
   }
-  const Rational size = exact::abs(det);
+  const Rational size = oracle::exact::abs(det);
   const Rational det_error = g * det_perm;
   if (det_error >= size) return std::nullopt;
   // Applying the inverse: 4 roundings, and the window depth's conversion to NDC 2 more.
   const Rational g_apply = gamma_of<T>(6);
-  const Mat lu = mul(mul(exact::abs(inv), lu_magnitudes<T>(m)), exact::abs(inv));
-  const Rational g_lu = gamma_of<T>(tolerance::kConsumerSolveRoundings);
+  const Mat lu = mul(mul(oracle::exact::abs(inv), lu_magnitudes<T>(m)), oracle::exact::abs(inv));
+  const Rational g_lu = gamma_of<T>(oracle::tolerance::kConsumerSolveRoundings);
   Mat out;
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) {
-      const Rational x = exact::abs(inv[i][j]);
+      const Rational x = oracle::exact::abs(inv[i][j]);
       // adj_ij is the cofactor of m_ji; then the quotient (or the reciprocal and a product).
       const Rational e = (1 + g) * (g * perm[j][i] + x * det_error) / (size - det_error) + g * x;
       out[i][j] = std::max(Rational(e + g_apply * (x + e)), Rational(g_lu * lu[i][j]));
@@ -190,13 +191,13 @@ std::optional<Mat> solve_error(const Mat& m, const Mat& inv) {
 
 Rational max_abs(const Vec& v) {
   Rational m = 0;
-  for (const Rational& x : v) m = std::max(m, exact::abs(x));
+  for (const Rational& x : v) m = std::max(m, oracle::exact::abs(x));
   return m;
 }
 
 Rational sum_abs(const Vec& v) {
   Rational s = 0;
-  for (const Rational& x : v) s += exact::abs(x);
+  for (const Rational& x : v) s += oracle::exact::abs(x);
   return s;
 }
 
@@ -238,8 +239,8 @@ certified::Range quotient(const certified::Range& x, const certified::Range& y) 
 
 template <class T>
 Vec point_of(const Vector3<T>& p) {
-  return {exact::to_rational(p(0)), exact::to_rational(p(1)), exact::to_rational(p(2)),
-          Rational(1)};
+  return {oracle::exact::to_rational(p(0)), oracle::exact::to_rational(p(1)),
+          oracle::exact::to_rational(p(2)), Rational(1)};
 }
 
 /// A rational as the nearest double, shortest digits.
@@ -299,7 +300,7 @@ Eigen::Matrix4d approx_matrix(const Mat& m) {
 
 /// |a| / b as a double ratio; 0 for 0 / 0, infinity for x / 0.
 double ratio_of(const Rational& a, const Rational& b) {
-  const Rational x = exact::abs(a);
+  const Rational x = oracle::exact::abs(a);
   if (b == 0) return x == 0 ? 0.0 : std::numeric_limits<double>::infinity();
   return Rational(x / b).get_d();
 }
@@ -323,11 +324,11 @@ std::pair<Rational, Rational> depth_interval(const DepthSample<T>& s) {
   } else {
     float f;
     std::memcpy(&f, &s.stored, sizeof f);
-    const Rational v = exact::to_rational(f);
-    lo = (v + exact::to_rational(std::nextafter(f, -1.0f))) / 2;
-    hi = (v + exact::to_rational(std::nextafter(f, 2.0f))) / 2;
+    const Rational v = oracle::exact::to_rational(f);
+    lo = (v + oracle::exact::to_rational(std::nextafter(f, -1.0f))) / 2;
+    hi = (v + oracle::exact::to_rational(std::nextafter(f, 2.0f))) / 2;
   }
-  const Rational read = exact::to_rational(s.depth);
+  const Rational read = oracle::exact::to_rational(s.depth);
   lo = std::max(Rational(0), std::min(lo, read));
   hi = std::min(Rational(1), std::max(hi, read));
   return {lo, hi};
@@ -359,11 +360,11 @@ int axis_sign(const Mat& original_inverse, Convention convention,
               const std::optional<std::optional<Mat>>& error = std::nullopt) {
   const DepthRange range = clip_depth_range(convention);
   const Vec b{0, 0, Rational(range.z_low + range.z_high, 2), 1};
-  const Vec centre = exact::mul(original_inverse, b);
+  const Vec centre = oracle::exact::mul(original_inverse, b);
   if (error) {
     if (!*error) return 0;
-    const Vec dv = exact::mul(**error, exact::abs(b));
-    if (exact::abs(centre[2]) <= dv[2] || exact::abs(centre[3]) <= dv[3]) return 0;
+    const Vec dv = oracle::exact::mul(**error, oracle::exact::abs(b));
+    if (oracle::exact::abs(centre[2]) <= dv[2] || oracle::exact::abs(centre[3]) <= dv[3]) return 0;
   }
   return (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
 }
@@ -400,9 +401,10 @@ std::optional<ConsumerFinding> before_the_answer(ConsumerCheck check, const Segm
 template <class T>
 Segment ray_segment(const DepthSample<T>& s) {
   Segment out;
-  const Mat m = exact::to_rational(s.projection);
-  const std::optional<Mat> inv = exact::inverse(m);
-  const std::optional<Mat> original_inv = exact::inverse(exact::to_rational(s.original));
+  const Mat m = oracle::exact::to_rational(s.projection);
+  const std::optional<Mat> inv = oracle::exact::inverse(m);
+  const std::optional<Mat> original_inv =
+      oracle::exact::inverse(oracle::exact::to_rational(s.original));
   if (!inv || !original_inv) {
     out.why = "a singular projection";
     return out;
@@ -410,13 +412,13 @@ Segment ray_segment(const DepthSample<T>& s) {
   {
     // The view axis is z only where M's fourth row is (0, 0, a, b); elsewhere (a rotated or
     // general matrix) linear depth has no axis to be measured along.
-    const Mat original = exact::to_rational(s.original);
+    const Mat original = oracle::exact::to_rational(s.original);
     out.axis_is_z = original[3][0] == 0 && original[3][1] == 0;
     if (out.axis_is_z)
       out.axis = axis_sign(*original_inv, s.convention, solve_error<T>(original, *original_inv));
   }
   const auto [lo, hi] = depth_interval(s);
-  const Rational x = exact::to_rational(s.ndc_x), y = exact::to_rational(s.ndc_y);
+  const Rational x = oracle::exact::to_rational(s.ndc_x), y = oracle::exact::to_rational(s.ndc_y);
   const std::optional<Mat> error = solve_error<T>(m, *inv);
   if (!error) {
     out.why =
@@ -432,7 +434,7 @@ Segment ray_segment(const DepthSample<T>& s) {
   const Rational depths[2] = {lo, hi};
   for (int e = 0; e < 2; ++e) {
     const Vec b{x, y, ndc_of(depths[e], s.convention), 1};
-    const Vec v = exact::mul(*inv, b);
+    const Vec v = oracle::exact::mul(*inv, b);
     if (v[3] == 0) {
       out.why = "the stored depth's interval reaches the ray's point at infinity";
       return out;
@@ -441,19 +443,21 @@ Segment ray_segment(const DepthSample<T>& s) {
     // |v^ - v| <= dv; the divide v^_i / v^_w rounds once: the answer times v^_w is within
     // u |v^_i| <= u (|v_i| + dv_i) of v^_i. Along the segment, |b| and |v| are at most the
     // larger of their ends' (both linear in the depth, which keeps its sign or passes 0).
-    const Vec dv = exact::mul(*error, exact::abs(b));
+    const Vec dv = oracle::exact::mul(*error, oracle::exact::abs(b));
     for (int i = 0; i < 4; ++i) {
-      const Rational divide = i < 3 ? Rational(u * (exact::abs(v[i]) + dv[i])) : Rational(0);
+      const Rational divide =
+          i < 3 ? Rational(u * (oracle::exact::abs(v[i]) + dv[i])) : Rational(0);
       out.box[i] = std::max(out.box[i], Rational(dv[i] + divide));
     }
-    if (dv[3] >= exact::abs(v[3])) {
+    if (dv[3] >= oracle::exact::abs(v[3])) {
       determined = false;
       continue;
     }
     for (int i = 0; i < 3; ++i) {
       const Rational p = v[i] / v[3];
       const Rational bound_i =
-          (dv[i] + exact::abs(p) * dv[3]) / (exact::abs(v[3]) - dv[3]) + u * exact::abs(p);
+          (dv[i] + oracle::exact::abs(p) * dv[3]) / (oracle::exact::abs(v[3]) - dv[3]) +
+          u * oracle::exact::abs(p);
       bound[i] = std::max(bound[i], bound_i);
     }
   }
@@ -462,7 +466,8 @@ Segment ray_segment(const DepthSample<T>& s) {
     return out;
   }
   if (determined) out.bound = bound;
-  out.w_reaches_zero = out.box[3] >= std::min(exact::abs(ends[0][3]), exact::abs(ends[1][3]));
+  out.w_reaches_zero =
+      out.box[3] >= std::min(oracle::exact::abs(ends[0][3]), oracle::exact::abs(ends[1][3]));
   out.ha = ends[0];
   out.hb = ends[1];
   for (int i = 0; i < 4; ++i) {
@@ -584,17 +589,17 @@ constexpr const char* kNotProper =
 template <class T>
 std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>& m, const Vector4<T>& c,
                                                   Convention convention) {
-  const std::optional<Mat> inv = exact::inverse(exact::to_rational(m));
+  const std::optional<Mat> inv = oracle::exact::inverse(oracle::exact::to_rational(m));
   if (!inv) return std::nullopt;
   std::array<Vec, 8> corners;
   for (int i = 0; i < 8; ++i) {
     const std::array<int, 4> q = clip_corner(i, convention);
-    Vec v = exact::mul(*inv, {q[0], q[1], q[2], q[3]});
+    Vec v = oracle::exact::mul(*inv, {q[0], q[1], q[2], q[3]});
     if (v[3] < 0) return std::nullopt;
     corners[static_cast<std::size_t>(i)] = v;
   }
   std::vector<Vec> out;
-  for (const Vec& x : polytope::clip_volume(corners, exact::to_rational(c))) {
+  for (const Vec& x : polytope::clip_volume(corners, oracle::exact::to_rational(c))) {
     if (std::find(out.begin(), out.end(), x) == out.end()) out.push_back(x);
   }
   return out;
@@ -626,7 +631,8 @@ std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const M
                                            Convention convention, DepthBuffer buffer,
                                            const Vector4<T>& point) {
   if (!projection.allFinite() || !point.allFinite()) return std::nullopt;
-  const Vec clip = exact::mul(exact::to_rational(projection), exact::to_rational(point));
+  const Vec clip =
+      oracle::exact::mul(oracle::exact::to_rational(projection), oracle::exact::to_rational(point));
   if (!(clip[3] > 0)) return std::nullopt;
   const Rational window = window_of(clip[2] / clip[3], convention);
   if (window < 0 || window > 1) return std::nullopt;
@@ -635,15 +641,15 @@ std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const M
   s.original = original;
   s.convention = convention;
   s.buffer = buffer;
-  s.ndc_x = exact::round_to<T>(clip[0] / clip[3]);
-  s.ndc_y = exact::round_to<T>(clip[1] / clip[3]);
+  s.ndc_x = oracle::exact::round_to<T>(clip[0] / clip[3]);
+  s.ndc_y = oracle::exact::round_to<T>(clip[1] / clip[3]);
   if (buffer == DepthBuffer::fixed24) {
     const Rational scaled = window * kFixed24Max + Rational(1, 2);
     const mpz_class k = scaled.get_num() / scaled.get_den();  // floor: both positive
     s.stored = static_cast<std::uint32_t>(k.get_ui());
-    s.depth = exact::round_to<T>(Rational(k) / kFixed24Max);
+    s.depth = oracle::exact::round_to<T>(Rational(k) / kFixed24Max);
   } else {
-    const float f = exact::round_to<float>(window);
+    const float f = oracle::exact::round_to<float>(window);
     std::memcpy(&s.stored, &f, sizeof f);
     s.depth = static_cast<T>(f);
   }
@@ -705,7 +711,7 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
   }
   const Rational sign = seg.axis;
   // The answer is axis z: the point's z is axis times it.
-  const Vec given{0, 0, sign * exact::to_rational(answer), 1};
+  const Vec given{0, 0, sign * oracle::exact::to_rational(answer), 1};
   const auto [ok, ratio] = judge_on_segment(seg, given, {2});
   f.holds = ok;
   f.ratio = ratio;
@@ -725,7 +731,7 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
   keeps.check = ConsumerCheck::culling_keeps_visible;
   near.check = ConsumerCheck::culling_near_is_c;
   const Problem<T> problem(m, c, convention);
-  const std::optional<exact::Vec> row3 =
+  const std::optional<oracle::exact::Vec> row3 =
       problem.exact_status() == Status::ok ? problem.row3_bounds() : std::nullopt;
   if (!row3 || !oblique.allFinite()) {
     keeps.judged = near.judged = false;
@@ -734,12 +740,12 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
     return {keeps, near};
   }
   // How far the answer's near and far planes may be from the exact ones, relative to their size.
-  const Mat mx = exact::to_rational(m);
+  const Mat mx = oracle::exact::to_rational(m);
   Mat exact_oblique = mx;
   exact_oblique[2] = problem.exact_row3();
   const RowCombination nr = near_rows(convention), fr = far_rows(convention);
-  const Vec near_exact = exact::combine(nr.m3, exact_oblique[2], nr.m4, exact_oblique[3]);
-  const Vec far_exact = exact::combine(fr.m3, exact_oblique[2], fr.m4, exact_oblique[3]);
+  const Vec near_exact = oracle::exact::combine(nr.m3, exact_oblique[2], nr.m4, exact_oblique[3]);
+  const Vec far_exact = oracle::exact::combine(fr.m3, exact_oblique[2], fr.m4, exact_oblique[3]);
   const Rational row3_error = max_abs(*row3);
   const Rational smallest_plane = std::min(max_abs(near_exact), max_abs(far_exact));
   // Where C is M_4 up to scale, M''s exact far plane (reversed Z: M_4 - a C) is the zero vector:
@@ -751,7 +757,7 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
         "up to scale): the plane in T is rounding alone";
   }
   const Rational rho = smallest_plane > 0 ? Rational(row3_error / smallest_plane) : Rational(0);
-  const Rational g = gamma_of<T>(tolerance::kPlaneRoundings);
+  const Rational g = gamma_of<T>(oracle::tolerance::kPlaneRoundings);
 
   // (Without a proper original volume there is no kept region to cull, but near = C still
   // holds or not.)
@@ -793,11 +799,11 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
                        numbers_text(plane);
       continue;
     }
-    const Vec p = exact::to_rational(plane);
+    const Vec p = oracle::exact::to_rational(plane);
     for (const Vec& v : kept) {
-      const Rational value = exact::dot(p, v);
-      const Rational slack =
-          g * exact::dot(exact::abs(p), exact::abs(v)) + rho * max_abs(p) * sum_abs(v);
+      const Rational value = oracle::exact::dot(p, v);
+      const Rational slack = g * oracle::exact::dot(oracle::exact::abs(p), oracle::exact::abs(v)) +
+                             rho * max_abs(p) * sum_abs(v);
       if (value >= 0) continue;
       const double r = ratio_of(value, slack);
       if (r > worst) {
@@ -832,17 +838,17 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
     near.detail = "the near plane " + numbers_text(answer.near_plane) + " is not finite";
     return {keeps, near};
   }
-  const Vec cx = exact::to_rational(c);
-  const Vec p = exact::to_rational(answer.near_plane);
+  const Vec cx = oracle::exact::to_rational(c);
+  const Vec p = oracle::exact::to_rational(answer.near_plane);
   const DepthRange range = clip_depth_range(convention);
   const Rational a = Rational(range.z_high - range.z_low) / problem.corner_dot();
-  const Rational invisible = tolerance::kInvisiblePlaneUlps * unit<T>() * max_abs(cx);
+  const Rational invisible = oracle::tolerance::kInvisiblePlaneUlps * unit<T>() * max_abs(cx);
   Rational lambda_lo = 0, lambda_hi = -1;  // hi < 0: unbounded
   bool feasible = true;
   Vec beta;
   for (int i = 0; i < 4; ++i) {
     beta[i] = (*row3)[i] / a + invisible;
-    const Rational slack = g * exact::abs(p[i]);
+    const Rational slack = g * oracle::exact::abs(p[i]);
     // lambda (c_i + beta_i) >= p_i - slack and lambda (c_i - beta_i) <= p_i + slack.
     auto bound_by = [&](const Rational& coefficient, const Rational& rhs, bool at_least) {
       // coefficient * lambda (>= or <=) rhs
@@ -866,13 +872,15 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
   // lambda must be positive: at lambda = 0 every coefficient would be within its own rounding.
   const bool positive = feasible && (lambda_hi < 0 || lambda_hi > 0);
   near.holds = feasible && positive && max_abs(p) > 0;
-  const Rational lambda_fit =
-      exact::dot(cx, cx) > 0 ? Rational(exact::dot(p, cx) / exact::dot(cx, cx)) : Rational(0);
+  const Rational lambda_fit = oracle::exact::dot(cx, cx) > 0
+                                  ? Rational(oracle::exact::dot(p, cx) / oracle::exact::dot(cx, cx))
+                                  : Rational(0);
   double worst_near = 0;
   if (lambda_fit > 0) {
     for (int i = 0; i < 4; ++i)
-      worst_near = std::max(worst_near, ratio_of(p[i] - lambda_fit * cx[i],
-                                                 g * exact::abs(p[i]) + lambda_fit * beta[i]));
+      worst_near = std::max(
+          worst_near,
+          ratio_of(p[i] - lambda_fit * cx[i], g * oracle::exact::abs(p[i]) + lambda_fit * beta[i]));
   } else {
     worst_near = std::numeric_limits<double>::infinity();
   }
@@ -895,8 +903,8 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
   ConsumerFinding on, side;
   on.check = ConsumerCheck::plane_on_surface;
   side.check = ConsumerCheck::plane_kept_side;
-  const Mat w = exact::to_rational(pass_view);
-  const std::optional<Mat> inv = exact::inverse(w);
+  const Mat w = oracle::exact::to_rational(pass_view);
+  const std::optional<Mat> inv = oracle::exact::inverse(w);
   if (!inv || !answer.allFinite()) {
     on.judged = side.judged = !inv ? false : true;
     if (!inv) {
@@ -908,34 +916,36 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
     on.detail = side.detail = "answered " + numbers_text(answer) + ", not a finite plane";
     return {on, side};
   }
-  const Mat inv_t = exact::transpose(*inv);
-  const Vec world = exact::to_rational(world_plane);
-  const Vec reference = exact::mul(inv_t, world);
-  const Vec p = exact::to_rational(answer);
-  const Rational rr = exact::dot(reference, reference);
-  const Rational lambda = rr > 0 ? Rational(exact::dot(p, reference) / rr) : Rational(0);
+  const Mat inv_t = oracle::exact::transpose(*inv);
+  const Vec world = oracle::exact::to_rational(world_plane);
+  const Vec reference = oracle::exact::mul(inv_t, world);
+  const Vec p = oracle::exact::to_rational(answer);
+  const Rational rr = oracle::exact::dot(reference, reference);
+  const Rational lambda = rr > 0 ? Rational(oracle::exact::dot(p, reference) / rr) : Rational(0);
   const Vec chain =
-      exact::mul(mul(mul(exact::abs(inv_t), lu_bound(exact::transpose(w))), exact::abs(inv_t)),
-                 exact::abs(world));
+      oracle::exact::mul(mul(mul(oracle::exact::abs(inv_t), lu_bound(oracle::exact::transpose(w))),
+                             oracle::exact::abs(inv_t)),
+                         oracle::exact::abs(world));
   Vec bound;
   for (int i = 0; i < 4; ++i)
-    bound[i] = exact::abs(lambda) * gamma_of<T>(tolerance::kCameraPlaneRoundings) * chain[i] +
-               gamma_of<T>(tolerance::kPlaneRoundings) * exact::abs(p[i]);
+    bound[i] = oracle::exact::abs(lambda) * gamma_of<T>(oracle::tolerance::kCameraPlaneRoundings) *
+                   chain[i] +
+               gamma_of<T>(oracle::tolerance::kPlaneRoundings) * oracle::exact::abs(p[i]);
 
   double worst = 0;
   for (const Vector4<T>& x : surface_points) {
-    Vec xe = exact::to_rational(x);
+    Vec xe = oracle::exact::to_rational(x);
     // On the plane exactly: x projected onto it in rational arithmetic.
     const Rational nn = world[0] * world[0] + world[1] * world[1] + world[2] * world[2];
-    const Rational off = exact::dot(world, xe) / nn;
+    const Rational off = oracle::exact::dot(world, xe) / nn;
     for (int i = 0; i < 3; ++i) xe[i] -= off * world[i] * xe[3];
-    const Vec y = exact::mul(w, xe);
-    const Rational value = exact::dot(p, y);
-    const Rational slack = exact::dot(bound, exact::abs(y));
+    const Vec y = oracle::exact::mul(w, xe);
+    const Rational value = oracle::exact::dot(p, y);
+    const Rational slack = oracle::exact::dot(bound, oracle::exact::abs(y));
     const double r = ratio_of(value, slack);
     if (r > worst) {
       worst = r;
-      if (exact::abs(value) > slack) {
+      if (oracle::exact::abs(value) > slack) {
         on.holds = false;
         on.detail = "the surface's point " + text(xe, 3) + " is at camera-space " + text(y, 3) +
                     ", where the plane " + numbers_text(answer) + " gives " + text(value) +
@@ -948,9 +958,9 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
     on.detail = "the surface's " + std::to_string(surface_points.size()) +
                 " points land on the plane " + numbers_text(answer);
 
-  const Vec y = exact::mul(w, exact::to_rational(front_point));
-  const Rational value = exact::dot(p, y);
-  const Rational slack = exact::dot(bound, exact::abs(y));
+  const Vec y = oracle::exact::mul(w, oracle::exact::to_rational(front_point));
+  const Rational value = oracle::exact::dot(p, y);
+  const Rational slack = oracle::exact::dot(bound, oracle::exact::abs(y));
   side.holds = !(value < 0 && -value > slack);
   side.ratio = value >= 0 ? 0.0 : ratio_of(value, slack);
   side.detail = "a point in front of the surface, camera-space " + text(y, 3) + ", is on the " +
@@ -963,7 +973,7 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
     // as it should be and as answered, each a square around the points.
     std::vector<Eigen::Vector3d> points;
     for (const Vector4<T>& x : surface_points)
-      points.push_back(approx_point(exact::mul(w, exact::to_rational(x))));
+      points.push_back(approx_point(oracle::exact::mul(w, oracle::exact::to_rational(x))));
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3d& x : points) centre += x;
     centre /= static_cast<double>(std::max<std::size_t>(points.size(), 1));
@@ -1005,7 +1015,7 @@ ConsumerFinding compare_matrix(ConsumerCheck check, const Mat& reference, const 
     f.detail = "the answer is not finite";
     return f;
   }
-  const Mat given = exact::to_rational(answer);
+  const Mat given = oracle::exact::to_rational(answer);
   double worst = 0;
   int wi = 0, wj = 0;
   for (int i = 0; i < 4; ++i) {
@@ -1017,7 +1027,7 @@ ConsumerFinding compare_matrix(ConsumerCheck check, const Mat& reference, const 
         wi = i;
         wj = j;
       }
-      if (exact::abs(diff) > bound[i][j]) f.holds = false;
+      if (oracle::exact::abs(diff) > bound[i][j]) f.holds = false;
     }
   }
   f.ratio = worst;
@@ -1039,8 +1049,8 @@ ConsumerFinding compare_matrix(ConsumerCheck check, const Mat& reference, const 
 template <class T>
 ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& world_plane,
                                   const Matrix4<T>& answer, MirrorDesign design) {
-  const Mat v = exact::to_rational(view);
-  const Vec plane = exact::to_rational(world_plane);
+  const Mat v = oracle::exact::to_rational(view);
+  const Vec plane = oracle::exact::to_rational(world_plane);
   const Rational nn = plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2];
   if (nn == 0) {
     ConsumerFinding f;
@@ -1060,10 +1070,10 @@ ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& worl
     for (int j = 0; j < 3; ++j) {
       const Rational term = 2 * plane[i] * plane[j] / nn;
       r[i][j] -= term;
-      r_abs[i][j] += exact::abs(term);
+      r_abs[i][j] += oracle::exact::abs(term);
     }
     r[i][3] = -2 * plane[3] * plane[i] / nn;
-    r_abs[i][3] = exact::abs(r[i][3]);
+    r_abs[i][3] = oracle::exact::abs(r[i][3]);
   }
   // The two designs: view R, and diag(-1, 1, 1, 1) view R (row 1 negated, exactly: the bound
   // is the same).
@@ -1072,8 +1082,8 @@ ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& worl
   for (Rational& x : proper[0]) x = -x;
   const bool proper_declared = design == MirrorDesign::proper_camera;
   const Mat& reference = proper_declared ? proper : reflected;
-  Mat bound = mul(exact::abs(v), r_abs);
-  const Rational g = gamma_of<T>(tolerance::kPassViewRoundings);
+  Mat bound = mul(oracle::exact::abs(v), r_abs);
+  const Rational g = gamma_of<T>(oracle::tolerance::kPassViewRoundings);
   for (auto& row : bound) {
     for (auto& x : row) x *= g;
   }
@@ -1082,10 +1092,10 @@ ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& worl
   // come out 0. So each entry of the 3 x 3 block is held within its row's largest bound, and the
   // translation, t_i = -row_i . eye, within that times |eye|_1 more (eye: the pass camera's
   // position, exact). What a point at unit distance sees is the same either way.
-  const std::optional<Mat> to_world = exact::inverse(reference);
+  const std::optional<Mat> to_world = oracle::exact::inverse(reference);
   Rational eye_size = 0;
   if (to_world) {
-    for (int k = 0; k < 3; ++k) eye_size += exact::abs((*to_world)[k][3]);
+    for (int k = 0; k < 3; ++k) eye_size += oracle::exact::abs((*to_world)[k][3]);
   }
   for (auto& row : bound) {
     const Rational largest = std::max({row[0], row[1], row[2]});
@@ -1137,8 +1147,8 @@ ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& worl
 template <class T>
 ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& frame,
                                   const Matrix4<T>& linked, const Matrix4<T>& answer) {
-  const Mat l = exact::to_rational(linked);
-  const std::optional<Mat> l_inv = exact::inverse(l);
+  const Mat l = oracle::exact::to_rational(linked);
+  const std::optional<Mat> l_inv = oracle::exact::inverse(l);
   if (!l_inv) {
     ConsumerFinding f;
     f.check = ConsumerCheck::portal_view;
@@ -1151,11 +1161,11 @@ ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& fram
   turn[1][1] = 1;
   turn[2][2] = -1;
   turn[3][3] = 1;
-  const Mat v = exact::to_rational(view), fr = exact::to_rational(frame);
+  const Mat v = oracle::exact::to_rational(view), fr = oracle::exact::to_rational(frame);
   const Mat reference = mul(mul(mul(v, fr), turn), *l_inv);
-  Mat bound = mul(mul(exact::abs(v), exact::abs(fr)),
-                  mul(mul(exact::abs(*l_inv), lu_bound(l)), exact::abs(*l_inv)));
-  const Rational g = gamma_of<T>(tolerance::kPassViewRoundings);
+  Mat bound = mul(mul(oracle::exact::abs(v), oracle::exact::abs(fr)),
+                  mul(mul(oracle::exact::abs(*l_inv), lu_bound(l)), oracle::exact::abs(*l_inv)));
+  const Rational g = gamma_of<T>(oracle::tolerance::kPassViewRoundings);
   for (auto& row : bound)
     for (auto& x : row) x *= g;
   ConsumerFinding f = compare_matrix(ConsumerCheck::portal_view, reference, bound, answer);
@@ -1191,7 +1201,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   ConsumerFinding f;
   f.check = ConsumerCheck::corners_contain_kept;
   const Problem<T> problem(m, c, convention);
-  const std::optional<exact::Vec> row3 =
+  const std::optional<oracle::exact::Vec> row3 =
       problem.exact_status() == Status::ok ? problem.row3_bounds() : std::nullopt;
   if (!row3 || problem.infinite()) {
     f.judged = false;
@@ -1241,10 +1251,10 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   // the right ones must not widen what they are judged by. A correct corner is within its
   // vertex's bound d of it, so the bound is taken once more at each vertex widened by its own d
   // (every term grows with |x|): it then holds for any corner a correct computation can give.
-  const Mat mo = exact::to_rational(oblique);
-  const Mat mx = exact::to_rational(m);
-  const std::optional<Mat> inv = exact::inverse(mo);
-  const std::optional<Mat> m_inv = exact::inverse(mx);
+  const Mat mo = oracle::exact::to_rational(oblique);
+  const Mat mx = oracle::exact::to_rational(m);
+  const std::optional<Mat> inv = oracle::exact::inverse(mo);
+  const std::optional<Mat> m_inv = oracle::exact::inverse(mx);
   if (!inv || !m_inv) {
     f.judged = false;
     f.detail = "a singular matrix";
@@ -1260,29 +1270,32 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
     return f;
   }
   const Rational u = unit<T>();
-  const Vec cx = exact::to_rational(c);
-  const Rational c_normal = std::max({exact::abs(cx[0]), exact::abs(cx[1]), exact::abs(cx[2])});
-  const Rational plane_gamma = gamma_of<T>(tolerance::kPlaneRoundings);
+  const Vec cx = oracle::exact::to_rational(c);
+  const Rational c_normal =
+      std::max({oracle::exact::abs(cx[0]), oracle::exact::abs(cx[1]), oracle::exact::abs(cx[2])});
+  const Rational plane_gamma = gamma_of<T>(oracle::tolerance::kPlaneRoundings);
   // The bound at a vertex x (w = 1) of every corner within `widen` of it in x, y and z; < 0 when
   // a solve in T cannot determine w there.
   auto bound_near = [&](const Vec& x, const Rational& widen) -> Rational {
     Vec size;  // |x| widened
-    for (int i = 0; i < 3; ++i) size[i] = exact::abs(x[i]) + widen;
+    for (int i = 0; i < 3; ++i) size[i] = oracle::exact::abs(x[i]) + widen;
     size[3] = 1;
     Rational d = 0;
     for (const auto& [solve, with_m] : {std::pair{&*chain, true}, std::pair{&*m_chain, false}}) {
       const Mat& matrix = with_m ? mo : mx;
-      Vec q = exact::abs(exact::mul(matrix, x));  // its clip-space point, widened below
+      Vec q =
+          oracle::exact::abs(oracle::exact::mul(matrix, x));  // its clip-space point, widened below
       for (int r = 0; r < 4; ++r)
-        for (int k = 0; k < 3; ++k) q[r] += exact::abs(matrix[r][k]) * widen;
-      Vec dv = exact::mul(*solve, q);
-      const Rational row3_part = with_m ? exact::dot(*row3, size) : Rational(0);
+        for (int k = 0; k < 3; ++k) q[r] += oracle::exact::abs(matrix[r][k]) * widen;
+      Vec dv = oracle::exact::mul(*solve, q);
+      const Rational row3_part = with_m ? oracle::exact::dot(*row3, size) : Rational(0);
       const Mat& inverse = with_m ? *inv : *m_inv;
-      for (int i = 0; i < 4; ++i) dv[i] += exact::abs(inverse[i][2]) * row3_part;
+      for (int i = 0; i < 4; ++i) dv[i] += oracle::exact::abs(inverse[i][2]) * row3_part;
       if (dv[3] >= 1) return -1;  // w not determined: no bound from this solve
       for (int i = 0; i < 3; ++i) d += (dv[i] + size[i] * dv[3]) / (1 - dv[3]) + u * size[i];
     }
-    if (c_normal > 0) d += plane_gamma * exact::dot(exact::abs(cx), size) / c_normal;
+    if (c_normal > 0)
+      d += plane_gamma * oracle::exact::dot(oracle::exact::abs(cx), size) / c_normal;
     return d;
   };
   // delta, the largest bound over the kept region's vertices, exactly; empty where a solve in T
@@ -1324,10 +1337,10 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
         const Mat& error = out.with_m ? *chain : *m_chain;
         const Mat& inverse = out.with_m ? *inv : *m_inv;
         for (std::size_t i = 0; i < 4; ++i) {
-          out.inverse_column[i] = range_of(exact::abs(inverse[i][2]));
+          out.inverse_column[i] = range_of(oracle::exact::abs(inverse[i][2]));
           for (std::size_t j = 0; j < 4; ++j) {
             out.matrix[i][j] = certified_of(matrix[i][j]);
-            out.magnitude[i][j] = range_of(exact::abs(matrix[i][j]));
+            out.magnitude[i][j] = range_of(oracle::exact::abs(matrix[i][j]));
             out.error[i][j] = range_of(error[i][j]);
           }
         }
@@ -1335,7 +1348,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
       std::array<Range, 4> row3_range, c_magnitude;
       for (std::size_t i = 0; i < 4; ++i) {
         row3_range[i] = range_of((*row3)[i]);
-        c_magnitude[i] = range_of(exact::abs(cx[i]));
+        c_magnitude[i] = range_of(oracle::exact::abs(cx[i]));
       }
       const Range u_range = range_of(u), plane_gamma_range = range_of(plane_gamma),
                   c_normal_range = range_of(c_normal);
@@ -1625,7 +1638,7 @@ ConsumerAsk<T> corners_ask(const Matrix4<T>& m, const Vector4<T>& c, Convention 
 }
 
 template <class T>
-ConsumerAsk<T> camera_plane_ask(const consumer_cases::PassPlaneCase<T>& p) {
+ConsumerAsk<T> camera_plane_ask(const oracle::consumer_cases::PassPlaneCase<T>& p) {
   ConsumerAsk<T> a;
   a.kind = ConsumerKind::camera_plane;
   a.request = [p] {
@@ -1636,7 +1649,8 @@ ConsumerAsk<T> camera_plane_ask(const consumer_cases::PassPlaneCase<T>& p) {
   };
   a.judge = [p](const std::vector<T>& v, const Settle& settle) {
     const Vector4<T> answer = wire::vector4(v);
-    const std::string inputs = std::string("- pass: ") + consumer_cases::pass_kind_name(p.kind) +
+    const std::string inputs = std::string("- pass: ") +
+                               oracle::consumer_cases::pass_kind_name(p.kind) +
                                "\n- main view: " + numbers_text(p.main_view) +
                                "\n- pass view: " + numbers_text(p.pass_view) +
                                "\n- world plane kept: " + numbers_text(p.kept_plane) +
@@ -1741,7 +1755,7 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
           "\n- M: " + numbers_text(m) + "\n- C: " + numbers_text(c) +
           "\n- M' (the core's answer, what the consumer was given): " + numbers_text(mo) + "\n";
       if (depth) {
-        Vector4<T> point = consumer_cases::kept_point<T>(m, c, convention, pick);
+        Vector4<T> point = oracle::consumer_cases::kept_point<T>(m, c, convention, pick);
         const DepthBuffer buffer = pick(0, 2) ? DepthBuffer::float32 : DepthBuffer::fixed24;
         auto s = depth_sample(mo, m, convention, buffer, point);
         // A vertex of the region rounds to either side of its plane, and a point pushed toward
@@ -1749,7 +1763,8 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
         // it is still a point of the region, near where it was, with a sample to judge.
         for (int k : {20, 10, 4, 1, 0}) {
           if (s) break;
-          point = consumer_cases::toward_centre(m, c, convention, point, std::ldexp(1.0L, -k));
+          point =
+              oracle::consumer_cases::toward_centre(m, c, convention, point, std::ldexp(1.0L, -k));
           s = depth_sample(mo, m, convention, buffer, point);
         }
         if (!s) {
@@ -1774,16 +1789,16 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
     }
   }
   if (consumers.camera_plane)
-    asks.push_back(camera_plane_ask(consumer_cases::pass_plane_case<T>(pick)));
+    asks.push_back(camera_plane_ask(oracle::consumer_cases::pass_plane_case<T>(pick)));
   if (consumers.mirror_view) {
-    const Matrix4<T> view = consumer_cases::rigid_view<T>(pick);
-    asks.push_back(
-        mirror_view_ask(view, consumer_cases::world_plane<T>(pick), consumers.mirror_design));
+    const Matrix4<T> view = oracle::consumer_cases::rigid_view<T>(pick);
+    asks.push_back(mirror_view_ask(view, oracle::consumer_cases::world_plane<T>(pick),
+                                   consumers.mirror_design));
   }
   if (consumers.portal_view) {
-    const Matrix4<T> view = consumer_cases::rigid_view<T>(pick);
-    const Matrix4<T> frame = consumer_cases::portal_frame<T>(pick);
-    asks.push_back(portal_view_ask(view, frame, consumer_cases::portal_frame<T>(pick)));
+    const Matrix4<T> view = oracle::consumer_cases::rigid_view<T>(pick);
+    const Matrix4<T> frame = oracle::consumer_cases::portal_frame<T>(pick);
+    asks.push_back(portal_view_ask(view, frame, oracle::consumer_cases::portal_frame<T>(pick)));
   }
   return asks;
 }
@@ -1797,7 +1812,7 @@ void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
 
 }  // namespace oblique::oracle
 
-namespace oblique::consumer_cases {
+namespace oblique::oracle::consumer_cases {
 
 template <class T>
 void ask_camera_plane(const Consumers<T>& consumers, const PassPlaneCase<T>& p,
@@ -1830,7 +1845,7 @@ OBLIQUE_CONSUMER_ASKS(double)
 OBLIQUE_CONSUMER_ASKS(long double)
 #undef OBLIQUE_CONSUMER_ASKS
 
-}  // namespace oblique::consumer_cases
+}  // namespace oblique::oracle::consumer_cases
 
 namespace oblique::oracle {
 

@@ -12,7 +12,7 @@
 
 namespace oblique::raster {
 
-namespace tol = oblique::tolerance;
+namespace tol = oblique::oracle::tolerance;
 using Eigen::Matrix4d;
 using Eigen::Vector4d;
 using Eigen::Vector4f;
@@ -210,16 +210,19 @@ template <class T>
 std::optional<Vector4d> accepted_in(const Matrix4d& m, const Vector4d& c, Convention convention) {
   const oracle::Problem<T> problem(m.cast<T>(), c.cast<T>(), convention);
   if (problem.exact_status() != Status::ok) return std::nullopt;
-  const std::optional<exact::Vec> bounds = problem.row3_bounds();
+  const std::optional<oracle::exact::Vec> bounds = problem.row3_bounds();
   if (!bounds) return std::nullopt;
-  const std::optional<exact::Rational> scale = problem.scale_error();
+  const std::optional<oracle::exact::Rational> scale = problem.scale_error();
   const DepthRange range = clip_depth_range(convention);
   // Property 1's allowance, u lambda max|C_j|, for lambda up to a (1 + scale).
-  const exact::Rational a = exact::Rational(range.z_high - range.z_low) / problem.corner_dot();
-  exact::Rational largest = 0;
-  for (int i = 0; i < 4; ++i) largest = std::max(largest, exact::abs(exact::to_rational(c(i))));
-  const exact::Rational allowance =
-      tolerance::unit_roundoff(tolerance::precision_bits<T>()) * a * (1 + *scale) * largest;
+  const oracle::exact::Rational a =
+      oracle::exact::Rational(range.z_high - range.z_low) / problem.corner_dot();
+  oracle::exact::Rational largest = 0;
+  for (int i = 0; i < 4; ++i)
+    largest = std::max(largest, oracle::exact::abs(oracle::exact::to_rational(c(i))));
+  const oracle::exact::Rational allowance =
+      oracle::tolerance::unit_roundoff(oracle::tolerance::precision_bits<T>()) * a * (1 + *scale) *
+      largest;
   Vector4d out;
   for (int i = 0; i < 4; ++i) {
     // Rounded up: get_d truncates, so one part in 2^50 more, and the smallest double more.

@@ -31,24 +31,24 @@ ProfiledAnswer profile_answer(const oracle::Problem<T>& problem, const Matrix4<T
   ProfiledAnswer out;
   out.convention = problem.convention();
   out.kappa = oracle::approx(problem.kappa());
-  const exact::Vec row = problem.exact_row3();
+  const oracle::exact::Vec row = problem.exact_row3();
   // The row's ulp: that of its largest entry, correctly rounded (the subnormal quantum at 0).
-  exact::Rational largest = 0;
-  for (const exact::Rational& x : row) largest = std::max(largest, exact::abs(x));
-  const T top = exact::round_to<T>(largest);
+  oracle::exact::Rational largest = 0;
+  for (const oracle::exact::Rational& x : row) largest = std::max(largest, oracle::exact::abs(x));
+  const T top = oracle::exact::round_to<T>(largest);
   constexpr int p = std::numeric_limits<T>::digits;
   const long lowest = std::numeric_limits<T>::min_exponent - p;
   const long quantum =
       top == T(0) ? lowest : std::max(static_cast<long>(std::ilogb(top)) - p + 1, lowest);
   for (int j = 0; j < 4; ++j) {
-    const T rounded = exact::round_to<T>(row[j]);
+    const T rounded = oracle::exact::round_to<T>(row[j]);
     if (!std::isfinite(answer(2, j)) || !std::isfinite(rounded)) {
       out.ulps[j] = std::numeric_limits<double>::infinity();
       continue;
     }
-    const exact::Rational gap =
-        exact::abs(exact::Rational(exact::to_rational(answer(2, j)) - exact::to_rational(rounded)));
-    out.ulps[j] = exact::Rational(gap / exact::power_of_two(quantum)).get_d();
+    const oracle::exact::Rational gap = oracle::exact::abs(oracle::exact::Rational(
+        oracle::exact::to_rational(answer(2, j)) - oracle::exact::to_rational(rounded)));
+    out.ulps[j] = oracle::exact::Rational(gap / oracle::exact::power_of_two(quantum)).get_d();
   }
   return out;
 }

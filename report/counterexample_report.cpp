@@ -65,13 +65,13 @@ void set_views(Counterexample& ce, const Problem<T>& problem, const Matrix4<T>* 
   v.convention = problem.convention();
   v.projection = problem.matrix().template cast<double>();
   v.plane = problem.plane().template cast<double>();
-  auto to_double = [](const exact::Vec& p) {
+  auto to_double = [](const oracle::exact::Vec& p) {
     return Vector4<double>(p[0].get_d(), p[1].get_d(), p[2].get_d(), p[3].get_d());
   };
   if (problem.invertible()) v.far_corner = to_double(problem.far_corner());
   if (problem.exact_status() == Status::ok) {
     Matrix4<double> expected = v.projection;
-    const exact::Vec row3 = problem.exact_row3();
+    const oracle::exact::Vec row3 = problem.exact_row3();
     for (int i = 0; i < 4; ++i) expected(2, i) = row3[i].get_d();
     v.expected = expected;
   }

@@ -74,26 +74,26 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
       case SceneConsumer::cascades: only.corners = who.corners; break;
       case SceneConsumer::camera_plane: {
         rounds = 0;
-        consumer_cases::PassPlaneCase<T> p;
-        p.kind = surface.kind == SurfaceKind::mirror   ? consumer_cases::PassKind::mirror
-                 : surface.kind == SurfaceKind::portal ? consumer_cases::PassKind::portal
-                                                       : consumer_cases::PassKind::clip;
+        oracle::consumer_cases::PassPlaneCase<T> p;
+        p.kind = surface.kind == SurfaceKind::mirror   ? oracle::consumer_cases::PassKind::mirror
+                 : surface.kind == SurfaceKind::portal ? oracle::consumer_cases::PassKind::portal
+                                                       : oracle::consumer_cases::PassKind::clip;
         p.main_view = pass.parent_view.template cast<T>();
         p.pass_view = pass.view.template cast<T>();
         p.kept_plane = pass.kept_plane.template cast<T>();
-        consumer_cases::plane_samples(p.kept_plane, pick, p.surface_points, p.front_point);
-        consumer_cases::ask_camera_plane(who, p, settle);
+        oracle::consumer_cases::plane_samples(p.kept_plane, pick, p.surface_points, p.front_point);
+        oracle::consumer_cases::ask_camera_plane(who, p, settle);
         break;
       }
       case SceneConsumer::pass_view:
         rounds = 0;
         if (surface.kind == SurfaceKind::mirror) {
-          consumer_cases::ask_mirror_view<T>(who, pass.parent_view.template cast<T>(),
-                                             surface.plane().template cast<T>(), settle);
+          oracle::consumer_cases::ask_mirror_view<T>(who, pass.parent_view.template cast<T>(),
+                                                     surface.plane().template cast<T>(), settle);
         } else if (surface.kind == SurfaceKind::portal) {
-          consumer_cases::ask_portal_view<T>(who, pass.parent_view.template cast<T>(),
-                                             surface.portal_frame.template cast<T>(),
-                                             surface.linked_frame.template cast<T>(), settle);
+          oracle::consumer_cases::ask_portal_view<T>(
+              who, pass.parent_view.template cast<T>(), surface.portal_frame.template cast<T>(),
+              surface.linked_frame.template cast<T>(), settle);
         } else {
           r.note = "a clip pass renders with the main view";
         }

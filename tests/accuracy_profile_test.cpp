@@ -45,8 +45,8 @@ TEST(AccuracyProfile, ulpsAreThoseOfTheRowsLargestEntry) {
   const oracle::Problem<double> problem(k.m, k.c, k.convention);
   auto answer = apply<double>(k.m, k.c, k.convention, Method::accurate).projection;
   // Correctly rounded first (the accurate method is within an ulp; make it exact).
-  const exact::Vec row = problem.exact_row3();
-  for (int j = 0; j < 4; ++j) answer(2, j) = exact::round_to<double>(row[j]);
+  const oracle::exact::Vec row = problem.exact_row3();
+  for (int j = 0; j < 4; ++j) answer(2, j) = oracle::exact::round_to<double>(row[j]);
   int largest = 0;
   for (int j = 1; j < 4; ++j)
     if (std::abs(answer(2, j)) > std::abs(answer(2, largest))) largest = j;

@@ -1,7 +1,8 @@
 // The accurate method (accurate/accurate.h) on its own claims: every entry of M'_3 the correctly
 // rounded exact answer (rational oracle, oracle::Problem) where its perspective fast path
-// certifies it, within tolerance::kAccurateUlps everywhere; the fast path and the refining path
-// give the same matrix; the closed form and the general method hand it what they cannot settle.
+// certifies it, within oracle::tolerance::kAccurateUlps everywhere; the fast path and the refining
+// path give the same matrix; the closed form and the general method hand it what they cannot
+// settle.
 #include "oblique/detail/accurate/accurate.h"
 #include "oblique/definitions.h"  // detail::apply_checked(), detail::accurate() (declared compiled)
 
@@ -91,9 +92,9 @@ TYPED_TEST(AccurateMethod, fastPathIsCorrectlyRounded) {
         const auto fast = detail::perspective_row3_dispatched<T>(scaled, m, corner, convention);
         if (!fast) continue;
         ++answered;
-        const exact::Vec row3 = problem.exact_row3();
+        const oracle::exact::Vec row3 = problem.exact_row3();
         for (int k = 0; k < 4; ++k) {
-          EXPECT_EQ(exact::ulp_distance(fast->row3(k), row3[k]), 0.0)
+          EXPECT_EQ(oracle::exact::ulp_distance(fast->row3(k), row3[k]), 0.0)
               << describe(convention, int(i), int(j)) << " entry " << k;
         }
         // And the accurate method returns it.
@@ -130,7 +131,7 @@ TYPED_TEST(AccurateMethod, fastPathAndRefiningPathAgree) {
 }
 
 // Matrices without the perspective shape take the refining path; its promise is
-// tolerance::kAccurateUlps of the correctly rounded answer, which it keeps here.
+// oracle::tolerance::kAccurateUlps of the correctly rounded answer, which it keeps here.
 TYPED_TEST(AccurateMethod, generalMatricesWithinPromisedUlps) {
   using T = TypeParam;
   for (Convention convention : all_conventions) {
@@ -147,7 +148,7 @@ TYPED_TEST(AccurateMethod, generalMatricesWithinPromisedUlps) {
         const ObliqueResult<T> r = accurate_method(matrices[i], cs[j], convention, false);
         ASSERT_EQ(r.status, problem.exact_status()) << describe(convention, int(i), int(j));
         if (!r.ok()) continue;
-        EXPECT_LE(problem.ulps_from_exact(r.projection), tolerance::kAccurateUlps)
+        EXPECT_LE(problem.ulps_from_exact(r.projection), oracle::tolerance::kAccurateUlps)
             << describe(convention, int(i), int(j));
       }
     }
@@ -209,9 +210,9 @@ std::vector<SmallCornerComponents<T>> small_corner_component_cases(int count) {
     const oracle::Problem<T> problem(s.m, s.c, s.convention);
     if (problem.exact_status() != Status::ok) continue;
     // Of the class: the entry cancels by 2^20 or more, or C . Q rests on the small components.
-    const exact::Rational entry = exact::abs(problem.exact_row3()[s.j]);
-    if (!dot_on_small &&
-        !(entry * exact::power_of_two(20) < exact::abs(exact::to_rational(s.m(3, s.j)))))
+    const oracle::exact::Rational entry = oracle::exact::abs(problem.exact_row3()[s.j]);
+    if (!dot_on_small && !(entry * oracle::exact::power_of_two(20) <
+                           oracle::exact::abs(oracle::exact::to_rational(s.m(3, s.j)))))
       continue;
     out.push_back(s);
   }
@@ -233,7 +234,7 @@ int expect_accurate_answers(const std::vector<SmallCornerComponents<T>>& cases) 
       continue;
     }
     ++answered;
-    EXPECT_LE(problem.ulps_from_exact(r.projection), tolerance::kAccurateUlps)
+    EXPECT_LE(problem.ulps_from_exact(r.projection), oracle::tolerance::kAccurateUlps)
         << std::setprecision(std::numeric_limits<T>::max_digits10) << convention_name(s.convention)
         << " j " << s.j << "\nM =\n"
         << s.m << "\nC = " << s.c.transpose();
@@ -303,7 +304,7 @@ TYPED_TEST(AccurateMethod, stiffPlanesAreHandedToItAndSettled) {
       const ObliqueResult<T> r = apply<T>(m, c, convention, method);
       ASSERT_TRUE(r.ok()) << method_name(method) << ": " << r.message();
       EXPECT_EQ(r.method, Method::accurate) << method_name(method);
-      EXPECT_LE(problem.ulps_from_exact(r.projection), tolerance::kAccurateUlps)
+      EXPECT_LE(problem.ulps_from_exact(r.projection), oracle::tolerance::kAccurateUlps)
           << method_name(method);
     }
   }
@@ -345,8 +346,10 @@ TEST(RefinedCorner, addsWordsFromExactResiduals) {
   ASSERT_TRUE(q.add_word());
   EXPECT_EQ(q.count(), 2);
   // 1/3 = x_0 + x_1 to about 2^-106: 3 (x_0 + x_1) - 1 is below 2^-100.
-  const exact::Rational sum = exact::to_rational(q.word(0)(0)) + exact::to_rational(q.word(1)(0));
-  EXPECT_LT(exact::abs(exact::Rational(3) * sum - 1), exact::power_of_two(-100));
+  const oracle::exact::Rational sum =
+      oracle::exact::to_rational(q.word(0)(0)) + oracle::exact::to_rational(q.word(1)(0));
+  EXPECT_LT(oracle::exact::abs(oracle::exact::Rational(3) * sum - 1),
+            oracle::exact::power_of_two(-100));
   // Components 1 to 3 were exact: their corrections are zero.
   for (int i = 1; i < 4; ++i) EXPECT_EQ(q.word(1)(i), 0.0);
   const Vector4<double> weights(0, 1, 1, 1);

@@ -177,7 +177,7 @@ TEST(Cli, accurateMethodAnswersTheCorrectlyRoundedMatrix) {
     ++ok;
     const Matrix4<double> result = answered_matrix(*answer);
     // Printed so that it reads back exactly, so the ulp distance is the core's.
-    EXPECT_LE(problem.ulps_from_exact(result), tolerance::kAccurateUlps)
+    EXPECT_LE(problem.ulps_from_exact(result), oracle::tolerance::kAccurateUlps)
         << k.family << " " << convention_name(k.convention) << ": " << lines[i];
   }
   EXPECT_GT(ok, 150) << "too few generated cases were valid to mean anything";

@@ -338,10 +338,10 @@ TEST(CullingPlanes, aFarPlaneAtInfinityThatCullsNothingHolds) {
 }
 
 TEST(Exact, aNonFiniteNumberIsRefusedNotConverted) {
-  EXPECT_THROW(oblique::exact::to_rational(std::nan("")), std::domain_error);
-  EXPECT_THROW(oblique::exact::to_rational(HUGE_VALF), std::domain_error);
-  EXPECT_THROW(oblique::exact::to_rational(-HUGE_VALL), std::domain_error);
-  EXPECT_EQ(oblique::exact::to_rational(0.5), oblique::exact::Rational(1, 2));
+  EXPECT_THROW(oblique::oracle::exact::to_rational(std::nan("")), std::domain_error);
+  EXPECT_THROW(oblique::oracle::exact::to_rational(HUGE_VALF), std::domain_error);
+  EXPECT_THROW(oblique::oracle::exact::to_rational(-HUGE_VALL), std::domain_error);
+  EXPECT_EQ(oblique::oracle::exact::to_rational(0.5), oblique::oracle::exact::Rational(1, 2));
 }
 
 struct PassCase {

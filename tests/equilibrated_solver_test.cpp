@@ -31,10 +31,10 @@ Matrix4<T> integer_matrix() {
 }
 
 template <class T>
-exact::Vec exact_solution(const Matrix4<T>& m, const Vector4<T>& b, bool transposed) {
-  exact::Mat inverse = *exact::inverse(exact::to_rational(m));
-  if (transposed) inverse = exact::transpose(inverse);
-  return exact::mul(inverse, exact::to_rational(b));
+oracle::exact::Vec exact_solution(const Matrix4<T>& m, const Vector4<T>& b, bool transposed) {
+  oracle::exact::Mat inverse = *oracle::exact::inverse(oracle::exact::to_rational(m));
+  if (transposed) inverse = oracle::exact::transpose(inverse);
+  return oracle::exact::mul(inverse, oracle::exact::to_rational(b));
 }
 
 // A system with an integer answer is solved to within an ulp or two of it.
@@ -48,7 +48,7 @@ TYPED_TEST(Solver, solvesAKnownSystem) {
   T backward_error = T(-1);
   const Vector4<T> solved = solver.solve(b, &backward_error);
   for (int i = 0; i < 4; ++i)
-    EXPECT_LE(exact::ulp_distance(solved(i), exact::Rational(int(x(i)))), 2.0);
+    EXPECT_LE(oracle::exact::ulp_distance(solved(i), oracle::exact::Rational(int(x(i)))), 2.0);
   EXPECT_GE(backward_error, T(0));
   EXPECT_LE(backward_error, std::numeric_limits<T>::epsilon());
 }
@@ -70,8 +70,8 @@ TYPED_TEST(Solver, refinementGivesSmallComponentwiseBackwardError) {
   const T measured = detail::componentwise_backward_error(m, x, b, r, false);
   EXPECT_EQ(reported, measured);
   EXPECT_LE(reported, T(2) * std::numeric_limits<T>::epsilon());
-  const exact::Vec expected = exact_solution(m, b, false);
-  for (int i = 0; i < 4; ++i) EXPECT_LE(exact::ulp_distance(x(i), expected[i]), 64.0) << i;
+  const oracle::exact::Vec expected = exact_solution(m, b, false);
+  for (int i = 0; i < 4; ++i) EXPECT_LE(oracle::exact::ulp_distance(x(i), expected[i]), 64.0) << i;
 }
 
 // accurate_residual is b - A x as if summed in twice the precision and rounded once (Dot2): within
@@ -82,22 +82,24 @@ TYPED_TEST(Solver, accurateResidualAsInTwicePrecision) {
   const Matrix4<T> m = integer_matrix<T>() / T(3);
   const Vector4<T> x(T(1) / T(7), T(-2) / T(9), T(3) / T(11), T(0.1));
   const Vector4<T> b = m * x;
-  const exact::Rational eps = exact::to_rational(std::numeric_limits<T>::epsilon());
+  const oracle::exact::Rational eps = oracle::exact::to_rational(std::numeric_limits<T>::epsilon());
   for (bool transpose : {false, true}) {
     const Vector4<T> r = detail::accurate_residual(m, x, b, transpose);
-    const exact::Mat mx =
-        transpose ? exact::transpose(exact::to_rational(m)) : exact::to_rational(m);
-    const exact::Vec ax = exact::mul(mx, exact::to_rational(x));
-    const exact::Vec size = exact::mul(exact::abs(mx), exact::abs(exact::to_rational(x)));
+    const oracle::exact::Mat mx = transpose
+                                      ? oracle::exact::transpose(oracle::exact::to_rational(m))
+                                      : oracle::exact::to_rational(m);
+    const oracle::exact::Vec ax = oracle::exact::mul(mx, oracle::exact::to_rational(x));
+    const oracle::exact::Vec size = oracle::exact::mul(
+        oracle::exact::abs(mx), oracle::exact::abs(oracle::exact::to_rational(x)));
     for (int i = 0; i < 4; ++i) {
-      const exact::Rational expected = exact::to_rational(b(i)) - ax[i];
-      const exact::Rational bound =
-          eps * exact::abs(expected) +
-          25 * eps * eps * (exact::abs(exact::to_rational(b(i))) + size[i]);
-      EXPECT_LE(exact::abs(exact::to_rational(r(i)) - expected), bound)
+      const oracle::exact::Rational expected = oracle::exact::to_rational(b(i)) - ax[i];
+      const oracle::exact::Rational bound =
+          eps * oracle::exact::abs(expected) +
+          25 * eps * eps * (oracle::exact::abs(oracle::exact::to_rational(b(i))) + size[i]);
+      EXPECT_LE(oracle::exact::abs(oracle::exact::to_rational(r(i)) - expected), bound)
           << i << (transpose ? " transposed" : "");
       // Far below the plain residual's rounding: exact or nearly so at this size.
-      EXPECT_LE(exact::ulp_distance(r(i), expected), 2.0) << i;
+      EXPECT_LE(oracle::exact::ulp_distance(r(i), expected), 2.0) << i;
     }
   }
 }
@@ -116,13 +118,14 @@ TYPED_TEST(Solver, transposedSolveWithinItsBound) {
   const EquilibratedSolver<T> solver(m);
   const Vector4<T> y = solver.solve_transposed_unscaled(c);
   const Vector4<T> bound = solver.transposed_error_bound(y);
-  const exact::Vec expected = exact_solution(m, c, true);
+  const oracle::exact::Vec expected = exact_solution(m, c, true);
   const Vector4<T> correction = solver.transposed_correction_unscaled(c, y);
   for (int i = 0; i < 4; ++i) {
-    EXPECT_LE(exact::abs(exact::to_rational(y(i)) - expected[i]), exact::to_rational(bound(i)));
+    EXPECT_LE(oracle::exact::abs(oracle::exact::to_rational(y(i)) - expected[i]),
+              oracle::exact::to_rational(bound(i)));
     // The bound is at least 16 eps |y_i|: (|Mt^-T| |Mt^T|) has a diagonal of at least 1.
     EXPECT_GE(bound(i), T(16) * std::numeric_limits<T>::epsilon() * std::abs(y(i)));
-    EXPECT_LE(exact::ulp_distance(T(y(i) + correction(i)), expected[i]), 1.0) << i;
+    EXPECT_LE(oracle::exact::ulp_distance(T(y(i) + correction(i)), expected[i]), 1.0) << i;
   }
 }
 
@@ -140,10 +143,10 @@ TYPED_TEST(Solver, equilibrationRemovesBadScaling) {
   EXPECT_GT(scaled.rcond(), T(0.01));
   const Vector4<T> c(T(1), T(-1), T(0.5), T(2));
   const Vector4<T> y = scaled.solve_transposed_unscaled(c);
-  const exact::Vec expected = exact_solution(m, c, true);
+  const oracle::exact::Vec expected = exact_solution(m, c, true);
   for (int i = 0; i < 4; ++i) {
-    EXPECT_EQ(y(i) > T(0), exact::sign(expected[i]) > 0) << i;
-    EXPECT_EQ(y(i) < T(0), exact::sign(expected[i]) < 0) << i;
+    EXPECT_EQ(y(i) > T(0), oracle::exact::sign(expected[i]) > 0) << i;
+    EXPECT_EQ(y(i) < T(0), oracle::exact::sign(expected[i]) < 0) << i;
   }
 }
 

@@ -2,7 +2,7 @@
 // rational arithmetic (GMP): every claim the header makes, for float, double and long double, on
 // deterministic pseudo-random inputs (wide exponent ranges, both signs, zeros, significands next
 // to powers of two, cancellation) and on hand-made edge cases. The oracle is the exact value and
-// its correct rounding (exact::round_to), never a recorded number.
+// its correct rounding (oracle::exact::round_to), never a recorded number.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,7 +23,7 @@
 namespace oblique::eft {
 namespace {
 
-using exact::Rational;
+using oracle::exact::Rational;
 
 template <class T>
 constexpr int kDigits = std::numeric_limits<T>::digits;
@@ -41,11 +41,11 @@ constexpr int kFallbackExponent = kMaxExponent<T> - (kDigits<T> + 1) / 2 - 2;
 
 template <class T>
 Rational rational(T x) {
-  return exact::to_rational(x);
+  return oracle::exact::to_rational(x);
 }
 template <class T>
 Rational rational(Pair<T> x) {
-  return exact::to_rational(x.hi) + exact::to_rational(x.lo);
+  return oracle::exact::to_rational(x.hi) + oracle::exact::to_rational(x.lo);
 }
 template <class T>
 bool finite(Pair<T> x) {
@@ -55,7 +55,7 @@ bool finite(Pair<T> x) {
 /// u = eps / 2 = 2^-p, the unit roundoff.
 template <class T>
 Rational unit_roundoff() {
-  return exact::power_of_two(-kDigits<T>);
+  return oracle::exact::power_of_two(-kDigits<T>);
 }
 /// gamma_n = n u / (1 - n u).
 template <class T>
@@ -281,8 +281,9 @@ void check_error_free_sum(const char* name, std::uint64_t seed, bool larger_firs
     if (larger_first && std::fabs(a) < std::fabs(b)) std::swap(a, b);
     const Pair<T> s = sum(a, b);
     const Rational exact_sum = rational(a) + rational(b);
-    tally.check(finite(s) && rational(s) == exact_sum && s.hi == exact::round_to<T>(exact_sum),
-                [&] { return std::string(name) + "(" + hex(a) + ", " + hex(b) + ") = " + hex(s); });
+    tally.check(
+        finite(s) && rational(s) == exact_sum && s.hi == oracle::exact::round_to<T>(exact_sum),
+        [&] { return std::string(name) + "(" + hex(a) + ", " + hex(b) + ") = " + hex(s); });
   };
   for (const auto& [a, b] : edge_summands<T>()) {
     check(a, b);
@@ -312,7 +313,7 @@ template <class T>
 void check_two_prod(Tally& tally, T a, T b) {
   const Pair<T> p = two_prod(a, b);
   const Rational product = rational(a) * rational(b);
-  tally.check(finite(p) && rational(p) == product && p.hi == exact::round_to<T>(product),
+  tally.check(finite(p) && rational(p) == product && p.hi == oracle::exact::round_to<T>(product),
               [&] { return "two_prod(" + hex(a) + ", " + hex(b) + ") = " + hex(p); });
 }
 
@@ -358,8 +359,8 @@ TYPED_TEST(ErrorFree, twoProdIsExactWellAboveUnderflow) {
     const int ea = g.integer(std::max(kLowestExponent<T>, product - kMaxExponent<T> + 1),
                              std::min(kMaxExponent<T> - 1, product - kLowestExponent<T>));
     const T a = g.at(ea), b = g.at(product - ea);
-    if (exact::abs(Rational(rational(a) * rational(b))) <
-        exact::power_of_two(kWellAboveUnderflow<T>)) {
+    if (oracle::exact::abs(Rational(rational(a) * rational(b))) <
+        oracle::exact::power_of_two(kWellAboveUnderflow<T>)) {
       continue;  // a subnormal operand lost bits and took the product below the range
     }
     check_two_prod(tally, a, b);
@@ -504,10 +505,10 @@ Rational sum_k_bound(int k, long n, const Rational& s, const Rational& magnitude
   const Rational u = unit_roundoff<T>();
   const Rational g = gamma<T>(n - 1);
   if (k == 1) return g * magnitude;
-  if (k == 2) return u * exact::abs(s) + g * g * magnitude;
+  if (k == 2) return u * oracle::exact::abs(s) + g * g * magnitude;
   Rational power = 1;
   for (int i = 0; i < k; ++i) power *= gamma<T>(2 * n - 2);
-  return (u + 3 * g * g) * exact::abs(s) + power * magnitude;
+  return (u + 3 * g * g) * oracle::exact::abs(s) + power * magnitude;
 }
 
 constexpr int kRandomSums = 600;
@@ -525,16 +526,16 @@ TYPED_TEST(ErrorFree, sumKIsWithinOgitaRumpOishiBoundAndKeepsTheExactSum) {
     for (T x : added) terms.add(x);
     const Rational s = exact_sum(terms);
     Rational total_magnitude = 0;
-    for (T x : added) total_magnitude += exact::abs(rational(x));
+    for (T x : added) total_magnitude += oracle::exact::abs(rational(x));
     const auto n = static_cast<long>(terms.size());
-    if (n > 1 && exact::abs(s) * (1 << 20) < total_magnitude) ++cancelled;
-    magnitude.check(exact::abs(rational(terms.magnitude()) - total_magnitude) <=
+    if (n > 1 && oracle::exact::abs(s) * (1 << 20) < total_magnitude) ++cancelled;
+    magnitude.check(oracle::exact::abs(rational(terms.magnitude()) - total_magnitude) <=
                         (n > 1 ? gamma<T>(n - 1) : Rational(0)) * total_magnitude,
                     [&] { return describe(added) + ": magnitude " + hex(terms.magnitude()); });
     for (int k = 1; k <= 3; ++k) {
       Sum copy = terms;
       const T result = copy.sum(k);
-      const Rational error = exact::abs(rational(result) - s);
+      const Rational error = oracle::exact::abs(rational(result) - s);
       const Rational limit = sum_k_bound<T>(k, n, s, total_magnitude);
       bound.check(std::isfinite(result) && error <= limit, [&] {
         return describe(added) + ": sum(" + std::to_string(k) + ") = " + hex(result) + ", error " +
@@ -570,12 +571,12 @@ TYPED_TEST(ErrorFree, sumKOnHandMadeCancellations) {
     for (T x : added) terms.add(x);
     const Rational s = exact_sum(terms);
     Rational total_magnitude = 0;
-    for (T x : added) total_magnitude += exact::abs(rational(x));
+    for (T x : added) total_magnitude += oracle::exact::abs(rational(x));
     for (int k = 1; k <= 3; ++k) {
       Terms<T, 16> copy = terms;
       const T result = copy.sum(k);
       const Rational limit = sum_k_bound<T>(k, static_cast<long>(terms.size()), s, total_magnitude);
-      tally.check(exact::abs(rational(result) - s) <= limit, [&] {
+      tally.check(oracle::exact::abs(rational(result) - s) <= limit, [&] {
         return describe(added) + ": sum(" + std::to_string(k) + ") = " + hex(result);
       });
     }
@@ -630,7 +631,7 @@ void check_distil(DistilTallies& tallies, const Terms<T, Capacity>& terms, const
   const Rational s = exact_sum(terms);
   bool exact = false;
   const Pair<T> d = copy.distil(exact, max_passes);
-  const T rounded = exact::round_to<T>(s);
+  const T rounded = oracle::exact::round_to<T>(s);
   const auto describe = [&] {
     return what + ": distil = " + hex(d) + (exact ? "" : " (not exact)") + ", rounded sum " +
            hex(rounded);
@@ -640,13 +641,14 @@ void check_distil(DistilTallies& tallies, const Terms<T, Capacity>& terms, const
   if (!settled || s == 0) return;
   tallies.hi.check(d.hi == rounded, describe);
   const Rational rest = s - rational(d.hi);
-  tallies.lo.check(d.lo == exact::round_to<T>(rest),
-                   [&] { return describe() + ", rounded rest " + hex(exact::round_to<T>(rest)); });
-  const Rational eps = exact::power_of_two(1 - kDigits<T>);
-  const Rational error = exact::abs(rational(d) - s);
-  tallies.bound.check(error <= eps * exact::abs(rational(d.lo)), [&] {
+  tallies.lo.check(d.lo == oracle::exact::round_to<T>(rest), [&] {
+    return describe() + ", rounded rest " + hex(oracle::exact::round_to<T>(rest));
+  });
+  const Rational eps = oracle::exact::power_of_two(1 - kDigits<T>);
+  const Rational error = oracle::exact::abs(rational(d) - s);
+  tallies.bound.check(error <= eps * oracle::exact::abs(rational(d.lo)), [&] {
     return describe() + ", error " + decimal(error) + " = " +
-           std::to_string(Rational(error / (eps * exact::abs(rational(d.lo)))).get_d()) +
+           std::to_string(Rational(error / (eps * oracle::exact::abs(rational(d.lo)))).get_d()) +
            " eps |lo|";
   });
 }
@@ -711,10 +713,10 @@ template <class T>
 void measure(Ratio& ratio, Tally& tally, const Rational& computed, const Rational& expected,
              int bound_in_u2, const std::string& what) {
   const Rational u = unit_roundoff<T>();
-  const Rational error = exact::abs(computed - expected);
-  const double r = Rational(error / (u * u * exact::abs(expected))).get_d();
+  const Rational error = oracle::exact::abs(computed - expected);
+  const double r = Rational(error / (u * u * oracle::exact::abs(expected))).get_d();
   if (r > ratio.largest) ratio = {r, what};
-  tally.check(error <= bound_in_u2 * u * u * exact::abs(expected),
+  tally.check(error <= bound_in_u2 * u * u * oracle::exact::abs(expected),
               [&] { return what + ": error " + std::to_string(r) + " u^2 of the exact value"; });
 }
 
@@ -833,14 +835,14 @@ TYPED_TEST(ErrorFree, addPairsIsWithin3uSquaredOfTheSumEvenWhenItCancels) {
     }
     const Pair<T> r = add(a, b);
     const Rational exact = rational(a) + rational(b);
-    const Rational error = exact::abs(rational(r) - exact);
+    const Rational error = oracle::exact::abs(rational(r) - exact);
     const std::string what = "add(" + hex(a) + ", " + hex(b) + ") = " + hex(r);
     if (exact == 0) {
       tally.check(finite(r) && rational(r) == 0, [&] { return what + ", exact sum 0"; });
       continue;
     }
-    largest = std::max(largest, Rational(error / (u * u * exact::abs(exact))).get_d());
-    tally.check(finite(r) && error <= bound * exact::abs(exact), [&] { return what; });
+    largest = std::max(largest, Rational(error / (u * u * oracle::exact::abs(exact))).get_d());
+    tally.check(finite(r) && error <= bound * oracle::exact::abs(exact), [&] { return what; });
   }
   std::printf("[ measured ] add(Pair, Pair)<%s>: largest error %.4g u^2 |sum| (bound 3 u^2)\n",
               type_name<T>(), largest);
@@ -862,7 +864,7 @@ TYPED_TEST(ErrorFree, twoProdWithTheHardwareFmaFlavourIsTheSameExactPair) {
   }
 }
 
-// round_pair<N, T>: the pair's value rounded to the narrower N, against exact::round_to<N>.
+// round_pair<N, T>: the pair's value rounded to the narrower N, against oracle::exact::round_to<N>.
 
 template <class Types>
 class RoundPair : public ::testing::Test {};
@@ -874,7 +876,7 @@ template <class N, class T>
 void check_round_pair(Tally& tally, T hi, T lo) {
   const N rounded = round_pair<N>(Pair<T>{hi, lo});
   const Rational value = rational(hi) + rational(lo);
-  const N expected = exact::round_to<N>(value);
+  const N expected = oracle::exact::round_to<N>(value);
   const bool same_sign = value == 0 || std::signbit(rounded) == std::signbit(expected);
   tally.check(rounded == expected && same_sign, [&] {
     return "round_pair(" + hex(Pair<T>{hi, lo}) + ") = " + hex(rounded) + ", correctly rounded " +
@@ -1009,7 +1011,7 @@ TEST(RoundPairWider, aPairOfDoublesRoundsOnceToLongDouble) {
     Tally tally("round_pair<long double>(Pair<double>)");
     const auto check = [&](Pair<double> x) {
       const long double rounded = round_pair<long double>(x);
-      const long double expected = exact::round_to<long double>(rational(x));
+      const long double expected = oracle::exact::round_to<long double>(rational(x));
       tally.check(rounded == expected, [&] { return "round_pair(" + hex(x) + ")"; });
     };
     for (int i = 0; i < kRandomCases; ++i) check(g.pair(-300, 300));
@@ -1032,7 +1034,7 @@ TYPED_TEST(ErrorFree, roundPairToTheSameTypeIsTheHighWord) {
   for (int i = 0; i < 200; ++i) {
     const Pair<T> x = g.pair(kLowestExponent<T> + kDigits<T>, kMaxExponent<T> - 1);
     EXPECT_EQ(round_pair<T>(x), x.hi) << hex(x);
-    EXPECT_EQ(round_pair<T>(x), exact::round_to<T>(rational(x))) << hex(x);
+    EXPECT_EQ(round_pair<T>(x), oracle::exact::round_to<T>(rational(x))) << hex(x);
   }
   const T inf = std::numeric_limits<T>::infinity();
   EXPECT_EQ(round_pair<T>(Pair<T>{inf, T(0)}), inf);

@@ -128,7 +128,8 @@ TYPED_TEST(ExactCramer, agreesWithTheRationalOracleOnStiffPlanes) {
       EXPECT_NE(std::find(acceptable.begin(), acceptable.end(), result.status), acceptable.end())
           << what << ": " << status_code(result.status);
       if (result.ok()) {
-        EXPECT_LE(problem.ulps_from_exact(result.projection), tolerance::kAccurateUlps) << what;
+        EXPECT_LE(problem.ulps_from_exact(result.projection), oracle::tolerance::kAccurateUlps)
+            << what;
       }
     }
   }

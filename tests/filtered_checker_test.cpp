@@ -273,7 +273,7 @@ void expect_decided_at_scale(int m_shift, int c_shift) {
   ASSERT_EQ(r.status, Status::ok);
   Checks checks;
   checks.row3_accuracy = true;
-  checks.max_ulps = tolerance::kAccurateUlps;
+  checks.max_ulps = oracle::tolerance::kAccurateUlps;
   const Answer<T> outcome{r.status, r.projection};
   const std::optional<Judgement> fast = filtered.filtered_judgement(outcome, checks);
   ASSERT_TRUE(fast.has_value()) << "gave up at line " << filtered.undecided_at();
@@ -314,8 +314,8 @@ TEST(Certified, exactZerosStayExactAndUndecidedSignsThrow) {
 // 2^exponent exactly, and the Laplace determinant equals the product of the pivots of an exact
 // elimination, on entries from 2^-1074 to 2^1023 and on singular matrices.
 template <class T>
-exact::Rational elimination_determinant(exact::Mat m) {
-  exact::Rational det = 1;
+oracle::exact::Rational elimination_determinant(oracle::exact::Mat m) {
+  oracle::exact::Rational det = 1;
   for (int col = 0; col < 4; ++col) {
     int pivot = col;
     while (pivot < 4 && m[pivot][col] == 0) ++pivot;
@@ -326,7 +326,7 @@ exact::Rational elimination_determinant(exact::Mat m) {
     }
     det *= m[col][col];
     for (int row = col + 1; row < 4; ++row) {
-      const exact::Rational f = m[row][col] / m[col][col];
+      const oracle::exact::Rational f = m[row][col] / m[col][col];
       for (int j = col; j < 4; ++j) m[row][j] -= f * m[col][j];
     }
   }
@@ -338,16 +338,20 @@ void expect_integers_and_determinant(const Matrix4<T>& m) {
   std::array<T, 16> entries;
   for (int i = 0; i < 16; ++i) entries[static_cast<std::size_t>(i)] = m(i / 4, i % 4);
   int e = 0;
-  const std::array<exact::Integer, 16> integers = exact::to_integers(entries, e);
-  exact::IntegerMat a;
+  const std::array<oracle::exact::Integer, 16> integers = oracle::exact::to_integers(entries, e);
+  oracle::exact::IntegerMat a;
   for (int i = 0; i < 16; ++i) {
-    EXPECT_EQ(exact::Rational(integers[static_cast<std::size_t>(i)]) * exact::power_of_two(e),
-              exact::to_rational(entries[static_cast<std::size_t>(i)]))
+    EXPECT_EQ(oracle::exact::Rational(integers[static_cast<std::size_t>(i)]) *
+                  oracle::exact::power_of_two(e),
+              oracle::exact::to_rational(entries[static_cast<std::size_t>(i)]))
         << i;
     a[i / 4][i % 4] = integers[static_cast<std::size_t>(i)];
   }
-  const exact::Rational expected = elimination_determinant<T>(exact::to_rational(m));
-  EXPECT_EQ(exact::Rational(exact::determinant(a)) * exact::power_of_two(4L * e), expected);
+  const oracle::exact::Rational expected =
+      elimination_determinant<T>(oracle::exact::to_rational(m));
+  EXPECT_EQ(
+      oracle::exact::Rational(oracle::exact::determinant(a)) * oracle::exact::power_of_two(4L * e),
+      expected);
 }
 
 TEST(ExactIntegers, entriesAndDeterminantsAreExact) {

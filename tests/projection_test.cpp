@@ -36,9 +36,9 @@ TYPED_TEST_SUITE(Builders, Scalars);
 
 /// Clip-space depth z/w of a camera-space point, in exact arithmetic.
 template <class T>
-exact::Rational ndc_depth(const Matrix4<T>& m, const Vector4<T>& p) {
-  const exact::Mat mx = exact::to_rational(m);
-  const exact::Vec clip = exact::mul(mx, exact::to_rational(p));
+oracle::exact::Rational ndc_depth(const Matrix4<T>& m, const Vector4<T>& p) {
+  const oracle::exact::Mat mx = oracle::exact::to_rational(m);
+  const oracle::exact::Vec clip = oracle::exact::mul(mx, oracle::exact::to_rational(p));
   return clip[2] / clip[3];
 }
 
@@ -46,8 +46,8 @@ exact::Rational ndc_depth(const Matrix4<T>& m, const Vector4<T>& p) {
 TYPED_TEST(Builders, nearAndFarLandOnTheDepthRange) {
   using T = TypeParam;
   const T n = T(0.5), f = T(300);
-  const exact::Rational tolerance =
-      exact::Rational(16) * exact::to_rational(std::numeric_limits<T>::epsilon());
+  const oracle::exact::Rational tolerance =
+      oracle::exact::Rational(16) * oracle::exact::to_rational(std::numeric_limits<T>::epsilon());
   struct Expected {
     Convention convention;
     int at_near, at_far;
@@ -57,14 +57,16 @@ TYPED_TEST(Builders, nearAndFarLandOnTheDepthRange) {
     for (const Matrix4<T>& m : {frustum<T>(-1, 2, -1, 1, n, f, e.convention),
                                 perspective<T>(T(1), T(1.5), n, f, e.convention),
                                 orthographic<T>(-1, 2, -1, 1, n, f, e.convention)}) {
-      const exact::Rational at_near = ndc_depth<T>(m, Vector4<T>(T(0.1), T(0.2), -n, 1));
-      const exact::Rational at_far = ndc_depth<T>(m, Vector4<T>(T(0.1), T(0.2), -f, 1));
-      EXPECT_LE(exact::abs(at_near - e.at_near), tolerance) << convention_name(e.convention);
-      EXPECT_LE(exact::abs(at_far - e.at_far), tolerance) << convention_name(e.convention);
+      const oracle::exact::Rational at_near = ndc_depth<T>(m, Vector4<T>(T(0.1), T(0.2), -n, 1));
+      const oracle::exact::Rational at_far = ndc_depth<T>(m, Vector4<T>(T(0.1), T(0.2), -f, 1));
+      EXPECT_LE(oracle::exact::abs(at_near - e.at_near), tolerance)
+          << convention_name(e.convention);
+      EXPECT_LE(oracle::exact::abs(at_far - e.at_far), tolerance) << convention_name(e.convention);
     }
     // Infinite: the near plane as above, depth -> the far value as z -> -infinity (w = 0 limit).
     const Matrix4<T> inf = infinite_frustum<T>(-1, 2, -1, 1, n, e.convention);
-    EXPECT_LE(exact::abs(ndc_depth<T>(inf, Vector4<T>(0, 0, -n, 1)) - e.at_near), tolerance);
+    EXPECT_LE(oracle::exact::abs(ndc_depth<T>(inf, Vector4<T>(0, 0, -n, 1)) - e.at_near),
+              tolerance);
     const Vector4<T> direction = inf * Vector4<T>(0, 0, -1, 0);
     EXPECT_EQ(direction.z(), e.at_far * direction.w()) << convention_name(e.convention);
   }

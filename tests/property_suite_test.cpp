@@ -76,20 +76,21 @@ void closed_form_and_general_agree() {
         const auto closed = apply<T>(c.matrix, c.plane, c.convention, Method::closed_form);
         const auto general = apply<T>(c.matrix, c.plane, c.convention, Method::general);
         if (!closed.ok() || !general.ok()) return;  // statuses are judged by the other properties
-        const std::optional<exact::Vec> maybe_bounds = problem.row3_bounds();
+        const std::optional<oracle::exact::Vec> maybe_bounds = problem.row3_bounds();
         if (!maybe_bounds) return;  // within rounding of no answer: neither can be held to a bound
-        const exact::Vec& bounds = *maybe_bounds;
+        const oracle::exact::Vec& bounds = *maybe_bounds;
         ++tally().applied["closed_form_and_general_agree"];
         for (int i = 0; i < 4; ++i) {
-          const exact::Rational gap = exact::abs(exact::to_rational(closed.projection(2, i)) -
-                                                 exact::to_rational(general.projection(2, i)));
+          const oracle::exact::Rational gap =
+              oracle::exact::abs(oracle::exact::to_rational(closed.projection(2, i)) -
+                                 oracle::exact::to_rational(general.projection(2, i)));
           if (gap <= 2 * bounds[i]) continue;
           Finding f;
           f.check = Check::methods_agree;
           f.column = i + 1;
           f.residual = gap.get_d();
-          f.bound = exact::Rational(2 * bounds[i]).get_d();
-          f.ratio = bounds[i] > 0 ? exact::Rational(gap / (2 * bounds[i])).get_d()
+          f.bound = oracle::exact::Rational(2 * bounds[i]).get_d();
+          f.ratio = bounds[i] > 0 ? oracle::exact::Rational(gap / (2 * bounds[i])).get_d()
                                   : std::numeric_limits<double>::infinity();
           fail_with(c, core_method<T>(Method::closed_form), f);
         }
@@ -97,8 +98,8 @@ void closed_form_and_general_agree() {
       Coverage::perspective_shape);
 }
 
-/// The accurate method within tolerance::kAccurateUlps of the correctly rounded exact answer, on
-/// every family, convention and hard place the generators make.
+/// The accurate method within oracle::tolerance::kAccurateUlps of the correctly rounded exact
+/// answer, on every family, convention and hard place the generators make.
 template <class T>
 void accurate_method_is_within_its_ulps() {
   if (!runs_only_for({"core_accurate"})) GTEST_SKIP();
@@ -115,7 +116,7 @@ void accurate_method_is_within_its_ulps() {
         ++tally().applied["accurate_method_is_within_its_ulps"];
         Checks checks;
         checks.properties.clear();
-        checks.max_ulps = tolerance::kAccurateUlps;
+        checks.max_ulps = oracle::tolerance::kAccurateUlps;
         const Answer<T> outcome{result.status, result.projection};
         const Judgement judgement = judge(problem, outcome, checks);
         if (const Finding* violation = judgement.violation())

@@ -70,19 +70,22 @@ TEST(DepthReport, planesParallelToTheNearPlaneLoseNoFixedPointDepthAndTiltedOnes
 
 TEST(AccuracyReport, oracleRoundsToNearestEven) {
   // 1 + 2^-53 is halfway between 1 and 1 + 2^-52: ties go to the even significand, 1.
-  const exact::Rational tie = exact::Rational(1) + exact::power_of_two(-53);
-  EXPECT_EQ(exact::round_to<double>(tie), 1.0);
-  EXPECT_EQ(exact::round_to<double>(tie + exact::power_of_two(-100)), 1.0 + std::ldexp(1.0, -52));
-  EXPECT_EQ(exact::round_to<double>(exact::Rational(1, 3)), 1.0 / 3.0);
-  EXPECT_EQ(exact::round_to<float>(exact::Rational(1, 3)), 1.0f / 3.0f);
+  const oracle::exact::Rational tie = oracle::exact::Rational(1) + oracle::exact::power_of_two(-53);
+  EXPECT_EQ(oracle::exact::round_to<double>(tie), 1.0);
+  EXPECT_EQ(oracle::exact::round_to<double>(tie + oracle::exact::power_of_two(-100)),
+            1.0 + std::ldexp(1.0, -52));
+  EXPECT_EQ(oracle::exact::round_to<double>(oracle::exact::Rational(1, 3)), 1.0 / 3.0);
+  EXPECT_EQ(oracle::exact::round_to<float>(oracle::exact::Rational(1, 3)), 1.0f / 3.0f);
   // Subnormals and overflow.
-  EXPECT_EQ(exact::round_to<double>(exact::power_of_two(-1074) * 3 / 4),
+  EXPECT_EQ(oracle::exact::round_to<double>(oracle::exact::power_of_two(-1074) * 3 / 4),
             std::numeric_limits<double>::denorm_min());
-  EXPECT_EQ(exact::round_to<double>(exact::power_of_two(-1076)), 0.0);
-  EXPECT_TRUE(std::isinf(exact::round_to<float>(exact::power_of_two(128))));
-  EXPECT_EQ(exact::round_to<long double>(exact::Rational(1) + exact::power_of_two(-63)),
+  EXPECT_EQ(oracle::exact::round_to<double>(oracle::exact::power_of_two(-1076)), 0.0);
+  EXPECT_TRUE(std::isinf(oracle::exact::round_to<float>(oracle::exact::power_of_two(128))));
+  EXPECT_EQ(oracle::exact::round_to<long double>(oracle::exact::Rational(1) +
+                                                 oracle::exact::power_of_two(-63)),
             1.0L + std::ldexp(1.0L, -63));
-  EXPECT_EQ(exact::ulp_distance(1.0 + std::ldexp(1.0, -51), exact::Rational(1)), 2.0);
+  EXPECT_EQ(oracle::exact::ulp_distance(1.0 + std::ldexp(1.0, -51), oracle::exact::Rational(1)),
+            2.0);
 }
 
 TEST(AccuracyReport, frontKeepsOnlyNonDominatedPairs) {

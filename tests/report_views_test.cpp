@@ -249,7 +249,7 @@ TEST(SuiteReportViews, marksThePointTheWrongAnswerClips) {
   ASSERT_EQ(problem.exact_status(), Status::ok);
   Answer<double> wrong;
   wrong.projection = c.matrix;
-  const exact::Vec row3 = problem.exact_row3();
+  const oracle::exact::Vec row3 = problem.exact_row3();
   for (int i = 0; i < 4; ++i) wrong.projection(2, i) = 1.25 * row3[i].get_d();
   const oracle::Judgement judgement = oracle::judge(problem, wrong);
   ASSERT_NE(judgement.violation(), nullptr) << "the wrong answer passes: the test shows nothing";
@@ -279,7 +279,7 @@ TEST(SuiteReportViews, marksNothingWhenTheAnswerClipsNothing) {
   ASSERT_EQ(problem.exact_status(), Status::ok);
   Answer<double> wrong;  // row 1 changed: side_rows_unchanged, nothing clipped
   wrong.projection = c.matrix;
-  const exact::Vec row3 = problem.exact_row3();
+  const oracle::exact::Vec row3 = problem.exact_row3();
   for (int i = 0; i < 4; ++i) wrong.projection(2, i) = row3[i].get_d();
   wrong.projection(0, 0) *= 2;
   const oracle::Judgement judgement = oracle::judge(problem, wrong);

@@ -121,9 +121,9 @@ TEST(SeededRecipes, glFormulaOnAZeroOneMatrixBreaksTheNearPlane) {
 // The paper's Eq. 12 is the exact inverse of Eq. 11, and Eq. 15 is M^-1 Q'.
 TEST(SeededRecipes, paperEq12IsTheInverseOfEq11) {
   const double l = -0.1, r = 0.7, b = -0.2, t = 0.3, n = 1, f = 100;
-  using exact::Rational;
+  using oracle::exact::Rational;
   const Rational L(l), R(r), B(b), T(t), N(n), F(f);
-  exact::Mat m{}, inv{};
+  oracle::exact::Mat m{}, inv{};
   m[0] = {2 * N / (R - L), 0, (R + L) / (R - L), 0};
   m[1] = {0, 2 * N / (T - B), (T + B) / (T - B), 0};
   m[2] = {0, 0, -(F + N) / (F - N), -2 * F * N / (F - N)};
@@ -132,12 +132,12 @@ TEST(SeededRecipes, paperEq12IsTheInverseOfEq11) {
   inv[1] = {0, (T - B) / (2 * N), 0, (T + B) / (2 * N)};
   inv[2] = {0, 0, 0, -1};
   inv[3] = {0, 0, -(F - N) / (2 * F * N), (F + N) / (2 * F * N)};
-  const auto exact_inverse = exact::inverse(m);
+  const auto exact_inverse = oracle::exact::inverse(m);
   ASSERT_TRUE(exact_inverse.has_value());
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) EXPECT_EQ((*exact_inverse)[i][j], inv[i][j]) << i << "," << j;
   }
-  const exact::Vec q = exact::mul(inv, exact::Vec{1, -1, 1, 1});
+  const oracle::exact::Vec q = oracle::exact::mul(inv, oracle::exact::Vec{1, -1, 1, 1});
   EXPECT_EQ(q[0], (R - L) / (2 * N) + (R + L) / (2 * N));  // Eq. 15, sgn = +1
   EXPECT_EQ(q[1], -(T - B) / (2 * N) + (T + B) / (2 * N));
   EXPECT_EQ(q[2], -1);

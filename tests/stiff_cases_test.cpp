@@ -45,7 +45,7 @@ void expect_correct(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
                                   << closeness.worst_entry << " at " << closeness.ratio
                                   << " of its bound (kappa " << problem.kappa().get_d() << ")";
     if (method == Method::accurate) {
-      EXPECT_LE(problem.ulps_from_exact(result.projection), tolerance::kAccurateUlps)
+      EXPECT_LE(problem.ulps_from_exact(result.projection), oracle::tolerance::kAccurateUlps)
           << what << " " << convention_name(convention) << ": the accurate method";
     }
   }

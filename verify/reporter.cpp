@@ -55,7 +55,7 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
   ce.notes.emplace_back("exact status", std::string(status_code(problem.exact_status())));
   if (problem.exact_status() == Status::ok) {
     std::string row;
-    const exact::Vec exact_row = problem.exact_row3();
+    const oracle::exact::Vec exact_row = problem.exact_row3();
     for (int i = 0; i < 4; ++i) {
       T rounded = static_cast<T>(exact_row[i].get_d());
       row += (i ? ", " : "") + protocol::format_number(rounded);

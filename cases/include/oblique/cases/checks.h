@@ -35,7 +35,7 @@ struct Checks {
   /// Row 3 within Problem::row3_bounds() of the exact answer.
   bool row3_accuracy = false;
   /// Every entry within this many ulps of the correctly rounded answer (an implementation's own
-  /// promise: the accurate method's tolerance::kAccurateUlps); infinity checks nothing.
+  /// promise: the accurate method's oracle::tolerance::kAccurateUlps); infinity checks nothing.
   double max_ulps = std::numeric_limits<double>::infinity();
   /// Keep going after a violation and list the checks that hold too (`oblique check`'s table);
   /// otherwise the judgement stops at the first violation.

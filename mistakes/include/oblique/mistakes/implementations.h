@@ -33,7 +33,7 @@ Implementation<T> core_method(Method method) {
     const ObliqueResult<T> r = apply<T>(m, c, convention, method);
     return Answer<T>{r.status, r.projection};
   };
-  if (method == Method::accurate) impl.max_ulps = tolerance::kAccurateUlps;
+  if (method == Method::accurate) impl.max_ulps = oracle::tolerance::kAccurateUlps;
   return impl;
 }
 

@@ -21,7 +21,7 @@
 // Well-conditioned: a is known to 1/16 (scale_error() <= 1/16) and the entries' rounding moves
 // far' . Q by at most k / 16 (gamma(3) sum_i (|a C_i| + |M4_i|) |Q_i| <= k / 16), so a far plane
 // moved by k / 4 or more at Q is certainly wrong. The mutated third rows are the exact
-// s (a' C - t M_4) rounded once (exact::round_to), as careful arithmetic would give them.
+// s (a' C - t M_4) rounded once (oracle::exact::round_to), as careful arithmetic would give them.
 #pragma once
 
 #include <cmath>
@@ -50,17 +50,18 @@ struct Mutant {
 /// The third row s (a' C - t M_4) for a' = factor a, rounded once to T.
 template <class T>
 Matrix4<T> with_scale(const Problem<T>& problem, const Matrix4<T>& answer, const Vector4<T>& c,
-                      const exact::Rational& factor) {
+                      const oracle::exact::Rational& factor) {
   const Convention convention = problem.convention();
   const DepthRange range = clip_depth_range(convention);
   const RowCombination nr = near_rows(convention);
-  const exact::Rational a =
-      factor * exact::Rational(range.z_high - range.z_low) / problem.corner_dot();
+  const oracle::exact::Rational a =
+      factor * oracle::exact::Rational(range.z_high - range.z_low) / problem.corner_dot();
   Matrix4<T> out = answer;
   for (int i = 0; i < 4; ++i) {
-    const exact::Rational entry =
-        nr.m3 * (a * exact::to_rational(c(i)) - nr.m4 * exact::to_rational(problem.matrix()(3, i)));
-    out(2, i) = exact::round_to<T>(entry);
+    const oracle::exact::Rational entry =
+        nr.m3 * (a * oracle::exact::to_rational(c(i)) -
+                 nr.m4 * oracle::exact::to_rational(problem.matrix()(3, i)));
+    out(2, i) = oracle::exact::round_to<T>(entry);
   }
   return out;
 }
@@ -68,19 +69,20 @@ Matrix4<T> with_scale(const Problem<T>& problem, const Matrix4<T>& answer, const
 /// Whether a far plane moved by k / 4 at Q is certainly beyond every bound (see the top).
 template <class T>
 bool well_conditioned(const Problem<T>& problem, const Vector4<T>& c) {
-  const std::optional<exact::Rational> scale = problem.scale_error();
-  if (!scale || *scale > exact::Rational(1, 16)) return false;
+  const std::optional<oracle::exact::Rational> scale = problem.scale_error();
+  if (!scale || *scale > oracle::exact::Rational(1, 16)) return false;
   const Convention convention = problem.convention();
   const DepthRange range = clip_depth_range(convention);
-  const exact::Rational k = range.z_high - range.z_low;
-  const exact::Rational a = k / problem.corner_dot();
-  exact::Rational rounding = 0;
+  const oracle::exact::Rational k = range.z_high - range.z_low;
+  const oracle::exact::Rational a = k / problem.corner_dot();
+  oracle::exact::Rational rounding = 0;
   for (int i = 0; i < 4; ++i) {
-    rounding += (exact::abs(a * exact::to_rational(c(i))) +
-                 exact::abs(exact::to_rational(problem.matrix()(3, i)))) *
-                exact::abs(problem.far_corner()[i]);
+    rounding += (oracle::exact::abs(a * oracle::exact::to_rational(c(i))) +
+                 oracle::exact::abs(oracle::exact::to_rational(problem.matrix()(3, i)))) *
+                oracle::exact::abs(problem.far_corner()[i]);
   }
-  rounding *= tolerance::gamma(tolerance::kEntryRoundings, tolerance::precision_bits<T>());
+  rounding *= oracle::tolerance::gamma(oracle::tolerance::kEntryRoundings,
+                                       oracle::tolerance::precision_bits<T>());
   return rounding <= k / 16;
 }
 
@@ -98,27 +100,32 @@ std::vector<Mutant<T>> mutants(const Problem<T>& problem, const Matrix4<T>& answ
   const RowCombination nr = near_rows(convention);
   const Matrix4<T>& m = problem.matrix();
   // 1. One entry of near' with its sign flipped: M'_3i = -M'_3i - 2 s t M4_i (s = +-1).
-  const exact::Rational g =
-      tolerance::gamma(tolerance::kEntryRoundings, tolerance::precision_bits<T>());
-  const exact::Rational underflow = tolerance::kEntryRoundings * tolerance::underflow_unit<T>();
+  const oracle::exact::Rational g = oracle::tolerance::gamma(
+      oracle::tolerance::kEntryRoundings, oracle::tolerance::precision_bits<T>());
+  const oracle::exact::Rational underflow =
+      oracle::tolerance::kEntryRoundings * oracle::tolerance::underflow_unit<T>();
   // An entry far below the plane's norm may change by what no rasterizer sees
-  // (tolerance::kInvisiblePlaneUlps): its flip is a mutant only when it is visible.
-  exact::Rational largest = 0;
-  for (int i = 0; i < 4; ++i) largest = std::max(largest, exact::abs(exact::to_rational(c(i))));
-  const exact::Rational invisible = tolerance::kInvisiblePlaneUlps *
-                                    tolerance::unit_roundoff(tolerance::precision_bits<T>()) *
-                                    largest;
+  // (oracle::tolerance::kInvisiblePlaneUlps): its flip is a mutant only when it is visible.
+  oracle::exact::Rational largest = 0;
+  for (int i = 0; i < 4; ++i)
+    largest = std::max(largest, oracle::exact::abs(oracle::exact::to_rational(c(i))));
+  const oracle::exact::Rational invisible =
+      oracle::tolerance::kInvisiblePlaneUlps *
+      oracle::tolerance::unit_roundoff(oracle::tolerance::precision_bits<T>()) * largest;
   for (int i = 0; i < 4; ++i) {
     if (c(i) == T(0)) continue;
-    if (exact::abs(exact::to_rational(c(i))) * (1 - g) <= invisible) continue;
-    const exact::Rational r3 = exact::to_rational(answer(2, i));
-    const exact::Rational m4 = exact::to_rational(m(3, i));
+    if (oracle::exact::abs(oracle::exact::to_rational(c(i))) * (1 - g) <= invisible) continue;
+    const oracle::exact::Rational r3 = oracle::exact::to_rational(answer(2, i));
+    const oracle::exact::Rational m4 = oracle::exact::to_rational(m(3, i));
     Matrix4<T> mutant = answer;
-    mutant(2, i) = exact::round_to<T>(-r3 - 2 * nr.m3 * nr.m4 * m4);
+    mutant(2, i) = oracle::exact::round_to<T>(-r3 - 2 * nr.m3 * nr.m4 * m4);
     if (!std::isfinite(mutant(2, i))) continue;
-    const exact::Rational flipped = nr.m3 * exact::to_rational(mutant(2, i)) + nr.m4 * m4;
-    const exact::Rational signed_flipped = c(i) > T(0) ? flipped : exact::Rational(-flipped);
-    const exact::Rational allowance = g * exact::abs(exact::Rational(nr.m4 * m4)) + underflow;
+    const oracle::exact::Rational flipped =
+        nr.m3 * oracle::exact::to_rational(mutant(2, i)) + nr.m4 * m4;
+    const oracle::exact::Rational signed_flipped =
+        c(i) > T(0) ? flipped : oracle::exact::Rational(-flipped);
+    const oracle::exact::Rational allowance =
+        g * oracle::exact::abs(oracle::exact::Rational(nr.m4 * m4)) + underflow;
     if (signed_flipped < -allowance) keep(Property::near_is_clip_plane, i, mutant);
   }
   // 2. One entry of a side row one ulp up.
@@ -133,13 +140,13 @@ std::vector<Mutant<T>> mutants(const Problem<T>& problem, const Matrix4<T>& answ
   if (!well_conditioned(problem, c)) return out;
   // 3. The far plane beyond Q.
   keep(Property::far_plane_through_corner, 0,
-       with_scale(problem, answer, c, exact::Rational(1, 2)));
+       with_scale(problem, answer, c, oracle::exact::Rational(1, 2)));
   // 4. The far plane inside Q: Q clipped.
-  keep(Property::no_clipping, 0, with_scale(problem, answer, c, exact::Rational(2)));
+  keep(Property::no_clipping, 0, with_scale(problem, answer, c, oracle::exact::Rational(2)));
   // 5. An infinite far plane no longer parallel to Q.
   if (problem.far_corner_at_infinity()) {
     keep(Property::infinite_edge_parallel, 0,
-         with_scale(problem, answer, c, exact::Rational(3, 4)));
+         with_scale(problem, answer, c, oracle::exact::Rational(3, 4)));
   }
   return out;
 }

@@ -13,7 +13,7 @@
 #include "oblique/references/kept_region.h"
 #include "oblique/references/pass_camera.h"
 
-namespace oblique::consumer_cases {
+namespace oblique::oracle::consumer_cases {
 
 /// A point of the kept region of (m, c): a weighted mean of one to all of its finite vertices
 /// (one vertex: the corner itself; two: a point of an edge, ...), moved along a direction at
@@ -209,4 +209,4 @@ template <class T>
 void ask_portal_view(const Consumers<T>& consumers, const Matrix4<T>& view, const Matrix4<T>& frame,
                      const Matrix4<T>& linked, const oracle::Settle& settle);
 
-}  // namespace oblique::consumer_cases
+}  // namespace oblique::oracle::consumer_cases

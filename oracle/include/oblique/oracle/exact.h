@@ -13,7 +13,7 @@
 
 #include "oblique/plane.h"
 
-namespace oblique::exact {
+namespace oblique::oracle::exact {
 
 using Rational = mpq_class;
 using Vec = std::array<Rational, 4>;
@@ -262,4 +262,4 @@ inline Integer determinant(const IntegerMat& a) {
   return det;
 }
 
-}  // namespace oblique::exact
+}  // namespace oblique::oracle::exact

@@ -47,14 +47,14 @@ using certified::Undecided;
 /// The tolerance constants of tolerance.h as certified intervals.
 template <class T>
 struct Constants {
-  int p = tolerance::precision_bits<T>();
+  int p = oracle::tolerance::precision_bits<T>();
   Num entry_gamma, scale_gamma;
   Num unit_roundoff;
 
   Constants() {
     unit_roundoff = certified::constant(std::ldexp(1.0, -p));
-    entry_gamma = gamma(tolerance::kEntryRoundings);
-    scale_gamma = gamma(tolerance::kScaleRoundings);
+    entry_gamma = gamma(oracle::tolerance::kEntryRoundings);
+    scale_gamma = gamma(oracle::tolerance::kScaleRoundings);
   }
   /// The underflow unit (denorm_min / 2 of T: 2^-150, 2^-1075, 2^-16446) times 2^e, for a
   /// quantity the filter holds scaled by 2^-e (an interval above 0 below double's range).
@@ -96,22 +96,22 @@ class IntegerSigns {
   IntegerSigns(const Matrix4<T>& m, const Vector4<T>& c) {
     std::array<T, 16> entries;
     for (int i = 0; i < 16; ++i) entries[static_cast<std::size_t>(i)] = m(i / 4, i % 4);
-    const std::array<exact::Integer, 16> mi = exact::to_integers(entries, e_m_);
+    const std::array<oracle::exact::Integer, 16> mi = oracle::exact::to_integers(entries, e_m_);
     for (int i = 0; i < 16; ++i) m_[i / 4][i % 4] = mi[static_cast<std::size_t>(i)];
-    c_ = exact::to_integers(std::array<T, 4>{c(0), c(1), c(2), c(3)}, e_c_);
+    c_ = oracle::exact::to_integers(std::array<T, 4>{c(0), c(1), c(2), c(3)}, e_c_);
   }
 
-  const exact::Integer& det() {
-    if (!det_) det_ = exact::determinant(m_);
+  const oracle::exact::Integer& det() {
+    if (!det_) det_ = oracle::exact::determinant(m_);
     return *det_;
   }
   int det_sign() { return sgn(det()); }
   /// Y_k = det(M with row k replaced by C) (C' = (Y_0, .., Y_3) / D up to a positive factor).
-  const exact::Integer& y(int k) {
+  const oracle::exact::Integer& y(int k) {
     if (!y_[k]) {
-      exact::IntegerMat replaced = m_;
+      oracle::exact::IntegerMat replaced = m_;
       replaced[k] = c_;
-      y_[k] = exact::determinant(replaced);
+      y_[k] = oracle::exact::determinant(replaced);
     }
     return *y_[k];
   }
@@ -119,13 +119,13 @@ class IntegerSigns {
   int c_clip_sign(int k) { return sgn(y(k)) * det_sign(); }
   /// sgn(C' . p') for integer p'.
   int dot_sign(const std::array<int, 4>& p) {
-    exact::Integer sum;
+    oracle::exact::Integer sum;
     for (int k = 0; k < 4; ++k) sum += y(k) * p[k];
     return sgn(sum) * det_sign();
   }
   /// C . Q times 2^scale, as a certified number: N / D 2^(e_c - 1 - e_m) (see row3()).
   Num c_dot_q(const std::array<int, 4>& q_clip2, int scale) {
-    const exact::Integer& n = cramer_n(q_clip2);
+    const oracle::exact::Integer& n = cramer_n(q_clip2);
     if (sgn(n) == 0) return Num{};
     int e_n = 0, e_d = 0;
     const Num q = certified_top_bits(n, e_n) / certified_top_bits(det(), e_d);
@@ -138,7 +138,7 @@ class IntegerSigns {
   Num row3(int i, const std::array<int, 4>& q_clip2, int k, const RowCombination& nr, int scale) {
     cramer_n(q_clip2);
     if (!two_k_det_) two_k_det_ = det() * (2 * k);
-    exact::Integer p = *two_k_det_ * c_[i];
+    oracle::exact::Integer p = *two_k_det_ * c_[i];
     if (nr.m4 != 0 && sgn(m_[3][i]) != 0) p -= m_[3][i] * nr.m4 * *n_;
     if (nr.m3 < 0) p = -p;
     if (sgn(p) == 0) return Num{};
@@ -147,9 +147,9 @@ class IntegerSigns {
     return q * certified::power_of_two(e_p - e_n + e_m_ - scale);
   }
   /// N = sum_k (2 Q')_k Y_k.
-  const exact::Integer& cramer_n(const std::array<int, 4>& q_clip2) {
+  const oracle::exact::Integer& cramer_n(const std::array<int, 4>& q_clip2) {
     if (!n_) {
-      exact::Integer n;
+      oracle::exact::Integer n;
       for (int j = 0; j < 4; ++j) n += y(j) * q_clip2[j];
       n_ = n;
     }
@@ -157,12 +157,12 @@ class IntegerSigns {
   }
   /// sgn((M^-1 p')_w) for integer p'.
   int w_sign(const std::array<int, 4>& p) {
-    exact::Integer sum;
+    oracle::exact::Integer sum;
     for (int j = 0; j < 4; ++j) {
       if (!x_[j]) {
-        exact::IntegerMat replaced = m_;
+        oracle::exact::IntegerMat replaced = m_;
         for (int i = 0; i < 4; ++i) replaced[i][3] = i == j ? 1 : 0;
-        x_[j] = exact::determinant(replaced);
+        x_[j] = oracle::exact::determinant(replaced);
       }
       sum += *x_[j] * p[j];
     }
@@ -174,16 +174,16 @@ class IntegerSigns {
   /// the top 106 bits t of |x| (truncated: the rest is below 2^-106 on this scale) are hi + lo
   /// exactly, hi the top 53 bits of t and lo the rest (both doubles, GMP's conversions truncate).
   /// Precondition: x != 0.
-  static Num certified_top_bits(const exact::Integer& x, int& exponent) {
+  static Num certified_top_bits(const oracle::exact::Integer& x, int& exponent) {
     constexpr int kBits = 106;
     const int length = static_cast<int>(mpz_sizeinbase(x.get_mpz_t(), 2));
     exponent = length;
-    exact::Integer t;
+    oracle::exact::Integer t;
     mpz_abs(t.get_mpz_t(), x.get_mpz_t());
     const int drop = std::max(0, length - kBits);
     mpz_fdiv_q_2exp(t.get_mpz_t(), t.get_mpz_t(), static_cast<mp_bitcnt_t>(drop));
     const double hi = t.get_d();  // truncated toward zero: t - hi is exact and below 2^53
-    const exact::Integer rest = t - exact::Integer(hi);
+    const oracle::exact::Integer rest = t - oracle::exact::Integer(hi);
     const double lo = rest.get_d();
     const int shift = drop - length;  // the scale of t's unit
     const double sign = sgn(x);
@@ -192,11 +192,11 @@ class IntegerSigns {
     return Num{sum.hi, sum.lo, sum.err + (drop > 0 ? std::ldexp(1.0, -kBits) : 0.0)};
   }
 
-  exact::IntegerMat m_;
-  std::array<exact::Integer, 4> c_;
+  oracle::exact::IntegerMat m_;
+  std::array<oracle::exact::Integer, 4> c_;
   int e_m_ = 0, e_c_ = 0;
-  std::optional<exact::Integer> det_, n_, two_k_det_;
-  std::array<std::optional<exact::Integer>, 4> y_, x_;
+  std::optional<oracle::exact::Integer> det_, n_, two_k_det_;
+  std::array<std::optional<oracle::exact::Integer>, 4> y_, x_;
 };
 
 using NumVec = std::array<Num, 4>;
@@ -439,7 +439,7 @@ class FilteredProblem {
     if (skeel_large) add(Status::singular_projection);
     if (!camera_behind) return;
     const Num d_error = constants_.scale_gamma * kappa_numerator_ +
-                        cert::constant(tolerance::kScaleRoundings) * underflow_dot_;
+                        cert::constant(oracle::tolerance::kScaleRoundings) * underflow_dot_;
     const bool d_unresolved = cert::less_equal(cert::abs(d_), d_error);
     if (d_unresolved) {
       add(Status::plane_misses_view_volume);
@@ -553,7 +553,7 @@ class FilteredProblem {
   /// scale_error(): empty when eps >= 1.
   std::optional<Num> scale_error() const {
     const Num eps = constants_.scale_gamma * (kappa_numerator_ / d_) +
-                    certified::constant(tolerance::kScaleRoundings) * underflow_dot_ / d_;
+                    certified::constant(oracle::tolerance::kScaleRoundings) * underflow_dot_ / d_;
     if (!certified::less(eps, certified::constant(1))) return std::nullopt;
     return eps / (certified::constant(1) - eps);
   }
@@ -595,7 +595,7 @@ class FilteredProblem {
           filtering::combine(cert::constant(fr.m3), r[2], cert::constant(fr.m4), r[3]);
       const Num& g = constants_.entry_gamma;
       const Num t_near = cert::constant(1);  // row 3's own error, as the exact checker's
-      const Num underflow = cert::constant(tolerance::kEntryRoundings) * underflow_row_;
+      const Num underflow = cert::constant(oracle::tolerance::kEntryRoundings) * underflow_row_;
       // 1. The interval test: every entry's lower bound on lambda below every upper bound, and
       //    every upper bound above 0 (there is one: C_w < 0). Each entry's bounds are formed in
       //    its own scale (near'_i and M4_i by 2^-e_i, C_i by 2^-f_i, so an entry far below the
@@ -611,7 +611,7 @@ class FilteredProblem {
         const Num y_i = cert::constant(nr.m3) * cert::scaled(result(2, i), -e) +
                         cert::constant(nr.m4) * cert::scaled(result(3, i), -e);
         const Num b = g * t_near * cert::abs(cert::scaled(m_(3, i), -e)) +
-                      cert::constant(tolerance::kEntryRoundings) *
+                      cert::constant(oracle::tolerance::kEntryRoundings) *
                           filtering::Constants<T>::underflow_unit(-e);
         if (c_(i) == T(0)) {
           if (!cert::within(cert::abs(y_i), b)) throw filtering::Undecided{__LINE__};
@@ -765,7 +765,7 @@ class FilteredProblem {
         for (int i = 0; i < 4; ++i) {
           const Num ac = cert::abs(a * cx_[i]);
           const Num bound = constants_.entry_gamma * (ac + cert::abs(mx_[3][i])) + ac * *scale +
-                            cert::constant(tolerance::kEntryRoundings) * underflow_row_;
+                            cert::constant(oracle::tolerance::kEntryRoundings) * underflow_row_;
           const Num error = cert::abs(cert::scaled(result(2, i), -sm_) - row3_[i]);
           if (!cert::within(error, bound)) throw filtering::Undecided{__LINE__};
           if (cert::approx(bound) > 0)

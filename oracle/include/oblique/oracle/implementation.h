@@ -28,8 +28,8 @@ struct Implementation {
   /// The inputs it is meant for; others are not given to it.
   std::function<bool(Convention, const Matrix4<T>&)> accepts;
   std::function<Answer<T>(const Matrix4<T>&, const Vector4<T>&, Convention)> run;
-  /// The accuracy it promises in ulps of the correctly rounded answer (exact::ulp_distance);
-  /// infinity for none beyond the conditioning-aware bounds.
+  /// The accuracy it promises in ulps of the correctly rounded answer
+  /// (oracle::exact::ulp_distance); infinity for none beyond the conditioning-aware bounds.
   double max_ulps = std::numeric_limits<double>::infinity();
 
   /// What it answered, in its own words: a void function answers, a bool one refuses by

@@ -67,19 +67,21 @@ Finding row3_accuracy(const Problem<T>& problem, const Matrix4<T>& result) {
   f.check = Check::row3_accuracy;
   f.holds = closeness.within;
   f.ratio = closeness.ratio;
-  const std::optional<exact::Vec> bounds = problem.row3_bounds();
+  const std::optional<oracle::exact::Vec> bounds = problem.row3_bounds();
   if (!bounds) {
     f.shows = Shows::no_bound;
     return f;
   }
   const int i = closeness.worst_entry;
-  const exact::Vec expected = problem.exact_row3();
+  const oracle::exact::Vec expected = problem.exact_row3();
   f.shows = Shows::entry;
   f.row = 3;
   f.column = i + 1;
   f.value = static_cast<double>(result(2, i));
   f.reference = expected[i].get_d();
-  f.residual = exact::Rational(exact::abs(exact::to_rational(result(2, i)) - expected[i])).get_d();
+  f.residual = oracle::exact::Rational(
+                   oracle::exact::abs(oracle::exact::to_rational(result(2, i)) - expected[i]))
+                   .get_d();
   f.bound = (*bounds)[i].get_d();
   return f;
 }

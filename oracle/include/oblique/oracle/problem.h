@@ -35,7 +35,7 @@ struct Verdict : Finding {
   /// The point the verdict is about, homogeneous, in the space C is given in (eye space): for a
   /// violated no_clipping, the vertex of the view volume on C's positive side that far' cuts
   /// away farthest beyond its bound (normalised so that M_4 . p = 1). Empty otherwise.
-  std::optional<exact::Vec> point;
+  std::optional<oracle::exact::Vec> point;
 };
 
 struct Verdicts {
@@ -57,7 +57,7 @@ struct Verdicts {
 };
 
 /// A rational's double, for a finding's numbers.
-inline double approx(const exact::Rational& x) {
+inline double approx(const oracle::exact::Rational& x) {
   return x.get_d();
 }
 
@@ -83,20 +83,25 @@ class Problem {
   Convention convention() const { return convention_; }
   const Matrix4<T>& matrix() const { return m_; }
   const Vector4<T>& plane() const { return c_; }
-  const exact::Vec& far_corner() const { return q_; }
-  const exact::Rational& corner_dot() const { return d_; }  ///< C . Q, the largest C . corner
+  const oracle::exact::Vec& far_corner() const { return q_; }
+  const oracle::exact::Rational& corner_dot() const {
+    return d_;
+  }  ///< C . Q, the largest C . corner
 
   /// The bound on the relative error of a = k / (C . Q): with eps = gamma(16) kappa bounding the
   /// relative error of C . Q, |a^ / a - 1| <= eps / (1 - eps). Empty when eps >= 1: C lies within
   /// rounding of the far corner, no floating-point implementation can bound a, and properties 3
   /// to 5 cannot be judged at the corners (acceptable_statuses() then allows every verdict).
-  std::optional<exact::Rational> scale_error() const {
+  std::optional<oracle::exact::Rational> scale_error() const {
     if (!(d_ > 0)) return std::nullopt;
-    return tolerance::scale_error(tolerance::corner_dot_error<T>(kappa_numerator_), d_);
+    return oracle::tolerance::scale_error(oracle::tolerance::corner_dot_error<T>(kappa_numerator_),
+                                          d_);
   }
 
   /// kappa, the condition number of C . Q (tolerance.h); meaningful when C . Q > 0.
-  exact::Rational kappa() const { return d_ > 0 ? exact::Rational(kappa_numerator_ / d_) : 0; }
+  oracle::exact::Rational kappa() const {
+    return d_ > 0 ? oracle::exact::Rational(kappa_numerator_ / d_) : 0;
+  }
 
   /// The status an exact implementation returns (ok, or the first precondition that fails).
   Status exact_status() const {
@@ -123,51 +128,56 @@ class Problem {
     };
     if (finite_ && too_spread_) add(Status::out_of_range);  // the core's documented domain
     if (!finite_ || !invertible_) return out;
-    const int p = tolerance::precision_bits<T>();
+    const int p = oracle::tolerance::precision_bits<T>();
     if (skeel_condition_ * 256 * std::ldexp(1.0, 1 - p) >= 1) add(Status::singular_projection);
     if (!camera_behind_) return out;
-    const exact::Rational d_error = tolerance::corner_dot_error<T>(kappa_numerator_);
-    const bool d_unresolved = exact::abs(d_) <= d_error;
+    const oracle::exact::Rational d_error =
+        oracle::tolerance::corner_dot_error<T>(kappa_numerator_);
+    const bool d_unresolved = oracle::exact::abs(d_) <= d_error;
     if (d_unresolved) {
       add(Status::plane_misses_view_volume);
       add(Status::ok);
       add(Status::out_of_range);
     }
-    const exact::Rational largest = exact::to_rational(std::numeric_limits<T>::max());
-    exact::Rational biggest = 0;
-    for (const auto& v : q_) biggest = std::max(biggest, exact::abs(v));
+    const oracle::exact::Rational largest =
+        oracle::exact::to_rational(std::numeric_limits<T>::max());
+    oracle::exact::Rational biggest = 0;
+    for (const auto& v : q_) biggest = std::max(biggest, oracle::exact::abs(v));
     if (d_ > 0) {
-      for (const auto& v : exact_row3()) biggest = std::max(biggest, exact::abs(v));
+      for (const auto& v : exact_row3()) biggest = std::max(biggest, oracle::exact::abs(v));
     }
     // Where a component of C' is exactly zero the far corner is not unique: every point of that
     // edge (or face) is equally far, and an implementation that takes a sign there (sgn(0) = 1,
     // or the sign of a rounded zero) uses a corner of it. Those corners may leave the range even
     // though the answer does not.
-    exact::Rational biggest_corner = biggest;
+    oracle::exact::Rational biggest_corner = biggest;
     for (int i = 0; i < 8; ++i) {
       if (is_far_corner_candidate(i)) {
-        for (const auto& v : corners_[i]) biggest_corner = std::max(biggest_corner, exact::abs(v));
+        for (const auto& v : corners_[i])
+          biggest_corner = std::max(biggest_corner, oracle::exact::abs(v));
       }
     }
     if (biggest_corner * 256 >= largest) add(Status::out_of_range);
     // a C within a few roundings of M_4: the extracted near plane a C - M_4 + M_4 may vanish.
     if (d_ > 0) {
       const RowCombination nr = near_rows(convention_);
-      const exact::Rational a = exact::Rational(clip_depth_range(convention_).z_high -
-                                                clip_depth_range(convention_).z_low) /
-                                d_;
-      exact::Rational noise = 0;
+      const oracle::exact::Rational a =
+          oracle::exact::Rational(clip_depth_range(convention_).z_high -
+                                  clip_depth_range(convention_).z_low) /
+          d_;
+      oracle::exact::Rational noise = 0;
       for (int i = 0; i < 4; ++i) {
-        noise += (4 * tolerance::unit_roundoff(p) * exact::abs(nr.m4 * mx_[3][i]) +
-                  4 * tolerance::underflow_unit<T>()) *
-                 exact::abs(cx_[i]);
+        noise += (4 * oracle::tolerance::unit_roundoff(p) * oracle::exact::abs(nr.m4 * mx_[3][i]) +
+                  4 * oracle::tolerance::underflow_unit<T>()) *
+                 oracle::exact::abs(cx_[i]);
       }
-      if (a * exact::dot(cx_, cx_) <= noise) add(Status::out_of_range);
+      if (a * oracle::exact::dot(cx_, cx_) <= noise) add(Status::out_of_range);
     }
     // Values from the largest finite T up to half an ulp beyond it still round to it.
-    const exact::Rational overflow =
-        largest + exact::to_rational(std::ldexp(T(1), std::numeric_limits<T>::max_exponent -
-                                                          std::numeric_limits<T>::digits - 1));
+    const oracle::exact::Rational overflow =
+        largest +
+        oracle::exact::to_rational(std::ldexp(
+            T(1), std::numeric_limits<T>::max_exponent - std::numeric_limits<T>::digits - 1));
     // (Unless C . Q is within its rounding error of zero: then a computed C . Q, and the answer,
     // may be any size.)
     if (d_ > 0 && biggest >= overflow && !d_unresolved)
@@ -179,11 +189,11 @@ class Problem {
 
   /// The exact third row of M': s (a C - t M_4) with a = (z_high - z_low) / (C . Q).
   /// Precondition: exact_status() == Status::ok.
-  exact::Vec exact_row3() const {
+  oracle::exact::Vec exact_row3() const {
     const DepthRange range = clip_depth_range(convention_);
     const RowCombination nr = near_rows(convention_);
-    const exact::Rational a = exact::Rational(range.z_high - range.z_low) / d_;
-    return exact::combine(nr.m3 * a, cx_, -nr.m3 * nr.m4, mx_[3]);
+    const oracle::exact::Rational a = oracle::exact::Rational(range.z_high - range.z_low) / d_;
+    return oracle::exact::combine(nr.m3 * a, cx_, -nr.m3 * nr.m4, mx_[3]);
   }
 
   /// How far a computed third row is from exact_row3(), against the bound a careful
@@ -196,22 +206,22 @@ class Problem {
     int worst_entry = 0;
   };
   /// The bound on |M'_3i - exact_row3()_i| for each entry i; empty where scale_error() is.
-  std::optional<exact::Vec> row3_bounds() const {
-    const std::optional<exact::Rational> scale = scale_error();
+  std::optional<oracle::exact::Vec> row3_bounds() const {
+    const std::optional<oracle::exact::Rational> scale = scale_error();
     if (!scale) return std::nullopt;
     const DepthRange range = clip_depth_range(convention_);
-    const exact::Rational a = exact::Rational(range.z_high - range.z_low) / d_;
-    exact::Vec bounds;
+    const oracle::exact::Rational a = oracle::exact::Rational(range.z_high - range.z_low) / d_;
+    oracle::exact::Vec bounds;
     for (int i = 0; i < 4; ++i)
-      bounds[i] =
-          tolerance::row3_entry_bound<T>(exact::abs(a * cx_[i]), exact::abs(mx_[3][i]), *scale);
+      bounds[i] = oracle::tolerance::row3_entry_bound<T>(oracle::exact::abs(a * cx_[i]),
+                                                         oracle::exact::abs(mx_[3][i]), *scale);
     return bounds;
   }
 
   /// Closeness to the exact answer; `judged` is false (and `within` true) where no bound exists.
   Closeness compare_row3(const Matrix4<T>& result) const {
-    const exact::Vec expected = exact_row3();
-    const std::optional<exact::Vec> maybe_bounds = row3_bounds();
+    const oracle::exact::Vec expected = exact_row3();
+    const std::optional<oracle::exact::Vec> maybe_bounds = row3_bounds();
     Closeness out;
     if (!all_finite(result)) {
       out.within = false;
@@ -222,12 +232,13 @@ class Problem {
       out.judged = false;
       return out;
     }
-    const exact::Vec& bounds = *maybe_bounds;
-    exact::Rational worst = -1;
+    const oracle::exact::Vec& bounds = *maybe_bounds;
+    oracle::exact::Rational worst = -1;
     bool unbounded = false;  // an error where the bound is 0: the worst entry, ratio infinite
     for (int i = 0; i < 4; ++i) {
-      const exact::Rational error = exact::abs(exact::to_rational(result(2, i)) - expected[i]);
-      const exact::Rational& bound = bounds[i];
+      const oracle::exact::Rational error =
+          oracle::exact::abs(oracle::exact::to_rational(result(2, i)) - expected[i]);
+      const oracle::exact::Rational& bound = bounds[i];
       if (error > bound) out.within = false;
       if (bound == 0) {
         if (error > 0 && !unbounded) {
@@ -236,7 +247,7 @@ class Problem {
         }
         continue;
       }
-      const exact::Rational ratio = error / bound;
+      const oracle::exact::Rational ratio = error / bound;
       if (!unbounded && ratio > worst) {
         worst = ratio;
         out.worst_entry = i;
@@ -246,15 +257,15 @@ class Problem {
     return out;
   }
 
-  /// The largest exact::ulp_distance of an entry of `result` from the correctly rounded exact
-  /// M' (rows 1, 2 and 4 are M's own). Precondition: exact_status() == Status::ok.
+  /// The largest oracle::exact::ulp_distance of an entry of `result` from the correctly rounded
+  /// exact M' (rows 1, 2 and 4 are M's own). Precondition: exact_status() == Status::ok.
   double ulps_from_exact(const Matrix4<T>& result) const {
-    const exact::Vec row3 = exact_row3();
+    const oracle::exact::Vec row3 = exact_row3();
     double worst = 0;
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
-        const exact::Rational& expected = i == 2 ? row3[j] : mx_[i][j];
-        worst = std::max(worst, exact::ulp_distance(result(i, j), expected));
+        const oracle::exact::Rational& expected = i == 2 ? row3[j] : mx_[i][j];
+        worst = std::max(worst, oracle::exact::ulp_distance(result(i, j), expected));
       }
     }
     return worst;
@@ -282,7 +293,8 @@ class Problem {
       v.shows = Shows::near_plane_not_finite;
       return v;
     }
-    const exact::Rational dot = exact::dot(exact::to_rational(Vector4<T>(after.near_plane)), cx_);
+    const oracle::exact::Rational dot =
+        oracle::exact::dot(oracle::exact::to_rational(Vector4<T>(after.near_plane)), cx_);
     v.holds = dot > 0;
     v.shows = Shows::near_plane_side;
     v.residual = approx(dot);
@@ -305,18 +317,19 @@ class Problem {
       }
       return out;
     }
-    const exact::Mat r = exact::to_rational(result);
+    const oracle::exact::Mat r = oracle::exact::to_rational(result);
     const RowCombination nr = near_rows(convention_), fr = far_rows(convention_);
-    const exact::Vec& m4 = mx_[3];
-    const exact::Vec near = exact::combine(nr.m3, r[2], nr.m4, r[3]);
-    const exact::Vec far = exact::combine(fr.m3, r[2], fr.m4, r[3]);
-    const int p = tolerance::precision_bits<T>();
-    const exact::Rational entry_gamma = tolerance::gamma(tolerance::kEntryRoundings, p);
+    const oracle::exact::Vec& m4 = mx_[3];
+    const oracle::exact::Vec near = oracle::exact::combine(nr.m3, r[2], nr.m4, r[3]);
+    const oracle::exact::Vec far = oracle::exact::combine(fr.m3, r[2], fr.m4, r[3]);
+    const int p = oracle::tolerance::precision_bits<T>();
+    const oracle::exact::Rational entry_gamma =
+        oracle::tolerance::gamma(oracle::tolerance::kEntryRoundings, p);
     // Row 3's own error per entry, in every convention: gamma(kEntryRoundings) (|a C_i| + |M4_i|)
     // (as row3_accuracy's bound): an implementation may form any convention's row from another's
     // (a [0, 1] row as (M'_3(gl) + M_4) / 2), and then carries the |M_4| term (tolerance.h,
     // "a row formed through another convention's").
-    const exact::Rational t_near = 1;
+    const oracle::exact::Rational t_near = 1;
 
     // 1. near' = lambda C for some lambda > 0, every entry within its own rounding:
     //    |near'_i - lambda C_i| <= g (lambda |C_i| + |M4_i|) + w lambda, g =
@@ -324,15 +337,16 @@ class Problem {
     //    allowance for what no rasterizer sees, w = kInvisiblePlaneUlps u max_j |C_j|
     //    (tolerance.h). Each entry bounds lambda to an interval; the property holds when they
     //    intersect above 0.
-    const exact::Rational& g = entry_gamma;
-    const exact::Rational underflow = tolerance::kEntryRoundings * tolerance::underflow_unit<T>();
+    const oracle::exact::Rational& g = entry_gamma;
+    const oracle::exact::Rational underflow =
+        oracle::tolerance::kEntryRoundings * oracle::tolerance::underflow_unit<T>();
     int k = 0;  // the largest |C_k|
     for (int i = 1; i < 4; ++i) {
-      if (exact::abs(cx_[i]) > exact::abs(cx_[k])) k = i;
+      if (oracle::exact::abs(cx_[i]) > oracle::exact::abs(cx_[k])) k = i;
     }
-    exact::Rational lambda_low = 0, lambda_high = 0;
+    oracle::exact::Rational lambda_low = 0, lambda_high = 0;
     bool feasible = false;
-    auto fit = [&](const exact::Rational& w) {
+    auto fit = [&](const oracle::exact::Rational& w) {
       // With y_i = sgn(C_i) near'_i, c_i = |C_i|, b_i = g |M4_i| + underflow:
       //   lambda >= (y_i - b_i) / (c_i (1 + g) + w), and lambda (c_i (1 - g) - w) <= y_i + b_i.
       // The largest |C_k| always gives an upper bound (c_k (1 - g) > w); the first sets it (a
@@ -340,57 +354,61 @@ class Problem {
       lambda_low = 0;
       bool has_high = false, ok = true;
       for (int i = 0; i < 4; ++i) {
-        const exact::Rational b = g * t_near * exact::abs(m4[i]) + underflow;
-        const exact::Rational c = exact::abs(cx_[i]);
-        const exact::Rational y = cx_[i] >= 0 ? near[i] : exact::Rational(-near[i]);
+        const oracle::exact::Rational b = g * t_near * oracle::exact::abs(m4[i]) + underflow;
+        const oracle::exact::Rational c = oracle::exact::abs(cx_[i]);
+        const oracle::exact::Rational y = cx_[i] >= 0 ? near[i] : oracle::exact::Rational(-near[i]);
         if (c == 0 && w == 0) {
-          if (exact::abs(near[i]) > b) ok = false;
+          if (oracle::exact::abs(near[i]) > b) ok = false;
           continue;
         }
         lambda_low = std::max(
-            lambda_low,
-            exact::Rational((c == 0 ? exact::abs(near[i]) - b : y - b) / (c * (1 + g) + w)));
+            lambda_low, oracle::exact::Rational((c == 0 ? oracle::exact::abs(near[i]) - b : y - b) /
+                                                (c * (1 + g) + w)));
         if (c == 0) continue;
-        const exact::Rational room = c * (1 - g) - w;
+        const oracle::exact::Rational room = c * (1 - g) - w;
         if (room > 0) {
-          const exact::Rational high = (y + b) / room;
+          const oracle::exact::Rational high = (y + b) / room;
           lambda_high = has_high ? std::min(lambda_high, high) : high;
           has_high = true;
         } else if (y + b < 0) {
           if (room == 0)
             ok = false;
           else
-            lambda_low = std::max(lambda_low, exact::Rational((y + b) / room));
+            lambda_low = std::max(lambda_low, oracle::exact::Rational((y + b) / room));
         }
       }
       return ok && has_high && lambda_high > 0 && lambda_low <= lambda_high;
     };
-    exact::Rational invisible = 0;
+    oracle::exact::Rational invisible = 0;
     feasible = fit(0);
     if (!feasible) {
-      const exact::Rational w =
-          tolerance::kInvisiblePlaneUlps * tolerance::unit_roundoff(p) * exact::abs(cx_[k]);
+      const oracle::exact::Rational w = oracle::tolerance::kInvisiblePlaneUlps *
+                                        oracle::tolerance::unit_roundoff(p) *
+                                        oracle::exact::abs(cx_[k]);
       if (fit(w)) {
         feasible = true;
         invisible = w;
       }
     }
     // For the reports and the bounds below: a feasible lambda, or the one the largest |C_k| gives.
-    const exact::Rational lambda = feasible ? exact::Rational((lambda_low + lambda_high) / 2)
-                                            : exact::Rational(near[k] / cx_[k]);
-    exact::Vec entry_bound;  // what rounding may move one entry of M'_3 (and so of near', far')
+    const oracle::exact::Rational lambda =
+        feasible ? oracle::exact::Rational((lambda_low + lambda_high) / 2)
+                 : oracle::exact::Rational(near[k] / cx_[k]);
+    oracle::exact::Vec
+        entry_bound;  // what rounding may move one entry of M'_3 (and so of near', far')
     for (int i = 0; i < 4; ++i) {
-      entry_bound[i] = g * (exact::abs(lambda * cx_[i]) + t_near * exact::abs(m4[i])) +
-                       invisible * exact::abs(lambda) + underflow;
+      entry_bound[i] =
+          g * (oracle::exact::abs(lambda * cx_[i]) + t_near * oracle::exact::abs(m4[i])) +
+          invisible * oracle::exact::abs(lambda) + underflow;
     }
     {
       Verdict v(Property::near_is_clip_plane);
-      exact::Rational worst = 0;
+      oracle::exact::Rational worst = 0;
       bool unbounded = false;  // a residual where the bound is 0
       for (int i = 0; i < 4; ++i) {
-        const exact::Rational residual = exact::abs(near[i] - lambda * cx_[i]);
+        const oracle::exact::Rational residual = oracle::exact::abs(near[i] - lambda * cx_[i]);
         if (entry_bound[i] > 0) {
-          worst = std::max(worst, exact::Rational(residual / entry_bound[i]));
+          worst = std::max(worst, oracle::exact::Rational(residual / entry_bound[i]));
         } else if (residual > 0) {
           unbounded = true;
         }
@@ -431,27 +449,28 @@ class Problem {
     }
     // What rounding may do to far' . p at a point p with M_4 . p = 1: the error of a (relative
     // scale_error(), reaching far' . p through a C . p <= a C . Q = k) plus the entries'.
-    const exact::Rational k_range =
+    const oracle::exact::Rational k_range =
         clip_depth_range(convention_).z_high - clip_depth_range(convention_).z_low;
-    const std::optional<exact::Rational> scale = scale_error();
+    const std::optional<oracle::exact::Rational> scale = scale_error();
     const bool corners_judged = scale.has_value();
-    const exact::Rational scale_term = corners_judged ? k_range * *scale : exact::Rational(0);
-    auto point_bound = [&](const exact::Vec& point, bool through_scale) {
-      exact::Rational b = through_scale ? scale_term : exact::Rational(0);
-      for (int i = 0; i < 4; ++i) b += 2 * entry_bound[i] * exact::abs(point[i]);
+    const oracle::exact::Rational scale_term =
+        corners_judged ? k_range * *scale : oracle::exact::Rational(0);
+    auto point_bound = [&](const oracle::exact::Vec& point, bool through_scale) {
+      oracle::exact::Rational b = through_scale ? scale_term : oracle::exact::Rational(0);
+      for (int i = 0; i < 4; ++i) b += 2 * entry_bound[i] * oracle::exact::abs(point[i]);
       return b;
     };
     // 3. and 5. far' . Q = 0.
-    const exact::Rational far_q = exact::dot(far, q_);
-    const exact::Rational far_q_bound = point_bound(q_, true);
-    const double far_q_ratio = far_q_bound > 0 ? approx(exact::abs(far_q) / far_q_bound)
+    const oracle::exact::Rational far_q = oracle::exact::dot(far, q_);
+    const oracle::exact::Rational far_q_bound = point_bound(q_, true);
+    const double far_q_ratio = far_q_bound > 0 ? approx(oracle::exact::abs(far_q) / far_q_bound)
                                : far_q == 0    ? 0.0
                                                : std::numeric_limits<double>::infinity();
     {
       Verdict v(Property::far_plane_through_corner);
       v.applies = corners_judged;
       v.shows = corners_judged ? Shows::residual : Shows::no_bound;
-      v.holds = exact::abs(far_q) <= far_q_bound;
+      v.holds = oracle::exact::abs(far_q) <= far_q_bound;
       v.ratio = far_q_ratio;
       v.residual = approx(far_q);
       v.bound = approx(far_q_bound);
@@ -462,10 +481,10 @@ class Problem {
     {
       Verdict v(Property::no_clipping);
       double worst = 0;
-      auto visit = [&](const exact::Vec& point, bool through_scale, Shows where) {
-        const exact::Rational value = exact::dot(far, point);
+      auto visit = [&](const oracle::exact::Vec& point, bool through_scale, Shows where) {
+        const oracle::exact::Rational value = oracle::exact::dot(far, point);
         if (value >= 0) return;
-        const exact::Rational bound = point_bound(point, through_scale);
+        const oracle::exact::Rational bound = point_bound(point, through_scale);
         const double ratio =
             bound > 0 ? approx(-value / bound) : std::numeric_limits<double>::infinity();
         if (-value > bound) {
@@ -488,8 +507,9 @@ class Problem {
             differing += clip_corners_[i][axis] != clip_corners_[j][axis];
           if (differing != 1 || sgn(corner_dots_[i]) * sgn(corner_dots_[j]) >= 0) continue;
           // The point of edge ij on C, normalised so that M_4 . p = 1.
-          const exact::Rational alpha = corner_dots_[j] / (corner_dots_[j] - corner_dots_[i]);
-          visit(exact::combine(alpha, corners_[i], 1 - alpha, corners_[j]), false,
+          const oracle::exact::Rational alpha =
+              corner_dots_[j] / (corner_dots_[j] - corner_dots_[i]);
+          visit(oracle::exact::combine(alpha, corners_[i], 1 - alpha, corners_[j]), false,
                 Shows::below_at_edge_crossing);
         }
       }
@@ -500,7 +520,7 @@ class Problem {
     {
       Verdict v(Property::infinite_edge_parallel);
       v.applies = far_corner_at_infinity() && corners_judged;
-      v.holds = !v.applies || (q_[3] == 0 && exact::abs(far_q) <= far_q_bound);
+      v.holds = !v.applies || (q_[3] == 0 && oracle::exact::abs(far_q) <= far_q_bound);
       v.ratio = v.applies ? far_q_ratio : 0;
       v.shows = Shows::edge_direction;
       v.reference = approx(q_[3]);
@@ -515,7 +535,7 @@ class Problem {
   /// Whether corner i is a far corner: it agrees with Q' wherever C' has a nonzero component.
   bool is_far_corner_candidate(int i) const {
     for (int k = 0; k < 3; ++k) {
-      if (exact::sign(c_clip_[k]) != 0 && clip_corners_[i][k] != q_clip_[k]) return false;
+      if (oracle::exact::sign(c_clip_[k]) != 0 && clip_corners_[i][k] != q_clip_[k]) return false;
     }
     return true;
   }
@@ -525,11 +545,11 @@ class Problem {
   Convention convention_;
   bool finite_ = false, invertible_ = false, infinite_ = false, camera_behind_ = false;
   bool too_spread_ = false;  ///< beyond max_magnitude_spread(): the core may answer out_of_range
-  exact::Mat mx_{}, inverse_{};
-  exact::Vec cx_{}, c_clip_{}, q_clip_{}, q_{};
-  std::array<exact::Vec, 8> clip_corners_{}, corners_{};
-  std::array<exact::Rational, 8> corner_dots_{};
-  exact::Rational d_ = 0, kappa_numerator_ = 0;
+  oracle::exact::Mat mx_{}, inverse_{};
+  oracle::exact::Vec cx_{}, c_clip_{}, q_clip_{}, q_{};
+  std::array<oracle::exact::Vec, 8> clip_corners_{}, corners_{};
+  std::array<oracle::exact::Rational, 8> corner_dots_{};
+  oracle::exact::Rational d_ = 0, kappa_numerator_ = 0;
   double skeel_condition_ = 0;
 };
 
@@ -539,46 +559,48 @@ Problem<T>::Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convent
   finite_ = all_finite(m) && all_finite(c);
   if (!finite_) return;
   too_spread_ = magnitude_spread(m) > max_magnitude_spread<T>();
-  mx_ = exact::to_rational(m);
-  cx_ = exact::to_rational(c);
-  auto inverse = exact::inverse(mx_);
+  mx_ = oracle::exact::to_rational(m);
+  cx_ = oracle::exact::to_rational(c);
+  auto inverse = oracle::exact::inverse(mx_);
   invertible_ = inverse.has_value();
   if (!invertible_) return;
   inverse_ = *inverse;
-  c_clip_ = exact::mul(exact::transpose(inverse_), cx_);  // C' = M^-T C
+  c_clip_ = oracle::exact::mul(oracle::exact::transpose(inverse_), cx_);  // C' = M^-T C
   const DepthRange range = clip_depth_range(convention);
   int index = 0;
   for (int x : {-1, 1}) {
     for (int y : {-1, 1}) {
       for (int z : {range.z_low, range.z_high}) {
         clip_corners_[index] = {x, y, z, 1};
-        corners_[index] = exact::mul(inverse_, clip_corners_[index]);
-        corner_dots_[index] = exact::dot(cx_, corners_[index]);
+        corners_[index] = oracle::exact::mul(inverse_, clip_corners_[index]);
+        corner_dots_[index] = oracle::exact::dot(cx_, corners_[index]);
         ++index;
       }
     }
   }
   // The far corner by the sign rule (a zero sign gives the middle of the edge: equally far).
-  const int sz = exact::sign(c_clip_[2]);
-  const exact::Rational z_mid = exact::Rational(range.z_low + range.z_high) / 2;
-  q_clip_ = {
-      exact::sign(c_clip_[0]), exact::sign(c_clip_[1]),
-      sz > 0 ? exact::Rational(range.z_high) : (sz < 0 ? exact::Rational(range.z_low) : z_mid), 1};
-  q_ = exact::mul(inverse_, q_clip_);
-  d_ = exact::dot(cx_, q_);
+  const int sz = oracle::exact::sign(c_clip_[2]);
+  const oracle::exact::Rational z_mid = oracle::exact::Rational(range.z_low + range.z_high) / 2;
+  q_clip_ = {oracle::exact::sign(c_clip_[0]), oracle::exact::sign(c_clip_[1]),
+             sz > 0 ? oracle::exact::Rational(range.z_high)
+                    : (sz < 0 ? oracle::exact::Rational(range.z_low) : z_mid),
+             1};
+  q_ = oracle::exact::mul(inverse_, q_clip_);
+  d_ = oracle::exact::dot(cx_, q_);
   // Infinite: the far face (z_high, or z_low for reversed Z) maps to the plane at infinity.
   const int far_z = convention == Convention::reversed_z ? range.z_low : range.z_high;
   infinite_ = true;
   for (int i = 0; i < 8; ++i) {
     if (clip_corners_[i][2] == far_z && corners_[i][3] != 0) infinite_ = false;
   }
-  const exact::Mat abs_m = exact::abs(mx_), abs_inv = exact::abs(inverse_);
-  kappa_numerator_ = tolerance::corner_dot_numerator(
-      exact::abs(cx_), exact::abs(q_), exact::abs(c_clip_), exact::abs(q_clip_), abs_m, abs_inv);
+  const oracle::exact::Mat abs_m = oracle::exact::abs(mx_), abs_inv = oracle::exact::abs(inverse_);
+  kappa_numerator_ = oracle::tolerance::corner_dot_numerator(
+      oracle::exact::abs(cx_), oracle::exact::abs(q_), oracle::exact::abs(c_clip_),
+      oracle::exact::abs(q_clip_), abs_m, abs_inv);
   camera_behind_ = cx_[3] < 0;
   // Skeel's condition number || |M^-1| |M| ||_inf, for the singularity gray zone.
-  const exact::Vec ones{1, 1, 1, 1};
-  const exact::Vec row_sums = exact::mul(abs_inv, exact::mul(abs_m, ones));
+  const oracle::exact::Vec ones{1, 1, 1, 1};
+  const oracle::exact::Vec row_sums = oracle::exact::mul(abs_inv, oracle::exact::mul(abs_m, ones));
   skeel_condition_ = 0;
   for (const auto& v : row_sums) skeel_condition_ = std::max(skeel_condition_, v.get_d());
 }

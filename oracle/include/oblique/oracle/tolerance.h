@@ -24,7 +24,7 @@
 
 #include "oblique/oracle/exact.h"
 
-namespace oblique::tolerance {
+namespace oblique::oracle::tolerance {
 
 /// Significand bits of the scalar type the implementation computes in.
 template <class T>
@@ -64,7 +64,7 @@ constexpr int kInvisiblePlaneUlps = 1;
 // float, where lambda C is small beside M_4w = 1) is no more than that.
 
 /// The accurate method's promise: every entry of M' within this many units in the last place of
-/// the correctly rounded exact answer (exact::ulp_distance).
+/// the correctly rounded exact answer (oracle::exact::ulp_distance).
 constexpr double kAccurateUlps = 2;
 
 // The code around the matrix (consumers.h) computes in T from inputs in T; its bounds:
@@ -109,10 +109,10 @@ constexpr int kCameraPlaneRoundings = kSolveRoundings + 4;
 
 /// n rho max|m| for n = 4 and partial pivoting's growth rho <= 2^(n-1): the bound on every entry
 /// of |L||U| for the LU factors of m (above).
-inline exact::Rational lu_entry_bound(const exact::Mat& m) {
-  exact::Rational largest = 0;
+inline oracle::exact::Rational lu_entry_bound(const oracle::exact::Mat& m) {
+  oracle::exact::Rational largest = 0;
   for (const auto& row : m)
-    for (const auto& x : row) largest = std::max(largest, exact::abs(x));
+    for (const auto& x : row) largest = std::max(largest, oracle::exact::abs(x));
   return 32 * largest;
 }
 
@@ -120,55 +120,60 @@ inline exact::Rational lu_entry_bound(const exact::Mat& m) {
 /// lands in the subnormal range carries an absolute error up to eta besides its relative one
 /// (fl(x op y) = (x op y)(1 + delta) + eta', |eta'| <= eta; sums and differences are exact there).
 template <class T>
-exact::Rational underflow_unit() {
-  return exact::to_rational(std::numeric_limits<T>::denorm_min()) / 2;
+oracle::exact::Rational underflow_unit() {
+  return oracle::exact::to_rational(std::numeric_limits<T>::denorm_min()) / 2;
 }
 
 /// u = 2^-p.
-inline exact::Rational unit_roundoff(int precision_bits) {
-  return exact::power_of_two(-precision_bits);
+inline oracle::exact::Rational unit_roundoff(int precision_bits) {
+  return oracle::exact::power_of_two(-precision_bits);
 }
 
 /// gamma(n) = n u / (1 - n u).
-inline exact::Rational gamma(int n, int precision_bits) {
-  const exact::Rational nu = n * unit_roundoff(precision_bits);
+inline oracle::exact::Rational gamma(int n, int precision_bits) {
+  const oracle::exact::Rational nu = n * unit_roundoff(precision_bits);
   return nu / (1 - nu);
 }
 
 /// kappa's numerator (above) for a corner Q' = S Q of a matrix S: |C|.|Q| + |C|^T |S^-1| |S| |Q| +
 /// |C'|^T |S| |S^-1| |Q'|, from the magnitudes |C|, |Q|, |C'|, |Q'|, |S| and |S^-1|.
-inline exact::Rational corner_dot_numerator(const exact::Vec& abs_c, const exact::Vec& abs_q,
-                                            const exact::Vec& abs_c_clip,
-                                            const exact::Vec& abs_q_clip, const exact::Mat& abs_s,
-                                            const exact::Mat& abs_inverse) {
-  return exact::dot(abs_c, abs_q) +
-         exact::dot(abs_c, exact::mul(abs_inverse, exact::mul(abs_s, abs_q))) +
-         exact::dot(abs_c_clip, exact::mul(abs_s, exact::mul(abs_inverse, abs_q_clip)));
+inline oracle::exact::Rational corner_dot_numerator(const oracle::exact::Vec& abs_c,
+                                                    const oracle::exact::Vec& abs_q,
+                                                    const oracle::exact::Vec& abs_c_clip,
+                                                    const oracle::exact::Vec& abs_q_clip,
+                                                    const oracle::exact::Mat& abs_s,
+                                                    const oracle::exact::Mat& abs_inverse) {
+  return oracle::exact::dot(abs_c, abs_q) +
+         oracle::exact::dot(abs_c,
+                            oracle::exact::mul(abs_inverse, oracle::exact::mul(abs_s, abs_q))) +
+         oracle::exact::dot(abs_c_clip,
+                            oracle::exact::mul(abs_s, oracle::exact::mul(abs_inverse, abs_q_clip)));
 }
 
 /// The bound on the error of C . Q computed in T: gamma(kScaleRoundings) times kappa's numerator,
 /// plus kScaleRoundings eta for underflow.
 template <class T>
-exact::Rational corner_dot_error(const exact::Rational& numerator) {
+oracle::exact::Rational corner_dot_error(const oracle::exact::Rational& numerator) {
   return gamma(kScaleRoundings, precision_bits<T>()) * numerator +
          kScaleRoundings * underflow_unit<T>();
 }
 
 /// The bound on the relative error of a = k / (C . Q) from that of C . Q, eps = error / |C . Q|:
 /// eps / (1 - eps) (not eps: the first-order bound fails as eps -> 1); none where eps >= 1.
-inline std::optional<exact::Rational> scale_error(const exact::Rational& corner_dot_error,
-                                                  const exact::Rational& corner_dot) {
+inline std::optional<oracle::exact::Rational> scale_error(
+    const oracle::exact::Rational& corner_dot_error, const oracle::exact::Rational& corner_dot) {
   if (corner_dot == 0) return std::nullopt;
-  const exact::Rational eps = corner_dot_error / exact::abs(corner_dot);
+  const oracle::exact::Rational eps = corner_dot_error / oracle::exact::abs(corner_dot);
   if (eps >= 1) return std::nullopt;
-  return exact::Rational(eps / (1 - eps));
+  return oracle::exact::Rational(eps / (1 - eps));
 }
 
 /// The bound on one entry of M'_3 = s (a C_i - t M4_i) computed in T given a's relative error
 /// `scale`: gamma(kEntryRoundings) (|a C_i| + |t M4_i|) + |a C_i| scale + kEntryRoundings eta.
 template <class T>
-exact::Rational row3_entry_bound(const exact::Rational& abs_ac, const exact::Rational& abs_m4,
-                                 const exact::Rational& scale) {
+oracle::exact::Rational row3_entry_bound(const oracle::exact::Rational& abs_ac,
+                                         const oracle::exact::Rational& abs_m4,
+                                         const oracle::exact::Rational& scale) {
   return gamma(kEntryRoundings, precision_bits<T>()) * (abs_ac + abs_m4) + abs_ac * scale +
          kEntryRoundings * underflow_unit<T>();
 }
@@ -209,4 +214,4 @@ constexpr double raster_row_gamma() noexcept {
   return (nf / (1 - nf) + nd / (1 - nd)) * kRasterBandSlack;
 }
 
-}  // namespace oblique::tolerance
+}  // namespace oblique::oracle::tolerance

@@ -40,8 +40,8 @@ struct ProfiledAnswer {
   /// How far M'_3i is from the correctly rounded exact entry, in ulps of the row: the ulp, in
   /// the answer's type, of the row's largest exact entry. A plane's coefficients go together (an
   /// entry that is exactly 0 has no ulp of its own), so a small entry's error counts on the
-  /// row's scale; for the largest entry this is exact::ulp_distance. Infinity for an entry that
-  /// is not finite.
+  /// row's scale; for the largest entry this is oracle::exact::ulp_distance. Infinity for an entry
+  /// that is not finite.
   double ulps[4] = {0, 0, 0, 0};
   std::string request;  ///< the case as a request line (JSON), for the replay
 

@@ -1,7 +1,7 @@
 // `oblique report accuracy`: error against run time for every method and scalar type on the
 // input regimes that stress the modification, measured against the exact GMP oracle
-// (exact::round_to, the correctly rounded answer), plus how the error grows with each regime's
-// stiffness parameter and how close it comes to the checker's bound.
+// (oracle::exact::round_to, the correctly rounded answer), plus how the error grows with each
+// regime's stiffness parameter and how close it comes to the checker's bound.
 #pragma once
 
 #include <filesystem>
