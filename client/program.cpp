@@ -11,32 +11,33 @@ static_assert(kMaxLineBytes == ChildProcess::kMaxLineBytes);
 
 struct Program::State {
   ChildProcess child;
-  std::string command;
   std::chrono::milliseconds timeout;
   long answered = 0;
 
-  State(std::string c, std::chrono::milliseconds t) : child(c), command(std::move(c)), timeout(t) {}
+  State(std::string command, std::chrono::milliseconds t) : child(std::move(command)), timeout(t) {}
 
-  /// A failure of `kind`; for a crash or a timeout how the program ended and the end of its
+  /// Starts the program. One that exits early must not take us down with it: a write to its
+  /// closed input fails with EPIPE instead of raising SIGPIPE.
+  Expected<Done> start() {
+    std::signal(SIGPIPE, SIG_IGN);
+    return child.start();
+  }
+
+  /// A failure of `cause`; for a crash or a timeout how the program ended and the end of its
   /// standard error are said, and it is stopped when `stop` (a read() leaves that to its caller).
   Failure failure(Failure::Cause cause, std::string what, std::string request,
                   std::vector<std::string> lines, bool stop = true) {
     using Cause = Failure::Cause;
-    const Failure::Kind kind = cause == Cause::exited      ? Failure::Kind::crash
-                               : cause == Cause::timed_out ? Failure::Kind::timeout
-                                                           : Failure::Kind::protocol;
     Failure f;
-    f.kind = kind;
     f.cause = cause;
     f.request = std::move(request);
     f.lines = std::move(lines);
-    if (kind != Failure::Kind::protocol) {
-      if (kind == Failure::Kind::crash) f.ended = child.end_description();
+    if (cause == Cause::exited || cause == Cause::timed_out) {
+      if (cause == Cause::exited) f.ended = child.end_description();
       if (stop) child.stop();
       // A shell that could not run the command, before any answer: nothing was asked.
       if (answered == 0 &&
           (f.ended == "exited with status 126" || f.ended == "exited with status 127")) {
-        f.kind = Failure::Kind::protocol;
         f.cause = Cause::cannot_run;
         what = "cannot run the program";
       }
@@ -68,10 +69,7 @@ struct Program::State {
   /// The program started if it is not running, and nothing left unread from before; or why not.
   std::optional<Failure> ready(const std::string& request) {
     if (!child.running()) {
-      // A program that exits early must not take us down with it: a write to its closed input
-      // fails with EPIPE instead.
-      std::signal(SIGPIPE, SIG_IGN);
-      if (const Expected<Done> started = child.start(); !started)
+      if (const Expected<Done> started = start(); !started)
         return failure(Failure::Cause::cannot_start,
                        "the program could not be started: " + started.error(), request, {});
     }
@@ -119,8 +117,7 @@ Reply Program::ask(const std::vector<std::string>& requests, Clock::time_point d
 }
 
 Expected<Done> Program::start() {
-  std::signal(SIGPIPE, SIG_IGN);
-  return state_->child.start();
+  return state_->start();
 }
 
 void Program::queue(std::string_view text) {
@@ -135,10 +132,6 @@ std::optional<Failure> Program::read(std::size_t count, std::vector<std::string>
   s.answered += static_cast<long>(lines.size() - before);
   if (outcome == ChildProcess::Outcome::done) return std::nullopt;
   return s.lost(outcome, "", {}, /*stop=*/false);
-}
-
-std::vector<std::string> Program::unread_output() {
-  return state_->child.unasked_output();
 }
 
 std::vector<std::string> Program::finish() {
@@ -161,14 +154,6 @@ bool Program::running() const {
 
 long Program::answered() const {
   return state_->answered;
-}
-
-std::chrono::milliseconds Program::timeout() const {
-  return state_->timeout;
-}
-
-const std::string& Program::command() const {
-  return state_->command;
 }
 
 const std::string& Program::overlong_start() const {

@@ -63,7 +63,7 @@ TEST(ConsumerProgramBatch, aProgramThatExitsMidBatchKeepsTheAnswersBeforeAndName
   const Asked asked(10);
   const auto batch = program.answer(asked.pointers);
   ASSERT_TRUE(batch.failure);
-  EXPECT_EQ(batch.failure->kind, Failure::Kind::crash);
+  EXPECT_EQ(batch.failure->kind(), Failure::Kind::crash);
   EXPECT_NE(batch.failure->what.find("exited with status 4"), std::string::npos)
       << batch.failure->what;
   EXPECT_EQ(batch.numbers.size(), 3u);
@@ -78,7 +78,7 @@ TEST(ConsumerProgramBatch, aLineThatIsNotAnAnswerEndsTheBatchThere) {
   const Asked asked(8);
   const auto batch = program.answer(asked.pointers);
   ASSERT_TRUE(batch.failure);
-  EXPECT_EQ(batch.failure->kind, Failure::Kind::protocol);
+  EXPECT_EQ(batch.failure->kind(), Failure::Kind::protocol);
   EXPECT_EQ(batch.numbers.size(), 4u);
   EXPECT_EQ(batch.lines.size(), 4u);
   EXPECT_EQ(batch.failure->request, batch.requests[4]);
@@ -94,7 +94,7 @@ TEST(ConsumerProgramBatch, aProgramThatStopsAnsweringTimesOutAtTheFirstUnanswere
   const Asked asked(6);
   const auto batch = program.answer(asked.pointers);
   ASSERT_TRUE(batch.failure);
-  EXPECT_EQ(batch.failure->kind, Failure::Kind::timeout);
+  EXPECT_EQ(batch.failure->kind(), Failure::Kind::timeout);
   EXPECT_EQ(batch.numbers.size(), 2u);
   EXPECT_EQ(batch.failure->request, batch.requests[2]);
 }

@@ -40,7 +40,7 @@ TEST(ProgramClient, aCrashKeepsTheAnswersBeforeAndSaysHowItEnded) {
   const std::vector<std::string> requests = numbered(10);
   const Reply reply = program.ask(requests);
   ASSERT_TRUE(reply.failure);
-  EXPECT_EQ(reply.failure->kind, Failure::Kind::crash);
+  EXPECT_EQ(reply.failure->kind(), Failure::Kind::crash);
   EXPECT_EQ(reply.failure->cause, Cause::exited);
   EXPECT_EQ(reply.failure->ended, "exited with status 4");
   EXPECT_EQ(reply.failure->stderr_tail, "dying");
@@ -55,7 +55,7 @@ TEST(ProgramClient, aProgramThatStopsAnsweringTimesOut) {
   const std::vector<std::string> requests = numbered(5);
   const Reply reply = program.ask(requests);
   ASSERT_TRUE(reply.failure);
-  EXPECT_EQ(reply.failure->kind, Failure::Kind::timeout);
+  EXPECT_EQ(reply.failure->kind(), Failure::Kind::timeout);
   EXPECT_EQ(reply.failure->cause, Cause::timed_out);
   EXPECT_EQ(reply.failure->request, requests[2]);
   EXPECT_EQ(reply.lines.size(), 2u);
@@ -66,7 +66,7 @@ TEST(ProgramClient, linesBeyondOneAnswerPerRequestFailTheExchange) {
   Program program("while read -r line; do printf 'one\\ntwo\\n'; done", kTimeout);
   const Reply reply = program.ask(std::string("request"));
   ASSERT_TRUE(reply.failure);
-  EXPECT_EQ(reply.failure->kind, Failure::Kind::protocol);
+  EXPECT_EQ(reply.failure->kind(), Failure::Kind::protocol);
   EXPECT_EQ(reply.failure->cause, Cause::beyond);
   EXPECT_EQ(reply.failure->lines, std::vector<std::string>{"two"});
   program.stop();
@@ -92,7 +92,7 @@ TEST(ProgramClient, aLineOverTheLimitIsNotReadWhole) {
   Program program("read -r line; head -c 2000000 /dev/zero | tr '\\0' x; echo", kTimeout);
   const Reply reply = program.ask(std::string("request"));
   ASSERT_TRUE(reply.failure);
-  EXPECT_EQ(reply.failure->kind, Failure::Kind::protocol);
+  EXPECT_EQ(reply.failure->kind(), Failure::Kind::protocol);
   EXPECT_EQ(reply.failure->cause, Cause::overlong);
   ASSERT_EQ(reply.failure->lines.size(), 1u);
   EXPECT_LT(reply.failure->lines[0].size(), 1000000u);
@@ -103,7 +103,7 @@ TEST(ProgramClient, aCommandThatCannotRunIsNotACrash) {
   Program program("/nonexistent/oblique-implementation", kTimeout);
   const Reply reply = program.ask(std::string("request"));
   ASSERT_TRUE(reply.failure);
-  EXPECT_EQ(reply.failure->kind, Failure::Kind::protocol);
+  EXPECT_EQ(reply.failure->kind(), Failure::Kind::protocol);
   EXPECT_EQ(reply.failure->cause, Cause::cannot_run);
   EXPECT_EQ(reply.failure->ended, "exited with status 127");
 }
@@ -121,7 +121,7 @@ TEST(ProgramClient, queuedRequestsAreAnsweredInThePipeline) {
   const std::optional<Failure> more =
       program.read(4, lines, Clock::now() + std::chrono::milliseconds(200));
   ASSERT_TRUE(more);
-  EXPECT_EQ(more->kind, Failure::Kind::timeout);
+  EXPECT_EQ(more->kind(), Failure::Kind::timeout);
   EXPECT_TRUE(program.running());
   EXPECT_TRUE(program.finish().empty());
 }

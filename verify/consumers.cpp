@@ -94,7 +94,7 @@ class ConsumerRun {
   /// A request that got no answer to judge: a protocol error is said on err_ (false); a crash or
   /// a timeout is the run's finding unless one came before.
   bool lost(const Failure& failure, const Round<T>& round, long index) {
-    if (failure.kind == Failure::Kind::protocol) {
+    if (failure.kind() == Failure::Kind::protocol) {
       err_ << "oblique verify: protocol error: " << failure.what
            << "\n  request: " << failure.request << "\n";
       for (const std::string& line : failure.lines)
@@ -415,8 +415,9 @@ class ConsumerRun {
 
   Verdict report(double seconds) {
     const Caught<T>& c = *caught_;
-    const std::string check = c.lost ? (c.lost->kind == Failure::Kind::crash ? "crash" : "timeout")
-                                     : std::string(oracle::consumer_check_name(c.finding.check));
+    const std::string check = c.lost
+                                  ? (c.lost->kind() == Failure::Kind::crash ? "crash" : "timeout")
+                                  : std::string(oracle::consumer_check_name(c.finding.check));
     report::ReportFiles files(options_.report_dir);
     const std::string stem = files.reserve_stem("verify-consumer-" + check, {".md", ".json"});
     const std::string json_path =

@@ -106,7 +106,7 @@ Found<T> Session<T>::lost_finding(const client::Failure& failure) {
   Found<T> found;
   oracle::Finding& f = found.finding;
   f.shows = oracle::Shows::program;
-  if (failure.kind == client::Failure::Kind::crash) {
+  if (failure.kind() == client::Failure::Kind::crash) {
     f.check = oracle::Check::crash;
     found.process = failure.ended;
     f.message = "it " + found.process + " before answering";

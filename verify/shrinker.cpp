@@ -129,7 +129,7 @@ Verdict Shrinker<T>::isolate(const std::vector<rc::Shrinkable<cases::Case<T>>>& 
                              std::size_t answered, long done, const client::Failure& failure) {
   using Evaluation = typename Session<T>::Evaluation;
   Found<T> in_batch = session_.lost_finding(failure);
-  const bool hung = failure.kind == client::Failure::Kind::timeout;
+  const bool hung = failure.kind() == client::Failure::Kind::timeout;
   const std::string description = hung ? "gave no answer within --timeout" : in_batch.process;
   const std::string& tail = failure.stderr_tail;
   session_.program().stop();

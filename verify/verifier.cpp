@@ -92,7 +92,8 @@ class Verifier {
       bool restarted = false;  // --keep-going: a fresh process after a finding in this batch
       std::optional<client::Failure> failure = program.read(n, answers, deadline);
       bool time_up = false;
-      if (failure && failure->kind == client::Failure::Kind::timeout && Clock::now() >= deadline) {
+      if (failure && failure->kind() == client::Failure::Kind::timeout &&
+          Clock::now() >= deadline) {
         // The time limit ended the wait, not the implementation; it must still show that it is
         // answering: one more line within --timeout of its last one, or the request it owes is
         // a timeout finding (never a pass with an unanswered request).
@@ -168,7 +169,7 @@ class Verifier {
         stopped_by_time = true;
         break;  // still answering: the time limit ends the run
       }
-      if (time_up && failure->kind == client::Failure::Kind::timeout) {
+      if (time_up && failure->kind() == client::Failure::Kind::timeout) {
         return shrinker_.shrink(current.cases[answers.size()], session_.lost_finding(*failure),
                                 done + 1);
       }

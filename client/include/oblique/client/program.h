@@ -41,8 +41,13 @@ struct Failure {
     overlong,       ///< protocol: a line that grew beyond kMaxLineBytes
     not_an_answer,  ///< protocol: a line that is not an answer of its request's kind
   };
-  Kind kind = Kind::protocol;
   Cause cause = Cause::not_an_answer;
+  /// The kind its cause is: exited a crash, timed_out a timeout, every other cause protocol.
+  Kind kind() const {
+    return cause == Cause::exited      ? Kind::crash
+           : cause == Cause::timed_out ? Kind::timeout
+                                       : Kind::protocol;
+  }
   std::string what;     ///< in words, with how the program ended and its standard error's end
   std::string request;  ///< the request line that got no answer (or the last of a batch)
   /// What was read of it: the extra lines (left_over, beyond), the start of an overlong line,
@@ -95,10 +100,6 @@ class Program {
   std::optional<Failure> read(std::size_t count, std::vector<std::string>& lines,
                               Clock::time_point deadline);
 
-  /// Output already written beyond the lines read: complete or partial lines, plus whatever the
-  /// program's standard output holds right now (no waiting).
-  std::vector<std::string> unread_output();
-
   /// The count check that ends a conversation: closes the program's input, reads what it still
   /// writes (waiting at most the smaller of its timeout and a second) and stops it. Returns the
   /// lines beyond the one answer per request: when there are any, the answers were out of step
@@ -111,8 +112,6 @@ class Program {
 
   /// Answer lines read so far (over every start).
   long answered() const;
-  std::chrono::milliseconds timeout() const;
-  const std::string& command() const;
   /// The first bytes of the line that made a `too long` failure.
   const std::string& overlong_start() const;
 
