@@ -5,6 +5,10 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "commands.h"
 #include "oblique/cases/contract.h"
@@ -13,21 +17,65 @@
 
 namespace oblique::cli {
 
+namespace {
+
+/// What the command line says, before it is read whole.
+struct Settings {
+  oblique::verify::VerifyOptions options;
+  std::string precision = "double", contract;
+  /// The contract's fields given as flags: the JSON field's name, the flag, its list.
+  struct Field {
+    std::string name, flag, list;
+  };
+  std::vector<Field> fields;
+  bool answers_only = false;
+  std::vector<std::string> arguments;  // after "verify", for the replay command
+  bool quiet = false;
+  std::string consumers;  // --consumers LIST
+  // Each mode's own flags, gathered into its options when the command line is read whole.
+  oblique::verify::MatrixMode matrix;
+  bool rasterize = false;
+  oblique::verify::RasterOptions raster;
+  std::optional<oblique::oracle::MirrorDesign> mirror_design;
+  std::string replay;
+};
+
+/// The mode the flags ask for, with its own options: --replay (the report says its mode),
+/// --consumers KINDS, or the matrix; a flag of another mode is an error, not ignored.
+oblique::Expected<oblique::verify::Mode> verify_mode(
+    const Settings& s, std::vector<oblique::protocol::ConsumerKind> kinds) {
+  using oblique::verify::Mode;
+  using Failure = oblique::Expected<Mode>;
+  const oblique::oracle::MirrorDesign design =
+      s.mirror_design.value_or(oblique::oracle::MirrorDesign::reflected_view);
+  if (!s.replay.empty())
+    return Mode(oblique::verify::ReplayMode{s.replay, s.raster.device, design});
+  if (!kinds.empty()) {
+    if (!s.matrix.accuracy_dir.empty())
+      return Failure::failure(
+          "--accuracy profiles oblique matrices; it does not apply to --consumers");
+    if (s.rasterize)
+      return Failure::failure(
+          "--rasterize draws oblique matrices; it does not apply to --consumers");
+    if (s.matrix.keep_going || !s.matrix.regressions.empty() || !s.matrix.save_regressions.empty())
+      return Failure::failure(
+          "--keep-going, --regressions and --save-regressions do not apply to --consumers (a "
+          "consumer run stops at its first violation; replay its report with --replay)");
+    return Mode(oblique::verify::ConsumerMode{std::move(kinds), design});
+  }
+  if (s.mirror_design)
+    return Failure::failure(
+        "--mirror-design is the design of a consumer program's mirror_view; it applies to "
+        "--consumers (and to --replay of an older consumer report)");
+  oblique::verify::MatrixMode matrix = s.matrix;
+  if (s.rasterize) matrix.rasterize = s.raster;
+  return Mode(std::move(matrix));
+}
+
+}  // namespace
+
 void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
   const char* self = argv[0];
-  struct Settings {
-    oblique::verify::VerifyOptions options;
-    std::string precision = "double", contract;
-    /// The contract's fields given as flags: the JSON field's name, the flag, its list.
-    struct Field {
-      std::string name, flag, list;
-    };
-    std::vector<Field> fields;
-    bool answers_only = false;
-    std::vector<std::string> arguments;  // after "verify", for the replay command
-    bool quiet = false;
-    std::string consumers;  // --consumers LIST
-  };
   auto settings = std::make_shared<Settings>();
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) != "verify") continue;
@@ -121,7 +169,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
   verify->add_flag("--strict", options.strict,
                    "A claimed family, convention or consumer kind with more than 10% of its "
                    "cases left out fails the run (exit 2) instead of a warning");
-  verify->add_flag("--keep-going", options.keep_going,
+  verify->add_flag("--keep-going", settings->matrix.keep_going,
                    "Go on after a finding; report each kind (property x family x place) once");
   verify->add_option(
       "--consumers", settings->consumers,
@@ -132,27 +180,27 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       ->add_option_function<std::string>(
           "--mirror-design",
           [settings](const std::string& name) {
-            settings->options.mirror_design = *oblique::oracle::parse_mirror_design(name);
+            settings->mirror_design = oblique::oracle::parse_mirror_design(name);
           },
           "With --consumers mirror_view: the design its mirror pass's camera has: reflected_view "
           "(view R, the default) or proper_camera (diag(-1, 1, 1, 1) view R, the horizontal flip "
           "done in the projection or the texture lookup)")
       ->check(CLI::IsMember({"reflected_view", "proper_camera"}));
-  verify->add_flag("--rasterize", options.rasterize,
+  verify->add_flag("--rasterize", settings->rasterize,
                    "Also draw answers on a real rasterizer (EGL + OpenGL 4.5, llvmpipe): the "
                    "first, one in --raster-every, and every finding's; an answer that passes the "
                    "properties but fails there is a finding of its own (docs/raster.md). Exit 3 "
                    "when the rasterizer cannot judge");
   verify
-      ->add_option("--device", options.raster_device,
+      ->add_option("--device", settings->raster.device,
                    "With --rasterize: software (llvmpipe, the default) or gpu")
       ->check(CLI::IsMember({"software", "gpu"}));
   verify
-      ->add_option("--raster-size", options.raster_size,
+      ->add_option("--raster-size", settings->raster.size,
                    "With --rasterize: frames of N x N pixels, one sample each (default 256)")
       ->check(CLI::Range(16, 4096));
   verify
-      ->add_option("--raster-every", options.raster_every,
+      ->add_option("--raster-every", settings->raster.every,
                    "With --rasterize: draw one answer in N (default 1000)")
       ->check(CLI::Validator(
           [](std::string& v) -> std::string {
@@ -165,7 +213,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
           },
           "N >= 1"));
   verify
-      ->add_option("--accuracy", options.accuracy_dir,
+      ->add_option("--accuracy", settings->matrix.accuracy_dir,
                    "Profile every answer that passes: row 3's error against the exact answer "
                    "by family, place and stiffness, the round trip timed, beside the core's "
                    "methods on the same cases; the report (accuracy.md, .csv, charts) written "
@@ -176,12 +224,12 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                              : "";
           },
           "DIR"));
-  verify->add_option("--replay", options.replay,
+  verify->add_option("--replay", settings->replay,
                      "Re-judge the case of a report (its .json) with --impl: exit 0 or 1 (3: a "
                      "raster report the rasterizer cannot judge)");
-  verify->add_option("--regressions", options.regressions,
+  verify->add_option("--regressions", settings->matrix.regressions,
                      "Replay every report (.json) in this folder before the run");
-  verify->add_option("--save-regressions", options.save_regressions,
+  verify->add_option("--save-regressions", settings->matrix.save_regressions,
                      "Keep each new shrunk case's report in this folder too");
   verify->callback([settings, &exit_code, self] {
     oblique::verify::VerifyOptions& options = settings->options;
@@ -212,14 +260,13 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       return;
     }
     options.contract = std::move(*contract);
+    std::vector<oblique::protocol::ConsumerKind> kinds;
     for (const std::string& name : split_list(settings->consumers)) {
       if (name == "all") {
-        options.consumers.assign(std::begin(oblique::protocol::all_consumer_kinds),
-                                 std::end(oblique::protocol::all_consumer_kinds));
+        kinds.assign(std::begin(oblique::protocol::all_consumer_kinds),
+                     std::end(oblique::protocol::all_consumer_kinds));
       } else if (const auto kind = oblique::protocol::parse_consumer_kind(name)) {
-        if (std::find(options.consumers.begin(), options.consumers.end(), *kind) ==
-            options.consumers.end())
-          options.consumers.push_back(*kind);
+        if (std::find(kinds.begin(), kinds.end(), *kind) == kinds.end()) kinds.push_back(*kind);
       } else {
         std::cerr << "oblique verify: --consumers: "
                   << oblique::protocol::unknown_name(
@@ -230,11 +277,18 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
         return;
       }
     }
+    // The mode, with its own flags; a flag of another mode is an error, not ignored.
+    const oblique::Expected<oblique::verify::Mode> mode = verify_mode(*settings, std::move(kinds));
+    if (!mode) {
+      std::cerr << "oblique verify: " << mode.error() << "\n";
+      exit_code = 2;
+      return;
+    }
     options.precision = *oblique::protocol::parse_precision(settings->precision);
     options.progress = !settings->quiet;
     options.self = self;
     options.arguments = settings->arguments;
-    exit_code = static_cast<int>(oblique::verify::run_verify(options, std::cout, std::cerr));
+    exit_code = static_cast<int>(oblique::verify::run_verify(options, *mode, std::cout, std::cerr));
   });
 }
 

@@ -1650,7 +1650,7 @@ ConsumerAsk<T> camera_plane_ask(const oracle::consumer_cases::PassPlaneCase<T>& 
   a.judge = [p](const std::vector<T>& v, const Settle& settle) {
     const Vector4<T> answer = wire::vector4(v);
     const std::string inputs = std::string("- pass: ") +
-                               oracle::consumer_cases::pass_kind_name(p.kind) +
+                               std::string(oracle::consumer_cases::pass_kind_name(p.kind)) +
                                "\n- main view: " + numbers_text(p.main_view) +
                                "\n- pass view: " + numbers_text(p.pass_view) +
                                "\n- world plane kept: " + numbers_text(p.kept_plane) +

@@ -19,24 +19,12 @@ std::string entry_name(const Finding& f) {
 
 std::string_view check_name(Check c) noexcept {
   if (const std::optional<Property> p = property_of(c)) return property_name(*p);
-  switch (c) {
-    case Check::status: return "status";
-    case Check::finite_result: return "finite_result";
-    case Check::row3_accuracy: return "row3_accuracy";
-    case Check::accurate_ulps: return "accurate_ulps";
-    case Check::methods_agree: return "closed_form_and_general_agree";
-    case Check::crash: return "crash";
-    case Check::timeout: return "timeout";
-    case Check::protocol: return "protocol";
-    default: return "unknown";
-  }
+  return name_in(tool_check_names, c);
 }
 
 std::optional<Check> parse_check(std::string_view name) noexcept {
-  for (int i = 0; i <= static_cast<int>(Check::protocol); ++i) {
-    if (check_name(static_cast<Check>(i)) == name) return static_cast<Check>(i);
-  }
-  return std::nullopt;
+  if (const std::optional<Property> p = cases::parse_property(name)) return check_of(*p);
+  return value_in(tool_check_names, name);
 }
 
 std::string relation_text(const Finding& f) {

@@ -81,13 +81,10 @@ ParsedScene parse_scene(std::string_view text_in) {
         scene.convention == Convention::reversed_z ? DepthBuffer::float32 : DepthBuffer::fixed24;
     if (has(root, "depth_buffer")) {
       const std::string buffer = text(root, "", "depth_buffer");
-      if (buffer == "fixed24") {
-        scene.depth_buffer = DepthBuffer::fixed24;
-      } else if (buffer == "float32") {
-        scene.depth_buffer = DepthBuffer::float32;
-      } else {
+      const std::optional<DepthBuffer> parsed = parse_depth_buffer(buffer);
+      if (!parsed)
         fail("depth_buffer", "unknown depth buffer \"" + buffer + "\" (fixed24 or float32)");
-      }
+      scene.depth_buffer = *parsed;
     }
     if (has(root, "max_depth"))
       scene.max_depth = integer(root.at("max_depth"), "max_depth", 1, kMaxDepth);

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <ostream>
+#include <string>
+#include <utility>
 
 #include "oblique/client/program.h"
 #include "oblique/oracle/problem.h"
@@ -13,8 +15,9 @@
 namespace oblique::verify {
 
 template <class T>
-AccuracyLook<T>::AccuracyLook(const VerifyOptions& options, std::ostream& out, std::ostream& err)
-    : options_(options), out_(out), err_(err) {
+AccuracyLook<T>::AccuracyLook(const VerifyOptions& options, std::string dir, std::ostream& out,
+                              std::ostream& err)
+    : options_(options), dir_(std::move(dir)), out_(out), err_(err) {
   mine_.name = protocol::command_name(options.command);
   mine_.scalar = std::string(protocol::scalar_name<T>());
   mine_.timing = report::Timing::round_trip;
@@ -56,7 +59,7 @@ bool AccuracyLook<T>::write() {
   std::vector<report::Profile> profiles{mine_};
   for (report::Profile& p : report::core_profiles(inputs_)) profiles.push_back(std::move(p));
   report::ProfileReportOptions o;
-  o.dir = options_.accuracy_dir;
+  o.dir = dir_;
   o.title = mine_.name + " (" + mine_.scalar + ")";
   o.replay = [this](const report::ProfiledAnswer&, const std::string& json) {
     return options_.self + " verify --replay " + shell_quote(json) + " --impl " +
@@ -64,8 +67,7 @@ bool AccuracyLook<T>::write() {
   };
   const auto written = report::write_profile_report(profiles, o, err_);
   if (!written) {
-    err_ << "oblique verify: --accuracy " << options_.accuracy_dir
-         << ": the report could not be written\n";
+    err_ << "oblique verify: --accuracy " << dir_ << ": the report could not be written\n";
     return false;
   }
   const report::ProfiledAnswer* worst = nullptr;
@@ -79,7 +81,7 @@ bool AccuracyLook<T>::write() {
                   report::bits_lost(worst->worst_ulps()));
     out_ << line;
   }
-  out_ << ": " << (std::filesystem::path(options_.accuracy_dir) / "accuracy.md").string() << "\n";
+  out_ << ": " << (std::filesystem::path(dir_) / "accuracy.md").string() << "\n";
   return true;
 }
 

@@ -20,7 +20,8 @@ class AccuracyLook {
   /// Answers profiled at most (the first ones of the run); the rest are judged as usual.
   static constexpr long kMaxProfiled = 100000;
 
-  AccuracyLook(const VerifyOptions& options, std::ostream& out, std::ostream& err);
+  /// The report is written into `dir` (MatrixMode::accuracy_dir).
+  AccuracyLook(const VerifyOptions& options, std::string dir, std::ostream& out, std::ostream& err);
 
   /// An answer that passed the properties, to case `v` (sent as `request`): profiled when it is
   /// a matrix for a case with an answer; a status there is counted as refused.
@@ -33,6 +34,7 @@ class AccuracyLook {
 
  private:
   const VerifyOptions& options_;
+  const std::string dir_;
   std::ostream& out_;
   std::ostream& err_;
   report::Profile mine_;

@@ -57,16 +57,16 @@ std::string summary(const std::map<std::string, long>& counts) {
 template <class T>
 class ConsumerRun {
  public:
-  ConsumerRun(const VerifyOptions& options, std::vector<ConsumerKind> kinds, std::ostream& out,
+  ConsumerRun(const VerifyOptions& options, const ConsumerMode& mode, std::ostream& out,
               std::ostream& err)
       : options_(options),
-        kinds_(std::move(kinds)),
+        kinds_(mode.kinds),
         out_(out),
         err_(err),
         program_(options.command, std::chrono::milliseconds(
                                       static_cast<long>(options.request_timeout_seconds * 1000))),
         asked_(program_.consumers(kinds_, options.command)) {
-    asked_.mirror_design = options.mirror_design;
+    asked_.mirror_design = mode.mirror_design;
   }
 
   /// --replay's round: the program asked each kind on `round`, its picks replayed from
@@ -323,7 +323,7 @@ class ConsumerRun {
   }
 
   /// --replay: the report's round again; prints every violation.
-  Verdict replay(const Round<T>& round) {
+  Verdict replay(const Round<T>& round, const std::string& report_path) {
     if (!play(round)) {
       program_.stop();
       return Verdict::error;
@@ -331,7 +331,7 @@ class ConsumerRun {
     if (!counted()) return Verdict::error;
     if (!caught_ && total(judged_) == 0) {
       // An edited report, or a case the program is never asked about: no verdict at all.
-      err_ << "oblique verify: --replay " << options_.replay
+      err_ << "oblique verify: --replay " << report_path
            << ": the round judged nothing (left out: " << summary(left_out_)
            << "); nothing is verified\n";
       return Verdict::error;
@@ -466,12 +466,15 @@ class ConsumerRun {
 };
 
 template <class T>
-Verdict replay_in(const VerifyOptions& options, const protocol::JsonValue& report,
-                  std::ostream& out, std::ostream& err) {
+Verdict replay_in(const VerifyOptions& options, const ReplayMode& mode,
+                  const protocol::JsonValue& report, std::ostream& out, std::ostream& err) {
   std::string error;
   std::vector<T> m, c;
   Round<T> round;
-  std::vector<ConsumerKind> kinds;
+  // The design the run judged mirror_view by (absent in reports before it was recorded: the
+  // command line's).
+  ConsumerMode replayed{{}, mode.mirror_design};
+  std::vector<ConsumerKind>& kinds = replayed.kinds;
   const protocol::JsonValue* k = report.find("kinds");
   const protocol::JsonValue* picks = report.find("picks");
   const protocol::JsonValue* convention = report.find("convention");
@@ -502,9 +505,6 @@ Verdict replay_in(const VerifyOptions& options, const protocol::JsonValue& repor
     for (int i = 0; i < 4; ++i) round.c.plane(i) = c[static_cast<std::size_t>(i)];
     round.c.convention = *parsed_convention;
   }
-  // The design the run judged mirror_view by (absent in reports before it was recorded: the
-  // command line's).
-  VerifyOptions replayed = options;
   if (const protocol::JsonValue* design = report.find("mirror_design"); error.empty() && design) {
     const std::optional<oracle::MirrorDesign> parsed =
         design->is_string() ? oracle::parse_mirror_design(design->text) : std::nullopt;
@@ -514,29 +514,35 @@ Verdict replay_in(const VerifyOptions& options, const protocol::JsonValue& repor
       error = "\"mirror_design\" is reflected_view or proper_camera";
   }
   if (!error.empty()) {
-    err << "oblique verify: --replay " << options.replay << ": " << error << "\n";
+    err << "oblique verify: --replay " << mode.report << ": " << error << "\n";
     return Verdict::error;
   }
-  return ConsumerRun<T>(replayed, kinds, out, err).replay(std::move(round));
+  return ConsumerRun<T>(options, replayed, out, err).replay(std::move(round), mode.report);
 }
 
 }  // namespace
 
-Verdict replay_consumer_report(const VerifyOptions& options, const protocol::JsonValue& report,
-                               std::ostream& out, std::ostream& err) {
+Verdict replay_consumer_report(const VerifyOptions& options, const ReplayMode& mode,
+                               const protocol::JsonValue& report, std::ostream& out,
+                               std::ostream& err) {
   const protocol::JsonValue* precision = report.find("precision");
-  if (precision && precision->text == "float") return replay_in<float>(options, report, out, err);
-  if (precision && precision->text == "double") return replay_in<double>(options, report, out, err);
-  err << "oblique verify: --replay " << options.replay << ": \"precision\" is float or double\n";
+  if (precision && precision->text == "float")
+    return replay_in<float>(options, mode, report, out, err);
+  if (precision && precision->text == "double")
+    return replay_in<double>(options, mode, report, out, err);
+  err << "oblique verify: --replay " << mode.report << ": \"precision\" is float or double\n";
   return Verdict::error;
 }
 
-Verdict verify_consumers(const VerifyOptions& options, std::ostream& out, std::ostream& err) {
+Verdict verify_consumers(const VerifyOptions& options, const ConsumerMode& mode, std::ostream& out,
+                         std::ostream& err) {
+  if (mode.kinds.empty()) {
+    err << "oblique verify: --consumers names no request kind\n";
+    return Verdict::error;
+  }
   switch (options.precision) {
-    case protocol::Precision::float32:
-      return ConsumerRun<float>(options, options.consumers, out, err).run();
-    case protocol::Precision::float64:
-      return ConsumerRun<double>(options, options.consumers, out, err).run();
+    case protocol::Precision::float32: return ConsumerRun<float>(options, mode, out, err).run();
+    case protocol::Precision::float64: return ConsumerRun<double>(options, mode, out, err).run();
     case protocol::Precision::long_double: break;
   }
   err << "oblique verify: --precision is float or double\n";

@@ -13,10 +13,12 @@
 namespace oblique::verify {
 
 /// The run: rounds until --time-limit or --cases, stopping at the first violation.
-Verdict verify_consumers(const VerifyOptions& options, std::ostream& out, std::ostream& err);
+Verdict verify_consumers(const VerifyOptions& options, const ConsumerMode& mode, std::ostream& out,
+                         std::ostream& err);
 
 /// --replay of a consumer report: its round again through the program; 0 holds, 1 violated.
-Verdict replay_consumer_report(const VerifyOptions& options, const protocol::JsonValue& report,
-                               std::ostream& out, std::ostream& err);
+Verdict replay_consumer_report(const VerifyOptions& options, const ReplayMode& mode,
+                               const protocol::JsonValue& report, std::ostream& out,
+                               std::ostream& err);
 
 }  // namespace oblique::verify

@@ -7,6 +7,7 @@
 #include <limits>
 #include <ostream>
 #include <sstream>
+#include <utility>
 
 #include "failure_database.h"
 #include "oblique/client/program.h"
@@ -22,22 +23,23 @@ namespace oblique::verify {
 
 namespace {
 
-raster::Options raster_options(const VerifyOptions& options) {
+raster::Options raster_options(const RasterOptions& options) {
   raster::Options out;
-  out.device = options.raster_device == "gpu" ? raster::Device::gpu : raster::Device::software;
-  out.size = options.raster_size;
+  out.device = options.device == "gpu" ? raster::Device::gpu : raster::Device::software;
+  out.size = options.size;
   return out;
 }
 
 }  // namespace
 
 template <class T>
-RasterLook<T>::RasterLook(const VerifyOptions& options, std::ostream& out, std::ostream& err)
-    : options_(options), out_(out), err_(err) {}
+RasterLook<T>::RasterLook(const VerifyOptions& options, RasterOptions raster, std::ostream& out,
+                          std::ostream& err)
+    : options_(options), raster_(std::move(raster)), out_(out), err_(err) {}
 
 template <class T>
 bool RasterLook<T>::open() {
-  const auto opened = raster::Rasterizer::open(raster_options(options_));
+  const auto opened = raster::Rasterizer::open(raster_options(raster_));
   if (!opened) {
     err_ << "oblique verify: raster: inconclusive: " << opened.error() << "\n";
     return false;
@@ -58,8 +60,8 @@ std::optional<raster::Result> RasterLook<T>::draw(const cases::Case<T>& v,
   if (!read || read->status != Status::ok) return not_drawn("the answer holds no matrix");
   raster::Result r =
       rasterizer_->check(v.matrix.template cast<double>(), v.plane.template cast<double>(),
-                         read->projection.template cast<double>(), v.convention,
-                         options_.raster_buffer, seed, std::numeric_limits<T>::digits);
+                         read->projection.template cast<double>(), v.convention, raster_.buffer,
+                         seed, std::numeric_limits<T>::digits);
   if (!r.rendered) {
     ++not_drawn_;
     return not_drawn(r.why);
@@ -72,7 +74,7 @@ std::optional<raster::Result> RasterLook<T>::draw(const cases::Case<T>& v,
 template <class T>
 std::optional<Verdict> RasterLook<T>::sample(const cases::Case<T>& v, const std::string& request,
                                              const std::string& answer, long index) {
-  if (index != 1 && index % options_.raster_every != 0) return std::nullopt;
+  if (index != 1 && index % raster_.every != 0) return std::nullopt;
   const std::optional<raster::Result> r =
       draw(v, answer, options_.seed ^ static_cast<std::uint64_t>(index));
   if (!r || r->outcome == raster::Outcome::pass) return std::nullopt;
@@ -107,14 +109,14 @@ void RasterLook<T>::finding(const cases::Case<T>& v, const std::string& answer,
   const fs::path md_path(report_md);
   const std::string stem = md_path.stem().string() + ".raster";
   report::ReportFiles files(md_path.parent_path());
-  std::string md =
-      "# The finding's answer on the rasterizer\n\nThe answer of [" + md_path.filename().string() +
-      "](" + md_path.filename().string() + "), drawn on " + rasterizer_->renderer() + " in a " +
-      std::to_string(options_.raster_size) + " x " + std::to_string(options_.raster_size) +
-      " frame (depth buffer " + std::string(depth_buffer_name(options_.raster_buffer)) +
-      ", frame seed " + std::to_string(options_.seed) + "): **" + verdict + "**.\n\n";
+  std::string md = "# The finding's answer on the rasterizer\n\nThe answer of [" +
+                   md_path.filename().string() + "](" + md_path.filename().string() +
+                   "), drawn on " + rasterizer_->renderer() + " in a " +
+                   std::to_string(raster_.size) + " x " + std::to_string(raster_.size) +
+                   " frame (depth buffer " + std::string(depth_buffer_name(raster_.buffer)) +
+                   ", frame seed " + std::to_string(options_.seed) + "): **" + verdict + "**.\n\n";
   if (r->outcome == raster::Outcome::fail)
-    md += raster::stage_flagged_section(files, stem, *r, options_.raster_size);
+    md += raster::stage_flagged_section(files, stem, *r, raster_.size);
   files.open(stem + ".md") << md;
   std::ostringstream log;
   if (files.commit(log))
@@ -128,7 +130,7 @@ void RasterLook<T>::summary() const {
   char line[160];
   std::snprintf(line, sizeof line,
                 "%ld answers drawn %d x %d, none failed; worst depth %.3g of its bound", drawn_,
-                options_.raster_size, options_.raster_size, worst_depth_ratio_);
+                raster_.size, raster_.size, worst_depth_ratio_);
   out_ << "raster: " << rasterizer_->renderer() << ": " << line;
   if (not_drawn_ > 0)
     out_ << "; " << not_drawn_
@@ -150,11 +152,11 @@ Verdict RasterLook<T>::report(const cases::Case<T>& v, const std::string& reques
       " it fails: " + r.why +
       ".\n\n## The case\n\n- family: " + std::string(cases::family_name(v.family)) + ", place " +
       cases::case_kind(v) + "\n- convention: " + std::string(convention_name(v.convention)) +
-      ", depth buffer " + std::string(depth_buffer_name(options_.raster_buffer)) +
+      ", depth buffer " + std::string(depth_buffer_name(raster_.buffer)) +
       "\n- M: " + oracle::numbers_text(v.matrix) + "\n- C: " + oracle::numbers_text(v.plane) +
       "\n\nAnswer " + std::to_string(index) + " of the run. The request:\n\n```\n" + request +
       "\n```\n\nThe answer:\n\n```\n" + answer + "\n```\n\n";
-  md += raster::stage_flagged_section(files, stem, r, options_.raster_size);
+  md += raster::stage_flagged_section(files, stem, r, raster_.size);
   md += "\n## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
         "\n# this request again, its answer drawn (exit 0 holds, 1 fails, 3 inconclusive)\n" +
         options_.self + " verify --replay " + shell_quote(json_path) + " --impl " +
@@ -165,8 +167,8 @@ Verdict RasterLook<T>::report(const cases::Case<T>& v, const std::string& reques
       << "{\"type\": \"raster\", \"finding\": " << protocol::json_string(r.why)
       << ", \"precision\": " << protocol::json_string(protocol::scalar_name<T>())
       << ", \"convention\": " << protocol::json_string(convention_name(v.convention))
-      << ", \"buffer\": \"" << std::string(depth_buffer_name(options_.raster_buffer))
-      << "\", \"size\": " << options_.raster_size
+      << ", \"buffer\": \"" << std::string(depth_buffer_name(raster_.buffer))
+      << "\", \"size\": " << raster_.size
       << ", \"seed\": " << (options_.seed ^ static_cast<std::uint64_t>(index))
       << ", \"projection\": " << hex_list(v.matrix) << ", \"plane\": " << hex_list(v.plane)
       << ", \"request\": " << protocol::json_string(request)
@@ -179,10 +181,11 @@ Verdict RasterLook<T>::report(const cases::Case<T>& v, const std::string& reques
 template class RasterLook<float>;
 template class RasterLook<double>;
 
-Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonValue& report,
-                             std::ostream& out, std::ostream& err) {
+Verdict replay_raster_report(const VerifyOptions& options, const ReplayMode& mode,
+                             const protocol::JsonValue& report, std::ostream& out,
+                             std::ostream& err) {
   auto fail = [&](const std::string& why) {
-    err << "oblique verify: --replay " << options.replay << ": " << why << "\n";
+    err << "oblique verify: --replay " << mode.report << ": " << why << "\n";
     return Verdict::error;
   };
   const protocol::JsonValue* request = report.find("request");
@@ -199,10 +202,23 @@ Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonV
   if (!report_numbers<double>(report, "projection", 16, m, error) ||
       !report_numbers<double>(report, "plane", 4, c, error))
     return fail(error);
-  VerifyOptions o = options;
-  o.raster_buffer =
-      buffer && buffer->text == "float32" ? DepthBuffer::float32 : DepthBuffer::fixed24;
-  if (size && size->is_number()) o.raster_size = std::atoi(size->text.c_str());
+  // A report without "buffer" was drawn into the default fixed24 buffer; one that names a buffer
+  // must name a known one.
+  const std::optional<DepthBuffer> drawn_into =
+      !buffer               ? std::optional<DepthBuffer>(DepthBuffer::fixed24)
+      : buffer->is_string() ? parse_depth_buffer(buffer->text)
+                            : std::nullopt;
+  if (!drawn_into) return fail("\"buffer\" is not a depth buffer (fixed24 or float32)");
+  RasterOptions frame;
+  frame.device = mode.raster_device;
+  frame.buffer = *drawn_into;
+  if (size) {
+    char* end = nullptr;
+    const long n = size->is_number() ? std::strtol(size->text.c_str(), &end, 10) : 0;
+    if (!(end && *end == '\0' && n >= 16 && n <= 4096))
+      return fail("\"size\" must be a whole number of pixels within [16, 4096]");
+    frame.size = static_cast<int>(n);
+  }
   const std::uint64_t frame_seed =
       seed && seed->is_number() ? std::strtoull(seed->text.c_str(), nullptr, 10) : 1;
   cases::Case<double> v;
@@ -226,14 +242,13 @@ Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonV
       return fail("the implementation ended before answering (" + f.ended + ")");
   }
   const std::vector<std::string>& lines = reply.lines;
-  RasterLook<double> look(o, out, err);
+  RasterLook<double> look(options, frame, out, err);
   if (!look.open()) return Verdict::inconclusive;
   std::string why;
   const std::optional<raster::Result> r = look.draw(v, lines.front(), frame_seed, &why);
   if (!r) return fail(why + ": " + lines.front());
-  out << "oblique verify: raster: " << raster::outcome_name(r->outcome) << ": "
-      << (r->outcome == raster::Outcome::fail ? r->why : r->why) << "\n  answer: " << lines.front()
-      << "\n";
+  out << "oblique verify: raster: " << raster::outcome_name(r->outcome) << ": " << r->why
+      << "\n  answer: " << lines.front() << "\n";
   return r->outcome == raster::Outcome::pass   ? Verdict::holds
          : r->outcome == raster::Outcome::fail ? Verdict::violated
                                                : Verdict::inconclusive;

@@ -20,7 +20,8 @@ namespace oblique::verify {
 template <class T>
 class RasterLook {
  public:
-  RasterLook(const VerifyOptions& options, std::ostream& out, std::ostream& err);
+  RasterLook(const VerifyOptions& options, RasterOptions raster, std::ostream& out,
+             std::ostream& err);
 
   /// Opens the rasterizer (its self-checks included); false, said on err, when it cannot judge.
   bool open();
@@ -49,6 +50,7 @@ class RasterLook {
                  const raster::Result& result, long index);
 
   const VerifyOptions& options_;
+  const RasterOptions raster_;
   std::ostream& out_;
   std::ostream& err_;
   std::shared_ptr<raster::Rasterizer> rasterizer_;
@@ -58,7 +60,8 @@ class RasterLook {
 
 /// --replay of a raster finding's report: the request sent again, the answer drawn. Exit 0 holds,
 /// 1 fails again, 3 inconclusive, 2 when the report or the program cannot be read.
-Verdict replay_raster_report(const VerifyOptions& options, const protocol::JsonValue& report,
-                             std::ostream& out, std::ostream& err);
+Verdict replay_raster_report(const VerifyOptions& options, const ReplayMode& mode,
+                             const protocol::JsonValue& report, std::ostream& out,
+                             std::ostream& err);
 
 }  // namespace oblique::verify

@@ -8,6 +8,7 @@
 #include <limits>
 #include <ostream>
 #include <sstream>
+#include <utility>
 
 #include "failure_database.h"
 #include "oblique/oracle/problem.h"
@@ -30,9 +31,13 @@ std::string seconds_text(double seconds) {
 }  // namespace
 
 template <class T>
-Reporter<T>::Reporter(const VerifyOptions& options, const Draws<T>& draws, std::ostream& out,
-                      std::ostream& err)
-    : options_(options), draws_(draws), out_(out), err_(err) {}
+Reporter<T>::Reporter(const VerifyOptions& options, std::string save_regressions,
+                      const Draws<T>& draws, std::ostream& out, std::ostream& err)
+    : options_(options),
+      save_regressions_(std::move(save_regressions)),
+      draws_(draws),
+      out_(out),
+      err_(err) {}
 
 template <class T>
 Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int steps,
@@ -99,8 +104,8 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
   const std::string json_path = path.size() > 3 && path.compare(path.size() - 3, 3, ".md") == 0
                                     ? path.substr(0, path.size() - 3) + ".json"
                                     : "";
-  if (!json_path.empty() && !options_.save_regressions.empty())
-    save_regression(json_path, options_.save_regressions, out_, err_);
+  if (!json_path.empty() && !save_regressions_.empty())
+    save_regression(json_path, save_regressions_, out_, err_);
 
   out_ << "  " << check_name(f.check) << ": " << relation_text(f) << "\n" << sides_text(f, "  ");
   if (diagnosis.ran) out_ << "  " << mistakes::likely_cause_line(diagnosis) << "\n";

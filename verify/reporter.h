@@ -44,8 +44,9 @@ struct Kind {
 template <class T>
 class Reporter {
  public:
-  Reporter(const VerifyOptions& options, const Draws<T>& draws, std::ostream& out,
-           std::ostream& err);
+  /// `save_regressions`: a folder where each report is kept as a regression too ("" none).
+  Reporter(const VerifyOptions& options, std::string save_regressions, const Draws<T>& draws,
+           std::ostream& out, std::ostream& err);
 
   /// Writes the report of a (shrunk) finding, keeps it as a regression when asked, and prints
   /// it: Verdict::violated.
@@ -79,6 +80,7 @@ class Reporter {
 
  private:
   const VerifyOptions& options_;
+  const std::string save_regressions_;
   const Draws<T>& draws_;
   std::ostream& out_;
   std::ostream& err_;

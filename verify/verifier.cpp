@@ -38,16 +38,18 @@ namespace {
 template <class T>
 class Verifier {
  public:
-  Verifier(const VerifyOptions& options, std::ostream& out, std::ostream& err)
+  Verifier(const VerifyOptions& options, const MatrixMode& mode, std::ostream& out,
+           std::ostream& err)
       : options_(options),
+        mode_(mode),
         err_(err),
         draws_(options.contract),
         session_(options, draws_),
-        reporter_(options, draws_, out, err),
+        reporter_(options, mode.save_regressions, draws_, out, err),
         shrinker_(session_, reporter_, out, err),
         database_(session_, reporter_, out, err),
-        raster_(options, out, err),
-        accuracy_(options, out, err) {}
+        raster_(options, mode.rasterize.value_or(RasterOptions{}), out, err),
+        accuracy_(options, mode.accuracy_dir, out, err) {}
 
   /// --replay: re-judges one report's case.
   Verdict replay_report(const std::string& path) {
@@ -57,12 +59,12 @@ class Verifier {
   }
 
   Verdict run() {
-    if (!options_.regressions.empty()) {
-      const Verdict kept = database_.replay_all(options_.regressions);
+    if (!mode_.regressions.empty()) {
+      const Verdict kept = database_.replay_all(mode_.regressions);
       if (kept != Verdict::holds) return kept;
       session_.start_clock();  // the run's own time limit starts now
     }
-    if (options_.rasterize && !raster_.open()) return Verdict::inconclusive;
+    if (mode_.rasterize && !raster_.open()) return Verdict::inconclusive;
     client::Program& program = session_.program();
     const Clock::time_point deadline = session_.deadline();
     const auto idle = session_.idle();
@@ -115,16 +117,16 @@ class Verifier {
           const std::string key = std::string(check_name(finding.finding.check)) + " x " +
                                   std::string(cases::family_name(v.family)) + " x " +
                                   cases::case_kind(v);
-          if (options_.keep_going && kinds.count(key)) {
+          if (mode_.keep_going && kinds.count(key)) {
             ++kinds[key].repeats;  // this kind is reported already
             continue;
           }
           const Verdict result =
               shrinker_.confirm(current, k, answers, finding, done + static_cast<long>(k) + 1);
           // Drawn once confirmed: an answer out of step with its request is no finding to draw.
-          if (options_.rasterize && result == Verdict::violated)
+          if (mode_.rasterize && result == Verdict::violated)
             raster_.finding(v, answers[k], reporter_.last_report());
-          if (!options_.keep_going || result != Verdict::violated) return result;
+          if (!mode_.keep_going || result != Verdict::violated) return result;
           kinds[key] = Kind{reporter_.last_report(), 1, reporter_.last_cause()};
           if (Clock::now() >= deadline) break;
           // Go on with a fresh process, sent what the old one had queued.
@@ -138,10 +140,10 @@ class Verifier {
           restarted = true;
         }
         seen.count(current.values[k]);
-        if (!options_.accuracy_dir.empty() && !judged[k].finding)
+        if (!mode_.accuracy_dir.empty() && !judged[k].finding)
           accuracy_.passed(current.values[k], current.requests[k], answers[k]);
         // Drawing stops at the time limit (the answers left are judged, not drawn).
-        if (options_.rasterize && !judged[k].finding && Clock::now() < deadline) {
+        if (mode_.rasterize && !judged[k].finding && Clock::now() < deadline) {
           const long index = done + static_cast<long>(k) + 1;
           if (const std::optional<Verdict> drawn =
                   raster_.sample(current.values[k], current.requests[k], answers[k], index)) {
@@ -181,7 +183,7 @@ class Verifier {
           return Verdict::error;
         }
         const Verdict result = shrinker_.isolate(current.cases, answers.size(), done, *failure);
-        if (result == Verdict::violated && options_.keep_going && !kinds.empty() &&
+        if (result == Verdict::violated && mode_.keep_going && !kinds.empty() &&
             !reporter_.last_report().empty()) {
           kinds[reporter_.last_kind() + " (ends the run)"] =
               Kind{reporter_.last_report(), 1, reporter_.last_cause()};
@@ -229,8 +231,8 @@ class Verifier {
     const Verdict verdict = reporter_.passed(done, session_.seconds_since_start(), seen, left_out,
                                              stopped_by_time, dropped);
     if (verdict != Verdict::holds) return verdict;
-    if (options_.rasterize) raster_.summary();
-    if (!options_.accuracy_dir.empty() && verdict == Verdict::holds && !accuracy_.write())
+    if (mode_.rasterize) raster_.summary();
+    if (!mode_.accuracy_dir.empty() && verdict == Verdict::holds && !accuracy_.write())
       return Verdict::error;
     return verdict;
   }
@@ -251,6 +253,7 @@ class Verifier {
   }
 
   const VerifyOptions& options_;
+  const MatrixMode mode_;
   std::ostream& err_;
   Draws<T> draws_;
   Session<T> session_;
@@ -314,13 +317,63 @@ std::string check_report_directory(const std::string& directory) {
   return "";
 }
 
+/// --replay: the report's own mode and scalar type, whatever the command line says.
+Verdict replay(const VerifyOptions& given, const ReplayMode& mode, std::ostream& out,
+               std::ostream& err) {
+  VerifyOptions options = given;
+  if (const Expected<protocol::JsonValue> report = read_report(mode.report); report) {
+    if (report_is(*report, "consumers"))
+      return replay_consumer_report(options, mode, *report, out, err);
+    if (report_is(*report, "raster")) return replay_raster_report(options, mode, *report, out, err);
+  }
+  const Expected<std::optional<protocol::Precision>> precision = report_precision(mode.report);
+  if (!precision) {
+    err << "oblique verify: --replay: cannot read the report " << mode.report << " ("
+        << precision.error() << ")\n";
+    return Verdict::error;
+  }
+  if (*precision) options.precision = **precision;
+  switch (options.precision) {
+    case protocol::Precision::float32:
+      return Verifier<float>(options, MatrixMode{}, out, err).replay_report(mode.report);
+    case protocol::Precision::float64:
+      return Verifier<double>(options, MatrixMode{}, out, err).replay_report(mode.report);
+    case protocol::Precision::long_double: break;
+  }
+  err << "oblique verify: --replay: a long_double report\n";
+  return Verdict::error;
+}
+
+Verdict verify_matrices(const VerifyOptions& options, const MatrixMode& mode, std::ostream& out,
+                        std::ostream& err) {
+  if (mode.rasterize &&
+      !(mode.rasterize->every >= 1 && mode.rasterize->size >= 16 && mode.rasterize->size <= 4096)) {
+    err << "oblique verify: --raster-every must be at least 1 and --raster-size within [16, "
+           "4096]\n";
+    return Verdict::error;
+  }
+  if (std::string why = mode.accuracy_dir.empty() ? "" : check_report_directory(mode.accuracy_dir);
+      !why.empty()) {
+    err << "oblique verify: --accuracy " << mode.accuracy_dir << ": " << why << "\n";
+    return Verdict::error;
+  }
+  switch (options.precision) {
+    case protocol::Precision::float32: return Verifier<float>(options, mode, out, err).run();
+    case protocol::Precision::float64: return Verifier<double>(options, mode, out, err).run();
+    case protocol::Precision::long_double: break;
+  }
+  err << "oblique verify: --precision is float or double\n";
+  return Verdict::error;
+}
+
 }  // namespace
 
 int default_threads() {
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& err) {
+Verdict run_verify(const VerifyOptions& given, const Mode& mode, std::ostream& out,
+                   std::ostream& err) {
   ::signal(SIGPIPE, SIG_IGN);  // a child that exits must not take us with it
   VerifyOptions options = given;
   if (options.command.empty()) {
@@ -347,77 +400,17 @@ Verdict run_verify(const VerifyOptions& given, std::ostream& out, std::ostream& 
     err << "oblique verify: --threads must be between 1 and 256, not " << options.threads << "\n";
     return Verdict::error;
   }
+  if (options.seed == 0) options.seed = std::random_device{}() | 1u;
+  if (const auto* replayed = std::get_if<ReplayMode>(&mode))
+    return replay(options, *replayed, out, err);
   // The report directory is checked before the run: a finding must not be lost after shrinking.
-  if (std::string why = options.replay.empty() ? check_report_directory(options.report_dir) : "";
-      !why.empty()) {
+  if (std::string why = check_report_directory(options.report_dir); !why.empty()) {
     err << "oblique verify: --report-dir " << options.report_dir << ": " << why << "\n";
     return Verdict::error;
   }
-  if (std::string why = options.accuracy_dir.empty() || !options.replay.empty()
-                            ? ""
-                            : check_report_directory(options.accuracy_dir);
-      !why.empty()) {
-    err << "oblique verify: --accuracy " << options.accuracy_dir << ": " << why << "\n";
-    return Verdict::error;
-  }
-  if (options.seed == 0) options.seed = std::random_device{}() | 1u;
-  if (!options.replay.empty()) {
-    if (const Expected<protocol::JsonValue> report = read_report(options.replay); report) {
-      if (report_is(*report, "consumers"))
-        return replay_consumer_report(options, *report, out, err);
-      if (report_is(*report, "raster")) return replay_raster_report(options, *report, out, err);
-    }
-    // The report's precision, whatever --precision says.
-    const Expected<std::optional<protocol::Precision>> precision = report_precision(options.replay);
-    if (!precision) {
-      err << "oblique verify: --replay: cannot read the report " << options.replay << " ("
-          << precision.error() << ")\n";
-      return Verdict::error;
-    }
-    if (*precision) options.precision = **precision;
-    switch (options.precision) {
-      case protocol::Precision::float32:
-        return Verifier<float>(options, out, err).replay_report(options.replay);
-      case protocol::Precision::float64:
-        return Verifier<double>(options, out, err).replay_report(options.replay);
-      case protocol::Precision::long_double:
-        err << "oblique verify: --replay: a long_double report\n";
-        return Verdict::error;
-    }
-  }
-  if (options.rasterize &&
-      !(options.raster_every >= 1 && options.raster_size >= 16 && options.raster_size <= 4096)) {
-    err << "oblique verify: --raster-every must be at least 1 and --raster-size within [16, "
-           "4096]\n";
-    return Verdict::error;
-  }
-  if (!options.consumers.empty()) {
-    if (!options.accuracy_dir.empty()) {
-      err << "oblique verify: --accuracy profiles oblique matrices; it does not apply to "
-             "--consumers\n";
-      return Verdict::error;
-    }
-    if (options.rasterize) {
-      err << "oblique verify: --rasterize draws oblique matrices; it does not apply to "
-             "--consumers\n";
-      return Verdict::error;
-    }
-    if (options.keep_going || !options.regressions.empty() || !options.save_regressions.empty()) {
-      err << "oblique verify: --keep-going, --regressions and --save-regressions do not apply "
-             "to --consumers (a consumer run stops at its first violation; replay its report "
-             "with --replay)\n";
-      return Verdict::error;
-    }
-    return verify_consumers(options, out, err);
-  }
-  switch (options.precision) {
-    case protocol::Precision::float32: return Verifier<float>(options, out, err).run();
-    case protocol::Precision::float64: return Verifier<double>(options, out, err).run();
-    case protocol::Precision::long_double:
-      err << "oblique verify: --precision is float or double\n";
-      return Verdict::error;
-  }
-  return Verdict::error;
+  if (const auto* consumers = std::get_if<ConsumerMode>(&mode))
+    return verify_consumers(options, *consumers, out, err);
+  return verify_matrices(options, std::get<MatrixMode>(mode), out, err);
 }
 
 }  // namespace oblique::verify

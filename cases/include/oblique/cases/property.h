@@ -2,7 +2,10 @@
 // oracle/problem.h).
 #pragma once
 
+#include <optional>
 #include <string_view>
+
+#include "oblique/util/enum_names.h"
 
 namespace oblique::cases {
 
@@ -19,16 +22,20 @@ inline constexpr Property all_properties[] = {
     Property::near_is_clip_plane, Property::side_rows_unchanged, Property::far_plane_through_corner,
     Property::no_clipping, Property::infinite_edge_parallel};
 
+inline constexpr EnumName<Property> property_names[] = {
+    {Property::near_is_clip_plane, "near_is_clip_plane"},
+    {Property::side_rows_unchanged, "side_rows_unchanged"},
+    {Property::far_plane_through_corner, "far_plane_through_corner"},
+    {Property::no_clipping, "no_clipping"},
+    {Property::infinite_edge_parallel, "infinite_edge_parallel"},
+    {Property::extracted_planes_match, "extracted_planes_match"}};
+
 constexpr std::string_view property_name(Property p) noexcept {
-  switch (p) {
-    case Property::near_is_clip_plane: return "near_is_clip_plane";
-    case Property::side_rows_unchanged: return "side_rows_unchanged";
-    case Property::far_plane_through_corner: return "far_plane_through_corner";
-    case Property::no_clipping: return "no_clipping";
-    case Property::infinite_edge_parallel: return "infinite_edge_parallel";
-    case Property::extracted_planes_match: return "extracted_planes_match";
-  }
-  return "unknown";
+  return name_in(property_names, p);
+}
+/// Inverse of property_name(); none for an unknown name.
+constexpr std::optional<Property> parse_property(std::string_view name) noexcept {
+  return value_in(property_names, name);
 }
 
 }  // namespace oblique::cases

@@ -18,10 +18,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string_view>
 
 #include "oblique/depth_convention.h"
 #include "oblique/plane.h"
+#include "oblique/util/enum_names.h"
 
 namespace oblique {
 
@@ -33,8 +35,15 @@ using Vector3 = Eigen::Matrix<T, 3, 1>;
 enum class DepthBuffer { fixed24, float32 };
 
 /// "fixed24" or "float32", as scenes, reports and the protocol name them.
+inline constexpr EnumName<DepthBuffer> depth_buffer_names[] = {{DepthBuffer::fixed24, "fixed24"},
+                                                               {DepthBuffer::float32, "float32"}};
+
 constexpr std::string_view depth_buffer_name(DepthBuffer buffer) noexcept {
-  return buffer == DepthBuffer::fixed24 ? "fixed24" : "float32";
+  return name_in(depth_buffer_names, buffer);
+}
+/// Inverse of depth_buffer_name(); none for an unknown name.
+constexpr std::optional<DepthBuffer> parse_depth_buffer(std::string_view name) noexcept {
+  return value_in(depth_buffer_names, name);
 }
 
 /// The largest value of a fixed24 depth buffer.

@@ -7,11 +7,13 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <string_view>
 #include <vector>
 
 #include "oblique/oracle/consumers.h"
 #include "oblique/references/kept_region.h"
 #include "oblique/references/pass_camera.h"
+#include "oblique/util/enum_names.h"
 
 namespace oblique::oracle::consumer_cases {
 
@@ -141,8 +143,11 @@ void plane_samples(const Vector4<T>& plane, Pick&& pick, std::vector<Vector4<T>>
 /// The passes whose camera and plane are checked.
 enum class PassKind { mirror, clip, portal };
 
-inline const char* pass_kind_name(PassKind kind) {
-  return kind == PassKind::mirror ? "mirror" : kind == PassKind::clip ? "clip" : "portal";
+inline constexpr EnumName<PassKind> pass_kind_names[] = {
+    {PassKind::mirror, "mirror"}, {PassKind::clip, "clip"}, {PassKind::portal, "portal"}};
+
+constexpr std::string_view pass_kind_name(PassKind kind) noexcept {
+  return name_in(pass_kind_names, kind);
 }
 
 /// What a pass camera's plane is asked for: the pass's view, the world plane it keeps the front

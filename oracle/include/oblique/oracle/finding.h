@@ -45,6 +45,18 @@ constexpr std::optional<Property> property_of(Check c) noexcept {
   return static_cast<Property>(static_cast<int>(c) - static_cast<int>(Check::near_is_clip_plane));
 }
 
+/// The names of the checks that are not properties (a property's check is named by the property:
+/// property_names).
+inline constexpr EnumName<Check> tool_check_names[] = {
+    {Check::status, "status"},
+    {Check::finite_result, "finite_result"},
+    {Check::row3_accuracy, "row3_accuracy"},
+    {Check::accurate_ulps, "accurate_ulps"},
+    {Check::methods_agree, "closed_form_and_general_agree"},
+    {Check::crash, "crash"},
+    {Check::timeout, "timeout"},
+    {Check::protocol, "protocol"}};
+
 /// A check's name: a property's own (property_name()), "status", "row3_accuracy", ...
 std::string_view check_name(Check c) noexcept;
 /// The check of that name, if any.

@@ -5,7 +5,9 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "oblique/cases/contract.h"
@@ -20,6 +22,8 @@ namespace oblique::verify {
 /// The machine's hardware threads (at least 1).
 int default_threads();
 
+/// What every mode of `oblique verify` has: the program, what it promises, the budget, where the
+/// reports go.
 struct VerifyOptions {
   std::string command;  ///< the implementation, run under /bin/sh -c
   /// What the implementation promises, and so which inputs it is sent and how its answers are
@@ -42,33 +46,50 @@ struct VerifyOptions {
   /// A claimed family, convention or consumer kind with more than kLeftOutWarning of
   /// its drawn cases left out fails the run (exit 2) instead of a warning line.
   bool strict = false;
+};
+
+/// --rasterize: the first answer, one in `every` after it, and every finding's answer drawn on a
+/// real rasterizer (oblique::raster) in `size` x `size` frames.
+struct RasterOptions {
+  std::string device = "software";  ///< software (llvmpipe) or gpu
+  int size = 256;                   ///< [16, 4096]
+  long every = 1000;                ///< at least 1
+  DepthBuffer buffer = DepthBuffer::fixed24;
+};
+
+/// The default mode: the oblique matrix asked and judged by the properties.
+struct MatrixMode {
   /// Go on after a finding: each distinct kind (property x family x place) is shrunk once and
   /// reported, plus an index; the exit status is 1 if any was found.
   bool keep_going = false;
-  /// Re-judge the case of this report (its JSON) instead of a run: exit 0 holds, 1 violated.
-  std::string replay;
   std::string regressions;       ///< replay every report kept here before the run
   std::string save_regressions;  ///< keep each new shrunk case here
-
-  /// --consumers: ask these request kinds of the code around the matrix (consumer_messages.h)
-  /// instead of the oblique matrix, round by round, judged by the consumer properties.
-  std::vector<protocol::ConsumerKind> consumers;
-  /// --mirror-design: the design the program's mirror_view builds (oracle/consumers.h).
-  oracle::MirrorDesign mirror_design = oracle::MirrorDesign::reflected_view;
-
-  /// --rasterize: the first answer, one in `raster_every` after it, and every finding's answer
-  /// drawn on a real rasterizer (oblique::raster) in `raster_size` x `raster_size` frames.
-  bool rasterize = false;
-  std::string raster_device = "software";  ///< software (llvmpipe) or gpu
-  int raster_size = 256;
-  long raster_every = 1000;
-  DepthBuffer raster_buffer = DepthBuffer::fixed24;
-
+  std::optional<RasterOptions> rasterize;
   /// --accuracy DIR: every answer that passes profiled (row 3's error against the exact answer),
   /// the round trip timed, the core's methods measured on the same cases; the report written
   /// into DIR at the end of a run that holds (docs/accuracy-and-performance.md).
   std::string accuracy_dir;
 };
+
+/// --consumers: these request kinds of the code around the matrix (consumer_messages.h) asked
+/// instead of the oblique matrix, round by round, judged by the consumer properties; the run
+/// stops at its first violation.
+struct ConsumerMode {
+  std::vector<protocol::ConsumerKind> kinds;
+  /// --mirror-design: the design the program's mirror_view builds (oracle/consumers.h).
+  oracle::MirrorDesign mirror_design = oracle::MirrorDesign::reflected_view;
+};
+
+/// --replay: the case of one report (its JSON) judged again: exit 0 holds, 1 violated. The
+/// report says its mode, scalar type and, for a raster report, its frame.
+struct ReplayMode {
+  std::string report;
+  std::string raster_device = "software";  ///< where a raster report's frame is drawn
+  /// The design a consumer report's mirror_view is judged by where the report records none.
+  oracle::MirrorDesign mirror_design = oracle::MirrorDesign::reflected_view;
+};
+
+using Mode = std::variant<MatrixMode, ConsumerMode, ReplayMode>;
 
 /// How a run ended; the CLI exits with its value.
 enum class Verdict {
@@ -81,7 +102,8 @@ enum class Verdict {
   inconclusive = 3,  ///< --rasterize: the rasterizer cannot judge (no EGL, a self-check tripped)
 };
 
-/// Runs `oblique verify`, saying on `out` and `err` what it did.
-Verdict run_verify(const VerifyOptions& options, std::ostream& out, std::ostream& err);
+/// Runs `oblique verify` in `mode`, saying on `out` and `err` what it did.
+Verdict run_verify(const VerifyOptions& options, const Mode& mode, std::ostream& out,
+                   std::ostream& err);
 
 }  // namespace oblique::verify
