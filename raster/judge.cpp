@@ -1,11 +1,14 @@
-// The frame's samples and the judgement of what the rasterizer gave back (no GL here: the tests
-// judge made-up read-backs too). Bounds: oblique/oracle/tolerance.h, "The rasterizer".
+// The frame's samples, the judgement of what the rasterizer gave back, and a check prepared for
+// the renderer (no GL here: the tests judge made-up read-backs too, and a frame is built on any
+// thread). Bounds: oblique/oracle/tolerance.h, "The rasterizer".
 #include <Eigen/LU>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
-#include <random>
+#include <string>
 
+#include "oblique/oblique.h"
 #include "oblique/oracle/problem.h"
 #include "oblique/oracle/tolerance.h"
 #include "oblique/raster/raster.h"
@@ -135,6 +138,26 @@ Bounded window(const Bounded& ndc, int size) {
   return {pixel, (ndc.bound * half + tol::kRasterUnit * std::abs(pixel)) * tol::kRasterBandSlack};
 }
 
+/// The frame's random numbers: a SplitMix64 stream (Steele, Lea and Flood) for each pixel, started
+/// from the frame's seed and the pixel's index, and uniform doubles in [0, 1) from its top 53
+/// bits. Written out rather than std::uniform_real_distribution, whose values differ between
+/// standard libraries, so that a raster report's frame seed draws the same frame everywhere; and
+/// one stream a pixel, so that a pixel's sample does not depend on the pixels before it.
+class PixelRandom {
+ public:
+  PixelRandom(std::uint64_t seed, std::uint64_t pixel) : state_(mix(seed + mix(pixel + 1))) {}
+  double unit() { return static_cast<double>(mix(state_ += kGamma) >> 11) * 0x1p-53; }
+
+ private:
+  static constexpr std::uint64_t kGamma = 0x9E3779B97F4A7C15ull;
+  static std::uint64_t mix(std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  std::uint64_t state_;
+};
+
 }  // namespace
 
 Frame make_frame(const Matrix4d& m, const Vector4d& c, const Matrix4d& reference,
@@ -152,17 +175,17 @@ Frame make_frame(const Matrix4d& m, const Vector4d& c, const Matrix4d& reference
   const Vector4d planes[] = {scaled_plane(c), combined(m, near_rows(convention)),
                              combined(m, far_rows(convention)),
                              combined(reference, far_rows(convention))};
-  std::mt19937_64 engine(seed);
-  std::uniform_real_distribution<double> unit(0, 1);
   for (int j = 0; j < size; ++j) {
     for (int i = 0; i < size; ++i) {
       const long k = static_cast<long>(j) * size + i;
+      PixelRandom random(seed, static_cast<std::uint64_t>(k));
+      const auto unit = [&random] { return random.unit(); };
       const double x = (2.0 * i + 1) / size - 1, y = (2.0 * j + 1) / size - 1;
       // On the pixel's ray, M P = (x, y, z(s), 1): s = 0 at the near plane, 1 at the far one.
       const Vector4d a = inverse * Vector4d(x, y, z_near, 1);
       const Vector4d b = inverse * Vector4d(x, y, z_far, 1);
-      const double pick = unit(engine);
-      double s = -0.25 + 1.5 * unit(engine);  // a quarter of the samples anywhere along the ray
+      const double pick = unit();
+      double s = -0.25 + 1.5 * unit();  // a quarter of the samples anywhere along the ray
       if (pick < 0.75) {
         // At a distance t from the plane, relative to the plane's terms where the ray crosses it:
         // Pi . P(s) = t P(s)_w, solved for s (Pi . v moves with s as a Mobius function: bunching
@@ -172,12 +195,12 @@ Frame make_frame(const Matrix4d& m, const Vector4d& c, const Matrix4d& reference
         const double crossing = pa / (pa - pb);
         const Vector4d on = (1 - crossing) * a + crossing * b;
         const double magnitude = plane.cwiseAbs().dot((on / on.w()).cwiseAbs());
-        const double t =
-            (unit(engine) < 0.5 ? -1 : 1) * std::pow(10.0, -(1 + 7 * unit(engine))) * magnitude;
+        const double sign = unit() < 0.5 ? -1 : 1;  // drawn in this order, the same everywhere
+        const double t = sign * std::pow(10.0, -(1 + 7 * unit())) * magnitude;
         const double at = (pa - t * a.w()) / ((pa - pb) - t * (a.w() - b.w()));
         if (std::isfinite(at)) s = at;
       }
-      for (int attempt = 0; attempt < 2; ++attempt, s = unit(engine)) {
+      for (int attempt = 0; attempt < 2; ++attempt, s = unit()) {
         const Vector4d p = (1 - s) * a + s * b;
         if (!(p.w() > 0)) continue;  // behind the eye in camera space
         const Vector4d v = p / p.w();
@@ -417,6 +440,30 @@ AxisDepth measure_axis(const Readback& readback, Convention, DepthBuffer buffer)
   out.values = depth_buffer_values(out.low, out.high, buffer);
   out.bits_lost = std::log2(depth_buffer_values(0.0, 1.0, buffer) / out.values);
   return out;
+}
+
+PreparedCheck prepare_check(const Matrix4d& m, const Vector4d& c,
+                            const Matrix4d& answer, Convention convention,
+                            DepthBuffer buffer, int size, std::uint64_t seed, int precision_bits) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  PreparedCheck p;
+  p.m = m;
+  p.c = c;
+  p.answer = answer;
+  p.convention = convention;
+  p.buffer = buffer;
+  const ObliqueResult<double> core = apply<double>(m, c, convention);
+  if (core.status != Status::ok) {
+    p.why = "the core has no answer for M and C to judge against (" +
+            std::string(status_code(core.status)) + ")";
+    return p;
+  }
+  p.reference = core.projection;
+  p.frame = make_frame(m, c, p.reference, convention, size, seed);
+  p.accepted = accepted_row3(m, c, convention, precision_bits);
+  p.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return p;
 }
 
 }  // namespace oblique::raster

@@ -39,6 +39,12 @@ Result Rasterizer::check(const Eigen::Matrix4d&, const Eigen::Vector4d&, const E
   return r;
 }
 
+Result Rasterizer::check(const PreparedCheck&) {
+  Result r;
+  r.why = "no EGL in this build";
+  return r;
+}
+
 Expected<std::shared_ptr<Rasterizer>> Rasterizer::open(const Options&) {
   return Expected<std::shared_ptr<Rasterizer>>::failure(
       "no EGL: this oblique was built without EGL and OpenGL; install libegl-dev libgl-dev "

@@ -414,27 +414,34 @@ Expected<std::vector<std::optional<double>>> Rasterizer::stored_depths(
 Result Rasterizer::check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
                          const Eigen::Matrix4d& answer, Convention convention, DepthBuffer buffer,
                          std::uint64_t seed, int precision_bits) {
+  return check(prepare_check(m, c, answer, convention, buffer, state_->options.size, seed,
+                             precision_bits));
+}
+
+Result Rasterizer::check(const PreparedCheck& p) {
   using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  const ObliqueResult<double> core = apply<double>(m, c, convention);
-  if (core.status != Status::ok) {
+  if (!p.why.empty()) {
     Result r;
-    r.why = "the core has no answer for M and C to judge against (" +
-            std::string(status_code(core.status)) + ")";
+    r.why = p.why;
     return r;
   }
-  const Eigen::Matrix4d& reference = core.projection;
-  const Frame frame = make_frame(m, c, reference, convention, state_->options.size, seed);
-  const Expected<Readback> readback = render(frame, answer, convention, buffer);
+  if (p.frame.size != state_->options.size) {
+    Result r;
+    r.why = "not rendered: a frame of " + std::to_string(p.frame.size) + " pixels a side, not " +
+            std::to_string(state_->options.size);
+    return r;
+  }
+  const auto start = Clock::now();
+  const Expected<Readback> readback = render(p.frame, p.answer, p.convention, p.buffer);
   const auto rendered = Clock::now();
   if (!readback) {
     Result r;
     r.why = "not rendered: " + readback.error();
     return r;
   }
-  Result r = judge_frame(frame, *readback, m, c, answer, reference,
-                         accepted_row3(m, c, convention, precision_bits), convention, buffer);
-  r.render_seconds = std::chrono::duration<double>(rendered - start).count();
+  Result r = judge_frame(p.frame, *readback, p.m, p.c, p.answer, p.reference, p.accepted,
+                         p.convention, p.buffer);
+  r.render_seconds = p.seconds + std::chrono::duration<double>(rendered - start).count();
   r.judge_seconds = std::chrono::duration<double>(Clock::now() - rendered).count();
   return r;
 }

@@ -9,6 +9,7 @@
 #include "oblique/mistakes/mistakes.h"
 #include "oblique/oblique.h"
 #include "oblique/projection.h"
+#include "oblique/raster/check_pipeline.h"
 #include "oblique/raster/raster.h"
 
 namespace {
@@ -231,6 +232,82 @@ TEST(RasterJudge, theFrameBunchesSamplesAtCOnBothSides) {
   }
   EXPECT_GT(near_front, 100);
   EXPECT_GT(near_back, 100);
+}
+
+// The pipeline (frames built and read-backs judged on threads of their own) gives each job the
+// Result that Rasterizer::check() gives it, in submission order: right and wrong answers, and an
+// input the core has no answer for (nothing drawn, the same reason said).
+TEST(RasterPipeline, givesEachJobTheResultOfACheck) {
+  REQUIRE_RASTERIZER();
+  using oblique::raster::CheckPipeline;
+  std::vector<CheckPipeline::Job> jobs;
+  for (const Convention convention : oblique::all_conventions) {
+    for (const Case& k : cases(convention)) {
+      CheckPipeline::Job job;
+      job.m = k.m;
+      job.c = k.c;
+      job.answer = oblique::apply<double>(k.m, k.c, convention).projection;
+      job.convention = convention;
+      job.buffer = jobs.size() % 2 ? DepthBuffer::float32 : DepthBuffer::fixed24;
+      job.seed = 100 + jobs.size();
+      job.tag = static_cast<long>(jobs.size());
+      jobs.push_back(job);
+      job.answer.row(2) *= 1 + 1e-1;  // wrong: caught
+      job.tag = static_cast<long>(jobs.size());
+      jobs.push_back(job);
+    }
+  }
+  CheckPipeline::Job refused = jobs.front();
+  refused.c = Vector4d(0, 0, -1, 1);  // C_w > 0: the core has no answer
+  refused.tag = static_cast<long>(jobs.size());
+  jobs.push_back(refused);
+  std::vector<CheckPipeline::Done> done;
+  {
+    CheckPipeline pipeline(*shared());
+    for (const CheckPipeline::Job& job : jobs) {
+      std::vector<CheckPipeline::Done> now = pipeline.submit(job);
+      EXPECT_LE(now.size(), 1u);
+      for (auto& d : now) done.push_back(std::move(d));
+    }
+    for (auto& d : pipeline.drain()) done.push_back(std::move(d));
+  }
+  ASSERT_EQ(done.size(), jobs.size());
+  long failed = 0;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const CheckPipeline::Job& job = jobs[i];
+    EXPECT_EQ(done[i].first, job.tag);
+    const auto alone =
+        shared()->check(job.m, job.c, job.answer, job.convention, job.buffer, job.seed);
+    const auto& piped = done[i].second;
+    EXPECT_EQ(piped.outcome, alone.outcome) << i << ": " << alone.why;
+    EXPECT_EQ(piped.why, alone.why) << i;
+    EXPECT_EQ(piped.rendered, alone.rendered) << i;
+    EXPECT_EQ(piped.placed, alone.placed) << i;
+    EXPECT_EQ(piped.drawn, alone.drawn) << i;
+    EXPECT_EQ(piped.clipped_kept, alone.clipped_kept) << i;
+    EXPECT_EQ(piped.drawn_behind_c, alone.drawn_behind_c) << i;
+    failed += piped.outcome == Outcome::fail;
+  }
+  EXPECT_GT(failed, 0);
+  EXPECT_FALSE(done.back().second.rendered);
+}
+
+// A frame is a function of its inputs and seed alone: drawn twice, the same samples (a raster
+// report's frame seed replays its frame).
+TEST(RasterJudge, aFrameSeedDrawsTheSameFrame) {
+  const Case k = cases(Convention::gl)[1];
+  const Matrix4d answer = oblique::apply<double>(k.m, k.c, Convention::gl).projection;
+  const auto a = oblique::raster::make_frame(k.m, k.c, answer, Convention::gl, 64, 12345);
+  const auto b = oblique::raster::make_frame(k.m, k.c, answer, Convention::gl, 64, 12345);
+  const auto other = oblique::raster::make_frame(k.m, k.c, answer, Convention::gl, 64, 12346);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  long differ = 0;
+  for (std::size_t p = 0; p < a.points.size(); ++p) {
+    EXPECT_EQ(a.placed[p], b.placed[p]);
+    EXPECT_EQ(a.points[p], b.points[p]);
+    differ += a.placed[p] && other.placed[p] && a.points[p] != other.points[p];
+  }
+  EXPECT_GT(differ, static_cast<long>(a.points.size()) / 2);
 }
 
 }  // namespace

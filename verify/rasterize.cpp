@@ -62,28 +62,64 @@ std::optional<raster::Result> RasterLook<T>::draw(const cases::Case<T>& v,
       rasterizer_->check(v.matrix.template cast<double>(), v.plane.template cast<double>(),
                          read->projection.template cast<double>(), v.convention, raster_.buffer,
                          seed, std::numeric_limits<T>::digits);
+  if (!tally(r)) return not_drawn(r.why);
+  return r;
+}
+
+template <class T>
+bool RasterLook<T>::tally(const raster::Result& r) {
   if (!r.rendered) {
     ++not_drawn_;
-    return not_drawn(r.why);
+    return false;
   }
   ++drawn_;
   worst_depth_ratio_ = std::max(worst_depth_ratio_, r.worst_depth_ratio);
-  return r;
+  return true;
 }
 
 template <class T>
 std::optional<Verdict> RasterLook<T>::sample(const cases::Case<T>& v, const std::string& request,
                                              const std::string& answer, long index) {
   if (index != 1 && index % raster_.every != 0) return std::nullopt;
-  const std::optional<raster::Result> r =
-      draw(v, answer, options_.seed ^ static_cast<std::uint64_t>(index));
-  if (!r || r->outcome == raster::Outcome::pass) return std::nullopt;
-  if (r->outcome == raster::Outcome::inconclusive) {
-    err_ << "oblique verify: raster: inconclusive at answer " << index << ": " << r->why
-         << "\n  request: " << request << "\n  the run again: " << rerun_command(options_) << "\n";
-    return Verdict::inconclusive;
+  const Expected<Answer<T>> read = protocol::read_answer<T>(answer);
+  if (!read || read->status != Status::ok) return std::nullopt;  // no matrix to draw
+  if (!pipeline_) pipeline_ = std::make_unique<raster::CheckPipeline>(*rasterizer_);
+  in_flight_[index] = Drawn{v, request, answer};
+  raster::CheckPipeline::Job job;
+  job.m = v.matrix.template cast<double>();
+  job.c = v.plane.template cast<double>();
+  job.answer = read->projection.template cast<double>();
+  job.convention = v.convention;
+  job.buffer = raster_.buffer;
+  job.seed = options_.seed ^ static_cast<std::uint64_t>(index);
+  job.precision_bits = std::numeric_limits<T>::digits;
+  job.tag = index;
+  return settle(pipeline_->submit(std::move(job)));
+}
+
+template <class T>
+std::optional<Verdict> RasterLook<T>::drain() {
+  if (!pipeline_) return std::nullopt;
+  return settle(pipeline_->drain());
+}
+
+template <class T>
+std::optional<Verdict> RasterLook<T>::settle(std::vector<raster::CheckPipeline::Done> done) {
+  for (auto& [index, r] : done) {
+    const auto found = in_flight_.find(index);
+    if (found == in_flight_.end()) continue;
+    const Drawn drawn = std::move(found->second);
+    in_flight_.erase(found);
+    if (!tally(r) || r.outcome == raster::Outcome::pass) continue;
+    if (r.outcome == raster::Outcome::inconclusive) {
+      err_ << "oblique verify: raster: inconclusive at answer " << index << ": " << r.why
+           << "\n  request: " << drawn.request << "\n  the run again: " << rerun_command(options_)
+           << "\n";
+      return Verdict::inconclusive;
+    }
+    return report(drawn.v, drawn.request, drawn.answer, r, index);
   }
-  return report(v, request, answer, *r, index);
+  return std::nullopt;
 }
 
 template <class T>

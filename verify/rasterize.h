@@ -6,12 +6,14 @@
 #pragma once
 
 #include <iosfwd>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "cases.h"
 #include "oblique/protocol/json.h"
+#include "oblique/raster/check_pipeline.h"
 #include "oblique/raster/raster.h"
 #include "oblique/verify/verifier.h"
 
@@ -27,10 +29,15 @@ class RasterLook {
   bool open();
 
   /// The answer line to case `v` (sent as `request`), the `index`-th answer of the run from 1:
-  /// drawn when its turn comes. A failure on the rasterizer is reported (Verdict::violated), a
-  /// tripped self-check ends the run (Verdict::inconclusive); otherwise nullopt.
+  /// drawn when its turn comes, in a raster::CheckPipeline (its frame built and the answer before
+  /// it judged on other threads), so the verdict returned is an earlier answer's: a failure on
+  /// the rasterizer is reported (Verdict::violated), a tripped self-check ends the run
+  /// (Verdict::inconclusive); otherwise nullopt. drain() gives the last ones'.
   std::optional<Verdict> sample(const cases::Case<T>& v, const std::string& request,
                                 const std::string& answer, long index);
+  /// The answers still in the pipeline (sample()), drawn and judged: the first verdict that ends
+  /// the run.
+  std::optional<Verdict> drain();
 
   /// A finding's answer drawn too; one line on err says what the rasterizer made of it, and
   /// when it was drawn, STEM.raster.md beside the finding's report `report_md` (STEM.md) holds
@@ -49,6 +56,16 @@ class RasterLook {
   Verdict report(const cases::Case<T>& v, const std::string& request, const std::string& answer,
                  const raster::Result& result, long index);
 
+  /// The answers whose turn came, drawn in the pipeline, by tag (their index).
+  struct Drawn {
+    cases::Case<T> v;
+    std::string request, answer;
+  };
+  /// The verdict of finished checks, as sample()'s: the first that ends the run.
+  std::optional<Verdict> settle(std::vector<raster::CheckPipeline::Done> done);
+  /// The run's tally of one result: false where nothing was rendered.
+  bool tally(const raster::Result& r);
+
   const VerifyOptions& options_;
   const RasterOptions raster_;
   std::ostream& out_;
@@ -56,6 +73,8 @@ class RasterLook {
   std::shared_ptr<raster::Rasterizer> rasterizer_;
   long drawn_ = 0, not_drawn_ = 0;
   double worst_depth_ratio_ = 0;
+  std::unique_ptr<raster::CheckPipeline> pipeline_;
+  std::map<long, Drawn> in_flight_;
 };
 
 /// --replay of a raster finding's report: the request sent again, the answer drawn. Exit 0 holds,

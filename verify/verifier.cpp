@@ -213,6 +213,9 @@ class Verifier {
       }
     }
     program.stop();
+    // The last answer drawn: its frame was being built while the run went on.
+    if (mode_.rasterize)
+      if (const std::optional<Verdict> drawn = raster_.drain()) return *drawn;
     if (!kinds.empty()) return reporter_.index(kinds, done);
     if (done == 0) {
       err_ << "oblique verify: no case was judged within the time limit ("

@@ -156,6 +156,27 @@ struct AxisDepth {
 /// AxisDepth from the read-back of an axis frame.
 AxisDepth measure_axis(const Readback& readback, Convention convention, DepthBuffer buffer);
 
+/// The half of a check that needs no renderer (prepare_check(); safe on any thread, so a frame
+/// is built while the renderer draws the one before): the core's answer to judge against, the
+/// frame and the envelope of accepted answers.
+struct PreparedCheck {
+  Eigen::Matrix4d m, answer, reference;
+  Eigen::Vector4d c;
+  Convention convention = Convention::gl;
+  DepthBuffer buffer = DepthBuffer::fixed24;
+  Frame frame;
+  std::optional<Eigen::Vector4d> accepted;  ///< accepted_row3()
+  std::string why;       ///< not empty: nothing to draw (the core has no answer), and why
+  double seconds = 0;    ///< spent preparing
+};
+
+/// The core's answer for (M, C), make_frame() (`size` x `size`, from `seed`) and accepted_row3()
+/// for an answer computed in a type of `precision_bits`.
+PreparedCheck prepare_check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
+                            const Eigen::Matrix4d& answer, Convention convention,
+                            DepthBuffer buffer, int size, std::uint64_t seed,
+                            int precision_bits = 53);
+
 struct Options {
   Device device = Device::software;
   int size = 1000;  ///< the frame is size x size pixels, one sample each
@@ -200,6 +221,10 @@ class Rasterizer {
   Result check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c, const Eigen::Matrix4d& answer,
                Convention convention, DepthBuffer buffer, std::uint64_t seed = 1,
                int precision_bits = 53);
+
+  /// render() and judge_frame() for a prepared check (its frame the size of this rasterizer's);
+  /// inconclusive and not rendered where it holds nothing to draw.
+  Result check(const PreparedCheck& prepared);
 
  private:
   struct State;
