@@ -10,11 +10,10 @@ namespace oblique::raster {
 
 std::vector<CheckPipeline::Done> CheckPipeline::submit(Job job) {
   const int size = rasterizer_.options().size;
-  std::future<PreparedCheck> next =
-      std::async(std::launch::async, [job = std::move(job), size] {
-        return prepare_check(job.m, job.c, job.answer, job.convention, job.buffer, size, job.seed,
-                             job.precision_bits);
-      });
+  std::future<PreparedCheck> next = std::async(std::launch::async, [job = std::move(job), size] {
+    return prepare_check(job.m, job.c, job.answer, job.convention, job.buffer, size, job.seed,
+                         job.precision_bits);
+  });
   std::vector<Done> done;
   if (std::optional<Done> finished = advance()) done.push_back(std::move(*finished));
   preparing_.emplace(job.tag, std::move(next));
@@ -43,9 +42,8 @@ std::optional<CheckPipeline::Done> CheckPipeline::advance() {
   } else {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
-    Expected<Readback> readback =
-        rasterizer_.render(prepared->frame, prepared->answer, prepared->convention,
-                           prepared->buffer);
+    Expected<Readback> readback = rasterizer_.render(prepared->frame, prepared->answer,
+                                                     prepared->convention, prepared->buffer);
     const double render_seconds =
         prepared->seconds + std::chrono::duration<double>(Clock::now() - start).count();
     if (!readback) {
@@ -55,16 +53,16 @@ std::optional<CheckPipeline::Done> CheckPipeline::advance() {
       said.set_value(std::move(r));
       result = said.get_future();
     } else {
-      result = std::async(std::launch::async, [prepared, render_seconds,
-                                               read = std::move(*readback)] {
-        const auto judged = Clock::now();
-        Result r = judge_frame(prepared->frame, read, prepared->m, prepared->c, prepared->answer,
-                               prepared->reference, prepared->accepted, prepared->convention,
-                               prepared->buffer);
-        r.render_seconds = render_seconds;
-        r.judge_seconds = std::chrono::duration<double>(Clock::now() - judged).count();
-        return r;
-      });
+      result =
+          std::async(std::launch::async, [prepared, render_seconds, read = std::move(*readback)] {
+            const auto judged = Clock::now();
+            Result r = judge_frame(prepared->frame, read, prepared->m, prepared->c,
+                                   prepared->answer, prepared->reference, prepared->accepted,
+                                   prepared->convention, prepared->buffer);
+            r.render_seconds = render_seconds;
+            r.judge_seconds = std::chrono::duration<double>(Clock::now() - judged).count();
+            return r;
+          });
     }
   }
   std::optional<Done> finished = finish_judging();

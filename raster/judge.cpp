@@ -442,9 +442,9 @@ AxisDepth measure_axis(const Readback& readback, Convention, DepthBuffer buffer)
   return out;
 }
 
-PreparedCheck prepare_check(const Matrix4d& m, const Vector4d& c,
-                            const Matrix4d& answer, Convention convention,
-                            DepthBuffer buffer, int size, std::uint64_t seed, int precision_bits) {
+PreparedCheck prepare_check(const Matrix4d& m, const Vector4d& c, const Matrix4d& answer,
+                            Convention convention, DepthBuffer buffer, int size, std::uint64_t seed,
+                            int precision_bits) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   PreparedCheck p;

@@ -414,8 +414,8 @@ Expected<std::vector<std::optional<double>>> Rasterizer::stored_depths(
 Result Rasterizer::check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
                          const Eigen::Matrix4d& answer, Convention convention, DepthBuffer buffer,
                          std::uint64_t seed, int precision_bits) {
-  return check(prepare_check(m, c, answer, convention, buffer, state_->options.size, seed,
-                             precision_bits));
+  return check(
+      prepare_check(m, c, answer, convention, buffer, state_->options.size, seed, precision_bits));
 }
 
 Result Rasterizer::check(const PreparedCheck& p) {

@@ -77,7 +77,7 @@ constexpr double kAccurateUlps = 2;
 //    with partial pivoting |l_ij| <= 1 and |u_ij| <= rho max|m|, rho <= 2^(n-1), so every entry
 //    of |L||U| is at most n rho max|m| = 32 max|m| (lu_entry_bound()): the worst case, used for
 //    the corners and the pass cameras. Depth reconstruction bounds it from the matrix at hand
-//    instead (consumers.cpp, solve_error()): |L^||U^| from the exact factors of every pivot
+//    instead (consumer_judging.cpp, solve_error()): |L^||U^| from the exact factors of every pivot
 //    order rounding can choose, each computed factor within the elimination's error of its exact
 //    value; and, for an inverse by cofactors (what Eigen, GLM and most engines do), each
 //    cofactor within gamma(kCofactorRoundings) of the permanent of its minor of |M| and the

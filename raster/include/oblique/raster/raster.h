@@ -166,8 +166,8 @@ struct PreparedCheck {
   DepthBuffer buffer = DepthBuffer::fixed24;
   Frame frame;
   std::optional<Eigen::Vector4d> accepted;  ///< accepted_row3()
-  std::string why;       ///< not empty: nothing to draw (the core has no answer), and why
-  double seconds = 0;    ///< spent preparing
+  std::string why;     ///< not empty: nothing to draw (the core has no answer), and why
+  double seconds = 0;  ///< spent preparing
 };
 
 /// The core's answer for (M, C), make_frame() (`size` x `size`, from `seed`) and accepted_row3()

@@ -1,0 +1,316 @@
+// What the consumer judges share (consumer_judging.h), and the words of a consumer finding
+// (consumers.h); compiled once for float, double and long double.
+#include "consumer_judging.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "oblique/oracle/problem.h"
+#include "oblique/protocol/numbers.h"
+#include "oblique/references/kept_region.h"
+
+namespace oblique::oracle::consumer_judging {
+
+namespace {
+
+/// The rows r and columns c of m's 3 x 3 minor without row i and column j.
+void minor_indices(int i, int j, int (&r)[3], int (&c)[3]) {
+  for (int k = 0, n = 0; k < 4; ++k)
+    if (k != i) r[n++] = k;
+  for (int k = 0, n = 0; k < 4; ++k)
+    if (k != j) c[n++] = k;
+}
+
+/// The six products of the minor of m without row i and column j, with their signs in its
+/// determinant: permanent = false gives the determinant, true the permanent of its magnitudes
+/// (the sum of the magnitudes of the products the cofactor of m_ij adds up).
+Rational minor_sum(const Mat& m, int i, int j, bool permanent) {
+  int r[3], c[3];
+  minor_indices(i, j, r, c);
+  constexpr int kOrders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {1, 0, 2}, {2, 1, 0}};
+  Rational sum = 0;
+  for (int k = 0; k < 6; ++k) {
+    const auto& o = kOrders[k];
+    const Rational p = m[r[0]][c[o[0]]] * m[r[1]][c[o[1]]] * m[r[2]][c[o[2]]];
+    if (permanent)
+      sum += oracle::exact::abs(p);
+    else
+      sum += k < 3 ? p : Rational(-p);
+  }
+  return sum;
+}
+
+/// One pivot order of an elimination with partial pivoting in T on m (consumers' solves), from
+/// step k on: a holds the rows in pivot order, reduced through step k - 1, exactly; sum[r] bounds
+/// the part of row r of |L||U| the steps before k gave; row_of[r] is the row of m at position r.
+/// Entry by entry, `out` becomes the largest bound on |L^||U^| (rows in m's order) over every
+/// pivot order rounding in T could take: at each step every candidate within the elimination's
+/// error e = g sum of the largest is followed. The computed factors are bounded from the exact
+/// ones: |u^| <= |u| + e and |l^| <= (|a_rk| + e_rk) / (|a_kk| - e_kk) (1 + u), at most 1 (the
+/// pivot is the largest in T). False where a pivot is not determined in T (within e of 0).
+bool lu_orders(Mat a, Mat sum, std::array<int, 4> row_of, int k, const Rational& g,
+               const Rational& u, Mat& out) {
+  Rational largest = -1;
+  int at = k;
+  for (int r = k; r < 4; ++r) {
+    if (oracle::exact::abs(a[r][k]) > largest) {
+      largest = oracle::exact::abs(a[r][k]);
+      at = r;
+    }
+  }
+  const Rational reach = largest - g * sum[at][k];
+  for (int r = k; r < 4; ++r) {
+    const Rational e = g * sum[r][k];
+    if (oracle::exact::abs(a[r][k]) + e < reach) continue;
+    if (oracle::exact::abs(a[r][k]) <= e) return false;
+    Mat b = a, s = sum;
+    std::array<int, 4> order = row_of;
+    std::swap(b[r], b[k]);
+    std::swap(s[r], s[k]);
+    std::swap(order[r], order[k]);
+    Vec u_bar{};  // |u^| of the pivot row
+    for (int c = k; c < 4; ++c) u_bar[c] = oracle::exact::abs(b[k][c]) + g * s[k][c];
+    for (int c = 0; c < 4; ++c) {
+      const Rational row = s[k][c] + u_bar[c];
+      out[order[k]][c] = std::max(out[order[k]][c], row);
+    }
+    const Rational pivot_low = oracle::exact::abs(b[k][k]) - g * s[k][k];
+    for (int q = k + 1; q < 4; ++q) {
+      const Rational l_bar = std::min(
+          Rational(1), Rational((oracle::exact::abs(b[q][k]) + g * s[q][k]) / pivot_low * (1 + u)));
+      const Rational l = b[q][k] / b[k][k];
+      for (int c = k; c < 4; ++c) {
+        s[q][c] += l_bar * u_bar[c];
+        if (c > k) b[q][c] -= l * b[k][c];
+      }
+      b[q][k] = 0;
+    }
+    if (k < 3 && !lu_orders(b, s, order, k + 1, g, u, out)) return false;
+  }
+  return true;
+}
+
+/// The bound on |L^||U^| for m's LU factors with partial pivoting computed in T (lu_orders()),
+/// rows in m's order; the worst case, lu_bound(), where a pivot is not determined in T.
+template <class T>
+Mat lu_magnitudes(const Mat& m) {
+  Mat out{};
+  for (auto& row : out) row.fill(0);
+  Mat sum{};
+  for (auto& row : sum) row.fill(0);
+  if (!lu_orders(m, sum, {0, 1, 2, 3}, 0, gamma_of<T>(oracle::tolerance::kSolveRoundings),
+                 unit<T>(), out))
+    return lu_bound(m);
+  return out;
+}
+
+}  // namespace
+
+/// The 4 x 4 matrix whose every entry is oracle::tolerance::lu_entry_bound(m): what |L||U| of m's
+/// LU factors is at most, entry by entry.
+Mat lu_bound(const Mat& m) {
+  const Rational b = oracle::tolerance::lu_entry_bound(m);
+  Mat out;
+  for (auto& row : out) row.fill(b);
+  return out;
+}
+
+Mat mul(const Mat& a, const Mat& b) {
+  Mat out;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      Rational s = 0;
+      for (int k = 0; k < 4; ++k) s += a[i][k] * b[k][j];
+      out[i][j] = s;
+    }
+  }
+  return out;
+}
+
+/// A bound S, entry by entry, on the error of v = M^-1 b computed in T by a correct
+/// implementation: |v^ - v| <= S |b| (tolerance.h, "a solve with a projection"). The larger of
+/// the two ways engines compute it, each bounded from this matrix rather than the worst case:
+///  - an inverse by cofactors (adjugate over determinant), then applied: each cofactor within
+///    gamma(kCofactorRoundings) of the permanent of its minor of |M|, the determinant within
+///    that of the permanent of |M|; then 4 roundings applying it;
+///  - an elimination with partial pivoting (an inverse, or an LU solve): backward error
+///    gamma(kConsumerSolveRoundings) |L^||U^|, so gamma |M^-1| G |M^-1| with G = lu_magnitudes().
+/// Empty where the determinant computed by cofactors is not determined in T.
+template <class T>
+std::optional<Mat> solve_error(const Mat& m, const Mat& inv) {
+  const Rational g = gamma_of<T>(oracle::tolerance::kCofactorRoundings);
+  Mat perm;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) perm[i][j] = minor_sum(m, i, j, true);
+  Rational det = 0, det_perm = 0;  // along row 0
+  for (int j = 0; j < 4; ++j) {
+    det += (j % 2 == 0 ? 1 : -1) * m[0][j] * minor_sum(m, 0, j, false);
+    det_perm += oracle::exact::abs(m[0][j]) * perm[0][j];
+  }
+  const Rational size = oracle::exact::abs(det);
+  const Rational det_error = g * det_perm;
+  if (det_error >= size) return std::nullopt;
+  // Applying the inverse: 4 roundings, and the window depth's conversion to NDC 2 more.
+  const Rational g_apply = gamma_of<T>(6);
+  const Mat lu = mul(mul(oracle::exact::abs(inv), lu_magnitudes<T>(m)), oracle::exact::abs(inv));
+  const Rational g_lu = gamma_of<T>(oracle::tolerance::kConsumerSolveRoundings);
+  Mat out;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const Rational x = oracle::exact::abs(inv[i][j]);
+      // adj_ij is the cofactor of m_ji; then the quotient (or the reciprocal and a product).
+      const Rational e = (1 + g) * (g * perm[j][i] + x * det_error) / (size - det_error) + g * x;
+      out[i][j] = std::max(Rational(e + g_apply * (x + e)), Rational(g_lu * lu[i][j]));
+    }
+  }
+  return out;
+}
+
+Rational max_abs(const Vec& v) {
+  Rational m = 0;
+  for (const Rational& x : v) m = std::max(m, oracle::exact::abs(x));
+  return m;
+}
+
+Rational sum_abs(const Vec& v) {
+  Rational s = 0;
+  for (const Rational& x : v) s += oracle::exact::abs(x);
+  return s;
+}
+
+/// A rational as a certified number: its double (mpq_get_d truncates toward zero) and, unless
+/// that is the rational exactly, the step to the next double away from zero as its error.
+certified::Num certified_of(const Rational& r) {
+  const double d = r.get_d();
+  if (!std::isfinite(d)) throw certified::Undecided{__LINE__};
+  if (r == d) return certified::constant(d);
+  const double next = std::nextafter(d, r > 0 ? std::numeric_limits<double>::infinity()
+                                              : -std::numeric_limits<double>::infinity());
+  if (!std::isfinite(next)) throw certified::Undecided{__LINE__};
+  return certified::Num{d, 0, std::fabs(next - d)};
+}
+
+/// A rational >= 0 as a certified range: its double (truncated) and the next one up.
+certified::Range range_of(const Rational& r) {
+  const double d = r.get_d();
+  if (!std::isfinite(d)) throw certified::Undecided{__LINE__};  // beyond double (a long double)
+  if (r == d) return certified::Range{d, d};
+  const double up = std::nextafter(d, std::numeric_limits<double>::infinity());
+  if (!std::isfinite(up)) throw certified::Undecided{__LINE__};
+  return certified::Range{d, up};
+}
+
+/// 1 - x for a range x below 1 (Undecided where x may reach 1).
+certified::Range one_minus(const certified::Range& x) {
+  if (!(x.hi < 1)) throw certified::Undecided{__LINE__};
+  return certified::widened(1 - x.hi, 1 - x.lo);
+}
+
+/// x / y for ranges, y > 0 (Undecided where y may be 0, or the quotient overflows).
+certified::Range quotient(const certified::Range& x, const certified::Range& y) {
+  if (!(y.lo > 0)) throw certified::Undecided{__LINE__};
+  const certified::Range q = certified::widened(x.lo / y.hi, x.hi / y.lo);
+  if (!std::isfinite(q.hi)) throw certified::Undecided{__LINE__};
+  return q;
+}
+
+/// A rational as the nearest double, shortest digits.
+std::string text(const Rational& x) {
+  return protocol::format_number(x.get_d());
+}
+
+std::string text(const Vec& v, int n) {
+  std::string out = "(";
+  for (int i = 0; i < n; ++i) out += (i ? ", " : "") + text(v[static_cast<std::size_t>(i)]);
+  return out + ")";
+}
+
+Eigen::Vector3d approx_point(const Vec& v) {
+  return {v[0].get_d(), v[1].get_d(), v[2].get_d()};
+}
+
+/// |a| / b as a double ratio; 0 for 0 / 0, infinity for x / 0.
+double ratio_of(const Rational& a, const Rational& b) {
+  const Rational x = oracle::exact::abs(a);
+  if (b == 0) return x == 0 ? 0.0 : std::numeric_limits<double>::infinity();
+  return Rational(x / b).get_d();
+}
+
+/// view_axis_sign() in exact arithmetic, from the inverse of the original projection: the sign
+/// of the z of its view volume's centre. Given `error` (solve_error()'s S for the original), 0
+/// where a solve in T can give the other sign: the centre's z or w within its error of 0, or no
+/// S (the inverse not determined in T).
+int axis_sign(const Mat& original_inverse, Convention convention,
+              const std::optional<std::optional<Mat>>& error) {
+  const DepthRange range = clip_depth_range(convention);
+  const Vec b{0, 0, Rational(range.z_low + range.z_high, 2), 1};
+  const Vec centre = oracle::exact::mul(original_inverse, b);
+  if (error) {
+    if (!*error) return 0;
+    const Vec dv = oracle::exact::mul(**error, oracle::exact::abs(b));
+    if (oracle::exact::abs(centre[2]) <= dv[2] || oracle::exact::abs(centre[3]) <= dv[3]) return 0;
+  }
+  return (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
+}
+
+/// The kept region's vertices, exactly (polytope::clip_volume on M's exact corners); empty when
+/// M is singular or a corner of its volume is behind the eye (w < 0: the volume wraps through
+/// infinity, and has no kept region to judge by).
+template <class T>
+std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>& m, const Vector4<T>& c,
+                                                  Convention convention) {
+  const std::optional<Mat> inv = oracle::exact::inverse(oracle::exact::to_rational(m));
+  if (!inv) return std::nullopt;
+  std::array<Vec, 8> corners;
+  for (int i = 0; i < 8; ++i) {
+    const std::array<int, 4> q = clip_corner(i, convention);
+    Vec v = oracle::exact::mul(*inv, {q[0], q[1], q[2], q[3]});
+    if (v[3] < 0) return std::nullopt;
+    corners[static_cast<std::size_t>(i)] = v;
+  }
+  std::vector<Vec> out;
+  for (const Vec& x : polytope::clip_volume(corners, oracle::exact::to_rational(c))) {
+    if (std::find(out.begin(), out.end(), x) == out.end()) out.push_back(x);
+  }
+  return out;
+}
+
+#define OBLIQUE_CONSUMER_JUDGING(T)                                                                \
+  template std::optional<Mat> solve_error<T>(const Mat&, const Mat&);                              \
+  template std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>&, const Vector4<T>&, \
+                                                             Convention);
+OBLIQUE_CONSUMER_JUDGING(float)
+OBLIQUE_CONSUMER_JUDGING(double)
+OBLIQUE_CONSUMER_JUDGING(long double)
+#undef OBLIQUE_CONSUMER_JUDGING
+
+}  // namespace oblique::oracle::consumer_judging
+
+namespace oblique::oracle {
+
+std::string_view not_applicable(ConsumerCheck check, cases::Family family) {
+  using cases::Family;
+  if (check == ConsumerCheck::corners_contain_kept && family == Family::infinite)
+    return "an infinite frustum's kept region is unbounded";
+  if (check == ConsumerCheck::linear_depth &&
+      (family == Family::rotated || family == Family::general))
+    return "its camera does not look along z";
+  return "";
+}
+
+std::string describe(const ConsumerFinding& f) {
+  std::string out(consumer_check_name(f.check));
+  if (!f.judged) return out + ": not judged: " + f.detail;
+  out += f.holds ? " holds: " : " violated: ";
+  out += f.detail;
+  out += " (residual / bound " + protocol::format_number(f.ratio) + ")";
+  return out;
+}
+
+}  // namespace oblique::oracle
