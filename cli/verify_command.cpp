@@ -171,7 +171,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                    "cases left out fails the run (exit 2) instead of a warning");
   verify->add_flag("--keep-going", settings->matrix.keep_going,
                    "Go on after a finding; report each kind (property x family x place) once");
-  verify->add_option(
+  CLI::Option* const consumers_flag = verify->add_option(
       "--consumers", settings->consumers,
       "Ask the code around the matrix instead: a comma list of request kinds, or all: " +
           name_list(oblique::names_in(oblique::protocol::consumer_kind_names)) +
@@ -231,7 +231,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                      "Replay every report (.json) in this folder before the run");
   verify->add_option("--save-regressions", settings->matrix.save_regressions,
                      "Keep each new shrunk case's report in this folder too");
-  verify->callback([settings, &exit_code, self] {
+  verify->callback([settings, &exit_code, self, consumers_flag] {
     oblique::verify::VerifyOptions& options = settings->options;
     oblique::Expected<oblique::Contract> contract = oblique::Contract{};
     if (!settings->contract.empty()) contract = oblique::read_contract_file(settings->contract);
@@ -276,6 +276,14 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
         exit_code = 2;
         return;
       }
+    }
+    if (consumers_flag->count() > 0 && kinds.empty()) {  // `--consumers ""`: not the matrix
+      std::cerr << "oblique verify: --consumers names no request kind (a comma list of "
+                << oblique::protocol::name_list(
+                       oblique::names_in(oblique::protocol::consumer_kind_names))
+                << ", or all)\n";
+      exit_code = 2;
+      return;
     }
     // The mode, with its own flags; a flag of another mode is an error, not ignored.
     const oblique::Expected<oblique::verify::Mode> mode = verify_mode(*settings, std::move(kinds));
