@@ -48,8 +48,15 @@ oblique::Expected<oblique::verify::Mode> verify_mode(
   using Failure = oblique::Expected<Mode>;
   const oblique::oracle::MirrorDesign design =
       s.mirror_design.value_or(oblique::oracle::MirrorDesign::reflected_view);
-  if (!s.replay.empty())
+  if (!s.replay.empty()) {
+    // The report says its mode: the flags of a run's modes would be left unread.
+    if (!kinds.empty() || s.rasterize || !s.matrix.accuracy_dir.empty() || s.matrix.keep_going ||
+        !s.matrix.regressions.empty() || !s.matrix.save_regressions.empty())
+      return Failure::failure(
+          "--replay judges one report's case again, in the report's own mode: --consumers, "
+          "--rasterize, --accuracy, --keep-going and the regression folders do not apply to it");
     return Mode(oblique::verify::ReplayMode{s.replay, s.raster.device, design});
+  }
   if (!kinds.empty()) {
     if (!s.matrix.accuracy_dir.empty())
       return Failure::failure(
