@@ -47,8 +47,8 @@ OBLIQUE_ALWAYS_INLINE Step closed_form(const Matrix4<T>& m, const Vector4<T>& pl
 /// From a far corner Q (M_4 . Q = 1) to M'_3 (paper Eqs. 9, 10, 20, every convention):
 ///   near' = s M'_3 + t M_4 = a C,   far' . Q = 0,   so   a = (z_high - z_low) / (C . Q).
 /// C . Q is taken with c_hat = C 2^k, so that it neither overflows nor underflows, and a = a_hat
-/// 2^k. Hands on a C . Q lost to underflow or overflowed (the accurate method answers). Shared with the
-/// general method. `entries`: ordinary only where M also has the perspective shape (the near
+/// 2^k. Hands on a C . Q lost to underflow or overflowed (the accurate method answers). Shared with
+/// the general method. `entries`: ordinary only where M also has the perspective shape (the near
 /// plane's test may then be decided by signs); the general method passes Entries::unchecked.
 template <class T>
 OBLIQUE_ALWAYS_INLINE Step finish(const Matrix4<T>& m, const Vector4<T>& plane, const Vector4<T>& q,
