@@ -77,7 +77,7 @@ class EquilibratedSolver {
         return;
       }
       const int e = magnitude_exponent(mt_.row(i));
-      row_scale_(i) = times_power_of_two(T(1), -e);
+      row_shift_(i) = -e;
       mt_.row(i) = scaled_by_power_of_two(mt_.row(i), -e);
     }
     for (int j = 0; j < 4; ++j) {
@@ -86,7 +86,7 @@ class EquilibratedSolver {
         return;
       }
       const int e = magnitude_exponent(mt_.col(j));
-      col_scale_(j) = times_power_of_two(T(1), -e);
+      col_shift_(j) = -e;
       mt_.col(j) = scaled_by_power_of_two(mt_.col(j), -e);
     }
     lu_.compute(mt_);
@@ -112,23 +112,33 @@ class EquilibratedSolver {
   /// about eps^2 times the conditioning). Its error is bounded by transposed_error_bound(z1) plus
   /// eps transposed_error_bound(z).
   Vector4<T> transposed_correction_unscaled(const Vector4<T>& c, const Vector4<T>& z) const {
-    const Vector4<T> scaled_c = col_scale_.cwiseProduct(c);
+    const Vector4<T> scaled_c = shifted(c, col_shift_);
     return lu_solve(accurate_residual(mt_, z, scaled_c, true), true);
   }
 
   /// x with M x = b: x = S Mt^-1 (R b). With `backward_error`, also the componentwise backward
   /// error of x (max_i |b - M x|_i / (|M| |x| + |b|)_i, the same for the equilibrated system).
   Vector4<T> solve(const Vector4<T>& b, T* backward_error = nullptr) const {
-    return col_scale_.cwiseProduct(refined(row_scale_.cwiseProduct(b), false, backward_error));
+    return shifted(refined(shifted(b, row_shift_), false, backward_error), col_shift_);
   }
 
   /// Mt^-T (S c) = R^-1 M^-T c: the solution of M^T y = c divided by R's positive diagonal, so
   /// it has the signs of y (all that the far corner needs) without overflowing where y would.
   Vector4<T> solve_transposed_unscaled(const Vector4<T>& c, T* backward_error = nullptr) const {
-    return refined(col_scale_.cwiseProduct(c), true, backward_error);
+    return refined(shifted(c, col_shift_), true, backward_error);
   }
 
  private:
+  /// v_i 2^k_i, each rounded once. The scales are kept as exponents, not as powers of two in T:
+  /// a row whose largest entry is subnormal has a scale beyond T's range (2^1026 in double), and
+  /// the product inf * 0 made a zero right-hand side NaN (fuzz_oblique: a far corner with
+  /// Q'_z = 0 and M_34 = 4.2e-309 came out NaN, and the core answered out_of_range).
+  static Vector4<T> shifted(const Vector4<T>& v, const Eigen::Vector4i& k) {
+    Vector4<T> out;
+    for (int i = 0; i < 4; ++i) out(i) = times_power_of_two(v(i), k(i));
+    return out;
+  }
+
   Vector4<T> lu_solve(const Vector4<T>& b, bool transpose) const {
     return transpose ? Vector4<T>(lu_.transpose().solve(b)) : Vector4<T>(lu_.solve(b));
   }
@@ -156,7 +166,7 @@ class EquilibratedSolver {
   }
 
   Matrix4<T> mt_;
-  Vector4<T> row_scale_ = Vector4<T>::Ones(), col_scale_ = Vector4<T>::Ones();
+  Eigen::Vector4i row_shift_ = Eigen::Vector4i::Zero(), col_shift_ = Eigen::Vector4i::Zero();
   Eigen::PartialPivLU<Matrix4<T>> lu_;
   Failure failure_ = Failure::none;
 };
