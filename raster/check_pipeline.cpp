@@ -2,7 +2,6 @@
 // threads of their own, the renderer on the caller's.
 #include "oblique/raster/check_pipeline.h"
 
-#include <chrono>
 #include <memory>
 #include <string>
 
@@ -34,39 +33,22 @@ std::optional<CheckPipeline::Done> CheckPipeline::advance() {
   const auto prepared = std::make_shared<const PreparedCheck>(preparing_->second.get());
   preparing_.reset();
   std::future<Result> result;
-  if (!prepared->why.empty() || prepared->frame.size != rasterizer_.options().size) {
-    // Nothing to draw: Rasterizer::check() says why, without rendering.
+  double render_seconds = 0;
+  Expected<Readback> readback = rasterizer_.render(*prepared, &render_seconds);
+  if (!readback) {  // nothing drawn: the Result Rasterizer::check() gives, saying why
+    Result r;
+    r.why = readback.error();
     std::promise<Result> said;
-    said.set_value(rasterizer_.check(*prepared));
+    said.set_value(std::move(r));
     result = said.get_future();
   } else {
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    Expected<Readback> readback = rasterizer_.render(prepared->frame, prepared->answer,
-                                                     prepared->convention, prepared->buffer);
-    const double render_seconds =
-        prepared->seconds + std::chrono::duration<double>(Clock::now() - start).count();
-    if (!readback) {
-      Result r;
-      r.why = "not rendered: " + readback.error();
-      std::promise<Result> said;
-      said.set_value(std::move(r));
-      result = said.get_future();
-    } else {
-      result =
-          std::async(std::launch::async, [prepared, render_seconds, read = std::move(*readback)] {
-            const auto judged = Clock::now();
-            Result r = judge_frame(prepared->frame, read, prepared->m, prepared->c,
-                                   prepared->answer, prepared->reference, prepared->accepted,
-                                   prepared->convention, prepared->buffer);
-            r.render_seconds = render_seconds;
-            r.judge_seconds = std::chrono::duration<double>(Clock::now() - judged).count();
-            return r;
-          });
-    }
+    result =
+        std::async(std::launch::async, [prepared, render_seconds, read = std::move(*readback)] {
+          return judge_prepared(*prepared, read, render_seconds);
+        });
   }
   std::optional<Done> finished = finish_judging();
-  judging_ = Judging{tag, prepared->seconds, std::move(result)};
+  judging_ = Judging{tag, std::move(result)};
   return finished;
 }
 

@@ -466,4 +466,14 @@ PreparedCheck prepare_check(const Matrix4d& m, const Vector4d& c, const Matrix4d
   return p;
 }
 
+Result judge_prepared(const PreparedCheck& p, const Readback& readback, double render_seconds) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  Result r = judge_frame(p.frame, readback, p.m, p.c, p.answer, p.reference, p.accepted,
+                         p.convention, p.buffer);
+  r.render_seconds = render_seconds;
+  r.judge_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return r;
+}
+
 }  // namespace oblique::raster

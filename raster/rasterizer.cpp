@@ -418,32 +418,30 @@ Result Rasterizer::check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
       prepare_check(m, c, answer, convention, buffer, state_->options.size, seed, precision_bits));
 }
 
-Result Rasterizer::check(const PreparedCheck& p) {
+Expected<Readback> Rasterizer::render(const PreparedCheck& p, double* render_seconds) {
   using Clock = std::chrono::steady_clock;
-  if (!p.why.empty()) {
-    Result r;
-    r.why = p.why;
-    return r;
-  }
-  if (p.frame.size != state_->options.size) {
-    Result r;
-    r.why = "not rendered: a frame of " + std::to_string(p.frame.size) + " pixels a side, not " +
-            std::to_string(state_->options.size);
-    return r;
-  }
+  if (!p.why.empty()) return Expected<Readback>::failure(p.why);
+  if (p.frame.size != state_->options.size)
+    return Expected<Readback>::failure("not rendered: a frame of " + std::to_string(p.frame.size) +
+                                       " pixels a side, not " +
+                                       std::to_string(state_->options.size));
   const auto start = Clock::now();
-  const Expected<Readback> readback = render(p.frame, p.answer, p.convention, p.buffer);
-  const auto rendered = Clock::now();
+  Expected<Readback> readback = render(p.frame, p.answer, p.convention, p.buffer);
+  if (render_seconds)
+    *render_seconds = p.seconds + std::chrono::duration<double>(Clock::now() - start).count();
+  if (!readback) return Expected<Readback>::failure("not rendered: " + readback.error());
+  return readback;
+}
+
+Result Rasterizer::check(const PreparedCheck& p) {
+  double render_seconds = 0;
+  const Expected<Readback> readback = render(p, &render_seconds);
   if (!readback) {
     Result r;
-    r.why = "not rendered: " + readback.error();
+    r.why = readback.error();
     return r;
   }
-  Result r = judge_frame(p.frame, *readback, p.m, p.c, p.answer, p.reference, p.accepted,
-                         p.convention, p.buffer);
-  r.render_seconds = p.seconds + std::chrono::duration<double>(rendered - start).count();
-  r.judge_seconds = std::chrono::duration<double>(Clock::now() - rendered).count();
-  return r;
+  return judge_prepared(p, *readback, render_seconds);
 }
 
 Expected<std::shared_ptr<Rasterizer>> Rasterizer::open(const Options& options) {

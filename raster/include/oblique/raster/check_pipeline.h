@@ -47,7 +47,6 @@ class CheckPipeline {
  private:
   struct Judging {
     long tag = 0;
-    double prepare_seconds = 0;
     std::future<Result> result;
   };
   /// Renders the prepared job (here) and starts its judgement; the judgement before it, finished.

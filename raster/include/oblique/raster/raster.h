@@ -177,6 +177,11 @@ PreparedCheck prepare_check(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
                             DepthBuffer buffer, int size, std::uint64_t seed,
                             int precision_bits = 53);
 
+/// judge_frame() for a prepared check's read-back, with the time spent: `render_seconds` (the
+/// preparation and the drawing) and the judging's own.
+Result judge_prepared(const PreparedCheck& prepared, const Readback& readback,
+                      double render_seconds);
+
 struct Options {
   Device device = Device::software;
   int size = 1000;  ///< the frame is size x size pixels, one sample each
@@ -222,9 +227,14 @@ class Rasterizer {
                Convention convention, DepthBuffer buffer, std::uint64_t seed = 1,
                int precision_bits = 53);
 
-  /// render() and judge_frame() for a prepared check (its frame the size of this rasterizer's);
-  /// inconclusive and not rendered where it holds nothing to draw.
+  /// render() and judge_prepared() for a prepared check (its frame the size of this
+  /// rasterizer's); inconclusive and not rendered where it holds nothing to draw.
   Result check(const PreparedCheck& prepared);
+
+  /// A prepared check's frame rendered and read back; the error says why not (nothing to draw,
+  /// a frame of another size, the renderer's failure). `render_seconds`: the preparation's time
+  /// and the drawing's.
+  Expected<Readback> render(const PreparedCheck& prepared, double* render_seconds = nullptr);
 
  private:
   struct State;
