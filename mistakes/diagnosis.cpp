@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "oblique/oracle/exact.h"
+#include "oblique/oracle/exact_arithmetic.h"
 #include "oblique/oracle/tolerance.h"
 #include "oblique/projection.h"
 #include "oblique/protocol/numbers.h"
@@ -68,7 +69,9 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
                                               oracle::exact::abs(e.q_clip), abs_s, abs_inv) +
       (e.choices.closed_form ? oracle::exact::dot(abs_c, e.q_magnitude) : Rational(0));
   const int p = oracle::tolerance::precision_bits<T>();
-  const Rational d_error = oracle::tolerance::corner_dot_error<T>(numerator);
+  using Arithmetic = oracle::ExactArithmetic<T>;
+  const Rational d_error = oracle::tolerance::corner_dot_error<Arithmetic>(
+      numerator, oracle::tolerance::underflow_unit<T>());
   const Rational d = oracle::exact::abs(e.d);
   if (d <= d_error) return x;  // the guard and the scale are not decided in T
   if (e.choices.closed_form && !e.perspective_shape) {
@@ -90,7 +93,8 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
     x.decided = true;
     return x;
   }
-  const Rational scale = *oracle::tolerance::scale_error(d_error, d);  // d > d_error: eps < 1
+  const Rational scale =
+      *oracle::tolerance::scale_error<Arithmetic>(d_error, d);  // d > d_error: eps < 1
   const Rational largest = oracle::exact::to_rational(std::numeric_limits<T>::max()) / 256;
   for (int row : {2, 3}) {
     if (row == 3 && !e.row4_changed) continue;
@@ -98,8 +102,9 @@ Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention conventi
     for (int i = 0; i < 4; ++i) {
       const Rational ac = r * e.a * e.c[i];
       x.values[row][i] = ac + t * mx[3][i];
-      x.bounds[row][i] = oracle::tolerance::row3_entry_bound<T>(
-          oracle::exact::abs(ac), oracle::exact::abs(t * mx[3][i]), scale);
+      x.bounds[row][i] = oracle::tolerance::row3_entry_bound<Arithmetic>(
+          oracle::exact::abs(ac), oracle::exact::abs(t * mx[3][i]), scale,
+          oracle::tolerance::underflow_unit<T>());
       if (oracle::exact::abs(x.values[row][i]) >= largest)
         return x;  // near overflow: out_of_range too
     }

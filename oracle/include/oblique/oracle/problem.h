@@ -13,8 +13,10 @@
 
 #include "oblique/depth_convention.h"
 #include "oblique/oracle/exact.h"
+#include "oblique/oracle/exact_arithmetic.h"
 #include "oblique/oracle/finding.h"
 #include "oblique/oracle/tolerance.h"
+#include "oblique/oracle/view_volume.h"
 #include "oblique/oracle/vocabulary.h"
 #include "oblique/plane.h"
 #include "oblique/protocol/numbers.h"
@@ -70,131 +72,42 @@ class Problem {
   /// oblique::properties, OBLIQUE_CHECKER_INSTANCES).
   Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention);
 
-  bool finite() const { return finite_; }
-  bool invertible() const { return invertible_; }
-  bool infinite() const { return invertible_ && infinite_; }
+  bool finite() const { return v_.finite; }
+  bool invertible() const { return v_.invertible; }
+  bool infinite() const { return v_.invertible && v_.infinite; }
   /// Property 5 applies: the far face is at infinity and Q lies on it (C leans toward the far
   /// face).
-  bool far_corner_at_infinity() const {
-    const DepthRange range = clip_depth_range(convention_);
-    const int far_z = convention_ == Convention::reversed_z ? range.z_low : range.z_high;
-    return infinite() && q_clip_[2] == far_z;
-  }
-  Convention convention() const { return convention_; }
+  bool far_corner_at_infinity() const { return v_.far_at_infinity; }
+  Convention convention() const { return v_.convention; }
   const Matrix4<T>& matrix() const { return m_; }
   const Vector4<T>& plane() const { return c_; }
-  const oracle::exact::Vec& far_corner() const { return q_; }
+  const oracle::exact::Vec& far_corner() const { return v_.q; }
   const oracle::exact::Rational& corner_dot() const {
-    return d_;
+    return v_.d;
   }  ///< C . Q, the largest C . corner
 
   /// The bound on the relative error of a = k / (C . Q): with eps = gamma(16) kappa bounding the
   /// relative error of C . Q, |a^ / a - 1| <= eps / (1 - eps). Empty when eps >= 1: C lies within
   /// rounding of the far corner, no floating-point implementation can bound a, and properties 3
   /// to 5 cannot be judged at the corners (acceptable_statuses() then allows every verdict).
-  std::optional<oracle::exact::Rational> scale_error() const {
-    if (!(d_ > 0)) return std::nullopt;
-    return oracle::tolerance::scale_error(oracle::tolerance::corner_dot_error<T>(kappa_numerator_),
-                                          d_);
-  }
+  std::optional<oracle::exact::Rational> scale_error() const { return v_.scale_error(); }
 
   /// kappa, the condition number of C . Q (tolerance.h); meaningful when C . Q > 0.
   oracle::exact::Rational kappa() const {
-    return d_ > 0 ? oracle::exact::Rational(kappa_numerator_ / d_) : 0;
+    return v_.d > 0 ? oracle::exact::Rational(v_.kappa_numerator / v_.d) : 0;
   }
 
   /// The status an exact implementation returns (ok, or the first precondition that fails).
-  Status exact_status() const {
-    if (!finite_) return Status::invalid_input;
-    if (!invertible_) return Status::singular_projection;
-    if (!camera_behind_) return Status::camera_not_behind_plane;
-    if (!(d_ > 0)) return Status::plane_misses_view_volume;
-    return Status::ok;
-  }
+  Status exact_status() const { return v_.status; }
 
-  /// The statuses a careful implementation computing in T may give: the exact one, and its
-  /// neighbours where the input lies within rounding of a boundary:
-  ///  - C . Q within its error bound gamma(16) kappa C . Q of zero: ok, plane_misses_view_volume
-  ///    or out_of_range;
-  ///  - a matrix with Skeel condition number at least 1 / (256 eps): singular_projection too;
-  ///  - an exact answer (or Q, or an equally far corner where C' has a zero component) within
-  ///    2^8 of the largest finite T: out_of_range too, and at or above the overflow threshold
-  ///    (answer or Q), not ok;
-  ///  - M spanning more than max_magnitude_spread<T>() binades: out_of_range too.
-  std::vector<Status> acceptable_statuses() const {
-    std::vector<Status> out{exact_status()};
-    auto add = [&out](Status s) {
-      if (std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
-    };
-    if (finite_ && too_spread_) add(Status::out_of_range);  // the core's documented domain
-    if (!finite_ || !invertible_) return out;
-    const int p = oracle::tolerance::precision_bits<T>();
-    if (skeel_condition_ * 256 * std::ldexp(1.0, 1 - p) >= 1) add(Status::singular_projection);
-    if (!camera_behind_) return out;
-    const oracle::exact::Rational d_error =
-        oracle::tolerance::corner_dot_error<T>(kappa_numerator_);
-    const bool d_unresolved = oracle::exact::abs(d_) <= d_error;
-    if (d_unresolved) {
-      add(Status::plane_misses_view_volume);
-      add(Status::ok);
-      add(Status::out_of_range);
-    }
-    const oracle::exact::Rational largest =
-        oracle::exact::to_rational(std::numeric_limits<T>::max());
-    oracle::exact::Rational biggest = 0;
-    for (const auto& v : q_) biggest = std::max(biggest, oracle::exact::abs(v));
-    if (d_ > 0) {
-      for (const auto& v : exact_row3()) biggest = std::max(biggest, oracle::exact::abs(v));
-    }
-    // Where a component of C' is exactly zero the far corner is not unique: every point of that
-    // edge (or face) is equally far, and an implementation that takes a sign there (sgn(0) = 1,
-    // or the sign of a rounded zero) uses a corner of it. Those corners may leave the range even
-    // though the answer does not.
-    oracle::exact::Rational biggest_corner = biggest;
-    for (int i = 0; i < 8; ++i) {
-      if (is_far_corner_candidate(i)) {
-        for (const auto& v : corners_[i])
-          biggest_corner = std::max(biggest_corner, oracle::exact::abs(v));
-      }
-    }
-    if (biggest_corner * 256 >= largest) add(Status::out_of_range);
-    // a C within a few roundings of M_4: the extracted near plane a C - M_4 + M_4 may vanish.
-    if (d_ > 0) {
-      const RowCombination nr = near_rows(convention_);
-      const oracle::exact::Rational a =
-          oracle::exact::Rational(clip_depth_range(convention_).z_high -
-                                  clip_depth_range(convention_).z_low) /
-          d_;
-      oracle::exact::Rational noise = 0;
-      for (int i = 0; i < 4; ++i) {
-        noise += (4 * oracle::tolerance::unit_roundoff(p) * oracle::exact::abs(nr.m4 * mx_[3][i]) +
-                  4 * oracle::tolerance::underflow_unit<T>()) *
-                 oracle::exact::abs(cx_[i]);
-      }
-      if (a * oracle::exact::dot(cx_, cx_) <= noise) add(Status::out_of_range);
-    }
-    // Values from the largest finite T up to half an ulp beyond it still round to it.
-    const oracle::exact::Rational overflow =
-        largest +
-        oracle::exact::to_rational(std::ldexp(
-            T(1), std::numeric_limits<T>::max_exponent - std::numeric_limits<T>::digits - 1));
-    // (Unless C . Q is within its rounding error of zero: then a computed C . Q, and the answer,
-    // may be any size.)
-    if (d_ > 0 && biggest >= overflow && !d_unresolved)
-      out.erase(std::remove(out.begin(), out.end(), Status::ok), out.end());
-    return out;
-  }
+  /// The statuses a careful implementation computing in T may give (view_volume.h).
+  const std::vector<Status>& acceptable_statuses() const { return v_.acceptable; }
 
   double skeel_condition() const { return skeel_condition_; }
 
   /// The exact third row of M': s (a C - t M_4) with a = (z_high - z_low) / (C . Q).
   /// Precondition: exact_status() == Status::ok.
-  oracle::exact::Vec exact_row3() const {
-    const DepthRange range = clip_depth_range(convention_);
-    const RowCombination nr = near_rows(convention_);
-    const oracle::exact::Rational a = oracle::exact::Rational(range.z_high - range.z_low) / d_;
-    return oracle::exact::combine(nr.m3 * a, cx_, -nr.m3 * nr.m4, mx_[3]);
-  }
+  const oracle::exact::Vec& exact_row3() const { return v_.row3; }
 
   /// How far a computed third row is from exact_row3(), against the bound a careful
   /// implementation meets: per entry gamma(kEntryRoundings) (|a C_i| + |M4_i|) plus the
@@ -209,18 +122,14 @@ class Problem {
   std::optional<oracle::exact::Vec> row3_bounds() const {
     const std::optional<oracle::exact::Rational> scale = scale_error();
     if (!scale) return std::nullopt;
-    const DepthRange range = clip_depth_range(convention_);
-    const oracle::exact::Rational a = oracle::exact::Rational(range.z_high - range.z_low) / d_;
     oracle::exact::Vec bounds;
-    for (int i = 0; i < 4; ++i)
-      bounds[i] = oracle::tolerance::row3_entry_bound<T>(oracle::exact::abs(a * cx_[i]),
-                                                         oracle::exact::abs(mx_[3][i]), *scale);
+    for (int i = 0; i < 4; ++i) bounds[i] = v_.row3_bound(i, *scale);
     return bounds;
   }
 
   /// Closeness to the exact answer; `judged` is false (and `within` true) where no bound exists.
   Closeness compare_row3(const Matrix4<T>& result) const {
-    const oracle::exact::Vec expected = exact_row3();
+    const oracle::exact::Vec& expected = exact_row3();
     const std::optional<oracle::exact::Vec> maybe_bounds = row3_bounds();
     Closeness out;
     if (!all_finite(result)) {
@@ -260,11 +169,11 @@ class Problem {
   /// The largest oracle::exact::ulp_distance of an entry of `result` from the correctly rounded
   /// exact M' (rows 1, 2 and 4 are M's own). Precondition: exact_status() == Status::ok.
   double ulps_from_exact(const Matrix4<T>& result) const {
-    const oracle::exact::Vec row3 = exact_row3();
+    const oracle::exact::Vec& row3 = exact_row3();
     double worst = 0;
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
-        const oracle::exact::Rational& expected = i == 2 ? row3[j] : mx_[i][j];
+        const oracle::exact::Rational& expected = i == 2 ? row3[j] : v_.mx[i][j];
         worst = std::max(worst, oracle::exact::ulp_distance(result(i, j), expected));
       }
     }
@@ -275,8 +184,8 @@ class Problem {
   /// M, and its near plane keeps C's positive side.
   Verdict check_extracted_planes(const Matrix4<T>& result) const {
     Verdict v(Property::extracted_planes_match);
-    const FrustumPlanes<T> before = frustum_planes(m_, convention_);
-    const FrustumPlanes<T> after = frustum_planes(result, convention_);
+    const FrustumPlanes<T> before = frustum_planes(m_, v_.convention);
+    const FrustumPlanes<T> after = frustum_planes(result, v_.convention);
     const Vector4<T> sides_before[] = {before.left, before.right, before.bottom, before.top};
     const Vector4<T> sides_after[] = {after.left, after.right, after.bottom, after.top};
     for (int i = 0; i < 4; ++i) {
@@ -294,7 +203,7 @@ class Problem {
       return v;
     }
     const oracle::exact::Rational dot =
-        oracle::exact::dot(oracle::exact::to_rational(Vector4<T>(after.near_plane)), cx_);
+        oracle::exact::dot(oracle::exact::to_rational(Vector4<T>(after.near_plane)), v_.cx);
     v.holds = dot > 0;
     v.shows = Shows::near_plane_side;
     v.residual = approx(dot);
@@ -318,8 +227,8 @@ class Problem {
       return out;
     }
     const oracle::exact::Mat r = oracle::exact::to_rational(result);
-    const RowCombination nr = near_rows(convention_), fr = far_rows(convention_);
-    const oracle::exact::Vec& m4 = mx_[3];
+    const RowCombination nr = near_rows(v_.convention), fr = far_rows(v_.convention);
+    const oracle::exact::Vec& m4 = v_.mx[3];
     const oracle::exact::Vec near = oracle::exact::combine(nr.m3, r[2], nr.m4, r[3]);
     const oracle::exact::Vec far = oracle::exact::combine(fr.m3, r[2], fr.m4, r[3]);
     const int p = oracle::tolerance::precision_bits<T>();
@@ -342,7 +251,7 @@ class Problem {
         oracle::tolerance::kEntryRoundings * oracle::tolerance::underflow_unit<T>();
     int k = 0;  // the largest |C_k|
     for (int i = 1; i < 4; ++i) {
-      if (oracle::exact::abs(cx_[i]) > oracle::exact::abs(cx_[k])) k = i;
+      if (oracle::exact::abs(v_.cx[i]) > oracle::exact::abs(v_.cx[k])) k = i;
     }
     oracle::exact::Rational lambda_low = 0, lambda_high = 0;
     bool feasible = false;
@@ -355,8 +264,9 @@ class Problem {
       bool has_high = false, ok = true;
       for (int i = 0; i < 4; ++i) {
         const oracle::exact::Rational b = g * t_near * oracle::exact::abs(m4[i]) + underflow;
-        const oracle::exact::Rational c = oracle::exact::abs(cx_[i]);
-        const oracle::exact::Rational y = cx_[i] >= 0 ? near[i] : oracle::exact::Rational(-near[i]);
+        const oracle::exact::Rational c = oracle::exact::abs(v_.cx[i]);
+        const oracle::exact::Rational y =
+            v_.cx[i] >= 0 ? near[i] : oracle::exact::Rational(-near[i]);
         if (c == 0 && w == 0) {
           if (oracle::exact::abs(near[i]) > b) ok = false;
           continue;
@@ -384,7 +294,7 @@ class Problem {
     if (!feasible) {
       const oracle::exact::Rational w = oracle::tolerance::kInvisiblePlaneUlps *
                                         oracle::tolerance::unit_roundoff(p) *
-                                        oracle::exact::abs(cx_[k]);
+                                        oracle::exact::abs(v_.cx[k]);
       if (fit(w)) {
         feasible = true;
         invisible = w;
@@ -393,20 +303,16 @@ class Problem {
     // For the reports and the bounds below: a feasible lambda, or the one the largest |C_k| gives.
     const oracle::exact::Rational lambda =
         feasible ? oracle::exact::Rational((lambda_low + lambda_high) / 2)
-                 : oracle::exact::Rational(near[k] / cx_[k]);
-    oracle::exact::Vec
-        entry_bound;  // what rounding may move one entry of M'_3 (and so of near', far')
-    for (int i = 0; i < 4; ++i) {
-      entry_bound[i] =
-          g * (oracle::exact::abs(lambda * cx_[i]) + t_near * oracle::exact::abs(m4[i])) +
-          invisible * oracle::exact::abs(lambda) + underflow;
-    }
+                 : oracle::exact::Rational(near[k] / v_.cx[k]);
+    oracle::exact::Vec entry_bound;  // what rounding may move one entry of M'_3
+    for (int i = 0; i < 4; ++i)
+      entry_bound[i] = v_.entry_bound(i, lambda * v_.cx[i], invisible * oracle::exact::abs(lambda));
     {
       Verdict v(Property::near_is_clip_plane);
       oracle::exact::Rational worst = 0;
       bool unbounded = false;  // a residual where the bound is 0
       for (int i = 0; i < 4; ++i) {
-        const oracle::exact::Rational residual = oracle::exact::abs(near[i] - lambda * cx_[i]);
+        const oracle::exact::Rational residual = oracle::exact::abs(near[i] - lambda * v_.cx[i]);
         if (entry_bound[i] > 0) {
           worst = std::max(worst, oracle::exact::Rational(residual / entry_bound[i]));
         } else if (residual > 0) {
@@ -447,22 +353,17 @@ class Problem {
       }
       out.items.push_back(v);
     }
-    // What rounding may do to far' . p at a point p with M_4 . p = 1: the error of a (relative
-    // scale_error(), reaching far' . p through a C . p <= a C . Q = k) plus the entries'.
-    const oracle::exact::Rational k_range =
-        clip_depth_range(convention_).z_high - clip_depth_range(convention_).z_low;
+    // What rounding may do to far' . p at a point p with M_4 . p = 1 (view_volume.h).
     const std::optional<oracle::exact::Rational> scale = scale_error();
     const bool corners_judged = scale.has_value();
-    const oracle::exact::Rational scale_term =
-        corners_judged ? k_range * *scale : oracle::exact::Rational(0);
-    auto point_bound = [&](const oracle::exact::Vec& point, bool through_scale) {
-      oracle::exact::Rational b = through_scale ? scale_term : oracle::exact::Rational(0);
-      for (int i = 0; i < 4; ++i) b += 2 * entry_bound[i] * oracle::exact::abs(point[i]);
-      return b;
+    const oracle::exact::Vec twice_entry_bound = v_.twice(entry_bound);
+    const oracle::exact::Rational scale_term = v_.scale_term(scale);
+    auto point_bound = [&](const oracle::exact::Vec& point, bool at_corner) {
+      return v_.point_bound(twice_entry_bound, scale_term, point, at_corner);
     };
     // 3. and 5. far' . Q = 0.
-    const oracle::exact::Rational far_q = oracle::exact::dot(far, q_);
-    const oracle::exact::Rational far_q_bound = point_bound(q_, true);
+    const oracle::exact::Rational far_q = oracle::exact::dot(far, v_.q);
+    const oracle::exact::Rational far_q_bound = point_bound(v_.q, true);
     const double far_q_ratio = far_q_bound > 0 ? approx(oracle::exact::abs(far_q) / far_q_bound)
                                : far_q == 0    ? 0.0
                                                : std::numeric_limits<double>::infinity();
@@ -481,15 +382,15 @@ class Problem {
     {
       Verdict v(Property::no_clipping);
       double worst = 0;
-      auto visit = [&](const oracle::exact::Vec& point, bool through_scale, Shows where) {
+      v_.for_each_kept_vertex(corners_judged, [&](const oracle::exact::Vec& point, bool at_corner) {
         const oracle::exact::Rational value = oracle::exact::dot(far, point);
         if (value >= 0) return;
-        const oracle::exact::Rational bound = point_bound(point, through_scale);
+        const oracle::exact::Rational bound = point_bound(point, at_corner);
         const double ratio =
             bound > 0 ? approx(-value / bound) : std::numeric_limits<double>::infinity();
         if (-value > bound) {
           if (v.holds || ratio > worst) {
-            v.shows = where;
+            v.shows = at_corner ? Shows::below_at_corner : Shows::below_at_edge_crossing;
             v.residual = approx(value);
             v.bound = approx(bound);
             v.point = point;
@@ -497,22 +398,7 @@ class Problem {
           v.holds = false;
         }
         worst = std::max(worst, ratio);
-      };
-      for (int i = 0; i < 8; ++i) {
-        if (corners_judged && corner_dots_[i] >= 0)
-          visit(corners_[i], true, Shows::below_at_corner);
-        for (int j = i + 1; j < 8; ++j) {
-          int differing = 0;
-          for (int axis = 0; axis < 3; ++axis)
-            differing += clip_corners_[i][axis] != clip_corners_[j][axis];
-          if (differing != 1 || sgn(corner_dots_[i]) * sgn(corner_dots_[j]) >= 0) continue;
-          // The point of edge ij on C, normalised so that M_4 . p = 1.
-          const oracle::exact::Rational alpha =
-              corner_dots_[j] / (corner_dots_[j] - corner_dots_[i]);
-          visit(oracle::exact::combine(alpha, corners_[i], 1 - alpha, corners_[j]), false,
-                Shows::below_at_edge_crossing);
-        }
-      }
+      });
       v.ratio = worst;
       if (v.holds) v.shows = Shows::no_vertex_below;
       out.items.push_back(v);
@@ -520,10 +406,10 @@ class Problem {
     {
       Verdict v(Property::infinite_edge_parallel);
       v.applies = far_corner_at_infinity() && corners_judged;
-      v.holds = !v.applies || (q_[3] == 0 && oracle::exact::abs(far_q) <= far_q_bound);
+      v.holds = !v.applies || (v_.q[3] == 0 && oracle::exact::abs(far_q) <= far_q_bound);
       v.ratio = v.applies ? far_q_ratio : 0;
       v.shows = Shows::edge_direction;
-      v.reference = approx(q_[3]);
+      v.reference = approx(v_.q[3]);
       v.residual = approx(far_q);
       v.bound = approx(far_q_bound);
       out.items.push_back(v);
@@ -532,77 +418,20 @@ class Problem {
   }
 
  private:
-  /// Whether corner i is a far corner: it agrees with Q' wherever C' has a nonzero component.
-  bool is_far_corner_candidate(int i) const {
-    for (int k = 0; k < 3; ++k) {
-      if (oracle::exact::sign(c_clip_[k]) != 0 && clip_corners_[i][k] != q_clip_[k]) return false;
-    }
-    return true;
-  }
-
   Matrix4<T> m_;
   Vector4<T> c_;
-  Convention convention_;
-  bool finite_ = false, invertible_ = false, infinite_ = false, camera_behind_ = false;
-  bool too_spread_ = false;  ///< beyond max_magnitude_spread(): the core may answer out_of_range
-  oracle::exact::Mat mx_{}, inverse_{};
-  oracle::exact::Vec cx_{}, c_clip_{}, q_clip_{}, q_{};
-  std::array<oracle::exact::Vec, 8> clip_corners_{}, corners_{};
-  std::array<oracle::exact::Rational, 8> corner_dots_{};
-  oracle::exact::Rational d_ = 0, kappa_numerator_ = 0;
+  ViewVolume<T, ExactArithmetic<T>> v_;
   double skeel_condition_ = 0;
 };
 
 template <class T>
 Problem<T>::Problem(const Matrix4<T>& m, const Vector4<T>& c, Convention convention)
-    : m_(m), c_(c), convention_(convention) {
-  finite_ = all_finite(m) && all_finite(c);
-  if (!finite_) return;
-  too_spread_ = magnitude_spread(m) > max_magnitude_spread<T>();
-  mx_ = oracle::exact::to_rational(m);
-  cx_ = oracle::exact::to_rational(c);
-  auto inverse = oracle::exact::inverse(mx_);
-  invertible_ = inverse.has_value();
-  if (!invertible_) return;
-  inverse_ = *inverse;
-  c_clip_ = oracle::exact::mul(oracle::exact::transpose(inverse_), cx_);  // C' = M^-T C
-  const DepthRange range = clip_depth_range(convention);
-  int index = 0;
-  for (int x : {-1, 1}) {
-    for (int y : {-1, 1}) {
-      for (int z : {range.z_low, range.z_high}) {
-        clip_corners_[index] = {x, y, z, 1};
-        corners_[index] = oracle::exact::mul(inverse_, clip_corners_[index]);
-        corner_dots_[index] = oracle::exact::dot(cx_, corners_[index]);
-        ++index;
-      }
-    }
+    : m_(m), c_(c), v_(m, c, convention) {
+  // Skeel's condition number || |M^-1| |M| ||_inf, for reports.
+  if (v_.invertible) {
+    for (const auto& v : v_.skeel_row_sums)
+      skeel_condition_ = std::max(skeel_condition_, v.get_d());
   }
-  // The far corner by the sign rule (a zero sign gives the middle of the edge: equally far).
-  const int sz = oracle::exact::sign(c_clip_[2]);
-  const oracle::exact::Rational z_mid = oracle::exact::Rational(range.z_low + range.z_high) / 2;
-  q_clip_ = {oracle::exact::sign(c_clip_[0]), oracle::exact::sign(c_clip_[1]),
-             sz > 0 ? oracle::exact::Rational(range.z_high)
-                    : (sz < 0 ? oracle::exact::Rational(range.z_low) : z_mid),
-             1};
-  q_ = oracle::exact::mul(inverse_, q_clip_);
-  d_ = oracle::exact::dot(cx_, q_);
-  // Infinite: the far face (z_high, or z_low for reversed Z) maps to the plane at infinity.
-  const int far_z = convention == Convention::reversed_z ? range.z_low : range.z_high;
-  infinite_ = true;
-  for (int i = 0; i < 8; ++i) {
-    if (clip_corners_[i][2] == far_z && corners_[i][3] != 0) infinite_ = false;
-  }
-  const oracle::exact::Mat abs_m = oracle::exact::abs(mx_), abs_inv = oracle::exact::abs(inverse_);
-  kappa_numerator_ = oracle::tolerance::corner_dot_numerator(
-      oracle::exact::abs(cx_), oracle::exact::abs(q_), oracle::exact::abs(c_clip_),
-      oracle::exact::abs(q_clip_), abs_m, abs_inv);
-  camera_behind_ = cx_[3] < 0;
-  // Skeel's condition number || |M^-1| |M| ||_inf, for the singularity gray zone.
-  const oracle::exact::Vec ones{1, 1, 1, 1};
-  const oracle::exact::Vec row_sums = oracle::exact::mul(abs_inv, oracle::exact::mul(abs_m, ones));
-  skeel_condition_ = 0;
-  for (const auto& v : row_sums) skeel_condition_ = std::max(skeel_condition_, v.get_d());
 }
 
 }  // namespace oblique::oracle

@@ -22,6 +22,7 @@
 #include <limits>
 #include <optional>
 
+#include "oblique/oracle/algebra.h"
 #include "oblique/oracle/exact.h"
 
 namespace oblique::oracle::tolerance {
@@ -135,47 +136,50 @@ inline oracle::exact::Rational gamma(int n, int precision_bits) {
   return nu / (1 - nu);
 }
 
+// The bounds below are written once over the checker's arithmetic A (view_volume.h): the exact
+// oracle's rationals (ExactArithmetic) and the filter's certified intervals (CertifiedArithmetic).
+// A gives gamma(n), constant(x) and less(x, y); `underflow` is the underflow unit of T in the
+// units of the quantity bounded (the filter scales its inputs by powers of two).
+
 /// kappa's numerator (above) for a corner Q' = S Q of a matrix S: |C|.|Q| + |C|^T |S^-1| |S| |Q| +
-/// |C'|^T |S| |S^-1| |Q'|, from the magnitudes |C|, |Q|, |C'|, |Q'|, |S| and |S^-1|.
-inline oracle::exact::Rational corner_dot_numerator(const oracle::exact::Vec& abs_c,
-                                                    const oracle::exact::Vec& abs_q,
-                                                    const oracle::exact::Vec& abs_c_clip,
-                                                    const oracle::exact::Vec& abs_q_clip,
-                                                    const oracle::exact::Mat& abs_s,
-                                                    const oracle::exact::Mat& abs_inverse) {
-  return oracle::exact::dot(abs_c, abs_q) +
-         oracle::exact::dot(abs_c,
-                            oracle::exact::mul(abs_inverse, oracle::exact::mul(abs_s, abs_q))) +
-         oracle::exact::dot(abs_c_clip,
-                            oracle::exact::mul(abs_s, oracle::exact::mul(abs_inverse, abs_q_clip)));
+/// |C'|^T |S| |S^-1| |Q'|, from the magnitudes |C|, |Q|, |C'|, |Q'|, |S| and |S^-1| (rationals,
+/// or certified ranges of magnitudes).
+template <class N>
+N corner_dot_numerator(const algebra::Vec<N>& abs_c, const algebra::Vec<N>& abs_q,
+                       const algebra::Vec<N>& abs_c_clip, const algebra::Vec<N>& abs_q_clip,
+                       const algebra::Mat<N>& abs_s, const algebra::Mat<N>& abs_inverse) {
+  return N(algebra::dot(abs_c, abs_q) +
+           algebra::dot(abs_c, algebra::mul(abs_inverse, algebra::mul(abs_s, abs_q)))) +
+         algebra::dot(abs_c_clip, algebra::mul(abs_s, algebra::mul(abs_inverse, abs_q_clip)));
 }
 
 /// The bound on the error of C . Q computed in T: gamma(kScaleRoundings) times kappa's numerator,
 /// plus kScaleRoundings eta for underflow.
-template <class T>
-oracle::exact::Rational corner_dot_error(const oracle::exact::Rational& numerator) {
-  return gamma(kScaleRoundings, precision_bits<T>()) * numerator +
-         kScaleRoundings * underflow_unit<T>();
+template <class A>
+typename A::Num corner_dot_error(const typename A::Num& numerator,
+                                 const typename A::Num& underflow) {
+  return A::gamma(kScaleRoundings) * numerator + A::constant(kScaleRoundings) * underflow;
 }
 
 /// The bound on the relative error of a = k / (C . Q) from that of C . Q, eps = error / |C . Q|:
 /// eps / (1 - eps) (not eps: the first-order bound fails as eps -> 1); none where eps >= 1.
-inline std::optional<oracle::exact::Rational> scale_error(
-    const oracle::exact::Rational& corner_dot_error, const oracle::exact::Rational& corner_dot) {
-  if (corner_dot == 0) return std::nullopt;
-  const oracle::exact::Rational eps = corner_dot_error / oracle::exact::abs(corner_dot);
-  if (eps >= 1) return std::nullopt;
-  return oracle::exact::Rational(eps / (1 - eps));
+template <class A>
+std::optional<typename A::Num> scale_error(const typename A::Num& corner_dot_error,
+                                           const typename A::Num& corner_dot) {
+  using Num = typename A::Num;
+  if (algebra::is_zero(corner_dot)) return std::nullopt;
+  const Num eps = corner_dot_error / A::abs(corner_dot);
+  if (!A::less(eps, A::constant(1))) return std::nullopt;
+  return Num(eps / (A::constant(1) - eps));
 }
 
 /// The bound on one entry of M'_3 = s (a C_i - t M4_i) computed in T given a's relative error
 /// `scale`: gamma(kEntryRoundings) (|a C_i| + |t M4_i|) + |a C_i| scale + kEntryRoundings eta.
-template <class T>
-oracle::exact::Rational row3_entry_bound(const oracle::exact::Rational& abs_ac,
-                                         const oracle::exact::Rational& abs_m4,
-                                         const oracle::exact::Rational& scale) {
-  return gamma(kEntryRoundings, precision_bits<T>()) * (abs_ac + abs_m4) + abs_ac * scale +
-         kEntryRoundings * underflow_unit<T>();
+template <class A>
+typename A::Num row3_entry_bound(const typename A::Num& abs_ac, const typename A::Num& abs_m4,
+                                 const typename A::Num& scale, const typename A::Num& underflow) {
+  return A::gamma(kEntryRoundings) * (abs_ac + abs_m4) + abs_ac * scale +
+         A::constant(kEntryRoundings) * underflow;
 }
 
 // The rasterizer (raster/, oblique::raster) evaluates M' v in float32, for a float32 point v with
