@@ -67,6 +67,9 @@ struct Segment {
   Vec box;                   ///< |v^ - v| (with the divide's rounding), per coordinate (x, y, z, w)
   std::optional<Vec> bound;  ///< per coordinate (x, y, z) of the point, where w is determined
   bool w_reaches_zero = false;  ///< whether box_w reaches the segment's w (it keeps its sign)
+  /// Whether a coordinate of the segment (homogeneous, with its box, or divided by w) reaches
+  /// the largest finite T: a reconstruction in T may overflow there.
+  bool beyond_range = false;
   int axis = -1;  ///< view_axis_sign of the original; 0 where rounding in T decides it
   bool axis_is_z = true;
 };
@@ -92,6 +95,17 @@ std::optional<ConsumerFinding> before_the_answer(ConsumerCheck check, const Segm
     f.ratio = 1;
     f.detail = "answered " + answered + ": a solve in T can reach w = 0 at this depth (w within " +
                text(seg.box[3]) + " of the segment's), and then divides by 0";
+    return f;
+  }
+  if (seg.beyond_range) {
+    // The points the stored depth stands for reach beyond T's largest finite value: a solve in T
+    // overflows there, and an infinity, carried through its other steps (inf - inf, 0 inf),
+    // may leave NaN or an infinity in any coordinate.
+    f.holds = true;
+    f.ratio = 1;
+    f.detail = "answered " + answered +
+               ": the points this stored depth stands for reach beyond the largest finite " +
+               "number of the type, where a solve in it overflows";
     return f;
   }
   f.holds = false;
@@ -175,6 +189,14 @@ Segment ray_segment(const DepthSample<T>& s) {
   for (int i = 0; i < 4; ++i) {
     out.a[i] = ends[0][i] / ends[0][3];
     out.b[i] = ends[1][i] / ends[1][3];
+  }
+  const Rational largest = oracle::exact::to_rational(std::numeric_limits<T>::max());
+  for (int i = 0; i < 4; ++i) {
+    for (const Vec* end : {&out.ha, &out.hb}) {
+      if (oracle::exact::abs((*end)[i]) + out.box[i] >= largest) out.beyond_range = true;
+    }
+    if (oracle::exact::abs(out.a[i]) >= largest || oracle::exact::abs(out.b[i]) >= largest)
+      out.beyond_range = true;
   }
   out.judged = true;
   return out;

@@ -199,6 +199,36 @@ TEST(DepthReconstruction, aPointFloatCannotPlaceIsJudgedByItsRay) {
   EXPECT_TRUE(oblique::oracle::judge_linear_depth(*sample, -point.z()).holds);
 }
 
+// A stiff orthographic case in double (found by fuzz_consumers, 2026-12-06): C = (0, 1, -5e-324,
+// -5e-324) makes row 3 of M' (0, -1e6, 4.9e-318, 1), so one fixed24 depth step is 1e310 in view
+// z, beyond double's range: the points a stored depth stands for reach past the largest double,
+// a solve in double overflows there, and NaN or an infinity is what it can give. A finite answer
+// is still judged by the segment.
+TEST(DepthReconstruction, aSegmentBeyondTheTypesRangeAllowsAnOverflow) {
+  const Convention k = Convention::reversed_z;
+  Matrix4<double> m;
+  m << 0x1.47ae147ae147bp-2, 0, 0, 0x1.147ae147ae148p+0, 0, -0x1.e848p+20, 0, 1, 0, 0, -0x1p-3,
+      -0.0, 0, 0, 0, 1;
+  const Vector4<double> c(0, 1, -0x0.0000000000001p-1022, -0x0.0000000000001p-1022);
+  const auto result = oblique::apply<double>(m, c, k);
+  ASSERT_EQ(result.status, oblique::Status::ok);
+  const Vector4<double> point(-2.5910202655485675, 4.53529000698812e-07, -3.7756813417190775, 1);
+  const auto sample =
+      oblique::oracle::depth_sample(result.projection, m, k, DepthBuffer::fixed24, point);
+  ASSERT_TRUE(sample.has_value());
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const ConsumerFinding overflow =
+      oblique::oracle::judge_view_position(*sample, Vector3<double>(nan, nan, -inf));
+  ASSERT_TRUE(overflow.judged) << overflow.detail;
+  EXPECT_TRUE(overflow.holds) << describe(overflow);
+  EXPECT_NE(overflow.detail.find("beyond the largest finite"), std::string::npos)
+      << overflow.detail;
+  const ConsumerFinding off_ray = oblique::oracle::judge_view_position(
+      *sample, Vector3<double>(-point.x() + 1, point.y(), point.z()));
+  EXPECT_TRUE(off_ray.judged && !off_ray.holds) << describe(off_ray);
+}
+
 // Where float places the point, an infinity is not one of the answers it can give.
 TEST(DepthReconstruction, infinityIsViolatedWhereFloatPlacesThePoint) {
   for (Convention k : kConventions) {
