@@ -316,7 +316,16 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
       }
     }
   }
-  if (out.causes.empty()) return out;
+  if (out.causes.empty()) {
+    for (const Case<T>& k : cases) {
+      const Observation<T>& o = k.seen;
+      if (!o.wrong || o.status != Status::ok || !all_finite(o.projection)) continue;
+      const AnswerGeometry g = answer_geometry(o.matrix, o.plane, o.convention, o.projection);
+      if (g.described) out.geometry = g;
+      break;
+    }
+    return out;
+  }
   const variant::Knobs knobs = variant::knobs_of(out.causes.front());
   bool evidence_taken = false;
   for (const Case<T>& k : cases) {
@@ -414,6 +423,7 @@ std::string likely_cause_markdown(const Diagnosis& d) {
   if (d.causes.empty()) {
     md << "No known mistake reproduces these answers (" << d.seen << " cases judged, " << d.wrong
        << " answers wrong; catalogue: docs/mistakes.md).\n\n";
+    if (d.geometry) md << answer_geometry_markdown(*d.geometry);
     return md.str();
   }
   if (d.causes.size() > 1) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "oblique/cases/generators.h"
+#include "oblique/mistakes/answer_geometry.h"
 #include "oblique/mistakes/diagnosis.h"
 #include "oblique/mistakes/mistakes.h"
 #include "oblique/oblique.h"
@@ -125,6 +126,60 @@ TYPED_TEST(Diagnose, anUnlistedMistakeIsNoKnownMistake) {
   ASSERT_TRUE(d.ran);
   EXPECT_TRUE(d.causes.empty()) << likely_cause_line(d);
   EXPECT_EQ(likely_cause_line(d), "likely cause: no known mistake reproduces these answers");
+  // Described instead, in geometry: row 3 is 1.5 times C's right multiple with M_4's right one,
+  // so the near plane is still C and the far plane falls short of Q, clipping the volume.
+  ASSERT_TRUE(d.geometry.has_value());
+  const AnswerGeometry& g = *d.geometry;
+  EXPECT_TRUE(g.side_rows_kept);
+  EXPECT_TRUE(g.in_span) << g.rest_share;
+  EXPECT_TRUE(g.beta_right) << g.beta << " against " << g.right_beta;
+  EXPECT_NEAR(g.alpha_ratio, 1.5, 1e-3);
+  EXPECT_TRUE(g.near_is_c);
+  EXPECT_FALSE(g.far_through_q);
+  EXPECT_TRUE(g.clips);
+  const std::string md = likely_cause_markdown(d);
+  EXPECT_NE(md.find("C's multiple is 1.5 times the right one, M_4's is right."), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("The near plane is C, its kept side the right one."), std::string::npos) << md;
+  EXPECT_NE(md.find("is clipped: the far plane cuts away the point"), std::string::npos) << md;
+}
+
+// The geometry of answers that are not the right one in other ways: the near plane negated (the
+// wrong side kept), a side row changed, and row 3 off the span of C and M_4.
+TEST(AnswerGeometry, namesWhatEachWrongAnswerChanges) {
+  const Convention k = Convention::gl;
+  Matrix4<double> m;
+  m << 1.5, 0, 0, 0, 0, 2, 0, 0, 0, 0, -1.2, -2.2, 0, 0, -1, 0;
+  const Vector4<double> c(0.3, 0.2, -1, -2);
+  const ObliqueResult<double> r = apply<double>(m, c, k);
+  ASSERT_EQ(r.status, Status::ok);
+  const AnswerGeometry right = answer_geometry(m, c, k, r.projection);
+  ASSERT_TRUE(right.described);
+  EXPECT_TRUE(right.side_rows_kept && right.in_span && right.beta_right && right.near_is_c &&
+              right.far_through_q && !right.clips);
+  EXPECT_NEAR(right.alpha_ratio, 1, 1e-12);
+  EXPECT_NEAR(right.q_depth, 1, 1e-12);
+
+  Matrix4<double> negated = r.projection;  // near' = -(M'_3 + M_4): the wrong side
+  negated.row(2) = -r.projection.row(2) - 2 * m.row(3);
+  const AnswerGeometry wrong_side = answer_geometry(m, c, k, negated);
+  EXPECT_FALSE(wrong_side.near_is_c);
+  EXPECT_TRUE(wrong_side.near_wrong_side);
+
+  Matrix4<double> side = r.projection;
+  side(0, 0) = 1.25;
+  const AnswerGeometry moved = answer_geometry(m, c, k, side);
+  EXPECT_FALSE(moved.side_rows_kept);
+  EXPECT_EQ(moved.changed_row, 1);
+  EXPECT_EQ(moved.changed_column, 1);
+
+  Matrix4<double> tilted = r.projection;
+  tilted(2, 0) += 0.5;
+  const AnswerGeometry off = answer_geometry(m, c, k, tilted);
+  EXPECT_FALSE(off.in_span);
+  EXPECT_GT(off.rest_share, 0.01);
+  EXPECT_FALSE(off.near_is_c);
+  EXPECT_NE(answer_geometry_markdown(off).find("+ a rest"), std::string::npos);
 }
 
 TEST(Mistakes, everyEntryHasOneNameReadBackToItself) {

@@ -17,6 +17,7 @@
 
 #include "oblique/cases/case_kinds.h"
 #include "oblique/depth_convention.h"
+#include "oblique/mistakes/answer_geometry.h"
 #include "oblique/mistakes/mistakes.h"
 #include "oblique/plane.h"
 #include "oblique/status.h"
@@ -76,6 +77,9 @@ struct Diagnosis {
   int row = 2;
   std::optional<std::array<double, 4>> answered_row, mistaken_row, right_row;
   std::vector<ChoiceDifference> differences;  ///< what the cause decided otherwise there
+  /// Where no known mistake reproduces the answers: what the first wrong answer (status ok, finite)
+  /// does, in geometry (answer_geometry.h).
+  std::optional<AnswerGeometry> geometry;
 };
 
 /// How many cases the diagnosis asks a probe per convention seen (its fixed panel).
