@@ -160,6 +160,18 @@ TEST(AnswerGeometry, namesWhatEachWrongAnswerChanges) {
   EXPECT_NEAR(right.alpha_ratio, 1, 1e-12);
   EXPECT_NEAR(right.q_depth, 1, 1e-12);
 
+  // The [0, 1] factor with the gl form (docs/mistakes.md's worked example): row 3 = C / (C . Q) -
+  // M_4. The near plane is still C; the far plane lies beyond Q, which lands at depth 0.
+  Matrix4<double> half = r.projection;
+  half.row(2) = 0.5 * (r.projection.row(2) + m.row(3)) - m.row(3);
+  const AnswerGeometry zero_one_factor = answer_geometry(m, c, k, half);
+  EXPECT_TRUE(zero_one_factor.in_span && zero_one_factor.beta_right);
+  EXPECT_NEAR(zero_one_factor.alpha_ratio, 0.5, 1e-12);
+  EXPECT_TRUE(zero_one_factor.near_is_c);
+  EXPECT_FALSE(zero_one_factor.far_through_q);
+  EXPECT_NEAR(zero_one_factor.q_depth, 0, 1e-12);
+  EXPECT_FALSE(zero_one_factor.clips);
+
   Matrix4<double> negated = r.projection;  // near' = -(M'_3 + M_4): the wrong side
   negated.row(2) = -r.projection.row(2) - 2 * m.row(3);
   const AnswerGeometry wrong_side = answer_geometry(m, c, k, negated);
