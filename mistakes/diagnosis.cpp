@@ -269,6 +269,52 @@ std::optional<std::array<double, 4>> row_of(const Exact& x, int row) {
   return out;
 }
 
+/// The causes that explain every answer of `cases`: each mistake alone, or where none does, each
+/// two together.
+template <class T>
+std::vector<std::vector<Mistake>> causes_of(const std::vector<Case<T>>& cases) {
+  std::vector<std::vector<Mistake>> out;
+  for (Mistake m : all_mistakes) {
+    if (explains<T>({m}, cases)) out.push_back({m});
+  }
+  if (!out.empty()) return out;
+  constexpr std::size_t n = std::size(all_mistakes);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if (explains<T>({all_mistakes[i], all_mistakes[j]}, cases))
+        out.push_back({all_mistakes[i], all_mistakes[j]});
+    }
+  }
+  return out;
+}
+
+/// Each family's answers diagnosed alone, where they part by family: some family with every
+/// answer right and some with a wrong one. Empty otherwise (one family, or wrong everywhere).
+template <class T>
+std::vector<FamilyDiagnosis> by_family(const std::vector<Case<T>>& cases) {
+  std::vector<FamilyDiagnosis> out;
+  for (cases::Family family : cases::all_families) {
+    std::vector<Case<T>> group;
+    for (const Case<T>& k : cases) {
+      if (k.seen.family == family) group.push_back(k);
+    }
+    if (group.empty()) continue;
+    FamilyDiagnosis f;
+    f.family = family;
+    f.seen = static_cast<int>(group.size());
+    f.wrong = static_cast<int>(
+        std::count_if(group.begin(), group.end(), [](const Case<T>& k) { return k.seen.wrong; }));
+    if (f.wrong > 0) f.causes = causes_of(group);
+    out.push_back(std::move(f));
+  }
+  const bool some_right =
+      std::any_of(out.begin(), out.end(), [](const FamilyDiagnosis& f) { return f.wrong == 0; });
+  const bool some_wrong =
+      std::any_of(out.begin(), out.end(), [](const FamilyDiagnosis& f) { return f.wrong > 0; });
+  if (!some_right || !some_wrong) out.clear();
+  return out;
+}
+
 }  // namespace
 
 template <class T>
@@ -291,8 +337,8 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
     }
     for (Convention convention : conventions) {
       for (const PanelCase<T>& k : panel<T>(convention)) {
-        if (const std::optional<Observation<T>> o =
-                probe(k.matrix, k.plane, convention, k.family)) {
+        if (std::optional<Observation<T>> o = probe(k.matrix, k.plane, convention, k.family)) {
+          if (!o->family) o->family = k.family;
           add_case(*o);
           ++out.probed;
         }
@@ -304,19 +350,9 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
   out.seen = static_cast<int>(cases.size());
   out.wrong = static_cast<int>(
       std::count_if(cases.begin(), cases.end(), [](const Case<T>& k) { return k.seen.wrong; }));
-  for (Mistake m : all_mistakes) {
-    if (explains<T>({m}, cases)) out.causes.push_back({m});
-  }
+  out.causes = causes_of(cases);
   if (out.causes.empty()) {
-    constexpr std::size_t n = std::size(all_mistakes);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) {
-        if (explains<T>({all_mistakes[i], all_mistakes[j]}, cases))
-          out.causes.push_back({all_mistakes[i], all_mistakes[j]});
-      }
-    }
-  }
-  if (out.causes.empty()) {
+    out.families = by_family(cases);
     for (const Case<T>& k : cases) {
       const Observation<T>& o = k.seen;
       if (!o.wrong || o.status != Status::ok || !all_finite(o.projection)) continue;
@@ -365,8 +401,34 @@ std::string cause_name(const std::vector<Mistake>& cause) {
   return out;
 }
 
+namespace {
+
+/// "wrong_face" or "wrong_face or camera_space_signs"; "no known mistake" for none.
+std::string causes_text(const std::vector<std::vector<Mistake>>& causes) {
+  if (causes.empty()) return "no known mistake";
+  std::string out;
+  for (const auto& cause : causes) out += (out.empty() ? "" : " or ") + cause_name(cause);
+  return out;
+}
+
+/// "right on perspective, off_axis; on y_flipped: wrong_face": each family's own diagnosis.
+std::string by_family_text(const std::vector<FamilyDiagnosis>& families) {
+  std::string right, wrong;
+  for (const FamilyDiagnosis& f : families) {
+    const std::string name(cases::family_name(f.family));
+    if (f.wrong == 0)
+      right += (right.empty() ? "" : ", ") + name;
+    else
+      wrong += "; on " + name + ": " + causes_text(f.causes);
+  }
+  return "right on " + right + wrong;
+}
+
+}  // namespace
+
 std::string cause_names(const Diagnosis& d) {
   if (!d.ran) return "";
+  if (d.causes.empty() && !d.families.empty()) return by_family_text(d.families);
   if (d.causes.empty()) return "no known mistake";
   std::string out;
   for (const auto& cause : d.causes) out += (out.empty() ? "" : " or ") + cause_name(cause);
@@ -375,6 +437,9 @@ std::string cause_names(const Diagnosis& d) {
 
 std::string likely_cause_line(const Diagnosis& d) {
   if (!d.ran) return "";
+  if (d.causes.empty() && !d.families.empty())
+    return "likely cause, by family (no one known mistake reproduces every answer): " +
+           by_family_text(d.families);
   if (d.causes.empty()) return "likely cause: no known mistake reproduces these answers";
   std::string out = "likely cause: ";
   for (std::size_t i = 0; i < d.causes.size(); ++i) {
@@ -423,6 +488,26 @@ std::string likely_cause_markdown(const Diagnosis& d) {
   if (d.causes.empty()) {
     md << "No known mistake reproduces these answers (" << d.seen << " cases judged, " << d.wrong
        << " answers wrong; catalogue: docs/mistakes.md).\n\n";
+    if (!d.families.empty()) {
+      md << "They part by family: right on some, wrong on others. Each family alone:\n\n"
+         << "| family | what sets it apart | cases | wrong | likely cause |\n"
+         << "|---|---|---|---|---|\n";
+      for (const FamilyDiagnosis& f : d.families) {
+        md << "| " << cases::family_name(f.family) << " | " << cases::family_shape(f.family)
+           << " | " << f.seen << " | " << f.wrong << " | "
+           << (f.wrong == 0 ? std::string("right") : "`" + causes_text(f.causes) + "`") << " |\n";
+      }
+      md << "\nThe code takes another path on the families where it is wrong; the condition that "
+            "sends it there is in what sets them apart.\n\n";
+      for (const FamilyDiagnosis& f : d.families) {
+        if (f.causes.size() != 1) continue;
+        for (Mistake m : f.causes.front()) {
+          const MistakeEntry& e = mistake_entry(m);
+          md << "**On " << cases::family_name(f.family) << ": `" << e.name << "`: " << e.title
+             << ".** " << e.explanation << "\n\nFix: " << e.fix << "\n\n";
+        }
+      }
+    }
     if (d.geometry) md << answer_geometry_markdown(*d.geometry);
     return md.str();
   }

@@ -3,6 +3,7 @@
 // catalogue does not know.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -42,8 +43,9 @@ Diagnosis first_finding_diagnosed(const Implementation<T>& impl, int cases = 400
     const cases::Case<T> c = i % 4 == 3 ? invalid(random.split(), i % 101).value()
                                         : valid(random.split(), i % 101).value();
     if (!all_finite(c.matrix) || !all_finite(c.plane)) continue;
-    const Observation<T> o = observe(impl, c.matrix, c.plane, c.convention);
+    Observation<T> o = observe(impl, c.matrix, c.plane, c.convention);
     if (!o.wrong) continue;
+    o.family = c.family;
     const Probe<T> probe = [&impl](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
                                    cases::Family) {
       return std::optional<Observation<T>>(observe(impl, m, p, k));
@@ -77,6 +79,46 @@ TYPED_TEST(Diagnose, twoMistakesTogetherAreThePair) {
   ASSERT_TRUE(d.ran);
   ASSERT_EQ(d.causes.size(), 1u) << likely_cause_line(d);
   EXPECT_EQ(d.causes[0], pair) << likely_cause_line(d);
+}
+
+// Code right on the symmetric frustum and wrong where clip y is flipped (it takes another path
+// for M22 < 0, and that path puts Q'_z on the near face): no one mistake reproduces every answer,
+// and each family's answers are diagnosed alone.
+TYPED_TEST(Diagnose, aProgramRightOnSomeFamiliesIsNamedPerFamily) {
+  using T = TypeParam;
+  const Implementation<T> wrong_face = mistaken_implementation<T>({Mistake::wrong_face});
+  Implementation<T> impl;
+  impl.name = "wrong_face_where_y_is_flipped";
+  impl.accepts = [](Convention, const Matrix4<T>&) { return true; };
+  impl.run = [wrong_face](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+    if (m(1, 1) < 0) return wrong_face.run(m, c, convention);
+    const ObliqueResult<T> r = apply<T>(m, c, convention);
+    return Answer<T>{r.status, r.projection};
+  };
+  const Diagnosis d = first_finding_diagnosed(impl);
+  ASSERT_TRUE(d.ran);
+  EXPECT_TRUE(d.causes.empty()) << likely_cause_line(d);
+  ASSERT_FALSE(d.families.empty()) << likely_cause_line(d);
+  bool perspective_right = false, y_flipped_named = false;
+  for (const FamilyDiagnosis& f : d.families) {
+    if (f.family == cases::Family::perspective) perspective_right = f.wrong == 0;
+    // The panel's y-flipped cases cannot tell wrong_face from far_face_fixed (in gl both put
+    // Q'_z at 1 there); the family's causes must hold wrong_face, and only single mistakes.
+    if (f.family == cases::Family::y_flipped) {
+      y_flipped_named = f.wrong > 0 && !f.causes.empty();
+      for (const auto& cause : f.causes) y_flipped_named = y_flipped_named && cause.size() == 1;
+      y_flipped_named =
+          y_flipped_named && std::find(f.causes.begin(), f.causes.end(),
+                                       std::vector<Mistake>{Mistake::wrong_face}) != f.causes.end();
+    }
+  }
+  EXPECT_TRUE(perspective_right) << likely_cause_line(d);
+  EXPECT_TRUE(y_flipped_named) << likely_cause_line(d);
+  const std::string line = likely_cause_line(d);
+  EXPECT_NE(line.find("; on y_flipped: "), std::string::npos) << line;
+  EXPECT_NE(line.find("right on perspective"), std::string::npos) << line;
+  const std::string md = likely_cause_markdown(d);
+  EXPECT_NE(md.find("| y_flipped | clip y flipped (M22 < 0, Vulkan) |"), std::string::npos) << md;
 }
 
 // A correct answer one ulp off in row 3, even if a checker took it for wrong, is no mistake.

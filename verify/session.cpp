@@ -98,7 +98,8 @@ std::optional<mistakes::Observation<T>> Session<T>::observe(const cases::Case<T>
                                   v.convention,
                                   last_answer_->status,
                                   last_answer_->projection,
-                                  e == Evaluation::finding};
+                                  e == Evaluation::finding,
+                                  v.family};
 }
 
 template <class T>

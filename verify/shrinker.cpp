@@ -97,7 +97,8 @@ mistakes::Diagnosis Shrinker<T>::diagnose(const cases::Case<T>& shrunk, const Fo
                                       shrunk.convention,
                                       finding.result ? Status::ok : finding.finding.answered,
                                       finding.result ? *finding.result : shrunk.matrix,
-                                      true};
+                                      true,
+                                      shrunk.family};
   const auto& families = session_.draws().contract().families;
   // A probe the implementation does not answer (it crashed, hung or broke the protocol) ends the
   // probing: each further one would cost a restart or the whole --timeout.

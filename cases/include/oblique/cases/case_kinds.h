@@ -69,6 +69,26 @@ constexpr std::optional<Family> parse_family(std::string_view name) noexcept {
   return value_in(family_names, name);
 }
 
+/// What sets a family's matrices apart, in the words of an engine's code (for a diagnosis that
+/// finds answers right on some families and wrong on others).
+constexpr std::string_view family_shape(Family value) noexcept {
+  switch (value) {
+    case Family::perspective: return "a symmetric frustum (M11, M22 > 0, M13 = M23 = 0, M43 = -1)";
+    case Family::off_axis: return "a frustum leaning off axis (M13 or M23 not 0)";
+    case Family::infinite: return "the far plane at infinity (M33 = M43)";
+    case Family::orthographic: return "an orthographic matrix (row 4 = (0, 0, 0, 1))";
+    case Family::y_flipped: return "clip y flipped (M22 < 0, Vulkan)";
+    case Family::jittered: return "a sub-pixel jitter (small M13, M23)";
+    case Family::rotated: return "a rotated camera (row 4 not (0, 0, a, b))";
+    case Family::general: return "any invertible matrix";
+    case Family::stereo_shift: return "a stereo or lens shift (M14 or M24 not 0)";
+    case Family::x_flipped: return "clip x flipped (M11 < 0, a mirror camera)";
+    case Family::xy_flipped: return "both clip axes flipped (M11 < 0, M22 < 0)";
+    case Family::left_handed: return "a left-handed camera (M43 = +1)";
+  }
+  return "";
+}
+
 /// Where a valid plane sits: the hard places the suite must cover on every run.
 enum class Place {
   typical,             ///< through a point inside the view volume

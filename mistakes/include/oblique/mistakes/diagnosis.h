@@ -33,6 +33,8 @@ struct Observation {
   Status status = Status::ok;
   Matrix4<T> projection = Matrix4<T>::Identity();  ///< the answer, when status is ok
   bool wrong = false;                              ///< the checker found a violation in this answer
+  /// The case's family, where the caller knows it (the panel's cases always have theirs).
+  std::optional<cases::Family> family;
 };
 
 /// Asks the implementation about one more case (of `family`): its observation, or none when the
@@ -61,6 +63,14 @@ struct ChoiceDifference {
   double mistaken = 0, right = 0;
 };
 
+/// One family's answers, diagnosed alone (Diagnosis::families).
+struct FamilyDiagnosis {
+  cases::Family family = cases::Family::perspective;
+  int seen = 0, wrong = 0;  ///< cases of the family judged, answers of it the checker rejected
+  /// The causes that explain every answer of this family (none where it has no wrong answer).
+  std::vector<std::vector<Mistake>> causes;
+};
+
 struct Diagnosis {
   bool ran = false;  ///< false where nothing was diagnosed (no wrong answer with a case)
   /// The causes that explain every answer seen: each one mistake, or two made together. Empty:
@@ -80,6 +90,9 @@ struct Diagnosis {
   /// Where no known mistake reproduces the answers: what the first wrong answer (status ok, finite)
   /// does, in geometry (answer_geometry.h).
   std::optional<AnswerGeometry> geometry;
+  /// Where no cause explains every answer but the answers part by family (right on some
+  /// families, wrong on others): each family's own diagnosis, in the order of cases::Family.
+  std::vector<FamilyDiagnosis> families;
 };
 
 /// How many cases the diagnosis asks a probe per convention seen (its fixed panel).

@@ -171,7 +171,9 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
         if (!impl.accepts(k, m)) return std::optional<mistakes::Observation<T>>();
         return std::optional(observe(m, p, k, impl.run(m, p, k)));
       };
-      return mistakes::diagnose<T>({observe(c.matrix, c.plane, c.convention, out)}, probe);
+      mistakes::Observation<T> seen = observe(c.matrix, c.plane, c.convention, out);
+      seen.family = c.family;
+      return mistakes::diagnose<T>({seen}, probe);
     };
   }
   if (finding.check == oracle::Check::status)
