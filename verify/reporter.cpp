@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 #include <ostream>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -44,6 +45,23 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
                              bool out_of_time, long found_after_cases, double found_after_seconds,
                              const mistakes::Diagnosis& diagnosis) {
   const oracle::Finding& f = found.finding;
+  // One report per cause: a cause the diagnosis names (not "no known mistake", which may be any
+  // number of bugs) that has a report already.
+  const std::string cause = mistakes::cause_names(diagnosis);
+  const bool named = diagnosis.ran && (!diagnosis.causes.empty() || !diagnosis.families.empty());
+  if (one_per_cause_ && named) {
+    if (const auto earlier = cause_reports_.find(cause); earlier != cause_reports_.end()) {
+      last_report_ = earlier->second;
+      last_kind_ = std::string(check_name(f.check));
+      last_cause_ = cause;
+      last_report_new_ = false;
+      out_ << "  " << check_name(f.check) << " (" << cases::family_name(v.family) << ", "
+           << convention_name(v.convention) << ", " << cases::case_kind(v)
+           << "): the same likely cause as an earlier finding (" << cause
+           << "); no second report\n  report: " << earlier->second << "\n";
+      return Verdict::violated;
+    }
+  }
   report::Counterexample ce = report::make_counterexample(v.matrix, v.plane, v.convention);
   ce.finding = f;
   ce.implementation = options_.command;
@@ -100,7 +118,9 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
   }
   last_report_ = path;
   last_kind_ = std::string(check_name(f.check));
-  last_cause_ = mistakes::cause_names(diagnosis);
+  last_cause_ = cause;
+  last_report_new_ = true;
+  if (one_per_cause_ && named) cause_reports_[cause] = path;
   const std::string json_path = path.size() > 3 && path.compare(path.size() - 3, 3, ".md") == 0
                                     ? path.substr(0, path.size() - 3) + ".json"
                                     : "";
@@ -168,7 +188,10 @@ Verdict Reporter<T>::passed(long done, double elapsed, const Seen& seen, const L
 template <class T>
 Verdict Reporter<T>::index(const std::map<std::string, Kind>& kinds, long done) {
   std::ostringstream index;
-  index << "# oblique verify: " << kinds.size() << " kinds of finding\n\n"
+  std::set<std::string> reports;
+  for (const auto& entry : kinds) reports.insert(entry.second.report);
+  index << "# oblique verify: " << kinds.size() << " kinds of finding, " << reports.size()
+        << (reports.size() == 1 ? " report" : " reports") << "\n\n"
         << "Implementation `" << options_.command << "`, " << protocol::scalar_name<T>()
         << ", seed " << options_.seed << ", " << done << " cases judged.\n\n"
         << "| likely cause | kind (property x family x place) | cases | report |\n"
@@ -191,7 +214,10 @@ Verdict Reporter<T>::index(const std::map<std::string, Kind>& kinds, long done) 
   std::string path = (fs::path(options_.report_dir) / name).string();
   if (!files.commit(log)) path = "(not written: " + log.str() + ")";
   out_ << "oblique verify: " << kinds.size() << " kinds of finding in " << done
-       << " cases (--keep-going); index: " << path << "\n";
+       << " cases (--keep-going), " << reports.size()
+       << (reports.size() == 1 ? " report (one per likely cause)"
+                               : " reports (one per likely cause)")
+       << "; index: " << path << "\n";
   for (const auto& [cause, entries] : by_cause) {
     out_ << "  likely cause " << cause << ":\n";
     for (const auto* entry : entries)

@@ -53,7 +53,12 @@ class Reporter {
   Verdict finding(const cases::Case<T>& v, const Found<T>& found, int steps, bool out_of_time,
                   long found_after_cases, double found_after_seconds,
                   const mistakes::Diagnosis& diagnosis = {});
+  /// --keep-going: a finding whose named likely cause was reported already gets no report of its
+  /// own; it is printed with the earlier report's path, and the index lists it under the cause.
+  void one_report_per_cause() { one_per_cause_ = true; }
   const std::string& last_report() const { return last_report_; }
+  /// Whether the last finding got a report of its own (not one_report_per_cause()'s earlier one).
+  bool last_report_is_new() const { return last_report_new_; }
   const std::string& last_kind() const { return last_kind_; }
   /// The likely cause of the last finding reported ("" where none was diagnosed).
   const std::string& last_cause() const { return last_cause_; }
@@ -85,6 +90,8 @@ class Reporter {
   std::ostream& out_;
   std::ostream& err_;
   std::string last_report_, last_kind_, last_cause_;
+  bool one_per_cause_ = false, last_report_new_ = false;
+  std::map<std::string, std::string> cause_reports_;  ///< named cause -> its report
 };
 
 }  // namespace oblique::verify

@@ -49,7 +49,9 @@ class Verifier {
         shrinker_(session_, reporter_, out, err),
         database_(session_, reporter_, out, err),
         raster_(options, mode.rasterize.value_or(RasterOptions{}), out, err),
-        accuracy_(options, mode.accuracy_dir, out, err) {}
+        accuracy_(options, mode.accuracy_dir, out, err) {
+    if (mode.keep_going) reporter_.one_report_per_cause();
+  }
 
   /// --replay: re-judges one report's case.
   Verdict replay_report(const std::string& path) {
@@ -124,7 +126,7 @@ class Verifier {
           const Verdict result =
               shrinker_.confirm(current, k, answers, finding, done + static_cast<long>(k) + 1);
           // Drawn once confirmed: an answer out of step with its request is no finding to draw.
-          if (mode_.rasterize && result == Verdict::violated)
+          if (mode_.rasterize && result == Verdict::violated && reporter_.last_report_is_new())
             raster_.finding(v, answers[k], reporter_.last_report());
           if (!mode_.keep_going || result != Verdict::violated) return result;
           kinds[key] = Kind{reporter_.last_report(), 1, reporter_.last_cause()};
