@@ -7,6 +7,7 @@
 #include <ctime>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -192,11 +193,26 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     std::string where;
     if (t.failure) {
       Counterexample failure = *t.failure;
+      std::string cause_key;  // a named cause, per implementation: one report each in a process
       if (t.diagnose_failure) {
         failure.diagnosis = t.diagnose_failure();
         where = "\n" + mistakes::likely_cause_line(*failure.diagnosis);
+        const mistakes::Diagnosis& d = *failure.diagnosis;
+        if (d.ran && (!d.causes.empty() || !d.families.empty()))
+          cause_key = report_context(property).directory + ": " + failure.implementation + ": " +
+                      mistakes::cause_names(d);
       }
-      where += "\nreport: " + write_report(failure, report_context(property));
+      static std::map<std::string, std::string> cause_reports;
+      if (const auto earlier = cause_reports.find(cause_key);
+          !cause_key.empty() && earlier != cause_reports.end()) {
+        // The same bug as an earlier failure of this process: its report, not a second one.
+        ADD_FAILURE() << name << message.str() << where << "\nreport: " << earlier->second
+                      << " (the same likely cause as an earlier failure; no second report)";
+        return;
+      }
+      const std::string path = write_report(failure, report_context(property));
+      if (!cause_key.empty()) cause_reports[cause_key] = path;
+      where += "\nreport: " + path;
     } else if (!t.markdown_failure.empty()) {
       where = "\nreport: " + write_markdown_report(t.markdown_failure, report_context(property));
     }

@@ -163,6 +163,30 @@ TEST(Presets, theEngineContractCatchesListing51OnFlippedMatrices) {
   EXPECT_NE(all.find("listing_5_1 violates"), std::string::npos) << all;
 }
 
+// One bug, one report: a mistake that breaks several properties fails each of them, and the
+// first failure writes the report; the others, with the same likely cause, point to it.
+TEST(Presets, oneBugBreakingSeveralPropertiesWritesOneReport) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "oblique_testing_one_report_per_cause";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ASSERT_EQ(::setenv("OBLIQUE_REPORT_DIR", dir.c_str(), 1), 0);
+  const auto impl = mistakes::mistaken_implementation<double>({mistakes::Mistake::wrong_face});
+  int n = 0;
+  const std::string all =
+      failures_of([&] { testing::check_properties(impl, engine_contract()); }, &n);
+  ::unsetenv("OBLIQUE_REPORT_DIR");
+  ASSERT_GE(n, 2) << "wrong_face broke fewer than two properties:\n" << all;
+  int reports = 0;
+  for (const auto& entry : fs::directory_iterator(dir))
+    reports += entry.path().extension() == ".md";
+  EXPECT_EQ(reports, 1) << all;
+  EXPECT_NE(all.find("likely cause: wrong_face"), std::string::npos) << all;
+  EXPECT_NE(all.find("(the same likely cause as an earlier failure; no second report)"),
+            std::string::npos)
+      << all;
+}
+
 // A closed form that takes |M13|, |M23| (a frustum leaning left or down gets a wrong corner) is
 // caught by the engine contract in the default run: the generators lean frustums every way.
 TEST(Presets, theEngineContractCatchesAClosedFormTakingTheOffAxisMagnitudes) {
