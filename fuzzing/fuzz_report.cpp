@@ -167,6 +167,77 @@ std::optional<Status> status_answered(const std::string& words) {
   return std::nullopt;
 }
 
+/// The case a violation's output prints (the exact hex the driver prints) and what was answered:
+/// the matrix, or the refusal; none when the output cannot be read back.
+template <class T>
+struct PrintedCase {
+  Matrix4<T> m;
+  Vector4<T> c;
+  Convention convention = Convention::gl;
+  std::optional<Matrix4<T>> answer;
+};
+
+template <class T>
+std::optional<PrintedCase<T>> printed_case(const Violation& v, const std::string& output) {
+  PrintedCase<T> out;
+  for (int i = 0; i < 4; ++i) {
+    const auto row = numbers_after<T>(output, "  M row " + std::to_string(i + 1) + ":", 4);
+    if (!row) return std::nullopt;
+    for (int j = 0; j < 4; ++j) out.m(i, j) = (*row)[static_cast<std::size_t>(j)];
+  }
+  const auto plane = numbers_after<T>(output, "  C:", 4);
+  const auto convention = parse_convention(v.convention);
+  if (!plane || !convention) return std::nullopt;
+  out.convention = *convention;
+  for (int i = 0; i < 4; ++i) out.c(i) = (*plane)[static_cast<std::size_t>(i)];
+  Matrix4<T> rows;
+  bool all_rows = true;
+  for (int i = 0; i < 4 && all_rows; ++i) {
+    const auto row = numbers_after<T>(output, "M' row " + std::to_string(i + 1) + ":", 4);
+    all_rows = row.has_value();
+    if (row)
+      for (int j = 0; j < 4; ++j) rows(i, j) = (*row)[static_cast<std::size_t>(j)];
+  }
+  if (all_rows) out.answer = rows;
+  return out;
+}
+
+/// What the answer shows of the implementation, for the diagnosis: none where the output cannot
+/// be read back or (a status finding) its words name no status.
+template <class T>
+std::optional<mistakes::Observation<T>> observation_of(const Violation& v,
+                                                       const std::string& output) {
+  const std::optional<PrintedCase<T>> k = printed_case<T>(v, output);
+  if (!k) return std::nullopt;
+  mistakes::Observation<T> seen{
+      k->m, k->c, k->convention, Status::ok, k->m, true, cases::parse_family(v.family)};
+  if (k->answer) {
+    seen.projection = *k->answer;
+  } else {
+    const std::optional<Status> answered = status_answered(v.answered);
+    if (!answered) return std::nullopt;
+    seen.status = *answered;
+  }
+  return seen;
+}
+
+/// The causes the diagnosis names for one input's answer (empty: none, or no diagnosis).
+std::vector<std::vector<mistakes::Mistake>> causes_of(const Violation& v,
+                                                      const std::string& output) {
+  auto causes = [&](auto observation) -> std::vector<std::vector<mistakes::Mistake>> {
+    if (!observation) return {};
+    using T = std::decay_t<decltype(observation->matrix(0, 0))>;
+    return mistakes::diagnose<T>({*observation}).causes;
+  };
+  try {
+    if (v.scalar == "float") return causes(observation_of<float>(v, output));
+    if (v.scalar == "double") return causes(observation_of<double>(v, output));
+    if (v.scalar == "long_double") return causes(observation_of<long double>(v, output));
+  } catch (const std::exception&) {
+  }
+  return {};
+}
+
 /// The report of a property violation: the input in its scalar type, the answer, the property's
 /// relation, pictures and the command that replays it; "" when the output cannot be read back.
 template <class T>
@@ -240,6 +311,12 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
   report::set_views(ce, problem, answer ? &*answer : nullptr);
   ce.notes.emplace_back("fuzz input", finding.inputs.front());
   ce.notes.emplace_back("inputs with this finding", std::to_string(finding.inputs.size()));
+  if (finding.kinds.size() > 1) {
+    std::string kinds;
+    for (const auto& [kind, count] : finding.kinds)
+      kinds += (kinds.empty() ? "" : "; ") + kind + ": " + std::to_string(count);
+    ce.notes.emplace_back("what they found (property x family x convention)", kinds);
+  }
   ce.notes.emplace_back("what it did", "it " + v.answered);
   ce.notes.emplace_back("what the input allows", line_from(output, "the input has"));
   ce.notes.emplace_back("output", protocol::escape_bytes(output.substr(0, 2000)));
@@ -297,28 +374,78 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
   if (files.empty()) return Result::failure("no input to run");
   std::sort(files.begin(), files.end());  // smallest first: each group's report is its smallest
   FuzzReport out;
-  std::map<std::string, std::size_t> group;
-  std::map<std::string, std::string> first_output;
+  std::map<std::string, std::size_t> group;  // findings without a named cause, by key_of()
+  struct CauseGroup {
+    std::string implementation, scalar;
+    std::vector<std::vector<mistakes::Mistake>> causes;
+    std::size_t finding = 0;
+  };
+  std::vector<CauseGroup> cause_groups;
+  std::vector<std::string> first_output;  // per finding: its smallest input's output
   for (const auto& [size, path] : files) {
     const Run r = run(options, path);
     ++out.inputs;
     if (r.status == -1) return Result::failure("cannot start /bin/sh to run the target");
     if (r.status == 127 || r.status == 126)
       return Result::failure("cannot run the target (" + options.target + "): " + r.output);
-    const std::string key = key_of(r);
+    std::string key = key_of(r);
     if (key.empty()) {
       ++out.holds;
       continue;
     }
-    if (!group.count(key)) {
-      group[key] = out.findings.size();
-      out.findings.push_back(FuzzFinding{key, {}, ""});
-      first_output[key] = r.output;
+    // A property violation whose cause the diagnosis names joins the group of that cause (for
+    // the same implementation and scalar type) whatever its property, family and convention:
+    // one bug, one report. Where one input's answer fits several causes, it joins a group that
+    // shares one, and the group keeps the causes every input fits.
+    const std::optional<Violation> v = violation_of(r.output);
+    const auto causes = v ? causes_of(*v, r.output) : decltype(causes_of(*v, r.output)){};
+    std::size_t at = out.findings.size();
+    if (!causes.empty()) {
+      for (CauseGroup& g : cause_groups) {
+        if (g.implementation != v->implementation || g.scalar != v->scalar) continue;
+        std::vector<std::vector<mistakes::Mistake>> shared;
+        for (const auto& cause : g.causes) {
+          if (std::find(causes.begin(), causes.end(), cause) != causes.end())
+            shared.push_back(cause);
+        }
+        if (shared.empty()) continue;
+        g.causes = shared;
+        at = g.finding;
+        break;
+      }
+      if (at == out.findings.size()) {
+        cause_groups.push_back(CauseGroup{v->implementation, v->scalar, causes, at});
+        out.findings.push_back(FuzzFinding{key, {}, "", {}});
+        first_output.push_back(r.output);
+      }
+    } else {
+      if (!group.count(key)) {
+        group[key] = out.findings.size();
+        out.findings.push_back(FuzzFinding{key, {}, "", {}});
+        first_output.push_back(r.output);
+      }
+      at = group[key];
     }
-    out.findings[group[key]].inputs.push_back(path);
+    FuzzFinding& f = out.findings[at];
+    f.inputs.push_back(path);
+    if (v) {
+      const std::string kind = v->property + " x " + v->family + " x " + v->convention;
+      auto it = std::find_if(f.kinds.begin(), f.kinds.end(),
+                             [&](const auto& k) { return k.first == kind; });
+      if (it == f.kinds.end())
+        f.kinds.emplace_back(kind, 1);
+      else
+        ++it->second;
+    }
   }
-  for (FuzzFinding& f : out.findings) {
-    const std::string& output = first_output[f.key];
+  for (const CauseGroup& g : cause_groups) {
+    out.findings[g.finding].key = "likely cause " +
+                                  mistakes::cause_names(mistakes::Diagnosis{true, g.causes}) +
+                                  " x " + g.implementation;
+  }
+  for (std::size_t i = 0; i < out.findings.size(); ++i) {
+    FuzzFinding& f = out.findings[i];
+    const std::string& output = first_output[i];
     std::string path;
     try {
       if (const auto v = violation_of(output)) {
@@ -343,9 +470,17 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
   std::ostream& index = files_out.open(name);
   index << "# Fuzz findings: " << out.findings.size() << " distinct, in " << out.inputs
         << " inputs\n\nTarget `" << options.target << "`; " << out.holds
-        << " inputs run without a finding now.\n\n| finding | inputs | report |\n|---|---|---|\n";
-  for (const FuzzFinding& f : out.findings)
-    index << "| " << f.key << " | " << f.inputs.size() << " | " << f.report << " |\n";
+        << " inputs run without a finding now. A finding whose likely cause the diagnosis names "
+           "groups every input of that cause (one bug, one report), with what they found listed "
+           "inside.\n\n| finding | inputs | what they found (property x family x convention) | "
+           "report |\n|---|---|---|---|\n";
+  for (const FuzzFinding& f : out.findings) {
+    std::string kinds;
+    for (const auto& [kind, count] : f.kinds)
+      kinds += (kinds.empty() ? "" : "; ") + kind + ": " + std::to_string(count);
+    index << "| " << f.key << " | " << f.inputs.size() << " | " << kinds << " | " << f.report
+          << " |\n";
+  }
   std::ostringstream log;
   if (!files_out.commit(log)) return Result::failure(log.str());
   out.index = (fs::path(options.report_dir) / name).string();

@@ -1,13 +1,16 @@
 // `oblique fuzz-report`: many crash files of a fuzz target, one report per distinct finding.
 // Each input is run alone through the target (its libFuzzer binary or its replay build: both
 // take a file), its output read, and the inputs grouped by what they found: a property of
-// oblique::fuzzing's judgement (by property, implementation, projection family and convention),
+// oblique::fuzzing's judgement by its likely cause where the diagnosis names one (one bug, one
+// report, whatever property, family and convention each input broke), otherwise by property,
+// implementation, projection family and convention;
 // a sanitizer's error (by kind and the function it names), a crash or a hang. The smallest input
 // of each group gets the report verify writes (Markdown + JSON, pictures, the commands that
 // replay it), and an index lists the groups.
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "oblique/expected.h"
@@ -24,9 +27,13 @@ struct FuzzReportOptions {
 
 /// One distinct finding and the inputs that show it.
 struct FuzzFinding {
-  std::string key;                  ///< "near_is_clip_plane x make_oblique x frustum x gl", ...
+  std::string key;  ///< "likely cause wrong_face x make_oblique", "near_is_clip_plane x
+                    ///< make_oblique x frustum x gl", ...
   std::vector<std::string> inputs;  ///< smallest first
   std::string report;               ///< the report of the smallest input
+  /// What the inputs found, by "property x family x convention", with counts (a likely cause's
+  /// finding holds several).
+  std::vector<std::pair<std::string, long>> kinds;
 };
 
 struct FuzzReport {
