@@ -221,6 +221,14 @@ std::optional<mistakes::Observation<T>> observation_of(const Violation& v,
   return seen;
 }
 
+/// A diagnosis that names `causes`, for its words.
+mistakes::Diagnosis named(const std::vector<std::vector<mistakes::Mistake>>& causes) {
+  mistakes::Diagnosis d;
+  d.ran = true;
+  d.causes = causes;
+  return d;
+}
+
 /// The causes the diagnosis names for one input's answer (empty: none, or no diagnosis).
 std::vector<std::vector<mistakes::Mistake>> causes_of(const Violation& v,
                                                       const std::string& output) {
@@ -376,7 +384,7 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
   FuzzReport out;
   std::map<std::string, std::size_t> group;  // findings without a named cause, by key_of()
   struct CauseGroup {
-    std::string implementation, scalar;
+    std::string implementation;
     std::vector<std::vector<mistakes::Mistake>> causes;
     std::size_t finding = 0;
   };
@@ -394,7 +402,7 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
       continue;
     }
     // A property violation whose cause the diagnosis names joins the group of that cause (for
-    // the same implementation and scalar type) whatever its property, family and convention:
+    // the same implementation, in any scalar type) whatever its property, family and convention:
     // one bug, one report. Where one input's answer fits several causes, it joins a group that
     // shares one, and the group keeps the causes every input fits.
     const std::optional<Violation> v = violation_of(r.output);
@@ -402,7 +410,7 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
     std::size_t at = out.findings.size();
     if (!causes.empty()) {
       for (CauseGroup& g : cause_groups) {
-        if (g.implementation != v->implementation || g.scalar != v->scalar) continue;
+        if (g.implementation != v->implementation) continue;
         std::vector<std::vector<mistakes::Mistake>> shared;
         for (const auto& cause : g.causes) {
           if (std::find(causes.begin(), causes.end(), cause) != causes.end())
@@ -414,7 +422,7 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
         break;
       }
       if (at == out.findings.size()) {
-        cause_groups.push_back(CauseGroup{v->implementation, v->scalar, causes, at});
+        cause_groups.push_back(CauseGroup{v->implementation, causes, at});
         out.findings.push_back(FuzzFinding{key, {}, "", {}});
         first_output.push_back(r.output);
       }
@@ -429,7 +437,8 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
     FuzzFinding& f = out.findings[at];
     f.inputs.push_back(path);
     if (v) {
-      const std::string kind = v->property + " x " + v->family + " x " + v->convention;
+      const std::string kind =
+          v->property + " x " + v->family + " x " + v->convention + " (" + v->scalar + ")";
       auto it = std::find_if(f.kinds.begin(), f.kinds.end(),
                              [&](const auto& k) { return k.first == kind; });
       if (it == f.kinds.end())
@@ -438,10 +447,42 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
         ++it->second;
     }
   }
+  // Groups that end with the same causes are one cause: the later merged into the earlier (whose
+  // first input is the smaller: inputs come smallest first).
+  std::vector<bool> merged(out.findings.size(), false);
+  for (std::size_t i = 0; i < cause_groups.size(); ++i) {
+    if (merged[cause_groups[i].finding]) continue;
+    for (std::size_t j = i + 1; j < cause_groups.size(); ++j) {
+      const CauseGroup &a = cause_groups[i], &b = cause_groups[j];
+      if (merged[b.finding] || a.implementation != b.implementation || a.causes != b.causes)
+        continue;
+      FuzzFinding &into = out.findings[a.finding], &from = out.findings[b.finding];
+      into.inputs.insert(into.inputs.end(), from.inputs.begin(), from.inputs.end());
+      for (const auto& [kind, count] : from.kinds) {
+        auto it = std::find_if(into.kinds.begin(), into.kinds.end(),
+                               [&](const auto& k) { return k.first == kind; });
+        if (it == into.kinds.end())
+          into.kinds.emplace_back(kind, count);
+        else
+          it->second += count;
+      }
+      merged[b.finding] = true;
+    }
+  }
   for (const CauseGroup& g : cause_groups) {
-    out.findings[g.finding].key = "likely cause " +
-                                  mistakes::cause_names(mistakes::Diagnosis{true, g.causes}) +
-                                  " x " + g.implementation;
+    out.findings[g.finding].key =
+        "likely cause " + mistakes::cause_names(named(g.causes)) + " x " + g.implementation;
+  }
+  {
+    std::vector<FuzzFinding> kept;
+    std::vector<std::string> kept_output;
+    for (std::size_t i = 0; i < out.findings.size(); ++i) {
+      if (merged[i]) continue;
+      kept.push_back(std::move(out.findings[i]));
+      kept_output.push_back(std::move(first_output[i]));
+    }
+    out.findings = std::move(kept);
+    first_output = std::move(kept_output);
   }
   for (std::size_t i = 0; i < out.findings.size(); ++i) {
     FuzzFinding& f = out.findings[i];

@@ -64,7 +64,8 @@ mistakes::Diagnosis diagnose_in(const Scene& scene, const std::vector<SurfaceChe
                                scene.convention,
                                answer->status,
                                answer->projection,
-                               false};
+                               false,
+                               std::nullopt};
     for (const oracle::Finding& f : passes[i]->impl_findings) o.wrong = o.wrong || !f.holds;
     seen.push_back(o);
   }

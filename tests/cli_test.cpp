@@ -347,6 +347,51 @@ TEST(Cli, fuzzReportGivesOneReportPerDistinctFinding) {
   EXPECT_TRUE(fs::exists(work / "reports" / "fuzz-index.md"));
 }
 
+// One bug, one report: a catalogued mistake through the project's own target on 300 corpus inputs
+// breaks several properties on several families and conventions; the inputs whose answers the
+// diagnosis names as that mistake are one finding, with what they found listed in its report.
+TEST(Cli, fuzzReportGivesOneReportPerLikelyCause) {
+  namespace fs = std::filesystem;
+  const fs::path work = fs::path(::testing::TempDir()) / "oblique_fuzz_report_per_cause";
+  fs::remove_all(work);
+  fs::create_directories(work / "inputs");
+  std::vector<fs::path> corpus;
+  for (const auto& entry : fs::directory_iterator(OBLIQUE_FUZZ_CORPUS)) corpus.push_back(entry);
+  std::sort(corpus.begin(), corpus.end());
+  for (std::size_t i = 0; i < 300 && i < corpus.size(); ++i)
+    fs::copy_file(corpus[i], work / "inputs" / corpus[i].filename());
+  const std::string target =
+      std::string("env OBLIQUE_IMPL=mistake_wrong_face ") + OBLIQUE_FUZZ_REPLAY;
+  std::string out;
+  ASSERT_EQ(
+      shell(std::string(OBLIQUE_CLI) + " fuzz-report --report-dir " + (work / "reports").string() +
+                " --target '" + target + "' " + (work / "inputs").string(),
+            &out),
+      1)
+      << out;
+  // Exactly one finding names wrong_face, and it holds inputs of more than one kind.
+  int named = 0;
+  std::string report;
+  for (std::size_t at = out.find("  likely cause "); at != std::string::npos;
+       at = out.find("  likely cause ", at + 1)) {
+    const std::string line = out.substr(at, out.find('\n', at) - at);
+    const std::string cause = line.substr(
+        15, line.find(" x mistake_wrong_face") - std::min<std::size_t>(15, line.size()));
+    if (cause.find("wrong_face") == std::string::npos) continue;
+    ++named;
+    report = line.substr(line.find(", report ") + 9);
+  }
+  ASSERT_EQ(named, 1) << out;
+  std::ifstream file(report);
+  std::ostringstream text;
+  text << file.rdbuf();
+  const std::string md = text.str();
+  EXPECT_NE(md.find("what they found (property x family x convention)"), std::string::npos)
+      << report << "\n"
+      << md;
+  EXPECT_NE(md.find("`wrong_face`"), std::string::npos) << md;
+}
+
 // Other findings group by what ended the run: a sanitizer's error (by kind and function), a
 // signal; an input that runs through is counted, not reported.
 TEST(Cli, fuzzReportGroupsSanitizerErrorsAndCrashes) {

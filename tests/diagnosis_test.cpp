@@ -27,7 +27,7 @@ Observation<T> observe(const Implementation<T>& impl, const Matrix4<T>& m, const
   const Checker<T> checker(m, c, convention);
   Checks checks;
   checks.statuses = StatusContract::any_refusal;
-  Observation<T> o{m, c, convention, outcome.status, outcome.projection, false};
+  Observation<T> o{m, c, convention, outcome.status, outcome.projection, false, std::nullopt};
   o.wrong = checker.judge(outcome, checks).violation() != nullptr;
   return o;
 }
@@ -130,7 +130,7 @@ TYPED_TEST(Diagnose, aCorrectAnswerWithNoiseIsNeverDiagnosed) {
   for (int i = 0; i < 300; ++i) {
     const cases::Case<T> c = valid(random.split(), i % 101).value();
     const ObliqueResult<T> r = apply<T>(c.matrix, c.plane, c.convention);
-    Observation<T> o{c.matrix, c.plane, c.convention, r.status, r.projection, true};
+    Observation<T> o{c.matrix, c.plane, c.convention, r.status, r.projection, true, c.family};
     if (r.status == Status::ok) {
       for (int j = 0; j < 4; ++j)
         o.projection(2, j) = std::nextafter(o.projection(2, j), j % 2 ? T(1e30) : T(-1e30));

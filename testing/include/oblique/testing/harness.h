@@ -164,7 +164,7 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
                                       const Answer<T>& answer) {
         const Judgement j = judge(Problem<T>(m, p, k), answer, judged);
         return mistakes::Observation<T>{
-            m, p, k, answer.status, answer.projection, j.violation() != nullptr};
+            m, p, k, answer.status, answer.projection, j.violation() != nullptr, std::nullopt};
       };
       const mistakes::Probe<T> probe = [&](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
                                            cases::Family) {
