@@ -289,6 +289,25 @@ TYPED_TEST(AccurateMethod, signsFromAStalledSolveAreSettled) {
   EXPECT_GE(expect_accurate_answers(stalled_transposed_solve_cases<TypeParam>(100)), 50);
 }
 
+// A matrix spanning more binades than double holds (fuzz/regressions/fuzz_oblique/
+// crash-accurate-cancelling-row3-w-wide-row1): Q's refinement cannot cancel across M's 2^71 in
+// twice double's precision, and a row-3 entry cancelling to 2^-65 of its terms came out 10 times
+// too small. It is answered exactly now, within the promised ulps.
+TEST(AccurateMethodDouble, aMatrixSpanningMoreBinadesThanDoubleIsAnsweredExactly) {
+  Matrix4<double> m;
+  m << 0, -0x1.24242c2440344p+70, -0x1.bp+1, -0x1.18p+2, -0x1.18p+2, 0x1.24p+4, -0x1.18p+2,
+      -0x1.18p+2, 0x1p-1, 0x1.0ac0442p+39, -0x1.18p+2, -0x1.38p+2, 0x1.3p+4, 0x1.5cp+3, -0x1.28p+2,
+      -0x1.18p+2;
+  const Vector4<double> c(-0x1.18p+2, -0x1.18p+2, -0x1.18p+2, -0x1.18p+2);
+  const Convention convention = Convention::reversed_z;
+  const oracle::Problem<double> problem(m, c, convention);
+  ASSERT_EQ(problem.exact_status(), Status::ok);
+  const ObliqueResult<double> r = apply<double>(m, c, convention, Method::accurate);
+  ASSERT_EQ(r.status, Status::ok) << r.detail;
+  EXPECT_LE(problem.ulps_from_exact(r.projection), oracle::tolerance::kAccurateUlps)
+      << r.projection;
+}
+
 // A stiff plane (components spanning more than 2p binades): the general method hands it to the
 // accurate method, which settles it exactly. (The closed form hands over only a plane whose
 // scaling lost bits.)

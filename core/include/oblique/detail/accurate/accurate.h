@@ -237,17 +237,15 @@ ObliqueResult<T> accurate(const Matrix4<T>& m, const Vector4<T>& plane, Conventi
   // A sign within its error bound of zero: the middle of the edge is within rounding as far,
   // but not within an ulp of the answer where C . Q is small; the exact signs settle it.
   if (signs.x() == W(0) || signs.y() == W(0) || signs.z() == W(0)) return exact_answer();
-  // The bound holds where the refinement's residual, summed in twice the working precision, is
-  // accurate. Where M's entries span more binades than W holds, its terms can cancel beyond that,
-  // and a component below eps of the largest may have the wrong sign with its bound (fuzz_oblique:
-  // in long double, M spanning 2^100, a C'_y 3e-30 of the others came out positive, the far
-  // corner was the wrong one, and a = 1 / (C . Q) and row 3 were 40 ulps off). Such a sign is
-  // settled exactly too.
-  if (magnitude_spread_exceeds<std::numeric_limits<W>::digits>(mw)) {
-    const W tiny = std::numeric_limits<W>::epsilon() * estimate.cwiseAbs().maxCoeff();
-    for (int i = 0; i < 3; ++i)
-      if (std::abs(estimate(i)) <= tiny) return exact_answer();
-  }
+  // The bounds of C' and of Q's refinement hold where the refinement's residual, summed in twice
+  // the working precision, is accurate. Where M's entries span more binades than W holds, its
+  // terms can cancel beyond that: a component of C' below eps of the largest may have the wrong
+  // sign with its bound (fuzz_oblique: in long double, M spanning 2^100, a C'_y 3e-30 of the
+  // others came out positive, the far corner was the wrong one, and row 3 was 40 ulps off), and
+  // Q's words stop gaining while its estimated error still shrinks (fuzz_oblique: in double, M
+  // spanning 2^71, a known to 64 bits, a row-3 entry cancelling to 2^-65 of its terms came out
+  // 10 times too small). Such an input is answered exactly.
+  if (magnitude_spread_exceeds<std::numeric_limits<W>::digits>(mw)) return exact_answer();
   const Vector4<W> corner = clip_corner(signs.x(), signs.y(), signs.z(), convention);
   return accurate_finish(
       m, mw, scaled, convention,
