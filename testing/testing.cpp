@@ -188,7 +188,52 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   if (!t.left_out.empty()) statistics << "\nleft out: " << summary(t.left_out);
   const std::string name = property.empty() ? "" : property + ": ";
   rc::detail::SuccessResult success;
-  if (!result.match(success)) {
+  const bool passed = result.match(success);
+  // The kinds of case the contract claims, by what the coverage counts (empty: not checked).
+  std::vector<std::string> kinds;
+  std::map<std::string, int> judged_kinds;
+  if (!reproducing && (coverage == Coverage::valid || coverage == Coverage::invalid)) {
+    judged_kinds = coverage == Coverage::valid ? t.families : t.defects;
+    if (coverage == Coverage::valid) {
+      for (auto f : require.families) kinds.emplace_back(cases::family_name(f));
+    } else {
+      for (auto d : require.defects) kinds.emplace_back(cases::defect_name(d));
+    }
+  }
+  auto count = [](const std::map<std::string, int>& counts, const std::string& key) {
+    const auto it = counts.find(key);
+    return it == counts.end() ? 0 : it->second;
+  };
+  // Why a kind the contract claims had no case judged, and what to change.
+  std::string refusing;
+  for (const std::string& n : t.refusing) append_item(refusing, n);
+  auto why_none = [&](const std::string& kind, const char* what) {
+    const int made = count(t.generated, kind), refused = count(t.refused, kind),
+              left = count(t.left_out_by_kind, kind);
+    std::ostringstream why;
+    why << id << ": the contract claims " << what << " " << kind
+        << ", and no case of it was judged: ";
+    if (made == 0 && refused == 0 && left == 0) {
+      why << "none was made in " << success.numSuccess
+          << " cases: raise max_success (RC_PARAMS=\"max_success=N\")";
+    } else if (refused > 0 && left == 0) {
+      why << (refused == made || made == 0 ? "all " : "") << refused << " refused by accepts ("
+          << refusing << "): widen accepts or leave " << kind << " out of the contract";
+    } else {
+      why << refused << " refused by accepts, " << left
+          << " left out (why, over the run: " << summary(t.left_out)
+          << "): raise max_success, or leave " << kind << " out of the contract";
+    }
+    return why.str();
+  };
+  if (!passed) {
+    // A claimed kind that accepts refused every case of, said beside the finding: the run fails
+    // for the finding, and would fail for the kind too (a pass means judged).
+    std::string unjudged;
+    for (const std::string& kind : kinds) {
+      if (count(judged_kinds, kind) == 0 && count(t.refused, kind) > 0)
+        unjudged += "\n" + why_none(kind, coverage == Coverage::valid ? "family" : "defect");
+    }
     // Printed once, as the test's failure: RapidCheck's message, the statistics, the report.
     std::string where;
     if (t.failure) {
@@ -207,7 +252,8 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
           !cause_key.empty() && earlier != cause_reports.end()) {
         // The same bug as an earlier failure of this process: its report, not a second one.
         ADD_FAILURE() << name << message.str() << where << "\nreport: " << earlier->second
-                      << " (the same likely cause as an earlier failure; no second report)";
+                      << " (the same likely cause as an earlier failure; no second report)"
+                      << unjudged;
         return;
       }
       const std::string path = write_report(failure, report_context(property));
@@ -216,24 +262,9 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     } else if (!t.markdown_failure.empty()) {
       where = "\nreport: " + write_markdown_report(t.markdown_failure, report_context(property));
     }
-    ADD_FAILURE() << name << message.str() << "\n" << statistics.str() << where;
+    ADD_FAILURE() << name << message.str() << "\n" << statistics.str() << where << unjudged;
     return;
   }
-  // The kinds of case the contract claims, by what the coverage counts (empty: not checked).
-  std::vector<std::string> kinds;
-  std::map<std::string, int> judged_kinds;
-  if (!reproducing && (coverage == Coverage::valid || coverage == Coverage::invalid)) {
-    judged_kinds = coverage == Coverage::valid ? t.families : t.defects;
-    if (coverage == Coverage::valid) {
-      for (auto f : require.families) kinds.emplace_back(cases::family_name(f));
-    } else {
-      for (auto d : require.defects) kinds.emplace_back(cases::defect_name(d));
-    }
-  }
-  auto count = [](const std::map<std::string, int>& counts, const std::string& key) {
-    const auto it = counts.find(key);
-    return it == counts.end() ? 0 : it->second;
-  };
   // Kinds judged in part only: more than the warning share of their cases left out.
   std::string partly;
   for (const std::string& kind : kinds) {
@@ -288,28 +319,6 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   if (settings().strict && !warning.empty())
     ADD_FAILURE() << id << ": " << warning << " [OBLIQUE_STRICT=1]";
   if (reproducing || coverage == Coverage::none) return;  // one case: nothing to cover
-  // Why a kind the contract claims had no case judged, and what to change.
-  std::string refusing;
-  for (const std::string& n : t.refusing) append_item(refusing, n);
-  auto why_none = [&](const std::string& kind, const char* what) {
-    const int made = count(t.generated, kind), refused = count(t.refused, kind),
-              left = count(t.left_out_by_kind, kind);
-    std::ostringstream why;
-    why << id << ": the contract claims " << what << " " << kind
-        << ", and no case of it was judged: ";
-    if (made == 0 && refused == 0 && left == 0) {
-      why << "none was made in " << success.numSuccess
-          << " cases: raise max_success (RC_PARAMS=\"max_success=N\")";
-    } else if (refused > 0 && left == 0) {
-      why << (refused == made || made == 0 ? "all " : "") << refused << " refused by accepts ("
-          << refusing << "): widen accepts or leave " << kind << " out of the contract";
-    } else {
-      why << refused << " refused by accepts, " << left
-          << " left out (why, over the run: " << summary(t.left_out)
-          << "): raise max_success, or leave " << kind << " out of the contract";
-    }
-    return why.str();
-  };
   for (const std::string& kind : kinds) {
     if (count(judged_kinds, kind) == 0)
       ADD_FAILURE() << why_none(kind, coverage == Coverage::valid ? "family" : "defect");
