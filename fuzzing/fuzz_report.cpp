@@ -251,39 +251,22 @@ std::vector<std::vector<mistakes::Mistake>> causes_of(const Violation& v,
 template <class T>
 std::string violation_report(const FuzzReportOptions& options, const Violation& v,
                              const FuzzFinding& finding, const std::string& output) {
-  Matrix4<T> m;
-  Vector4<T> c;
-  for (int i = 0; i < 4; ++i) {
-    const auto row = numbers_after<T>(output, "  M row " + std::to_string(i + 1) + ":", 4);
-    if (!row) return "";
-    for (int j = 0; j < 4; ++j) m(i, j) = (*row)[static_cast<std::size_t>(j)];
-  }
-  const auto plane = numbers_after<T>(output, "  C:", 4);
-  const auto convention = parse_convention(v.convention);
-  if (!plane || !convention) return "";
-  for (int i = 0; i < 4; ++i) c(i) = (*plane)[static_cast<std::size_t>(i)];
-  report::Counterexample ce = report::make_counterexample(m, c, *convention);
+  const std::optional<PrintedCase<T>> printed = printed_case<T>(v, output);
+  if (!printed) return "";
+  const Matrix4<T>& m = printed->m;
+  const Vector4<T>& c = printed->c;
+  const Convention convention = printed->convention;
+  const std::optional<Matrix4<T>>& answer = printed->answer;
+  report::Counterexample ce = report::make_counterexample(m, c, convention);
   ce.implementation = v.implementation;
   ce.family = v.family;
   ce.place = "fuzz input";
-  std::optional<Matrix4<T>> answer;
-  Matrix4<T> rows;
-  bool all_rows = true;
-  for (int i = 0; i < 4 && all_rows; ++i) {
-    const auto row = numbers_after<T>(output, "M' row " + std::to_string(i + 1) + ":", 4);
-    all_rows = row.has_value();
-    if (row)
-      for (int j = 0; j < 4; ++j) rows(i, j) = (*row)[static_cast<std::size_t>(j)];
-  }
-  if (all_rows) {
-    answer = rows;
-    report::set_result(ce, rows);
-  }
+  if (answer) report::set_result(ce, *answer);
   // The finding judged again here, from the numbers the driver printed (they round-trip): the
   // checker's own, not the driver's words read back.
   const std::optional<oracle::Check> check = oracle::parse_check(v.property);
   if (!check) return "";
-  const oracle::Problem<T> problem(m, c, *convention);
+  const oracle::Problem<T> problem(m, c, convention);
   if (*check == oracle::Check::status) {
     ce.finding.check = *check;
     ce.finding.shows = oracle::Shows::statuses;
@@ -313,7 +296,7 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
   }
   // The likely cause, from this one case (the target is not asked again here).
   mistakes::Observation<T> seen{
-      m, c, *convention, Status::ok, answer ? *answer : m, true, cases::parse_family(v.family)};
+      m, c, convention, Status::ok, answer ? *answer : m, true, cases::parse_family(v.family)};
   if (*check == oracle::Check::status) seen.status = ce.finding.answered;
   if (answer || seen.status != Status::ok) ce.diagnosis = mistakes::diagnose<T>({seen});
   report::set_views(ce, problem, answer ? &*answer : nullptr);

@@ -299,27 +299,39 @@ TEST(Cli, aMistypedSubcommandFlagOrNameGetsTheClosest) {
   }
 }
 
-// Many failing inputs of a fuzz target, one report per distinct finding: the printed Listing 5.1
-// through the project's own target on 40 corpus inputs. Each report's one-case command fails
-// again, each property's report has its Likely cause; the index lists every finding.
-TEST(Cli, fuzzReportGivesOneReportPerDistinctFinding) {
+/// A fresh folder TempDir()/NAME with the first `count` inputs of the fuzz corpus (in name order)
+/// under inputs/.
+std::filesystem::path fuzz_inputs(const std::string& name, std::size_t count) {
   namespace fs = std::filesystem;
-  const fs::path work = fs::path(::testing::TempDir()) / "oblique_fuzz_report";
+  const fs::path work = fs::path(::testing::TempDir()) / name;
   fs::remove_all(work);
   fs::create_directories(work / "inputs");
   std::vector<fs::path> corpus;
   for (const auto& entry : fs::directory_iterator(OBLIQUE_FUZZ_CORPUS)) corpus.push_back(entry);
   std::sort(corpus.begin(), corpus.end());
-  for (std::size_t i = 0; i < 40 && i < corpus.size(); ++i)
+  for (std::size_t i = 0; i < count && i < corpus.size(); ++i)
     fs::copy_file(corpus[i], work / "inputs" / corpus[i].filename());
-  const std::string target = std::string("env OBLIQUE_IMPL=listing_5_1 ") + OBLIQUE_FUZZ_REPLAY;
+  return work;
+}
+
+/// `oblique fuzz-report` over `work`/inputs through the project's fuzz target running OBLIQUE_IMPL
+/// `impl`, reports in `work`/reports: its exit status, its output in `out`.
+int fuzz_report_of(const std::string& impl, const std::filesystem::path& work, std::string& out) {
+  const std::string target = "env OBLIQUE_IMPL=" + impl + " " + OBLIQUE_FUZZ_REPLAY;
+  return shell(std::string(OBLIQUE_CLI) + " fuzz-report --report-dir " +
+                   (work / "reports").string() + " --target '" + target + "' " +
+                   (work / "inputs").string(),
+               &out);
+}
+
+// Many failing inputs of a fuzz target, one report per distinct finding: the printed Listing 5.1
+// through the project's own target on 40 corpus inputs. Each report's one-case command fails
+// again, each property's report has its Likely cause; the index lists every finding.
+TEST(Cli, fuzzReportGivesOneReportPerDistinctFinding) {
+  namespace fs = std::filesystem;
+  const fs::path work = fuzz_inputs("oblique_fuzz_report", 40);
   std::string out;
-  ASSERT_EQ(
-      shell(std::string(OBLIQUE_CLI) + " fuzz-report --report-dir " + (work / "reports").string() +
-                " --target '" + target + "' " + (work / "inputs").string(),
-            &out),
-      1)
-      << out;
+  ASSERT_EQ(fuzz_report_of("listing_5_1", work, out), 1) << out;
   EXPECT_NE(out.find("oblique fuzz-report: 40 inputs, "), std::string::npos) << out;
   std::vector<std::string> reports;
   for (std::size_t at = out.find(", report "); at != std::string::npos;
@@ -352,23 +364,9 @@ TEST(Cli, fuzzReportGivesOneReportPerDistinctFinding) {
 // diagnosis names as that mistake are one finding, with what they found listed in its report.
 TEST(Cli, fuzzReportGivesOneReportPerLikelyCause) {
   namespace fs = std::filesystem;
-  const fs::path work = fs::path(::testing::TempDir()) / "oblique_fuzz_report_per_cause";
-  fs::remove_all(work);
-  fs::create_directories(work / "inputs");
-  std::vector<fs::path> corpus;
-  for (const auto& entry : fs::directory_iterator(OBLIQUE_FUZZ_CORPUS)) corpus.push_back(entry);
-  std::sort(corpus.begin(), corpus.end());
-  for (std::size_t i = 0; i < 300 && i < corpus.size(); ++i)
-    fs::copy_file(corpus[i], work / "inputs" / corpus[i].filename());
-  const std::string target =
-      std::string("env OBLIQUE_IMPL=mistake_wrong_face ") + OBLIQUE_FUZZ_REPLAY;
+  const fs::path work = fuzz_inputs("oblique_fuzz_report_per_cause", 300);
   std::string out;
-  ASSERT_EQ(
-      shell(std::string(OBLIQUE_CLI) + " fuzz-report --report-dir " + (work / "reports").string() +
-                " --target '" + target + "' " + (work / "inputs").string(),
-            &out),
-      1)
-      << out;
+  ASSERT_EQ(fuzz_report_of("mistake_wrong_face", work, out), 1) << out;
   // Exactly one finding names wrong_face, and it holds inputs of more than one kind.
   int named = 0;
   std::string report;
