@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 #include "oblique/oracle/exact.h"
@@ -33,10 +35,9 @@ struct Exact {
 };
 
 template <class T>
-Exact exact_answer(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
-                   const variant::Knobs& knobs) {
+Exact exact_answer(const Matrix4<T>& m, variant::Evaluation<Rational> evaluation) {
   Exact x;
-  x.e = variant::evaluate<Rational>(m, c, convention, knobs);
+  x.e = std::move(evaluation);
   const variant::Evaluation<Rational>& e = x.e;
   if (e.solve_failed) return x;
   if (e.status == Status::camera_not_behind_plane) {
@@ -187,6 +188,13 @@ std::vector<PanelCase<T>> panel(Convention convention) {
   xs.col(3) = ys.col(3) = s.col(3);
   xs(0, 3) = -xs(0, 3);
   left.col(2) *= T(-1);  // a left-handed camera: z negated
+  // The camera turned about y and x (P R): C' mixes C's components (a head-on plane has
+  // C'_x, C'_y != 0).
+  Matrix4<T> about_y = Matrix4<T>::Identity(), about_x = Matrix4<T>::Identity();
+  about_y(0, 0) = about_y(2, 2) = about_x(1, 1) = about_x(2, 2) = T(0.75);
+  about_y(0, 2) = about_x(2, 1) = T(0.5);
+  about_y(2, 0) = about_x(1, 2) = T(-0.5);
+  const Matrix4<T> turned = p * about_y * about_x;
   const Shape shapes[] = {
       {p, Family::perspective, false},
       {x, Family::x_flipped, false},
@@ -202,11 +210,18 @@ std::vector<PanelCase<T>> panel(Convention convention) {
       {orthographic<T>(-2, 2, -1.5, 1.5, 1, 64, convention), Family::orthographic, false},
       // an orthographic volume reaching behind the eye: C'_z < 0 for the last plane below
       {orthographic<T>(-2, 2, -2, 2, -5, 10, convention), Family::orthographic, false},
+      {turned, Family::general, false},
   };
-  // Every corner sign, head-on, through and in front of the camera, beyond the far plane.
-  const T planes[][4] = {{0.25, 0.5, -1, -4},   {-0.25, 0.5, -1, -4}, {0.25, -0.5, -1, -4},
-                         {-0.25, -0.5, -1, -4}, {0, 0, -1, -4},       {0.25, 0.5, -1, 0},
-                         {0.25, 0.5, -1, 2},    {0, 0, -1, -100},     {1, 1, 0.125, -1}};
+  // Every corner sign, head-on, through and in front of the camera, beyond the far plane (head-on,
+  // and tilted: no zero component of C', so no corner sign is 0 there), nearer than the near
+  // plane (where a corner on the near face may still be on C's kept side), steep and near (where
+  // the shift, dropped or negated, decides C'_z's sign), and along the view axis (C_z = 0: C'_z = 0
+  // when orthographic).
+  const T planes[][4] = {{0.25, 0.5, -1, -4},     {-0.25, 0.5, -1, -4},   {0.25, -0.5, -1, -4},
+                         {-0.25, -0.5, -1, -4},   {0, 0, -1, -4},         {0.25, 0.5, -1, 0},
+                         {0.25, 0.5, -1, 2},      {0, 0, -1, -100},       {1, 1, 0.125, -1},
+                         {0.125, 0.25, -1, -100}, {-0.25, 0.5, -1, -0.5}, {-1, 0.5, -1, -0.125},
+                         {1, -0.5, -1, -0.125},   {1, 0.5, 0, -2}};
   static_assert(std::size(shapes) * std::size(planes) == kPanelCasesPerConvention);
   std::vector<PanelCase<T>> out;
   for (const Shape& shape : shapes) {
@@ -218,23 +233,100 @@ std::vector<PanelCase<T>> panel(Convention convention) {
   return out;
 }
 
-/// One case and the exact answers of the correct method and of each cause tried on it.
+using ClipSigns = std::optional<std::array<int, 3>>;
+
+/// One case and what the causes tried on it have computed: the solves and, for each distinct
+/// decision, the exact answer (thousands of causes are tried, and on one case they make few
+/// distinct decisions; the correct method's is one of them).
 template <class T>
 struct Case {
   Observation<T> seen;
-  Exact right;
+  std::array<int, 4> c_sign{}, entry_sign{};  ///< of C; of M13, M23, M14, M24
+  bool perspective = false;                   ///< M has the perspective shape
+  std::shared_ptr<variant::SolveMemo<Rational>> solves;
+  /// Each decision tried on this case: its exact answer, whether the observed answer is it, and
+  /// (once asked) whether it differs from the correct one.
+  struct Tried {
+    variant::Decision decision;
+    Exact answer;
+    Match match;
+    mutable std::optional<bool> differs_from_right;
+  };
+  std::shared_ptr<std::deque<Tried>> answers;
+  /// The signs of C' for each matrix the solves take (Choices::solved), or none where singular.
+  std::shared_ptr<std::vector<std::pair<std::array<int, 4>, ClipSigns>>> clip_signs;
 };
 
 template <class T>
-bool explains(const std::vector<Mistake>& cause, const std::vector<Case<T>>& cases) {
-  const variant::Knobs knobs = variant::knobs_of(cause);
+Case<T> make_case(const Observation<T>& o) {
+  Case<T> k;
+  k.seen = o;
+  k.solves = std::make_shared<variant::SolveMemo<Rational>>();
+  k.answers = std::make_shared<std::deque<typename Case<T>::Tried>>();
+  k.clip_signs = std::make_shared<std::vector<std::pair<std::array<int, 4>, ClipSigns>>>();
+  auto sign_of = [](T v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); };
+  for (int i = 0; i < 4; ++i) {
+    k.c_sign[i] = sign_of(o.plane(i));
+    k.entry_sign[i] = sign_of(o.matrix(i % 2, 2 + i / 2));
+  }
+  k.perspective = has_perspective_shape(o.matrix);
+  // Fills the memo with M and C in rationals (and the correct method's solves, asked anyway).
+  variant::evaluate<Rational>(o.matrix, o.plane, o.convention, variant::Knobs{}, k.solves.get());
+  return k;
+}
+
+/// The exact answer of the variant with `knobs` on case `k`, compared with the answer observed
+/// and the correct one: computed once per decision.
+template <class T>
+const typename Case<T>::Tried& tried(const Case<T>& k, const variant::Knobs& knobs) {
+  const Observation<T>& o = k.seen;
+  const variant::Decision d = variant::decide(
+      knobs, o.convention, k.perspective, k.c_sign, k.entry_sign,
+      [&k](const std::array<int, 4>& solved) {
+        for (const auto& [entries, signs] : *k.clip_signs) {
+          if (entries == solved) return signs;
+        }
+        ClipSigns out;
+        variant::Vec<Rational> c_clip;
+        if (variant::memo_solve(*k.solves, solved, true, {0, 0, 0}, k.solves->c, c_clip))
+          out = {sgn(c_clip[0]), sgn(c_clip[1]), sgn(c_clip[2])};
+        k.clip_signs->emplace_back(solved, out);
+        return out;
+      });
+  for (const auto& t : *k.answers) {
+    if (t.decision == d) return t;
+  }
+  Exact x = exact_answer(o.matrix, variant::evaluate<Rational>(o.matrix, o.plane, o.convention,
+                                                               knobs, k.solves.get()));
+  const Match match = compare(o, x);
+  k.answers->push_back(typename Case<T>::Tried{d, std::move(x), match, std::nullopt});
+  return k.answers->back();
+}
+
+/// The correct method's exact answer on case `k`.
+template <class T>
+const Exact& right_answer(const Case<T>& k) {
+  return tried(k, variant::Knobs{}).answer;
+}
+
+/// Whether the answer of `t` (tried on `k`) cannot be the correct one (distinct()).
+template <class T>
+bool differs_from_right(const Case<T>& k, const typename Case<T>::Tried& t) {
+  if (!t.differs_from_right) {
+    const typename Case<T>::Tried& right = tried(k, variant::Knobs{});
+    t.differs_from_right =
+        &right != &t && !(right.decision == t.decision) && distinct(t.answer, right.answer);
+  }
+  return *t.differs_from_right;
+}
+
+template <class T>
+bool explains(const variant::Knobs& knobs, const std::vector<Case<T>>& cases) {
   bool evidence = false;
   for (const Case<T>& k : cases) {
-    const Observation<T>& o = k.seen;
-    const Exact x = exact_answer(o.matrix, o.plane, o.convention, knobs);
-    const Match m = compare(o, x);
-    if (m == Match::differs) return false;
-    if (m == Match::agrees && o.wrong && distinct(x, k.right)) evidence = true;
+    const typename Case<T>::Tried& t = tried(k, knobs);
+    if (t.match == Match::differs) return false;
+    if (t.match == Match::agrees && k.seen.wrong && differs_from_right(k, t)) evidence = true;
   }
   return evidence;
 }
@@ -269,21 +361,61 @@ std::optional<std::array<double, 4>> row_of(const Exact& x, int row) {
   return out;
 }
 
-/// The causes that explain every answer of `cases`: each mistake alone, or where none does, each
-/// two together.
+/// A cause tried: mistakes that change no choice in common, and the knobs they set together.
+struct Candidate {
+  std::vector<Mistake> mistakes;
+  variant::Knobs knobs;
+};
+
+/// Every cause of up to kMostMistakes mistakes, by size: each one a different program (causes
+/// whose knobs are a smaller cause's are left out: that one is the name).
+const std::vector<std::vector<Candidate>>& candidates_by_size() {
+  static const std::vector<std::vector<Candidate>> sizes = [] {
+    std::vector<std::vector<Candidate>> out(kMostMistakes);
+    std::vector<variant::Knobs> seen;
+    auto add = [&](std::vector<Mistake> mistakes) {
+      variant::Knobs knobs = variant::knobs_of(mistakes);
+      if (std::find(seen.begin(), seen.end(), knobs) != seen.end()) return;
+      seen.push_back(knobs);
+      out[mistakes.size() - 1].push_back(Candidate{std::move(mistakes), knobs});
+    };
+    constexpr std::size_t n = std::size(all_mistakes);
+    for (std::size_t i = 0; i < n; ++i) add({all_mistakes[i]});
+    for (std::size_t i = 0; i < n; ++i) {
+      const unsigned a = choices_changed(all_mistakes[i]);
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const unsigned b = choices_changed(all_mistakes[j]);
+        if (a & b) continue;
+        add({all_mistakes[i], all_mistakes[j]});
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const unsigned a = choices_changed(all_mistakes[i]);
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const unsigned b = choices_changed(all_mistakes[j]);
+        if (a & b) continue;
+        for (std::size_t l = j + 1; l < n; ++l) {
+          const unsigned c = choices_changed(all_mistakes[l]);
+          if ((a | b) & c) continue;
+          add({all_mistakes[i], all_mistakes[j], all_mistakes[l]});
+        }
+      }
+    }
+    return out;
+  }();
+  return sizes;
+}
+
+/// The smallest causes that explain every answer of `cases`: each mistake alone, or where none
+/// does, each two together, or each three.
 template <class T>
 std::vector<std::vector<Mistake>> causes_of(const std::vector<Case<T>>& cases) {
   std::vector<std::vector<Mistake>> out;
-  for (Mistake m : all_mistakes) {
-    if (explains<T>({m}, cases)) out.push_back({m});
-  }
-  if (!out.empty()) return out;
-  constexpr std::size_t n = std::size(all_mistakes);
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = i + 1; j < n; ++j) {
-      if (explains<T>({all_mistakes[i], all_mistakes[j]}, cases))
-        out.push_back({all_mistakes[i], all_mistakes[j]});
+  for (const std::vector<Candidate>& size : candidates_by_size()) {
+    for (const Candidate& c : size) {
+      if (explains<T>(c.knobs, cases)) out.push_back(c.mistakes);
     }
+    if (!out.empty()) return out;
   }
   return out;
 }
@@ -317,25 +449,29 @@ std::vector<FamilyDiagnosis> by_family(const std::vector<Case<T>>& cases) {
 
 }  // namespace
 
+std::vector<std::vector<Mistake>> causes_tried(int size) {
+  std::vector<std::vector<Mistake>> out;
+  if (size < 1 || size > kMostMistakes) return out;
+  for (const Candidate& c : candidates_by_size()[size - 1]) out.push_back(c.mistakes);
+  return out;
+}
+
 template <class T>
 Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& probe) {
   Diagnosis out;
   std::vector<Case<T>> cases;
   auto add_case = [&cases](const Observation<T>& o) {
     if (!all_finite(o.matrix) || !all_finite(o.plane)) return;  // invalid input: no mistake
-    cases.push_back(Case<T>{o, exact_answer(o.matrix, o.plane, o.convention, variant::Knobs{})});
+    cases.push_back(make_case(o));
   };
   for (const Observation<T>& o : seen) add_case(o);
   if (std::none_of(cases.begin(), cases.end(), [](const Case<T>& k) { return k.seen.wrong; }))
     return out;
   out.ran = true;
   if (probe) {
-    std::vector<Convention> conventions;
-    for (const Case<T>& k : cases) {
-      if (std::find(conventions.begin(), conventions.end(), k.seen.convention) == conventions.end())
-        conventions.push_back(k.seen.convention);
-    }
-    for (Convention convention : conventions) {
+    // Every convention: a mistake may show on another convention than the finding's (code that
+    // swaps the two formulas). The probe declines the conventions the program does not serve.
+    for (Convention convention : all_conventions) {
       for (const PanelCase<T>& k : panel<T>(convention)) {
         if (std::optional<Observation<T>> o = probe(k.matrix, k.plane, convention, k.family)) {
           if (!o->family) o->family = k.family;
@@ -366,17 +502,19 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
   bool evidence_taken = false;
   for (const Case<T>& k : cases) {
     const Observation<T>& o = k.seen;
-    const Exact x = exact_answer(o.matrix, o.plane, o.convention, knobs);
+    const typename Case<T>::Tried& t = tried(k, knobs);
+    const Exact& x = t.answer;
     if (!x.decided) continue;
     ++out.decided;
-    const bool differs = distinct(x, k.right);
+    const bool differs = differs_from_right(k, t);
+    const Exact& right = right_answer(k);
     if (o.wrong && differs) ++out.wrong_where_it_differs;
-    if (!o.wrong && !differs && k.right.decided) ++out.right_where_it_agrees;
+    if (!o.wrong && !differs && right.decided) ++out.right_where_it_agrees;
     if (evidence_taken || !o.wrong || !differs || compare(o, x) != Match::agrees) continue;
     evidence_taken = true;
     out.answered = o.status;
     out.mistaken = x.kind == Exact::Kind::refusal ? x.e.status : Status::ok;
-    out.right = k.right.kind == Exact::Kind::refusal ? k.right.e.status : Status::ok;
+    out.right = right.kind == Exact::Kind::refusal ? right.e.status : Status::ok;
     out.row = x.e.row4_changed ? 3 : 2;
     if (o.status == Status::ok) {
       std::array<double, 4> row;
@@ -384,8 +522,8 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
       out.answered_row = row;
     }
     out.mistaken_row = row_of(x, out.row);
-    out.right_row = row_of(k.right, out.row);
-    add_differences(x.e.choices, k.right.e.choices, out.differences);
+    out.right_row = row_of(right, out.row);
+    add_differences(x.e.choices, right.e.choices, out.differences);
   }
   return out;
 }

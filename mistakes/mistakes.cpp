@@ -159,6 +159,64 @@ constexpr MistakeEntry kCatalogue[] = {
      "Flip with fourth row (0, 0, 0, 1) (z' = w - z), or directly: M'_3 = M_4 - a C with "
      "a = 1 / (C . Q) and rows 1, 2, 4 unchanged.",
      "every reversed-Z matrix"},
+    {Mistake::zero_one_factor_on_gl, "zero_one_factor_on_gl",
+     "the [0, 1] factor a = 1 / (C . Q) with OpenGL's form M'_3 = a C - M_4",
+     "The code writes row 3 in OpenGL's form, M'_3 = a C - M_4, but scales C by a = 1 / (C . Q), "
+     "the [0, 1] factor, as code that mixes a Direct3D listing with an OpenGL one does. The near "
+     "plane M'_3 + M_4 = a C is still C, but the far plane M_4 - M'_3 = 2 M_4 - a C passes "
+     "through Q only for a = 2 / (C . Q): it cuts through the view volume short of Q.",
+     "On a [-1, 1] matrix use a = 2 / (C . Q) with M'_3 = a C - M_4 (and a = 1 / (C . Q) only "
+     "with M'_3 = a C on [0, 1]).",
+     "every [-1, 1] (gl) matrix"},
+    {Mistake::gl_factor_on_zero_one, "gl_factor_on_zero_one",
+     "OpenGL's factor a = 2 / (C . Q) on [0, 1] depth",
+     "The code keeps the [0, 1] (or reversed-Z) form of row 3 but scales C by a = 2 / (C . Q), "
+     "OpenGL's factor. The near plane is still C; the far plane passes through the point where "
+     "C is half its value at Q, so it clips the far half of what C keeps.",
+     "For [0, 1] and reversed-Z depth use a = 1 / (C . Q).",
+     "every [0, 1] and reversed-Z matrix"},
+    {Mistake::zero_one_form_on_gl, "zero_one_form_on_gl",
+     "row 3 written M'_3 = a C on an OpenGL matrix, without - M_4",
+     "The code scales with OpenGL's a = 2 / (C . Q) but writes M'_3 = a C, dropping the - M_4 "
+     "that OpenGL's form needs. The near plane becomes a C + M_4, which is no multiple of C.",
+     "On a [-1, 1] matrix M'_3 = a C - M_4.",
+     "every [-1, 1] (gl) matrix"},
+    {Mistake::gl_form_on_zero_one, "gl_form_on_zero_one",
+     "row 3 written M'_3 = a C - M_4 on a [0, 1] matrix",
+     "The code scales with the [0, 1] factor a = 1 / (C . Q) but writes row 3 in OpenGL's form "
+     "a C - M_4. On [0, 1] depth the near plane is M'_3 alone: it becomes a C - M_4, which is no "
+     "multiple of C.",
+     "On a [0, 1] matrix M'_3 = a C.",
+     "every [0, 1] (zero_one) matrix"},
+    {Mistake::fixed_corner_signs, "fixed_corner_signs",
+     "the far corner's x and y fixed at +1",
+     "The code takes Q' = (1, 1, z, 1), the corner of a plane that faces right and up, whatever "
+     "the signs of C'_x and C'_y. For a plane that faces left or down in clip space that corner "
+     "is not the farthest one: C is scaled by its value at a nearer corner, and the far plane "
+     "clips the view volume.",
+     "Q'_x = sgn C'_x, Q'_y = sgn C'_y with C' = M^-T C.",
+     "planes with C'_x < 0 or C'_y < 0"},
+    {Mistake::negated_off_axis, "negated_off_axis",
+     "the off-axis terms M13, M23 with their signs slipped",
+     "The code takes -M13 and -M23 where C' and Q need M13 and M23, as in Q_x = "
+     "(sgn C'_x + M13 Q_z) / M11 instead of (sgn C'_x - M13 Q_z) / M11. It is right on a "
+     "symmetric frustum; an off-axis one (a portal seen from the side, TAA jitter, a VR eye) gets "
+     "a Q off the far face.",
+     "Q = M^-1 Q', or Q_x = (sgn C'_x - M13 Q_z) / M11 and likewise for y.",
+     "matrices with M13 != 0 or M23 != 0"},
+    {Mistake::negated_shift, "negated_shift",
+     "the stereo / lens-shift terms M14, M24 with their signs slipped",
+     "The code takes -M14 and -M24 where C' and Q need M14 and M24: a stereo eye or lens-shifted "
+     "projection gets the corner and the scale of the other eye's matrix.",
+     "Solve with the whole matrix: C' = M^-T C and Q = M^-1 Q'.",
+     "matrices with M14 != 0 or M24 != 0"},
+    {Mistake::assumes_m43_minus_one, "assumes_m43_minus_one",
+     "the perspective closed form with Q_z = -1 on every perspective matrix",
+     "The code computes Q on the perspective shape as Listing 5.1 does, with Q_z = -1, which "
+     "holds for a right-handed matrix (M43 = -1). A left-handed one (M43 = 1, Direct3D's "
+     "convention) has Q_z = 1: Q lands behind the camera and C is scaled by its value there.",
+     "Q_z = 1 / M43 and Q_w = (Q'_z - M33 Q_z) / M34, which hold for either handedness.",
+     "perspective-shaped matrices with M43 != -1"},
 };
 // clang-format on
 
@@ -178,7 +236,56 @@ std::optional<Mistake> parse_mistake(std::string_view name) {
   return std::nullopt;
 }
 
+unsigned choices_changed(Mistake mistake) {
+  auto bit = [](ModelChoice c) { return 1u << static_cast<unsigned>(c); };
+  using C = ModelChoice;
+  switch (mistake) {
+    case Mistake::zero_one_formula_on_gl:
+      return bit(C::formula_gl) | bit(C::factor_gl) | bit(C::form_gl);
+    case Mistake::gl_formula_on_zero_one:
+      return bit(C::formula_zero_one) | bit(C::factor_zero_one) | bit(C::form_zero_one);
+    case Mistake::camera_space_signs:
+    case Mistake::fixed_corner_signs: return bit(C::sign_x) | bit(C::sign_y);
+    case Mistake::ignores_m11_sign: return bit(C::sign_x);
+    case Mistake::ignores_m22_sign: return bit(C::sign_y);
+    case Mistake::far_face_fixed:
+    case Mistake::wrong_face: return bit(C::face);
+    case Mistake::left_handed_qw: return bit(C::q_w);
+    case Mistake::drops_off_axis:
+    case Mistake::abs_off_axis:
+    case Mistake::negated_off_axis: return bit(C::off_axis);
+    case Mistake::drops_shift:
+    case Mistake::negated_shift: return bit(C::shift);
+    case Mistake::divides_by_m43: return bit(C::corner_solve);
+    case Mistake::perspective_rows: return bit(C::corner_solve) | bit(C::q_z);
+    case Mistake::assumes_m43_minus_one: return bit(C::q_z);
+    case Mistake::skips_head_on: return bit(C::head_on);
+    case Mistake::no_camera_guard: return bit(C::camera_guard);
+    case Mistake::no_corner_guard: return bit(C::corner_guard);
+    case Mistake::sign_by_division: return bit(C::sign_function);
+    case Mistake::note_flip_as_printed: return bit(C::route_reversed);
+    case Mistake::zero_one_factor_on_gl: return bit(C::factor_gl);
+    case Mistake::gl_factor_on_zero_one: return bit(C::factor_zero_one);
+    case Mistake::zero_one_form_on_gl: return bit(C::form_gl);
+    case Mistake::gl_form_on_zero_one: return bit(C::form_zero_one);
+  }
+  return 0;
+}
+
 namespace variant {
+
+bool Knobs::operator==(const Knobs& o) const {
+  return camera_guard == o.camera_guard && corner_guard == o.corner_guard &&
+         skips_head_on == o.skips_head_on && sign_by_division == o.sign_by_division && x == o.x &&
+         y == o.y && face_fixed == o.face_fixed && face_opposite == o.face_opposite &&
+         off_axis == o.off_axis && shift == o.shift && closed_form == o.closed_form &&
+         assumes_m43_minus_one == o.assumes_m43_minus_one && left_handed_qw == o.left_handed_qw &&
+         zero_one_on_gl == o.zero_one_on_gl && gl_on_zero_one == o.gl_on_zero_one &&
+         note_flip == o.note_flip && zero_one_factor_on_gl == o.zero_one_factor_on_gl &&
+         gl_factor_on_zero_one == o.gl_factor_on_zero_one &&
+         zero_one_form_on_gl == o.zero_one_form_on_gl &&
+         gl_form_on_zero_one == o.gl_form_on_zero_one;
+}
 
 Knobs knobs_of(Mistake mistake) {
   Knobs k;
@@ -194,9 +301,20 @@ Knobs knobs_of(Mistake mistake) {
       k.closed_form = ClosedForm::perspective_shape;
       k.left_handed_qw = true;
       break;
-    case Mistake::drops_off_axis: k.drops_off_axis = true; break;
-    case Mistake::abs_off_axis: k.abs_off_axis = true; break;
-    case Mistake::drops_shift: k.drops_shift = true; break;
+    case Mistake::assumes_m43_minus_one:
+      k.closed_form = ClosedForm::perspective_shape;
+      k.assumes_m43_minus_one = true;
+      break;
+    case Mistake::drops_off_axis: k.off_axis = Entries::dropped; break;
+    case Mistake::abs_off_axis: k.off_axis = Entries::magnitude; break;
+    case Mistake::negated_off_axis: k.off_axis = Entries::negated; break;
+    case Mistake::drops_shift: k.shift = Entries::dropped; break;
+    case Mistake::negated_shift: k.shift = Entries::negated; break;
+    case Mistake::fixed_corner_signs: k.x = k.y = SignFrom::fixed; break;
+    case Mistake::zero_one_factor_on_gl: k.zero_one_factor_on_gl = true; break;
+    case Mistake::gl_factor_on_zero_one: k.gl_factor_on_zero_one = true; break;
+    case Mistake::zero_one_form_on_gl: k.zero_one_form_on_gl = true; break;
+    case Mistake::gl_form_on_zero_one: k.gl_form_on_zero_one = true; break;
     case Mistake::divides_by_m43: k.closed_form = ClosedForm::always; break;
     case Mistake::perspective_rows:
       k.closed_form = ClosedForm::always;
@@ -212,28 +330,33 @@ Knobs knobs_of(Mistake mistake) {
 }
 
 Knobs knobs_of(const std::vector<Mistake>& mistakes) {
+  // Mistakes that change no choice in common set disjoint knobs, except that two may both take
+  // the closed form (on the perspective shape, or everywhere: the wider wins).
   Knobs k;
+  const Knobs none;
   for (Mistake m : mistakes) {
     const Knobs one = knobs_of(m);
-    const Knobs none;
     k.camera_guard = k.camera_guard && one.camera_guard;
     k.corner_guard = k.corner_guard && one.corner_guard;
     k.skips_head_on = k.skips_head_on || one.skips_head_on;
     k.sign_by_division = k.sign_by_division || one.sign_by_division;
-    // camera beats camera_on_perspective_shape beats clip
+    // camera beats camera_on_perspective_shape beats clip (fixed is made alone)
     if (one.x != none.x && k.x != SignFrom::camera) k.x = one.x;
     if (one.y != none.y && k.y != SignFrom::camera) k.y = one.y;
     k.face_fixed = k.face_fixed || one.face_fixed;
     k.face_opposite = k.face_opposite || one.face_opposite;
-    k.drops_off_axis = k.drops_off_axis || one.drops_off_axis;
-    k.abs_off_axis = k.abs_off_axis || one.abs_off_axis;
-    k.drops_shift = k.drops_shift || one.drops_shift;
+    if (one.off_axis != none.off_axis) k.off_axis = one.off_axis;
+    if (one.shift != none.shift) k.shift = one.shift;
     k.closed_form = std::max(k.closed_form, one.closed_form);
     k.assumes_m43_minus_one = k.assumes_m43_minus_one || one.assumes_m43_minus_one;
     k.left_handed_qw = k.left_handed_qw || one.left_handed_qw;
     k.zero_one_on_gl = k.zero_one_on_gl || one.zero_one_on_gl;
     k.gl_on_zero_one = k.gl_on_zero_one || one.gl_on_zero_one;
     k.note_flip = k.note_flip || one.note_flip;
+    k.zero_one_factor_on_gl = k.zero_one_factor_on_gl || one.zero_one_factor_on_gl;
+    k.gl_factor_on_zero_one = k.gl_factor_on_zero_one || one.gl_factor_on_zero_one;
+    k.zero_one_form_on_gl = k.zero_one_form_on_gl || one.zero_one_form_on_gl;
+    k.gl_form_on_zero_one = k.gl_form_on_zero_one || one.gl_form_on_zero_one;
   }
   return k;
 }

@@ -9,7 +9,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <type_traits>
+#include <vector>
 
 #include "oblique/depth_convention.h"
 #include "oblique/mistakes/mistakes.h"
@@ -22,17 +24,31 @@ namespace oblique::mistakes::variant {
 
 /// Where the far corner Q comes from the perspective closed form instead of a solve.
 enum class ClosedForm { never, perspective_shape, always };
-/// Where a corner sign is read.
-enum class SignFrom { clip, camera, camera_on_perspective_shape };
+/// Where a corner sign is read: from C' = M^-T C (right), from C (everywhere, or where M has the
+/// perspective shape), or fixed at +1.
+enum class SignFrom { clip, camera, camera_on_perspective_shape, fixed };
+/// What the solves take for a pair of entries of M (M13, M23 or M14, M24): the entries, 0, their
+/// magnitudes or their negatives.
+enum class Entries { kept, dropped, magnitude, negated };
 
+/// The modification's choices, each set to one of the alternatives real code takes; the default
+/// is the correct method. A mistake (mistakes.h) sets the knobs of its choices (choices_changed()).
 struct Knobs {
   bool camera_guard = true, corner_guard = true, skips_head_on = false, sign_by_division = false;
   SignFrom x = SignFrom::clip, y = SignFrom::clip;
-  bool face_fixed = false, face_opposite = false, drops_off_axis = false, drops_shift = false;
-  bool abs_off_axis = false;
+  bool face_fixed = false, face_opposite = false;
+  Entries off_axis = Entries::kept, shift = Entries::kept;
   ClosedForm closed_form = ClosedForm::never;
   bool assumes_m43_minus_one = false, left_handed_qw = false;
   bool zero_one_on_gl = false, gl_on_zero_one = false, note_flip = false;
+  /// The factor's numerator or row 3's form of the other convention: a = 1 / (C . Q) on a gl
+  /// matrix, a = 2 / (C . Q) on a [0, 1] or reversed-Z one; row 3 = a C on a gl matrix,
+  /// a C - M_4 on a [0, 1] one.
+  bool zero_one_factor_on_gl = false, gl_factor_on_zero_one = false;
+  bool zero_one_form_on_gl = false, gl_form_on_zero_one = false;
+
+  bool operator==(const Knobs& o) const;
+  bool operator!=(const Knobs& o) const { return !(*this == o); }
 };
 
 Knobs knobs_of(Mistake mistake);
@@ -45,16 +61,24 @@ struct Choices {
   bool refused_camera = false, head_on_skipped = false, solve_changed = false;
   bool closed_form = false, nan_sign = false, refused_corner = false, unguarded_corner = false;
   bool note_flip = false;
-  int sx = 0, sy = 0;  ///< the corner's x and y signs
-  int z_twice = 0;     ///< twice the corner's z (a face or, for a zero sign, the middle)
+  /// What the solves take for M13, M23, M14, M24: 1 the entry, 0 zero, -1 its negative (an
+  /// entry that is 0 is always 1).
+  std::array<int, 4> solved{1, 1, 1, 1};
+  bool q_z_assumed = false, left_handed_qw = false;  ///< the closed form's Q_z = -1, Q_w
+  int sx = 0, sy = 0;                                ///< the corner's x and y signs
+  int z_twice = 0;  ///< twice the corner's z (a face or, for a zero sign, the middle)
   Convention formula = Convention::gl;  ///< whose formula: range, a's numerator, row 3's form
+  int numerator = 2;                    ///< a = numerator / (C . Q)
+  int r3 = 1, t3 = -1;                  ///< row 3 = r3 a C + t3 M_4
 
   bool operator==(const Choices& o) const {
     return refused_camera == o.refused_camera && head_on_skipped == o.head_on_skipped &&
            solve_changed == o.solve_changed && closed_form == o.closed_form &&
            nan_sign == o.nan_sign && refused_corner == o.refused_corner &&
-           unguarded_corner == o.unguarded_corner && note_flip == o.note_flip && sx == o.sx &&
-           sy == o.sy && z_twice == o.z_twice && formula == o.formula;
+           unguarded_corner == o.unguarded_corner && note_flip == o.note_flip &&
+           solved == o.solved && q_z_assumed == o.q_z_assumed &&
+           left_handed_qw == o.left_handed_qw && sx == o.sx && sy == o.sy && z_twice == o.z_twice &&
+           formula == o.formula && numerator == o.numerator && r3 == o.r3 && t3 == o.t3;
   }
   bool operator!=(const Choices& o) const { return !(*this == o); }
 };
@@ -153,100 +177,231 @@ bool divide(const S& x, const S& y, S& out) {
   }
 }
 
-/// The modification of (M, C) in `convention` with `knobs`, in S. Precondition: M and C finite.
-template <class S, class T>
-Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Convention convention,
-                       const Knobs& knobs) {
-  Evaluation<S> e;
-  Mat<S> m;
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) m[i][j] = convert<S>(matrix(i, j));
-    e.c[i] = convert<S>(plane(i));
+/// What a variant decides on one input before it computes anything but C's clip-space signs:
+/// its choices (but the corner guard's outcome, which needs C . Q) and what follows from them.
+/// Two variants whose decisions are equal give the same answer when nothing rounds.
+struct Decision {
+  Choices choices;             ///< refused_corner and unguarded_corner are left false
+  bool corner_guard = true;    ///< whether C . Q <= 0 is refused
+  Status status = Status::ok;  ///< camera_not_behind_plane or singular_projection: no answer
+  bool unchanged = false, solve_failed = false, perspective_shape = false;
+  bool nan_sign_of_computed = false;       ///< Evaluation::nan_sign_of_computed
+  std::array<bool, 3> sign_of_computed{};  ///< Evaluation::sign_of_computed
+
+  bool operator==(const Decision& o) const {
+    return choices == o.choices && corner_guard == o.corner_guard;
   }
-  if constexpr (std::is_floating_point_v<S>) {
-    // a C does not change when C is scaled: a very tiny or huge C is brought near magnitude 1
-    // by a power of two (exact) first, as careful code does, so that C . Q neither under- nor
-    // overflows (an ordinary C is left alone: scaling it down would lose a subnormal's bits).
-    S largest = 0;
-    for (const S& v : e.c) largest = std::max(largest, std::abs(v));
-    const int exponent = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) : 0;
-    if (std::abs(exponent) > std::numeric_limits<S>::max_exponent / 4) {
-      for (S& v : e.c) v = std::ldexp(v, -exponent);
-    }
-  }
-  const Vec<S>& c = e.c;
-  const bool perspective = has_perspective_shape(matrix);
-  Choices& ch = e.choices;
+};
+
+/// The decision of the variant with `knobs` on an input in `convention`, from the signs of C,
+/// of M13, M23, M14, M24, and `clip_signs(solved)`: the signs of C' = S^-T C for the matrix S
+/// the solves take (Choices::solved), or none where S is singular.
+template <class ClipSigns>
+Decision decide(const Knobs& knobs, Convention convention, bool perspective,
+                const std::array<int, 4>& c_sign, const std::array<int, 4>& entry_sign,
+                ClipSigns&& clip_signs) {
+  Decision d;
+  d.corner_guard = knobs.corner_guard;
+  d.perspective_shape = perspective;
+  Choices& ch = d.choices;
   ch.formula = convention;
   if (knobs.zero_one_on_gl && convention == Convention::gl) ch.formula = Convention::zero_one;
   if (knobs.gl_on_zero_one && convention == Convention::zero_one) ch.formula = Convention::gl;
   ch.note_flip = knobs.note_flip && convention == Convention::reversed_z;
-  if (!(c[3] < 0)) {
-    if (knobs.camera_guard) {
-      ch.refused_camera = true;
-      e.status = Status::camera_not_behind_plane;
-      return e;
-    }
+  const DepthRange range = clip_depth_range(ch.formula);
+  ch.numerator = range.z_high - range.z_low;
+  if (knobs.zero_one_factor_on_gl && convention == Convention::gl) ch.numerator = 1;
+  if (knobs.gl_factor_on_zero_one && convention != Convention::gl) ch.numerator = 2;
+  const RowCombination near = near_rows(ch.formula);
+  ch.r3 = near.m3;
+  ch.t3 = -near.m3 * near.m4;
+  if (knobs.zero_one_form_on_gl && convention == Convention::gl) ch.t3 = 0;
+  if (knobs.gl_form_on_zero_one && convention == Convention::zero_one) ch.t3 = -1;
+  if (!(c_sign[3] < 0) && knobs.camera_guard) {
+    ch.refused_camera = true;
+    d.status = Status::camera_not_behind_plane;
+    return d;
   }
-  if (knobs.skips_head_on && c[0] == 0 && c[1] == 0 && c[2] < 0) {
+  if (knobs.skips_head_on && c_sign[0] == 0 && c_sign[1] == 0 && c_sign[2] < 0) {
     ch.head_on_skipped = true;
-    e.unchanged = true;
-    return e;
+    d.unchanged = true;
+    return d;
   }
-  e.solved = m;
-  if (knobs.drops_off_axis) e.solved[0][2] = e.solved[1][2] = 0;
-  if (knobs.abs_off_axis) {
-    e.solved[0][2] = magnitude(e.solved[0][2]);
-    e.solved[1][2] = magnitude(e.solved[1][2]);
+  auto take = [](Entries how, int sign) {
+    if (sign == 0) return 1;
+    return how == Entries::dropped     ? 0
+           : how == Entries::negated   ? -1
+           : how == Entries::magnitude ? sign
+                                       : 1;
+  };
+  for (int i = 0; i < 4; ++i)
+    ch.solved[i] = take(i < 2 ? knobs.off_axis : knobs.shift, entry_sign[i]);
+  ch.solve_changed = ch.solved != std::array<int, 4>{1, 1, 1, 1};
+  const std::optional<std::array<int, 3>> clip = clip_signs(ch.solved);
+  if (!clip) {
+    d.solve_failed = true;
+    d.status = Status::singular_projection;
+    return d;
   }
-  if (knobs.drops_shift) e.solved[0][3] = e.solved[1][3] = 0;
-  ch.solve_changed = e.solved != m;
-  if (!solve(e.solved, true, c, e.c_clip)) {
-    e.solve_failed = true;
-    e.status = Status::singular_projection;
-    return e;
-  }
-  auto sign = [&](const S& v, bool computed) {
+  auto sign = [&](int v, bool computed) {
     if (knobs.sign_by_division && v == 0) {
       ch.nan_sign = true;
-      e.nan_sign_of_computed = e.nan_sign_of_computed || computed;
+      d.nan_sign_of_computed = d.nan_sign_of_computed || computed;
     }
-    return v > 0 ? 1 : (v < 0 ? -1 : 0);
+    return v;
   };
   auto read = [&](SignFrom from, int i) {
     const bool camera =
         from == SignFrom::camera || (from == SignFrom::camera_on_perspective_shape && perspective);
-    e.sign_of_computed[i] = !camera;
-    return camera ? sign(c[i], false) : sign(e.c_clip[i], true);
+    d.sign_of_computed[i] = !camera && from != SignFrom::fixed;
+    if (from == SignFrom::fixed) return 1;
+    return camera ? sign(c_sign[i], false) : sign((*clip)[i], true);
   };
-  e.sign_of_computed[2] = true;
-  e.perspective_shape = perspective;
+  d.sign_of_computed[2] = true;
   ch.sx = read(knobs.x, 0);
   ch.sy = read(knobs.y, 1);
-  const int sz = sign(e.c_clip[2], true);
-  const DepthRange range = clip_depth_range(ch.formula);
+  const int sz = sign((*clip)[2], true);
   const int face = knobs.face_opposite ? -sz : sz;
   ch.z_twice = knobs.face_fixed ? 2
                : face > 0       ? 2 * range.z_high
                : face < 0       ? 2 * range.z_low
                                 : range.z_low + range.z_high;
+  if (ch.nan_sign) return d;
+  ch.closed_form = knobs.closed_form == ClosedForm::always ||
+                   (knobs.closed_form == ClosedForm::perspective_shape && perspective);
+  if (ch.closed_form) {
+    ch.q_z_assumed = knobs.assumes_m43_minus_one;
+    ch.left_handed_qw = knobs.left_handed_qw;
+  }
+  return d;
+}
+
+/// The solves one case needs, kept across the variants evaluated on it (diagnosis tries thousands
+/// of knob settings on one case, and they solve with few matrices and corners): M and C in S, and
+/// each solve by the entries it changed and its right side.
+template <class S>
+struct SolveMemo {
+  struct Solved {
+    std::array<int, 4> entries;  ///< Choices::solved
+    bool transpose;
+    std::array<int, 3> corner;  ///< the corner's sx, sy, z_twice (0 for the transposed solve)
+    bool ok;
+    Vec<S> x;
+  };
+  bool filled = false;
+  Mat<S> m;
+  Vec<S> c;
+  std::vector<Solved> solves;
+};
+
+/// The matrix the solves take: M with M13, M23, M14, M24 as `solved` (Choices::solved) says.
+template <class S>
+Mat<S> solved_matrix(const Mat<S>& m, const std::array<int, 4>& solved) {
+  Mat<S> out = m;
+  for (int i = 0; i < 4; ++i) {
+    S& v = out[i % 2][2 + i / 2];
+    if (solved[i] == 0) v = 0;
+    if (solved[i] == -1) v = -v;
+  }
+  return out;
+}
+
+/// S x = rhs (or S^T x = rhs) for S = solved_matrix(memo.m, solved), solved once per memo: the
+/// corner (sx, sy, z_twice) names rhs = Q' (0, 0, 0 for the transposed solve, whose rhs is C).
+template <class S>
+bool memo_solve(SolveMemo<S>& memo, const std::array<int, 4>& solved, bool transpose,
+                const std::array<int, 3>& corner, const Vec<S>& rhs, Vec<S>& x) {
+  for (const auto& s : memo.solves) {
+    if (s.entries == solved && s.transpose == transpose && s.corner == corner) {
+      x = s.x;
+      return s.ok;
+    }
+  }
+  const bool ok = solve(solved_matrix(memo.m, solved), transpose, rhs, x);
+  memo.solves.push_back({solved, transpose, corner, ok, x});
+  return ok;
+}
+
+/// The modification of (M, C) in `convention` with `knobs`, in S. Precondition: M and C finite.
+/// `memo`: one case's solves, kept for the next call on the same case (exact arithmetic).
+template <class S, class T>
+Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Convention convention,
+                       const Knobs& knobs, SolveMemo<S>* memo = nullptr) {
+  Evaluation<S> e;
+  Mat<S> m;
+  if (memo && memo->filled) {
+    m = memo->m;
+    e.c = memo->c;
+  } else {
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) m[i][j] = convert<S>(matrix(i, j));
+      e.c[i] = convert<S>(plane(i));
+    }
+    if constexpr (std::is_floating_point_v<S>) {
+      // a C does not change when C is scaled: a very tiny or huge C is brought near magnitude 1
+      // by a power of two (exact) first, as careful code does, so that C . Q neither under- nor
+      // overflows (an ordinary C is left alone: scaling it down would lose a subnormal's bits).
+      S largest = 0;
+      for (const S& v : e.c) largest = std::max(largest, std::abs(v));
+      const int exponent = largest > 0 && std::isfinite(largest) ? std::ilogb(largest) : 0;
+      if (std::abs(exponent) > std::numeric_limits<S>::max_exponent / 4) {
+        for (S& v : e.c) v = std::ldexp(v, -exponent);
+      }
+    }
+    if (memo) {
+      memo->m = m;
+      memo->c = e.c;
+      memo->filled = true;
+    }
+  }
+  const Vec<S>& c = e.c;
+  auto sign_of = [](const S& v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); };
+  std::array<int, 4> c_sign, entry_sign;
+  for (int i = 0; i < 4; ++i) {
+    c_sign[i] = sign_of(c[i]);
+    entry_sign[i] = sign_of(m[i % 2][2 + i / 2]);  // M13, M23, M14, M24
+  }
+  auto solve_memo = [&](const std::array<int, 4>& solved, bool transpose,
+                        const std::array<int, 3>& corner, const Vec<S>& rhs, Vec<S>& x) {
+    if (memo) return memo_solve(*memo, solved, transpose, corner, rhs, x);
+    return solve(solved_matrix(m, solved), transpose, rhs, x);
+  };
+  const Decision d =
+      decide(knobs, convention, has_perspective_shape(matrix), c_sign, entry_sign,
+             [&](const std::array<int, 4>& solved) {
+               std::optional<std::array<int, 3>> out;
+               if (!solve_memo(solved, true, {0, 0, 0}, c, e.c_clip)) return out;
+               out = {sign_of(e.c_clip[0]), sign_of(e.c_clip[1]), sign_of(e.c_clip[2])};
+               return out;
+             });
+  Choices& ch = e.choices;
+  ch = d.choices;
+  e.status = d.status;
+  e.unchanged = d.unchanged;
+  e.solve_failed = d.solve_failed;
+  e.nan_sign_of_computed = d.nan_sign_of_computed;
+  e.sign_of_computed = d.sign_of_computed;
+  e.perspective_shape = d.perspective_shape;
+  e.r3 = ch.r3;
+  e.t3 = ch.t3;
+  e.row4_changed = ch.note_flip;
+  if (d.status != Status::ok || d.unchanged) return e;
+  e.solved = solved_matrix(m, ch.solved);
   if (ch.nan_sign) {  // x / |x| at 0: a NaN in Q, C . Q and every entry of row 3
     e.non_finite = true;
     return e;
   }
   e.q_clip = {S(ch.sx), S(ch.sy), S(ch.z_twice) / S(2), S(1)};
-  ch.closed_form = knobs.closed_form == ClosedForm::always ||
-                   (knobs.closed_form == ClosedForm::perspective_shape && perspective);
   const Mat<S>& s = e.solved;
   if (ch.closed_form) {
     // Q = M^-1 Q' for the perspective shape: Q_z = 1 / M43, Q_w = (z - M33 Q_z) / M34,
     // Q_x = (s_x - M13 Q_z) / M11, Q_y = (s_y - M23 Q_z) / M22.
     S qz = S(-1);
-    if (!knobs.assumes_m43_minus_one && !divide(S(1), s[3][2], qz)) {
+    if (!ch.q_z_assumed && !divide(S(1), s[3][2], qz)) {
       e.non_finite = true;
       return e;
     }
-    const S qz_in_w = knobs.left_handed_qw ? S(1) : qz;
+    const S qz_in_w = ch.left_handed_qw ? S(1) : qz;
     // Q_k = (Q'_j - M_j3 z) / M_jl for (k, j, z, l) = (x, 1, Q_z, 1), (y, 2, Q_z, 2), (w, 3, Q_z
     // or, left-handed, 1, 4); q_magnitude sums the same terms' magnitudes.
     const struct {
@@ -263,7 +418,7 @@ Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Conven
     }
     e.q[2] = qz;
     e.q_magnitude[2] = magnitude(qz);
-  } else if (!solve(e.solved, false, e.q_clip, e.q)) {
+  } else if (!solve_memo(ch.solved, false, {ch.sx, ch.sy, ch.z_twice}, e.q_clip, e.q)) {
     e.solve_failed = true;
     e.status = Status::singular_projection;
     return e;
@@ -283,14 +438,10 @@ Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Conven
     }
     ch.unguarded_corner = true;
   }
-  if (!divide(S(range.z_high - range.z_low), e.d, e.a)) {
+  if (!divide(S(ch.numerator), e.d, e.a)) {
     e.non_finite = true;
     return e;
   }
-  const RowCombination near = near_rows(ch.formula);
-  e.r3 = near.m3;
-  e.t3 = -near.m3 * near.m4;
-  e.row4_changed = ch.note_flip;
   return e;
 }
 

@@ -13,6 +13,7 @@
 #include "oblique/mistakes/mistakes.h"
 #include "oblique/oblique.h"
 #include "oblique/oracle/checker.h"
+#include "oblique/oracle/filtered.h"
 
 namespace {
 
@@ -24,11 +25,10 @@ template <class T>
 Observation<T> observe(const Implementation<T>& impl, const Matrix4<T>& m, const Vector4<T>& c,
                        Convention convention) {
   const Answer<T> outcome = impl.run(m, c, convention);
-  const Checker<T> checker(m, c, convention);
   Checks checks;
   checks.statuses = StatusContract::any_refusal;
   Observation<T> o{m, c, convention, outcome.status, outcome.projection, false, std::nullopt};
-  o.wrong = checker.judge(outcome, checks).violation() != nullptr;
+  o.wrong = judge(FilteredProblem<T>(m, c, convention), outcome, checks).violation() != nullptr;
   return o;
 }
 
@@ -70,6 +70,62 @@ TYPED_TEST(Diagnose, everyMistakeIsItselfAndNoOther) {
         << name << ": " << likely_cause_line(d);
     EXPECT_GT(d.wrong_where_it_differs, 0) << name;
   }
+}
+
+// Every two mistakes the diagnosis tries together, made in one program, are named as the pair.
+TYPED_TEST(Diagnose, everyPairIsThePair) {
+  using T = TypeParam;
+  int named = 0;
+  const auto pairs = causes_tried(2);
+  for (const auto& pair : pairs) {
+    const Diagnosis d = first_finding_diagnosed(mistaken_implementation<T>(pair));
+    if (!d.ran) {
+      ADD_FAILURE() << cause_name(pair) << ": no wrong answer found";
+      continue;
+    }
+    if (d.causes == std::vector<std::vector<Mistake>>{pair})
+      ++named;
+    else
+      ADD_FAILURE() << cause_name(pair) << ": " << likely_cause_line(d);
+  }
+  EXPECT_EQ(named, static_cast<int>(pairs.size()));
+}
+
+// Three faults in one program, as ported engine code has them, are named as the three: the
+// bundled ones (tests/end_to_end runs them through verify too) and every 40th triple tried.
+TYPED_TEST(Diagnose, threeMistakesTogetherAreTheThree) {
+  using T = TypeParam;
+  std::vector<std::vector<Mistake>> triples = {
+      // Direct3D's factor in OpenGL portal code that reads the corner from C, symmetric frustum
+      {Mistake::camera_space_signs, Mistake::drops_off_axis, Mistake::zero_one_factor_on_gl},
+      // a Vulkan port: the fast path's y sign, no corner guard, sgn as x / |x|
+      {Mistake::ignores_m22_sign, Mistake::no_corner_guard, Mistake::sign_by_division},
+      // Listing 5.1 and Eq. 7 as printed, on every matrix, without the camera guard
+      {Mistake::far_face_fixed, Mistake::perspective_rows, Mistake::no_camera_guard},
+      // OpenGL's factor on [0, 1], the corner fixed at (1, 1), head-on planes skipped
+      {Mistake::skips_head_on, Mistake::gl_factor_on_zero_one, Mistake::fixed_corner_signs},
+  };
+  const auto tried = causes_tried(3);
+  for (std::size_t i = 0; i < tried.size(); i += 40) triples.push_back(tried[i]);
+  int named = 0;
+  for (const auto& triple : triples) {
+    const Diagnosis d = first_finding_diagnosed(mistaken_implementation<T>(triple));
+    if (!d.ran) {
+      ADD_FAILURE() << cause_name(triple) << ": no wrong answer found";
+      continue;
+    }
+    std::vector<Mistake> sorted = triple;
+    std::sort(sorted.begin(), sorted.end());
+    if (d.causes.size() == 1 && [&] {
+          std::vector<Mistake> c = d.causes[0];
+          std::sort(c.begin(), c.end());
+          return c == sorted;
+        }())
+      ++named;
+    else
+      ADD_FAILURE() << cause_name(triple) << ": " << likely_cause_line(d);
+  }
+  EXPECT_EQ(named, static_cast<int>(triples.size()));
 }
 
 TYPED_TEST(Diagnose, twoMistakesTogetherAreThePair) {

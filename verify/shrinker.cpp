@@ -100,17 +100,20 @@ mistakes::Diagnosis Shrinker<T>::diagnose(const cases::Case<T>& shrunk, const Fo
                                       true,
                                       shrunk.family};
   const auto& families = session_.draws().contract().families;
+  const auto& conventions = session_.draws().contract().conventions;
   // A probe the implementation does not answer (it crashed, hung or broke the protocol) ends the
   // probing: each further one would cost a restart or the whole --timeout.
   bool answering = true;
   // Said (and flushed) first: a slow implementation takes a while over the panel.
   (out_ << "oblique verify: diagnosing the likely cause (asking the implementation up to "
-        << mistakes::kPanelCasesPerConvention << " more cases)\n")
+        << mistakes::kPanelCasesPerConvention * static_cast<int>(conventions.size())
+        << " more cases)\n")
       .flush();
-  const mistakes::Probe<T> probe = [this, &families, &answering](
+  const mistakes::Probe<T> probe = [this, &families, &conventions, &answering](
                                        const Matrix4<T>& m, const Vector4<T>& c,
                                        Convention convention, cases::Family family) {
-    if (!answering || std::find(families.begin(), families.end(), family) == families.end())
+    if (!answering || std::find(families.begin(), families.end(), family) == families.end() ||
+        std::find(conventions.begin(), conventions.end(), convention) == conventions.end())
       return std::optional<mistakes::Observation<T>>();
     cases::Case<T> v;
     v.matrix = m;

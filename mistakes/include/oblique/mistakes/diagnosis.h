@@ -38,7 +38,8 @@ struct Observation {
 };
 
 /// Asks the implementation about one more case (of `family`): its observation, or none when the
-/// case is not one the implementation promises anything for (its contract leaves it out).
+/// case is not one the implementation promises anything for (its contract leaves it out: a
+/// family or a convention it does not serve).
 template <class T>
 using Probe = std::function<std::optional<Observation<T>>(const Matrix4<T>&, const Vector4<T>&,
                                                           Convention, cases::Family family)>;
@@ -73,8 +74,8 @@ struct FamilyDiagnosis {
 
 struct Diagnosis {
   bool ran = false;  ///< false where nothing was diagnosed (no wrong answer with a case)
-  /// The causes that explain every answer seen: each one mistake, or two made together. Empty:
-  /// no known mistake reproduces the answers.
+  /// The smallest causes that explain every answer seen: each one mistake, or two or three made
+  /// together. Empty: no known mistake, nor up to three together, reproduces the answers.
   std::vector<std::vector<Mistake>> causes;
   int seen = 0, wrong = 0;  ///< cases judged (including probes), answers the checker rejected
   int probed = 0;           ///< of them, cases asked by the diagnosis
@@ -95,11 +96,19 @@ struct Diagnosis {
   std::vector<FamilyDiagnosis> families;
 };
 
-/// How many cases the diagnosis asks a probe per convention seen (its fixed panel).
-inline constexpr int kPanelCasesPerConvention = 108;
+/// The most mistakes a cause is made of: the diagnosis tries every cause of up to this many
+/// mistakes that change no choice in common (choices_changed()), and names the smallest that fit.
+inline constexpr int kMostMistakes = 3;
+
+/// Every cause of `size` mistakes the diagnosis tries: those that change no choice in common, and
+/// each a program no smaller cause is (their knobs differ).
+std::vector<std::vector<Mistake>> causes_tried(int size);
+
+/// How many cases the diagnosis asks a probe per convention (its fixed panel).
+inline constexpr int kPanelCasesPerConvention = 182;
 
 /// The diagnosis of the answers `seen` (at least one wrong), with more cases asked through
-/// `probe` when given (in the conventions seen).
+/// `probe` when given (in every convention the probe does not decline).
 template <class T>
 Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& probe = {});
 

@@ -34,6 +34,14 @@ enum class Mistake {
   no_corner_guard,         ///< no refusal when C . Q <= 0
   sign_by_division,        ///< sgn(x) = x / |x|, NaN at 0
   note_flip_as_printed,    ///< reversed Z through the [0, 1] note's flip, fourth row (0, 0, 1, 1)
+  zero_one_factor_on_gl,   ///< a = 1 / (C . Q) kept with the gl form M'_3 = a C - M_4
+  gl_factor_on_zero_one,   ///< a = 2 / (C . Q) on a [0, 1] or reversed-Z matrix, its form kept
+  zero_one_form_on_gl,     ///< M'_3 = a C (no - M_4) with the gl factor a = 2 / (C . Q)
+  gl_form_on_zero_one,     ///< M'_3 = a C - M_4 with the [0, 1] factor a = 1 / (C . Q)
+  fixed_corner_signs,      ///< Q'_x = Q'_y = 1 whatever the signs of C'
+  negated_off_axis,        ///< -M13, -M23 in C' and Q (the lean's sign slipped)
+  negated_shift,           ///< -M14, -M24 in C' and Q
+  assumes_m43_minus_one,   ///< the perspective closed form with Q_z = -1 (Listing 5.1) on M43 = 1
 };
 
 inline constexpr Mistake all_mistakes[] = {
@@ -55,7 +63,44 @@ inline constexpr Mistake all_mistakes[] = {
     Mistake::no_corner_guard,
     Mistake::sign_by_division,
     Mistake::note_flip_as_printed,
+    Mistake::zero_one_factor_on_gl,
+    Mistake::gl_factor_on_zero_one,
+    Mistake::zero_one_form_on_gl,
+    Mistake::gl_form_on_zero_one,
+    Mistake::fixed_corner_signs,
+    Mistake::negated_off_axis,
+    Mistake::negated_shift,
+    Mistake::assumes_m43_minus_one,
 };
+
+/// The modification's choices (docs/mistakes.md, "The model of the computation"): the correct
+/// method takes one alternative of each, a mistake another of one or a few of them.
+enum class ModelChoice {
+  camera_guard,      ///< refuse when C_w >= 0
+  corner_guard,      ///< refuse when C . Q <= 0
+  head_on,           ///< modify for a head-on plane too
+  sign_function,     ///< how sgn is computed
+  sign_x,            ///< where Q'_x's sign is read
+  sign_y,            ///< where Q'_y's sign is read
+  face,              ///< which depth face Q'_z takes
+  corner_solve,      ///< Q = M^-1 Q' solved, or the perspective closed form
+  q_z,               ///< the closed form's Q_z: 1 / M43, or -1 assumed
+  q_w,               ///< the closed form's Q_w: right- or left-handed
+  off_axis,          ///< what C' and Q take for M13, M23
+  shift,             ///< what C' and Q take for M14, M24
+  formula_gl,        ///< whose formula on a gl matrix (range, factor, form together)
+  formula_zero_one,  ///< whose formula on a [0, 1] matrix
+  factor_gl,         ///< the factor's numerator on a gl matrix
+  factor_zero_one,   ///< the factor's numerator on a [0, 1] or reversed-Z matrix
+  form_gl,           ///< row 3's form on a gl matrix
+  form_zero_one,     ///< row 3's form on a [0, 1] matrix
+  route_reversed,    ///< the route reversed Z is computed by
+};
+inline constexpr int kModelChoices = 19;
+
+/// The choices `mistake` changes, as bits (1 << ModelChoice). Mistakes combine (a program with
+/// several) where they change no choice in common.
+unsigned choices_changed(Mistake mistake);
 
 /// One entry of the catalogue.
 struct MistakeEntry {
@@ -71,7 +116,7 @@ const MistakeEntry& mistake_entry(Mistake mistake);
 /// The mistake called `name` (MistakeEntry::name), if any.
 std::optional<Mistake> parse_mistake(std::string_view name);
 
-/// The modification with `mistakes` made (one, or two together), computing in T as an engine
+/// The modification with `mistakes` made (one, or several together), computing in T as an engine
 /// does: the core's general method where the mistakes change none of its choices, the mistaken
 /// formula elsewhere. Named "mistake_" + the names joined by "+". Compiled in oblique::properties.
 template <class T>

@@ -168,7 +168,10 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
       };
       const mistakes::Probe<T> probe = [&](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
                                            cases::Family) {
-        if (!impl.accepts(k, m)) return std::optional<mistakes::Observation<T>>();
+        if (std::find(impl.conventions.begin(), impl.conventions.end(), k) ==
+                impl.conventions.end() ||
+            !impl.accepts(k, m))
+          return std::optional<mistakes::Observation<T>>();
         return std::optional(observe(m, p, k, impl.run(m, p, k)));
       };
       mistakes::Observation<T> seen = observe(c.matrix, c.plane, c.convention, out);
