@@ -562,6 +562,17 @@ std::string by_family_text(const std::vector<FamilyDiagnosis>& families) {
   return "right on " + right + wrong;
 }
 
+/// "you take ... (shows on ...); you ..." for each mistake of a cause.
+std::string you_text(const std::vector<Mistake>& cause) {
+  std::string out;
+  for (Mistake m : cause) {
+    const MistakeEntry& e = mistake_entry(m);
+    out +=
+        (out.empty() ? "" : "; ") + std::string(e.you) + " (wrong on " + std::string(e.shows) + ")";
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string cause_names(const Diagnosis& d) {
@@ -587,6 +598,7 @@ std::string likely_cause_line(const Diagnosis& d) {
   }
   if (d.causes.size() == 1 && d.causes[0].size() == 1)
     out += "; fix: " + std::string(mistake_entry(d.causes[0][0]).fix);
+  if (d.causes.size() == 1 && d.causes[0].size() > 1) out += ": " + you_text(d.causes[0]);
   return out;
 }
 
@@ -653,6 +665,15 @@ std::string likely_cause_markdown(const Diagnosis& d) {
     md << "Each of these reproduces every answer seen; the cases asked do not tell them apart:\n\n";
     for (const auto& cause : d.causes) md << "- `" << cause_name(cause) << "`\n";
     md << "\nThe first, in detail:\n\n";
+  }
+  if (d.causes.front().size() > 1) {
+    md << "The smallest set of known mistakes that reproduces every answer has "
+       << d.causes.front().size() << ", made together:\n\n";
+    for (Mistake m : d.causes.front()) {
+      const MistakeEntry& e = mistake_entry(m);
+      md << "- " << e.you << " (wrong on " << e.shows << ")\n";
+    }
+    md << "\n";
   }
   for (Mistake m : d.causes.front()) {
     const MistakeEntry& e = mistake_entry(m);

@@ -24,7 +24,8 @@ constexpr MistakeEntry kCatalogue[] = {
      "so it becomes a C + M_4 instead of a multiple of C, and the far plane misses Q.",
      "For [-1, 1] depth use a = 2 / (C . Q) and M'_3 = a C - M_4; keep a = 1 / (C . Q), "
      "M'_3 = a C for [0, 1] depth. Take the convention as an input, not as an assumption.",
-     "every [-1, 1] (gl) matrix"},
+     "every [-1, 1] (gl) matrix",
+     "you write the [0, 1] formula, a = 1 / (C . Q) and M'_3 = a C, on a [-1, 1] matrix"},
     {Mistake::gl_formula_on_zero_one, "gl_formula_on_zero_one",
      "the [-1, 1] formula on a [0, 1] matrix",
      "The code scales C by a = 2 / (C . Q) and writes M'_3 = a C - M_4 (OpenGL's formula) on a "
@@ -32,7 +33,8 @@ constexpr MistakeEntry kCatalogue[] = {
      "multiple of C.",
      "For [0, 1] depth use a = 1 / (C . Q) and M'_3 = a C (near plane M'_3); the far corner's "
      "depth is 0 or 1, not -1 or 1.",
-     "every [0, 1] (zero_one) matrix"},
+     "every [0, 1] (zero_one) matrix",
+     "you write OpenGL's formula, a = 2 / (C . Q) and M'_3 = a C - M_4, on a [0, 1] matrix"},
     {Mistake::camera_space_signs, "camera_space_signs",
      "the far corner's signs taken from C in camera space",
      "The far corner Q' = (sgn C'_x, sgn C'_y, ...) needs the signs of the clip-space plane "
@@ -42,21 +44,24 @@ constexpr MistakeEntry kCatalogue[] = {
      "then clips the view volume.",
      "Solve C' = M^-T C (for the perspective shape, C'_x = C_x / M11 and C'_y = C_y / M22) and "
      "take Q' = (sgn C'_x, sgn C'_y, z_far, 1).",
-     "matrices where sgn C'_x != sgn C_x or sgn C'_y != sgn C_y"},
+     "matrices where sgn C'_x != sgn C_x or sgn C'_y != sgn C_y",
+     "you take Q'_x's and Q'_y's signs from C_x, C_y instead of C' = M^-T C"},
     {Mistake::ignores_m11_sign, "ignores_m11_sign",
      "the perspective fast path ignores the sign of M11",
      "On matrices of the perspective shape the code writes sgn C'_x as sgn C_x, true while "
      "M11 > 0 (C'_x = C_x / M11). A mirror camera made by negating M11 then gets the far corner on "
      "the wrong side in x. Other matrices, solved in general, are right.",
      "sgn C'_x = sgn C_x * sgn M11 on the perspective shape, or solve C' = M^-T C.",
-     "perspective-shaped matrices with M11 < 0"},
+     "perspective-shaped matrices with M11 < 0",
+     "you take Q'_x's sign from C_x where M has the perspective shape, ignoring M11's sign"},
     {Mistake::ignores_m22_sign, "ignores_m22_sign",
      "the perspective fast path ignores the sign of M22",
      "On matrices of the perspective shape the code writes sgn C'_y as sgn C_y, true while "
      "M22 > 0. A y-flipped camera (Vulkan's clip space, or a flip for render-to-texture) then "
      "gets the far corner on the wrong side in y.",
      "sgn C'_y = sgn C_y * sgn M22 on the perspective shape, or solve C' = M^-T C.",
-     "perspective-shaped matrices with M22 < 0"},
+     "perspective-shaped matrices with M22 < 0",
+     "you take Q'_y's sign from C_y where M has the perspective shape, ignoring M22's sign"},
     {Mistake::far_face_fixed, "far_face_fixed",
      "the far corner's depth fixed at Q'_z = 1",
      "The code takes Q' = (sgn C'_x, sgn C'_y, 1, 1) as the paper's Eq. 7 prints it. The far face "
@@ -65,7 +70,8 @@ constexpr MistakeEntry kCatalogue[] = {
      "corner is on the other face. C is then scaled by its value at a nearer corner.",
      "Q'_z = z_far when sgn C'_z > 0 and z_near when sgn C'_z < 0, with (z_near, z_far) = "
      "(-1, 1) for [-1, 1], (0, 1) for [0, 1] and (1, 0) for reversed Z.",
-     "reversed-Z matrices, and wherever C'_z < 0"},
+     "reversed-Z matrices, and wherever C'_z < 0",
+     "you put the far corner at Q'_z = 1 whatever the convention and C'_z's sign"},
     {Mistake::wrong_face, "wrong_face",
      "the far corner taken on the near depth face",
      "The code takes Q'_z on the face opposite sgn C'_z, the near face: reversed-Z code "
@@ -74,7 +80,8 @@ constexpr MistakeEntry kCatalogue[] = {
      "through the view volume, or C . Q <= 0 and the input is refused.",
      "Q'_z = z_far when sgn C'_z > 0 and z_near when sgn C'_z < 0, with (z_near, z_far) = "
      "(-1, 1) for [-1, 1], (0, 1) for [0, 1] and (1, 0) for reversed Z.",
-     "every matrix (wherever C'_z != 0)"},
+     "every matrix (wherever C'_z != 0)",
+     "you put the far corner's Q'_z on the face opposite C'_z's sign"},
     {Mistake::left_handed_qw, "left_handed_qw",
      "a left-handed Q_w formula on a right-handed matrix",
      "The perspective closed form has Q_z = 1 / M43 and Q_w = (z - M33 Q_z) / M34: "
@@ -82,14 +89,16 @@ constexpr MistakeEntry kCatalogue[] = {
      "(M43 = 1). The code uses the left-handed Q_w on a right-handed matrix, so Q is off the far "
      "face and C . Q, and the scale, are wrong.",
      "Q_w = (Q'_z - M33 / M43) / M34, which holds for either handedness.",
-     "perspective-shaped matrices with M43 != 1"},
+     "perspective-shaped matrices with M43 != 1",
+     "you compute Q_w as a left-handed matrix needs, (z - M33) / M34"},
     {Mistake::drops_off_axis, "drops_off_axis",
      "the off-axis terms M13, M23 dropped",
      "The code finds C' and Q as if the frustum were symmetric (M13 = M23 = 0), e.g. "
      "Q_x = sgn C'_x / M11 instead of (sgn C'_x + M13) / M11. An off-axis frustum (a portal seen "
      "from the side, TAA jitter, a tiled or asymmetric view) then gets a Q off the far face.",
      "Keep M13 and M23: Q = M^-1 Q', or Q_x = (sgn C'_x - M13 Q_z) / M11 and likewise for y.",
-     "matrices with M13 != 0 or M23 != 0"},
+     "matrices with M13 != 0 or M23 != 0",
+     "you leave M13 and M23 out of C' and Q"},
     {Mistake::abs_off_axis, "abs_off_axis",
      "the off-axis terms taken as |M13|, |M23|",
      "The code takes the magnitudes of the off-axis terms (fabs(M13), fabs(M23)) into C' and Q, "
@@ -97,14 +106,16 @@ constexpr MistakeEntry kCatalogue[] = {
      "the far face whenever the frustum has more field of view to the left or below than "
      "opposite: a VR eye, a tiled screenshot's top or right tiles, a portal seen from one side.",
      "Keep the signs: Q = M^-1 Q', or Q_x = (sgn C'_x - M13 Q_z) / M11 with M13 as it is.",
-     "matrices with M13 < 0 or M23 < 0"},
+     "matrices with M13 < 0 or M23 < 0",
+     "you take |M13| and |M23| in C' and Q"},
     {Mistake::drops_shift, "drops_shift",
      "the stereo / lens-shift terms M14, M24 dropped",
      "The code finds C' and Q from M with M14 = M24 = 0, portal math written for a centred "
      "camera. A stereo eye or lens-shifted projection (translation in clip x or y) then gets a "
      "corner and a scale for another matrix.",
      "Solve with the whole matrix: C' = M^-T C and Q = M^-1 Q'.",
-     "matrices with M14 != 0 or M24 != 0"},
+     "matrices with M14 != 0 or M24 != 0",
+     "you leave M14 and M24 out of C' and Q"},
     {Mistake::divides_by_m43, "divides_by_m43",
      "the perspective closed form on a matrix of another shape",
      "The code computes Q by the perspective closed form (Q_z = 1 / M43, Q_w = "
@@ -112,14 +123,16 @@ constexpr MistakeEntry kCatalogue[] = {
      "infinite and the answer NaN; on any other shape Q is not M^-1 Q'.",
      "Use the closed form only for the perspective shape (zeros outside M11, M13, M22, M23, M33, "
      "M34, M43; M43 != 0) and solve Q = M^-1 Q' otherwise.",
-     "matrices not of the perspective shape (orthographic: a NaN answer)"},
+     "matrices not of the perspective shape (orthographic: a NaN answer)",
+     "you compute Q by the perspective closed form (Q_z = 1 / M43) on every matrix"},
     {Mistake::perspective_rows, "perspective_rows",
      "Listing 5.1's perspective rows on a matrix of another shape",
      "The code computes Q as Listing 5.1 does, Q = ((s_x + M13) / M11, (s_y + M23) / M22, -1, "
      "(z + M33) / M34), which assumes M_4 = (0, 0, -1, 0). On an orthographic or general matrix "
      "this is not M^-1 Q': C is scaled by its value at a point that is no corner.",
      "Use the shortcut only for the perspective shape with M43 = -1; solve Q = M^-1 Q' otherwise.",
-     "matrices not of the perspective shape, or with M43 != -1"},
+     "matrices not of the perspective shape, or with M43 != -1",
+     "you compute Q as Listing 5.1 does (M43 = -1 assumed) on every matrix"},
     {Mistake::skips_head_on, "skips_head_on",
      "the modification skipped for a head-on plane",
      "The code returns M unchanged when the plane's normal is (0, 0, -1), reasoning that the "
@@ -128,21 +141,24 @@ constexpr MistakeEntry kCatalogue[] = {
      "the reflection.",
      "Apply the modification for every plane: for C = (0, 0, -1, -d) it moves the near plane to "
      "z = -d.",
-     "planes with C_x = C_y = 0 and C_z < 0"},
+     "planes with C_x = C_y = 0 and C_z < 0",
+     "you return M unchanged for a plane with normal (0, 0, -1)"},
     {Mistake::no_camera_guard, "no_camera_guard",
      "no guard when the camera is on or in front of the plane",
      "The modification needs the camera (the eye, the origin of camera space) strictly on C's "
      "negative side, C_w < 0: otherwise the near plane C would keep the camera's side, and no "
      "oblique frustum clips what the user meant. The code answers a matrix anyway.",
      "Refuse (or fall back to the unmodified matrix plus a user clip plane) when C_w >= 0.",
-     "planes with C_w >= 0"},
+     "planes with C_w >= 0",
+     "you answer a matrix when C_w >= 0"},
     {Mistake::no_corner_guard, "no_corner_guard",
      "no guard when the plane misses the view volume",
      "When C keeps nothing of the view volume (C . Q <= 0 at the farthest corner) the scale "
      "a = k / (C . Q) is negative or infinite. The code divides anyway: a near plane that keeps "
      "the wrong side, or infinities when C passes through Q.",
      "Refuse when C . Q <= 0 (nothing is to be drawn), before dividing.",
-     "planes with C . Q <= 0"},
+     "planes with C . Q <= 0",
+     "you divide by C . Q when it is <= 0"},
     {Mistake::sign_by_division, "sign_by_division",
      "sgn(x) computed as x / |x|",
      "The code computes the corner's signs as x / |x|, which is NaN for x = 0. A plane with "
@@ -150,7 +166,8 @@ constexpr MistakeEntry kCatalogue[] = {
      "gets a NaN corner and a NaN matrix.",
      "sgn(x) = (x > 0) - (x < 0); a zero component may take either sign (every such corner is "
      "equally far).",
-     "planes with C'_x, C'_y or C'_z exactly 0"},
+     "planes with C'_x, C'_y or C'_z exactly 0",
+     "you compute sgn(x) as x / |x|"},
     {Mistake::note_flip_as_printed, "note_flip_as_printed",
      "the reversed-Z route through the [0, 1] note's flip matrix as printed",
      "The [0, 1] note builds reversed Z as flip * oblique([0, 1] matrix), its flip printed with "
@@ -158,7 +175,8 @@ constexpr MistakeEntry kCatalogue[] = {
      "a C + M_4 instead of M_4, so the side planes and the perspective divide change.",
      "Flip with fourth row (0, 0, 0, 1) (z' = w - z), or directly: M'_3 = M_4 - a C with "
      "a = 1 / (C . Q) and rows 1, 2, 4 unchanged.",
-     "every reversed-Z matrix"},
+     "every reversed-Z matrix",
+     "you flip to reversed Z with the [0, 1] note's flip as printed, row 4 (0, 0, 1, 1)"},
     {Mistake::zero_one_factor_on_gl, "zero_one_factor_on_gl",
      "the [0, 1] factor a = 1 / (C . Q) with OpenGL's form M'_3 = a C - M_4",
      "The code writes row 3 in OpenGL's form, M'_3 = a C - M_4, but scales C by a = 1 / (C . Q), "
@@ -167,27 +185,31 @@ constexpr MistakeEntry kCatalogue[] = {
      "through Q only for a = 2 / (C . Q): it cuts through the view volume short of Q.",
      "On a [-1, 1] matrix use a = 2 / (C . Q) with M'_3 = a C - M_4 (and a = 1 / (C . Q) only "
      "with M'_3 = a C on [0, 1]).",
-     "every [-1, 1] (gl) matrix"},
+     "every [-1, 1] (gl) matrix",
+     "you scale C by a = 1 / (C . Q) while writing OpenGL's M'_3 = a C - M_4"},
     {Mistake::gl_factor_on_zero_one, "gl_factor_on_zero_one",
      "OpenGL's factor a = 2 / (C . Q) on [0, 1] depth",
      "The code keeps the [0, 1] (or reversed-Z) form of row 3 but scales C by a = 2 / (C . Q), "
      "OpenGL's factor. The near plane is still C; the far plane passes through the point where "
      "C is half its value at Q, so it clips the far half of what C keeps.",
      "For [0, 1] and reversed-Z depth use a = 1 / (C . Q).",
-     "every [0, 1] and reversed-Z matrix"},
+     "every [0, 1] and reversed-Z matrix",
+     "you scale C by a = 2 / (C . Q) on [0, 1] or reversed-Z depth"},
     {Mistake::zero_one_form_on_gl, "zero_one_form_on_gl",
      "row 3 written M'_3 = a C on an OpenGL matrix, without - M_4",
      "The code scales with OpenGL's a = 2 / (C . Q) but writes M'_3 = a C, dropping the - M_4 "
      "that OpenGL's form needs. The near plane becomes a C + M_4, which is no multiple of C.",
      "On a [-1, 1] matrix M'_3 = a C - M_4.",
-     "every [-1, 1] (gl) matrix"},
+     "every [-1, 1] (gl) matrix",
+     "you write M'_3 = a C without - M_4 on a [-1, 1] matrix"},
     {Mistake::gl_form_on_zero_one, "gl_form_on_zero_one",
      "row 3 written M'_3 = a C - M_4 on a [0, 1] matrix",
      "The code scales with the [0, 1] factor a = 1 / (C . Q) but writes row 3 in OpenGL's form "
      "a C - M_4. On [0, 1] depth the near plane is M'_3 alone: it becomes a C - M_4, which is no "
      "multiple of C.",
      "On a [0, 1] matrix M'_3 = a C.",
-     "every [0, 1] (zero_one) matrix"},
+     "every [0, 1] (zero_one) matrix",
+     "you write M'_3 = a C - M_4 on a [0, 1] matrix"},
     {Mistake::fixed_corner_signs, "fixed_corner_signs",
      "the far corner's x and y fixed at +1",
      "The code takes Q' = (1, 1, z, 1), the corner of a plane that faces right and up, whatever "
@@ -195,7 +217,8 @@ constexpr MistakeEntry kCatalogue[] = {
      "is not the farthest one: C is scaled by its value at a nearer corner, and the far plane "
      "clips the view volume.",
      "Q'_x = sgn C'_x, Q'_y = sgn C'_y with C' = M^-T C.",
-     "planes with C'_x < 0 or C'_y < 0"},
+     "planes with C'_x < 0 or C'_y < 0",
+     "you take the far corner at Q'_x = Q'_y = 1 whatever the signs of C'"},
     {Mistake::negated_off_axis, "negated_off_axis",
      "the off-axis terms M13, M23 with their signs slipped",
      "The code takes -M13 and -M23 where C' and Q need M13 and M23, as in Q_x = "
@@ -203,20 +226,23 @@ constexpr MistakeEntry kCatalogue[] = {
      "symmetric frustum; an off-axis one (a portal seen from the side, TAA jitter, a VR eye) gets "
      "a Q off the far face.",
      "Q = M^-1 Q', or Q_x = (sgn C'_x - M13 Q_z) / M11 and likewise for y.",
-     "matrices with M13 != 0 or M23 != 0"},
+     "matrices with M13 != 0 or M23 != 0",
+     "you take -M13 and -M23 in C' and Q"},
     {Mistake::negated_shift, "negated_shift",
      "the stereo / lens-shift terms M14, M24 with their signs slipped",
      "The code takes -M14 and -M24 where C' and Q need M14 and M24: a stereo eye or lens-shifted "
      "projection gets the corner and the scale of the other eye's matrix.",
      "Solve with the whole matrix: C' = M^-T C and Q = M^-1 Q'.",
-     "matrices with M14 != 0 or M24 != 0"},
+     "matrices with M14 != 0 or M24 != 0",
+     "you take -M14 and -M24 in C' and Q"},
     {Mistake::assumes_m43_minus_one, "assumes_m43_minus_one",
      "the perspective closed form with Q_z = -1 on every perspective matrix",
      "The code computes Q on the perspective shape as Listing 5.1 does, with Q_z = -1, which "
      "holds for a right-handed matrix (M43 = -1). A left-handed one (M43 = 1, Direct3D's "
      "convention) has Q_z = 1: Q lands behind the camera and C is scaled by its value there.",
      "Q_z = 1 / M43 and Q_w = (Q'_z - M33 Q_z) / M34, which hold for either handedness.",
-     "perspective-shaped matrices with M43 != -1"},
+     "perspective-shaped matrices with M43 != -1",
+     "you take Q_z = -1 on every perspective matrix, left-handed ones too"},
 };
 // clang-format on
 

@@ -110,6 +110,9 @@ struct MistakeEntry {
   std::string_view explanation;  ///< what the code does and why it is wrong (a paragraph)
   std::string_view fix;          ///< the fix, in words and formula
   std::string_view shows;        ///< the inputs where it gives a wrong answer
+  /// What the code does, said to its author: "you take Q'_y's sign from C_y where M has the
+  /// perspective shape, ignoring M22's sign" (a cause of several mistakes is said this way).
+  std::string_view you;
 };
 
 const MistakeEntry& mistake_entry(Mistake mistake);
