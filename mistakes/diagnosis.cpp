@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <limits>
 #include <memory>
@@ -420,6 +421,91 @@ std::vector<std::vector<Mistake>> causes_of(const std::vector<Case<T>>& cases) {
   return out;
 }
 
+/// The numerical route that reproduces every answer of `cases` (numerical_routes.h): computed in
+/// T, it gives each answer within twice the careful rounding bound of the correct one (plus a
+/// few ulps: the program rounds in its own order), or the same refusal, or a non-finite matrix
+/// where the answer is one; and on some wrong answer it is not the correct answer.
+template <class T>
+std::optional<NumericalCause> numerical_cause_of(const std::vector<Case<T>>& cases) {
+  const int p = std::numeric_limits<T>::digits;
+  for (NumericalRoute route : all_numerical_routes) {
+    bool fits = true;
+    std::optional<NumericalCause> found;
+    for (const Case<T>& k : cases) {
+      const Observation<T>& o = k.seen;
+      const Exact& right = right_answer(k);
+      if (!right.decided) continue;
+      const RouteAnswer<T> r = route_answer(route, o.matrix, o.plane, o.convention);
+      const bool finite = all_finite(r.projection);
+      // A program that checks its answer is finite refuses out_of_range where the route's is not.
+      const bool refused_non_finite = !finite && o.status == Status::out_of_range;
+      if (r.status != Status::ok || (o.status != Status::ok && !refused_non_finite)) {
+        fits = r.status == o.status;
+        if (!fits) break;
+        continue;
+      }
+      if (!refused_non_finite && finite != all_finite(o.projection)) {
+        fits = false;
+        break;
+      }
+      NumericalCause measured{route, !finite, 0, p, p};
+      // The rounding bound of the matrix the route modifies carefully (the converted one).
+      const bool converted = r.modified != o.matrix || r.modified_convention != o.convention;
+      Exact modified;
+      if (converted) {
+        modified = exact_answer(r.modified, variant::evaluate<Rational>(r.modified, o.plane,
+                                                                        r.modified_convention, {}));
+      }
+      const bool right_matrix = right.kind == Exact::Kind::matrix;
+      // Evidence needs both the route's answer and the one observed beyond the correct answer's
+      // rounding bound (a right answer with noise is no route's).
+      bool wrong_route = !finite || !right_matrix, wrong_answer = !finite || !right_matrix;
+      for (int i = 0; finite && i < 4; ++i) {
+        for (int j = 0; j < 4; ++j) {
+          const T v = r.projection(i, j);
+          const Rational ulp = oracle::exact::to_rational(
+              std::nextafter(std::abs(v), std::numeric_limits<T>::infinity()) - std::abs(v));
+          const Rational route_value = oracle::exact::to_rational(v);
+          const Rational bound = right_matrix ? right.bounds[i][j] : Rational(0);
+          const Rational inner =
+              modified.kind == Exact::Kind::matrix ? modified.bounds[i][j] : Rational(0);
+          if (oracle::exact::abs(oracle::exact::to_rational(o.projection(i, j)) - route_value) >
+              2 * (bound > inner ? bound : inner) + 8 * ulp) {
+            fits = false;
+            break;
+          }
+          if (right_matrix && oracle::exact::abs(route_value - right.values[i][j]) > bound)
+            wrong_route = true;
+          if (right_matrix && oracle::exact::abs(oracle::exact::to_rational(o.projection(i, j)) -
+                                                 right.values[i][j]) > bound)
+            wrong_answer = true;
+        }
+        if (!fits) break;
+      }
+      if (!fits) break;
+      if (!o.wrong || !wrong_route || !wrong_answer || found) continue;
+      if (finite && right_matrix) {
+        // Against C's multiple in row 3 (row 3 less its M_4 part): the far plane's scale.
+        double worst = 0, largest = 0;
+        for (int j = 0; j < 4; ++j) {
+          const Rational& v = right.values[2][j];
+          worst = std::max(worst, std::abs(static_cast<double>(o.projection(2, j)) - v.get_d()));
+          largest = std::max(
+              largest,
+              std::abs(
+                  Rational(v - right.e.t3 * oracle::exact::to_rational(o.matrix(3, j))).get_d()));
+        }
+        measured.relative_error = largest > 0 ? worst / largest : 0;
+        const double kept = measured.relative_error > 0 ? -std::log2(measured.relative_error) : p;
+        measured.bits_lost = std::clamp(p - static_cast<int>(std::floor(kept)), 0, p);
+      }
+      found = measured;
+    }
+    if (fits && found) return found;
+  }
+  return std::nullopt;
+}
+
 /// Each family's answers diagnosed alone, where they part by family: some family with every
 /// answer right and some with a wrong one. Empty otherwise (one family, or wrong everywhere).
 template <class T>
@@ -488,6 +574,8 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
       std::count_if(cases.begin(), cases.end(), [](const Case<T>& k) { return k.seen.wrong; }));
   out.causes = causes_of(cases);
   if (out.causes.empty()) {
+    out.numerical = numerical_cause_of(cases);
+    if (out.numerical) return out;
     out.families = by_family(cases);
     for (const Case<T>& k : cases) {
       const Observation<T>& o = k.seen;
@@ -562,6 +650,17 @@ std::string by_family_text(const std::vector<FamilyDiagnosis>& families) {
   return "right on " + right + wrong;
 }
 
+/// "row 3 off by 3.1% (19 of 24 bits lost)" or "row 3 not finite".
+std::string lost_text(const NumericalCause& n) {
+  if (n.non_finite) return "a step divides by 0 and row 3 is not finite";
+  std::ostringstream out;
+  char error[32];
+  std::snprintf(error, sizeof error, "%.3g%%", 100 * n.relative_error);
+  out << "a step loses " << n.bits_lost << " of " << n.precision
+      << " bits: C's multiple a C in row 3 off by " << error;
+  return out.str();
+}
+
 /// "you take ... (shows on ...); you ..." for each mistake of a cause.
 std::string you_text(const std::vector<Mistake>& cause) {
   std::string out;
@@ -577,6 +676,8 @@ std::string you_text(const std::vector<Mistake>& cause) {
 
 std::string cause_names(const Diagnosis& d) {
   if (!d.ran) return "";
+  if (d.numerical)
+    return "numerical: " + std::string(numerical_route_entry(d.numerical->route).name);
   if (d.causes.empty() && !d.families.empty()) return by_family_text(d.families);
   if (d.causes.empty()) return "no known mistake";
   std::string out;
@@ -586,6 +687,12 @@ std::string cause_names(const Diagnosis& d) {
 
 std::string likely_cause_line(const Diagnosis& d) {
   if (!d.ran) return "";
+  if (d.numerical) {
+    const NumericalRouteEntry& e = numerical_route_entry(d.numerical->route);
+    return "likely cause: numerical: " + std::string(e.name) + " (" + std::string(e.title) +
+           "): the right formula, but " + lost_text(*d.numerical) +
+           "; rewrite: " + std::string(e.rewrite);
+  }
   if (d.causes.empty() && !d.families.empty())
     return "likely cause, by family (no one known mistake reproduces every answer): " +
            by_family_text(d.families);
@@ -635,6 +742,18 @@ std::string likely_cause_markdown(const Diagnosis& d) {
   if (!d.ran) return "";
   std::ostringstream md;
   md << "## Likely cause\n\n";
+  if (d.numerical) {
+    const NumericalRouteEntry& e = numerical_route_entry(d.numerical->route);
+    md << "**A numerical cause, `" << e.name << "`: " << e.title << ".** No formula mistake "
+       << "reproduces these answers (" << d.seen << " cases judged, " << d.wrong
+       << " answers wrong); the correct formula along this route, every step rounded in the "
+       << "program's precision, reproduces each.\n\n"
+       << e.step << "\n\n"
+       << "Measured on the first wrong answer: " << lost_text(*d.numerical) << ".\n\n"
+       << "Rewrite: " << e.rewrite << "\n\n"
+       << "It shows on " << e.shows << ".\n\n";
+    return md.str();
+  }
   if (d.causes.empty()) {
     md << "No known mistake reproduces these answers (" << d.seen << " cases judged, " << d.wrong
        << " answers wrong; catalogue: docs/mistakes.md).\n\n";

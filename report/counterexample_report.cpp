@@ -336,6 +336,13 @@ nlohmann::json diagnosis_object(const Diagnosis& d) {
     for (Mistake m : cause) names.push_back(std::string(mistake_entry(m).name));
     j["causes"].push_back(names);
   }
+  if (d.numerical) {
+    j["numerical"] = {{"route", std::string(numerical_route_entry(d.numerical->route).name)},
+                      {"non_finite", d.numerical->non_finite},
+                      {"relative_error", d.numerical->relative_error},
+                      {"bits_lost", d.numerical->bits_lost},
+                      {"precision", d.numerical->precision}};
+  }
   j["line"] = likely_cause_line(d);
   j["seen"] = d.seen;
   j["wrong"] = d.wrong;

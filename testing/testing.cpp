@@ -243,7 +243,7 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
         failure.diagnosis = t.diagnose_failure();
         where = "\n" + mistakes::likely_cause_line(*failure.diagnosis);
         const mistakes::Diagnosis& d = *failure.diagnosis;
-        if (d.ran && (!d.causes.empty() || !d.families.empty()))
+        if (d.ran && (!d.causes.empty() || !d.families.empty() || d.numerical))
           cause_key = report_context(property).directory + ": " + failure.implementation + ": " +
                       mistakes::cause_names(d);
       }

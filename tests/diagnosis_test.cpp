@@ -3,6 +3,8 @@
 // catalogue does not know.
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -11,6 +13,7 @@
 #include "oblique/mistakes/answer_geometry.h"
 #include "oblique/mistakes/diagnosis.h"
 #include "oblique/mistakes/mistakes.h"
+#include "oblique/mistakes/numerical_routes.h"
 #include "oblique/oblique.h"
 #include "oblique/oracle/checker.h"
 #include "oblique/oracle/filtered.h"
@@ -192,7 +195,7 @@ TYPED_TEST(Diagnose, aCorrectAnswerWithNoiseIsNeverDiagnosed) {
         o.projection(2, j) = std::nextafter(o.projection(2, j), j % 2 ? T(1e30) : T(-1e30));
     }
     const Diagnosis d = diagnose<T>({o});
-    if (!d.causes.empty()) {
+    if (!d.causes.empty() || d.numerical) {
       ++diagnosed;
       ADD_FAILURE() << likely_cause_line(d) << "\n"
                     << likely_cause_markdown(d) << "\nM =\n"
@@ -201,6 +204,68 @@ TYPED_TEST(Diagnose, aCorrectAnswerWithNoiseIsNeverDiagnosed) {
     }
   }
   EXPECT_EQ(diagnosed, 0);
+}
+
+// The right formula along a route that loses bits in T, written here apart from the diagnosis's
+// own model: reversed Z through the core's [0, 1] answer on the converted matrix (row 3
+// M_4 - M_3 rounded in T), and the far corner unprojected to a point (Eigen's LU) with
+// a = k (M_4 . Q) / (C . Q). Each is named as its numerical route, no formula mistake.
+TYPED_TEST(Diagnose, aRightFormulaAlongALosingRouteIsNamedNumerical) {
+  using T = TypeParam;
+  Implementation<T> through_zero_one;
+  through_zero_one.name = "reversed_z_through_zero_one";
+  through_zero_one.accepts = [](Convention, const Matrix4<T>&) { return true; };
+  through_zero_one.run = [](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+    if (convention != Convention::reversed_z) {
+      const ObliqueResult<T> r = apply<T>(m, c, convention);
+      return Answer<T>{r.status, r.projection};
+    }
+    Matrix4<T> zero_one = m;
+    zero_one.row(2) = m.row(3) - m.row(2);
+    const ObliqueResult<T> r = apply<T>(zero_one, c, Convention::zero_one);
+    Answer<T> out{r.status, m};
+    if (r.status == Status::ok) out.projection.row(2) = m.row(3) - r.projection.row(2);
+    return out;
+  };
+  Implementation<T> as_point;
+  as_point.name = "far_corner_as_point";
+  as_point.accepts = [](Convention, const Matrix4<T>&) { return true; };
+  as_point.run = [](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+    const ObliqueResult<T> r = apply<T>(m, c, convention);
+    Answer<T> out{r.status, r.projection};
+    if (r.status != Status::ok) return out;
+    const Vector4<T> c_clip = m.transpose().fullPivLu().solve(c);
+    const DepthRange range = clip_depth_range(convention);
+    auto sgn = [](T v) { return T(v > 0) - T(v < 0); };
+    const T z = c_clip(2) > 0   ? T(range.z_high)
+                : c_clip(2) < 0 ? T(range.z_low)
+                                : T(range.z_low + range.z_high) / 2;
+    const Vector4<T> q = m.fullPivLu().solve(Vector4<T>(sgn(c_clip(0)), sgn(c_clip(1)), z, 1));
+    const Vector4<T> point = q / q(3);
+    const T a = T(range.z_high - range.z_low) * m.row(3).dot(point) / c.dot(point);
+    const RowCombination near = near_rows(convention);
+    out.projection.row(2) = T(near.m3) * (a * c.transpose() - T(near.m4) * m.row(3));
+    return out;
+  };
+  for (const auto& [impl, route] :
+       {std::pair{through_zero_one, NumericalRoute::reversed_z_through_zero_one},
+        std::pair{as_point, NumericalRoute::far_corner_as_point}}) {
+    const Diagnosis d = first_finding_diagnosed(impl);
+    ASSERT_TRUE(d.ran) << impl.name << ": no wrong answer found";
+    EXPECT_TRUE(d.causes.empty()) << impl.name << ": " << likely_cause_line(d);
+    ASSERT_TRUE(d.numerical.has_value()) << impl.name << ": " << likely_cause_line(d);
+    EXPECT_EQ(d.numerical->route, route) << likely_cause_line(d);
+    EXPECT_EQ(d.numerical->precision, std::numeric_limits<T>::digits);
+    if (route == NumericalRoute::far_corner_as_point) {
+      EXPECT_TRUE(d.numerical->non_finite) << likely_cause_line(d);
+    } else {
+      EXPECT_GT(d.numerical->bits_lost, 0) << likely_cause_line(d);
+      EXPECT_GT(d.numerical->relative_error, 0) << likely_cause_line(d);
+    }
+    const std::string line = likely_cause_line(d);
+    EXPECT_EQ(line.rfind("likely cause: numerical: " + impl.name + " (", 0), 0u) << line;
+    EXPECT_NE(likely_cause_markdown(d).find("Rewrite: "), std::string::npos);
+  }
 }
 
 // a = 3 / (C . Q): a wrong scale no catalogued mistake gives.
@@ -223,6 +288,7 @@ TYPED_TEST(Diagnose, anUnlistedMistakeIsNoKnownMistake) {
   const Diagnosis d = first_finding_diagnosed(impl);
   ASSERT_TRUE(d.ran);
   EXPECT_TRUE(d.causes.empty()) << likely_cause_line(d);
+  EXPECT_FALSE(d.numerical.has_value()) << likely_cause_line(d);
   EXPECT_EQ(likely_cause_line(d), "likely cause: no known mistake reproduces these answers");
   // Described instead, in geometry: row 3 is 1.5 times C's right multiple with M_4's right one,
   // so the near plane is still C and the far plane falls short of Q, clipping the volume.

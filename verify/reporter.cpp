@@ -48,7 +48,8 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
   // One report per cause: a cause the diagnosis names (not "no known mistake", which may be any
   // number of bugs) that has a report already.
   const std::string cause = mistakes::cause_names(diagnosis);
-  const bool named = diagnosis.ran && (!diagnosis.causes.empty() || !diagnosis.families.empty());
+  const bool named = diagnosis.ran && (!diagnosis.causes.empty() || !diagnosis.families.empty() ||
+                                       diagnosis.numerical);
   if (one_per_cause_ && named) {
     if (const auto earlier = cause_reports_.find(cause); earlier != cause_reports_.end()) {
       last_report_ = earlier->second;

@@ -130,6 +130,17 @@ std::string oblique(const T (&m)[16], const T (&c_in)[4], const std::string& con
   if (guards && skeel_condition(m) >= T(1) / (128 * std::numeric_limits<T>::epsilon()))
     return "singular_projection";
   if (!has_no_camera_guard(mistake) && !(c_in[3] < 0)) return "camera_not_behind_plane";
+  // The numerical route reversed_z_through_zero_one: one routine for [0, 1] depth, reversed Z
+  // turned into it (row 3 M_4 - M_3) and back (M'_3 = M_4 - the [0, 1] answer's row 3).
+  if (mistake == Mistake::reversed_z_through_zero_one && convention == "reversed_z") {
+    T zero_one[16], answer[16];
+    for (int i = 0; i < 16; ++i) zero_one[i] = m[i];
+    for (int j = 0; j < 4; ++j) zero_one[8 + j] = m[12 + j] - m[8 + j];
+    const std::string status = oblique(zero_one, c_in, "zero_one", Mistake::none, answer);
+    if (status != "ok") return status;
+    for (int j = 0; j < 4; ++j) out[8 + j] = m[12 + j] - answer[8 + j];
+    return "ok";
+  }
   // a C does not change when C is scaled, so bring a very tiny or very huge C to magnitude about
   // 1 by a power of two first (C . Q would underflow or overflow). Only then: scaling down an
   // ordinary C would push a subnormal component further down and lose its bits.
@@ -162,7 +173,17 @@ std::string oblique(const T (&m)[16], const T (&c_in)[4], const std::string& con
   const T d = c[0] * q[0] + c[1] * q[1] + c[2] * q[2] + c[3] * q[3];
   // Written as engines write it: a NaN d (from a NaN sign) passes this test.
   if (guards && d <= 0) return "plane_misses_view_volume";
-  const T a = (z_high - z_low) / d;
+  T a = (z_high - z_low) / d;
+  // The numerical route far_corner_as_point: the corner unprojected to a point, Q / Q_w.
+  if (mistake == Mistake::far_corner_as_point) {
+    T point[4], m4q = 0, cq = 0;
+    for (int i = 0; i < 4; ++i) point[i] = q[i] / q[3];
+    for (int i = 0; i < 4; ++i) {
+      m4q += m[12 + i] * point[i];
+      cq += c[i] * point[i];
+    }
+    a = (z_high - z_low) * m4q / cq;
+  }
   for (int i = 0; i < 16; ++i) out[i] = m[i];
   // Near plane: gl M_4 + M_3 = a C; zero_one M_3 = a C; reversed_z M_4 - M_3 = a C.
   for (int j = 0; j < 4; ++j) {

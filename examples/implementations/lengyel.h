@@ -23,6 +23,11 @@ enum class Mistake {
   /// on the perspective shape, the far corner's x sign from C_x (C'_x = C_x / M11: the sign of
   /// M11 ignored), wrong for a mirror camera made by negating M11
   ignores_m11_sign,
+  /// numerical, the formula right: reversed Z computed on the [0, 1] matrix (row 3 M_4 - M_3,
+  /// formed in T) and flipped back
+  reversed_z_through_zero_one,
+  /// numerical, the formula right: the far corner as a point Q / Q_w, a = k (M_4 . Q) / (C . Q)
+  far_corner_as_point,
 };
 
 /// The adapter loop: one answer line per request line (standard input to standard output),

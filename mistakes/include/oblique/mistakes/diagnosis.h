@@ -1,9 +1,11 @@
-// Diagnosis of a finding: which known mistake (mistakes.h) explains the answers an implementation
-// gave. Every entry of the catalogue, and every two together, is evaluated in exact arithmetic on
-// each case seen; an entry explains the finding when, on every case where its answer is decided
-// (not within rounding of a boundary), the implementation's answer is that answer within the
-// rounding of the implementation's precision (the bounds of tolerance.h) or the same refusal, and
-// on at least one wrong answer it is an answer the correct method does not give. With a probe
+// Diagnosis of a finding: which known mistakes (mistakes.h) explain the answers an implementation
+// gave. Every entry of the catalogue, then every two and every three that change no choice of
+// the model in common, is evaluated in exact arithmetic on each case seen, and the smallest that
+// fit are named; a set explains the finding when, on every case where its answer is decided (not
+// within rounding of a boundary), the implementation's answer is that answer within the rounding
+// of the implementation's precision (the bounds of tolerance.h) or the same refusal, and on at
+// least one wrong answer it is an answer the correct method does not give. Where none fits, a
+// numerical route (numerical_routes.h) that reproduces the answers is named instead. With a probe
 // (the implementation asked again) the cases where the candidates part are asked too, so that
 // one cause is left where the finding alone fits several. No cause is a guess: when none fits,
 // the diagnosis says so. Compiled in oblique::properties (float, double, long double).
@@ -19,6 +21,7 @@
 #include "oblique/depth_convention.h"
 #include "oblique/mistakes/answer_geometry.h"
 #include "oblique/mistakes/mistakes.h"
+#include "oblique/mistakes/numerical_routes.h"
 #include "oblique/plane.h"
 #include "oblique/status.h"
 
@@ -72,6 +75,16 @@ struct FamilyDiagnosis {
   std::vector<std::vector<Mistake>> causes;
 };
 
+/// A numerical cause (numerical_routes.h): the correct formula along `route`, rounded in T,
+/// reproduces every answer seen. Measured on the first wrong answer it reproduces.
+struct NumericalCause {
+  NumericalRoute route = NumericalRoute::reversed_z_through_zero_one;
+  bool non_finite = false;    ///< the answer there is not finite (the step divided by 0)
+  double relative_error = 0;  ///< max |answered - correct| / max |a C| over row 3
+  int bits_lost = 0;          ///< of T's `precision` significant bits
+  int precision = 0;
+};
+
 struct Diagnosis {
   bool ran = false;  ///< false where nothing was diagnosed (no wrong answer with a case)
   /// The smallest causes that explain every answer seen: each one mistake, or two or three made
@@ -88,6 +101,9 @@ struct Diagnosis {
   int row = 2;
   std::optional<std::array<double, 4>> answered_row, mistaken_row, right_row;
   std::vector<ChoiceDifference> differences;  ///< what the cause decided otherwise there
+  /// Where no known mistake reproduces the answers but the correct formula along a numerical
+  /// route does (computed in T): that route.
+  std::optional<NumericalCause> numerical;
   /// Where no known mistake reproduces the answers: what the first wrong answer (status ok, finite)
   /// does, in geometry (answer_geometry.h).
   std::optional<AnswerGeometry> geometry;
