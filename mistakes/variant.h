@@ -1,8 +1,10 @@
-// The modification as one computation with knobs, each knob one known mistake (mistakes.h):
-// all knobs off is the correct method. Written once for any scalar: computed in float or double
-// it is an engine's code (mistaken_implementation()); in exact rationals it is the answer the
-// mistake gives when nothing rounds, against which diagnosis.cpp compares a user's answer.
-// Internal to oblique::properties.
+// The model of the computation: the modification as one computation whose choices (Knobs) are
+// each set to the correct alternative or to one real code takes (a known mistake, mistakes.h);
+// all knobs at their defaults is the correct method. A variant first decides (integers only:
+// decide()), then computes (evaluate()). Written once for any scalar: computed in float or double
+// it is an engine's code (mistaken_implementation(), the numerical routes); in exact rationals it
+// is the answer the mistakes give when nothing rounds, against which diagnosis.cpp compares a
+// user's answer. Internal to oblique::mistakes.
 #pragma once
 
 #include <algorithm>
