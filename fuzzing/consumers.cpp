@@ -8,6 +8,7 @@
 
 #include "oblique/fuzzing.h"
 #include "oblique/fuzzing/driver.h"
+#include "oblique/mistakes/consumer_mistakes.h"
 #include "oblique/oblique.h"
 
 namespace oblique::fuzzing {
@@ -60,7 +61,8 @@ int test_consumers(const std::uint8_t* data, std::size_t size, const Consumers<T
       m, plane, c.input.convention, consumers, pick,
       [&consumers](const oracle::ConsumerFinding& finding, const std::string& inputs, bool) {
         settle(consumers.name, finding, inputs);
-      });
+      },
+      mistakes::explain_consumer<T>);
   return 0;
 }
 

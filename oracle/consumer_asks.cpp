@@ -154,11 +154,30 @@ ConsumerAsk<T> portal_view_ask(const Matrix4<T>& view, const Matrix4<T>& frame,
 
 /// Asks an in-process Consumers and judges its answer.
 template <class T>
-void ask_and_judge(const ConsumerAsk<T>& a, const Consumers<T>& consumers, const Settle& settle) {
-  a.judge(a.call(consumers), settle);
+void ask_and_judge(const ConsumerAsk<T>& a, const Consumers<T>& consumers, const Settle& settle,
+                   const Explain<T>& explain) {
+  judge_explained(a, a.call(consumers), settle, explain);
 }
 
 }  // namespace
+
+template <class T>
+void judge_explained(const ConsumerAsk<T>& ask, const std::vector<T>& answer, const Settle& settle,
+                     const Explain<T>& explain) {
+  if (!explain) {
+    ask.judge(answer, settle);
+    return;
+  }
+  ask.judge(answer, [&](const ConsumerFinding& f, const std::string& inputs, bool about) {
+    if (!f.judged || f.holds) {
+      settle(f, inputs, about);
+      return;
+    }
+    ConsumerFinding explained = f;
+    explain(ask, answer, explained);
+    settle(explained, inputs, about);
+  });
+}
 
 template <class T>
 std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>& c,
@@ -254,9 +273,10 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
 
 template <class T>
 void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
-                    const Consumers<T>& consumers, const Pick& pick, const Settle& settle) {
+                    const Consumers<T>& consumers, const Pick& pick, const Settle& settle,
+                    const Explain<T>& explain) {
   for (const ConsumerAsk<T>& a : consumer_asks(m, c, convention, consumers, pick, settle))
-    ask_and_judge(a, consumers, settle);
+    ask_and_judge(a, consumers, settle, explain);
 }
 
 }  // namespace oblique::oracle
@@ -265,30 +285,33 @@ namespace oblique::oracle::consumer_cases {
 
 template <class T>
 void ask_camera_plane(const Consumers<T>& consumers, const PassPlaneCase<T>& p,
-                      const oracle::Settle& settle) {
-  oracle::ask_and_judge(oracle::camera_plane_ask(p), consumers, settle);
+                      const oracle::Settle& settle, const oracle::Explain<T>& explain) {
+  oracle::ask_and_judge(oracle::camera_plane_ask(p), consumers, settle, explain);
 }
 
 template <class T>
 void ask_mirror_view(const Consumers<T>& consumers, const Matrix4<T>& view,
-                     const Vector4<T>& mirror, const oracle::Settle& settle) {
+                     const Vector4<T>& mirror, const oracle::Settle& settle,
+                     const oracle::Explain<T>& explain) {
   oracle::ask_and_judge(oracle::mirror_view_ask(view, mirror, consumers.mirror_design), consumers,
-                        settle);
+                        settle, explain);
 }
 
 template <class T>
 void ask_portal_view(const Consumers<T>& consumers, const Matrix4<T>& view, const Matrix4<T>& frame,
-                     const Matrix4<T>& linked, const oracle::Settle& settle) {
-  oracle::ask_and_judge(oracle::portal_view_ask(view, frame, linked), consumers, settle);
+                     const Matrix4<T>& linked, const oracle::Settle& settle,
+                     const oracle::Explain<T>& explain) {
+  oracle::ask_and_judge(oracle::portal_view_ask(view, frame, linked), consumers, settle, explain);
 }
 
 #define OBLIQUE_CONSUMER_ASKS(T)                                                           \
   template void ask_camera_plane(const Consumers<T>&, const PassPlaneCase<T>&,             \
-                                 const oracle::Settle&);                                   \
+                                 const oracle::Settle&, const oracle::Explain<T>&);        \
   template void ask_mirror_view(const Consumers<T>&, const Matrix4<T>&, const Vector4<T>&, \
-                                const oracle::Settle&);                                    \
+                                const oracle::Settle&, const oracle::Explain<T>&);         \
   template void ask_portal_view(const Consumers<T>&, const Matrix4<T>&, const Matrix4<T>&, \
-                                const Matrix4<T>&, const oracle::Settle&);
+                                const Matrix4<T>&, const oracle::Settle&,                  \
+                                const oracle::Explain<T>&);
 OBLIQUE_CONSUMER_ASKS(float)
 OBLIQUE_CONSUMER_ASKS(double)
 OBLIQUE_CONSUMER_ASKS(long double)
@@ -331,7 +354,10 @@ Consumers<T> reference_consumers() {
 #define OBLIQUE_CONSUMER_INSTANCES(T)                                                              \
   template Consumers<T> reference_consumers<T>();                                                  \
   template void consumer_round(const Matrix4<T>&, const Vector4<T>&, Convention,                   \
-                               const Consumers<T>&, const Pick&, const Settle&);                   \
+                               const Consumers<T>&, const Pick&, const Settle&,                    \
+                               const Explain<T>&);                                                 \
+  template void judge_explained(const ConsumerAsk<T>&, const std::vector<T>&, const Settle&,       \
+                                const Explain<T>&);                                                \
   template std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>&, const Vector4<T>&,         \
                                                      Convention, const Consumers<T>&, const Pick&, \
                                                      const Settle&);

@@ -310,6 +310,7 @@ std::string describe(const ConsumerFinding& f) {
   out += f.holds ? " holds: " : " violated: ";
   out += f.detail;
   out += " (residual / bound " + protocol::format_number(f.ratio) + ")";
+  if (!f.holds && !f.likely_cause.empty()) out += "; likely cause: " + f.likely_cause;
   return out;
 }
 

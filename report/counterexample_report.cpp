@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "oblique/mistakes/consumer_mistakes.h"
 #include "oblique/oblique.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/report/report_files.h"
@@ -459,7 +460,8 @@ std::string consumer_report_markdown(const std::string& consumer, const Consumer
                                      const std::string& inputs) {
   const std::string name(consumer_check_name(finding.check));
   return "# Counterexample: " + name + "\n\n`" + consumer + "` violates **" + name +
-         "**.\n\n## What was found\n\n" + describe(finding) + "\n\n## The inputs\n\n" + inputs +
+         "**.\n\n## What was found\n\n" + describe(finding) + "\n\n" +
+         mistakes::consumer_cause_markdown(finding.likely_cause) + "## The inputs\n\n" + inputs +
          "\nNumbers print so that they read back to the same value; matrices are row by row, "
          "planes keep P . x >= 0. The properties and their bounds: docs/consumers.md.\n";
 }

@@ -7,6 +7,7 @@
 
 #include "oblique/cases/contract.h"
 #include "oblique/client/consumer_program.h"
+#include "oblique/mistakes/consumer_mistakes.h"
 #include "oblique/oracle/consumer_cases.h"
 #include "oblique/protocol/shell_text.h"
 #include "oblique/scene/check.h"
@@ -43,6 +44,7 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
   for (const SceneConsumer consumer : scene.consumers) {
     ConsumerResult r;
     r.consumer = consumer;
+    const oracle::Explain<T> explain = mistakes::explain_consumer<T>;
     const oracle::Settle settle = [&r](const oracle::ConsumerFinding& f, const std::string& inputs,
                                        bool) {
       if (!f.judged) {
@@ -82,25 +84,26 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
         p.pass_view = pass.view.template cast<T>();
         p.kept_plane = pass.kept_plane.template cast<T>();
         oracle::consumer_cases::plane_samples(p.kept_plane, pick, p.surface_points, p.front_point);
-        oracle::consumer_cases::ask_camera_plane(who, p, settle);
+        oracle::consumer_cases::ask_camera_plane(who, p, settle, explain);
         break;
       }
       case SceneConsumer::pass_view:
         rounds = 0;
         if (surface.kind == SurfaceKind::mirror) {
           oracle::consumer_cases::ask_mirror_view<T>(who, pass.parent_view.template cast<T>(),
-                                                     surface.plane().template cast<T>(), settle);
+                                                     surface.plane().template cast<T>(), settle,
+                                                     explain);
         } else if (surface.kind == SurfaceKind::portal) {
           oracle::consumer_cases::ask_portal_view<T>(
               who, pass.parent_view.template cast<T>(), surface.portal_frame.template cast<T>(),
-              surface.linked_frame.template cast<T>(), settle);
+              surface.linked_frame.template cast<T>(), settle, explain);
         } else {
           r.note = "a clip pass renders with the main view";
         }
         break;
     }
     for (int i = 0; i < rounds; ++i)
-      oracle::consumer_round<T>(m, c, scene.convention, only, pick, settle);
+      oracle::consumer_round<T>(m, c, scene.convention, only, pick, settle, explain);
     out.push_back(std::move(r));
   }
   return out;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "oblique/cases/generators.h"
+#include "oblique/mistakes/consumer_mistakes.h"
 #include "oblique/oblique.h"
 #include "oblique/report/report_files.h"
 #include "oblique/testing/harness.h"
@@ -107,7 +108,8 @@ void run_check(const oblique::Consumers<T>& only, oracle::ConsumerCheck check, C
                                 ", place " + std::string(cases::place_name(c.place)) + "\n"
                           : "";
               judged(only.name, f, which + inputs, oblique ? &c : nullptr);
-            });
+            },
+            mistakes::explain_consumer<T>);
         // A case whose every finding was left out (counted so) is discarded, and RapidCheck
         // draws another of the same size, so of the same family: the run's count is of cases
         // judged (a family with none would end in RapidCheck's "too many discards").

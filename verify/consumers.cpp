@@ -15,6 +15,7 @@
 #include "failure_database.h"
 #include "oblique/cases/generators.h"
 #include "oblique/client/consumer_program.h"
+#include "oblique/mistakes/consumer_mistakes.h"
 #include "oblique/oblique.h"
 #include "oblique/protocol/names.h"
 #include "oblique/protocol/shell_text.h"
@@ -84,11 +85,79 @@ class ConsumerRun {
     };
     try {
       oracle::consumer_round<T>(round.c.matrix, round.c.plane, round.c.convention, asked_, pick,
-                                settle);
+                                settle, mistakes::explain_consumer<T>);
     } catch (const Failure& failure) {
       return lost(failure, round, 0);
     }
     return true;
+  }
+
+  /// The caught round asked again with `picks` (clamped as a report's are): its first violation
+  /// of `check`, with the exchange and the picks as the round took them; none where it holds,
+  /// or the program failed.
+  std::optional<Caught<T>> violation_with(const Round<T>& round, const std::vector<int>& picks,
+                                          oracle::ConsumerCheck check) {
+    Round<T> taken{round.c, {}};
+    std::size_t next = 0;
+    const oracle::Pick pick = [&](int lo, int hi) {
+      const int v = next < picks.size() ? picks[next++] : lo;
+      taken.picks.push_back(v < lo ? lo : v >= hi ? hi - 1 : v);
+      return taken.picks.back();
+    };
+    std::optional<Caught<T>> found;
+    const oracle::Settle settle = [&](const oracle::ConsumerFinding& f, const std::string& inputs,
+                                      bool about) {
+      if (found || !f.judged || f.holds || f.check != check) return;
+      found =
+          Caught<T>{f, inputs,      program_.last_request(), program_.last_answer(), about, round,
+                    0, std::nullopt};
+    };
+    try {
+      oracle::consumer_round<T>(round.c.matrix, round.c.plane, round.c.convention, asked_, pick,
+                                settle, mistakes::explain_consumer<T>);
+    } catch (const Failure&) {
+      return std::nullopt;
+    }
+    if (found) found->round = taken;
+    return found;
+  }
+
+  /// Shrinks the caught round's picks (the choices a round makes: which pixel, pass, sample):
+  /// each pick in turn tried at its range's low end, at half and one less, kept where the round
+  /// still violates the same check; the program is asked again each time (at most kShrinkTries
+  /// rounds). Said on err_, and the report has the shrunk round.
+  void shrink() {
+    if (!caught_ || caught_->lost) return;
+    constexpr int kShrinkTries = 300;
+    Caught<T> best = *caught_;
+    int tries = 0, steps = 0;
+    for (bool progress = true; progress && tries < kShrinkTries;) {
+      progress = false;
+      for (std::size_t i = 0; i < best.round.picks.size() && !progress && tries < kShrinkTries;
+           ++i) {
+        const int v = best.round.picks[i];
+        for (const int candidate : {0, v / 2, v - 1}) {
+          if (candidate >= v || tries >= kShrinkTries) continue;
+          std::vector<int> picks = best.round.picks;
+          picks[i] = candidate;
+          ++tries;
+          if (std::optional<Caught<T>> c = violation_with(best.round, picks, best.finding.check);
+              c && c->round.picks < best.round.picks) {
+            c->index = best.index;
+            best = *c;
+            ++steps;
+            progress = true;
+            break;
+          }
+        }
+      }
+    }
+    caught_ = best;
+    shrink_steps_ = steps;
+    shrink_tries_ = tries;
+    if (tries > 0)
+      err_ << "oblique verify: shrank the round's picks: " << steps << " steps (" << tries
+           << " tries)\n";
   }
 
   /// A request that got no answer to judge: a protocol error is said on err_ (false); a crash or
@@ -193,10 +262,12 @@ class ConsumerRun {
             for (std::size_t j = 0; j < p.asks.size(); ++j) {
               const std::size_t g = p.first_ask + j;
               if (g >= answers.numbers.size()) break;
-              p.asks[j].judge(answers.numbers[g], [&p, g](const oracle::ConsumerFinding& f,
-                                                          const std::string& inputs, bool about) {
-                p.pending.push_back(Pending{f, inputs, about, g});
-              });
+              oracle::judge_explained<T>(
+                  p.asks[j], answers.numbers[g],
+                  [&p, g](const oracle::ConsumerFinding& f, const std::string& inputs, bool about) {
+                    p.pending.push_back(Pending{f, inputs, about, g});
+                  },
+                  mistakes::explain_consumer<T>);
             }
           }
         },
@@ -260,7 +331,10 @@ class ConsumerRun {
     if (!counted()) return Verdict::error;
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (caught_) return report(seconds);
+    if (caught_) {
+      shrink();
+      return report(seconds);
+    }
     if (total(judged_) == 0) {
       err_ << "oblique verify: no answer was judged in " << index
            << " rounds (left out: " << summary(left_out_)
@@ -433,8 +507,13 @@ class ConsumerRun {
     std::snprintf(elapsed, sizeof elapsed, "%.3f", seconds);
     md += "## The exchange\n\nRound " + std::to_string(c.index + 1) + " (" +
           std::string(protocol::scalar_name<T>()) + ", seed " + std::to_string(options_.seed) +
-          "), after " + elapsed + " s. The request:\n\n```\n" + c.request +
-          "\n```\n\nThe answer:\n\n```\n" + (c.answer.empty() ? "(none)" : c.answer) + "\n```\n\n";
+          "), after " + elapsed + " s" +
+          (c.lost              ? std::string()
+           : shrink_tries_ > 0 ? ", its picks shrunk in " + std::to_string(shrink_steps_) +
+                                     " steps (" + std::to_string(shrink_tries_) + " rounds asked)"
+                               : std::string(", its picks already at their smallest")) +
+          ". The request:\n\n```\n" + c.request + "\n```\n\nThe answer:\n\n```\n" +
+          (c.answer.empty() ? "(none)" : c.answer) + "\n```\n\n";
     if (!c.lost && !c.about_oblique_case)
       md += report::stage_drawn_pictures(files, stem, c.finding, options_.command);
     if (!c.lost && c.about_oblique_case)
@@ -453,6 +532,7 @@ class ConsumerRun {
   }
 
   const VerifyOptions& options_;
+  int shrink_steps_ = 0, shrink_tries_ = 0;
   std::vector<ConsumerKind> kinds_;
   std::ostream& out_;
   std::ostream& err_;

@@ -1,6 +1,7 @@
 # Runs one test of example_consumers_wrong and passes only when it fails on PROPERTY and writes a
-# report naming it, with its replay command (and, with PICTURES=1, its pictures' section).
-# cmake -DBINARY=... -DTEST=Suite.Name -DPROPERTY=... [-DPICTURES=1] -DREPORTS=...
+# report naming it, with its replay command (and, with PICTURES=1, its pictures' section); with
+# CAUSE, the failure and the report name that likely cause (mistakes/consumer_mistakes.h).
+# cmake -DBINARY=... -DTEST=Suite.Name -DPROPERTY=... [-DPICTURES=1] [-DCAUSE=name] -DREPORTS=...
 #       -P expect_consumer_caught.cmake
 file(REMOVE_RECURSE "${REPORTS}")
 set(ENV{OBLIQUE_REPORT_DIR} "${REPORTS}")
@@ -12,6 +13,9 @@ endif()
 if(NOT output MATCHES "violates ${PROPERTY} violated")
   message(FATAL_ERROR "${TEST} failed, but not on ${PROPERTY}:\n${output}")
 endif()
+if(CAUSE AND NOT output MATCHES "likely cause: ${CAUSE}")
+  message(FATAL_ERROR "${TEST} failed, but the likely cause ${CAUSE} is not named:\n${output}")
+endif()
 file(GLOB reports "${REPORTS}/*.md")
 if(NOT reports)
   message(FATAL_ERROR "${TEST} was caught but no report was written:\n${output}")
@@ -22,6 +26,9 @@ foreach(report ${reports})
   if(text MATCHES "# Counterexample: ${PROPERTY}\n" AND text MATCHES "## Replay")
     if(PICTURES AND NOT text MATCHES "## Pictures")
       message(FATAL_ERROR "the report ${report} has no pictures:\n${text}")
+    endif()
+    if(CAUSE AND NOT text MATCHES "## Likely cause\n\n\\*\\*`${CAUSE}`")
+      message(FATAL_ERROR "the report ${report} does not name the likely cause ${CAUSE}:\n${text}")
     endif()
     set(named "${report}")
   endif()

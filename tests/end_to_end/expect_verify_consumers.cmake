@@ -1,11 +1,14 @@
 cmake_minimum_required(VERSION 3.25)
 # Runs `oblique verify --consumers KINDS` on a program and checks the outcome:
 #   cmake -DOBLIQUE=... -DIMPL=... -DKINDS=a,b -DEXIT=0|1 [-DPROPERTY=name -DPICTURES=0|1
-#         -DRIGHT=command] [-DARGS="--time-limit;5"] -DREPORTS=dir -P expect_verify_consumers.cmake
+#         -DRIGHT=command -DCAUSE=name] [-DARGS="--time-limit;5"] -DREPORTS=dir
+#         -P expect_verify_consumers.cmake
 # EXIT 1 also requires the report (Markdown and JSON) of PROPERTY (or of one of "a|b", for a
 # mistake that breaks two properties, whichever the round judges first), its replay commands, its
-# pictures (of the case's volume when PICTURES is 1, else of the pass's cameras and planes), and
-# its --replay to be violated again by IMPL and to hold for RIGHT.
+# pictures (of the case's volume when PICTURES is 1, else of the pass's cameras and planes), its
+# round's picks shrunk (the report says so), and its --replay to be violated again by IMPL and to
+# hold for RIGHT; with CAUSE, the output and the report name that likely cause
+# (mistakes/consumer_mistakes.h).
 file(REMOVE_RECURSE "${REPORTS}")
 execute_process(COMMAND "${OBLIQUE}" verify --consumers "${KINDS}" --impl "${IMPL}"
                         --report-dir "${REPORTS}" --quiet ${ARGS}
@@ -38,8 +41,16 @@ if(NOT check STREQUAL PROPERTY)
   message(FATAL_ERROR "the report is about ${check}, not ${PROPERTY}")
 endif()
 file(READ "${stem}.md" md)
-foreach(part "violates \\*\\*${PROPERTY}\\*\\*" "## The inputs" "## The exchange" "## Replay"
-             "verify --replay")
+if(CAUSE)
+  if(NOT "${output}${errors}" MATCHES "likely cause: ${CAUSE}")
+    message(FATAL_ERROR "the output does not name the likely cause ${CAUSE}")
+  endif()
+  if(NOT md MATCHES "## Likely cause\n\n\\*\\*`${CAUSE}`")
+    message(FATAL_ERROR "the report does not name the likely cause ${CAUSE}")
+  endif()
+endif()
+foreach(part "violates \\*\\*${PROPERTY}\\*\\*" "its picks (shrunk in [0-9]+ steps|already at their smallest)" "## The inputs"
+             "## The exchange" "## Replay" "verify --replay")
   if(NOT md MATCHES "${part}")
     message(FATAL_ERROR "the report has no '${part}'")
   endif()

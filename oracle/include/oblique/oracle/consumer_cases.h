@@ -197,21 +197,24 @@ PassPlaneCase<T> pass_plane_case(Pick&& pick) {
 }
 
 // Asking the consumer one case and judging its answer, for the cases a round builds and for the
-// passes of a scene (`oblique check`): each finding goes to `settle` with the inputs as text.
+// passes of a scene (`oblique check`): each finding goes to `settle` with the inputs as text,
+// a violated one first through `explain` where given (its likely cause).
 
 /// consumers.camera_plane on a pass: plane_on_surface and plane_kept_side.
 template <class T>
 void ask_camera_plane(const Consumers<T>& consumers, const PassPlaneCase<T>& pass,
-                      const oracle::Settle& settle);
+                      const oracle::Settle& settle, const oracle::Explain<T>& explain = {});
 
 /// consumers.mirror_view on a main view and a mirror's world plane.
 template <class T>
 void ask_mirror_view(const Consumers<T>& consumers, const Matrix4<T>& view,
-                     const Vector4<T>& mirror, const oracle::Settle& settle);
+                     const Vector4<T>& mirror, const oracle::Settle& settle,
+                     const oracle::Explain<T>& explain = {});
 
 /// consumers.portal_view on a main view and two portals' frames.
 template <class T>
 void ask_portal_view(const Consumers<T>& consumers, const Matrix4<T>& view, const Matrix4<T>& frame,
-                     const Matrix4<T>& linked, const oracle::Settle& settle);
+                     const Matrix4<T>& linked, const oracle::Settle& settle,
+                     const oracle::Explain<T>& explain = {});
 
 }  // namespace oblique::oracle::consumer_cases

@@ -89,6 +89,10 @@ struct ConsumerFinding {
   };
   std::vector<Drawn> drawn;
   std::string drawn_space;
+  /// For a violated finding: the known consumer mistakes whose function gives the answer
+  /// (mistakes/consumer_mistakes.h; names joined by " or "), empty when none is known or the
+  /// finding was not explained.
+  std::string likely_cause;
 };
 
 /// What a depth consumer reads at one pixel.
@@ -294,6 +298,18 @@ struct ConsumerAsk {
   std::function<void(const std::vector<T>& answer, const Settle& settle)> judge;
 };
 
+/// Explains a violated finding of `answer` to `ask` (sets its likely_cause): given by a tool that
+/// knows the catalogue of consumer mistakes (mistakes::explain_consumer), empty otherwise.
+template <class T>
+using Explain = std::function<void(const ConsumerAsk<T>& ask, const std::vector<T>& answer,
+                                   ConsumerFinding& finding)>;
+
+/// judge() of `ask` on `answer`, each violated finding explained (when `explain` is given) before
+/// it goes to `settle`.
+template <class T>
+void judge_explained(const ConsumerAsk<T>& ask, const std::vector<T>& answer, const Settle& settle,
+                     const Explain<T>& explain);
+
 /// consumer_round()'s requests, planned and not yet asked: its picks drawn in the same order, the
 /// findings left out before any asking (refused by accepts, no oblique matrix for M and C, no
 /// depth sample) given to `settle` now, and the requests returned in the order the round asks
@@ -308,9 +324,11 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
 /// and corners on m, c and the core's M' for them), the function is asked, and each finding of its
 /// properties goes to `settle` as soon as it is judged. m and c are used only by the functions
 /// that take an oblique matrix; where the core has no answer for them, `settle` gets one finding
-/// not judged ("no oblique matrix for M and C (STATUS)").
+/// not judged ("no oblique matrix for M and C (STATUS)"). A violated finding is first given to
+/// `explain` where given.
 template <class T>
 void consumer_round(const Matrix4<T>& m, const Vector4<T>& c, Convention convention,
-                    const Consumers<T>& consumers, const Pick& pick, const Settle& settle);
+                    const Consumers<T>& consumers, const Pick& pick, const Settle& settle,
+                    const Explain<T>& explain = {});
 
 }  // namespace oblique::oracle

@@ -1,0 +1,353 @@
+// The consumer mistakes (consumer_mistakes.h): their words, each as a wrong function, and the
+// diagnosis of a consumer finding by asking each wrong function of the finding's kind the same
+// inputs.
+#include "oblique/mistakes/consumer_mistakes.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "oblique/references/depth_reconstruction.h"
+#include "oblique/references/frustum_planes.h"
+#include "oblique/references/kept_region.h"
+#include "oblique/references/pass_camera.h"
+
+namespace oblique::mistakes {
+
+namespace {
+
+using protocol::ConsumerKind;
+
+// clang-format off
+constexpr ConsumerMistakeEntry kConsumerCatalogue[] = {
+    {ConsumerMistake::reconstructs_with_original, ConsumerKind::view_position,
+     "reconstructs_with_original", "the depth decompressed with the camera's unmodified matrix",
+     "The pixel's depth was written through the oblique M', but the code inverts the camera's "
+     "own projection M (the one it keeps for the main view) to get the view position back. The "
+     "two matrices share rows 1, 2 and 4 only: the depth maps to another point on the pixel's "
+     "ray, nearer or farther than the surface (Unity Graphics#3919, three.js#21403, ioq3#641).",
+     "Reconstruct with the matrix the depth was rendered with: M'^-1 (x, y, z_ndc, 1), divided "
+     "by w."},
+    {ConsumerMistake::ndc_depth_of_other_convention, ConsumerKind::view_position,
+     "ndc_depth_of_other_convention", "the window depth mapped to NDC by the other convention",
+     "The code maps the stored depth d to NDC z as the other depth convention does: z = 2 d - 1 "
+     "on a [0, 1] (or reversed-Z) buffer, z = d on an OpenGL [-1, 1] one. Every pixel lands at "
+     "another depth on its ray.",
+     "z_ndc = 2 d - 1 for [-1, 1] depth and z_ndc = d for [0, 1] and reversed-Z depth, from the "
+     "matrix's convention."},
+    {ConsumerMistake::linearises_with_near_far, ConsumerKind::linear_depth,
+     "linearises_with_near_far", "linear depth from the near and far planes (zparams)",
+     "The code linearises with the textbook n f / (f - d (f - n)), n and f read off the "
+     "unmodified perspective matrix (a _ZBufferParams-style shortcut). The oblique M' has no "
+     "near and far planes at n and f: its depth is a function of the tilted plane, so the "
+     "linear depth is wrong everywhere the near plane moved.",
+     "Linearise with the matrix the depth was rendered with: the view position M'^-1 (x, y, "
+     "z_ndc, 1) / w, its distance along the view axis."},
+    {ConsumerMistake::gl_planes_on_any_matrix, ConsumerKind::culling_planes,
+     "gl_planes_on_any_matrix", "OpenGL's culling rows on a matrix of another convention",
+     "The code extracts the near and far culling planes as OpenGL does (near = M'_4 + M'_3, far "
+     "= M'_4 - M'_3) whatever the matrix's depth convention. On a [0, 1] or reversed-Z oblique "
+     "matrix the near plane is then not C, and the far plane not the one the rasterizer clips "
+     "at: objects are culled that are drawn, or drawn that are culled.",
+     "Near = M'_4 + M'_3, far = M'_4 - M'_3 for [-1, 1]; near = M'_3, far = M'_4 - M'_3 for "
+     "[0, 1]; near = M'_4 - M'_3, far = M'_3 for reversed Z."},
+    {ConsumerMistake::planes_of_transpose, ConsumerKind::culling_planes, "planes_of_transpose",
+     "the culling planes of the transposed matrix",
+     "The code extracts the planes from columns instead of rows (a row-major array read as "
+     "column-major, or the other way round): the planes of M'^T, which bound nothing the camera "
+     "sees.",
+     "Combine the rows of M': left = M'_4 + M'_1, right = M'_4 - M'_1, and so on."},
+    {ConsumerMistake::plane_without_translation, ConsumerKind::camera_plane,
+     "plane_without_translation", "the plane's normal rotated, its distance kept",
+     "The code rotates the world plane's normal into the pass camera's space but keeps its "
+     "distance C_w from world space (three.js#16013, drei#721). Only a camera at the world's "
+     "origin sees the plane there; elsewhere the clip plane is moved off the surface.",
+     "Transform the plane by the inverse transpose of the view matrix: C_camera = W^-T C_world "
+     "(for a rigid W: n' = R n, d' = d - n' . t)."},
+    {ConsumerMistake::plane_flipped_for_mirrors, ConsumerKind::camera_plane,
+     "plane_flipped_for_mirrors", "the camera-space plane negated again for a mirrored view",
+     "The code negates the transformed plane when the pass view mirrors (det < 0), reasoning that "
+     "the reflection turns the plane around. The inverse transpose already has: the plane now "
+     "keeps the side behind the mirror, and the pass draws what it should clip.",
+     "C_camera = W^-T C_world for every pass view, mirrored or not."},
+    {ConsumerMistake::plane_through_view, ConsumerKind::camera_plane, "plane_through_view",
+     "the plane transformed like a point, W C instead of W^-T C",
+     "The code multiplies the world plane by the view matrix as if it were a point or a "
+     "direction. Planes transform by the inverse transpose: W C is another plane whenever W is "
+     "not a pure rotation.",
+     "C_camera = W^-T C_world."},
+    {ConsumerMistake::mirror_by_reflected_look_at, ConsumerKind::mirror_view,
+     "mirror_by_reflected_look_at", "a look-at view of the reflected eye",
+     "The code reflects the eye, the view direction and up through the mirror and builds a "
+     "look-at view from them: a proper rotation, not a reflection. The image is the mirror's "
+     "seen unmirrored (left and right swapped against a real mirror) unless the projection or "
+     "the texture lookup flips it, and the winding is not flipped either.",
+     "View = main view * R, with R the reflection through the mirror's plane (det -1), and flip "
+     "the winding; or keep a proper camera and flip x in the projection or the lookup, and say "
+     "so (--mirror-design)."},
+    {ConsumerMistake::portal_without_turn, ConsumerKind::portal_view, "portal_without_turn",
+     "the portal view without the half turn",
+     "The code composes view * frame * linked^-1, leaving out the half turn about up between "
+     "the two portals. What is in front of the linked portal is then seen behind this one, "
+     "mirrored through the wall.",
+     "View = main view * frame * turn * linked^-1 with turn = diag(-1, 1, -1, 1)."},
+    {ConsumerMistake::corners_of_oblique_matrix, ConsumerKind::corners,
+     "corners_of_oblique_matrix", "the oblique matrix's eight corners as the drawn volume",
+     "The code bounds what the oblique pass draws by M'^-1's eight clip-space corners divided by "
+     "w, as for an ordinary camera (cascade fitting, light lists: Godot#89140, Ogre#1337). Where "
+     "C cuts an edge of the view volume behind the eye, a corner lands behind the camera and "
+     "their hull misses part of the region the pass draws.",
+     "Bound the original view volume cut by C: the vertices of its part on C's kept side "
+     "(kept_region_vertices())."},
+};
+// clang-format on
+
+/// Whether `a` is `b` to half of T's digits: each group of `group` numbers alike (scaled to its
+/// largest magnitude, or, for planes, normalised by the norm of their first three), the groups in
+/// order or, `any_order`, matched in any order.
+template <class T>
+bool alike(const std::vector<T>& a, const std::vector<T>& b, std::size_t group, bool planes,
+           bool any_order) {
+  if (a.size() != b.size() || group == 0 || a.size() % group != 0) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!std::isfinite(a[i]) || !std::isfinite(b[i])) return false;
+  }
+  const T tolerance = T(8) * std::sqrt(std::numeric_limits<T>::epsilon());
+  auto normalised = [group, planes](const std::vector<T>& v, std::size_t at) {
+    std::vector<T> out(v.begin() + static_cast<long>(at),
+                       v.begin() + static_cast<long>(at + group));
+    T scale = 0;
+    for (std::size_t k = 0; k < (planes ? 3 : group); ++k) scale += out[k] * out[k];
+    scale = std::sqrt(scale);
+    if (!planes || scale == 0) {
+      scale = 0;
+      for (T x : out) scale = std::max(scale, std::abs(x));
+    }
+    if (scale > 0 && planes)
+      for (T& x : out) x /= scale;
+    return std::make_pair(out, scale);
+  };
+  auto group_alike = [&](std::size_t i, std::size_t j) {
+    const auto [x, sx] = normalised(a, i);
+    const auto [y, sy] = normalised(b, j);
+    const T scale = planes ? T(1) : std::max({sx, sy, T(1e-30)});
+    for (std::size_t k = 0; k < group; ++k) {
+      if (std::abs(x[k] - y[k]) > tolerance * scale) return false;
+    }
+    return true;
+  };
+  const std::size_t groups = a.size() / group;
+  if (!any_order) {
+    for (std::size_t g = 0; g < groups; ++g) {
+      if (!group_alike(g * group, g * group)) return false;
+    }
+    return true;
+  }
+  std::vector<bool> used(groups, false);
+  for (std::size_t g = 0; g < groups; ++g) {
+    bool found = false;
+    for (std::size_t h = 0; h < groups && !found; ++h) {
+      if (!used[h] && group_alike(g * group, h * group)) used[h] = found = true;
+    }
+    if (!found) return false;
+  }
+  return true;
+}
+
+/// alike() with the grouping of `kind`'s answer.
+template <class T>
+bool alike_answers(ConsumerKind kind, const std::vector<T>& a, const std::vector<T>& b) {
+  switch (kind) {
+    case ConsumerKind::view_position: return alike(a, b, 3, false, false);
+    case ConsumerKind::linear_depth: return alike(a, b, 1, false, false);
+    case ConsumerKind::culling_planes:
+    case ConsumerKind::camera_plane: return alike(a, b, 4, true, false);
+    case ConsumerKind::mirror_view:
+    case ConsumerKind::portal_view: return alike(a, b, 16, false, false);
+    case ConsumerKind::corners: return alike(a, b, 3, false, true);
+  }
+  return false;
+}
+
+}  // namespace
+
+const ConsumerMistakeEntry& consumer_mistake_entry(ConsumerMistake mistake) {
+  for (const ConsumerMistakeEntry& e : kConsumerCatalogue) {
+    if (e.mistake == mistake) return e;
+  }
+  throw std::logic_error("a consumer mistake without a catalogue entry");
+}
+
+std::optional<ConsumerMistake> parse_consumer_mistake(std::string_view name) {
+  for (const ConsumerMistakeEntry& e : kConsumerCatalogue) {
+    if (e.name == name) return e.mistake;
+  }
+  return std::nullopt;
+}
+
+template <class T>
+Consumers<T> mistaken_consumers(ConsumerMistake mistake) {
+  Consumers<T> c;
+  c.name = "mistake_" + std::string(consumer_mistake_entry(mistake).name);
+  switch (mistake) {
+    case ConsumerMistake::reconstructs_with_original:
+      c.view_position = [](const oracle::DepthSample<T>& s) {
+        return view_position(s.original, s.ndc_x, s.ndc_y, s.depth, s.convention);
+      };
+      break;
+    case ConsumerMistake::ndc_depth_of_other_convention:
+      c.view_position = [](const oracle::DepthSample<T>& s) {
+        // view_position() maps d by `convention`: the other one's mapping, on the same rows
+        const T z = s.convention == Convention::gl ? s.depth : T(2) * s.depth - T(1);
+        const Vector4<T> v = s.projection.inverse() * Vector4<T>(s.ndc_x, s.ndc_y, z, T(1));
+        return Vector3<T>(v.template head<3>() / v.w());
+      };
+      break;
+    case ConsumerMistake::linearises_with_near_far:
+      c.linear_depth = [](const oracle::DepthSample<T>& s) {
+        const T n = s.original(2, 3) / s.original(2, 2);
+        const T f = s.original(2, 3) / (s.original(2, 2) + T(1));
+        return n * f / (f - s.depth * (f - n));
+      };
+      break;
+    case ConsumerMistake::gl_planes_on_any_matrix:
+      c.culling_planes = [](const Matrix4<T>& m, Convention) {
+        return frustum_planes(m, Convention::gl);
+      };
+      break;
+    case ConsumerMistake::planes_of_transpose:
+      c.culling_planes = [](const Matrix4<T>& m, Convention k) {
+        return frustum_planes(Matrix4<T>(m.transpose()), k);
+      };
+      break;
+    case ConsumerMistake::plane_without_translation:
+      c.camera_plane = [](const Matrix4<T>& view, const Vector4<T>& plane) {
+        const Vector3<T> n = view.template topLeftCorner<3, 3>() * plane.template head<3>();
+        return Vector4<T>(n.x(), n.y(), n.z(), plane.w());
+      };
+      break;
+    case ConsumerMistake::plane_flipped_for_mirrors:
+      c.camera_plane = [](const Matrix4<T>& view, const Vector4<T>& plane) {
+        const Vector4<T> p = plane_in_camera(view, plane);
+        return view.template topLeftCorner<3, 3>().determinant() < 0 ? Vector4<T>(-p) : p;
+      };
+      break;
+    case ConsumerMistake::plane_through_view:
+      c.camera_plane = [](const Matrix4<T>& view, const Vector4<T>& plane) {
+        return Vector4<T>(view * plane);
+      };
+      break;
+    case ConsumerMistake::mirror_by_reflected_look_at:
+      c.mirror_view = [](const Matrix4<T>& view, const Vector4<T>& plane) {
+        const Matrix4<T> to_world = view.inverse();
+        const T length = plane.template head<3>().norm();
+        const Vector3<T> n = plane.template head<3>() / length;
+        const T d = plane.w() / length;
+        auto point = [&](const Vector3<T>& p) -> Vector3<T> {
+          return p - T(2) * (n.dot(p) + d) * n;
+        };
+        auto direction = [&](const Vector3<T>& v) -> Vector3<T> { return v - T(2) * n.dot(v) * n; };
+        const Vector3<T> eye = point(to_world.template topRightCorner<3, 1>());
+        const Vector3<T> forward = direction(-to_world.template block<3, 1>(0, 2)).normalized();
+        const Vector3<T> side =
+            forward.cross(direction(to_world.template block<3, 1>(0, 1))).normalized();
+        const Vector3<T> up = side.cross(forward);
+        Matrix4<T> out = Matrix4<T>::Identity();
+        out.template block<1, 3>(0, 0) = side.transpose();
+        out.template block<1, 3>(1, 0) = up.transpose();
+        out.template block<1, 3>(2, 0) = -forward.transpose();
+        out(0, 3) = -side.dot(eye);
+        out(1, 3) = -up.dot(eye);
+        out(2, 3) = forward.dot(eye);
+        return out;
+      };
+      break;
+    case ConsumerMistake::portal_without_turn:
+      c.portal_view = [](const Matrix4<T>& view, const Matrix4<T>& frame,
+                         const Matrix4<T>& linked) {
+        return Matrix4<T>(view * frame * linked.inverse());
+      };
+      break;
+    case ConsumerMistake::corners_of_oblique_matrix:
+      c.corners = [](const Matrix4<T>& m, const Matrix4<T>&, Convention k) {
+        std::vector<Vector3<T>> out;
+        for (const Vector4<T>& v : view_volume_corners(m, k))
+          out.push_back(v.template head<3>() / v.w());
+        return out;
+      };
+      break;
+  }
+  return c;
+}
+
+template <class T>
+void explain_consumer(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& answer,
+                      oracle::ConsumerFinding& finding) {
+  if (!finding.judged || finding.holds) return;
+  // An answer as close to the correct one is a precision finding, no formula's.
+  try {
+    if (alike_answers(ask.kind, answer, ask.call(oracle::reference_consumers<T>()))) return;
+  } catch (...) {
+  }
+  std::string names;
+  for (ConsumerMistake m : all_consumer_mistakes) {
+    const ConsumerMistakeEntry& e = consumer_mistake_entry(m);
+    if (e.kind != ask.kind) continue;
+    try {
+      if (alike_answers(ask.kind, answer, ask.call(mistaken_consumers<T>(m))))
+        names += (names.empty() ? "" : " or ") + std::string(e.name);
+    } catch (...) {
+      // a wrong function that cannot answer these inputs is no cause of this answer
+    }
+  }
+  finding.likely_cause = names;
+}
+
+std::string consumer_cause_line(const std::string& likely_cause) {
+  if (likely_cause.empty()) return "";
+  if (const auto m = parse_consumer_mistake(likely_cause)) {
+    const ConsumerMistakeEntry& e = consumer_mistake_entry(*m);
+    return "likely cause: " + likely_cause + " (" + std::string(e.title) +
+           "); fix: " + std::string(e.fix);
+  }
+  return "likely cause: " + likely_cause;
+}
+
+std::string consumer_cause_markdown(const std::string& likely_cause) {
+  if (likely_cause.empty()) return "";
+  std::ostringstream md;
+  md << "## Likely cause\n\n";
+  std::vector<std::string> names;
+  for (std::size_t at = 0; at <= likely_cause.size();) {
+    const std::size_t end = std::min(likely_cause.find(" or ", at), likely_cause.size());
+    names.push_back(likely_cause.substr(at, end - at));
+    at = end + 4;
+  }
+  if (names.size() > 1)
+    md << "Each of these gives the answer; the inputs asked do not tell them apart.\n\n";
+  for (const std::string& name : names) {
+    const auto m = parse_consumer_mistake(name);
+    if (!m) continue;
+    const ConsumerMistakeEntry& e = consumer_mistake_entry(*m);
+    md << "**`" << e.name << "`: " << e.title << ".** " << e.explanation << "\n\nFix: " << e.fix
+       << "\n\n";
+  }
+  md << "The answer is this wrong function's on the same inputs (to half of the precision's "
+        "digits), and not the correct one's (catalogue: docs/consumers.md).\n\n";
+  return md.str();
+}
+
+#define OBLIQUE_CONSUMER_MISTAKES(T)                                                      \
+  template Consumers<T> mistaken_consumers<T>(ConsumerMistake);                           \
+  template void explain_consumer<T>(const oracle::ConsumerAsk<T>&, const std::vector<T>&, \
+                                    oracle::ConsumerFinding&);
+OBLIQUE_CONSUMER_MISTAKES(float)
+OBLIQUE_CONSUMER_MISTAKES(double)
+OBLIQUE_CONSUMER_MISTAKES(long double)
+#undef OBLIQUE_CONSUMER_MISTAKES
+
+}  // namespace oblique::mistakes
