@@ -295,10 +295,8 @@ std::string violation_report(const FuzzReportOptions& options, const Violation& 
     if (!found) return "";
   }
   // The likely cause, from this one case (the target is not asked again here).
-  mistakes::Observation<T> seen{
-      m, c, convention, Status::ok, answer ? *answer : m, true, cases::parse_family(v.family)};
-  if (*check == oracle::Check::status) seen.status = ce.finding.answered;
-  if (answer || seen.status != Status::ok) ce.diagnosis = mistakes::diagnose<T>({seen});
+  if (const std::optional<mistakes::Observation<T>> seen = observation_of<T>(v, output))
+    ce.diagnosis = mistakes::diagnose<T>({*seen});
   report::set_views(ce, problem, answer ? &*answer : nullptr);
   ce.notes.emplace_back("fuzz input", finding.inputs.front());
   ce.notes.emplace_back("inputs with this finding", std::to_string(finding.inputs.size()));

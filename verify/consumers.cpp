@@ -116,6 +116,7 @@ class ConsumerRun {
       oracle::consumer_round<T>(round.c.matrix, round.c.plane, round.c.convention, asked_, pick,
                                 settle, mistakes::explain_consumer<T>);
     } catch (const Failure&) {
+      shrink_stopped_ = true;  // a crash or a timeout: no more rounds asked
       return std::nullopt;
     }
     if (found) found->round = taken;
@@ -125,19 +126,25 @@ class ConsumerRun {
   /// Shrinks the caught round's picks (the choices a round makes: which pixel, pass, sample):
   /// each pick in turn tried at its range's low end, at half and one less, kept where the round
   /// still violates the same check; the program is asked again each time (at most kShrinkTries
-  /// rounds). Said on err_, and the report has the shrunk round.
+  /// rounds and kShrinkSeconds; none after a crash or a timeout). Said on err_, and the report
+  /// has the shrunk round.
   void shrink() {
     if (!caught_ || caught_->lost) return;
     constexpr int kShrinkTries = 300;
+    constexpr auto kShrinkSeconds = std::chrono::seconds(10);
+    const auto deadline = std::chrono::steady_clock::now() + kShrinkSeconds;
+    auto more = [&](int tries) {
+      return tries < kShrinkTries && !shrink_stopped_ &&
+             std::chrono::steady_clock::now() < deadline;
+    };
     Caught<T> best = *caught_;
     int tries = 0, steps = 0;
-    for (bool progress = true; progress && tries < kShrinkTries;) {
+    for (bool progress = true; progress && more(tries);) {
       progress = false;
-      for (std::size_t i = 0; i < best.round.picks.size() && !progress && tries < kShrinkTries;
-           ++i) {
+      for (std::size_t i = 0; i < best.round.picks.size() && !progress && more(tries); ++i) {
         const int v = best.round.picks[i];
         for (const int candidate : {0, v / 2, v - 1}) {
-          if (candidate >= v || tries >= kShrinkTries) continue;
+          if (candidate >= v || !more(tries)) continue;
           std::vector<int> picks = best.round.picks;
           picks[i] = candidate;
           ++tries;
@@ -157,7 +164,8 @@ class ConsumerRun {
     shrink_tries_ = tries;
     if (tries > 0)
       err_ << "oblique verify: shrank the round's picks: " << steps << " steps (" << tries
-           << " tries)\n";
+           << " tries" << (shrink_stopped_ ? "; stopped: the program failed on a shrink round" : "")
+           << ")\n";
   }
 
   /// A request that got no answer to judge: a protocol error is said on err_ (false); a crash or
@@ -533,6 +541,7 @@ class ConsumerRun {
 
   const VerifyOptions& options_;
   int shrink_steps_ = 0, shrink_tries_ = 0;
+  bool shrink_stopped_ = false;  ///< a shrink round crashed or timed out
   std::vector<ConsumerKind> kinds_;
   std::ostream& out_;
   std::ostream& err_;
