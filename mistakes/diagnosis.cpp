@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -232,16 +233,12 @@ std::vector<PanelCase<T>> panel(Convention convention) {
   return out;
 }
 
-using ClipSigns = std::optional<std::array<int, 3>>;
-
 /// One case and what the causes tried on it have computed: the solves and, for each distinct
 /// decision, the exact answer (thousands of causes are tried, and on one case they make few
 /// distinct decisions; the correct method's is one of them).
 template <class T>
 struct Case {
   Observation<T> seen;
-  std::array<int, 4> c_sign{}, entry_sign{};  ///< of C; of M13, M23, M14, M24
-  bool perspective = false;                   ///< M has the perspective shape
   std::shared_ptr<variant::SolveMemo<Rational>> solves;
   /// Each decision tried on this case: its exact answer, whether the observed answer is it, and
   /// (once asked) whether it differs from the correct one.
@@ -252,8 +249,6 @@ struct Case {
     mutable std::optional<bool> differs_from_right;
   };
   std::shared_ptr<std::deque<Tried>> answers;
-  /// The signs of C' for each matrix the solves take (Choices::solved), or none where singular.
-  std::shared_ptr<std::vector<std::pair<std::array<int, 4>, ClipSigns>>> clip_signs;
 };
 
 template <class T>
@@ -262,14 +257,7 @@ Case<T> make_case(const Observation<T>& o) {
   k.seen = o;
   k.solves = std::make_shared<variant::SolveMemo<Rational>>();
   k.answers = std::make_shared<std::deque<typename Case<T>::Tried>>();
-  k.clip_signs = std::make_shared<std::vector<std::pair<std::array<int, 4>, ClipSigns>>>();
-  auto sign_of = [](T v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); };
-  for (int i = 0; i < 4; ++i) {
-    k.c_sign[i] = sign_of(o.plane(i));
-    k.entry_sign[i] = sign_of(o.matrix(i % 2, 2 + i / 2));
-  }
-  k.perspective = has_perspective_shape(o.matrix);
-  // Fills the memo with M and C in rationals (and the correct method's solves, asked anyway).
+  // Fills the memo with M, C and their signs in rationals (and the correct method's solves).
   variant::evaluate<Rational>(o.matrix, o.plane, o.convention, variant::Knobs{}, k.solves.get());
   return k;
 }
@@ -279,19 +267,10 @@ Case<T> make_case(const Observation<T>& o) {
 template <class T>
 const typename Case<T>::Tried& tried(const Case<T>& k, const variant::Knobs& knobs) {
   const Observation<T>& o = k.seen;
+  variant::SolveMemo<Rational>& memo = *k.solves;
   const variant::Decision d = variant::decide(
-      knobs, o.convention, k.perspective, k.c_sign, k.entry_sign,
-      [&k](const std::array<int, 4>& solved) {
-        for (const auto& [entries, signs] : *k.clip_signs) {
-          if (entries == solved) return signs;
-        }
-        ClipSigns out;
-        variant::Vec<Rational> c_clip;
-        if (variant::memo_solve(*k.solves, solved, true, {0, 0, 0}, k.solves->c, c_clip))
-          out = {sgn(c_clip[0]), sgn(c_clip[1]), sgn(c_clip[2])};
-        k.clip_signs->emplace_back(solved, out);
-        return out;
-      });
+      knobs, o.convention, memo.perspective, memo.c_sign, memo.entry_sign,
+      [&memo](const std::array<int, 4>& solved) { return variant::clip_signs(memo, solved); });
   for (const auto& t : *k.answers) {
     if (t.decision == d) return t;
   }
@@ -339,7 +318,7 @@ void add_differences(const variant::Choices& mine, const variant::Choices& right
   add(Choice::head_on, mine.head_on_skipped, right.head_on_skipped);
   if (mine.refused_camera || right.refused_camera || mine.head_on_skipped || right.head_on_skipped)
     return;
-  add(Choice::solve, mine.solve_changed, right.solve_changed);
+  add(Choice::solve, mine.solve_changed(), right.solve_changed());
   add(Choice::closed_form, mine.closed_form, right.closed_form);
   add(Choice::nan_sign, mine.nan_sign, right.nan_sign);
   add(Choice::corner_guard, mine.refused_corner, right.refused_corner);
@@ -348,6 +327,10 @@ void add_differences(const variant::Choices& mine, const variant::Choices& right
   add(Choice::face, mine.z_twice / 2.0, right.z_twice / 2.0);
   add(Choice::formula, static_cast<int>(mine.formula), static_cast<int>(right.formula));
   add(Choice::row4, mine.note_flip, right.note_flip);
+  add(Choice::factor, mine.numerator, right.numerator);
+  add(Choice::form, mine.t3, right.t3);
+  add(Choice::q_z, mine.q_z_assumed, right.q_z_assumed);
+  add(Choice::q_w, mine.left_handed_qw, right.left_handed_qw);
 }
 
 std::optional<std::array<double, 4>> row_of(const Exact& x, int row) {
@@ -378,27 +361,23 @@ const std::vector<std::vector<Candidate>>& candidates_by_size() {
       seen.push_back(knobs);
       out[mistakes.size() - 1].push_back(Candidate{std::move(mistakes), knobs});
     };
-    constexpr std::size_t n = std::size(all_mistakes);
-    for (std::size_t i = 0; i < n; ++i) add({all_mistakes[i]});
-    for (std::size_t i = 0; i < n; ++i) {
-      const unsigned a = choices_changed(all_mistakes[i]);
-      for (std::size_t j = i + 1; j < n; ++j) {
-        const unsigned b = choices_changed(all_mistakes[j]);
-        if (a & b) continue;
-        add({all_mistakes[i], all_mistakes[j]});
-      }
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      const unsigned a = choices_changed(all_mistakes[i]);
-      for (std::size_t j = i + 1; j < n; ++j) {
-        const unsigned b = choices_changed(all_mistakes[j]);
-        if (a & b) continue;
-        for (std::size_t l = j + 1; l < n; ++l) {
-          const unsigned c = choices_changed(all_mistakes[l]);
-          if ((a | b) & c) continue;
-          add({all_mistakes[i], all_mistakes[j], all_mistakes[l]});
+    // Each size in turn, so that a set whose knobs a smaller one has is left out.
+    for (int size = 1; size <= kMostMistakes; ++size) {
+      std::vector<Mistake> chosen;
+      std::function<void(std::size_t, unsigned)> choose = [&](std::size_t from, unsigned used) {
+        if (static_cast<int>(chosen.size()) == size) {
+          add(chosen);
+          return;
         }
-      }
+        for (std::size_t i = from; i < std::size(all_mistakes); ++i) {
+          const unsigned changes = choices_changed(all_mistakes[i]);
+          if (used & changes) continue;
+          chosen.push_back(all_mistakes[i]);
+          choose(i + 1, used | changes);
+          chosen.pop_back();
+        }
+      };
+      choose(0, 0);
     }
     return out;
   }();

@@ -67,10 +67,7 @@ std::string cause_names(const Diagnosis& d) {
   if (d.numerical)
     return "numerical: " + std::string(numerical_route_entry(d.numerical->route).name);
   if (d.causes.empty() && !d.families.empty()) return by_family_text(d.families);
-  if (d.causes.empty()) return "no known mistake";
-  std::string out;
-  for (const auto& cause : d.causes) out += (out.empty() ? "" : " or ") + cause_name(cause);
-  return out;
+  return causes_text(d.causes);
 }
 
 std::string likely_cause_line(const Diagnosis& d) {
@@ -122,6 +119,13 @@ std::string choice_text(const ChoiceDifference& c) {
     case Choice::formula:
       return "the formula of " + convention(c.mistaken) + " (right: " + convention(c.right) + ")";
     case Choice::row4: return "row 4 rewritten: " + yes(c.mistaken);
+    case Choice::factor:
+      return "the factor a = " + number(c.mistaken) + " / (C . Q) (right: " + number(c.right) +
+             " / (C . Q))";
+    case Choice::form:
+      return "row 3's multiple of M_4: " + number(c.mistaken) + " (right: " + number(c.right) + ")";
+    case Choice::q_z: return "the closed form's Q_z taken as -1: " + yes(c.mistaken);
+    case Choice::q_w: return "the closed form's Q_w of a left-handed matrix: " + yes(c.mistaken);
   }
   return "";
 }

@@ -60,12 +60,14 @@ Knobs knobs_of(const std::vector<Mistake>& mistakes);
 /// The choices a variant made on one input: two variants whose choices agree give the same
 /// answer when nothing rounds.
 struct Choices {
-  bool refused_camera = false, head_on_skipped = false, solve_changed = false;
+  bool refused_camera = false, head_on_skipped = false;
   bool closed_form = false, nan_sign = false, refused_corner = false, unguarded_corner = false;
   bool note_flip = false;
   /// What the solves take for M13, M23, M14, M24: 1 the entry, 0 zero, -1 its negative (an
   /// entry that is 0 is always 1).
   std::array<int, 4> solved{1, 1, 1, 1};
+  /// Whether the solves take another matrix than M.
+  bool solve_changed() const { return solved != std::array<int, 4>{1, 1, 1, 1}; }
   bool q_z_assumed = false, left_handed_qw = false;  ///< the closed form's Q_z = -1, Q_w
   int sx = 0, sy = 0;                                ///< the corner's x and y signs
   int z_twice = 0;  ///< twice the corner's z (a face or, for a zero sign, the middle)
@@ -75,10 +77,9 @@ struct Choices {
 
   bool operator==(const Choices& o) const {
     return refused_camera == o.refused_camera && head_on_skipped == o.head_on_skipped &&
-           solve_changed == o.solve_changed && closed_form == o.closed_form &&
-           nan_sign == o.nan_sign && refused_corner == o.refused_corner &&
-           unguarded_corner == o.unguarded_corner && note_flip == o.note_flip &&
-           solved == o.solved && q_z_assumed == o.q_z_assumed &&
+           closed_form == o.closed_form && nan_sign == o.nan_sign &&
+           refused_corner == o.refused_corner && unguarded_corner == o.unguarded_corner &&
+           note_flip == o.note_flip && solved == o.solved && q_z_assumed == o.q_z_assumed &&
            left_handed_qw == o.left_handed_qw && sx == o.sx && sy == o.sy && z_twice == o.z_twice &&
            formula == o.formula && numerator == o.numerator && r3 == o.r3 && t3 == o.t3;
   }
@@ -238,7 +239,6 @@ Decision decide(const Knobs& knobs, Convention convention, bool perspective,
   };
   for (int i = 0; i < 4; ++i)
     ch.solved[i] = take(i < 2 ? knobs.off_axis : knobs.shift, entry_sign[i]);
-  ch.solve_changed = ch.solved != std::array<int, 4>{1, 1, 1, 1};
   const std::optional<std::array<int, 3>> clip = clip_signs(ch.solved);
   if (!clip) {
     d.solve_failed = true;
@@ -293,8 +293,19 @@ struct SolveMemo {
   bool filled = false;
   Mat<S> m;
   Vec<S> c;
+  /// What decide() reads of the case: the signs of C and of M13, M23, M14, M24, the shape.
+  std::array<int, 4> c_sign{}, entry_sign{};
+  bool perspective = false;
   std::vector<Solved> solves;
+  /// The signs of C' for each matrix the solves take (Choices::solved), none where singular.
+  std::vector<std::pair<std::array<int, 4>, std::optional<std::array<int, 3>>>> clip_signs;
 };
+
+/// -1, 0 or 1.
+template <class S>
+int sign_of(const S& v) {
+  return v > 0 ? 1 : (v < 0 ? -1 : 0);
+}
 
 /// The matrix the solves take: M with M13, M23, M14, M24 as `solved` (Choices::solved) says.
 template <class S>
@@ -322,6 +333,21 @@ bool memo_solve(SolveMemo<S>& memo, const std::array<int, 4>& solved, bool trans
   const bool ok = solve(solved_matrix(memo.m, solved), transpose, rhs, x);
   memo.solves.push_back({solved, transpose, corner, ok, x});
   return ok;
+}
+
+/// The signs of C' = S^-T C for the matrix S the solves take (`solved`), solved once per memo;
+/// none where S is singular. (clip_signs() needs a filled memo: evaluate() fills it.)
+template <class S>
+std::optional<std::array<int, 3>> clip_signs(SolveMemo<S>& memo, const std::array<int, 4>& solved) {
+  for (const auto& [entries, signs] : memo.clip_signs) {
+    if (entries == solved) return signs;
+  }
+  std::optional<std::array<int, 3>> out;
+  Vec<S> c_clip;
+  if (memo_solve(memo, solved, true, {0, 0, 0}, memo.c, c_clip))
+    out = {sign_of(c_clip[0]), sign_of(c_clip[1]), sign_of(c_clip[2])};
+  memo.clip_signs.emplace_back(solved, out);
+  return out;
 }
 
 /// The modification of (M, C) in `convention` with `knobs`, in S. Precondition: M and C finite.
@@ -357,25 +383,29 @@ Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Conven
     }
   }
   const Vec<S>& c = e.c;
-  auto sign_of = [](const S& v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); };
   std::array<int, 4> c_sign, entry_sign;
   for (int i = 0; i < 4; ++i) {
     c_sign[i] = sign_of(c[i]);
     entry_sign[i] = sign_of(m[i % 2][2 + i / 2]);  // M13, M23, M14, M24
+  }
+  const bool perspective = has_perspective_shape(matrix);
+  if (memo) {
+    memo->c_sign = c_sign;
+    memo->entry_sign = entry_sign;
+    memo->perspective = perspective;
   }
   auto solve_memo = [&](const std::array<int, 4>& solved, bool transpose,
                         const std::array<int, 3>& corner, const Vec<S>& rhs, Vec<S>& x) {
     if (memo) return memo_solve(*memo, solved, transpose, corner, rhs, x);
     return solve(solved_matrix(m, solved), transpose, rhs, x);
   };
-  const Decision d =
-      decide(knobs, convention, has_perspective_shape(matrix), c_sign, entry_sign,
-             [&](const std::array<int, 4>& solved) {
-               std::optional<std::array<int, 3>> out;
-               if (!solve_memo(solved, true, {0, 0, 0}, c, e.c_clip)) return out;
-               out = {sign_of(e.c_clip[0]), sign_of(e.c_clip[1]), sign_of(e.c_clip[2])};
-               return out;
-             });
+  const Decision d = decide(
+      knobs, convention, perspective, c_sign, entry_sign, [&](const std::array<int, 4>& solved) {
+        std::optional<std::array<int, 3>> out;
+        if (!solve_memo(solved, true, {0, 0, 0}, c, e.c_clip)) return out;
+        out = {sign_of(e.c_clip[0]), sign_of(e.c_clip[1]), sign_of(e.c_clip[2])};
+        return out;
+      });
   Choices& ch = e.choices;
   ch = d.choices;
   e.status = d.status;

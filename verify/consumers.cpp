@@ -70,15 +70,24 @@ class ConsumerRun {
     asked_.mirror_design = mode.mirror_design;
   }
 
+  /// A round's choices from `picks`, in order from `next`, each clamped to its range (a report
+  /// may have been edited; a shrunk pick may be below its range), the low end once they run out;
+  /// each as taken appended to `taken`.
+  static oracle::Pick recorded_picks(const std::vector<int>& picks, std::size_t& next,
+                                     std::vector<int>& taken) {
+    return [&picks, &next, &taken](int lo, int hi) {
+      const int v = next < picks.size() ? picks[next++] : lo;
+      taken.push_back(v < lo ? lo : v >= hi ? hi - 1 : v);
+      return taken.back();
+    };
+  }
+
   /// --replay's round: the program asked each kind on `round`, its picks replayed from
   /// round.picks. Returns false for a protocol error (said on err_).
   bool play(const Round<T>& round) {
     std::size_t next = 0;
-    const oracle::Pick pick = [&](int lo, int hi) {
-      // The recorded picks, in order (clamped, should a report have been edited).
-      const int v = next < round.picks.size() ? round.picks[next++] : lo;
-      return v < lo ? lo : v >= hi ? hi - 1 : v;
-    };
+    std::vector<int> taken;
+    const oracle::Pick pick = recorded_picks(round.picks, next, taken);
     const oracle::Settle settle = [&](const oracle::ConsumerFinding& f, const std::string& inputs,
                                       bool about) {
       tally(f, round, 0, inputs, about, program_.last_request(), program_.last_answer());
@@ -99,11 +108,7 @@ class ConsumerRun {
                                           oracle::ConsumerCheck check) {
     Round<T> taken{round.c, {}};
     std::size_t next = 0;
-    const oracle::Pick pick = [&](int lo, int hi) {
-      const int v = next < picks.size() ? picks[next++] : lo;
-      taken.picks.push_back(v < lo ? lo : v >= hi ? hi - 1 : v);
-      return taken.picks.back();
-    };
+    const oracle::Pick pick = recorded_picks(picks, next, taken.picks);
     std::optional<Caught<T>> found;
     const oracle::Settle settle = [&](const oracle::ConsumerFinding& f, const std::string& inputs,
                                       bool about) {

@@ -60,6 +60,10 @@ enum class Choice {
   face,          ///< the far corner's depth Q'_z
   formula,       ///< whose formula: 0 gl, 1 zero_one, 2 reversed_z
   row4,          ///< row 4 rewritten (1)
+  factor,        ///< the factor's numerator k in a = k / (C . Q)
+  form,          ///< row 3's multiple of M_4
+  q_z,           ///< the closed form's Q_z = -1 assumed (1)
+  q_w,           ///< the closed form's left-handed Q_w (1)
 };
 
 struct ChoiceDifference {
