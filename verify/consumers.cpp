@@ -120,8 +120,8 @@ class ConsumerRun {
     try {
       oracle::consumer_round<T>(round.c.matrix, round.c.plane, round.c.convention, asked_, pick,
                                 settle, mistakes::explain_consumer<T>);
-    } catch (const Failure&) {
-      shrink_stopped_ = true;  // a crash or a timeout: no more rounds asked
+    } catch (const Failure& failure) {
+      shrink_stopped_ = failure.what;  // a crash, a timeout or a protocol error: no more rounds
       return std::nullopt;
     }
     if (found) found->round = taken;
@@ -135,6 +135,11 @@ class ConsumerRun {
   /// has the shrunk round.
   void shrink() {
     if (!caught_ || caught_->lost) return;
+    // Said first (and flushed): an interrupted shrink still leaves the finding on the terminal.
+    (err_ << "oblique verify: " << oracle::consumer_check_name(caught_->finding.check)
+          << " violated in round " << caught_->index + 1 << "; shrinking its picks\n  request: "
+          << caught_->request << "\n  answer: " << caught_->answer << "\n")
+        .flush();
     constexpr int kShrinkTries = 300;
     constexpr auto kShrinkSeconds = std::chrono::seconds(10);
     const auto deadline = std::chrono::steady_clock::now() + kShrinkSeconds;
@@ -169,7 +174,7 @@ class ConsumerRun {
     shrink_tries_ = tries;
     if (tries > 0)
       err_ << "oblique verify: shrank the round's picks: " << steps << " steps (" << tries
-           << " tries" << (shrink_stopped_ ? "; stopped: the program failed on a shrink round" : "")
+           << " tries" << (shrink_stopped_ ? "; stopped: " + *shrink_stopped_ : std::string())
            << ")\n";
   }
 
@@ -546,7 +551,8 @@ class ConsumerRun {
 
   const VerifyOptions& options_;
   int shrink_steps_ = 0, shrink_tries_ = 0;
-  bool shrink_stopped_ = false;  ///< a shrink round crashed or timed out
+  /// Why shrinking stopped early: a shrink round's crash, timeout or protocol error.
+  std::optional<std::string> shrink_stopped_;
   std::vector<ConsumerKind> kinds_;
   std::ostream& out_;
   std::ostream& err_;
