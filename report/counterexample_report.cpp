@@ -403,7 +403,7 @@ struct Rendered {
 };
 
 Rendered render(report::ReportFiles& files, const report::Views& views, const std::string& stem) {
-  report::stage_views(files, views, "");
+  report::stage_views(files, views);
   Rendered out;
   for (const char* view : {"top", "side"}) {
     std::ostringstream log;

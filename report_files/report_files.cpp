@@ -239,8 +239,8 @@ void ReportFiles::plot(const std::string& script, const std::string& png, std::o
         << " is written, " << png << " is not\n";
     return;
   }
-  const ToolRun run = run_tool("gnuplot " + protocol::shell_quote((dir_ / script).string()), dir_,
-                               gnuplot_seconds());
+  // Run in the folder itself, where the script's names are (a relative folder included).
+  const ToolRun run = run_tool("gnuplot " + protocol::shell_quote(script), dir_, gnuplot_seconds());
   if (run.interrupt) die_of(run.interrupt);
   if (run.status == 0) {
     written_.push_back(dir_ / png);

@@ -88,7 +88,7 @@ std::string gnuplot_string(const std::string& name) {
   return out + "'";
 }
 
-void stage_views(ReportFiles& files, const Views& views, const std::filesystem::path& script_dir) {
+void stage_views(ReportFiles& files, const Views& views) {
   {
     std::ostream& data = files.open(views.data);
     auto write_point = [&data](const Eigen::Vector3d& p) {
@@ -116,14 +116,14 @@ void stage_views(ReportFiles& files, const Views& views, const std::filesystem::
       data << (blank ? "\n" : "\n\n");
     }
   }
-  const std::string data_path = (script_dir / views.data).string();
+  const std::string data_path = views.data;
   for (const auto& [stem, view, columns, axes] :
        {std::tuple{views.top, "top", "1:3", std::array<int, 2>{0, 2}},
         std::tuple{views.side, "side", "3:2", std::array<int, 2>{2, 1}}}) {
     const char* names = "xyz";
     std::ostream& gp = files.open(stem + ".gp");
     gp << "set terminal pngcairo size 1000,800 noenhanced\n"
-       << "set output " << gnuplot_string((script_dir / (stem + ".png")).string()) << "\n"
+       << "set output " << gnuplot_string(stem + ".png") << "\n"
        << "set title " << gnuplot_string(std::string(view) + " view: " + views.title) << "\n"
        << "set xlabel '" << views.space << " " << names[axes[0]] << "'\nset ylabel '" << views.space
        << " " << names[axes[1]] << "'\n"

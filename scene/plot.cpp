@@ -137,7 +137,7 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
     views.hi = hi;
     views.sets = std::move(sets);
     views.labels = std::move(labels);
-    report::stage_views(files, views, dir);
+    report::stage_views(files, views);
     // Every file whole in place (or none), then the pictures.
     std::ostringstream commit_log;
     if (!files.commit(commit_log)) {

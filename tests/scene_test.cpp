@@ -991,6 +991,16 @@ TEST(Scenes, cliPlotWritesTwoViewsOrSaysWhyNot) {
     EXPECT_GT(std::filesystem::file_size(plot + "/" + file), 0u) << file;
   // A directory that cannot be made (under a regular file): exit 2, with a message.
   EXPECT_EQ(run_check(dir + "/lake.json --plot " + dir + "/lake.json/pictures"), 2);
+  // A relative folder, as scripts/demo.sh gives it (gnuplot runs in the folder itself: the
+  // scripts name their files relative to it).
+  const std::string cwd = ::testing::TempDir(), relative = "oblique_check_plot_relative";
+  std::filesystem::remove_all(cwd + relative);
+  const int raw = std::system(("cd '" + cwd + "' && " + std::string(OBLIQUE_CLI) + " check " + dir +
+                               "/lake.json --plot " + relative + " > /dev/null 2>&1")
+                                  .c_str());
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << raw;
+  for (const char* file : {"top.png", "side.png"})
+    EXPECT_TRUE(std::filesystem::exists(cwd + relative + "/" + file)) << file;
 }
 
 // The picture explains the pass: the view across the water comes first, its camera and the

@@ -62,7 +62,8 @@ struct Views {
 };
 
 /// Stages views.data, views.top + ".gp" and views.side + ".gp" in `files`. The scripts name the
-/// data and the PNGs under `script_dir` (empty: relative names, rendered in the folder itself).
-void stage_views(ReportFiles& files, const Views& views, const std::filesystem::path& script_dir);
+/// data and the PNGs by their names alone: they are rendered in the folder itself
+/// (ReportFiles::plot() runs gnuplot there; by hand, `cd` into it first).
+void stage_views(ReportFiles& files, const Views& views);
 
 }  // namespace oblique::report
