@@ -13,6 +13,7 @@
 #include "commands.h"
 #include "oblique/cases/contract.h"
 #include "oblique/protocol/names.h"
+#include "oblique/shader/shader_function.h"
 #include "oblique/verify/verifier.h"
 
 namespace oblique::cli {
@@ -97,8 +98,8 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       "input; it answers one line each, flushed), judge every answer with the property suite, and "
       "shrink the first violation to a report. Exit 0: no violation; 1: a violation (report "
       "written); 2: usage or protocol error.");
-  verify->add_option("--impl", options.command, "The implementation's command (run by sh)")
-      ->required();
+  // --impl, or --shader for depth functions: run_verify() says when neither is given.
+  verify->add_option("--impl", options.command, "The implementation's command (run by sh)");
   // The contract's fields, each a flag taking a comma list of the names its JSON field takes.
   auto contract_flag = [&](const std::string& flag, const std::string& field,
                            const std::string& what) {
@@ -121,8 +122,8 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
   contract_flag("--families", "families",
                 "Comma list of projection families (default: all): " +
                     name_list(oblique::names_in(oblique::cases::family_names)));
-  add_precision_option(
-      verify, settings->precision, "Scalar type of inputs and bounds",
+  CLI::Option* const precision_flag = add_precision_option(
+      verify, settings->precision, "Scalar type of inputs and bounds (float with --shader)",
       {oblique::protocol::Precision::float32, oblique::protocol::Precision::float64});
   verify
       ->add_option("--cases", options.cases,
@@ -193,6 +194,19 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
           "(view R, the default) or proper_camera (diag(-1, 1, 1, 1) view R, the horizontal flip "
           "done in the projection or the texture lookup)")
       ->check(CLI::IsMember({"reflected_view", "proper_camera"}));
+  verify->add_option(
+      "--shader", options.shader,
+      "With --consumers view_position,linear_depth: a GLSL or HLSL file whose functions answer "
+      "them on the GPU path instead of --impl (FILE:FUNCTION for one kind; FILE alone: functions "
+      "named after the kinds); parameters are bound by name (docs/shaders.md); float");
+  verify
+      ->add_option_function<std::string>(
+          "--shader-language",
+          [settings](const std::string& name) {
+            settings->options.shader_language = oblique::shader::parse_language(name);
+          },
+          "glsl or hlsl (default: by the file's extension, .hlsl and .fx HLSL)")
+      ->check(CLI::IsMember({"glsl", "hlsl"}));
   verify->add_flag("--rasterize", settings->rasterize,
                    "Also draw answers on a real rasterizer (EGL + OpenGL 4.5, llvmpipe): the "
                    "first, one in --raster-every, and every finding's; an answer that passes the "
@@ -200,7 +214,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                    "when the rasterizer cannot judge");
   verify
       ->add_option("--device", settings->raster.device,
-                   "With --rasterize: software (llvmpipe, the default) or gpu")
+                   "With --rasterize or --shader: software (llvmpipe, the default) or gpu")
       ->check(CLI::IsMember({"software", "gpu"}));
   verify
       ->add_option("--raster-size", settings->raster.size,
@@ -238,7 +252,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                      "Replay every report (.json) in this folder before the run");
   verify->add_option("--save-regressions", settings->matrix.save_regressions,
                      "Keep each new shrunk case's report in this folder too");
-  verify->callback([settings, &exit_code, self, consumers_flag] {
+  verify->callback([settings, &exit_code, self, consumers_flag, precision_flag] {
     oblique::verify::VerifyOptions& options = settings->options;
     oblique::Expected<oblique::Contract> contract = oblique::Contract{};
     if (!settings->contract.empty()) contract = oblique::read_contract_file(settings->contract);
@@ -300,6 +314,11 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       return;
     }
     options.precision = *oblique::protocol::parse_precision(settings->precision);
+    if (!options.shader.empty()) {
+      // A shader computes in float: the default precision is float, and another is an error.
+      if (!precision_flag->count()) options.precision = oblique::protocol::Precision::float32;
+      options.shader_device = settings->raster.device;
+    }
     options.progress = !settings->quiet;
     options.self = self;
     options.arguments = settings->arguments;

@@ -31,6 +31,10 @@ list(APPEND OBLIQUE_EXPORTED oblique_accuracy_profile)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/raster/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.h")
 list(APPEND OBLIQUE_EXPORTED oblique_raster)
+# The shader runner (oblique/shader), on the rasterizer's GL context.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/shader/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        FILES_MATCHING PATTERN "*.h")
+list(APPEND OBLIQUE_EXPORTED oblique_shader)
 if(TARGET oblique_testing_raster)
   list(APPEND OBLIQUE_EXPORTED oblique_testing_raster)
 endif()

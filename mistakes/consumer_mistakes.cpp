@@ -39,6 +39,13 @@ constexpr ConsumerMistakeEntry kConsumerCatalogue[] = {
      "another depth on its ray.",
      "z_ndc = 2 d - 1 for [-1, 1] depth and z_ndc = d for [0, 1] and reversed-Z depth, from the "
      "matrix's convention."},
+    {ConsumerMistake::reads_reversed_as_forward, ConsumerKind::view_position,
+     "reads_reversed_as_forward", "a reversed-Z depth turned forward before the inverse",
+     "On a reversed-Z buffer the code flips the stored depth, 1 - d, as a linearisation written "
+     "for forward depth needs, but then applies M'^-1, which already maps reversed depth: the "
+     "near and far ends of every ray trade places.",
+     "Give M'^-1 the depth as stored (z_ndc = d on reversed Z); flip only for code that reads "
+     "forward depth."},
     {ConsumerMistake::linearises_with_near_far, ConsumerKind::linear_depth,
      "linearises_with_near_far", "linear depth from the near and far planes (zparams)",
      "The code linearises with the textbook n f / (f - d (f - n)), n and f read off the "
@@ -205,6 +212,12 @@ Consumers<T> mistaken_consumers(ConsumerMistake mistake) {
         const T z = s.convention == Convention::gl ? s.depth : T(2) * s.depth - T(1);
         const Vector4<T> v = s.projection.inverse() * Vector4<T>(s.ndc_x, s.ndc_y, z, T(1));
         return Vector3<T>(v.template head<3>() / v.w());
+      };
+      break;
+    case ConsumerMistake::reads_reversed_as_forward:
+      c.view_position = [](const oracle::DepthSample<T>& s) {
+        const T d = s.convention == Convention::reversed_z ? T(1) - s.depth : s.depth;
+        return view_position(s.projection, s.ndc_x, s.ndc_y, d, s.convention);
       };
       break;
     case ConsumerMistake::linearises_with_near_far:

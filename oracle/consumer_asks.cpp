@@ -26,21 +26,22 @@ namespace {
 using protocol::ConsumerKind;
 
 template <class T>
-ConsumerAsk<T> depth_ask(ConsumerKind kind, const DepthSample<T>& s, const std::string& inputs) {
+ConsumerAsk<T> depth_ask(ConsumerKind kind, const DepthSample<T>& s, const std::string& inputs,
+                         ConsumerArithmetic arithmetic) {
   ConsumerAsk<T> a;
   a.kind = kind;
   a.request = [kind, s] { return wire::depth_request(kind, s); };
   if (kind == ConsumerKind::view_position) {
     a.call = [s](const Consumers<T>& c) { return wire::numbers_of(c.view_position(s)); };
-    a.judge = [s, inputs](const std::vector<T>& v, const Settle& settle) {
+    a.judge = [s, inputs, arithmetic](const std::vector<T>& v, const Settle& settle) {
       const Vector3<T> answer = wire::vector3(v);
-      settle(judge_view_position(s, answer), inputs + "- answered: " + numbers_text(answer) + "\n",
-             true);
+      settle(judge_view_position(s, answer, arithmetic),
+             inputs + "- answered: " + numbers_text(answer) + "\n", true);
     };
   } else {
     a.call = [s](const Consumers<T>& c) { return std::vector<T>{c.linear_depth(s)}; };
-    a.judge = [s, inputs](const std::vector<T>& v, const Settle& settle) {
-      settle(judge_linear_depth(s, v.front()),
+    a.judge = [s, inputs, arithmetic](const std::vector<T>& v, const Settle& settle) {
+      settle(judge_linear_depth(s, v.front(), arithmetic),
              inputs + "- answered: " + protocol::format_number(v.front()) + "\n", true);
     };
   }
@@ -247,9 +248,10 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
                                      ", window depth " + protocol::format_number(s->depth) +
                                      " (stored " + std::to_string(s->stored) + ")\n";
           if (consumers.view_position)
-            asks.push_back(depth_ask(ConsumerKind::view_position, *s, inputs));
+            asks.push_back(
+                depth_ask(ConsumerKind::view_position, *s, inputs, consumers.arithmetic));
           if (consumers.linear_depth)
-            asks.push_back(depth_ask(ConsumerKind::linear_depth, *s, inputs));
+            asks.push_back(depth_ask(ConsumerKind::linear_depth, *s, inputs, consumers.arithmetic));
         }
       }
       if (consumers.culling_planes) asks.push_back(culling_ask(m, c, convention, mo, base));

@@ -99,13 +99,13 @@ bool lu_orders(Mat a, Mat sum, std::array<int, 4> row_of, int k, const Rational&
 /// The bound on |L^||U^| for m's LU factors with partial pivoting computed in T (lu_orders()),
 /// rows in m's order; the worst case, lu_bound(), where a pivot is not determined in T.
 template <class T>
-Mat lu_magnitudes(const Mat& m) {
+Mat lu_magnitudes(const Mat& m, int bits) {
   Mat out{};
   for (auto& row : out) row.fill(0);
   Mat sum{};
   for (auto& row : sum) row.fill(0);
-  if (!lu_orders(m, sum, {0, 1, 2, 3}, 0, gamma_of<T>(oracle::tolerance::kSolveRoundings),
-                 unit<T>(), out))
+  if (!lu_orders(m, sum, {0, 1, 2, 3}, 0, gamma_of<T>(oracle::tolerance::kSolveRoundings, bits),
+                 unit<T>(bits), out))
     return lu_bound(m);
   return out;
 }
@@ -143,8 +143,8 @@ Mat mul(const Mat& a, const Mat& b) {
 ///    gamma(kConsumerSolveRoundings) |L^||U^|, so gamma |M^-1| G |M^-1| with G = lu_magnitudes().
 /// Empty where the determinant computed by cofactors is not determined in T.
 template <class T>
-std::optional<Mat> solve_error(const Mat& m, const Mat& inv) {
-  const Rational g = gamma_of<T>(oracle::tolerance::kCofactorRoundings);
+std::optional<Mat> solve_error(const Mat& m, const Mat& inv, int bits) {
+  const Rational g = gamma_of<T>(oracle::tolerance::kCofactorRoundings, bits);
   Mat perm;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) perm[i][j] = minor_sum(m, i, j, true);
@@ -157,9 +157,10 @@ std::optional<Mat> solve_error(const Mat& m, const Mat& inv) {
   const Rational det_error = g * det_perm;
   if (det_error >= size) return std::nullopt;
   // Applying the inverse: 4 roundings, and the window depth's conversion to NDC 2 more.
-  const Rational g_apply = gamma_of<T>(6);
-  const Mat lu = mul(mul(oracle::exact::abs(inv), lu_magnitudes<T>(m)), oracle::exact::abs(inv));
-  const Rational g_lu = gamma_of<T>(oracle::tolerance::kConsumerSolveRoundings);
+  const Rational g_apply = gamma_of<T>(6, bits);
+  const Mat lu =
+      mul(mul(oracle::exact::abs(inv), lu_magnitudes<T>(m, bits)), oracle::exact::abs(inv));
+  const Rational g_lu = gamma_of<T>(oracle::tolerance::kConsumerSolveRoundings, bits);
   Mat out;
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) {
@@ -282,7 +283,7 @@ std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>& m, const Vec
 }
 
 #define OBLIQUE_CONSUMER_JUDGING(T)                                                                \
-  template std::optional<Mat> solve_error<T>(const Mat&, const Mat&);                              \
+  template std::optional<Mat> solve_error<T>(const Mat&, const Mat&, int);                         \
   template std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>&, const Vector4<T>&, \
                                                              Convention);
 OBLIQUE_CONSUMER_JUDGING(float)

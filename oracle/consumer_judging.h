@@ -21,14 +21,16 @@ using oracle::exact::Mat;
 using oracle::exact::Rational;
 using oracle::exact::Vec;
 
+/// gamma(roundings) and u of T's arithmetic, or of an arithmetic whose unit roundoff is 2^-bits
+/// (a GPU's, tolerance.h: kGpuLostBits).
 template <class T>
-Rational gamma_of(int roundings) {
-  return oracle::tolerance::gamma(roundings, oracle::tolerance::precision_bits<T>());
+Rational gamma_of(int roundings, int bits = oracle::tolerance::precision_bits<T>()) {
+  return oracle::tolerance::gamma(roundings, bits);
 }
 
 template <class T>
-Rational unit() {
-  return oracle::tolerance::unit_roundoff(oracle::tolerance::precision_bits<T>());
+Rational unit(int bits = oracle::tolerance::precision_bits<T>()) {
+  return oracle::tolerance::unit_roundoff(bits);
 }
 
 /// The 4 x 4 matrix whose every entry is oracle::tolerance::lu_entry_bound(m): what |L||U| of m's
@@ -46,9 +48,11 @@ Mat mul(const Mat& a, const Mat& b);
 ///    that of the permanent of |M|; then 4 roundings applying it;
 ///  - an elimination with partial pivoting (an inverse, or an LU solve): backward error
 ///    gamma(kConsumerSolveRoundings) |L^||U^|, so gamma |M^-1| G |M^-1| with G = lu_magnitudes().
-/// Empty where the determinant computed by cofactors is not determined in T.
+/// Empty where the determinant computed by cofactors is not determined in T. `bits`: the
+/// arithmetic's unit roundoff is 2^-bits (T's own by default).
 template <class T>
-std::optional<Mat> solve_error(const Mat& m, const Mat& inv);
+std::optional<Mat> solve_error(const Mat& m, const Mat& inv,
+                               int bits = oracle::tolerance::precision_bits<T>());
 
 /// The largest |v_i|, and the sum of the |v_i|.
 Rational max_abs(const Vec& v);

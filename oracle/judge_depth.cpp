@@ -114,8 +114,51 @@ std::optional<ConsumerFinding> before_the_answer(ConsumerCheck check, const Segm
   return f;
 }
 
+/// The significand bits of the arithmetic's unit roundoff (tolerance.h).
 template <class T>
-Segment ray_segment(const DepthSample<T>& s) {
+int arithmetic_bits(ConsumerArithmetic arithmetic) {
+  return oracle::tolerance::precision_bits<T>() -
+         (arithmetic == ConsumerArithmetic::gpu ? oracle::tolerance::kGpuLostBits : 0);
+}
+
+/// det(m), by the 2 x 2 minors of its first two rows and of its last two (Laplace).
+Rational determinant(const Mat& m) {
+  auto minor = [&m](int r, int a, int b) -> Rational {
+    return m[r][a] * m[r + 1][b] - m[r][b] * m[r + 1][a];
+  };
+  const int pairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  const int sign[6] = {1, -1, 1, 1, -1, 1};
+  Rational det = 0;
+  for (int k = 0; k < 6; ++k)
+    det +=
+        sign[k] * minor(0, pairs[k][0], pairs[k][1]) * minor(2, pairs[5 - k][0], pairs[5 - k][1]);
+  return det;
+}
+
+/// Why a GPU's arithmetic (tolerance.h, kGpuLostBits) has no bound on the sample's
+/// reconstruction, or "": a nonzero input below T's smallest normal number (it may be flushed to
+/// 0), or a divisor (the determinant of M', or w at the segment's ends) whose exact value is
+/// outside [2^-126, 2^126], where the shading language bounds no quotient. (Where only w's error
+/// reaches below that, the answer is judged in homogeneous coordinates, as on the CPU.)
+template <class T>
+std::string gpu_unbounded(const DepthSample<T>& s, const Rational& det, const Vec (&ends)[2]) {
+  const T smallest = std::numeric_limits<T>::min();
+  auto subnormal = [&](T x) { return x != 0 && std::fabs(x) < smallest; };
+  bool flushed = subnormal(s.ndc_x) || subnormal(s.ndc_y) || subnormal(s.depth);
+  for (int i = 0; i < 16; ++i) flushed = flushed || subnormal(s.projection(i / 4, i % 4));
+  if (flushed) return "an input below the smallest normal number, which a GPU may flush to 0";
+  const Rational low = oracle::exact::power_of_two(-126), high = oracle::exact::power_of_two(126);
+  auto outside = [&](const Rational& x) {
+    return oracle::exact::abs(x) < low || oracle::exact::abs(x) > high;
+  };
+  if (outside(det) || outside(ends[0][3]) || outside(ends[1][3]))
+    return "a divisor (M''s determinant, or w) outside [2^-126, 2^126], where a GPU's quotient "
+           "has no stated precision";
+  return "";
+}
+
+template <class T>
+Segment ray_segment(const DepthSample<T>& s, int bits) {
   Segment out;
   const Mat m = oracle::exact::to_rational(s.projection);
   const std::optional<Mat> inv = oracle::exact::inverse(m);
@@ -131,18 +174,19 @@ Segment ray_segment(const DepthSample<T>& s) {
     const Mat original = oracle::exact::to_rational(s.original);
     out.axis_is_z = original[3][0] == 0 && original[3][1] == 0;
     if (out.axis_is_z)
-      out.axis = axis_sign(*original_inv, s.convention, solve_error<T>(original, *original_inv));
+      out.axis =
+          axis_sign(*original_inv, s.convention, solve_error<T>(original, *original_inv, bits));
   }
   const auto [lo, hi] = depth_interval(s);
   const Rational x = oracle::exact::to_rational(s.ndc_x), y = oracle::exact::to_rational(s.ndc_y);
-  const std::optional<Mat> error = solve_error<T>(m, *inv);
+  const std::optional<Mat> error = solve_error<T>(m, *inv, bits);
   if (!error) {
     out.why =
         "the projection's determinant is within T's rounding of 0: its inverse is not "
         "determined in T";
     return out;
   }
-  const Rational u = unit<T>();
+  const Rational u = unit<T>(bits);
   Vec ends[2];
   out.box = {0, 0, 0, 0};
   Vec bound{0, 0, 0, 0};
@@ -180,6 +224,13 @@ Segment ray_segment(const DepthSample<T>& s) {
   if (ends[0][3] * ends[1][3] < 0) {
     out.why = "the stored depth's interval reaches the ray's point at infinity";
     return out;
+  }
+  if (bits < oracle::tolerance::precision_bits<T>()) {
+    const Rational det = determinant(m);
+    if (std::string why = gpu_unbounded(s, det, ends); !why.empty()) {
+      out.why = why;
+      return out;
+    }
   }
   if (determined) out.bound = bound;
   out.w_reaches_zero =
@@ -339,20 +390,25 @@ std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const M
 /// ray_segment() of the last sample judged on this thread: a round asks view_position and
 /// linear_depth of the same sample, and its exact analysis is most of either judge's time.
 template <class T>
-const Segment& ray_segment_of(const DepthSample<T>& s) {
+const Segment& ray_segment_of(const DepthSample<T>& s, ConsumerArithmetic arithmetic) {
   thread_local std::optional<std::pair<DepthSample<T>, Segment>> last;
-  const bool same = last && last->first.projection == s.projection &&
-                    last->first.original == s.original && last->first.convention == s.convention &&
-                    last->first.buffer == s.buffer && last->first.ndc_x == s.ndc_x &&
-                    last->first.ndc_y == s.ndc_y && last->first.depth == s.depth &&
-                    last->first.stored == s.stored;
-  if (!same) last.emplace(s, ray_segment(s));
+  thread_local ConsumerArithmetic last_arithmetic = ConsumerArithmetic::ieee;
+  const bool same = last && last_arithmetic == arithmetic &&
+                    last->first.projection == s.projection && last->first.original == s.original &&
+                    last->first.convention == s.convention && last->first.buffer == s.buffer &&
+                    last->first.ndc_x == s.ndc_x && last->first.ndc_y == s.ndc_y &&
+                    last->first.depth == s.depth && last->first.stored == s.stored;
+  if (!same) {
+    last.emplace(s, ray_segment(s, arithmetic_bits<T>(arithmetic)));
+    last_arithmetic = arithmetic;
+  }
   return last->second;
 }
 
 template <class T>
-ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& answer) {
-  const Segment& seg = ray_segment_of(s);
+ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& answer,
+                                    ConsumerArithmetic arithmetic) {
+  const Segment& seg = ray_segment_of(s, arithmetic);
   if (auto early = before_the_answer(ConsumerCheck::view_position, seg, answer.allFinite(),
                                      !answer.array().isFinite().any(), numbers_text(answer)))
     return *early;
@@ -369,8 +425,9 @@ ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& a
 }
 
 template <class T>
-ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
-  const Segment& seg = ray_segment_of(s);
+ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer,
+                                   ConsumerArithmetic arithmetic) {
+  const Segment& seg = ray_segment_of(s, arithmetic);
   if (auto early = before_the_answer(ConsumerCheck::linear_depth, seg, std::isfinite(answer),
                                      !std::isfinite(answer), protocol::format_number(answer)))
     return *early;
@@ -406,8 +463,9 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer) {
 #define OBLIQUE_DEPTH_JUDGES(T)                                                                    \
   template std::optional<DepthSample<T>> depth_sample(const Matrix4<T>&, const Matrix4<T>&,        \
                                                       Convention, DepthBuffer, const Vector4<T>&); \
-  template ConsumerFinding judge_view_position(const DepthSample<T>&, const Vector3<T>&);          \
-  template ConsumerFinding judge_linear_depth(const DepthSample<T>&, T);
+  template ConsumerFinding judge_view_position(const DepthSample<T>&, const Vector3<T>&,           \
+                                               ConsumerArithmetic);                                \
+  template ConsumerFinding judge_linear_depth(const DepthSample<T>&, T, ConsumerArithmetic);
 OBLIQUE_DEPTH_JUDGES(float)
 OBLIQUE_DEPTH_JUDGES(double)
 OBLIQUE_DEPTH_JUDGES(long double)

@@ -3,6 +3,33 @@
 
 namespace oblique::raster {
 
+namespace {
+constexpr const char* kNoEgl =
+    "no EGL: this oblique was built without EGL and OpenGL; install libegl-dev libgl-dev "
+    "libopengl-dev libegl-mesa0 libgl1-mesa-dri (bash scripts/setup.sh) and build again";
+}  // namespace
+
+NoShaderCache::NoShaderCache() : ours_(false) {}
+NoShaderCache::~NoShaderCache() = default;
+
+struct GlContext::State {};
+GlContext::GlContext(std::unique_ptr<State> state) : state_(std::move(state)) {}
+GlContext::~GlContext() = default;
+Expected<std::unique_ptr<GlContext>> GlContext::open(Device) {
+  return Expected<std::unique_ptr<GlContext>>::failure(kNoEgl);
+}
+bool GlContext::make_current(std::string* error) {
+  if (error) *error = kNoEgl;
+  return false;
+}
+const std::string& GlContext::renderer() const {
+  static const std::string none;
+  return none;
+}
+Device GlContext::device() const {
+  return Device::software;
+}
+
 struct Rasterizer::State {
   Options options;
   std::string renderer;
@@ -50,9 +77,7 @@ Result Rasterizer::check(const PreparedCheck&) {
 }
 
 Expected<std::shared_ptr<Rasterizer>> Rasterizer::open(const Options&) {
-  return Expected<std::shared_ptr<Rasterizer>>::failure(
-      "no EGL: this oblique was built without EGL and OpenGL; install libegl-dev libgl-dev "
-      "libopengl-dev libegl-mesa0 libgl1-mesa-dri (bash scripts/setup.sh) and build again");
+  return Expected<std::shared_ptr<Rasterizer>>::failure(kNoEgl);
 }
 
 }  // namespace oblique::raster

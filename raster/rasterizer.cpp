@@ -1,18 +1,11 @@
-// The headless OpenGL 4.5 context (EGL's surfaceless platform, through glvnd) and one frame's
-// render and read-back.
+// One frame's render and read-back on the headless OpenGL context (gl_context.h).
 #define GL_GLEXT_PROTOTYPES 1
-#define EGL_EGLEXT_PROTOTYPES 1
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
 #include <GL/glcorearb.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <map>
-#include <mutex>
 #include <string>
 
 #include "oblique/oblique.h"
@@ -22,33 +15,6 @@
 namespace oblique::raster {
 
 namespace {
-
-constexpr const char* kPackages = "libegl-mesa0 libgl1-mesa-dri (and libegl1, libopengl0)";
-
-/// What to do when EGL finds no Mesa: install the packages, unless Mesa's EGL is there and only
-/// glvnd's vendor file that points at it is missing (or the environment points glvnd elsewhere).
-std::string install_hint() {
-  for (const char* variable : {"__EGL_VENDOR_LIBRARY_FILENAMES", "__EGL_VENDOR_LIBRARY_DIRS"}) {
-    if (const char* v = std::getenv(variable))
-      return std::string(variable) + " is set (" + v +
-             "): glvnd looks for EGL vendors only there; unset it or point it at Mesa's "
-             "50_mesa.json";
-  }
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  bool library = false;
-  for (const char* dir :
-       {"/usr/lib/x86_64-linux-gnu", "/usr/lib/aarch64-linux-gnu", "/usr/lib64", "/usr/lib"})
-    library = library || fs::exists(fs::path(dir) / "libEGL_mesa.so.0", ec);
-  bool vendor = false;
-  for (const char* dir : {"/usr/share/glvnd/egl_vendor.d", "/etc/glvnd/egl_vendor.d"})
-    vendor = vendor || fs::exists(fs::path(dir) / "50_mesa.json", ec);
-  if (library && !vendor)
-    return "Mesa's EGL (libEGL_mesa.so.0) is installed, but glvnd's vendor file for it "
-           "(/usr/share/glvnd/egl_vendor.d/50_mesa.json) is missing: reinstall libegl-mesa0 "
-           "(apt-get install --reinstall libegl-mesa0)";
-  return std::string("install ") + kPackages;
-}
 
 const char* const kVertexShader = R"(#version 450 core
 layout(location = 0) in vec4 point;
@@ -75,138 +41,35 @@ layout(location = 0) out uint stored_id;
 void main() { stored_id = id; }
 )";
 
-std::string egl_error(const char* what) {
-  char line[96];
-  std::snprintf(line, sizeof line, "%s failed (EGL error 0x%04x)", what,
-                static_cast<unsigned>(eglGetError()));
-  return line;
-}
-
-/// EGL gives one display per platform and device, shared by every Rasterizer of the process, and
-/// eglTerminate() ends every context on it: the last Rasterizer to use a display terminates it.
-std::mutex display_mutex;
-std::map<EGLDisplay, int> display_users;
-
-void use_display(EGLDisplay display) {
-  const std::lock_guard<std::mutex> lock(display_mutex);
-  ++display_users[display];
-}
-
-void release_display(EGLDisplay display) {
-  const std::lock_guard<std::mutex> lock(display_mutex);
-  if (--display_users[display] > 0) return;
-  display_users.erase(display);
-  eglTerminate(display);
-}
-
 }  // namespace
 
 struct Rasterizer::State {
   Options options;
-  EGLDisplay display = EGL_NO_DISPLAY;
-  EGLContext context = EGL_NO_CONTEXT;
+  std::unique_ptr<GlContext> gl;
   std::string renderer;
   GLuint program = 0, vertex_array = 0, buffers[2] = {0, 0};
   GLuint framebuffer = 0, id_buffer = 0, depth_buffer = 0;
   GLint projection_at = -1, placed_by_id_at = -1, size_at = -1;
   DepthBuffer depth_format = DepthBuffer::fixed24;
-  bool display_used = false;  ///< initialized and counted (use_display())
-  int allocated = 0;          ///< the buffers' size (0: none yet)
+  int allocated = 0;  ///< the buffers' size (0: none yet)
 
   ~State() {
-    if (context != EGL_NO_CONTEXT) {
-      eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context);
+    if (gl && gl->make_current()) {
       if (program) glDeleteProgram(program);
       if (buffers[0]) glDeleteBuffers(2, buffers);
       if (vertex_array) glDeleteVertexArrays(1, &vertex_array);
       if (id_buffer) glDeleteRenderbuffers(1, &id_buffer);
       if (depth_buffer) glDeleteRenderbuffers(1, &depth_buffer);
       if (framebuffer) glDeleteFramebuffers(1, &framebuffer);
-      eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-      eglDestroyContext(display, context);
     }
-    if (display_used) release_display(display);
-  }
-
-  /// Mesa's software device (EGL_MESA_device_software): llvmpipe whatever the machine has,
-  /// chosen without touching the environment (which verify's implementation inherits).
-  EGLDisplay software_display() {
-    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!client || !std::strstr(client, "EGL_EXT_device_enumeration") ||
-        !std::strstr(client, "EGL_EXT_platform_device"))
-      return EGL_NO_DISPLAY;
-    const auto query_devices =
-        reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-    const auto device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
-        eglGetProcAddress("eglQueryDeviceStringEXT"));
-    if (!query_devices || !device_string) return EGL_NO_DISPLAY;
-    EGLDeviceEXT devices[16];
-    EGLint count = 0;
-    if (!query_devices(16, devices, &count)) return EGL_NO_DISPLAY;
-    for (EGLint i = 0; i < count; ++i) {
-      const char* extensions = device_string(devices[i], EGL_EXTENSIONS);
-      if (extensions && std::strstr(extensions, "EGL_MESA_device_software"))
-        return eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-    }
-    return EGL_NO_DISPLAY;
   }
 
   Expected<Done> start() {
-    // No shader cache written to $HOME: set while the context is made and the shaders built
-    // (Mesa reads it then), and taken away again unless the user had set it.
-    const bool cache_setting_ours = std::getenv("MESA_SHADER_CACHE_DISABLE") == nullptr;
-    if (cache_setting_ours) setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
-    Expected<Done> started = open_context();
-    if (cache_setting_ours) unsetenv("MESA_SHADER_CACHE_DISABLE");
-    return started;
-  }
-
-  Expected<Done> open_context() {
-    if (options.device == Device::software) {
-      display = software_display();
-      if (display == EGL_NO_DISPLAY)
-        return Expected<Done>::failure(
-            std::string("no EGL software device (EGL_MESA_device_software): ") + install_hint());
-    } else {
-      const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-      if (!client || !std::strstr(client, "EGL_MESA_platform_surfaceless"))
-        return Expected<Done>::failure(std::string("no EGL with the surfaceless platform: ") +
-                                       install_hint());
-      display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    }
-    EGLint major = 0, minor = 0;
-    if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor))
-      return Expected<Done>::failure("no EGL device (" + egl_error("eglInitialize") +
-                                     "): " + install_hint());
-    use_display(display);
-    display_used = true;
-    if (!eglBindAPI(EGL_OPENGL_API)) return Expected<Done>::failure(egl_error("eglBindAPI"));
-    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                 4,
-                                 EGL_CONTEXT_MINOR_VERSION,
-                                 5,
-                                 EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                 EGL_NONE};
-    context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
-    if (context == EGL_NO_CONTEXT)
-      return Expected<Done>::failure(egl_error("an OpenGL 4.5 core context"));
-    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
-      return Expected<Done>::failure(egl_error("eglMakeCurrent"));
-    const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
-    renderer = std::string(name ? name : "?") + ", OpenGL " + (version ? version : "?");
-    if (options.device == Device::software && renderer.find("llvmpipe") == std::string::npos)
-      return Expected<Done>::failure("asked for llvmpipe, the driver gave " + renderer);
-    // A user who asked for a GPU is told when there is none, not given llvmpipe in silence.
-    if (options.device == Device::gpu && (renderer.find("llvmpipe") != std::string::npos ||
-                                          renderer.find("softpipe") != std::string::npos))
-      return Expected<Done>::failure(
-          "asked for a GPU (--device gpu), but EGL gave the software "
-          "renderer " +
-          renderer +
-          ": no GPU is reachable here (--device software draws on "
-          "llvmpipe)");
+    Expected<std::unique_ptr<GlContext>> opened = GlContext::open(options.device);
+    if (!opened) return Expected<Done>::failure(opened.error());
+    gl = std::move(*opened);
+    renderer = gl->renderer();
+    const NoShaderCache no_cache;
     return build();
   }
 
@@ -279,8 +142,7 @@ struct Rasterizer::State {
     if (!projection.allFinite())
       return Expected<Readback>::failure(
           "the answer does not fit float32 (an entry beyond its range or not finite)");
-    if (!eglMakeCurrent(s.display, EGL_NO_SURFACE, EGL_NO_SURFACE, s.context))
-      return Expected<Readback>::failure(egl_error("eglMakeCurrent"));
+    if (std::string error; !s.gl->make_current(&error)) return Expected<Readback>::failure(error);
     if (const Expected<Done> ready = s.prepare(size, buffer); !ready)
       return Expected<Readback>::failure(ready.error());
     glViewport(0, 0, size, size);

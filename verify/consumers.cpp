@@ -10,6 +10,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include "batches.h"
 #include "failure_database.h"
@@ -17,10 +18,12 @@
 #include "oblique/client/consumer_program.h"
 #include "oblique/mistakes/consumer_mistakes.h"
 #include "oblique/oblique.h"
+#include "oblique/oracle/consumer_wire.h"
 #include "oblique/protocol/names.h"
 #include "oblique/protocol/shell_text.h"
 #include "oblique/report/counterexample_report.h"
 #include "oblique/report/report_files.h"
+#include "oblique/shader/shader_runner.h"
 #include "reporter.h"
 
 namespace oblique::verify {
@@ -55,18 +58,173 @@ std::string summary(const std::map<std::string, long>& counts) {
   return counts_text(counts);
 }
 
+/// What answers a run's requests: a program over the protocol (ConsumerProgram), or a shader on
+/// the GPU path. Both give a Consumers for one-at-a-time rounds (replay, shrinking) and answer a
+/// batch of asks; a request without an answer to judge throws (or returns) a Failure.
+template <class T>
+class Answerer {
+ public:
+  using Batch = typename ConsumerProgram<T>::Batch;
+  virtual ~Answerer() = default;
+  virtual Consumers<T> consumers(const std::vector<ConsumerKind>& kinds,
+                                 const std::string& name) = 0;
+  virtual Batch answer(const std::vector<const oracle::ConsumerAsk<T>*>& asks) = 0;
+  virtual const std::string& last_request() const = 0;
+  virtual const std::string& last_answer() const = 0;
+  virtual void stop() {}
+  /// The lines beyond one answer per request (a program's count check); none for a shader.
+  virtual std::vector<std::string> finish() { return {}; }
+  virtual long answered() const = 0;
+};
+
+template <class T>
+class ProgramAnswerer final : public Answerer<T> {
+ public:
+  using typename Answerer<T>::Batch;
+  ProgramAnswerer(const std::string& command, std::chrono::milliseconds timeout)
+      : program_(command, timeout) {}
+  Consumers<T> consumers(const std::vector<ConsumerKind>& kinds, const std::string& name) override {
+    return program_.consumers(kinds, name);
+  }
+  Batch answer(const std::vector<const oracle::ConsumerAsk<T>*>& asks) override {
+    return program_.answer(asks);
+  }
+  const std::string& last_request() const override { return program_.last_request(); }
+  const std::string& last_answer() const override { return program_.last_answer(); }
+  void stop() override { program_.stop(); }
+  std::vector<std::string> finish() override { return program_.finish(); }
+  long answered() const override { return program_.answered(); }
+
+ private:
+  ConsumerProgram<T> program_;
+};
+
+/// A shader's answer as the protocol's answer line would carry it.
+std::string shader_answer_line(ConsumerKind kind, const std::vector<float>& numbers) {
+  std::string line = "{\"" + std::string(protocol::consumer_answer_field(kind)) + "\": ";
+  if (kind == ConsumerKind::linear_depth) return line + protocol::json_number(numbers.at(0)) + "}";
+  line += "[";
+  for (std::size_t i = 0; i < numbers.size(); ++i)
+    line += (i ? ", " : "") + protocol::json_number(numbers[i]);
+  return line + "]}";
+}
+
+/// --shader: the user's GLSL or HLSL function on the GPU path (oblique/shader). Its exchanges are
+/// shown as the protocol's request and answer lines, so reports read alike.
+class ShaderAnswerer final : public Answerer<float> {
+ public:
+  explicit ShaderAnswerer(std::unique_ptr<shader::ShaderRunner> runner)
+      : runner_(std::move(runner)) {}
+  Consumers<float> consumers(const std::vector<ConsumerKind>&, const std::string& name) override {
+    Consumers<float> c = shader::shader_consumers(*runner_, name);
+    if (c.view_position) c.view_position = recorded(c.view_position, ConsumerKind::view_position);
+    if (c.linear_depth) c.linear_depth = recorded(c.linear_depth, ConsumerKind::linear_depth);
+    return c;
+  }
+  Batch answer(const std::vector<const oracle::ConsumerAsk<float>*>& asks) override {
+    Batch out;
+    Expected<std::vector<std::vector<float>>> answers = shader::answer_asks(*runner_, asks);
+    if (!answers) {
+      Failure f;
+      f.cause = Failure::Cause::not_an_answer;
+      f.what = "the shader could not be run: " + answers.error();
+      f.request = asks.empty() ? "" : asks.back()->request().line();
+      out.failure = f;
+      return out;
+    }
+    for (std::size_t i = 0; i < asks.size(); ++i) {
+      out.requests.push_back(asks[i]->request().line());
+      out.lines.push_back(shader_answer_line(asks[i]->kind, (*answers)[i]));
+      out.numbers.push_back((*answers)[i]);
+    }
+    answered_ += static_cast<long>(asks.size());
+    return out;
+  }
+  const std::string& last_request() const override { return last_request_; }
+  const std::string& last_answer() const override { return last_answer_; }
+  long answered() const override { return answered_; }
+
+ private:
+  template <class F>
+  F recorded(F inner, ConsumerKind kind) {
+    return [this, inner, kind](const oracle::DepthSample<float>& s) {
+      last_request_ = oracle::wire::depth_request(kind, s).line();
+      try {
+        const auto answer = inner(s);
+        last_answer_ = shader_answer_line(kind, numbers(answer));
+        ++answered_;
+        return answer;
+      } catch (const std::runtime_error& e) {
+        Failure f;
+        f.cause = Failure::Cause::not_an_answer;
+        f.what = std::string("the shader could not be run: ") + e.what();
+        f.request = last_request_;
+        throw f;
+      }
+    };
+  }
+  static std::vector<float> numbers(float x) { return {x}; }
+  static std::vector<float> numbers(const Vector3<float>& v) { return {v.x(), v.y(), v.z()}; }
+  std::unique_ptr<shader::ShaderRunner> runner_;
+  std::string last_request_, last_answer_;
+  long answered_ = 0;
+};
+
+/// How the replay commands name what answers: --impl COMMAND, or --shader SPEC (and its
+/// language where given).
+std::string answerer_flags(const VerifyOptions& options) {
+  if (options.shader.empty()) return "--impl " + shell_quote(options.command);
+  std::string flags = "--shader " + shell_quote(options.shader);
+  if (options.shader_language)
+    flags += " --shader-language " + std::string(shader::language_name(*options.shader_language));
+  if (options.shader_device != "software") flags += " --device " + options.shader_device;
+  return flags;
+}
+
+/// The run's answerer: the program, or with --shader the shader's functions (float only); none,
+/// said on `err`, where the shader cannot be run.
+template <class T>
+std::unique_ptr<Answerer<T>> answerer_for(const VerifyOptions& options,
+                                          const std::vector<ConsumerKind>& kinds,
+                                          std::ostream& err) {
+  if (options.shader.empty())
+    return std::make_unique<ProgramAnswerer<T>>(
+        options.command,
+        std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000)));
+  if constexpr (std::is_same_v<T, float>) {
+    const auto functions = shader::shader_functions(options.shader, kinds, options.shader_language);
+    if (!functions) {
+      err << "oblique verify: --shader " << options.shader << ": " << functions.error() << "\n";
+      return nullptr;
+    }
+    shader::RunnerOptions run;
+    run.device = options.shader_device == "gpu" ? raster::Device::gpu : raster::Device::software;
+    run.timeout_seconds = std::max(options.request_timeout_seconds, 1.0);
+    auto runner = shader::ShaderRunner::open(*functions, run);
+    if (!runner) {
+      err << "oblique verify: " << runner.error() << "\n";  // it names the file
+      return nullptr;
+    }
+    if (options.progress)
+      err << "oblique verify: the shader runs on " << (*runner)->renderer() << "\n";
+    return std::make_unique<ShaderAnswerer>(std::move(*runner));
+  } else {
+    err << "oblique verify: a shader computes in float: --shader runs with --precision float\n";
+    return nullptr;
+  }
+}
+
 template <class T>
 class ConsumerRun {
  public:
-  ConsumerRun(const VerifyOptions& options, const ConsumerMode& mode, std::ostream& out,
-              std::ostream& err)
+  ConsumerRun(const VerifyOptions& options, const ConsumerMode& mode,
+              std::unique_ptr<Answerer<T>> answerer, std::ostream& out, std::ostream& err)
       : options_(options),
         kinds_(mode.kinds),
         out_(out),
         err_(err),
-        program_(options.command, std::chrono::milliseconds(
-                                      static_cast<long>(options.request_timeout_seconds * 1000))),
-        asked_(program_.consumers(kinds_, options.command)) {
+        program_(std::move(answerer)),
+        asked_(program_->consumers(kinds_, options.command)) {
     asked_.mirror_design = mode.mirror_design;
   }
 
@@ -90,7 +248,7 @@ class ConsumerRun {
     const oracle::Pick pick = recorded_picks(round.picks, next, taken);
     const oracle::Settle settle = [&](const oracle::ConsumerFinding& f, const std::string& inputs,
                                       bool about) {
-      tally(f, round, 0, inputs, about, program_.last_request(), program_.last_answer());
+      tally(f, round, 0, inputs, about, program_->last_request(), program_->last_answer());
     };
     try {
       oracle::consumer_round<T>(round.c.matrix, round.c.plane, round.c.convention, asked_, pick,
@@ -114,7 +272,7 @@ class ConsumerRun {
                                       bool about) {
       if (found || !f.judged || f.holds || f.check != check) return;
       found =
-          Caught<T>{f, inputs,      program_.last_request(), program_.last_answer(), about, round,
+          Caught<T>{f, inputs,      program_->last_request(), program_->last_answer(), about, round,
                     0, std::nullopt};
     };
     try {
@@ -271,7 +429,7 @@ class ConsumerRun {
       p.first_ask = asks.size();
       for (const auto& a : p.asks) asks.push_back(&a);
     }
-    const typename ConsumerProgram<T>::Batch answers = program_.answer(asks);
+    const typename Answerer<T>::Batch answers = program_->answer(asks);
     in_slices(
         batch.size(), options_.threads,
         [&](std::size_t from, std::size_t to) {
@@ -318,8 +476,9 @@ class ConsumerRun {
     auto last_progress = start;
     long index = 0;
     std::map<std::string, long> conventions, families;
-    // Batches grow from one round (a first violation or crash is met at once) to kMaxBatch.
-    constexpr long kMaxBatch = 64;
+    // Batches grow from one round (a first violation or crash is met at once) to kMaxBatch
+    // (a GPU dispatch takes thousands at once).
+    const long kMaxBatch = options_.shader.empty() ? 64 : 4096;
     long batch_size = 1;
     while (std::chrono::steady_clock::now() < deadline &&
            (options_.cases == 0 || index < options_.cases)) {
@@ -329,7 +488,7 @@ class ConsumerRun {
       std::vector<Planned> batch = plan(cases, random, index, count);
       long settled = 0;
       if (!play_batch(batch, index, settled)) {
-        program_.stop();
+        program_->stop();
         return Verdict::error;
       }
       for (long r = 0; r < settled; ++r) {
@@ -417,7 +576,7 @@ class ConsumerRun {
   /// --replay: the report's round again; prints every violation.
   Verdict replay(const Round<T>& round, const std::string& report_path) {
     if (!play(round)) {
-      program_.stop();
+      program_->stop();
       return Verdict::error;
     }
     if (!counted()) return Verdict::error;
@@ -454,11 +613,11 @@ class ConsumerRun {
   /// one answer per request had its answers judged against other requests, so neither a pass nor
   /// a violation stands; says so on err_ and returns false.
   bool counted() {
-    const std::vector<std::string> extra = program_.finish();
+    const std::vector<std::string> extra = program_->finish();
     if (extra.empty()) return true;
     err_
         << "oblique verify: protocol error: the program wrote lines beyond one answer per request ("
-        << program_.answered() << " answer lines read before)";
+        << program_->answered() << " answer lines read before)";
     if (caught_ && !caught_->lost)
       err_ << "; the answers were out of step with the requests, so the "
            << oracle::consumer_check_name(caught_->finding.check)
@@ -501,6 +660,8 @@ class ConsumerRun {
            protocol::json_string(oracle::mirror_design_name(asked_.mirror_design)) +
            ", \"request\": " + protocol::json_string(c.request) +
            ", \"answer\": " + protocol::json_string(c.answer) +
+           (options_.shader.empty() ? std::string()
+                                    : ", \"shader\": " + protocol::json_string(options_.shader)) +
            ", \"seed\": " + std::to_string(options_.seed) +
            ", \"round\": " + std::to_string(c.index) + "}\n";
   }
@@ -539,9 +700,11 @@ class ConsumerRun {
                                                c.round.c.convention, c.finding, options_.command);
     md += "## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
           "\n# this round again, judged (exit 0 holds, 1 violated)\n" + options_.self +
-          " verify --replay " + shell_quote(json_path) + " --impl " +
-          shell_quote(options_.command) + "\n# the one request\necho " + shell_quote(c.request) +
-          " | " + options_.command + "\n```\n";
+          " verify --replay " + shell_quote(json_path) + " " + answerer_flags(options_) +
+          (options_.shader.empty()
+               ? "\n# the one request\necho " + shell_quote(c.request) + " | " + options_.command
+               : std::string()) +
+          "\n```\n";
     files.open(stem + ".md") << md;
     files.open(stem + ".json") << report_json(check);
     err_ << "oblique verify: "
@@ -556,7 +719,7 @@ class ConsumerRun {
   std::vector<ConsumerKind> kinds_;
   std::ostream& out_;
   std::ostream& err_;
-  ConsumerProgram<T> program_;
+  std::unique_ptr<Answerer<T>> program_;
   Consumers<T> asked_;
   std::map<std::string, long> judged_, left_out_;
   /// Left out by property, and the families with an answer judged.
@@ -617,7 +780,10 @@ Verdict replay_in(const VerifyOptions& options, const ReplayMode& mode,
     err << "oblique verify: --replay " << mode.report << ": " << error << "\n";
     return Verdict::error;
   }
-  return ConsumerRun<T>(options, replayed, out, err).replay(std::move(round), mode.report);
+  std::unique_ptr<Answerer<T>> answerer = answerer_for<T>(options, kinds, err);
+  if (!answerer) return Verdict::error;
+  return ConsumerRun<T>(options, replayed, std::move(answerer), out, err)
+      .replay(std::move(round), mode.report);
 }
 
 }  // namespace
@@ -641,8 +807,16 @@ Verdict verify_consumers(const VerifyOptions& options, const ConsumerMode& mode,
     return Verdict::error;
   }
   switch (options.precision) {
-    case protocol::Precision::float32: return ConsumerRun<float>(options, mode, out, err).run();
-    case protocol::Precision::float64: return ConsumerRun<double>(options, mode, out, err).run();
+    case protocol::Precision::float32: {
+      std::unique_ptr<Answerer<float>> answerer = answerer_for<float>(options, mode.kinds, err);
+      if (!answerer) return Verdict::error;
+      return ConsumerRun<float>(options, mode, std::move(answerer), out, err).run();
+    }
+    case protocol::Precision::float64: {
+      std::unique_ptr<Answerer<double>> answerer = answerer_for<double>(options, mode.kinds, err);
+      if (!answerer) return Verdict::error;
+      return ConsumerRun<double>(options, mode, std::move(answerer), out, err).run();
+    }
     case protocol::Precision::long_double: break;
   }
   err << "oblique verify: --precision is float or double\n";

@@ -381,8 +381,23 @@ Verdict run_verify(const VerifyOptions& given, const Mode& mode, std::ostream& o
                    std::ostream& err) {
   ::signal(SIGPIPE, SIG_IGN);  // a child that exits must not take us with it
   VerifyOptions options = given;
+  if (!options.shader.empty()) {
+    const bool consumers =
+        std::holds_alternative<ConsumerMode>(mode) || std::holds_alternative<ReplayMode>(mode);
+    if (!consumers) {
+      err << "oblique verify: --shader runs depth functions: it needs --consumers view_position, "
+             "linear_depth (or --replay of a consumer report)\n";
+      return Verdict::error;
+    }
+    if (!options.command.empty() && options.command != options.shader) {
+      err << "oblique verify: --shader and --impl each name what answers: give one\n";
+      return Verdict::error;
+    }
+    options.command = options.shader;  // the name reports give it
+  }
   if (options.command.empty()) {
-    err << "oblique verify: --impl needs a command\n";
+    err << "oblique verify: --impl needs a command (or --shader FILE[:FUNCTION] for depth "
+           "functions in GLSL or HLSL)\n";
     return Verdict::error;
   }
   // Range checks: durations must fit the clock's arithmetic (and NaN is no duration).

@@ -18,6 +18,7 @@ namespace oblique::mistakes {
 enum class ConsumerMistake {
   reconstructs_with_original,     ///< view_position: the unmodified matrix's inverse on M' depth
   ndc_depth_of_other_convention,  ///< view_position: z = 2 d - 1 on [0, 1] depth, z = d on gl
+  reads_reversed_as_forward,      ///< view_position: 1 - d on reversed Z before M'^-1
   linearises_with_near_far,       ///< linear_depth: n f / (f - d (f - n)), n, f off M ("zparams")
   gl_planes_on_any_matrix,        ///< culling_planes: OpenGL's near and far rows on any matrix
   planes_of_transpose,            ///< culling_planes: the rows of M^T (the layout misread)
@@ -30,12 +31,12 @@ enum class ConsumerMistake {
 };
 
 inline constexpr ConsumerMistake all_consumer_mistakes[] = {
-    ConsumerMistake::reconstructs_with_original,  ConsumerMistake::ndc_depth_of_other_convention,
-    ConsumerMistake::linearises_with_near_far,    ConsumerMistake::gl_planes_on_any_matrix,
-    ConsumerMistake::planes_of_transpose,         ConsumerMistake::plane_without_translation,
-    ConsumerMistake::plane_flipped_for_mirrors,   ConsumerMistake::plane_through_view,
-    ConsumerMistake::mirror_by_reflected_look_at, ConsumerMistake::portal_without_turn,
-    ConsumerMistake::corners_of_oblique_matrix,
+    ConsumerMistake::reconstructs_with_original, ConsumerMistake::ndc_depth_of_other_convention,
+    ConsumerMistake::reads_reversed_as_forward,  ConsumerMistake::linearises_with_near_far,
+    ConsumerMistake::gl_planes_on_any_matrix,    ConsumerMistake::planes_of_transpose,
+    ConsumerMistake::plane_without_translation,  ConsumerMistake::plane_flipped_for_mirrors,
+    ConsumerMistake::plane_through_view,         ConsumerMistake::mirror_by_reflected_look_at,
+    ConsumerMistake::portal_without_turn,        ConsumerMistake::corners_of_oblique_matrix,
 };
 
 struct ConsumerMistakeEntry {

@@ -117,17 +117,24 @@ std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const M
                                            Convention convention, DepthBuffer buffer,
                                            const Vector4<T>& point);
 
+/// The arithmetic a consumer computes in, which its bounds are derived from: T's IEEE arithmetic
+/// (every operation correctly rounded), or a GPU's in T (a shader: the shading language's stated
+/// precision per operation, tolerance.h kGpuLostBits; the depth judges only).
+enum class ConsumerArithmetic { ieee, gpu };
+
 /// `answer`, the view position the consumer reconstructed from `sample`, against the segment of
 /// the pixel ray whose window depths the stored value stands for (fixed24: k +- 1/2 over 2^24 - 1;
-/// float32: the half-ulps around it; clamped to [0, 1]), widened by the solve's rounding. Not
-/// judged where that segment reaches infinity.
+/// float32: the half-ulps around it; clamped to [0, 1]), widened by the solve's rounding in
+/// `arithmetic`. Not judged where that segment reaches infinity.
 template <class T>
-ConsumerFinding judge_view_position(const DepthSample<T>& sample, const Vector3<T>& answer);
+ConsumerFinding judge_view_position(const DepthSample<T>& sample, const Vector3<T>& answer,
+                                    ConsumerArithmetic arithmetic = ConsumerArithmetic::ieee);
 
 /// `answer`, the linear depth (view_axis_sign(original) z) the consumer reconstructed from
 /// `sample`, as judge_view_position() judges the point's z.
 template <class T>
-ConsumerFinding judge_linear_depth(const DepthSample<T>& sample, T answer);
+ConsumerFinding judge_linear_depth(const DepthSample<T>& sample, T answer,
+                                   ConsumerArithmetic arithmetic = ConsumerArithmetic::ieee);
 
 /// The culling planes the consumer extracted from `oblique` (the answer for m, c, convention in T),
 /// each keeping P . x >= 0: culling_keeps_visible (every vertex of the kept region of m and c,
@@ -264,6 +271,9 @@ struct Consumers {
   /// camera's round asks none of them; runs count it refused by accepts, never judged, and a
   /// family the contract claims with every case refused fails the run, saying so.
   std::function<bool(Convention convention, const Matrix4<T>& projection)> accepts;
+  /// The arithmetic view_position and linear_depth compute in (their bounds): T's IEEE one, or a
+  /// GPU's (a shader run by oblique/shader).
+  oracle::ConsumerArithmetic arithmetic = oracle::ConsumerArithmetic::ieee;
 };
 
 }  // namespace oblique
@@ -313,7 +323,8 @@ void judge_explained(const ConsumerAsk<T>& ask, const std::vector<T>& answer, co
 /// consumer_round()'s requests, planned and not yet asked: its picks drawn in the same order, the
 /// findings left out before any asking (refused by accepts, no oblique matrix for M and C, no
 /// depth sample) given to `settle` now, and the requests returned in the order the round asks
-/// them. Only which functions `consumers` gives, its accepts, mirror design and name are read.
+/// them. Only which functions `consumers` gives, its accepts, mirror design, arithmetic and name
+/// are read.
 template <class T>
 std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>& c,
                                           Convention convention, const Consumers<T>& consumers,

@@ -99,6 +99,21 @@ constexpr double kAccurateUlps = 2;
 //    gamma(kCameraPlaneRoundings) |W^-T| G^T |W^-T| |P| (G as above, for W), and kPlaneRoundings
 //    more for a plane the implementation normalises.
 constexpr int kConsumerSolveRoundings = kSolveRoundings + 4 + 2;
+
+// A consumer run on a GPU (a user's shader, oblique/shader): the shading language states each
+// operation's precision, not IEEE's correct rounding everywhere (GLSL 4.50, 4.7.1; HLSL through
+// SPIR-V the same on one driver):
+//  - a + b, a - b, a * b, conversions: correctly rounded (u); a * b + c may be fused (one
+//    rounding instead of two: no larger error);
+//  - a / b, 1 / b: 2.5 ulp for |b| in [2^-126, 2^126]; an ulp of x is at most 2u |x|, so 5u;
+//  - inverse(), determinant(): inherited from the operations they are made of (cofactors and a
+//    quotient); inversesqrt: 2 ulp (4u), sqrt: inherited from it and a quotient;
+//  - subnormal inputs and results may be flushed to 0.
+// So every operation a depth reconstruction does errs by at most 5u < 2^3 u relatively, and its
+// bounds are the CPU's with u replaced by 2^(kGpuLostBits - p): the arithmetic of a type with
+// kGpuLostBits fewer significand bits. The GPU path leaves out what flushing to zero can change
+// (a nonzero input below the smallest normal float) and divisors outside the stated range.
+constexpr int kGpuLostBits = 3;
 constexpr int kPlaneRoundings = 8;
 /// An inverse by cofactors: each cofactor a sum of six products of three (2 roundings each,
 /// then 5 in a sum taken in order: 7); the determinant from a row and its cofactors (7, 1 for the

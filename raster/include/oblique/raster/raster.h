@@ -19,15 +19,11 @@
 
 #include "oblique/depth_convention.h"
 #include "oblique/expected.h"
+#include "oblique/raster/gl_context.h"
 #include "oblique/references/depth_reconstruction.h"
 #include "oblique/util/enum_names.h"
 
 namespace oblique::raster {
-
-enum class Device {
-  software,  ///< Mesa's llvmpipe (EGL_MESA_device_software): the same on every machine
-  gpu,       ///< whatever the machine's EGL driver gives (its renderer is said)
-};
 
 /// A verdict about the answer, or none: a self-check of the renderer tripped.
 enum class Outcome { pass, fail, inconclusive };

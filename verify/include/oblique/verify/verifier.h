@@ -12,6 +12,7 @@
 
 #include "oblique/cases/contract.h"
 #include "oblique/oracle/consumers.h"
+#include "oblique/shader/shader_function.h"
 #include "oblique/protocol/consumer_messages.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/references/depth_reconstruction.h"
@@ -26,6 +27,12 @@ int default_threads();
 /// reports go.
 struct VerifyOptions {
   std::string command;  ///< the implementation, run under /bin/sh -c
+  /// --shader FILE[:FUNCTION]: with --consumers view_position, linear_depth, the user's GLSL or
+  /// HLSL function answers them on the GPU path (oblique/shader; float, judged with the GPU's
+  /// arithmetic) instead of a program; `command` then only names it in reports.
+  std::string shader;
+  std::optional<shader::Language> shader_language;  ///< none: by the file's extension
+  std::string shader_device = "software";           ///< software (llvmpipe) or gpu
   /// What the implementation promises, and so which inputs it is sent and how its answers are
   /// judged (the summary says what was left out). Its empty conventions mean gl (the protocol's
   /// default), its unset statuses any_refusal (a program need not name our refusals).

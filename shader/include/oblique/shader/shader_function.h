@@ -1,0 +1,113 @@
+// A user's depth function in a shader file (GLSL or HLSL) and the wrapper convention that binds
+// the harness's inputs to its parameters by their names (docs/shaders.md): a function
+//   vec3 view_position(mat4 inverse_projection, vec2 ndc, float depth)
+// is given M'^-1, the pixel's NDC x and y and the depth as the shader samples it. Each name
+// stands for one input, as engines name it (an inverse projection set on the CPU; _ZBufferParams
+// computed from near and far; a projection-params vec4), so most users write no wrapper.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "oblique/expected.h"
+#include "oblique/protocol/consumer_messages.h"
+#include "oblique/util/enum_names.h"
+
+namespace oblique::shader {
+
+enum class Language { glsl, hlsl };
+
+inline constexpr EnumName<Language> language_names[] = {
+    {Language::glsl, "glsl"},
+    {Language::hlsl, "hlsl"},
+};
+constexpr std::string_view language_name(Language l) noexcept {
+  return name_in(language_names, l);
+}
+constexpr std::optional<Language> parse_language(std::string_view name) noexcept {
+  return value_in(language_names, name);
+}
+
+/// What the harness gives a parameter (its name says which; the accepted names per input are
+/// input_names()).
+enum class Input {
+  projection,                 ///< mat4: M', the matrix the depth was rendered with
+  inverse_projection,         ///< mat4: M'^-1, set on the CPU (computed in double, rounded)
+  camera_projection,          ///< mat4: M, the camera's matrix before the oblique modification
+  camera_inverse_projection,  ///< mat4: M^-1
+  zparams,                    ///< vec4: Unity's _ZBufferParams from M's near and far
+  projection_params,          ///< vec4: (1 / M11, 1 / M22, M13, M23) of M
+  ndc,                        ///< vec2: the pixel's NDC x and y
+  uv,                         ///< vec2: the pixel's texture coordinate, (ndc + 1) / 2
+  depth,                      ///< float: the window depth as the shader samples it
+  near_plane,                 ///< float: M's near distance
+  far_plane,                  ///< float: M's far distance (inf for an infinite M)
+  view_axis,                  ///< float: -1 for a camera looking down -z, +1 down +z
+  convention,                 ///< int: OBLIQUE_CONVENTION (0 gl, 1 zero_one, 2 reversed_z)
+};
+
+/// The names a parameter may have for `input` (matched ignoring case and underscores), the
+/// first the documented one.
+const std::vector<std::string_view>& input_names(Input input);
+std::string_view input_name(Input input);
+/// Whether `input` is read off M as a perspective camera (near, far, zparams, projection params):
+/// a function that takes one is asked only about perspective cameras looking along z.
+bool needs_perspective_camera(Input input);
+
+struct Parameter {
+  std::string type;  ///< as written (vec4, float4, ...)
+  std::string name;
+  Input input = Input::depth;
+};
+
+/// The function found in the user's file and its parameters bound.
+struct Signature {
+  std::string return_type;
+  std::string name;
+  std::vector<Parameter> parameters;
+  int line = 0;  ///< where it is defined, from 1
+};
+
+/// Finds the definition of `function` in `source` (comments skipped) and binds each parameter by
+/// its name and type for a function of `kind` (view_position returns vec3 / float3, linear_depth
+/// float). The error says what is wrong in the user's words: no such function (naming the ones
+/// found), more than one, a return type or a parameter's type that does not fit, a parameter
+/// name the convention does not know (listing the names it does).
+Expected<Signature> find_signature(const std::string& source, const std::string& function,
+                                   Language language, protocol::ConsumerKind kind);
+
+/// A depth function to run: the file, the function's name, its language and the request kind it
+/// answers.
+struct ShaderFunction {
+  std::string path;
+  std::string function;
+  Language language = Language::glsl;
+  protocol::ConsumerKind kind = protocol::ConsumerKind::view_position;
+};
+
+/// The functions `--shader FILE[:FUNCTION]` names for `kinds` (view_position, linear_depth):
+/// FILE:FUNCTION answers the one kind given; FILE alone has a function named after each kind.
+/// The language is `language` when given, else the file's extension's (.hlsl, .fx: HLSL; else
+/// GLSL). The error says why not (another kind than the depth ones, a function named for
+/// several kinds).
+Expected<std::vector<ShaderFunction>> shader_functions(
+    const std::string& spec, const std::vector<protocol::ConsumerKind>& kinds,
+    std::optional<Language> language);
+
+/// The compute shader that runs `signature` of the user's `source` on a batch of requests, in
+/// the user's language: GLSL 4.50 (or HLSL for glslang), the user's file included with line
+/// directives so that a compiler's message names the user's file and line. `convention` is
+/// defined as OBLIQUE_CONVENTION.
+std::string wrapped_source(const std::string& source, const std::string& path,
+                           const Signature& signature, Language language, int convention);
+
+/// The first line number of the GLSL wrapper's own code: a compiler's line below it is the
+/// user's file's.
+inline constexpr int kWrapperFirstLine = 100001;
+
+/// A request's inputs as the wrapped shader reads them: kRequestVectors vec4 per request.
+inline constexpr int kRequestVectors = 20;
+
+}  // namespace oblique::shader

@@ -1,0 +1,345 @@
+// The wrapper convention (shader_function.h): a user's function found in its file, its
+// parameters bound by name, and the compute shader that runs it on a batch.
+#include "oblique/shader/shader_function.h"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <regex>
+#include <sstream>
+
+namespace oblique::shader {
+
+namespace {
+
+using protocol::ConsumerKind;
+
+struct InputEntry {
+  Input input;
+  const char* glsl_type;
+  std::vector<std::string_view> names;
+};
+
+const std::vector<InputEntry>& inputs() {
+  static const std::vector<InputEntry> table = {
+      {Input::projection, "mat4", {"projection", "proj", "projection_matrix", "proj_matrix"}},
+      {Input::inverse_projection,
+       "mat4",
+       {"inverse_projection", "inv_projection", "inv_proj", "inverse_proj", "inv_proj_matrix",
+        "inverse_projection_matrix", "clip_to_view"}},
+      {Input::camera_projection,
+       "mat4",
+       {"camera_projection", "camera_proj", "original_projection", "original"}},
+      {Input::camera_inverse_projection,
+       "mat4",
+       {"camera_inverse_projection", "camera_inv_projection", "camera_inv_proj",
+        "inv_camera_projection"}},
+      {Input::zparams, "vec4", {"zparams", "zbuffer_params", "z_buffer_params"}},
+      {Input::projection_params, "vec4", {"projection_params", "proj_params"}},
+      {Input::ndc, "vec2", {"ndc", "ndc_xy", "clip_xy"}},
+      {Input::uv, "vec2", {"uv", "texcoord", "screen_uv"}},
+      {Input::depth, "float", {"depth", "raw_depth", "device_depth", "depth_sample", "d"}},
+      {Input::near_plane, "float", {"near", "near_plane", "z_near"}},
+      {Input::far_plane, "float", {"far", "far_plane", "z_far"}},
+      {Input::view_axis, "float", {"view_axis", "axis"}},
+      {Input::convention, "int", {"convention"}},
+  };
+  return table;
+}
+
+const InputEntry& entry(Input input) {
+  for (const InputEntry& e : inputs())
+    if (e.input == input) return e;
+  return inputs().front();
+}
+
+std::string folded(std::string_view name) {
+  std::string out;
+  for (const char ch : name)
+    if (ch != '_') out += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return out;
+}
+
+/// An HLSL type in GLSL's words (float4x4 -> mat4, float3 -> vec3); GLSL's as written.
+std::string glsl_type(const std::string& type) {
+  static const std::map<std::string, std::string> hlsl = {{"float4x4", "mat4"}, {"float4", "vec4"},
+                                                          {"float3", "vec3"},   {"float2", "vec2"},
+                                                          {"float", "float"},   {"int", "int"}};
+  const auto it = hlsl.find(type);
+  return it == hlsl.end() ? type : it->second;
+}
+
+/// The type as the user's language writes it.
+std::string type_in(const std::string& glsl, Language language) {
+  if (language == Language::glsl) return glsl;
+  static const std::map<std::string, std::string> names = {{"mat4", "float4x4"}, {"vec4", "float4"},
+                                                           {"vec3", "float3"},   {"vec2", "float2"},
+                                                           {"float", "float"},   {"int", "int"}};
+  return names.at(glsl);
+}
+
+/// The source with comments replaced by spaces (new lines kept, so lines still count).
+std::string without_comments(const std::string& s) {
+  std::string out = s;
+  for (std::size_t i = 0; i + 1 < out.size(); ++i) {
+    if (out[i] == '/' && out[i + 1] == '/') {
+      for (; i < out.size() && out[i] != '\n'; ++i) out[i] = ' ';
+    } else if (out[i] == '/' && out[i + 1] == '*') {
+      const std::size_t end = out.find("*/", i + 2);
+      const std::size_t stop = end == std::string::npos ? out.size() : end + 2;
+      for (; i < stop; ++i)
+        if (out[i] != '\n') out[i] = ' ';
+      --i;
+    }
+  }
+  return out;
+}
+
+std::string trimmed(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t\r\n");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t\r\n") - a + 1);
+}
+
+std::string names_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "none" : out;
+}
+
+std::string_view kind_return(ConsumerKind kind) {
+  return kind == ConsumerKind::view_position ? "vec3" : "float";
+}
+
+}  // namespace
+
+const std::vector<std::string_view>& input_names(Input input) {
+  return entry(input).names;
+}
+
+std::string_view input_name(Input input) {
+  return entry(input).names.front();
+}
+
+bool needs_perspective_camera(Input input) {
+  return input == Input::zparams || input == Input::projection_params ||
+         input == Input::near_plane || input == Input::far_plane;
+}
+
+Expected<Signature> find_signature(const std::string& source, const std::string& function,
+                                   Language language, ConsumerKind kind) {
+  using Found = Expected<Signature>;
+  const std::string text = without_comments(source);
+  // A definition: a return type, a name, parameters without parentheses, an HLSL semantic
+  // perhaps, and its body's brace.
+  static const std::regex definition(R"((\w+)\s+(\w+)\s*\(([^()]*)\)\s*(:\s*\w+\s*)?\{)");
+  std::vector<std::string> found_names;
+  std::vector<std::smatch> matches;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), definition);
+       it != std::sregex_iterator(); ++it) {
+    const std::string name = (*it)[2];
+    static const std::vector<std::string> keywords = {"if", "for", "while", "switch", "return"};
+    if (std::find(keywords.begin(), keywords.end(), name) != keywords.end()) continue;
+    if (name == function)
+      matches.push_back(*it);
+    else if (std::find(found_names.begin(), found_names.end(), name) == found_names.end())
+      found_names.push_back(name);
+  }
+  if (matches.empty())
+    return Found::failure("no function named " + function +
+                          " is defined (functions found: " + names_list(found_names) + ")");
+  if (matches.size() > 1)
+    return Found::failure("function " + function + " is defined " + std::to_string(matches.size()) +
+                          " times (overloads): name the one to run");
+  const std::smatch& m = matches.front();
+  Signature sig;
+  sig.name = function;
+  sig.return_type = m[1];
+  sig.line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + m.position(0), '\n'));
+  const std::string where = function + " (line " + std::to_string(sig.line) + ")";
+  if (glsl_type(sig.return_type) != kind_return(kind))
+    return Found::failure(where + " returns " + sig.return_type + "; a " +
+                          std::string(protocol::consumer_kind_name(kind)) + " function returns " +
+                          type_in(std::string(kind_return(kind)), language));
+  std::stringstream params(m[3].str());
+  for (std::string piece; std::getline(params, piece, ',');) {
+    piece = trimmed(piece.substr(0, piece.find(':')));  // an HLSL semantic
+    if (piece.empty() || piece == "void") continue;
+    std::vector<std::string> words;
+    std::stringstream w(piece);
+    for (std::string word; w >> word;) {
+      static const std::vector<std::string> qualifiers = {"in",   "const",   "highp",  "mediump",
+                                                          "lowp", "precise", "uniform"};
+      if (std::find(qualifiers.begin(), qualifiers.end(), word) == qualifiers.end())
+        words.push_back(word);
+    }
+    if (words.size() != 2)
+      return Found::failure(where + ": parameter \"" + piece +
+                            "\" is not a type and a name (out and inout parameters are not "
+                            "part of the convention: return the answer)");
+    Parameter p{words[0], words[1], Input::depth};
+    bool known = false;
+    for (const InputEntry& e : inputs()) {
+      for (const std::string_view n : e.names) {
+        if (known || folded(n) != folded(p.name)) continue;
+        p.input = e.input;
+        known = true;
+      }
+    }
+    if (!known) {
+      std::string vocabulary;
+      for (const InputEntry& e : inputs())
+        vocabulary += (vocabulary.empty() ? "" : "; ") + std::string(e.names.front()) + " (" +
+                      type_in(e.glsl_type, language) + ")";
+      return Found::failure(where + ": parameter " + p.name +
+                            " is not an input the harness knows; name each parameter for what it "
+                            "takes: " +
+                            vocabulary + " (docs/shaders.md lists the other names of each)");
+    }
+    if (glsl_type(p.type) != entry(p.input).glsl_type)
+      return Found::failure(where + ": parameter " + p.name + " is " + p.type + "; the " +
+                            std::string(input_name(p.input)) + " input is " +
+                            type_in(entry(p.input).glsl_type, language));
+    sig.parameters.push_back(p);
+  }
+  return sig;
+}
+
+Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
+                                                       const std::vector<ConsumerKind>& kinds,
+                                                       std::optional<Language> language) {
+  using Functions = Expected<std::vector<ShaderFunction>>;
+  for (const ConsumerKind k : kinds) {
+    if (k != ConsumerKind::view_position && k != ConsumerKind::linear_depth)
+      return Functions::failure("a shader answers view_position and linear_depth; " +
+                                std::string(protocol::consumer_kind_name(k)) +
+                                " is asked of a program (--impl)");
+  }
+  if (kinds.empty()) return Functions::failure("--consumers names no request kind");
+  std::string path = spec, function;
+  // FILE:FUNCTION, the function a C identifier (a path may hold ':' elsewhere).
+  if (const auto colon = spec.rfind(':'); colon != std::string::npos) {
+    const std::string tail = spec.substr(colon + 1);
+    const bool identifier = !tail.empty() && !std::isdigit(static_cast<unsigned char>(tail[0])) &&
+                            std::all_of(tail.begin(), tail.end(), [](char ch) {
+                              return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+                            });
+    if (identifier) {
+      path = spec.substr(0, colon);
+      function = tail;
+    }
+  }
+  if (path.empty()) return Functions::failure("--shader names no file");
+  if (!function.empty() && kinds.size() > 1)
+    return Functions::failure("--shader " + spec + " names one function for " +
+                              std::to_string(kinds.size()) +
+                              " request kinds; give the file alone, with a function named after "
+                              "each kind (view_position, linear_depth), or ask one kind");
+  Language lang = Language::glsl;
+  if (language) {
+    lang = *language;
+  } else {
+    const auto dot = path.rfind('.');
+    const std::string ext = dot == std::string::npos ? "" : folded(path.substr(dot));
+    if (ext == ".hlsl" || ext == ".fx" || ext == ".hlsli") lang = Language::hlsl;
+  }
+  std::vector<ShaderFunction> out;
+  for (const ConsumerKind k : kinds)
+    out.push_back({path, function.empty() ? std::string(protocol::consumer_kind_name(k)) : function,
+                   lang, k});
+  return out;
+}
+
+std::string wrapped_source(const std::string& source, const std::string& path,
+                           const Signature& signature, Language language, int convention) {
+  const bool glsl = language == Language::glsl;
+  std::string user = source;
+  if (glsl) {
+    // The user's own #version line is ours to give (compute, 4.50): kept as an empty line.
+    static const std::regex version(R"([ \t]*#[ \t]*version\b.*)");
+    for (std::size_t at = 0; at < user.size();) {
+      const std::size_t end = std::min(user.find('\n', at), user.size());
+      if (std::regex_match(user.begin() + static_cast<long>(at),
+                           user.begin() + static_cast<long>(end), version)) {
+        user.erase(at, end - at);
+        break;
+      }
+      at = end + 1;
+    }
+  }
+  std::string out = glsl ? "#version 450 core\n" : "";
+  out += "#define OBLIQUE_GL 0\n#define OBLIQUE_ZERO_ONE 1\n#define OBLIQUE_REVERSED_Z 2\n";
+  out += "#define OBLIQUE_CONVENTION " + std::to_string(convention) + "\n";
+  // The user's lines keep their numbers; the wrapper's start at kWrapperFirstLine (drivers do
+  // not all report #line's source-string number; shader_runner.cpp maps lines back). glslang's
+  // HLSL takes a file name.
+  std::string quoted;
+  for (const char ch : path) quoted += (ch == '"' || ch == '\\') ? '_' : ch;
+  out += glsl ? "#line 1\n" : "#line 1 \"" + quoted + "\"\n";
+  out += user;
+  out += glsl ? "\n#line " + std::to_string(kWrapperFirstLine) + "\n"
+              : "\n#line 1 \"oblique-wrapper\"\n";
+  auto argument = [&](Input input) -> std::string {
+    const std::string v = "oblique_requests[i].v";
+    switch (input) {
+      case Input::projection: return "oblique_matrix(i, 0)";
+      case Input::inverse_projection: return "oblique_matrix(i, 4)";
+      case Input::camera_projection: return "oblique_matrix(i, 8)";
+      case Input::camera_inverse_projection: return "oblique_matrix(i, 12)";
+      case Input::zparams: return v + "[16]";
+      case Input::projection_params: return v + "[17]";
+      case Input::ndc: return v + "[18].xy";
+      case Input::depth: return v + "[18].z";
+      case Input::view_axis: return v + "[18].w";
+      case Input::uv: return v + "[19].xy";
+      case Input::near_plane: return v + "[19].z";
+      case Input::far_plane: return v + "[19].w";
+      case Input::convention: return "OBLIQUE_CONVENTION";
+    }
+    return "0";
+  };
+  std::string call = signature.name + "(";
+  for (std::size_t k = 0; k < signature.parameters.size(); ++k)
+    call += (k ? ", " : "") + argument(signature.parameters[k].input);
+  call += ")";
+  const bool vector = glsl_type(signature.return_type) == "vec3";
+  const std::string n = std::to_string(kRequestVectors);
+  if (glsl) {
+    out +=
+        "layout(local_size_x = 64) in;\n"
+        "struct ObliqueRequest { vec4 v[" +
+        n +
+        "]; };\n"
+        "layout(std430, binding = 0) readonly buffer ObliqueRequests {\n"
+        "  ObliqueRequest oblique_requests[];\n};\n"
+        "layout(std430, binding = 1) writeonly buffer ObliqueAnswers {\n"
+        "  vec4 oblique_answers[];\n};\n"
+        "mat4 oblique_matrix(uint i, int at) {  // stored by rows\n"
+        "  return transpose(mat4(oblique_requests[i].v[at], oblique_requests[i].v[at + 1],\n"
+        "                        oblique_requests[i].v[at + 2], oblique_requests[i].v[at + 3]));\n"
+        "}\n"
+        "void main() {\n"
+        "  uint i = gl_GlobalInvocationID.x;\n";
+    out += vector ? "  oblique_answers[i] = vec4(" + call + ", 0.0);\n"
+                  : "  oblique_answers[i] = vec4(" + call + ", 0.0, 0.0, 0.0);\n";
+    out += "}\n";
+  } else {
+    out += "struct ObliqueRequest { float4 v[" + n +
+           "]; };\n"
+           "[[vk::binding(0)]] StructuredBuffer<ObliqueRequest> oblique_requests;\n"
+           "[[vk::binding(1)]] RWStructuredBuffer<float4> oblique_answers;\n"
+           "float4x4 oblique_matrix(uint i, int at) {  // stored by rows\n"
+           "  return float4x4(oblique_requests[i].v[at], oblique_requests[i].v[at + 1],\n"
+           "                  oblique_requests[i].v[at + 2], oblique_requests[i].v[at + 3]);\n"
+           "}\n"
+           "[numthreads(64, 1, 1)]\n"
+           "void oblique_main(uint3 id : SV_DispatchThreadID) {\n"
+           "  uint i = id.x;\n";
+    out += vector ? "  oblique_answers[i] = float4(" + call + ", 0.0);\n"
+                  : "  oblique_answers[i] = float4(" + call + ", 0.0, 0.0, 0.0);\n";
+    out += "}\n";
+  }
+  return out;
+}
+
+}  // namespace oblique::shader

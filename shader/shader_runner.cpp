@@ -1,0 +1,492 @@
+// The shader runner (shader_runner.h): the user's functions wrapped, compiled (HLSL through
+// glslang and spirv-cross) and run as compute shaders on the headless GL context.
+#define GL_GLEXT_PROTOTYPES 1
+#include "oblique/shader/shader_runner.h"
+
+#include <GL/glcorearb.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "oblique/depth_convention.h"
+#include "oblique/references/depth_reconstruction.h"
+
+namespace oblique::shader {
+
+namespace {
+
+using protocol::ConsumerKind;
+
+constexpr const char* kToolPackages = "glslang-tools spirv-cross";
+constexpr int kKinds = 2;  // view_position, linear_depth
+constexpr GLuint kGroupSize = 64;
+
+int kind_index(ConsumerKind kind) {
+  return kind == ConsumerKind::view_position ? 0 : 1;
+}
+
+std::string read_file(const std::string& path, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = "cannot read the shader " + path;
+    return "";
+  }
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string shell_quoted(const std::string& s) {
+  std::string out = "'";
+  for (const char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return out + "'";
+}
+
+/// Runs `command` (its standard error joined to its output); returns the exit status, -1 where
+/// it could not be started.
+int run_tool(const std::string& command, std::string& output) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+    output.append(buffer, n);
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+bool tool_present(const char* name) {
+  std::string out;
+  return run_tool(std::string("command -v ") + name, out) == 0;
+}
+
+/// A temporary folder, removed with everything in it when this goes.
+struct TempFolder {
+  std::filesystem::path path;
+  TempFolder() {
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "oblique-shader-XXXXXX").string();
+    if (mkdtemp(pattern.data())) path = pattern;
+  }
+  ~TempFolder() {
+    std::error_code ec;
+    if (!path.empty()) std::filesystem::remove_all(path, ec);
+  }
+};
+
+/// The HLSL wrapped source as GLSL 4.50: glslangValidator to SPIR-V, spirv-cross back to GLSL.
+/// glslang's messages name the user's file and line (the wrapper's #line), kept as they are.
+Expected<std::string> hlsl_as_glsl(const std::string& hlsl) {
+  for (const char* tool : {"glslangValidator", "spirv-cross"}) {
+    if (!tool_present(tool))
+      return Expected<std::string>::failure(std::string("HLSL needs ") + tool +
+                                            ", which is not installed: install " + kToolPackages +
+                                            " (bash scripts/setup.sh)");
+  }
+  const TempFolder folder;
+  if (folder.path.empty()) return Expected<std::string>::failure("cannot make a temporary folder");
+  const std::string in = (folder.path / "wrapped.hlsl").string();
+  const std::string spv = (folder.path / "wrapped.spv").string();
+  const std::string glsl = (folder.path / "wrapped.comp").string();
+  std::ofstream(in, std::ios::binary) << hlsl;
+  std::string log;
+  if (run_tool("glslangValidator -D -V -S comp -e oblique_main -o " + shell_quoted(spv) + " " +
+                   shell_quoted(in),
+               log) != 0) {
+    // glslang echoes the input's name first, and ends with its summary lines.
+    std::string kept;
+    std::istringstream lines(log);
+    for (std::string line; std::getline(lines, line);) {
+      if (line == in || line.empty() || line.rfind("SPIR-V is not generated", 0) == 0) continue;
+      kept += "  " + line + "\n";
+    }
+    return Expected<std::string>::failure("the HLSL did not compile (glslang):\n" + kept);
+  }
+  std::string cross_log;
+  if (run_tool("spirv-cross --version 450 --no-es " + shell_quoted(spv) + " --output " +
+                   shell_quoted(glsl),
+               cross_log) != 0)
+    return Expected<std::string>::failure("spirv-cross could not turn the SPIR-V into GLSL: " +
+                                          cross_log);
+  std::string error;
+  std::string out = read_file(glsl, error);
+  if (!error.empty()) return Expected<std::string>::failure(error);
+  return out;
+}
+
+/// A GL compiler's log with its lines named: the user's file's, or the wrapper's from
+/// kWrapperFirstLine (Mesa writes "0:12(5): error: ...", others "0(12) : error ...").
+std::string mapped_log(const std::string& log, const std::string& path) {
+  static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\): (.*)$)");
+  static const std::regex other(R"(^(\d+)\((\d+)\) ?: (.*)$)");
+  auto where = [&path](const std::string&, const std::string& line) {
+    const long n = std::strtol(line.c_str(), nullptr, 10);
+    if (n < kWrapperFirstLine) return path + ":" + line;
+    return "(oblique's wrapper, line " + std::to_string(n - kWrapperFirstLine + 1) + ")";
+  };
+  std::string out;
+  std::istringstream lines(log);
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch m;
+    if (std::regex_match(line, m, mesa))
+      line = where(m[1], m[2]) + ":" + m[3].str() + ": " + m[4].str();
+    else if (std::regex_match(line, m, other))
+      line = where(m[1], m[2]) + ": " + m[3].str();
+    if (!line.empty()) out += "  " + line + "\n";
+  }
+  return out;
+}
+
+/// The process's end where a dispatch outlives its time: said on standard error first.
+class Watchdog {
+ public:
+  Watchdog(double seconds, std::string what) : what_(std::move(what)) {
+    thread_ = std::thread([this, seconds] {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (cv_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return done_; }))
+        return;
+      std::fprintf(stderr,
+                   "oblique: %s did not finish within %g s (a loop that does not end?); a GPU "
+                   "dispatch cannot be cancelled, so the process stops here (exit status %d)\n",
+                   what_.c_str(), seconds, kHangExitStatus);
+      std::fflush(stderr);
+      std::_Exit(kHangExitStatus);
+    });
+  }
+  ~Watchdog() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+  }
+  Watchdog(const Watchdog&) = delete;
+  Watchdog& operator=(const Watchdog&) = delete;
+
+ private:
+  std::string what_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool done_ = false;
+  std::thread thread_;
+};
+
+}  // namespace
+
+std::array<float, kRequestVectors * 4> request_of(const oracle::DepthSample<float>& s) {
+  std::array<float, kRequestVectors * 4> out{};
+  const Eigen::Matrix4d projection = s.projection.cast<double>();
+  const Eigen::Matrix4d original = s.original.cast<double>();
+  const Eigen::Matrix4d matrices[4] = {projection, projection.inverse(), original,
+                                       original.inverse()};
+  for (int k = 0; k < 4; ++k)
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        out[static_cast<std::size_t>(16 * k + 4 * r + c)] = static_cast<float>(matrices[k](r, c));
+  // The camera's near and far distances along its axis (M^-1 at the near face's and the far
+  // face's centre), as an engine keeps them beside the matrix.
+  const int axis = view_axis_sign(s.original, s.convention);
+  const DepthRange range = clip_depth_range(s.convention);
+  const bool reversed = s.convention == Convention::reversed_z;
+  auto distance = [&](double ndc_z) {
+    const Eigen::Vector4d p = matrices[3] * Eigen::Vector4d(0, 0, ndc_z, 1);
+    return p.w() == 0 ? std::numeric_limits<double>::infinity() : axis * p.z() / p.w();
+  };
+  const double n = distance(reversed ? range.z_high : range.z_low);
+  const double f = distance(reversed ? range.z_low : range.z_high);
+  const bool infinite = !std::isfinite(f);
+  // Unity's _ZBufferParams: LinearEyeDepth(d) = 1 / (z d + w) on a window depth d.
+  double zp[4];
+  if (!reversed) {
+    zp[0] = infinite ? -std::numeric_limits<double>::infinity() : 1 - f / n;
+    zp[1] = infinite ? std::numeric_limits<double>::infinity() : f / n;
+    zp[2] = infinite ? -1 / n : zp[0] / f;
+    zp[3] = infinite ? 1 / n : zp[1] / f;
+  } else {
+    zp[0] = infinite ? std::numeric_limits<double>::infinity() : -1 + f / n;
+    zp[1] = 1;
+    zp[2] = infinite ? 1 / n : zp[0] / f;
+    zp[3] = infinite ? 0 : 1 / f;
+  }
+  const double params[4] = {1 / original(0, 0), 1 / original(1, 1), original(0, 2), original(1, 2)};
+  const double rest[8] = {s.ndc_x,
+                          s.ndc_y,
+                          s.depth,
+                          static_cast<double>(axis),
+                          (s.ndc_x + 1.0) / 2,
+                          (s.ndc_y + 1.0) / 2,
+                          n,
+                          f};
+  for (int i = 0; i < 4; ++i) {
+    out[static_cast<std::size_t>(64 + i)] = static_cast<float>(zp[i]);
+    out[static_cast<std::size_t>(68 + i)] = static_cast<float>(params[i]);
+  }
+  for (int i = 0; i < 8; ++i) out[static_cast<std::size_t>(72 + i)] = static_cast<float>(rest[i]);
+  return out;
+}
+
+bool perspective_along_z(Convention convention, const Matrix4<float>& m) {
+  if (m(3, 0) != 0 || m(3, 1) != 0 || m(3, 3) != 0 || std::fabs(m(3, 2)) != 1) return false;
+  if (m(0, 1) != 0 || m(1, 0) != 0 || m(0, 3) != 0 || m(1, 3) != 0 || m(2, 0) != 0 || m(2, 1) != 0)
+    return false;
+  const int axis = view_axis_sign(m, convention);
+  return axis == static_cast<int>(m(3, 2)) && m(0, 0) != 0 && m(1, 1) != 0;
+}
+
+struct ShaderRunner::State {
+  RunnerOptions options;
+  std::vector<ShaderFunction> functions;
+  std::unique_ptr<raster::GlContext> gl;
+  GLuint programs[kKinds][3] = {{0, 0, 0}, {0, 0, 0}};
+  bool perspective[kKinds] = {false, false};
+  std::string names[kKinds];
+  GLuint buffers[2] = {0, 0};
+
+  ~State() {
+    if (!gl || !gl->make_current()) return;
+    for (auto& row : programs)
+      for (GLuint p : row)
+        if (p) glDeleteProgram(p);
+    if (buffers[0]) glDeleteBuffers(2, buffers);
+  }
+
+  Expected<GLuint> compile(const std::string& glsl, const std::string& path) {
+    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    const char* text = glsl.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      GLint length = 0;
+      glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+      glGetShaderInfoLog(shader, length, nullptr, log.data());
+      glDeleteShader(shader);
+      return Expected<GLuint>::failure("the shader did not compile:\n" +
+                                       mapped_log(log.c_str(), path));
+    }
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, shader);
+    glLinkProgram(program);
+    glDeleteShader(shader);
+    GLint linked = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (!linked) {
+      GLint length = 0;
+      glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+      glGetProgramInfoLog(program, length, nullptr, log.data());
+      glDeleteProgram(program);
+      return Expected<GLuint>::failure("the shader did not link:\n" +
+                                       mapped_log(log.c_str(), path));
+    }
+    return program;
+  }
+};
+
+ShaderRunner::ShaderRunner(std::unique_ptr<State> state) : state_(std::move(state)) {}
+ShaderRunner::~ShaderRunner() = default;
+
+Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
+    const std::vector<ShaderFunction>& functions, const RunnerOptions& options) {
+  using Opened = Expected<std::unique_ptr<ShaderRunner>>;
+  if (functions.empty()) return Opened::failure("no shader function to run");
+  auto state = std::make_unique<State>();
+  state->options = options;
+  state->functions = functions;
+  // The user's functions first: their mistakes are said before any device is looked for.
+  struct Wrapped {
+    int kind;
+    std::string path, sources[3];
+  };
+  std::vector<Wrapped> wrapped;
+  for (const ShaderFunction& f : functions) {
+    if (f.kind != ConsumerKind::view_position && f.kind != ConsumerKind::linear_depth)
+      return Opened::failure("a shader answers view_position and linear_depth, not " +
+                             std::string(protocol::consumer_kind_name(f.kind)));
+    std::string error;
+    const std::string source = read_file(f.path, error);
+    if (!error.empty()) return Opened::failure(error);
+    const Expected<Signature> sig = find_signature(source, f.function, f.language, f.kind);
+    if (!sig) return Opened::failure(f.path + ": " + sig.error());
+    const int k = kind_index(f.kind);
+    state->names[k] = f.path + ":" + f.function;
+    for (const Parameter& p : sig->parameters)
+      state->perspective[k] = state->perspective[k] || shader::needs_perspective_camera(p.input);
+    Wrapped w{k, f.path, {}};
+    for (int c = 0; c < 3; ++c) {
+      const std::string text = wrapped_source(source, f.path, *sig, f.language, c);
+      if (f.language == Language::glsl) {
+        w.sources[c] = text;
+        continue;
+      }
+      Expected<std::string> glsl = hlsl_as_glsl(text);
+      if (!glsl) return Opened::failure(f.path + ": " + glsl.error());
+      w.sources[c] = *glsl;
+    }
+    wrapped.push_back(std::move(w));
+  }
+  Expected<std::unique_ptr<raster::GlContext>> gl = raster::GlContext::open(options.device);
+  if (!gl) return Opened::failure(gl.error());
+  state->gl = std::move(*gl);
+  const raster::NoShaderCache no_cache;
+  for (const Wrapped& w : wrapped) {
+    for (int c = 0; c < 3; ++c) {
+      Expected<GLuint> program = state->compile(w.sources[c], w.path);
+      if (!program) return Opened::failure(w.path + ": " + program.error());
+      state->programs[w.kind][c] = *program;
+    }
+  }
+  glGenBuffers(2, state->buffers);
+  return std::unique_ptr<ShaderRunner>(new ShaderRunner(std::move(state)));
+}
+
+const std::string& ShaderRunner::renderer() const {
+  return state_->gl->renderer();
+}
+
+const std::vector<ShaderFunction>& ShaderRunner::functions() const {
+  return state_->functions;
+}
+
+bool ShaderRunner::needs_perspective_camera(ConsumerKind kind) const {
+  return state_->perspective[kind_index(kind)];
+}
+
+Expected<std::vector<std::vector<float>>> ShaderRunner::run(
+    ConsumerKind kind, const std::vector<oracle::DepthSample<float>>& samples) {
+  using Answers = Expected<std::vector<std::vector<float>>>;
+  if (kind != ConsumerKind::view_position && kind != ConsumerKind::linear_depth)
+    return Answers::failure("a shader answers view_position and linear_depth only");
+  const int k = kind_index(kind);
+  if (!state_->programs[k][0])
+    return Answers::failure("no shader function answers " +
+                            std::string(protocol::consumer_kind_name(kind)));
+  std::vector<std::vector<float>> out(samples.size());
+  if (samples.empty()) return out;
+  if (std::string error; !state_->gl->make_current(&error)) return Answers::failure(error);
+  GLint most_groups = 0;
+  glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &most_groups);
+  const std::size_t per_dispatch = static_cast<std::size_t>(most_groups) * kGroupSize;
+  const int numbers = kind == ConsumerKind::view_position ? 3 : 1;
+  // One dispatch per convention's program (each sample's own convention), in slices the device
+  // takes.
+  for (int c = 0; c < 3; ++c) {
+    std::vector<std::size_t> at;
+    for (std::size_t i = 0; i < samples.size(); ++i)
+      if (static_cast<int>(samples[i].convention) == c) at.push_back(i);
+    for (std::size_t from = 0; from < at.size(); from += per_dispatch) {
+      const std::size_t count = std::min(per_dispatch, at.size() - from);
+      const std::size_t padded = (count + kGroupSize - 1) / kGroupSize * kGroupSize;
+      std::vector<float> requests(padded * kRequestVectors * 4);
+      for (std::size_t j = 0; j < padded; ++j) {
+        const auto r = request_of(samples[at[from + std::min(j, count - 1)]]);
+        std::copy(r.begin(), r.end(), requests.begin() + static_cast<long>(j * r.size()));
+      }
+      glBindBuffer(GL_SHADER_STORAGE_BUFFER, state_->buffers[0]);
+      glBufferData(GL_SHADER_STORAGE_BUFFER,
+                   static_cast<GLsizeiptr>(requests.size() * sizeof(float)), requests.data(),
+                   GL_STREAM_DRAW);
+      glBindBuffer(GL_SHADER_STORAGE_BUFFER, state_->buffers[1]);
+      glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(padded * 4 * sizeof(float)),
+                   nullptr, GL_STREAM_READ);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, state_->buffers[0]);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state_->buffers[1]);
+      glUseProgram(state_->programs[k][c]);
+      std::vector<float> answers(padded * 4);
+      {
+        const Watchdog watchdog(
+            state_->options.timeout_seconds,
+            "the shader " + state_->names[k] + " (" + std::to_string(count) + " requests)");
+        glDispatchCompute(static_cast<GLuint>(padded / kGroupSize), 1, 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,
+                           static_cast<GLsizeiptr>(answers.size() * sizeof(float)), answers.data());
+      }
+      if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+        char line[64];
+        std::snprintf(line, sizeof line, "running the shader: GL error 0x%04x", e);
+        return Answers::failure(line);
+      }
+      for (std::size_t j = 0; j < count; ++j)
+        out[at[from + j]].assign(answers.begin() + static_cast<long>(4 * j),
+                                 answers.begin() + static_cast<long>(4 * j + numbers));
+    }
+  }
+  return out;
+}
+
+Consumers<float> shader_consumers(ShaderRunner& runner, const std::string& name) {
+  Consumers<float> out;
+  out.name = name;
+  out.arithmetic = oracle::ConsumerArithmetic::gpu;
+  bool perspective = false;
+  for (const ShaderFunction& f : runner.functions()) {
+    perspective = perspective || runner.needs_perspective_camera(f.kind);
+    if (f.kind == ConsumerKind::view_position) {
+      out.view_position = [&runner](const oracle::DepthSample<float>& s) {
+        const auto a = runner.run(ConsumerKind::view_position, {s});
+        if (!a) throw std::runtime_error(a.error());
+        return Vector3<float>(a->front()[0], a->front()[1], a->front()[2]);
+      };
+    } else {
+      out.linear_depth = [&runner](const oracle::DepthSample<float>& s) {
+        const auto a = runner.run(ConsumerKind::linear_depth, {s});
+        if (!a) throw std::runtime_error(a.error());
+        return a->front()[0];
+      };
+    }
+  }
+  if (perspective) out.accepts = perspective_along_z;
+  return out;
+}
+
+Expected<std::vector<std::vector<float>>> answer_asks(
+    ShaderRunner& runner, const std::vector<const oracle::ConsumerAsk<float>*>& asks) {
+  using Answers = Expected<std::vector<std::vector<float>>>;
+  std::vector<oracle::DepthSample<float>> samples[kKinds];
+  std::vector<std::size_t> places[kKinds];
+  Consumers<float> recording;
+  ConsumerKind kind = ConsumerKind::view_position;
+  recording.view_position = [&](const oracle::DepthSample<float>& s) {
+    samples[0].push_back(s);
+    kind = ConsumerKind::view_position;
+    return Vector3<float>::Zero().eval();
+  };
+  recording.linear_depth = [&](const oracle::DepthSample<float>& s) {
+    samples[1].push_back(s);
+    kind = ConsumerKind::linear_depth;
+    return 0.0f;
+  };
+  for (std::size_t i = 0; i < asks.size(); ++i) {
+    if (asks[i]->kind != ConsumerKind::view_position && asks[i]->kind != ConsumerKind::linear_depth)
+      return Answers::failure("a shader answers view_position and linear_depth only");
+    (void)asks[i]->call(recording);
+    places[kind_index(kind)].push_back(i);
+  }
+  std::vector<std::vector<float>> out(asks.size());
+  for (int k = 0; k < kKinds; ++k) {
+    if (samples[k].empty()) continue;
+    const auto answers =
+        runner.run(k == 0 ? ConsumerKind::view_position : ConsumerKind::linear_depth, samples[k]);
+    if (!answers) return Answers::failure(answers.error());
+    for (std::size_t j = 0; j < places[k].size(); ++j) out[places[k][j]] = (*answers)[j];
+  }
+  return out;
+}
+
+}  // namespace oblique::shader
