@@ -38,6 +38,9 @@ list(APPEND OBLIQUE_EXPORTED oblique_shader)
 if(TARGET oblique_testing_raster)
   list(APPEND OBLIQUE_EXPORTED oblique_testing_raster)
 endif()
+if(TARGET oblique_testing_shader)
+  list(APPEND OBLIQUE_EXPORTED oblique_testing_shader)
+endif()
 install(TARGETS ${OBLIQUE_EXPORTED} EXPORT obliqueTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

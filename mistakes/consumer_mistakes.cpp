@@ -49,7 +49,8 @@ constexpr ConsumerMistakeEntry kConsumerCatalogue[] = {
     {ConsumerMistake::linearises_with_near_far, ConsumerKind::linear_depth,
      "linearises_with_near_far", "linear depth from the near and far planes (zparams)",
      "The code linearises with the textbook n f / (f - d (f - n)), n and f read off the "
-     "unmodified perspective matrix (a _ZBufferParams-style shortcut). The oblique M' has no "
+     "unmodified perspective matrix in its convention (a _ZBufferParams-style shortcut; d "
+     "turned forward, 1 - d, on reversed Z). The oblique M' has no "
      "near and far planes at n and f: its depth is a function of the tilted plane, so the "
      "linear depth is wrong everywhere the near plane moved.",
      "Linearise with the matrix the depth was rendered with: the view position M'^-1 (x, y, "
@@ -120,10 +121,23 @@ template <class T>
 bool alike(const std::vector<T>& a, const std::vector<T>& b, std::size_t group, bool planes,
            bool any_order) {
   if (a.size() != b.size() || group == 0 || a.size() % group != 0) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (!std::isfinite(a[i]) || !std::isfinite(b[i])) return false;
-  }
   const T tolerance = T(8) * std::sqrt(std::numeric_limits<T>::epsilon());
+  // An answer that is not finite is a formula's where that formula gives NaN and the same
+  // infinities in the same places (n f / (f - d (f - n)) at an infinite f: inf / inf), and the
+  // same finite numbers elsewhere.
+  bool finite = true;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    finite = finite && std::isfinite(a[i]) && std::isfinite(b[i]);
+  if (!finite) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const bool same =
+          (std::isnan(a[i]) && std::isnan(b[i])) || a[i] == b[i] ||
+          (std::isfinite(a[i]) && std::isfinite(b[i]) &&
+           std::abs(a[i] - b[i]) <= tolerance * std::max(std::abs(a[i]), std::abs(b[i])));
+      if (!same) return false;
+    }
+    return true;
+  }
   auto normalised = [group, planes](const std::vector<T>& v, std::size_t at) {
     std::vector<T> out(v.begin() + static_cast<long>(at),
                        v.begin() + static_cast<long>(at + group));
@@ -222,9 +236,19 @@ Consumers<T> mistaken_consumers(ConsumerMistake mistake) {
       break;
     case ConsumerMistake::linearises_with_near_far:
       c.linear_depth = [](const oracle::DepthSample<T>& s) {
-        const T n = s.original(2, 3) / s.original(2, 2);
-        const T f = s.original(2, 3) / (s.original(2, 2) + T(1));
-        return n * f / (f - s.depth * (f - n));
+        // 1 / n and 1 / f off a right-handed perspective M in its convention, and the depth
+        // turned forward on reversed Z, as _ZBufferParams do: n f / (f - d (f - n)) as
+        // 1 / ((1 / f - 1 / n) d + 1 / n), finite for an infinite f.
+        const T a = s.original(2, 2), b = s.original(2, 3);
+        T near_inverse = a / b, far_inverse = (a + T(1)) / b, d = s.depth;  // [0, 1]
+        if (s.convention == Convention::gl) {
+          near_inverse = (a - T(1)) / b;
+        } else if (s.convention == Convention::reversed_z) {
+          near_inverse = (a + T(1)) / b;
+          far_inverse = a / b;
+          d = T(1) - d;
+        }
+        return T(1) / ((far_inverse - near_inverse) * d + near_inverse);
       };
       break;
     case ConsumerMistake::gl_planes_on_any_matrix:

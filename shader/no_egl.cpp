@@ -18,6 +18,10 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(const std::vector<Sha
       "and build again");
 }
 
+bool cannot_run_here(const std::string& error) {
+  return error.rfind("no EGL", 0) == 0;
+}
+
 const std::string& ShaderRunner::renderer() const {
   static const std::string none;
   return none;

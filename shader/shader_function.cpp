@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <fstream>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -203,6 +204,32 @@ Expected<Signature> find_signature(const std::string& source, const std::string&
     sig.parameters.push_back(p);
   }
   return sig;
+}
+
+Expected<ShaderFunction> shader_function_in(const std::string& path, const std::string& function,
+                                            std::optional<Language> language) {
+  using Found = Expected<ShaderFunction>;
+  const Expected<std::vector<ShaderFunction>> named =
+      shader_functions(path + ":" + function, {ConsumerKind::view_position}, language);
+  if (!named) return Found::failure(named.error());
+  ShaderFunction f = named->front();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Found::failure("cannot read the shader " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  // The return type decides the kind: find the function as either and keep the one that fits.
+  for (const ConsumerKind kind : {ConsumerKind::view_position, ConsumerKind::linear_depth}) {
+    const Expected<Signature> sig = find_signature(text.str(), function, f.language, kind);
+    if (sig) {
+      f.kind = kind;
+      return f;
+    }
+    if (sig.error().find(" returns ") == std::string::npos)
+      return Found::failure(path + ": " + sig.error());
+  }
+  return Found::failure(path + ": " + function +
+                        " returns neither a view position (vec3 / float3) nor a linear depth "
+                        "(float)");
 }
 
 Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,

@@ -246,6 +246,10 @@ bool perspective_along_z(Convention convention, const Matrix4<float>& m) {
   return axis == static_cast<int>(m(3, 2)) && m(0, 0) != 0 && m(1, 1) != 0;
 }
 
+bool cannot_run_here(const std::string& error) {
+  return error.rfind("no EGL", 0) == 0 || error.find("which is not installed") != std::string::npos;
+}
+
 struct ShaderRunner::State {
   RunnerOptions options;
   std::vector<ShaderFunction> functions;

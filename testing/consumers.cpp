@@ -135,6 +135,7 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
     only.name = consumers.name;
     only.accepts = consumers.accepts;
     only.mirror_design = consumers.mirror_design;
+    only.arithmetic = consumers.arithmetic;
     only.*member = consumers.*member;
     for (const Check check : checks) run_check(only, check, contract);
   };

@@ -95,12 +95,21 @@ Vector3<T> reconstructs_with_original(const oblique::oracle::DepthSample<T>& s) 
 }
 
 /// linear_depth: the textbook n f / (f - d (f - n)) with n and f read off the unmodified
-/// perspective matrix ([0, 1] depth, right-handed). Caught by linear_depth.
+/// perspective matrix in its convention (right-handed; reversed depth turned forward, as
+/// _ZBufferParams do). Caught by linear_depth.
 template <class T>
 T linearises_with_near_far(const oblique::oracle::DepthSample<T>& s) {
-  const T n = s.original(2, 3) / s.original(2, 2);
-  const T f = s.original(2, 3) / (s.original(2, 2) + T(1));
-  return n * f / (f - s.depth * (f - n));
+  // As _ZBufferParams hold it: 1 / n and 1 / f, so that an infinite far plane gives 1 / f = 0.
+  const T a = s.original(2, 2), b = s.original(2, 3);
+  T near_inverse = a / b, far_inverse = (a + T(1)) / b, d = s.depth;  // [0, 1] depth
+  if (s.convention == Convention::gl) {
+    near_inverse = (a - T(1)) / b;
+  } else if (s.convention == Convention::reversed_z) {
+    near_inverse = (a + T(1)) / b;
+    far_inverse = a / b;
+    d = T(1) - d;  // _ZBufferParams turn reversed depth forward
+  }
+  return T(1) / ((far_inverse - near_inverse) * d + near_inverse);
 }
 
 /// culling_planes: OpenGL's rows on a [0, 1] matrix (near = M_4 + M_3). Caught by

@@ -8,9 +8,20 @@ cmake_minimum_required(VERSION 3.25)
 # pictures (of the case's volume when PICTURES is 1, else of the pass's cameras and planes), its
 # round's picks shrunk (the report says so), and its --replay to be violated again by IMPL and to
 # hold for RIGHT; with CAUSE, the output and the report name that likely cause
-# (mistakes/consumer_mistakes.h).
+# (mistakes/consumer_mistakes.h). With -DSHADER=FILE:FUNCTION (and -DRIGHT_SHADER) a shader
+# answers instead of IMPL (and RIGHT): --shader in the run and the replays.
+if(SHADER)
+  set(answerer --shader "${SHADER}")
+else()
+  set(answerer --impl "${IMPL}")
+endif()
+if(RIGHT_SHADER)
+  set(right_answerer --shader "${RIGHT_SHADER}")
+elseif(RIGHT)
+  set(right_answerer --impl "${RIGHT}")
+endif()
 file(REMOVE_RECURSE "${REPORTS}")
-execute_process(COMMAND "${OBLIQUE}" verify --consumers "${KINDS}" --impl "${IMPL}"
+execute_process(COMMAND "${OBLIQUE}" verify --consumers "${KINDS}" ${answerer}
                         --report-dir "${REPORTS}" --quiet ${ARGS}
                 RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE errors)
 message(STATUS "${output}${errors}")
@@ -64,13 +75,13 @@ endif()
 if(NOT PICTURES AND NOT md MATCHES "what the finding is about")
   message(FATAL_ERROR "the report's pictures are not of the pass's cameras and planes")
 endif()
-execute_process(COMMAND "${OBLIQUE}" verify --replay "${stem}.json" --impl "${IMPL}"
+execute_process(COMMAND "${OBLIQUE}" verify --replay "${stem}.json" ${answerer}
                 RESULT_VARIABLE again OUTPUT_VARIABLE replayed ERROR_VARIABLE replay_errors)
 if(NOT again EQUAL 1 OR NOT replayed MATCHES "${PROPERTY} violated")
   message(FATAL_ERROR "the replay gave ${again}, not the violation: ${replayed}${replay_errors}")
 endif()
-if(RIGHT)
-  execute_process(COMMAND "${OBLIQUE}" verify --replay "${stem}.json" --impl "${RIGHT}"
+if(right_answerer)
+  execute_process(COMMAND "${OBLIQUE}" verify --replay "${stem}.json" ${right_answerer}
                   RESULT_VARIABLE right OUTPUT_VARIABLE right_output ERROR_VARIABLE right_errors)
   if(NOT right EQUAL 0)
     message(FATAL_ERROR "the right program does not hold on the replay (${right}): "

@@ -96,6 +96,13 @@ Expected<std::vector<ShaderFunction>> shader_functions(
     const std::string& spec, const std::vector<protocol::ConsumerKind>& kinds,
     std::optional<Language> language);
 
+/// The function `function` of the file `path` as a ShaderFunction: its kind from its return
+/// type (vec3 / float3: view_position; float: linear_depth), its language from `language` or the
+/// file's extension. The error says why not (the file unreadable, no such function, another
+/// return type).
+Expected<ShaderFunction> shader_function_in(const std::string& path, const std::string& function,
+                                            std::optional<Language> language = std::nullopt);
+
 /// The compute shader that runs `signature` of the user's `source` on a batch of requests, in
 /// the user's language: GLSL 4.50 (or HLSL for glslang), the user's file included with line
 /// directives so that a compiler's message names the user's file and line. `convention` is

@@ -37,6 +37,10 @@ std::array<float, kRequestVectors * 4> request_of(const oracle::DepthSample<floa
 /// M23, finite near and far in front of it.
 bool perspective_along_z(Convention convention, const Matrix4<float>& m);
 
+/// Whether open()'s error says the GPU path cannot run on this machine (no EGL, or HLSL's tools
+/// missing: it names what to install), not that the user's shader is wrong.
+bool cannot_run_here(const std::string& error);
+
 class ShaderRunner {
  public:
   /// Reads, wraps and compiles each function for every convention (HLSL through glslang to
