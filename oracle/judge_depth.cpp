@@ -157,17 +157,28 @@ std::string gpu_unbounded(const DepthSample<T>& s, const Rational& det, const Ve
   return "";
 }
 
+/// What ray_segment() needs of the sample's matrices alone, whatever the pixel: M' exactly, its
+/// inverse and a solve's error bound, M's axis, and the GPU's divisor M' determinant.
+struct MatrixAnalysis {
+  std::string why;  ///< not empty: no segment can be judged on these matrices
+  Mat m, inv, error;
+  Rational det;
+  bool axis_is_z = true;
+  int axis = -1;
+};
+
 template <class T>
-Segment ray_segment(const DepthSample<T>& s, int bits) {
-  Segment out;
-  const Mat m = oracle::exact::to_rational(s.projection);
-  const std::optional<Mat> inv = oracle::exact::inverse(m);
+MatrixAnalysis analyse_matrices(const DepthSample<T>& s, int bits) {
+  MatrixAnalysis out;
+  out.m = oracle::exact::to_rational(s.projection);
+  const std::optional<Mat> inv = oracle::exact::inverse(out.m);
   const std::optional<Mat> original_inv =
       oracle::exact::inverse(oracle::exact::to_rational(s.original));
   if (!inv || !original_inv) {
     out.why = "a singular projection";
     return out;
   }
+  out.inv = *inv;
   {
     // The view axis is z only where M's fourth row is (0, 0, a, b); elsewhere (a rotated or
     // general matrix) linear depth has no axis to be measured along.
@@ -177,15 +188,50 @@ Segment ray_segment(const DepthSample<T>& s, int bits) {
       out.axis =
           axis_sign(*original_inv, s.convention, solve_error<T>(original, *original_inv, bits));
   }
-  const auto [lo, hi] = depth_interval(s);
-  const Rational x = oracle::exact::to_rational(s.ndc_x), y = oracle::exact::to_rational(s.ndc_y);
-  const std::optional<Mat> error = solve_error<T>(m, *inv, bits);
+  const std::optional<Mat> error = solve_error<T>(out.m, out.inv, bits);
   if (!error) {
     out.why =
         "the projection's determinant is within T's rounding of 0: its inverse is not "
         "determined in T";
     return out;
   }
+  out.error = *error;
+  if (bits < oracle::tolerance::precision_bits<T>()) out.det = determinant(out.m);
+  return out;
+}
+
+/// analyse_matrices() of the last matrices seen on this thread: a run asks many pixels of one
+/// oblique matrix (a shader's batch, a scene's samples), and this is most of a sample's exact
+/// analysis.
+template <class T>
+const MatrixAnalysis& matrix_analysis_of(const DepthSample<T>& s, int bits) {
+  struct Key {
+    Matrix4<T> projection, original;
+    Convention convention;
+    int bits;
+  };
+  thread_local std::optional<std::pair<Key, MatrixAnalysis>> last;
+  const bool same = last && last->first.bits == bits && last->first.convention == s.convention &&
+                    last->first.projection == s.projection && last->first.original == s.original;
+  if (!same)
+    last.emplace(Key{s.projection, s.original, s.convention, bits}, analyse_matrices(s, bits));
+  return last->second;
+}
+
+template <class T>
+Segment ray_segment(const DepthSample<T>& s, int bits) {
+  Segment out;
+  const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+  if (!a.why.empty()) {
+    out.why = a.why;
+    return out;
+  }
+  out.axis_is_z = a.axis_is_z;
+  out.axis = a.axis;
+  const Mat* const inv = &a.inv;
+  const Mat* const error = &a.error;
+  const auto [lo, hi] = depth_interval(s);
+  const Rational x = oracle::exact::to_rational(s.ndc_x), y = oracle::exact::to_rational(s.ndc_y);
   const Rational u = unit<T>(bits);
   Vec ends[2];
   out.box = {0, 0, 0, 0};
@@ -226,8 +272,7 @@ Segment ray_segment(const DepthSample<T>& s, int bits) {
     return out;
   }
   if (bits < oracle::tolerance::precision_bits<T>()) {
-    const Rational det = determinant(m);
-    if (std::string why = gpu_unbounded(s, det, ends); !why.empty()) {
+    if (std::string why = gpu_unbounded(s, a.det, ends); !why.empty()) {
       out.why = why;
       return out;
     }
@@ -267,11 +312,17 @@ bool on_projected_segment(const std::array<R, 4>& a, const std::array<R, 4>& b,
     R at0, slope;  // at0 + slope t
     R at(const R& t) const { return at0 + slope * t; }
   };
-  std::vector<Line> lower, upper;
+  // At most four constraints each way (x, y, z and w): kept in place, this runs for every
+  // answer judged (and dozens of times for its ratio).
+  std::array<Line, 4> lower, upper;
+  std::size_t lows = 0, highs = 0;
   R t_lo = 0, t_hi = 1;
-  std::vector<int> all = coordinates;
-  all.push_back(3);
-  for (int i : all) {
+  std::array<int, 4> all{};
+  std::size_t count = 0;
+  for (int i : coordinates) all[count++] = i;
+  all[count++] = 3;
+  for (std::size_t k = 0; k < count; ++k) {
+    const int i = all[k];
     const R d = b[i] - a[i];
     const R low = a[i] - scale * box[i], high = a[i] + scale * box[i];
     if (p[i] == 0) {
@@ -288,21 +339,24 @@ bool on_projected_segment(const std::array<R, 4>& a, const std::array<R, 4>& b,
     }
     Line l{low / p[i], d / p[i]}, h{high / p[i], d / p[i]};
     if (p[i] < 0) std::swap(l, h);
-    lower.push_back(l);
-    upper.push_back(h);
+    lower[lows++] = l;
+    upper[highs++] = h;
   }
   if (t_lo > t_hi) return false;
+  if (lows == 0) return true;  // every p_i = 0: t's range alone decides
   auto gap = [&](const R& t) {
-    R most = lower.front().at(t), least = upper.front().at(t);
-    for (const Line& l : lower) most = std::max(most, l.at(t));
-    for (const Line& h : upper) least = std::min(least, h.at(t));
+    R most = lower[0].at(t), least = upper[0].at(t);
+    for (std::size_t k = 1; k < lows; ++k) most = std::max(most, lower[k].at(t));
+    for (std::size_t k = 1; k < highs; ++k) least = std::min(least, upper[k].at(t));
     return most <= least;
   };
   if (gap(t_lo) || gap(t_hi)) return true;
-  std::vector<Line> lines = lower;
-  lines.insert(lines.end(), upper.begin(), upper.end());
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    for (std::size_t j = i + 1; j < lines.size(); ++j) {
+  std::array<Line, 8> lines;
+  for (std::size_t k = 0; k < lows; ++k) lines[k] = lower[k];
+  for (std::size_t k = 0; k < highs; ++k) lines[lows + k] = upper[k];
+  const std::size_t line_count = lows + highs;
+  for (std::size_t i = 0; i < line_count; ++i) {
+    for (std::size_t j = i + 1; j < line_count; ++j) {
       const R ds = lines[i].slope - lines[j].slope;
       if (ds == 0) continue;
       const R t = (lines[j].at0 - lines[i].at0) / ds;

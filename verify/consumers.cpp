@@ -403,7 +403,12 @@ class ConsumerRun {
     for (long k = 0; k < count; ++k) {
       Planned& p = out[static_cast<std::size_t>(k)];
       const long i = index + k;
-      p.round.c = cases(random.split(), static_cast<int>(i % 101)).value();
+      // A shader's run asks kRoundsPerCase rounds of each case drawn (other pixels, other
+      // picks): the GPU takes thousands at once, and the judges analyse each matrix once.
+      const long rounds_per_case = options_.shader.empty() ? 1 : kShaderRoundsPerCase;
+      if (i % rounds_per_case == 0 || !last_case_)
+        last_case_ = cases(random.split(), static_cast<int>(i / rounds_per_case % 101)).value();
+      p.round.c = *last_case_;
       std::mt19937_64 engine(options_.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(i));
       const oracle::Pick pick = [&](int lo, int hi) {
         const int v = std::uniform_int_distribution<int>(lo, hi - 1)(engine);
@@ -726,6 +731,9 @@ class ConsumerRun {
   std::map<std::string, long> left_out_checks_, judged_families_, not_applicable_;
   std::set<oracle::ConsumerCheck> asked_checks_;
   std::optional<Caught<T>> caught_;
+  /// The case the last planned round asked (a shader's run asks several rounds of each).
+  std::optional<cases::Case<T>> last_case_;
+  static constexpr long kShaderRoundsPerCase = 64;
 };
 
 template <class T>
