@@ -258,7 +258,7 @@ Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
   }
   if (path.empty()) return Functions::failure("--shader names no file");
   if (!function.empty() && kinds.size() > 1)
-    return Functions::failure("--shader " + spec + " names one function for " +
+    return Functions::failure("one function (" + function + ") for " +
                               std::to_string(kinds.size()) +
                               " request kinds; give the file alone, with a function named after "
                               "each kind (view_position, linear_depth), or ask one kind");

@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "oblique/depth_convention.h"
+#include "oblique/oracle/consumer_wire.h"
 #include "oblique/references/depth_reconstruction.h"
 
 namespace oblique::shader {
@@ -413,9 +414,11 @@ Expected<std::vector<std::vector<float>>> ShaderRunner::run(
       glUseProgram(state_->programs[k][c]);
       std::vector<float> answers(padded * 4);
       {
-        const Watchdog watchdog(
-            state_->options.timeout_seconds,
-            "the shader " + state_->names[k] + " (" + std::to_string(count) + " requests)");
+        const Watchdog watchdog(state_->options.timeout_seconds,
+                                "the shader " + state_->names[k] + " (" + std::to_string(count) +
+                                    (count == 1 ? " request" : " requests") + "; the first: " +
+                                    oracle::wire::depth_request(kind, samples[at[from]]).line() +
+                                    ")");
         glDispatchCompute(static_cast<GLuint>(padded / kGroupSize), 1, 1);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0,

@@ -199,7 +199,7 @@ std::unique_ptr<Answerer<T>> answerer_for(const VerifyOptions& options,
     }
     shader::RunnerOptions run;
     run.device = options.shader_device == "gpu" ? raster::Device::gpu : raster::Device::software;
-    run.timeout_seconds = std::max(options.request_timeout_seconds, 1.0);
+    run.timeout_seconds = options.request_timeout_seconds;
     auto runner = shader::ShaderRunner::open(*functions, run);
     if (!runner) {
       err << "oblique verify: " << runner.error() << "\n";  // it names the file

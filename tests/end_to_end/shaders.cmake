@@ -62,3 +62,63 @@ add_test(NAME shaders_verify_right_inverse_in_shader
                  --time-limit 3 --seed 20261206 --report-dir ${shader_reports}/verify_right)
 set_tests_properties(shaders_verify_right_inverse_in_shader PROPERTIES LABELS "shaders;verify"
                      TIMEOUT 60 SKIP_REGULAR_EXPRESSION "${shader_skip}")
+
+# Hostile use: each refused with a clear line and exit 2, never a crash or a hang.
+set(hostile_shaders ${CMAKE_CURRENT_SOURCE_DIR}/shaders)
+function(oblique_shader_refusal name regex)
+  add_test(NAME shaders_refuses_${name}
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh 2 "${regex}" ${ARGN})
+  set_tests_properties(shaders_refuses_${name} PROPERTIES LABELS "shaders;verify" TIMEOUT 60
+                       SKIP_REGULAR_EXPRESSION "${shader_skip}")
+endfunction()
+set(verify_shader $<TARGET_FILE:oblique> verify --time-limit 3 --seed 1
+                  --report-dir ${shader_reports}/hostile)
+oblique_shader_refusal(a_missing_file "cannot read the shader"
+                       ${verify_shader} --consumers view_position --shader /nonexistent.glsl)
+oblique_shader_refusal(a_missing_function "no function named nosuch is defined \\(functions found: ndc_depth, view_position, linear_depth\\)"
+                       ${verify_shader} --consumers view_position
+                       --shader ${shaders}/depth_right.glsl:nosuch)
+oblique_shader_refusal(a_wrong_return_type "returns vec4; a view_position function returns vec3"
+                       ${verify_shader} --consumers view_position
+                       --shader ${hostile_shaders}/signatures.glsl:returns_vec4)
+oblique_shader_refusal(an_unknown_parameter "parameter invViewProj is not an input the harness knows"
+                       ${verify_shader} --consumers view_position
+                       --shader ${hostile_shaders}/signatures.glsl:unknown_parameter)
+oblique_shader_refusal(a_parameter_of_another_type "parameter depth is vec2; the depth input is float"
+                       ${verify_shader} --consumers view_position
+                       --shader ${hostile_shaders}/signatures.glsl:depth_as_vec2)
+# The compiler's message, its line in the user's file.
+oblique_shader_refusal(a_compile_error "compile_error.glsl:5:[0-9]+: error: .undeclared_name. undeclared"
+                       ${verify_shader} --consumers view_position
+                       --shader ${hostile_shaders}/compile_error.glsl)
+oblique_shader_refusal(an_hlsl_compile_error "compile_error.hlsl:4: 'undeclared_name' : unknown variable"
+                       ${verify_shader} --consumers view_position
+                       --shader ${hostile_shaders}/compile_error.hlsl)
+oblique_shader_refusal(a_kind_no_shader_answers "a shader answers view_position and linear_depth; culling_planes"
+                       ${verify_shader} --consumers culling_planes --shader ${shaders}/depth_right.glsl)
+oblique_shader_refusal(double_precision "a shader computes in float"
+                       ${verify_shader} --consumers view_position --precision double
+                       --shader ${shaders}/depth_right.glsl)
+oblique_shader_refusal(both_impl_and_shader "--shader and --impl each name what answers"
+                       ${verify_shader} --consumers view_position --impl cat
+                       --shader ${shaders}/depth_right.glsl)
+oblique_shader_refusal(a_shader_without_consumers "--shader runs depth functions: it needs --consumers"
+                       ${verify_shader} --shader ${shaders}/depth_right.glsl)
+# A dispatch that outlives --timeout cannot be cancelled: said, with its first request, exit 2.
+oblique_shader_refusal(a_shader_that_does_not_finish "\\(1 request; the first: \\{\"kind\": \"view_position\".* did not finish within 0.001 s"
+                       ${verify_shader} --consumers view_position --timeout 0.001
+                       --shader ${hostile_shaders}/long_loop.glsl)
+# HLSL without glslang: what to install (the GLSL path needs neither tool).
+add_test(NAME shaders_hlsl_without_glslang_says_what_to_install
+         COMMAND ${CMAKE_COMMAND} -DOBLIQUE=$<TARGET_FILE:oblique>
+                 -DSHADER=${shaders}/depth_right.hlsl -DREPORTS=${shader_reports}/hostile
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/shaders/expect_without_tools.cmake)
+set_tests_properties(shaders_hlsl_without_glslang_says_what_to_install PROPERTIES
+                     LABELS "shaders;verify" TIMEOUT 60 SKIP_REGULAR_EXPRESSION "no EGL")
+# A shader that writes NaN is a finding (not finite), reported, exit 1.
+add_test(NAME shaders_nan_is_a_finding
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh 1 "view_position violated: answered \\[-?nan, -?nan, -?nan\\], not finite"
+                 ${verify_shader} --consumers view_position
+                 --shader ${hostile_shaders}/signatures.glsl:writes_nan)
+set_tests_properties(shaders_nan_is_a_finding PROPERTIES LABELS "shaders;verify" TIMEOUT 60
+                     SKIP_REGULAR_EXPRESSION "${shader_skip}")
