@@ -11,6 +11,7 @@
 #include "oblique/raster/raster.h"
 #include "oblique/scene/check.h"
 #include "oblique/scene/plot.h"
+#include "oblique/shader/shader_runner.h"
 
 namespace oblique::cli {
 
@@ -18,7 +19,9 @@ struct CheckSettings {
   std::string scene_path;
   bool as_json = false;
   std::string precision = "double";  ///< --precision: of the requests --impl gets, and its bounds
-  std::string impl;      ///< --impl CMD: the user's implementation, over the apply protocol
+  std::string impl;    ///< --impl CMD: the user's implementation, over the apply protocol
+  std::string shader;  ///< --shader FILE[:FUNCTION]: the reconstruction consumer's shader
+  std::optional<oblique::shader::Language> shader_language;
   std::string plot_dir;  ///< --plot DIR
   double timeout_seconds = 10;
   bool rasterize = false;           ///< --rasterize
@@ -163,6 +166,52 @@ int run_check(const CheckSettings& settings) {
   }
   oblique::scene::SceneCheck check = oblique::scene::check_scene(*parsed.scene);
   check.impl_precision = *oblique::protocol::parse_precision(settings.precision);
+  if (!settings.shader.empty() && !settings.impl.empty()) {
+    std::cerr << "oblique check: --shader and --impl each name what answers: give one\n";
+    return 2;
+  }
+  // --shader: the scene's reconstruction consumer answered by the shader on the GPU path; the
+  // pass's coverage is then the shader's, of that consumer.
+  std::unique_ptr<oblique::shader::ShaderRunner> runner;
+  if (!settings.shader.empty()) {
+    const auto [file, function] = oblique::shader::split_shader_spec(settings.shader);
+    oblique::Expected<std::vector<oblique::shader::ShaderFunction>> functions =
+        std::vector<oblique::shader::ShaderFunction>{};
+    if (!function.empty()) {
+      const auto f = oblique::shader::shader_function_in(file, function, settings.shader_language);
+      if (f)
+        functions->push_back(*f);
+      else
+        functions =
+            oblique::Expected<std::vector<oblique::shader::ShaderFunction>>::failure(f.error());
+    } else {
+      functions = oblique::shader::shader_functions(settings.shader,
+                                                    {oblique::protocol::ConsumerKind::view_position,
+                                                     oblique::protocol::ConsumerKind::linear_depth},
+                                                    settings.shader_language);
+    }
+    if (!functions) {
+      std::cerr << "oblique check: --shader " << settings.shader << ": " << functions.error()
+                << "\n";
+      return 2;
+    }
+    oblique::shader::RunnerOptions options;
+    options.device =
+        settings.device == "gpu" ? oblique::raster::Device::gpu : oblique::raster::Device::software;
+    options.timeout_seconds = settings.timeout_seconds;
+    auto opened = oblique::shader::ShaderRunner::open(*functions, options);
+    if (!opened) {
+      std::cerr << "oblique check: " << opened.error() << "\n";
+      return 2;
+    }
+    runner = std::move(*opened);
+    const oblique::Expected<oblique::Done> judged = oblique::scene::judge_shader_consumers(
+        *parsed.scene, check, oblique::shader::shader_consumers(*runner, settings.shader));
+    if (!judged) {
+      std::cerr << "oblique check: " << judged.error() << "\n";
+      return 2;
+    }
+  }
   if (!settings.impl.empty()) {
     const oblique::Expected<std::size_t> judged = oblique::scene::judge_implementation(
         *parsed.scene, check, settings.impl, settings.timeout_seconds);
@@ -210,8 +259,9 @@ int run_check(const CheckSettings& settings) {
   }
   // A pass means judged: a consumer the scene names with nothing judged is no pass; one mostly
   // left out is said (and fails under --strict).
-  const oblique::scene::ConsumerCoverage coverage =
-      oblique::scene::consumer_coverage(*parsed.scene, check, !settings.impl.empty());
+  const oblique::scene::ConsumerCoverage coverage = oblique::scene::consumer_coverage(
+      settings.shader.empty() ? *parsed.scene : oblique::scene::reconstruction_only(*parsed.scene),
+      check, !settings.impl.empty() || !settings.shader.empty());
   if (!coverage.partly.empty())
     (settings.as_json ? std::cerr : std::cout)
         << oblique::partly_judged_warning(coverage.partly, settings.strict);
@@ -254,9 +304,23 @@ void setup_check(CLI::App& app, int& exit_code) {
       "are rounded to it and its answers judged with its bounds (as oblique "
       "verify --precision)",
       {std::begin(oblique::protocol::all_precisions), std::end(oblique::protocol::all_precisions)});
+  check->add_option(
+      "--shader", settings->shader,
+      "Answer the scene's reconstruction consumer with a GLSL or HLSL file's depth functions on "
+      "the GPU path (FILE: functions named view_position and linear_depth; FILE:FUNCTION: one), "
+      "judged on every rendered pass (docs/shaders.md)");
+  check
+      ->add_option_function<std::string>(
+          "--shader-language",
+          [settings](const std::string& name) {
+            settings->shader_language = oblique::shader::parse_language(name);
+          },
+          "glsl or hlsl (default: by the file's extension)")
+      ->check(CLI::IsMember({"glsl", "hlsl"}));
   check
       ->add_option("--timeout", settings->timeout_seconds,
-                   "With --impl: seconds to wait for each answer")
+                   "With --impl: seconds to wait for each answer (with --shader: for each "
+                   "dispatch)")
       ->check(CLI::PositiveNumber);
   check->add_option("--plot", settings->plot_dir,
                     "Write a top and a side view (gnuplot PNG) of the scene and its passes here");
@@ -268,8 +332,8 @@ void setup_check(CLI::App& app, int& exit_code) {
                   "(inconclusive: no EGL, a self-check tripped)");
   check
       ->add_option("--device", settings->device,
-                   "With --rasterize: software (Mesa's llvmpipe, the default) or gpu (the "
-                   "machine's driver; its renderer is printed)")
+                   "With --rasterize or --shader: software (Mesa's llvmpipe, the default) or gpu "
+                   "(the machine's driver; its renderer is printed)")
       ->check(CLI::IsMember({"software", "gpu"}));
   check
       ->add_option("--raster-size", settings->raster_size,

@@ -65,6 +65,9 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
     };
     Consumers<T> only;
     only.name = who.name;
+    only.accepts = who.accepts;
+    only.arithmetic = who.arithmetic;
+    only.mirror_design = who.mirror_design;
     int rounds = 1;
     switch (consumer) {
       case SceneConsumer::reconstruction:
@@ -151,6 +154,33 @@ Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::str
 }
 
 }  // namespace
+
+Scene reconstruction_only(const Scene& scene) {
+  Scene only = scene;
+  only.consumers.clear();
+  for (const SceneConsumer c : scene.consumers)
+    if (c == SceneConsumer::reconstruction) only.consumers.push_back(c);
+  return only;
+}
+
+Expected<Done> judge_shader_consumers(const Scene& scene, SceneCheck& check,
+                                      const Consumers<float>& shader) {
+  const Scene only = reconstruction_only(scene);
+  if (only.consumers.empty())
+    return Expected<Done>::failure(
+        "--shader answers the scene's reconstruction consumer, and the scene names none: add "
+        "\"reconstruction\" to its \"consumers\"");
+  check.impl_shader = shader.name;
+  check.impl_precision = protocol::Precision::float32;
+  try {
+    for (SurfaceCheck& s : check.surfaces) {
+      if (s.render) s.impl_consumers = judge_consumers<float>(only, s, shader);
+    }
+  } catch (const std::runtime_error& e) {
+    return Expected<Done>::failure(std::string("the shader could not be run: ") + e.what());
+  }
+  return Done{};
+}
 
 ConsumerCoverage consumer_coverage(const Scene& scene, const SceneCheck& check, bool impl) {
   ConsumerCoverage out;

@@ -117,17 +117,18 @@ std::string to_json(const SceneCheck& check) {
           {"findings", findings}};
     }
   }
-  const json out = {
-      {"scene", check.scene},
-      {"convention", std::string(convention_name(check.convention))},
-      {"depth_buffer", depth_buffer_name(check.depth_buffer)},
-      {"max_depth", check.max_depth},
-      {"truncated", check.truncated},
-      {"unlisted_out_of_view", check.unlisted},
-      {"surfaces", surfaces},
-      {"impl_diagnosis", check.impl_diagnosis.ran
-                             ? json::parse(report::diagnosis_json(check.impl_diagnosis))
-                             : json(nullptr)}};
+  json out = {{"scene", check.scene},
+              {"convention", std::string(convention_name(check.convention))},
+              {"depth_buffer", depth_buffer_name(check.depth_buffer)},
+              {"max_depth", check.max_depth},
+              {"truncated", check.truncated},
+              {"unlisted_out_of_view", check.unlisted},
+              {"surfaces", surfaces},
+              {"impl_diagnosis", check.impl_diagnosis.ran
+                                     ? json::parse(report::diagnosis_json(check.impl_diagnosis))
+                                     : json(nullptr)}};
+  // Who answered impl_consumers: the --shader's functions (float, on the GPU path).
+  if (!check.impl_shader.empty()) out["impl_shader"] = check.impl_shader;
   return out.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
@@ -259,8 +260,12 @@ std::string to_text(const SceneCheck& check) {
   for (const SurfaceCheck& s : check.surfaces)
     any_impl_consumers = any_impl_consumers || !s.impl_consumers.empty();
   if (any_impl_consumers) {
-    out << "\nthe implementation's consumers (--impl, "
-        << protocol::precision_name(check.impl_precision) << "):\n";
+    if (check.impl_shader.empty())
+      out << "\nthe implementation's consumers (--impl, "
+          << protocol::precision_name(check.impl_precision) << "):\n";
+    else
+      out << "\nthe shader's consumers (--shader " << printable(check.impl_shader)
+          << ", float on the GPU path):\n";
     for (const SurfaceCheck& s : check.surfaces) {
       for (const ConsumerResult& c : s.impl_consumers)
         out << "  " << printable(s.name) << ": " << scene_consumer_name(c.consumer) << " "

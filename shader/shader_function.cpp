@@ -206,6 +206,18 @@ Expected<Signature> find_signature(const std::string& source, const std::string&
   return sig;
 }
 
+std::pair<std::string, std::string> split_shader_spec(const std::string& spec) {
+  const auto colon = spec.rfind(':');
+  if (colon == std::string::npos) return {spec, ""};
+  const std::string tail = spec.substr(colon + 1);
+  const bool identifier = !tail.empty() && !std::isdigit(static_cast<unsigned char>(tail[0])) &&
+                          std::all_of(tail.begin(), tail.end(), [](char ch) {
+                            return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+                          });
+  if (!identifier) return {spec, ""};
+  return {spec.substr(0, colon), tail};
+}
+
 Expected<ShaderFunction> shader_function_in(const std::string& path, const std::string& function,
                                             std::optional<Language> language) {
   using Found = Expected<ShaderFunction>;
@@ -243,19 +255,7 @@ Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
                                 " is asked of a program (--impl)");
   }
   if (kinds.empty()) return Functions::failure("--consumers names no request kind");
-  std::string path = spec, function;
-  // FILE:FUNCTION, the function a C identifier (a path may hold ':' elsewhere).
-  if (const auto colon = spec.rfind(':'); colon != std::string::npos) {
-    const std::string tail = spec.substr(colon + 1);
-    const bool identifier = !tail.empty() && !std::isdigit(static_cast<unsigned char>(tail[0])) &&
-                            std::all_of(tail.begin(), tail.end(), [](char ch) {
-                              return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
-                            });
-    if (identifier) {
-      path = spec.substr(0, colon);
-      function = tail;
-    }
-  }
+  const auto [path, function] = split_shader_spec(spec);
   if (path.empty()) return Functions::failure("--shader names no file");
   if (!function.empty() && kinds.size() > 1)
     return Functions::failure("one function (" + function + ") for " +

@@ -122,3 +122,27 @@ add_test(NAME shaders_nan_is_a_finding
                  --shader ${hostile_shaders}/signatures.glsl:writes_nan)
 set_tests_properties(shaders_nan_is_a_finding PROPERTIES LABELS "shaders;verify" TIMEOUT 60
                      SKIP_REGULAR_EXPRESSION "${shader_skip}")
+
+# check --shader: the scene's reconstruction consumer answered by the shader on every rendered
+# pass; the right one holds, the wrong one fails with its likely cause, a scene without the
+# consumer is refused.
+set(portal_room ${PROJECT_SOURCE_DIR}/examples/scenes/portal_room_consumers.json)
+foreach(outcome "right;0;blue portal: reconstruction ok \\([1-9][0-9]* judged\\)"
+                "wrong;1;blue portal: reconstruction FAIL .*likely cause: reconstructs_with_original")
+  list(GET outcome 0 which)
+  list(GET outcome 1 status)
+  list(GET outcome 2 regex)
+  if(which STREQUAL "right")
+    set(spec ${shaders}/depth_right.hlsl)
+  else()
+    set(spec ${shaders}/depth_wrong.hlsl:camera_matrix_view_position)
+  endif()
+  add_test(NAME shaders_check_scene_${which}
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh ${status} "${regex}"
+                   $<TARGET_FILE:oblique> check ${portal_room} --shader ${spec})
+  set_tests_properties(shaders_check_scene_${which} PROPERTIES LABELS "shaders;check" TIMEOUT 60
+                       SKIP_REGULAR_EXPRESSION "${shader_skip}")
+endforeach()
+oblique_shader_refusal(a_scene_without_reconstruction "the scene names none: add \"reconstruction\""
+                       $<TARGET_FILE:oblique> check ${PROJECT_SOURCE_DIR}/examples/scenes/lake.json
+                       --shader ${shaders}/depth_right.glsl)

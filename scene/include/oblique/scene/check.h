@@ -110,6 +110,9 @@ struct SceneCheck {
   /// `--impl --precision`: the scalar type of the requests sent and of the bounds the answers
   /// are judged with (as `oblique verify --precision`).
   protocol::Precision impl_precision = protocol::Precision::float64;
+  /// `--shader FILE[:FUNCTION]`: the shader whose depth functions answered impl_consumers (in
+  /// float, on the GPU path); empty: --impl's program did.
+  std::string impl_shader;
   /// `--impl`: which known mistake explains its answers (all the passes' cases; ran only when
   /// one is wrong).
   mistakes::Diagnosis impl_diagnosis;
@@ -160,6 +163,16 @@ inline constexpr int kConsumerSamples = 64;
 /// impl_consumers. Fails, saying why, when the program does not answer as the protocol says.
 Expected<Done> judge_implementation_consumers(const Scene& scene, SceneCheck& check,
                                               const std::string& command, double timeout_seconds);
+
+/// `oblique check --shader`: the scene's reconstruction consumer answered by a shader's depth
+/// functions (`shader`, a Consumers<float> of oblique::shader, judged with the GPU's arithmetic)
+/// on every rendered pass, stored in impl_consumers. Fails, saying why, where the scene names no
+/// reconstruction consumer, or the shader cannot be run.
+Expected<Done> judge_shader_consumers(const Scene& scene, SceneCheck& check,
+                                      const Consumers<float>& shader);
+
+/// The scene as --shader checks it: its consumers only the reconstruction one.
+Scene reconstruction_only(const Scene& scene);
 
 /// What a check judged of the consumers the scene names (its claims about the engine), over every
 /// rendered pass: the implementation's (`impl`, with --impl) or the core's references.

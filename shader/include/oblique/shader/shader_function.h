@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "oblique/expected.h"
@@ -86,6 +87,10 @@ struct ShaderFunction {
   Language language = Language::glsl;
   protocol::ConsumerKind kind = protocol::ConsumerKind::view_position;
 };
+
+/// `--shader FILE[:FUNCTION]` split: the file, and the function ("" when none is named; the part
+/// after the last ':' is a function only where it is an identifier, so paths may hold ':').
+std::pair<std::string, std::string> split_shader_spec(const std::string& spec);
 
 /// The functions `--shader FILE[:FUNCTION]` names for `kinds` (view_position, linear_depth):
 /// FILE:FUNCTION answers the one kind given; FILE alone has a function named after each kind.
