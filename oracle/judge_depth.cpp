@@ -121,6 +121,49 @@ int arithmetic_bits(ConsumerArithmetic arithmetic) {
          (arithmetic == ConsumerArithmetic::gpu ? oracle::tolerance::kGpuLostBits : 0);
 }
 
+/// A closed interval of doubles that encloses a real number. Each operation rounds outward: one
+/// step past the round-to-nearest result, which is within half a step of the exact one (or of
+/// the exact one's nearest subnormal).
+struct Interval {
+  double lo = 0, hi = 0;
+  bool finite() const { return std::isfinite(lo) && std::isfinite(hi); }
+  /// The least and the largest |x| of x in the interval.
+  double magnitude_below() const { return lo > 0 ? lo : hi < 0 ? -hi : 0; }
+  double magnitude_above() const { return std::max(std::fabs(lo), std::fabs(hi)); }
+};
+
+double down(double x) {
+  return std::nextafter(x, -std::numeric_limits<double>::infinity());
+}
+double up(double x) {
+  return std::nextafter(x, std::numeric_limits<double>::infinity());
+}
+Interval operator+(const Interval& a, const Interval& b) {
+  return {down(a.lo + b.lo), up(a.hi + b.hi)};
+}
+Interval operator-(const Interval& a, const Interval& b) {
+  return {down(a.lo - b.hi), up(a.hi - b.lo)};
+}
+Interval operator*(const Interval& a, const Interval& b) {
+  const double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+  return {down(*std::min_element(p, p + 4)), up(*std::max_element(p, p + 4))};
+}
+Interval exactly(double x) {
+  return {x, x};
+}
+/// A rational's enclosure: its double (mpq_get_d truncates toward zero) and the next one away
+/// from zero, unless the double is the rational.
+Interval enclosure(const Rational& r) {
+  const double d = r.get_d();
+  if (!std::isfinite(d)) return {-std::numeric_limits<double>::infinity(), d};  // not finite()
+  if (r == d) return {d, d};
+  const double away = r > 0 ? up(d) : down(d);
+  return {std::min(d, away), std::max(d, away)};
+}
+
+constexpr const char* kNoAxis =
+    "the camera does not look along z (M's fourth row is not (0, 0, a, b))";
+
 /// det(m), by the 2 x 2 minors of its first two rows and of its last two (Laplace).
 Rational determinant(const Mat& m) {
   auto minor = [&m](int r, int a, int b) -> Rational {
@@ -140,13 +183,20 @@ Rational determinant(const Mat& m) {
 /// 0), or a divisor (the determinant of M', or w at the segment's ends) whose exact value is
 /// outside [2^-126, 2^126], where the shading language bounds no quotient. (Where only w's error
 /// reaches below that, the answer is judged in homogeneous coordinates, as on the CPU.)
+/// Whether an input of the sample is nonzero and below T's smallest normal number.
 template <class T>
-std::string gpu_unbounded(const DepthSample<T>& s, const Rational& det, const Vec (&ends)[2]) {
+bool has_subnormal_input(const DepthSample<T>& s) {
   const T smallest = std::numeric_limits<T>::min();
   auto subnormal = [&](T x) { return x != 0 && std::fabs(x) < smallest; };
-  bool flushed = subnormal(s.ndc_x) || subnormal(s.ndc_y) || subnormal(s.depth);
-  for (int i = 0; i < 16; ++i) flushed = flushed || subnormal(s.projection(i / 4, i % 4));
-  if (flushed) return "an input below the smallest normal number, which a GPU may flush to 0";
+  bool any = subnormal(s.ndc_x) || subnormal(s.ndc_y) || subnormal(s.depth);
+  for (int i = 0; i < 16; ++i) any = any || subnormal(s.projection(i / 4, i % 4));
+  return any;
+}
+
+template <class T>
+std::string gpu_unbounded(const DepthSample<T>& s, const Rational& det, const Vec (&ends)[2]) {
+  if (has_subnormal_input(s))
+    return "an input below the smallest normal number, which a GPU may flush to 0";
   const Rational low = oracle::exact::power_of_two(-126), high = oracle::exact::power_of_two(126);
   auto outside = [&](const Rational& x) {
     return oracle::exact::abs(x) < low || oracle::exact::abs(x) > high;
@@ -165,6 +215,12 @@ struct MatrixAnalysis {
   Rational det;
   bool axis_is_z = true;
   int axis = -1;
+  /// For the certified floating-point path (certified_holds()): M'^-1 enclosed entry by entry,
+  /// the solve's bound from below, and whether they could be (every enclosure finite).
+  bool enclosed = false;
+  std::array<std::array<Interval, 4>, 4> inv_enclosure{};
+  std::array<std::array<double, 4>, 4> error_below{};
+  bool det_outside_gpu_range = false;  ///< |det M'| outside [2^-126, 2^126]
 };
 
 template <class T>
@@ -196,7 +252,20 @@ MatrixAnalysis analyse_matrices(const DepthSample<T>& s, int bits) {
     return out;
   }
   out.error = *error;
-  if (bits < oracle::tolerance::precision_bits<T>()) out.det = determinant(out.m);
+  if (bits < oracle::tolerance::precision_bits<T>()) {
+    out.det = determinant(out.m);
+    out.det_outside_gpu_range = oracle::exact::abs(out.det) < oracle::exact::power_of_two(-126) ||
+                                oracle::exact::abs(out.det) > oracle::exact::power_of_two(126);
+  }
+  out.enclosed = true;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      out.inv_enclosure[i][j] = enclosure(out.inv[i][j]);
+      out.error_below[i][j] = out.error[i][j].get_d();  // truncated: at most the bound
+      out.enclosed =
+          out.enclosed && out.inv_enclosure[i][j].finite() && std::isfinite(out.error_below[i][j]);
+    }
+  }
   return out;
 }
 
@@ -409,6 +478,208 @@ std::pair<bool, double> judge_on_segment(const Segment& seg, const Vec& p,
   return {false, std::max(ratio, std::nextafter(1.0, 2.0))};
 }
 
+/// The certified floating-point path of the depth judges: whether the answer p (homogeneous,
+/// w = 1, as doubles) provably holds, on_projected_segment() at scale 1 with every quantity of
+/// ray_segment() enclosed in intervals (the box from below, which only makes holding harder) and
+/// a witness t: a place on the segment where some lambda meets every constraint, shown with the
+/// enclosures. Where it holds, the finding (its ratio and words from the enclosures' middles);
+/// none where it cannot show that (a close call, a violation, or a case ray_segment() leaves
+/// out or might): the exact path then decides.
+template <class T>
+std::optional<ConsumerFinding> certified_holds(ConsumerCheck check, const DepthSample<T>& s,
+                                               const std::array<double, 4>& p,
+                                               const std::vector<int>& coordinates, int bits,
+                                               const std::string& answered) {
+  if constexpr (std::numeric_limits<T>::digits > std::numeric_limits<double>::digits) {
+    return std::nullopt;  // inputs a double cannot hold
+  } else {
+    const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+    if (!a.why.empty() || !a.enclosed) return std::nullopt;
+    const bool linear = check == ConsumerCheck::linear_depth;
+    if (linear && (!a.axis_is_z || a.axis == 0)) return std::nullopt;  // the exact path says why
+    const bool gpu = bits < oracle::tolerance::precision_bits<T>();
+    if (gpu && (a.det_outside_gpu_range || has_subnormal_input(s))) return std::nullopt;
+    // The window depths the stored value stands for (depth_interval()), enclosed.
+    Interval lo, hi;
+    if (s.buffer == DepthBuffer::fixed24) {
+      const double k = static_cast<double>(s.stored), steps = 16777215.0;  // 2^24 - 1
+      const double l = (k - 0.5) / steps, h = (k + 0.5) / steps;
+      lo = {down(l), up(l)};
+      hi = {down(h), up(h)};
+    } else {
+      float f;
+      std::memcpy(&f, &s.stored, sizeof f);
+      // Sums of two neighbouring floats and their halves are exact in double.
+      lo = exactly((static_cast<double>(f) + std::nextafter(f, -1.0f)) / 2);
+      hi = exactly((static_cast<double>(f) + std::nextafter(f, 2.0f)) / 2);
+    }
+    const double read = static_cast<double>(s.depth);
+    lo = {std::max(0.0, std::min(lo.lo, read)), std::max(0.0, std::min(lo.hi, read))};
+    hi = {std::min(1.0, std::max(hi.lo, read)), std::min(1.0, std::max(hi.hi, read))};
+    const double u = std::ldexp(1.0, -bits);
+    std::array<Interval, 4> ends[2];
+    std::array<double, 4> box{0, 0, 0, 0}, dv_ends[2];
+    for (int e = 0; e < 2; ++e) {
+      const Interval window = e == 0 ? lo : hi;
+      const Interval z = s.convention == Convention::gl ? exactly(2) * window - exactly(1) : window;
+      const Interval b[4] = {exactly(static_cast<double>(s.ndc_x)),
+                             exactly(static_cast<double>(s.ndc_y)), z, exactly(1)};
+      for (int i = 0; i < 4; ++i) {
+        Interval v{0, 0};
+        double dv = 0;
+        for (int j = 0; j < 4; ++j) {
+          v = v + a.inv_enclosure[i][j] * b[j];
+          dv = std::max(
+              0.0, down(dv + std::max(0.0, down(a.error_below[i][j] * b[j].magnitude_below()))));
+        }
+        if (!v.finite() || !std::isfinite(dv)) return std::nullopt;
+        ends[e][i] = v;
+        dv_ends[e][i] = dv;
+        const double divide = i < 3 ? std::max(0.0, down(u * down(v.magnitude_below() + dv))) : 0.0;
+        box[i] = std::max(box[i], std::max(0.0, down(dv + divide)));
+      }
+    }
+    // The segment must be one ray_segment() judges: w of both ends away from 0, one sign (and,
+    // on a GPU, within the range its quotient is stated for).
+    const Interval& wa = ends[0][3];
+    const Interval& wb = ends[1][3];
+    if (!((wa.lo > 0 && wb.lo > 0) || (wa.hi < 0 && wb.hi < 0))) return std::nullopt;
+    if (gpu) {
+      const double low = std::ldexp(1.0, -126), high = std::ldexp(1.0, 126);
+      for (const Interval* w : {&wa, &wb})
+        if (w->magnitude_below() < low || w->magnitude_above() > high) return std::nullopt;
+    }
+    std::array<int, 4> all{};
+    std::size_t count = 0;
+    for (int i : coordinates) all[count++] = i;
+    all[count++] = 3;
+    // Where to look for a witness: the ends, and where the middles' constraint lines cross
+    // (the double search of on_projected_segment(), without its verdict).
+    std::array<double, 4> ma, mb;
+    for (int i = 0; i < 4; ++i) {
+      ma[i] = (ends[0][i].lo + ends[0][i].hi) / 2;
+      mb[i] = (ends[1][i].lo + ends[1][i].hi) / 2;
+    }
+    // (At most 3 + 8 + 28 places: kept in place, this runs for every answer judged.)
+    std::array<double, 40> candidates{0, 1, 0.5};
+    std::size_t candidate_count = 3;
+    {
+      struct Line {
+        double at0, slope;
+      };
+      std::array<Line, 8> lines{};
+      std::size_t line_count = 0;
+      for (std::size_t k = 0; k < count; ++k) {
+        const int i = all[k];
+        const double d = mb[i] - ma[i];
+        if (p[i] == 0) {
+          if (d != 0) {
+            candidates[candidate_count++] = (-ma[i] - box[i]) / d;
+            candidates[candidate_count++] = (-ma[i] + box[i]) / d;
+          }
+          continue;
+        }
+        lines[line_count++] = {(ma[i] - box[i]) / p[i], d / p[i]};
+        lines[line_count++] = {(ma[i] + box[i]) / p[i], d / p[i]};
+      }
+      for (std::size_t i = 0; i < line_count; ++i)
+        for (std::size_t j = i + 1; j < line_count; ++j)
+          if (lines[i].slope != lines[j].slope)
+            candidates[candidate_count++] =
+                (lines[j].at0 - lines[i].at0) / (lines[i].slope - lines[j].slope);
+    }
+    auto witness = [&](double t) {
+      double most = -std::numeric_limits<double>::infinity();
+      double least = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < count; ++k) {
+        const int i = all[k];
+        const Interval v = ends[0][i] + exactly(t) * (ends[1][i] - ends[0][i]);
+        if (p[i] == 0) {
+          if (!(v.magnitude_above() <= box[i])) return false;
+          continue;
+        }
+        // lambda p_i within box_i of v_i(t): lambda between (v_i -+ box_i) / p_i, taken from the
+        // side that makes the range smaller.
+        if (p[i] > 0) {
+          most = std::max(most, up(up(v.hi - box[i]) / p[i]));
+          least = std::min(least, down(down(v.lo + box[i]) / p[i]));
+        } else {
+          most = std::max(most, up(down(v.lo + box[i]) / p[i]));
+          least = std::min(least, down(up(v.hi - box[i]) / p[i]));
+        }
+      }
+      return most <= least;
+    };
+    bool holds = false;
+    for (std::size_t k = 0; k < candidate_count; ++k) {
+      const double t = candidates[k];
+      if (std::isfinite(t) && t >= 0 && t <= 1 && witness(t)) {
+        holds = true;
+        break;
+      }
+    }
+    if (!holds) return std::nullopt;
+    // The finding, its numbers from the middles.
+    ConsumerFinding f;
+    f.check = check;
+    auto within = [&](double scale) {
+      return on_projected_segment<double>(ma, mb, box, p, coordinates, scale);
+    };
+    double top = 1, bottom = 0;  // to 2^-30: a ratio for the words
+    for (int k = 0; k < 30; ++k) {
+      const double mid = (bottom + top) / 2;
+      (within(mid) ? top : bottom) = mid;
+    }
+    f.ratio = std::min(top, 1.0);
+    Vec ea, eb;  // the ends divided by w, as Rationals for the words
+    std::array<double, 3> bound{0, 0, 0};
+    bool determined = true;
+    for (int e = 0; e < 2; ++e) {
+      const std::array<double, 4>& m = e == 0 ? ma : mb;
+      const double w = std::fabs(m[3]), dw = dv_ends[e][3];
+      if (dw >= w) determined = false;
+      for (int i = 0; i < 3; ++i) {
+        const double q = m[i] / m[3];
+        if (!std::isfinite(q)) return std::nullopt;  // the exact path has the words for it
+        (e == 0 ? ea : eb)[i] = Rational(q);
+        if (dw < w)
+          bound[i] =
+              std::max(bound[i], (dv_ends[e][i] + std::fabs(q) * dw) / (w - dw) + u * std::fabs(q));
+      }
+      (e == 0 ? ea : eb)[3] = 1;
+    }
+    f.points = {approx_point(ea), approx_point(eb)};
+    f.points_what = "the ends of the pixel ray's segment the stored depth stands for";
+    if (!linear) {
+      f.points.insert(f.points.begin(), Eigen::Vector3d(p[0], p[1], p[2]));
+      f.points_what = "the answer, and " + f.points_what;
+    }
+    std::string within_words;
+    if (!determined) {
+      within_words =
+          "; a solve in T can reach w = 0 there, so the answer is judged in "
+          "homogeneous coordinates: (x, y, z, w) within (" +
+          protocol::format_number(box[0]) + ", " + protocol::format_number(box[1]) + ", " +
+          protocol::format_number(box[2]) + ", " + protocol::format_number(box[3]) +
+          ") of the segment's";
+    } else if (coordinates.size() == 1) {
+      within_words = ", within " + protocol::format_number(bound[2]);
+    } else {
+      within_words = ", each coordinate within (" + protocol::format_number(bound[0]) + ", " +
+                     protocol::format_number(bound[1]) + ", " + protocol::format_number(bound[2]) +
+                     ")";
+    }
+    f.detail =
+        "answered " + answered +
+        (linear ? "; the stored depth stands for linear depths from " +
+                      text(Rational(a.axis * ea[2])) + " to " + text(Rational(a.axis * eb[2]))
+                : "; the stored depth stands for the points from " + text(ea, 3) + " to " +
+                      text(eb, 3)) +
+        within_words;
+    return f;
+  }
+}
+
 }  // namespace
 
 template <class T>
@@ -461,7 +732,14 @@ const Segment& ray_segment_of(const DepthSample<T>& s, ConsumerArithmetic arithm
 
 template <class T>
 ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& answer,
-                                    ConsumerArithmetic arithmetic) {
+                                    ConsumerArithmetic arithmetic, Arithmetic method) {
+  if (method == Arithmetic::filtered && answer.allFinite()) {
+    const std::array<double, 4> p{static_cast<double>(answer(0)), static_cast<double>(answer(1)),
+                                  static_cast<double>(answer(2)), 1.0};
+    if (auto f = certified_holds(ConsumerCheck::view_position, s, p, {0, 1, 2},
+                                 arithmetic_bits<T>(arithmetic), numbers_text(answer)))
+      return *f;
+  }
   const Segment& seg = ray_segment_of(s, arithmetic);
   if (auto early = before_the_answer(ConsumerCheck::view_position, seg, answer.allFinite(),
                                      !answer.array().isFinite().any(), numbers_text(answer)))
@@ -479,8 +757,24 @@ ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& a
 }
 
 template <class T>
-ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer,
-                                   ConsumerArithmetic arithmetic) {
+ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer, ConsumerArithmetic arithmetic,
+                                   Arithmetic method) {
+  if (method == Arithmetic::filtered && std::isfinite(answer)) {
+    const MatrixAnalysis& a = matrix_analysis_of(s, arithmetic_bits<T>(arithmetic));
+    if (a.why.empty() && !a.axis_is_z) {
+      // No axis to measure along, whatever the pixel (the exact path says the same after the
+      // segment's own reasons, which need no pixel's analysis here).
+      ConsumerFinding f;
+      f.check = ConsumerCheck::linear_depth;
+      f.judged = false;
+      f.detail = kNoAxis;
+      return f;
+    }
+    const std::array<double, 4> p{0, 0, a.axis * static_cast<double>(answer), 1};
+    if (auto f = certified_holds(ConsumerCheck::linear_depth, s, p, {2},
+                                 arithmetic_bits<T>(arithmetic), protocol::format_number(answer)))
+      return *f;
+  }
   const Segment& seg = ray_segment_of(s, arithmetic);
   if (auto early = before_the_answer(ConsumerCheck::linear_depth, seg, std::isfinite(answer),
                                      !std::isfinite(answer), protocol::format_number(answer)))
@@ -489,7 +783,7 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer,
   f.check = ConsumerCheck::linear_depth;
   if (!seg.axis_is_z) {
     f.judged = false;
-    f.detail = "the camera does not look along z (M's fourth row is not (0, 0, a, b))";
+    f.detail = kNoAxis;
     return f;
   }
   if (seg.axis == 0) {
@@ -518,8 +812,9 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer,
   template std::optional<DepthSample<T>> depth_sample(const Matrix4<T>&, const Matrix4<T>&,        \
                                                       Convention, DepthBuffer, const Vector4<T>&); \
   template ConsumerFinding judge_view_position(const DepthSample<T>&, const Vector3<T>&,           \
-                                               ConsumerArithmetic);                                \
-  template ConsumerFinding judge_linear_depth(const DepthSample<T>&, T, ConsumerArithmetic);
+                                               ConsumerArithmetic, Arithmetic);                    \
+  template ConsumerFinding judge_linear_depth(const DepthSample<T>&, T, ConsumerArithmetic,        \
+                                              Arithmetic);
 OBLIQUE_DEPTH_JUDGES(float)
 OBLIQUE_DEPTH_JUDGES(double)
 OBLIQUE_DEPTH_JUDGES(long double)

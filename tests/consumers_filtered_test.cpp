@@ -1,13 +1,15 @@
 // The consumer judges that settle in certified floating-point bounds first (Arithmetic::filtered,
 // the default) against the same judges in exact arithmetic throughout: on generated cases of every
 // family, convention and precision, and on answers near the bound (the right corners shrunk so
-// that a vertex of the kept region lies outside their hull by 0.5 to 3 times the bound), both
+// that a vertex of the kept region lies outside their hull by 0.5 to 3 times the bound; the right
+// view position and linear depth moved off the pixel's segment by 2^-e of themselves), both
 // must give the same verdict, the same message for a violation and the same ratio up to the
 // rounding of the bound.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "oblique/cases/generators.h"
 #include "oblique/oblique.h"
 #include "oblique/oracle/consumers.h"
+#include "oblique/references/depth_reconstruction.h"
 #include "oblique/references/frustum_planes.h"
 #include "oblique/references/kept_region.h"
 
@@ -121,6 +124,88 @@ TYPED_TEST(FilteredConsumers, cornersJudgeAgreesWithTheExactOne) {
   EXPECT_EQ(cases, wanted);
   EXPECT_GE(probed, wanted / 2);
   // Both verdicts were compared, on answers that hold and on answers just outside the bound.
+  EXPECT_GT(tally.held, 0);
+  EXPECT_GT(tally.violated, 0);
+}
+
+/// The verdicts the same; for an answer that holds, the ratio (words, from doubles in either path:
+/// the exact path rounds the segment once, the certified one carries a few roundings) the same
+/// within `ratio_tolerance`.
+template <class F>
+void expect_same_depth_verdict(const F& judge, const std::string& what, double ratio_tolerance,
+                               Tally& tally) {
+  const ConsumerFinding filtered = judge(Arithmetic::filtered);
+  const ConsumerFinding exact = judge(Arithmetic::exact);
+  const std::string where = what + " (" + describe(exact) + ")";
+  ASSERT_EQ(filtered.judged, exact.judged) << where;
+  ASSERT_EQ(filtered.holds, exact.holds) << where;
+  if (!exact.judged) {
+    ++tally.not_judged;
+    return;
+  }
+  ++tally.judged;
+  if (exact.holds) {
+    ++tally.held;
+    // The certified path's ratio comes from its enclosures' middles and the box from below.
+    EXPECT_LE(std::fabs(filtered.ratio - exact.ratio), ratio_tolerance) << where;
+  } else {
+    ++tally.violated;
+    EXPECT_EQ(filtered.detail, exact.detail) << where;
+    EXPECT_EQ(filtered.ratio, exact.ratio) << where;
+  }
+}
+
+TYPED_TEST(FilteredConsumers, depthJudgesAgreeWithTheExactOnes) {
+  using T = TypeParam;
+  const auto gen = cases::valid_case<T>();
+  rc::Random random(20261206);
+  std::mt19937_64 engine(11);
+  Tally tally;
+  Consumers<T> asking;
+  std::vector<DepthSample<T>> samples;
+  asking.view_position = [&samples](const DepthSample<T>& s) {
+    samples.push_back(s);
+    return Vector3<T>::Zero().eval();
+  };
+  const Pick pick = [&engine](int lo, int hi) {
+    return std::uniform_int_distribution<int>(lo, hi - 1)(engine);
+  };
+  const int wanted = std::is_same_v<T, long double> ? 20 : 120;
+  for (int i = 0; static_cast<int>(samples.size()) < wanted && i < 4 * wanted; ++i) {
+    const cases::Case<T> g = gen(random.split(), i % 101).value();
+    for (const auto& ask :
+         consumer_asks<T>(g.matrix, g.plane, g.convention, asking, pick,
+                          [](const ConsumerFinding&, const std::string&, bool) {}))
+      (void)ask.call(asking);
+  }
+  ASSERT_GE(static_cast<int>(samples.size()), wanted);
+  // A double's box is a few hundred of double's ulps of the segment: a few roundings of the ends
+  // move the ratio's words by about 1%. A float's box is millions of them.
+  const double ratio_tolerance = std::is_same_v<T, float> ? 1e-6 : 0.05;
+  for (std::size_t n = 0; n < samples.size(); ++n) {
+    const DepthSample<T>& s = samples[n];
+    const Vector3<T> right = view_position(s.projection, s.ndc_x, s.ndc_y, s.depth, s.convention);
+    const int axis = view_axis_sign(s.original, s.convention);
+    for (const ConsumerArithmetic arithmetic :
+         {ConsumerArithmetic::ieee, ConsumerArithmetic::gpu}) {
+      for (int e = 0; e <= std::numeric_limits<T>::digits; e += 3) {
+        const T moved = e == std::numeric_limits<T>::digits ? T(0) : std::ldexp(T(1), -e);
+        const Vector3<T> answer = right * (T(1) + moved);
+        const std::string what = "sample " + std::to_string(n) + ", moved by 2^-" +
+                                 std::to_string(e) +
+                                 (arithmetic == ConsumerArithmetic::gpu ? " (gpu)" : "");
+        expect_same_depth_verdict(
+            [&](Arithmetic method) { return judge_view_position(s, answer, arithmetic, method); },
+            "view_position, " + what, ratio_tolerance, tally);
+        expect_same_depth_verdict(
+            [&](Arithmetic method) {
+              return judge_linear_depth(s, T(axis) * answer.z(), arithmetic, method);
+            },
+            "linear_depth, " + what, ratio_tolerance, tally);
+        if (::testing::Test::HasFatalFailure()) return;
+      }
+    }
+  }
   EXPECT_GT(tally.held, 0);
   EXPECT_GT(tally.violated, 0);
 }

@@ -100,7 +100,8 @@ class ProgramAnswerer final : public Answerer<T> {
 };
 
 /// A shader's answer as the protocol's answer line would carry it.
-std::string shader_answer_line(ConsumerKind kind, const std::vector<float>& numbers) {
+template <class T>
+std::string shader_answer_line(ConsumerKind kind, const std::vector<T>& numbers) {
   std::string line = "{\"" + std::string(protocol::consumer_answer_field(kind)) + "\": ";
   if (kind == ConsumerKind::linear_depth) return line + protocol::json_number(numbers.at(0)) + "}";
   line += "[";
@@ -132,11 +133,8 @@ class ShaderAnswerer final : public Answerer<float> {
       out.failure = f;
       return out;
     }
-    for (std::size_t i = 0; i < asks.size(); ++i) {
-      out.requests.push_back(asks[i]->request().line());
-      out.lines.push_back(shader_answer_line(asks[i]->kind, (*answers)[i]));
-      out.numbers.push_back((*answers)[i]);
-    }
+    // The request and answer lines are made where a violation needs them (play_batch()).
+    out.numbers = std::move(*answers);
     answered_ += static_cast<long>(asks.size());
     return out;
   }
@@ -435,6 +433,14 @@ class ConsumerRun {
       for (const auto& a : p.asks) asks.push_back(&a);
     }
     const typename Answerer<T>::Batch answers = program_->answer(asks);
+    // A program's lines as it read and wrote them; a shader's made from its numbers.
+    auto request_line = [&](std::size_t k) {
+      return k < answers.requests.size() ? answers.requests[k] : asks[k]->request().line();
+    };
+    auto answer_line = [&](std::size_t k) {
+      return k < answers.lines.size() ? answers.lines[k]
+                                      : shader_answer_line(asks[k]->kind, answers.numbers[k]);
+    };
     in_slices(
         batch.size(), options_.threads,
         [&](std::size_t from, std::size_t to) {
@@ -458,9 +464,11 @@ class ConsumerRun {
       const Planned& p = batch[r];
       const long i = index + static_cast<long>(r);
       for (const Pending& f : p.pending) {
-        const bool asked = f.ask < answers.lines.size();
-        tally(f.finding, p.round, i, f.inputs, f.about, asked ? answers.requests[f.ask] : "",
-              asked ? answers.lines[f.ask] : "");
+        // The exchange is kept only with a violation: a shader's batch writes its lines then.
+        const bool asked = f.ask < answers.numbers.size();
+        const bool kept = asked && f.finding.judged && !f.finding.holds;
+        tally(f.finding, p.round, i, f.inputs, f.about, kept ? request_line(f.ask) : "",
+              kept ? answer_line(f.ask) : "");
       }
       ++settled;
       if (caught_) return true;

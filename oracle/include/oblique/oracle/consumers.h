@@ -117,6 +117,11 @@ std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const M
                                            Convention convention, DepthBuffer buffer,
                                            const Vector4<T>& point);
 
+/// How a judge computes what it compares: certified floating-point bounds first and exact
+/// rational arithmetic where they cannot decide (filtered, the verdict the same), or exact
+/// arithmetic throughout (the reference the filtered judge is tested against).
+enum class Arithmetic { filtered, exact };
+
 /// The arithmetic a consumer computes in, which its bounds are derived from: T's IEEE arithmetic
 /// (every operation correctly rounded), or a GPU's in T (a shader: the shading language's stated
 /// precision per operation, tolerance.h kGpuLostBits; the depth judges only).
@@ -128,13 +133,15 @@ enum class ConsumerArithmetic { ieee, gpu };
 /// `arithmetic`. Not judged where that segment reaches infinity.
 template <class T>
 ConsumerFinding judge_view_position(const DepthSample<T>& sample, const Vector3<T>& answer,
-                                    ConsumerArithmetic arithmetic = ConsumerArithmetic::ieee);
+                                    ConsumerArithmetic arithmetic = ConsumerArithmetic::ieee,
+                                    Arithmetic method = Arithmetic::filtered);
 
 /// `answer`, the linear depth (view_axis_sign(original) z) the consumer reconstructed from
 /// `sample`, as judge_view_position() judges the point's z.
 template <class T>
 ConsumerFinding judge_linear_depth(const DepthSample<T>& sample, T answer,
-                                   ConsumerArithmetic arithmetic = ConsumerArithmetic::ieee);
+                                   ConsumerArithmetic arithmetic = ConsumerArithmetic::ieee,
+                                   Arithmetic method = Arithmetic::filtered);
 
 /// The culling planes the consumer extracted from `oblique` (the answer for m, c, convention in T),
 /// each keeping P . x >= 0: culling_keeps_visible (every vertex of the kept region of m and c,
@@ -191,11 +198,6 @@ ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& worl
 template <class T>
 ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& frame,
                                   const Matrix4<T>& linked, const Matrix4<T>& answer);
-
-/// How a judge computes what it compares: certified floating-point bounds first and exact
-/// rational arithmetic where they cannot decide (filtered, the verdict the same), or exact
-/// arithmetic throughout (the reference the filtered judge is tested against).
-enum class Arithmetic { filtered, exact };
 
 /// The most distinct points judge_corners() takes.
 inline constexpr std::size_t kMaxCorners = 32;
