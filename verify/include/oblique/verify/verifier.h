@@ -12,10 +12,10 @@
 
 #include "oblique/cases/contract.h"
 #include "oblique/oracle/consumers.h"
-#include "oblique/shader/shader_function.h"
 #include "oblique/protocol/consumer_messages.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/references/depth_reconstruction.h"
+#include "oblique/shader/shader_function.h"
 #include "oblique/status.h"
 
 namespace oblique::verify {
