@@ -5,7 +5,7 @@
 #   bash scripts/false_alarms.sh [--minutes M] [--jobs J] [--seed S] [--no-build]
 #
 # Each run below takes M minutes (default 10) of one job; J (default: the number of cores) run
-# at a time, so the whole takes about 11 M / J minutes, then the buggy examples (at most 7 min).
+# at a time, so the whole takes about 14 M / J minutes, then the buggy examples (at most 7 min).
 # S (default: from the clock) is the first seed, each run gets its own. The runs:
 #   verify: the bundled `correct` (double and float, any refusal) and `engine_no_statuses` (double
 #           and float, examples/engine_contract.json: answers only, unit planes), every
@@ -20,9 +20,12 @@
 #   consumers over the protocol: the same functions as a program (consumers_program) under
 #           `oblique verify --consumers all`, double and float, every family and convention; and
 #           an engine whose mirror pass is a proper camera (the flip in the projection), declared
-#           with --mirror-design proper_camera.
+#           with --mirror-design proper_camera;
+#   shaders: the bundled right depth shaders (examples/shaders: GLSL, HLSL, and GLSL inverting
+#           in the shader) under `oblique verify --shader` on llvmpipe, every family and convention.
 # Then each buggy example under verify (must be caught: exit 1), with its time to the finding, and
-# each wrong consumer (must be caught by its property), in-process and over the protocol.
+# each wrong consumer (must be caught by its property), in-process and over the protocol, and each
+# wrong shader (GLSL and HLSL) under verify --shader.
 # Logs and a summary go to a new folder build/false-alarms/<UTC time>/ (nothing is overwritten);
 # the script exits 1 on any false alarm or missed bug, 2 when a run could not be made.
 set -euo pipefail
@@ -85,6 +88,9 @@ runs=(
   "right consumers, verify, double|consumers_verify|$ex/example_consumers_program|--convention all"
   "right consumers, verify, float|consumers_verify|$ex/example_consumers_program --float|--precision float --convention all"
   "proper-camera mirror engine, verify, double|consumers_verify|$ex/example_consumers_program --wrong mirror_by_reflected_look_at|--convention all --mirror-design proper_camera"
+  "right shader, GLSL, verify --shader|shader_verify|examples/shaders/depth_right.glsl|--consumers view_position,linear_depth --convention all"
+  "right shader, HLSL, verify --shader|shader_verify|examples/shaders/depth_right.hlsl|--consumers view_position,linear_depth --convention all"
+  "right shader, GLSL inverse() in the shader, verify --shader|shader_verify|examples/shaders/depth_right_inverse_in_shader.glsl|--consumers view_position --convention all"
 )
 secs=$((minutes * 60))
 
@@ -153,10 +159,15 @@ run_one() {
       left=$(sed -n 's/^[a-z_]*: OK, passed [0-9]* tests (left out: \(.*\))$/\1/p' "$log" |
                grep -o '[0-9][0-9]*\(,\|$\)' | tr -d ',' | awk '{s += $1} END {print s + 0}')
       ;;
-    consumers_verify)
+    consumers_verify|shader_verify)
       # shellcheck disable=SC2086
-      "$oblique" verify --consumers all --impl "$impl" $args --seed "$s" --time-limit "$secs" \
-        --quiet --report-dir "$out/reports$n" > "$log" 2>&1 || rc=$?
+      if [[ "$kind" == shader_verify ]]; then
+        "$oblique" verify --shader "$impl" $args --seed "$s" --time-limit "$secs" \
+          --quiet --report-dir "$out/reports$n" > "$log" 2>&1 || rc=$?
+      else
+        "$oblique" verify --consumers all --impl "$impl" $args --seed "$s" --time-limit "$secs" \
+          --quiet --report-dir "$out/reports$n" > "$log" 2>&1 || rc=$?
+      fi
       judged=$(sed -n 's/^oblique verify: no violation in \([0-9]*\) answers judged.*/\1/p' "$log")
       left=$(sed -n 's/^  left out: //p' "$log" | grep -o '[0-9][0-9]*\(,\|$\)' | tr -d ',' |
              awk '{s += $1} END {print s + 0}')
@@ -296,6 +307,34 @@ for triple in reconstructs_with_original:view_position:view_position \
     say "| $mistake | NOT CAUGHT by $property (exit $rc) | $elapsed |"
     missed=$((missed + 1))
   fi
+done
+say ""
+say "Wrong shaders (verify --shader, seed $seed): each must be caught and named."
+say ""
+say "| shader | caught by | likely cause | seconds |"
+say "|---|---|---|---|"
+for quad in camera_matrix_view_position:view_position:reconstructs_with_original \
+            zparams_linear_depth:linear_depth:linearises_with_near_far \
+            opengl_ndc_view_position:view_position:ndc_depth_of_other_convention \
+            reversed_as_forward_view_position:view_position:reads_reversed_as_forward; do
+  IFS=':' read -r function kind cause <<< "$quad"
+  for language in glsl hlsl; do
+    log="$out/wrong_shader_${language}_$function.log"
+    start=$(date +%s.%N)
+    rc=0
+    "$oblique" verify --consumers "$kind" --shader "examples/shaders/depth_wrong.$language:$function" \
+      --convention all --seed "$seed" --time-limit 60 --quiet \
+      --report-dir "$out/wrong_shader_reports_${language}_$function" > "$log" 2>&1 || rc=$?
+    elapsed=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {printf "%.2f", b - a}')
+    caught=$(sed -n 's/^oblique verify: violated: \([a-z_]*\) violated.*/\1/p' "$log" | head -1)
+    named=$(grep -o "likely cause: $cause" "$log" | head -1)
+    if ((rc == 1)) && [[ "$caught" == "$kind" && -n "$named" ]]; then
+      say "| $language $function | $caught | $cause | $elapsed |"
+    else
+      say "| $language $function | NOT CAUGHT by $kind and named $cause (exit $rc) | - | $elapsed |"
+      missed=$((missed + 1))
+    fi
+  done
 done
 say ""
 say "Summary: $total judged cases, $failures false-alarm runs, $missed buggy examples missed."
