@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -206,6 +207,26 @@ Expected<Signature> find_signature(const std::string& source, const std::string&
   return sig;
 }
 
+Expected<std::string> read_shader_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status))
+    return Expected<std::string>::failure("cannot read the shader " + path + ": no such file");
+  if (!fs::is_regular_file(status))
+    return Expected<std::string>::failure("cannot read the shader " + path +
+                                          ": not a regular file (a folder, a device or a pipe)");
+  const auto size = fs::file_size(path, ec);
+  if (ec || size > kMaxShaderBytes)
+    return Expected<std::string>::failure("cannot read the shader " + path + ": larger than " +
+                                          std::to_string(kMaxShaderBytes >> 20) + " MiB");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  if (in) text << in.rdbuf();
+  if (!in) return Expected<std::string>::failure("cannot read the shader " + path);
+  return text.str();
+}
+
 std::pair<std::string, std::string> split_shader_spec(const std::string& spec) {
   const auto colon = spec.rfind(':');
   if (colon == std::string::npos) return {spec, ""};
@@ -225,13 +246,11 @@ Expected<ShaderFunction> shader_function_in(const std::string& path, const std::
       shader_functions(path + ":" + function, {ConsumerKind::view_position}, language);
   if (!named) return Found::failure(named.error());
   ShaderFunction f = named->front();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Found::failure("cannot read the shader " + path);
-  std::ostringstream text;
-  text << in.rdbuf();
+  const Expected<std::string> text = read_shader_file(path);
+  if (!text) return Found::failure(text.error());
   // The return type decides the kind: find the function as either and keep the one that fits.
   for (const ConsumerKind kind : {ConsumerKind::view_position, ConsumerKind::linear_depth}) {
-    const Expected<Signature> sig = find_signature(text.str(), function, f.language, kind);
+    const Expected<Signature> sig = find_signature(*text, function, f.language, kind);
     if (sig) {
       f.kind = kind;
       return f;

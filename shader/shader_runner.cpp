@@ -77,8 +77,10 @@ bool tool_present(const char* name) {
 struct TempFolder {
   std::filesystem::path path;
   TempFolder() {
-    std::string pattern =
-        (std::filesystem::temp_directory_path() / "oblique-shader-XXXXXX").string();
+    std::error_code ec;
+    const std::filesystem::path base = std::filesystem::temp_directory_path(ec);
+    if (ec) return;  // path stays empty: the caller says it cannot make one
+    std::string pattern = (base / "oblique-shader-XXXXXX").string();
     if (mkdtemp(pattern.data())) path = pattern;
   }
   ~TempFolder() {
@@ -97,7 +99,9 @@ Expected<std::string> hlsl_as_glsl(const std::string& hlsl) {
                                             " (bash scripts/setup.sh)");
   }
   const TempFolder folder;
-  if (folder.path.empty()) return Expected<std::string>::failure("cannot make a temporary folder");
+  if (folder.path.empty())
+    return Expected<std::string>::failure(
+        "cannot make a temporary folder for glslang's files (is TMPDIR a writable folder?)");
   const std::string in = (folder.path / "wrapped.hlsl").string();
   const std::string spv = (folder.path / "wrapped.spv").string();
   const std::string glsl = (folder.path / "wrapped.comp").string();
@@ -323,9 +327,9 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
     if (f.kind != ConsumerKind::view_position && f.kind != ConsumerKind::linear_depth)
       return Opened::failure("a shader answers view_position and linear_depth, not " +
                              std::string(protocol::consumer_kind_name(f.kind)));
-    std::string error;
-    const std::string source = read_file(f.path, error);
-    if (!error.empty()) return Opened::failure(error);
+    const Expected<std::string> read = read_shader_file(f.path);
+    if (!read) return Opened::failure(read.error());
+    const std::string& source = *read;
     const Expected<Signature> sig = find_signature(source, f.function, f.language, f.kind);
     if (!sig) return Opened::failure(f.path + ": " + sig.error());
     const int k = kind_index(f.kind);

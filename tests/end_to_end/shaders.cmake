@@ -75,6 +75,10 @@ set(verify_shader $<TARGET_FILE:oblique> verify --time-limit 3 --seed 1
                   --report-dir ${shader_reports}/hostile)
 oblique_shader_refusal(a_missing_file "cannot read the shader"
                        ${verify_shader} --consumers view_position --shader /nonexistent.glsl)
+oblique_shader_refusal(a_device_not_a_file "/dev/zero: not a regular file"
+                       ${verify_shader} --consumers view_position --shader /dev/zero)
+oblique_shader_refusal(a_folder_not_a_file "not a regular file"
+                       ${verify_shader} --consumers view_position --shader ${shaders})
 oblique_shader_refusal(a_missing_function "no function named nosuch is defined \\(functions found: ndc_depth, view_position, linear_depth\\)"
                        ${verify_shader} --consumers view_position
                        --shader ${shaders}/depth_right.glsl:nosuch)

@@ -101,6 +101,11 @@ Expected<std::vector<ShaderFunction>> shader_functions(
     const std::string& spec, const std::vector<protocol::ConsumerKind>& kinds,
     std::optional<Language> language);
 
+/// The text of a shader file: a regular file of at most kMaxShaderBytes. The error says why not
+/// (missing, a folder or a device, too large, unreadable).
+inline constexpr std::size_t kMaxShaderBytes = 16u << 20;
+Expected<std::string> read_shader_file(const std::string& path);
+
 /// The function `function` of the file `path` as a ShaderFunction: its kind from its return
 /// type (vec3 / float3: view_position; float: linear_depth), its language from `language` or the
 /// file's extension. The error says why not (the file unreadable, no such function, another
