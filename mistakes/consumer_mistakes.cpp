@@ -122,16 +122,18 @@ bool alike(const std::vector<T>& a, const std::vector<T>& b, std::size_t group, 
            bool any_order) {
   if (a.size() != b.size() || group == 0 || a.size() % group != 0) return false;
   const T tolerance = T(8) * std::sqrt(std::numeric_limits<T>::epsilon());
-  // An answer that is not finite is a formula's where that formula gives NaN and the same
-  // infinities in the same places (n f / (f - d (f - n)) at an infinite f: inf / inf), and the
-  // same finite numbers elsewhere.
+  // An answer that is not finite is a formula's where that formula gives NaN and infinities in
+  // the same places (n f / (f - d (f - n)) at an infinite f: inf / inf; a divide by a w that is 0,
+  // whose sign, and so the infinities', is rounding's: either sign), and the same finite numbers
+  // elsewhere.
   bool finite = true;
   for (std::size_t i = 0; i < a.size(); ++i)
     finite = finite && std::isfinite(a[i]) && std::isfinite(b[i]);
   if (!finite) {
     for (std::size_t i = 0; i < a.size(); ++i) {
       const bool same =
-          (std::isnan(a[i]) && std::isnan(b[i])) || a[i] == b[i] ||
+          (std::isnan(a[i]) && std::isnan(b[i])) || (std::isinf(a[i]) && std::isinf(b[i])) ||
+          a[i] == b[i] ||
           (std::isfinite(a[i]) && std::isfinite(b[i]) &&
            std::abs(a[i] - b[i]) <= tolerance * std::max(std::abs(a[i]), std::abs(b[i])));
       if (!same) return false;
