@@ -23,6 +23,7 @@
 
 #include "oblique/depth_convention.h"
 #include "oblique/oracle/consumer_wire.h"
+#include "oblique/protocol/shell_text.h"
 #include "oblique/references/depth_reconstruction.h"
 
 namespace oblique::shader {
@@ -37,23 +38,6 @@ constexpr GLuint kGroupSize = 64;
 
 int kind_index(ConsumerKind kind) {
   return kind == ConsumerKind::view_position ? 0 : 1;
-}
-
-std::string read_file(const std::string& path, std::string& error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = "cannot read the shader " + path;
-    return "";
-  }
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string shell_quoted(const std::string& s) {
-  std::string out = "'";
-  for (const char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return out + "'";
 }
 
 /// Runs `command` (its standard error joined to its output); returns the exit status, -1 where
@@ -107,8 +91,8 @@ Expected<std::string> hlsl_as_glsl(const std::string& hlsl) {
   const std::string glsl = (folder.path / "wrapped.comp").string();
   std::ofstream(in, std::ios::binary) << hlsl;
   std::string log;
-  if (run_tool("glslangValidator -D -V -S comp -e oblique_main -o " + shell_quoted(spv) + " " +
-                   shell_quoted(in),
+  if (run_tool("glslangValidator -D -V -S comp -e oblique_main -o " + protocol::shell_quote(spv) +
+                   " " + protocol::shell_quote(in),
                log) != 0) {
     // glslang echoes the input's name first, and ends with its summary lines.
     std::string kept;
@@ -120,15 +104,12 @@ Expected<std::string> hlsl_as_glsl(const std::string& hlsl) {
     return Expected<std::string>::failure("the HLSL did not compile (glslang):\n" + kept);
   }
   std::string cross_log;
-  if (run_tool("spirv-cross --version 450 --no-es " + shell_quoted(spv) + " --output " +
-                   shell_quoted(glsl),
+  if (run_tool("spirv-cross --version 450 --no-es " + protocol::shell_quote(spv) + " --output " +
+                   protocol::shell_quote(glsl),
                cross_log) != 0)
     return Expected<std::string>::failure("spirv-cross could not turn the SPIR-V into GLSL: " +
                                           cross_log);
-  std::string error;
-  std::string out = read_file(glsl, error);
-  if (!error.empty()) return Expected<std::string>::failure(error);
-  return out;
+  return read_shader_file(glsl);
 }
 
 /// A GL compiler's log with its lines named: the user's file's, or the wrapper's from
