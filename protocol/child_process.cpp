@@ -1,5 +1,7 @@
 #include "oblique/protocol/child_process.h"
 
+#include "oblique/protocol/interrupts.h"
+
 #include <dirent.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -32,45 +34,6 @@ void close_fd(int& fd) {
 bool set_nonblocking(int fd) {
   const int flags = ::fcntl(fd, F_GETFL);
   return flags >= 0 && ::fcntl(fd, F_SETFL, flags | O_NONBLOCK) == 0;
-}
-
-/// The process groups of the implementations running now, for the interrupt handler below (a
-/// fixed table of lock-free atomics: all a signal handler may read).
-constexpr int kMaxRunning = 16;
-std::atomic<pid_t> running_groups[kMaxRunning];
-
-void remember_group(pid_t pid, bool running) {
-  for (auto& g : running_groups) {
-    pid_t expected = running ? 0 : pid;
-    if (g.compare_exchange_strong(expected, running ? pid : 0)) return;
-  }
-}
-
-/// Each implementation runs in a process group of its own, so a Ctrl-C at the terminal does not
-/// reach it: on SIGINT, SIGTERM or SIGHUP, end those groups, then die of the signal as before.
-void end_groups_and_die(int sig) {
-  for (auto& g : running_groups) {
-    const pid_t pid = g.load();
-    if (pid > 0) ::kill(-pid, SIGKILL);
-  }
-  ::signal(sig, SIG_DFL);
-  ::raise(sig);
-}
-
-/// Installs end_groups_and_die for the signals the program has not taken itself.
-void handle_interrupts() {
-  static const bool installed = [] {
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
-      struct sigaction old {};
-      if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;
-      struct sigaction action {};
-      action.sa_handler = end_groups_and_die;
-      sigemptyset(&action.sa_mask);
-      ::sigaction(sig, &action, nullptr);
-    }
-    return true;
-  }();
-  (void)installed;
 }
 
 /// Our children (processes whose parent we are), from /proc: the implementation's descendants
@@ -147,7 +110,7 @@ Expected<Done> ChildProcess::start() {
     ::_exit(127);
   }
   ::setpgid(pid, pid);  // also done by the child; whichever runs first wins the race harmlessly
-  remember_group(pid, true);
+  remember_child_group(pid);
   ::close(in[0]);
   ::close(out[1]);
   ::close(err[1]);
@@ -387,7 +350,7 @@ void ChildProcess::stop() {
     }
   }
   close_fds();
-  remember_group(pid_, false);
+  forget_child_group(pid_);
   pid_ = -1;
   unwritten_.clear();
   written_ = 0;

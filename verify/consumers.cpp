@@ -19,6 +19,7 @@
 #include "oblique/mistakes/consumer_mistakes.h"
 #include "oblique/oblique.h"
 #include "oblique/oracle/consumer_wire.h"
+#include "oblique/protocol/interrupts.h"
 #include "oblique/protocol/names.h"
 #include "oblique/protocol/shell_text.h"
 #include "oblique/report/counterexample_report.h"
@@ -291,6 +292,7 @@ class ConsumerRun {
   /// has the shrunk round.
   void shrink() {
     if (!caught_ || caught_->lost) return;
+    set_shrinking_line(options_);
     // Said first (and flushed): an interrupted shrink still leaves the finding on the terminal.
     (err_ << "oblique verify: " << oracle::consumer_check_name(caught_->finding.check)
           << " violated in round " << caught_->index + 1 << "; shrinking its picks\n  request: "
@@ -487,6 +489,8 @@ class ConsumerRun {
     const auto deadline =
         start + std::chrono::milliseconds(static_cast<long>(options_.time_limit_seconds * 1000));
     auto last_progress = start;
+    protocol::handle_interrupts();
+    set_interrupted_line(options_, 0, "answers judged", 0);
     long index = 0;
     std::map<std::string, long> conventions, families;
     // Batches grow from one round (a first violation or crash is met at once) to kMaxBatch
@@ -512,6 +516,8 @@ class ConsumerRun {
       index += settled;
       if (caught_) break;
       const auto now = std::chrono::steady_clock::now();
+      set_interrupted_line(options_, total(judged_), "answers judged",
+                           std::chrono::duration<double>(now - start).count());
       if (options_.progress && now - last_progress > std::chrono::seconds(5)) {
         last_progress = now;
         err_ << "oblique verify: " << index << " rounds, " << total(judged_) << " answers judged, "

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 
 #include "failure_database.h"
 #include "oblique/oracle/problem.h"
+#include "oblique/protocol/interrupts.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/report/counterexample_report.h"
 #include "oblique/report/report_files.h"
@@ -279,6 +281,23 @@ std::string rerun_command(const VerifyOptions& options) {
   if (options.arguments.empty()) command += " --impl " + shell_quote(options.command);
   if (!has_seed) command += " --seed " + std::to_string(options.seed);
   return command;
+}
+
+void set_interrupted_line(const VerifyOptions& options, long judged, const std::string& what,
+                          double seconds) {
+  char time[32];
+  std::snprintf(time, sizeof time, "%.1f", seconds);
+  protocol::set_interrupt_line("oblique verify: interrupted after " + std::to_string(judged) +
+                               " " + what + " in " + time + " s, no violation so far (seed " +
+                               std::to_string(options.seed) +
+                               "); to repeat it: " + rerun_command(options) +
+                               " (without --seed: fresh cases)");
+}
+
+void set_shrinking_line(const VerifyOptions& options) {
+  protocol::set_interrupt_line(
+      "oblique verify: interrupted while shrinking a violation, before its report was written "
+      "(seed " + std::to_string(options.seed) + "); to repeat it: " + rerun_command(options));
 }
 
 Verdict commit_report(report::ReportFiles& files, const std::string& stem, std::ostream& err) {

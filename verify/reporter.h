@@ -19,6 +19,13 @@ namespace oblique::verify {
 /// The command that runs `options`' run again: every flag it was given, and its seed.
 std::string rerun_command(const VerifyOptions& options);
 
+/// What a Ctrl-C says (oblique/protocol/interrupts.h): `judged` `what` ("cases judged") in
+/// `seconds`, no violation so far, the seed, and rerun_command(); published for the handler.
+void set_interrupted_line(const VerifyOptions& options, long judged, const std::string& what,
+                          double seconds);
+/// The same once a violation is being shrunk: the run is repeated to find it again.
+void set_shrinking_line(const VerifyOptions& options);
+
 /// A matrix or vector's entries, row by row, as a JSON list of exact hex strings (what a report
 /// keeps for its replay).
 template <class Derived>

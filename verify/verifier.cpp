@@ -25,6 +25,7 @@
 #include "cases.h"
 #include "consumers.h"
 #include "failure_database.h"
+#include "oblique/protocol/interrupts.h"
 #include "rasterize.h"
 #include "reporter.h"
 #include "session.h"
@@ -75,6 +76,8 @@ class Verifier {
       return Verdict::error;
     }
     rc::Random random(options_.seed);
+    protocol::handle_interrupts();
+    set_interrupted_line(options_, 0, "cases judged", 0);
     long done = 0, generated = 0;
     std::size_t batch = 16;
     auto last_progress = session_.start();
@@ -123,6 +126,7 @@ class Verifier {
             ++kinds[key].repeats;  // this kind is reported already
             continue;
           }
+          set_shrinking_line(options_);
           const Verdict result =
               shrinker_.confirm(current, k, answers, finding, done + static_cast<long>(k) + 1);
           // Drawn once confirmed: an answer out of step with its request is no finding to draw.
@@ -155,6 +159,8 @@ class Verifier {
         }
       }
       done += static_cast<long>(answers.size());
+      if (kinds.empty())
+        set_interrupted_line(options_, done, "cases judged", session_.seconds_since_start());
       if (!kinds.empty() && Clock::now() >= deadline) {
         stopped_by_time = true;
         break;
@@ -174,6 +180,7 @@ class Verifier {
         break;  // still answering: the time limit ends the run
       }
       if (time_up && failure->kind() == client::Failure::Kind::timeout) {
+        set_shrinking_line(options_);
         return shrinker_.shrink(current.cases[answers.size()], session_.lost_finding(*failure),
                                 done + 1);
       }
@@ -184,6 +191,7 @@ class Verifier {
           program.stop();
           return Verdict::error;
         }
+        set_shrinking_line(options_);
         const Verdict result = shrinker_.isolate(current.cases, answers.size(), done, *failure);
         if (result == Verdict::violated && mode_.keep_going && !kinds.empty() &&
             !reporter_.last_report().empty()) {

@@ -1,0 +1,24 @@
+// What a Ctrl-C (SIGINT, or SIGTERM / SIGHUP) does to a long command: the programs it runs in
+// process groups of their own are ended, the command's "interrupted" line is written to standard
+// error (what ran, the seed, the command that repeats or continues it), and the process dies of
+// the signal as before (exit status 128 + signal).
+#pragma once
+
+#include <string>
+#include <sys/types.h>
+
+namespace oblique::protocol {
+
+/// Installs the handler for SIGINT, SIGTERM and SIGHUP where the program has not taken them
+/// itself (a handler already there, or SIG_IGN for a background job, is left alone). Idempotent.
+void handle_interrupts();
+
+/// The line an interrupt writes (a newline is appended), replacing the one before; empty: none.
+/// Cheap enough to call after every batch. Not for a signal handler.
+void set_interrupt_line(const std::string& line);
+
+/// A process group that the handler ends (SIGKILL) before dying; forget it once it is reaped.
+void remember_child_group(pid_t group);
+void forget_child_group(pid_t group);
+
+}  // namespace oblique::protocol

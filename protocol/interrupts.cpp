@@ -1,0 +1,94 @@
+#include "oblique/protocol/interrupts.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstring>
+#include <mutex>
+
+namespace oblique::protocol {
+
+namespace {
+
+/// The process groups of the programs running now (a fixed table of lock-free atomics: all a
+/// signal handler may read).
+constexpr int kMaxRunning = 16;
+std::atomic<pid_t> running_groups[kMaxRunning];
+
+/// The interrupted line, twice: set_interrupt_line() writes the buffer not shown and then
+/// publishes it, so the handler never reads a line half written.
+constexpr std::size_t kLineBytes = 4096;
+char lines[2][kLineBytes];
+std::size_t lengths[2];
+std::atomic<int> shown{-1};  ///< the buffer the handler writes; -1: none
+std::mutex writing;
+
+void end_groups_and_die(int sig) {
+  const int which = shown.load();
+  if (which >= 0) {
+    const char* p = lines[which];
+    std::size_t left = lengths[which];
+    while (left > 0) {
+      const ssize_t n = ::write(STDERR_FILENO, p, left);
+      if (n <= 0) break;
+      p += n;
+      left -= static_cast<std::size_t>(n);
+    }
+  }
+  for (auto& g : running_groups) {
+    const pid_t pid = g.load();
+    if (pid > 0) ::kill(-pid, SIGKILL);
+  }
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+}  // namespace
+
+void handle_interrupts() {
+  static const bool installed = [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction old {};
+      if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;
+      struct sigaction action {};
+      action.sa_handler = end_groups_and_die;
+      sigemptyset(&action.sa_mask);
+      ::sigaction(sig, &action, nullptr);
+    }
+    return true;
+  }();
+  (void)installed;
+}
+
+void set_interrupt_line(const std::string& line) {
+  std::lock_guard<std::mutex> lock(writing);
+  if (line.empty()) {
+    shown.store(-1);
+    return;
+  }
+  const int next = shown.load() == 0 ? 1 : 0;
+  // A line too long for the buffer keeps its end (the command to run), marked as cut.
+  std::string text = line + "\n";
+  if (text.size() > kLineBytes) text = "..." + text.substr(text.size() - (kLineBytes - 3));
+  std::memcpy(lines[next], text.data(), text.size());
+  lengths[next] = text.size();
+  shown.store(next);
+}
+
+void remember_child_group(pid_t group) {
+  for (auto& g : running_groups) {
+    pid_t expected = 0;
+    if (g.compare_exchange_strong(expected, group)) return;
+  }
+}
+
+void forget_child_group(pid_t group) {
+  for (auto& g : running_groups) {
+    pid_t expected = group;
+    if (g.compare_exchange_strong(expected, 0)) return;
+  }
+}
+
+}  // namespace oblique::protocol
