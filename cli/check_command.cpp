@@ -164,6 +164,8 @@ int run_check(const CheckSettings& settings) {
     std::cerr << "oblique check: " << path << ": " << parsed.error << "\n";
     return 2;
   }
+  for (const std::string& warning : parsed.warnings)
+    std::cerr << "oblique check: " << path << ": warning: " << warning << "\n";
   oblique::scene::SceneCheck check = oblique::scene::check_scene(*parsed.scene);
   check.impl_precision = *oblique::protocol::parse_precision(settings.precision);
   if (!settings.shader.empty() && !settings.impl.empty()) {

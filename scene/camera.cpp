@@ -2,8 +2,12 @@
 // scene's convention) and its view (look-at, position and quaternion, or a matrix).
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 #include "oblique/projection.h"
+#include "oblique/protocol/numbers.h"
 #include "reading.h"
 
 namespace oblique::scene::reading {
@@ -37,6 +41,7 @@ void validate_camera(const Camera& c, const std::string& p) {
 }
 
 Matrix4<double> read_projection(const json& projection, Convention convention,
+                                std::vector<std::string>& warnings,
                                 ProjectionType& type_out) {
   const std::string p = "camera.projection";
   const std::string type = text(projection, p, "type");
@@ -49,6 +54,11 @@ Matrix4<double> read_projection(const json& projection, Convention convention,
     if (!(f > n)) fail(p + ".far", "must be > near (got " + std::to_string(f) + ")");
     return std::pair<double, double>(n, f);
   };
+  auto rounded = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", x);
+    return std::string(text);
+  };
   auto fov_aspect = [&]() {
     const bool deg = has(projection, "fovy_deg"), rad = has(projection, "fovy_rad");
     if (deg && rad) fail(p + ".fovy_rad", "give fovy_deg or fovy_rad, not both");
@@ -57,9 +67,18 @@ Matrix4<double> read_projection(const json& projection, Convention convention,
     if (deg) {
       fovy = number(projection, p, "fovy_deg");
       if (!(fovy > 0 && fovy < 180)) fail(p + ".fovy_deg", "must be in (0, 180) degrees");
+      // A value that is a plausible angle in radians is most likely one (70 degrees is 1.22).
+      if (fovy <= kPi)
+        warnings.push_back(p + ".fovy_deg: " + protocol::format_number(fovy) +
+                           " degrees is a very narrow view; if it is in radians (" +
+                           rounded(fovy * 180 / kPi) + " degrees), write \"fovy_rad\": " +
+                           protocol::format_number(fovy));
       fovy *= kPi / 180;
     } else {
       fovy = number(projection, p, "fovy_rad");
+      if (fovy >= kPi && fovy < 180)
+        fail(p + ".fovy_rad", "must be in (0, pi) radians; if " + protocol::format_number(fovy) +
+                                  " is in degrees, write \"fovy_deg\": " + protocol::format_number(fovy));
       if (!(fovy > 0 && fovy < kPi)) fail(p + ".fovy_rad", "must be in (0, pi) radians");
     }
     const double aspect = number(projection, p, "aspect");
@@ -113,8 +132,8 @@ Matrix4<double> read_projection(const json& projection, Convention convention,
     if (m.determinant() == 0)
       fail(p + (has(projection, "rows") ? ".rows" : ".matrix"), "the matrix is singular");
   } else {
-    fail(p + ".type",
-         "unknown type \"" + type + "\" (perspective, infinite, frustum, orthographic or matrix)");
+    fail_unknown(p + ".type", "type", type,
+                 {"perspective", "infinite", "frustum", "orthographic", "matrix"});
   }
   // Vulkan's y-flip: clip y negated (the image is upside down relative to GL).
   if (boolean(projection, p, "y_flip")) m.row(1) = -m.row(1);
@@ -174,12 +193,12 @@ void read_view(const json& view, Camera& c) {
 
 }  // namespace
 
-Camera read_camera(const json& root, Convention convention) {
+Camera read_camera(const json& root, Convention convention, std::vector<std::string>& warnings) {
   const json& camera = member(root, "", "camera");
   only_keys(camera, "camera", {"projection", "view"});
   const json& projection = member(camera, "camera", "projection");
   Camera c;
-  c.projection = read_projection(projection, convention, c.type);
+  c.projection = read_projection(projection, convention, warnings, c.type);
   read_view(member(camera, "camera", "view"), c);
   validate_camera(c, "camera.projection");
   return c;

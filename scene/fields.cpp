@@ -5,10 +5,17 @@
 
 #include "reading.h"
 
+#include "oblique/protocol/names.h"
+
 namespace oblique::scene::reading {
 
 void fail(const std::string& path, const std::string& what) {
   throw FieldError(path + ": " + what);
+}
+
+void fail_unknown(const std::string& path, const std::string& what, const std::string& name,
+                  const std::vector<std::string>& known) {
+  fail(path, protocol::unknown_name(what, name, known));
 }
 
 /// A number's value, NaN when it is beyond double's range.
@@ -131,7 +138,7 @@ Matrix4<double> matrix16(const json& object, const std::string& path) {
   const json& values = member(object, path, "matrix");
   const std::string layout = text(object, path, "layout");
   if (layout != "row_major" && layout != "column_major")
-    fail(path + ".layout", "unknown layout \"" + layout + "\" (row_major or column_major)");
+    fail_unknown(path + ".layout", "layout", layout, {"row_major", "column_major"});
   if (!values.is_array() || values.size() != 16)
     fail(path + ".matrix", "must be 16 numbers, not " + type_of(values));
   for (std::size_t k = 0; k < 16; ++k) {

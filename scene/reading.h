@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "oblique/protocol/json.h"
 #include "oblique/scene/scene.h"
@@ -19,6 +20,9 @@ struct FieldError : std::runtime_error {
 };
 
 [[noreturn]] void fail(const std::string& path, const std::string& what);
+/// `what` "name" is unknown at `path`: the closest of `known` ("did you mean ...?") and the list.
+[[noreturn]] void fail_unknown(const std::string& path, const std::string& what,
+                               const std::string& name, const std::vector<std::string>& known);
 
 /// Numbers are read from their text; one beyond double's range is NaN here (JSON itself cannot
 /// write NaN), which the readers below refuse by name.
@@ -50,8 +54,9 @@ Matrix4<double> matrix16(const json& object, const std::string& path);
 /// so |v|^2 neither overflows nor underflows. Zero for a zero or non-finite vector.
 Vector3 unit_direction(const Vector3& v);
 
-/// The scene's "camera" (projection and view), refused when degenerate in double.
-Camera read_camera(const json& root, Convention convention);
+/// The scene's "camera" (projection and view), refused when degenerate in double; what is
+/// accepted but likely a mistake (a fovy_deg that reads as radians) is added to `warnings`.
+Camera read_camera(const json& root, Convention convention, std::vector<std::string>& warnings);
 /// One of the scene's "surfaces".
 Surface read_surface(const json& s, const std::string& path);
 

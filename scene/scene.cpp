@@ -74,7 +74,7 @@ ParsedScene parse_scene(std::string_view text_in) {
     const std::string convention = text(root, "", "convention");
     const auto c = parse_convention(convention);
     if (!c)
-      fail("convention", "unknown convention \"" + convention + "\" (gl, zero_one, reversed_z)");
+      fail_unknown("convention", "convention", convention, names_in(convention_names));
     scene.convention = *c;
     // A reversed-Z buffer is a float buffer (that is what reversing is for); else 24-bit fixed.
     scene.depth_buffer =
@@ -83,7 +83,7 @@ ParsedScene parse_scene(std::string_view text_in) {
       const std::string buffer = text(root, "", "depth_buffer");
       const std::optional<DepthBuffer> parsed = parse_depth_buffer(buffer);
       if (!parsed)
-        fail("depth_buffer", "unknown depth buffer \"" + buffer + "\" (fixed24 or float32)");
+        fail_unknown("depth_buffer", "depth buffer", buffer, names_in(depth_buffer_names));
       scene.depth_buffer = *parsed;
     }
     if (has(root, "max_depth"))
@@ -107,7 +107,7 @@ ParsedScene parse_scene(std::string_view text_in) {
           std::vector<std::string> known;
           for (const SceneConsumer c : all_scene_consumers)
             known.emplace_back(scene_consumer_name(c));
-          fail(where, protocol::unknown_name("consumer", name, known));
+          fail_unknown(where, "consumer", name, known);
         }
         if (std::find(scene.consumers.begin(), scene.consumers.end(), *consumer) ==
             scene.consumers.end())
@@ -118,11 +118,11 @@ ParsedScene parse_scene(std::string_view text_in) {
       const std::string design = text(root, "", "mirror_design");
       const auto parsed_design = oracle::parse_mirror_design(design);
       if (!parsed_design)
-        fail("mirror_design",
-             "unknown mirror design \"" + design + "\" (reflected_view or proper_camera)");
+        fail_unknown("mirror_design", "mirror design", design,
+                     names_in(oracle::mirror_design_names));
       scene.mirror_design = *parsed_design;
     }
-    scene.camera = read_camera(root, scene.convention);
+    scene.camera = read_camera(root, scene.convention, out.warnings);
     const json& surfaces = member(root, "", "surfaces");
     if (!surfaces.is_array())
       fail("surfaces", std::string("must be an array, not ") + type_of(surfaces));

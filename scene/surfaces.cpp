@@ -79,7 +79,7 @@ Surface read_surface(const json& s, const std::string& path) {
   if (const std::optional<SurfaceKind> k = value_in(surface_kind_names, kind)) {
     out.kind = *k;
   } else {
-    fail(path + ".kind", "unknown kind \"" + kind + "\" (mirror, clip or portal)");
+    fail_unknown(path + ".kind", "kind", kind, names_in(surface_kind_names));
   }
   const int shapes = int{has(s, "plane")} + int{has(s, "polygon")} + int{has(s, "rectangle")};
   if (shapes == 0) fail(path + ".plane", "missing (or polygon, or rectangle)");

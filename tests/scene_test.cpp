@@ -396,6 +396,71 @@ TEST(Scenes, brokenFilesNameTheFieldOrThePosition) {
   }
 }
 
+/// A scene with the camera's projection fields `projection` and the rest `rest` (after the camera).
+std::string scene_with(const std::string& convention, const std::string& projection,
+                       const std::string& rest = "\"surfaces\": []") {
+  return "{\"name\": \"x\", \"convention\": \"" + convention +
+         "\", \"camera\": {\"projection\": {" + projection +
+         "}, \"view\": {\"eye\": [0, 0, 0], \"target\": [0, 0, -1], \"up\": [0, 1, 0]}}, " +
+         rest + "}";
+}
+
+TEST(Scenes, unknownNamesSuggestTheClosestKnownOne) {
+  const std::string camera =
+      R"("type": "perspective", "fovy_deg": 60, "aspect": 1, "near": 0.1, "far": 10)";
+  const Broken cases[] = {
+      {scene_with("reversed-z", camera),
+       "convention: unknown convention \"reversed-z\" (did you mean reversed_z?; known: gl"},
+      {scene_with("gl", R"("type": "perspectiv", "fovy_deg": 60, "aspect": 1, "near": 0.1, "far": 10)"),
+       "camera.projection.type: unknown type \"perspectiv\" (did you mean perspective?"},
+      {scene_with("gl", camera, R"("depth_buffer": "float", "surfaces": [])"),
+       "depth_buffer: unknown depth buffer \"float\" (did you mean float32?"},
+      {scene_with("gl", camera, R"("mirror_design": "reflected-view", "surfaces": [])"),
+       "mirror_design: unknown mirror design \"reflected-view\" (did you mean reflected_view?"},
+      {scene_with("gl", camera,
+                  R"("surfaces": [{"name": "m", "kind": "miror", "plane": {"normal": [0, 0, 1], "point": [0, 0, -2]}}])"),
+       "surfaces[0].kind: unknown kind \"miror\" (did you mean mirror?"},
+      // Nothing close: the list alone.
+      {scene_with("vulkan", camera),
+       "convention: unknown convention \"vulkan\" (known: gl, zero_one, reversed_z)"},
+  };
+  for (const Broken& b : cases) {
+    const ParsedScene parsed = parse_scene(b.text);
+    EXPECT_FALSE(parsed.scene) << b.text;
+    EXPECT_NE(parsed.error.find(b.message), std::string::npos)
+        << "expected \"" << b.message << "\" in \"" << parsed.error << "\"";
+  }
+}
+
+TEST(Scenes, aFieldOfViewInTheOtherUnitIsNamed) {
+  auto parsed = [](const std::string& fovy) {
+    return parse_scene(scene_with("gl", fovy + R"(, "type": "perspective", "aspect": 1.6, "near": 0.1, "far": 10)"));
+  };
+  // 1.22 "degrees": accepted (a narrow lens is possible), with a warning that names radians.
+  const ParsedScene radians_as_degrees = parsed(R"("fovy_deg": 1.22)");
+  ASSERT_TRUE(radians_as_degrees.scene) << radians_as_degrees.error;
+  ASSERT_EQ(radians_as_degrees.warnings.size(), 1u);
+  EXPECT_NE(radians_as_degrees.warnings[0].find(
+                "camera.projection.fovy_deg: 1.22 degrees is a very narrow view; if it is in "
+                "radians (69.9 degrees), write \"fovy_rad\": 1.22"),
+            std::string::npos)
+      << radians_as_degrees.warnings[0];
+  // Ordinary fields of view warn of nothing.
+  for (const std::string fovy : {R"("fovy_deg": 70)", R"("fovy_deg": 3.5)", R"("fovy_rad": 1.22)"}) {
+    const ParsedScene ordinary = parsed(fovy);
+    ASSERT_TRUE(ordinary.scene) << fovy << ": " << ordinary.error;
+    EXPECT_TRUE(ordinary.warnings.empty()) << fovy << ": " << ordinary.warnings[0];
+  }
+  // Degrees given as radians are beyond pi: refused, naming fovy_deg.
+  const ParsedScene degrees_as_radians = parsed(R"("fovy_rad": 70)");
+  EXPECT_FALSE(degrees_as_radians.scene);
+  EXPECT_NE(degrees_as_radians.error.find(
+                "camera.projection.fovy_rad: must be in (0, pi) radians; if 70 is in degrees, "
+                "write \"fovy_deg\": 70"),
+            std::string::npos)
+      << degrees_as_radians.error;
+}
+
 TEST(Scenes, directionsAreJudgedByDirectionNotLength) {
   // An up vector of length 1e200 and a normal of length 1e-200 are as good as unit ones: the
   // scene checks exactly as with unit vectors (they were refused as parallel, or reflected NaN).
@@ -924,6 +989,18 @@ int run_check(const std::string& arguments) {
   const int raw =
       std::system((std::string(OBLIQUE_CLI) + " check " + arguments + " > /dev/null 2>&1").c_str());
   return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+TEST(Scenes, cliPrintsTheWarningsAndStillChecks) {
+  const std::string file = ::testing::TempDir() + "oblique_fovy_radians.json";
+  std::ofstream(file) << scene_with(
+      "gl", R"("type": "perspective", "fovy_deg": 1.22, "aspect": 1.6, "near": 0.1, "far": 10)",
+      R"("surfaces": [{"name": "m", "kind": "mirror", "plane": {"normal": [0, 0, 1], "point": [0, 0, -2]}}])");
+  std::string output;
+  EXPECT_EQ(run_check_capturing(file, output), 0) << output;
+  EXPECT_NE(output.find(file + ": warning: camera.projection.fovy_deg: 1.22 degrees"),
+            std::string::npos)
+      << output;
 }
 
 TEST(Scenes, cliExitStatus) {

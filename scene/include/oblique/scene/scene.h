@@ -111,6 +111,9 @@ struct Scene {
 struct ParsedScene {
   std::optional<Scene> scene;
   std::string error;
+  /// What is accepted but likely a mistake, each naming its field ("camera.projection.fovy_deg:
+  /// 1.22 degrees is a very narrow view; if it is in radians ...").
+  std::vector<std::string> warnings;
 };
 
 /// Every failure names the field (numbers beyond double's range, degenerate cameras whose view
