@@ -121,6 +121,31 @@ run(EXPECT ok COMMAND c++ -O1 -DENGINE_FIXED=1 "${SOURCE}/examples/downstream/en
                       "${SOURCE}/examples/downstream/engine.cpp" ${flags} -pthread
                       -o "${WORK}/engine_property_test_pkg_config")
 run(EXPECT ok COMMAND "${WORK}/engine_property_test_pkg_config")
+# The flags set no language standard: a user's -std=c++20 before them stays in force (a -std in
+# Cflags came after it and turned C++20 code into errors).
+foreach(pc oblique oblique-testing oblique-fuzzing oblique-testing-raster)
+  if(NOT EXISTS "${pc_dir}/${pc}.pc")
+    continue()  # oblique-testing-raster: installed only with EGL
+  endif()
+  run(EXPECT ok OUTPUT pc_cflags COMMAND ${PKG_CONFIG} --cflags ${pc})
+  if(pc_cflags MATCHES "-std=")
+    message(FATAL_ERROR "pkg-config --cflags ${pc} sets the language standard: ${pc_cflags}")
+  endif()
+endforeach()
+file(WRITE "${WORK}/cxx20_user.cpp" [=[
+// A C++20 file of a user's that includes the suite's header: it must stay C++20.
+#include "oblique/testing.h"
+#include <span>
+static_assert(__cplusplus >= 202002L, "the user's -std=c++20 was overridden");
+template <class T> concept Scalar = std::is_floating_point_v<T>;
+int main() {
+  double values[2] = {1, 2};
+  return Scalar<double> && std::span<double>(values).size() == 2 ? 0 : 1;
+}
+]=])
+run(EXPECT ok COMMAND c++ -std=c++20 "${WORK}/cxx20_user.cpp" ${flags} -pthread
+                      -o "${WORK}/cxx20_user")
+run(EXPECT ok COMMAND "${WORK}/cxx20_user")
 if(rasterizer)
   run(EXPECT ok OUTPUT raster_flags COMMAND ${PKG_CONFIG} --cflags --libs oblique-testing-raster gtest_main)
   string(STRIP "${raster_flags}" raster_flags)
