@@ -7,10 +7,12 @@
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "oblique/cases/contract.h"
 #include "oblique/protocol/numbers.h"
 
 namespace oblique::cli {
@@ -38,5 +40,22 @@ CLI::Validator one_of(const std::vector<std::string>& names, const std::string& 
 /// apply, verify and check; `allowed` are those the subcommand computes or judges in.
 CLI::Option* add_precision_option(CLI::App* app, std::string& precision, const std::string& what,
                                   std::vector<protocol::Precision> allowed);
+
+/// A contract given on the command line (verify, report accuracy): --contract FILE and flags that
+/// each set one of its JSON fields from a comma list (--families perspective,infinite).
+struct ContractFlags {
+  std::string file;  ///< --contract
+  struct Field {
+    std::string name, flag, list;  ///< the JSON field's name, the flag, its list
+  };
+  std::vector<Field> fields;
+  /// The file's contract (or an empty one) with `first` fields set, then the preset, then each
+  /// flag in the order given; an error names the flag, not the JSON field.
+  Expected<Contract> read(const std::vector<Field>& first = {}) const;
+};
+
+/// Adds `flag` to `app`, setting `field` of `flags`' contract (appended in the order given).
+void add_contract_flag(CLI::App* app, const std::shared_ptr<ContractFlags>& flags,
+                       const std::string& flag, const std::string& field, const std::string& what);
 
 }  // namespace oblique::cli

@@ -45,4 +45,39 @@ CLI::Option* add_precision_option(CLI::App* app, std::string& precision, const s
       ->capture_default_str();
 }
 
+Expected<Contract> ContractFlags::read(const std::vector<Field>& first) const {
+  Expected<Contract> contract = Contract{};
+  if (!file.empty()) contract = read_contract_file(file);
+  std::vector<Field> all = first;
+  all.insert(all.end(), fields.begin(), fields.end());
+  // A preset first: the other flags change it.
+  std::stable_partition(all.begin(), all.end(),
+                        [](const Field& field) { return field.name == "preset"; });
+  for (const Field& field : all) {
+    if (!contract) break;
+    contract = with_field(std::move(*contract), field.name, split_list(field.list));
+    if (!contract) {  // say it in the flag's words, not the JSON field's
+      std::string error = contract.error();
+      for (const std::string& json_name : {"\"" + field.name + "\"", field.name}) {
+        if (error.rfind(json_name + ": ", 0) == 0) {
+          error = field.flag + error.substr(json_name.size());
+          break;
+        }
+      }
+      return Expected<Contract>::failure(error);
+    }
+  }
+  return contract;
+}
+
+void add_contract_flag(CLI::App* app, const std::shared_ptr<ContractFlags>& flags,
+                       const std::string& flag, const std::string& field, const std::string& what) {
+  app->add_option_function<std::string>(
+      flag,
+      [flags, field, flag](const std::string& list) {
+        flags->fields.push_back({field, flag, list});
+      },
+      what);
+}
+
 }  // namespace oblique::cli

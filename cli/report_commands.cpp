@@ -15,6 +15,7 @@ void setup_report(CLI::App& app, int& exit_code) {
     oblique::report::AccuracyOptions accuracy;
     std::string accuracy_out = "report-out";
     std::vector<std::string> impls, impls_float;
+    std::shared_ptr<ContractFlags> contract = std::make_shared<ContractFlags>();
     bool quiet = false;
     oblique::report::DepthOptions depth;
     std::string depth_out = "report-out";
@@ -45,10 +46,29 @@ void setup_report(CLI::App& app, int& exit_code) {
                        "beside the core's methods; may be given more than once");
   accuracy->add_option("--impl-float", settings->impls_float,
                        "The same for an implementation that answers in float");
+  // What is measured, as verify's contract says it: conventions, the families of the regimes,
+  // how an implementation's refusals are judged.
+  accuracy->add_option("--contract", settings->contract->file,
+                       "A JSON contract file, as verify's: the conventions and families measured "
+                       "and the statuses an implementation's refusals are judged by");
+  add_contract_flag(accuracy, settings->contract, "--convention", "conventions",
+                    "Conventions to measure, a comma list or all (default all)");
+  add_contract_flag(accuracy, settings->contract, "--families", "families",
+                    "Comma list of projection families: the regimes that build them are measured "
+                    "(perspective, infinite, orthographic, general; default all)");
+  add_contract_flag(accuracy, settings->contract, "--statuses", "statuses",
+                    "How an implementation's refusals are judged (default any_refusal)");
   accuracy->callback([settings, &exit_code] {
     oblique::report::AccuracyOptions& options = settings->accuracy;
     options.out_dir = settings->accuracy_out;
     options.progress = !settings->quiet;
+    const Expected<Contract> contract = settings->contract->read();
+    if (!contract) {
+      std::cerr << "oblique report accuracy: " << contract.error() << "\n";
+      exit_code = 2;
+      return;
+    }
+    options.contract = *contract;
     auto add = [&options](const std::string& command, bool float32) {
       options.implementations.push_back({command, float32, protocol::command_name(command)});
     };

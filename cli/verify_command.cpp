@@ -23,12 +23,8 @@ namespace {
 /// What the command line says, before it is read whole.
 struct Settings {
   oblique::verify::VerifyOptions options;
-  std::string precision = "double", contract;
-  /// The contract's fields given as flags: the JSON field's name, the flag, its list.
-  struct Field {
-    std::string name, flag, list;
-  };
-  std::vector<Field> fields;
+  std::string precision = "double";
+  std::shared_ptr<ContractFlags> contract = std::make_shared<ContractFlags>();
   bool answers_only = false;
   std::vector<std::string> arguments;  // after "verify", for the replay command
   bool quiet = false;
@@ -103,12 +99,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
   // The contract's fields, each a flag taking a comma list of the names its JSON field takes.
   auto contract_flag = [&](const std::string& flag, const std::string& field,
                            const std::string& what) {
-    verify->add_option_function<std::string>(
-        flag,
-        [settings, field, flag](const std::string& list) {
-          settings->fields.push_back({field, flag, list});
-        },
-        what);
+    add_contract_flag(verify, settings->contract, flag, field, what);
   };
   using oblique::protocol::name_list;
   contract_flag("--preset", "preset",
@@ -170,7 +161,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
   contract_flag("--exclude", "exclude",
                 "Comma list of families, hard places and kinds of input without an answer to "
                 "leave out");
-  verify->add_option("--contract", settings->contract,
+  verify->add_option("--contract", settings->contract->file,
                      "A JSON contract file (fields: families, conventions, places, planes, "
                      "statuses, defects, properties, row3_accuracy, exclude; see the README); "
                      "flags replace the fields they name");
@@ -254,33 +245,16 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                      "Keep each new shrunk case's report in this folder too");
   verify->callback([settings, &exit_code, self, consumers_flag, precision_flag] {
     oblique::verify::VerifyOptions& options = settings->options;
-    oblique::Expected<oblique::Contract> contract = oblique::Contract{};
-    if (!settings->contract.empty()) contract = oblique::read_contract_file(settings->contract);
-    if (contract && settings->answers_only)
-      contract = oblique::with_field(std::move(*contract), "statuses", {"answers_only"});
-    // A preset first: the other flags change it.
-    std::stable_partition(settings->fields.begin(), settings->fields.end(),
-                          [](const auto& field) { return field.name == "preset"; });
-    for (const auto& field : settings->fields) {
-      if (!contract) break;
-      contract = oblique::with_field(std::move(*contract), field.name, split_list(field.list));
-      if (!contract) {  // say it in the flag's words, not the JSON field's
-        std::string error = contract.error();
-        for (const std::string& json_name : {"\"" + field.name + "\"", field.name}) {
-          if (error.rfind(json_name + ": ", 0) == 0) {
-            error = field.flag + error.substr(json_name.size());
-            break;
-          }
-        }
-        contract = oblique::Expected<oblique::Contract>::failure(error);
-      }
-    }
+    const oblique::Expected<oblique::Contract> contract = settings->contract->read(
+        settings->answers_only
+            ? std::vector<ContractFlags::Field>{{"statuses", "--answers-only", "answers_only"}}
+            : std::vector<ContractFlags::Field>{});
     if (!contract) {
       std::cerr << "oblique verify: " << contract.error() << "\n";
       exit_code = 2;
       return;
     }
-    options.contract = std::move(*contract);
+    options.contract = *contract;
     std::vector<oblique::protocol::ConsumerKind> kinds;
     for (const std::string& name : split_list(settings->consumers)) {
       if (name == "all") {

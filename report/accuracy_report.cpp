@@ -18,6 +18,7 @@
 #include "oblique/oracle/judge.h"
 #include "oblique/oracle/problem.h"
 #include "oblique/projection.h"
+#include "oblique/protocol/names.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/report/accuracy_profile.h"
@@ -40,6 +41,7 @@ struct Input {
 /// A regime: its stiffness parameter's values, and a maker of one case at a given value.
 struct Regime {
   std::string name;
+  cases::Family family;   ///< of the projections it builds
   std::string parameter;  ///< empty when the regime has no stiffness sweep
   std::vector<double> values;
   std::function<std::optional<Input>(std::mt19937_64&, double, Convention)> make;
@@ -89,28 +91,36 @@ std::vector<double> powers_of_ten(int from, int to) {
 
 std::vector<Regime> regimes() {
   std::vector<Regime> out;
-  out.push_back({"typical", "", {1.0}, [](std::mt19937_64& rng, double, Convention c) {
+  out.push_back({"typical",
+                 cases::Family::perspective,
+                 "",
+                 {1.0},
+                 [](std::mt19937_64& rng, double, Convention c) {
                    const Frustum v =
                        random_frustum(rng, uniform(rng, 0.1, 1), uniform(rng, 50, 1000));
                    auto plane = typical_plane(rng, v, v.f);
                    if (!plane) return std::optional<Input>();
                    return std::optional<Input>(Input{perspective_of(v, c), *plane, c});
                  }});
-  out.push_back(
-      {"tiny_near", "1/n", powers_of_ten(1, 6), [](std::mt19937_64& rng, double k, Convention c) {
-         const Frustum v = random_frustum(rng, 1 / k, 100);
-         auto plane = typical_plane(rng, v, v.f);
-         if (!plane) return std::optional<Input>();
-         return std::optional<Input>(Input{perspective_of(v, c), *plane, c});
-       }});
-  out.push_back({"far_near_ratio", "f/n", powers_of_ten(1, 12),
+  out.push_back({"tiny_near", cases::Family::perspective, "1/n", powers_of_ten(1, 6),
+                 [](std::mt19937_64& rng, double k, Convention c) {
+                   const Frustum v = random_frustum(rng, 1 / k, 100);
+                   auto plane = typical_plane(rng, v, v.f);
+                   if (!plane) return std::optional<Input>();
+                   return std::optional<Input>(Input{perspective_of(v, c), *plane, c});
+                 }});
+  out.push_back({"far_near_ratio", cases::Family::perspective, "f/n", powers_of_ten(1, 12),
                  [](std::mt19937_64& rng, double k, Convention c) {
                    const Frustum v = random_frustum(rng, 1, k);
                    auto plane = typical_plane(rng, v, std::min(v.f, 1000.0));
                    if (!plane) return std::optional<Input>();
                    return std::optional<Input>(Input{perspective_of(v, c), *plane, c});
                  }});
-  out.push_back({"infinite", "", {1.0}, [](std::mt19937_64& rng, double, Convention c) {
+  out.push_back({"infinite",
+                 cases::Family::infinite,
+                 "",
+                 {1.0},
+                 [](std::mt19937_64& rng, double, Convention c) {
                    const Frustum v = random_frustum(rng, uniform(rng, 0.1, 1), 1000);
                    auto plane = typical_plane(rng, v, 1000);
                    if (!plane) return std::optional<Input>();
@@ -118,7 +128,11 @@ std::vector<Regime> regimes() {
                        Input{infinite_frustum<double>(v.l, v.r, v.b, v.t, v.n, c), *plane, c});
                  }});
   out.push_back(
-      {"orthographic", "", {1.0}, [](std::mt19937_64& rng, double, Convention c) {
+      {"orthographic",
+       cases::Family::orthographic,
+       "",
+       {1.0},
+       [](std::mt19937_64& rng, double, Convention c) {
          const double w = uniform(rng, 1, 50), h = uniform(rng, 1, 50);
          const double n = uniform(rng, 0.1, 10), f = n + uniform(rng, 10, 1000);
          const Vec3 point(uniform(rng, -w, w), uniform(rng, -h, h), -uniform(rng, n, f));
@@ -126,7 +140,7 @@ std::vector<Regime> regimes() {
          if (!(plane.w() < 0)) return std::optional<Input>();
          return std::optional<Input>(Input{orthographic<double>(-w, w, -h, h, n, f, c), plane, c});
        }});
-  out.push_back({"near_eye", "1/|C_w|", powers_of_ten(1, 12),
+  out.push_back({"near_eye", cases::Family::perspective, "1/|C_w|", powers_of_ten(1, 12),
                  [](std::mt19937_64& rng, double k, Convention c) {
                    const Frustum v =
                        random_frustum(rng, uniform(rng, 0.1, 1), uniform(rng, 50, 1000));
@@ -134,8 +148,8 @@ std::vector<Regime> regimes() {
                    return std::optional<Input>(
                        Input{perspective_of(v, c), Plane(n.x(), n.y(), n.z(), -1 / k), c});
                  }});
-  out.push_back({"near_far_corner", "|C||Q|/(C.Q)", powers_of_ten(1, 12),
-                 [](std::mt19937_64& rng, double k, Convention c) {
+  out.push_back({"near_far_corner", cases::Family::perspective, "|C||Q|/(C.Q)",
+                 powers_of_ten(1, 12), [](std::mt19937_64& rng, double k, Convention c) {
                    const Frustum v =
                        random_frustum(rng, uniform(rng, 0.1, 1), uniform(rng, 50, 1000));
                    const Vec3 n = forward_normal(rng);
@@ -153,8 +167,8 @@ std::vector<Regime> regimes() {
                    return std::optional<Input>(
                        Input{perspective_of(v, c), Plane(n.x(), n.y(), n.z(), delta - best), c});
                  }});
-  out.push_back({"near_standard", "1/perturbation", powers_of_ten(1, 12),
-                 [](std::mt19937_64& rng, double k, Convention c) {
+  out.push_back({"near_standard", cases::Family::perspective, "1/perturbation",
+                 powers_of_ten(1, 12), [](std::mt19937_64& rng, double k, Convention c) {
                    const Frustum v =
                        random_frustum(rng, uniform(rng, 0.1, 1), uniform(rng, 50, 1000));
                    auto jitter = [&] { return uniform(rng, -1, 1) / k; };
@@ -162,6 +176,7 @@ std::vector<Regime> regimes() {
                    return std::optional<Input>(Input{perspective_of(v, c), plane, c});
                  }});
   out.push_back({"scaled",
+                 cases::Family::general,
                  "scale",
                  {1e-30, 1e-20, 1e-10, 1e10, 1e20, 1e30},
                  [](std::mt19937_64& rng, double k, Convention c) {
@@ -320,7 +335,7 @@ template <class T>
 std::string measure_external(const Regime& regime, const std::vector<Input>& inputs,
                              const std::vector<std::size_t>& steps,
                              const ExternalImplementation& impl, client::Program& program,
-                             AccuracyReport& report) {
+                             cases::StatusContract statuses, AccuracyReport& report) {
   std::vector<Case<T>> cases;
   std::vector<oracle::Problem<T>> problems;
   std::vector<std::string> requests;
@@ -364,9 +379,10 @@ std::string measure_external(const Regime& regime, const std::vector<Input>& inp
       return impl.command + ": answer " + std::to_string(i + 1) + " of regime " + regime.name +
              " is not an answer (" + answer.error() + ")";
     Errors& step = by_step[cases[i].step];
-    // Only answers that pass the properties are profiled (a refusal is judged as any refusal).
+    // Only answers that pass the properties are profiled (a refusal is judged by the contract's
+    // statuses: any refusal by default).
     cases::Checks checks;
-    checks.statuses = cases::StatusContract::any_refusal;
+    checks.statuses = statuses;
     const Answer<T> outcome{answer->status, answer->projection};
     if (oracle::judge(problems[i], outcome, checks).violation()) {
       ++all.violating;
@@ -403,19 +419,35 @@ AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& pr
   std::vector<std::unique_ptr<client::Program>> programs;
   for (const ExternalImplementation& impl : options.implementations)
     programs.push_back(std::make_unique<client::Program>(impl.command, timeout));
+  const Contract& contract = options.contract;
+  const std::vector<Convention> conventions =
+      contract.conventions.empty()
+          ? std::vector<Convention>(std::begin(all_conventions), std::end(all_conventions))
+          : contract.conventions;
+  const cases::StatusContract statuses =
+      contract.statuses.value_or(cases::StatusContract::any_refusal);
   for (std::size_t r = 0; r < all.size(); ++r) {
     const Regime& regime = all[r];
+    const bool claimed =
+        contract.families.empty() || std::find(contract.families.begin(), contract.families.end(),
+                                               regime.family) != contract.families.end();
     if (options.progress)
       progress << "report accuracy: regime " << (r + 1) << "/" << all.size() << " " << regime.name
+               << (claimed
+                       ? std::string()
+                       : " left out (its family " + std::string(cases::family_name(regime.family)) +
+                             " is not in the contract)")
                << "\n"
                << std::flush;
+    if (!claimed) continue;
+    report.regimes.push_back(regime.name);
     std::vector<Input> inputs;
     std::vector<std::size_t> steps;
     for (std::size_t k = 0; k < regime.values.size(); ++k) {
       int made = 0;
       for (int attempt = 0; made < options.cases_per_step && attempt < 20 * options.cases_per_step;
            ++attempt) {
-        const Convention c = all_conventions[static_cast<std::size_t>(attempt) % 3];
+        const Convention c = conventions[static_cast<std::size_t>(attempt) % conventions.size()];
         if (auto input = regime.make(rng, regime.values[k], c)) {
           inputs.push_back(*input);
           steps.push_back(k);
@@ -428,12 +460,25 @@ AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& pr
     measure_scalar<long double>(regime, inputs, steps, options, report);
     for (std::size_t i = 0; i < options.implementations.size(); ++i) {
       const ExternalImplementation& impl = options.implementations[i];
-      report.error =
-          impl.float32
-              ? measure_external<float>(regime, inputs, steps, impl, *programs[i], report)
-              : measure_external<double>(regime, inputs, steps, impl, *programs[i], report);
+      report.error = impl.float32 ? measure_external<float>(regime, inputs, steps, impl,
+                                                            *programs[i], statuses, report)
+                                  : measure_external<double>(regime, inputs, steps, impl,
+                                                             *programs[i], statuses, report);
       if (!report.error.empty()) return report;
     }
+  }
+  if (report.regimes.empty()) {
+    std::vector<std::string> families;
+    for (const Regime& regime : all) {
+      const std::string name(cases::family_name(regime.family));
+      if (std::find(families.begin(), families.end(), name) == families.end())
+        families.push_back(name);
+    }
+    report.error =
+        "no regime builds projections of a family the contract claims (the regimes' "
+        "families: " +
+        protocol::name_list(families) + "): nothing to measure";
+    return report;
   }
   // The count check of the last regime: once their input is closed, the implementations have
   // nothing more to say (at most a second each to say it).
@@ -524,8 +569,12 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
   md << "Each answer's error is its worst entry of row 3 against the exact answer, in ulps of the "
         "row (of its largest entry); bits lost = log2(ulps + 1). The core's methods are timed "
         "in this process (ns per call); an implementation given with --impl over the pipe (ns "
-        "per request, round trip: JSON both ways and the program's own work).\n\n"
-        "| method | scalar | max error (ulp) | max error (bits) | worst 99.9th pct (ulp) | "
+        "per request, round trip: JSON both ways and the program's own work).\n\n";
+  if (contract_json(options.contract) != contract_json(Contract{}))
+    md << "Measured under the contract `" << contract_json(options.contract) << "`: the regimes "
+       << protocol::name_list(report.regimes)
+       << ", an implementation's refusals judged by its statuses.\n\n";
+  md << "| method | scalar | max error (ulp) | max error (bits) | worst 99.9th pct (ulp) | "
         "ns per answer (mean over regimes) | max error / checker bound | on the front |\n"
         "|---|---|---:|---:|---:|---:|---:|:---:|\n";
   for (const auto& [key, o] : overall) {

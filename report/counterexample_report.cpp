@@ -545,8 +545,10 @@ std::string stage_drawn_pictures(report::ReportFiles& files, const std::string& 
 }
 
 std::string write_report(const Counterexample& ce, const ReportContext& context) {
-  std::string stem =
-      context.stem.empty() ? context.test_id + "." + ce.implementation : context.stem;
+  std::string stem = context.stem.empty()
+                         ? (context.report_key.empty() ? context.test_id : context.report_key) +
+                               "." + ce.implementation
+                         : context.stem;
   for (char& ch : stem) {
     if (ch == '/' || ch == ' ') ch = '_';
   }

@@ -41,8 +41,7 @@ void validate_camera(const Camera& c, const std::string& p) {
 }
 
 Matrix4<double> read_projection(const json& projection, Convention convention,
-                                std::vector<std::string>& warnings,
-                                ProjectionType& type_out) {
+                                std::vector<std::string>& warnings, ProjectionType& type_out) {
   const std::string p = "camera.projection";
   const std::string type = text(projection, p, "type");
   constexpr double kPi = 3.14159265358979323846;
@@ -71,14 +70,15 @@ Matrix4<double> read_projection(const json& projection, Convention convention,
       if (fovy <= kPi)
         warnings.push_back(p + ".fovy_deg: " + protocol::format_number(fovy) +
                            " degrees is a very narrow view; if it is in radians (" +
-                           rounded(fovy * 180 / kPi) + " degrees), write \"fovy_rad\": " +
-                           protocol::format_number(fovy));
+                           rounded(fovy * 180 / kPi) +
+                           " degrees), write \"fovy_rad\": " + protocol::format_number(fovy));
       fovy *= kPi / 180;
     } else {
       fovy = number(projection, p, "fovy_rad");
       if (fovy >= kPi && fovy < 180)
-        fail(p + ".fovy_rad", "must be in (0, pi) radians; if " + protocol::format_number(fovy) +
-                                  " is in degrees, write \"fovy_deg\": " + protocol::format_number(fovy));
+        fail(p + ".fovy_rad",
+             "must be in (0, pi) radians; if " + protocol::format_number(fovy) +
+                 " is in degrees, write \"fovy_deg\": " + protocol::format_number(fovy));
       if (!(fovy > 0 && fovy < kPi)) fail(p + ".fovy_rad", "must be in (0, pi) radians");
     }
     const double aspect = number(projection, p, "aspect");

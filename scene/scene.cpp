@@ -73,8 +73,7 @@ ParsedScene parse_scene(std::string_view text_in) {
     scene.name = text(root, "", "name");
     const std::string convention = text(root, "", "convention");
     const auto c = parse_convention(convention);
-    if (!c)
-      fail_unknown("convention", "convention", convention, names_in(convention_names));
+    if (!c) fail_unknown("convention", "convention", convention, names_in(convention_names));
     scene.convention = *c;
     // A reversed-Z buffer is a float buffer (that is what reversing is for); else 24-bit fixed.
     scene.depth_buffer =

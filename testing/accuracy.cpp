@@ -73,7 +73,7 @@ void profile_accuracy(const Implementation<T>& impl, const Contract& given,
   report::ProfileReportOptions o;
   const report::ReportContext context = report_context("");
   o.dir = settings.directory.empty()
-              ? std::filesystem::path(context.directory) / (context.test_id + ".accuracy")
+              ? std::filesystem::path(context.directory) / (context.report_key + ".accuracy")
               : std::filesystem::path(settings.directory);
   o.title = impl.name + " (" + mine.scalar + ")";
   std::ostringstream log;

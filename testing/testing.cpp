@@ -78,7 +78,6 @@ report::ReportContext report_context(const std::string& property) {
                       : !s.report_directory.empty() ? s.report_directory
                                                     : std::string("oblique-reports");
   context.test_id = current_test_id('.');
-  if (!property.empty()) context.stem = context.test_id + "." + property;
   context.seed = rc::detail::configuration().testParams.seed;
   context.max_success = rc::detail::configuration().testParams.maxSuccess;
   context.binary = s.binary;
@@ -87,6 +86,11 @@ report::ReportContext report_context(const std::string& property) {
     const auto self = std::filesystem::read_symlink("/proc/self/exe", error);
     context.binary = error ? std::string("<this test executable>") : self.string();
   }
+  const std::string executable = std::filesystem::path(context.binary).filename().string();
+  context.report_key = executable.empty() || executable.front() == '<'
+                           ? context.test_id
+                           : executable + "." + context.test_id;
+  if (!property.empty()) context.stem = context.report_key + "." + property;
   context.cli = s.cli;
   context.contract = current_contract();
   if (!s.replay_names_implementation) {
@@ -135,7 +139,7 @@ std::string write_markdown_report(const std::string& markdown,
                                   const report::ReportContext& context) {
   report::ReportFiles files(context.directory);
   const std::string stem =
-      files.reserve_stem(context.stem.empty() ? context.test_id : context.stem, {".md"});
+      files.reserve_stem(context.stem.empty() ? context.report_key : context.stem, {".md"});
   const std::string pictures =
       tally().markdown_pictures ? tally().markdown_pictures(files, stem) : std::string();
   files.open(stem + ".md") << markdown << "\n"

@@ -401,8 +401,8 @@ std::string scene_with(const std::string& convention, const std::string& project
                        const std::string& rest = "\"surfaces\": []") {
   return "{\"name\": \"x\", \"convention\": \"" + convention +
          "\", \"camera\": {\"projection\": {" + projection +
-         "}, \"view\": {\"eye\": [0, 0, 0], \"target\": [0, 0, -1], \"up\": [0, 1, 0]}}, " +
-         rest + "}";
+         "}, \"view\": {\"eye\": [0, 0, 0], \"target\": [0, 0, -1], \"up\": [0, 1, 0]}}, " + rest +
+         "}";
 }
 
 TEST(Scenes, unknownNamesSuggestTheClosestKnownOne) {
@@ -411,14 +411,16 @@ TEST(Scenes, unknownNamesSuggestTheClosestKnownOne) {
   const Broken cases[] = {
       {scene_with("reversed-z", camera),
        "convention: unknown convention \"reversed-z\" (did you mean reversed_z?; known: gl"},
-      {scene_with("gl", R"("type": "perspectiv", "fovy_deg": 60, "aspect": 1, "near": 0.1, "far": 10)"),
+      {scene_with("gl",
+                  R"("type": "perspectiv", "fovy_deg": 60, "aspect": 1, "near": 0.1, "far": 10)"),
        "camera.projection.type: unknown type \"perspectiv\" (did you mean perspective?"},
       {scene_with("gl", camera, R"("depth_buffer": "float", "surfaces": [])"),
        "depth_buffer: unknown depth buffer \"float\" (did you mean float32?"},
       {scene_with("gl", camera, R"("mirror_design": "reflected-view", "surfaces": [])"),
        "mirror_design: unknown mirror design \"reflected-view\" (did you mean reflected_view?"},
-      {scene_with("gl", camera,
-                  R"("surfaces": [{"name": "m", "kind": "miror", "plane": {"normal": [0, 0, 1], "point": [0, 0, -2]}}])"),
+      {scene_with(
+           "gl", camera,
+           R"("surfaces": [{"name": "m", "kind": "miror", "plane": {"normal": [0, 0, 1], "point": [0, 0, -2]}}])"),
        "surfaces[0].kind: unknown kind \"miror\" (did you mean mirror?"},
       // Nothing close: the list alone.
       {scene_with("vulkan", camera),
@@ -434,7 +436,8 @@ TEST(Scenes, unknownNamesSuggestTheClosestKnownOne) {
 
 TEST(Scenes, aFieldOfViewInTheOtherUnitIsNamed) {
   auto parsed = [](const std::string& fovy) {
-    return parse_scene(scene_with("gl", fovy + R"(, "type": "perspective", "aspect": 1.6, "near": 0.1, "far": 10)"));
+    return parse_scene(scene_with(
+        "gl", fovy + R"(, "type": "perspective", "aspect": 1.6, "near": 0.1, "far": 10)"));
   };
   // 1.22 "degrees": accepted (a narrow lens is possible), with a warning that names radians.
   const ParsedScene radians_as_degrees = parsed(R"("fovy_deg": 1.22)");
@@ -446,7 +449,8 @@ TEST(Scenes, aFieldOfViewInTheOtherUnitIsNamed) {
             std::string::npos)
       << radians_as_degrees.warnings[0];
   // Ordinary fields of view warn of nothing.
-  for (const std::string fovy : {R"("fovy_deg": 70)", R"("fovy_deg": 3.5)", R"("fovy_rad": 1.22)"}) {
+  for (const std::string fovy :
+       {R"("fovy_deg": 70)", R"("fovy_deg": 3.5)", R"("fovy_rad": 1.22)"}) {
     const ParsedScene ordinary = parsed(fovy);
     ASSERT_TRUE(ordinary.scene) << fovy << ": " << ordinary.error;
     EXPECT_TRUE(ordinary.warnings.empty()) << fovy << ": " << ordinary.warnings[0];

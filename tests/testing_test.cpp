@@ -60,14 +60,19 @@ TEST(Testing, theGlFunctionJudgedInAnotherConventionFails) {
 }
 
 // A pass is one line per property, and a report an earlier run left for a property that passes
-// now is moved to earlier/ (kept, not deleted); other reports stay where they are.
+// now is moved to earlier/ (kept, not deleted); other reports stay where they are, among them
+// another test executable's report of a test with the same name (reports are keyed by executable
+// and test).
 TEST(Testing, aPassIsOneLineAndEarlierReportsAreMovedAside) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(::testing::TempDir()) / "oblique_testing_earlier_reports";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::string id = "Testing.aPassIsOneLineAndEarlierReportsAreMovedAside";
+  const std::string test = "Testing.aPassIsOneLineAndEarlierReportsAreMovedAside";
+  const std::string id = "testing_test." + test;
+  const std::string other = "another_test." + test;  // another executable, the same test name
   std::ofstream(dir / (id + ".near_is_clip_plane.md")) << "an earlier failure\n";
+  std::ofstream(dir / (other + ".near_is_clip_plane.md")) << "another executable's failure\n";
   std::ofstream(dir / (id + ".near_is_clip_plane.json")) << "{}\n";
   std::ofstream(dir / (id + ".no_clipping.md")) << "another property's\n";
   ASSERT_EQ(::setenv("OBLIQUE_REPORT_DIR", dir.c_str(), 1), 0);
@@ -82,6 +87,7 @@ TEST(Testing, aPassIsOneLineAndEarlierReportsAreMovedAside) {
   EXPECT_EQ(out.rfind("near_is_clip_plane: OK, passed 100 tests", 0), 0u) << out;
   EXPECT_FALSE(fs::exists(dir / (id + ".near_is_clip_plane.md")));
   EXPECT_TRUE(fs::exists(dir / (id + ".no_clipping.md")));
+  EXPECT_TRUE(fs::exists(dir / (other + ".near_is_clip_plane.md")));
   int moved = 0;
   for (const auto& entry : fs::recursive_directory_iterator(dir / "earlier")) {
     const std::string name = entry.path().filename().string();

@@ -287,17 +287,17 @@ void set_interrupted_line(const VerifyOptions& options, long judged, const std::
                           double seconds) {
   char time[32];
   std::snprintf(time, sizeof time, "%.1f", seconds);
-  protocol::set_interrupt_line("oblique verify: interrupted after " + std::to_string(judged) +
-                               " " + what + " in " + time + " s, no violation so far (seed " +
-                               std::to_string(options.seed) +
-                               "); to repeat it: " + rerun_command(options) +
-                               " (without --seed: fresh cases)");
+  protocol::set_interrupt_line(
+      "oblique verify: interrupted after " + std::to_string(judged) + " " + what + " in " + time +
+      " s, no violation so far (seed " + std::to_string(options.seed) +
+      "); to repeat it: " + rerun_command(options) + " (without --seed: fresh cases)");
 }
 
 void set_shrinking_line(const VerifyOptions& options) {
   protocol::set_interrupt_line(
       "oblique verify: interrupted while shrinking a violation, before its report was written "
-      "(seed " + std::to_string(options.seed) + "); to repeat it: " + rerun_command(options));
+      "(seed " +
+      std::to_string(options.seed) + "); to repeat it: " + rerun_command(options));
 }
 
 Verdict commit_report(report::ReportFiles& files, const std::string& stem, std::ostream& err) {

@@ -4,8 +4,8 @@
 // the signal as before (exit status 128 + signal).
 #pragma once
 
-#include <string>
 #include <sys/types.h>
+#include <string>
 
 namespace oblique::protocol {
 

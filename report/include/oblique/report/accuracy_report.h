@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "oblique/cases/contract.h"
+
 namespace oblique::report {
 
 /// An implementation outside this process, asked the same cases over the pipe (the protocol of
@@ -30,6 +32,13 @@ struct AccuracyOptions {
   bool progress = true;
   std::vector<ExternalImplementation> implementations;  ///< --impl, --impl-float
   double request_timeout_seconds = 10;                  ///< for one answer of an implementation
+  /// What is measured (`--contract`, `--convention`, `--families`, `--statuses`): cases in the
+  /// contract's conventions only (empty: every one); regimes whose projections are of a family
+  /// it claims (empty: every one; typical to near_standard and tiny_near build perspective
+  /// frusta, infinite and orthographic theirs, scaled a general matrix); and an implementation's
+  /// refusals judged by its statuses (default any_refusal). The core's methods are measured on the
+  /// same cases.
+  Contract contract;
 };
 
 /// One row: a method (or an implementation, `round_trip`) on a scalar type in one regime (all
@@ -54,6 +63,7 @@ struct StiffnessPoint {
 };
 
 struct AccuracyReport {
+  std::vector<std::string> regimes;  ///< those measured (the contract's families' own)
   std::vector<AccuracyRow> rows;
   std::vector<StiffnessPoint> stiffness;
   std::string error;  ///< an implementation could not be asked (nothing is written then)

@@ -75,8 +75,11 @@ std::string diagnosis_json(const mistakes::Diagnosis& diagnosis);
 
 /// Where the report goes and how it is replayed.
 struct ReportContext {
-  std::string directory;   ///< reports folder
-  std::string test_id;     ///< "Suite.Name"
+  std::string directory;  ///< reports folder
+  std::string test_id;    ///< "Suite.Name"
+  /// What the property suite's reports are named by: "executable.Suite.Name" (two test
+  /// executables with the same test names keep their reports apart); empty: test_id.
+  std::string report_key;
   std::uint64_t seed = 0;  ///< RapidCheck's seed for this run
   int max_success = 100;   ///< RapidCheck's max_success for this run
   std::string binary;      ///< the test executable
