@@ -1,4 +1,5 @@
 // A build without EGL and OpenGL: every way in to the rasterizer says what to install.
+#include "oblique/raster/case_scene.h"
 #include "oblique/raster/raster.h"
 
 namespace oblique::raster {
@@ -78,6 +79,16 @@ Result Rasterizer::check(const PreparedCheck&) {
 
 Expected<std::shared_ptr<Rasterizer>> Rasterizer::open(const Options&) {
   return Expected<std::shared_ptr<Rasterizer>>::failure(kNoEgl);
+}
+
+Expected<Render> draw_mesh(GlContext&, const Mesh&, const Eigen::Matrix4d&, Convention, DepthBuffer,
+                           int) {
+  return Expected<Render>::failure(kNoEgl);
+}
+
+Expected<CaseRenders> render_case(const Eigen::Matrix4d&, const Eigen::Vector4d&,
+                                  const Eigen::Matrix4d&, const Eigen::Matrix4d&, Convention, int) {
+  return Expected<CaseRenders>::failure(kNoEgl);
 }
 
 }  // namespace oblique::raster

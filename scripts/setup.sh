@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(cmake g++ make pkgconf libeigen3-dev nlohmann-json3-dev libcli11-dev libgtest-dev
           libgmock-dev librapidcheck-dev libgmp-dev libbenchmark-dev gnuplot-nox time
           libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools
-          spirv-cross)
+          spirv-cross libpng-dev chromium)
 if [[ "${1:-}" == "--fuzz" ]]; then
   packages+=(clang-14 libclang-rt-14-dev)
 fi
