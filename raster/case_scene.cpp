@@ -166,43 +166,126 @@ bool keeps(const Eigen::Matrix4d& projection, const Eigen::Vector4d& p, Conventi
 std::vector<Eigen::Vector4d> disagreements(const Eigen::Matrix4d& m,
                                            const Eigen::Matrix4d& expected,
                                            const Eigen::Matrix4d& answer, Convention convention,
-                                           int count) {
+                                           const std::vector<Eigen::Vector4d>& hints, int count) {
   const Eigen::Matrix4d inverse = m.inverse();
   std::mt19937_64 random(20261206);
   std::uniform_real_distribution<double> unit(-1, 1), depth(0, 1);
   const double zn = near_z(convention), zf = far_z(convention);
+  const double z_low = std::min(zn, zf), z_high = std::max(zn, zf);
   // Each found point with its NDC (for spreading), the correct M''s kept ones first.
   std::vector<std::pair<Vec3, Vec4>> kept_by_expected, kept_by_answer;
-  for (int i = 0; i < 20000; ++i) {
-    const double x = 0.8 * unit(random), y = 0.8 * unit(random);
-    const double z = zn + (zf - zn) * depth(random);
+  auto sample = [&](double x, double y, double z) {
     const std::optional<Vec3> p = from_ndc(inverse, x, y, z);
-    if (!p) continue;
+    if (!p) return;
     const Vec4 point = p->homogeneous();
     const bool e = keeps(expected, point, convention), a = keeps(answer, point, convention);
-    if (e == a) continue;
-    (e ? kept_by_expected : kept_by_answer).push_back({Vec3(x, y, z), point});
+    if (e != a) (e ? kept_by_expected : kept_by_answer).push_back({Vec3(x, y, z), point});
+  };
+  for (int i = 0; i < 20000; ++i)
+    sample(0.8 * unit(random), 0.8 * unit(random), zn + (zf - zn) * depth(random));
+  // Between the two matrices' near planes, and between their far planes, on rays through the
+  // screen: a slab however thin (a far plane that misses the far corner by a little), and what
+  // one draws beyond M's far plane.
+  const Eigen::Matrix4d expected_back = expected.inverse(), answer_back = answer.inverse();
+  auto affine_of = [](const Vec4& v) -> std::optional<Vec3> {
+    if (!(v.w() > 0) || !v.allFinite()) return std::nullopt;
+    const Vec3 p = v.head<3>() / v.w();
+    return p.allFinite() ? std::optional<Vec3>(p) : std::nullopt;
+  };
+  // The eye (M^-1 (0, 0, 1, 0): a point, or for an orthographic M a direction of the rays).
+  const Vec4 eye = inverse * Vec4(0, 0, 1, 0);
+  auto sample_eye_point = [&](const Vec3& p) {
+    const Vec4 q = m * p.homogeneous();
+    if (!(q.w() > 0)) return;
+    const Vec3 ndc = q.head<3>() / q.w();
+    if (ndc.allFinite()) sample(ndc.x(), ndc.y(), ndc.z());
+  };
+  auto between_faces = [&](double x, double y) {
+    for (double face : {zn, zf}) {
+      const std::optional<Vec3> e = affine_of(expected_back * Vec4(x, y, face, 1));
+      const std::optional<Vec3> a = affine_of(answer_back * Vec4(x, y, face, 1));
+      if (e && a) {
+        for (double t : {0.25, 0.5, 0.75}) sample_eye_point(*e + t * (*a - *e));
+      } else if (e || a) {
+        // One face is at or beyond infinity: the ray beyond the other's.
+        const Vec3 p = e ? *e : *a;
+        for (double s : {1.25, 2.0, 8.0}) {
+          if (std::abs(eye.w()) > 0 && (eye.head<3>() / eye.w()).allFinite()) {
+            const Vec3 from = eye.head<3>() / eye.w();
+            sample_eye_point(from + s * (p - from));
+          } else if (eye.head<3>().norm() > 0) {
+            const Vec3 along = eye.head<3>().normalized();
+            const double sign = along.dot(p) >= 0 ? 1 : -1;
+            sample_eye_point(p + sign * (s - 1) * (p.norm() + 1) * along);
+          }
+        }
+      }
+    }
+  };
+  for (int i = 0; i < 2000; ++i) between_faces(0.8 * unit(random), 0.8 * unit(random));
+  // Around each hint, in ever smaller boxes of NDC (a sliver the answer cuts off at a corner).
+  for (const Vec4& hint : hints) {
+    const Vec4 q = m * hint;
+    Vec3 centre;
+    if (q.w() > 0) {
+      centre = q.head<3>() / q.w();
+    } else if (q.w() == 0) {  // a point at infinity: its corner of the far face
+      centre = Vec3(q.x() > 0 ? 1 : -1, q.y() > 0 ? 1 : -1, zf);
+    } else {
+      continue;
+    }
+    if (!centre.allFinite()) continue;
+    for (int i = 0; i < 200; ++i)
+      between_faces(std::clamp(centre.x() + 0.05 * unit(random), -1.0, 1.0),
+                    std::clamp(centre.y() + 0.05 * unit(random), -1.0, 1.0));
+    for (double half : {0.1, 0.01, 1e-3, 1e-4}) {
+      for (int i = 0; i < 1500; ++i) {
+        sample(std::clamp(centre.x() + half * unit(random), -1.0, 1.0),
+               std::clamp(centre.y() + half * unit(random), -1.0, 1.0),
+               std::clamp(centre.z() + half * unit(random), z_low, z_high));
+      }
+    }
   }
+  // A point whose neighbours a few pixels away on the screen (at its depth) disagree the same
+  // way is robust: its marker shows the difference around its centre. Those first.
+  auto robust = [&](const std::pair<Vec3, Vec4>& found) {
+    const bool e = keeps(expected, found.second, convention);
+    for (const Vec3& step :
+         {Vec3(0.02, 0, 0), Vec3(-0.02, 0, 0), Vec3(0, 0.02, 0), Vec3(0, -0.02, 0)}) {
+      const Vec3 ndc = found.first + step;
+      const std::optional<Vec3> p = from_ndc(inverse, ndc.x(), ndc.y(), ndc.z());
+      if (!p) return false;
+      const Vec4 point = p->homogeneous();
+      if (keeps(expected, point, convention) != e || keeps(answer, point, convention) == e)
+        return false;
+    }
+    return true;
+  };
+  std::vector<std::pair<Vec3, Vec4>> groups[4];  // robust kept by M', by the answer; thin ones
+  for (const auto& found : kept_by_expected) groups[robust(found) ? 0 : 2].push_back(found);
+  for (const auto& found : kept_by_answer) groups[robust(found) ? 1 : 3].push_back(found);
   std::vector<Eigen::Vector4d> out;
   std::vector<Vec3> chosen;
-  // Farthest-point choice (in NDC) within each group: spread over the screen.
-  for (auto* group : {&kept_by_expected, &kept_by_answer}) {
-    const int want = group == &kept_by_expected
-                         ? (count + 1) / 2 + (kept_by_answer.empty() ? count / 2 : 0)
-                         : count - static_cast<int>(out.size());
-    for (int k = 0; k < want && !group->empty(); ++k) {
-      std::size_t best = 0;
-      double best_distance = -1;
-      for (std::size_t i = 0; i < group->size(); ++i) {
-        double nearest = std::numeric_limits<double>::infinity();
-        for (const Vec3& c : chosen) nearest = std::min(nearest, ((*group)[i].first - c).norm());
-        if (chosen.empty())
-          nearest = -std::abs((*group)[i].first.x()) - std::abs((*group)[i].first.y());
-        if (nearest > best_distance) best_distance = nearest, best = i;
-      }
-      chosen.push_back((*group)[best].first);
-      out.push_back((*group)[best].second);
-      group->erase(group->begin() + static_cast<std::ptrdiff_t>(best));
+  // Farthest-point choice (in NDC): spread over the screen, the most central first; robust
+  // points before thin ones, a point the correct M' keeps and one the answer keeps in turn.
+  auto pick = [&](std::vector<std::pair<Vec3, Vec4>>& group) {
+    std::size_t best = 0;
+    double best_distance = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < group.size(); ++i) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const Vec3& c : chosen) nearest = std::min(nearest, (group[i].first - c).norm());
+      if (chosen.empty()) nearest = -std::abs(group[i].first.x()) - std::abs(group[i].first.y());
+      if (nearest > best_distance) best_distance = nearest, best = i;
+    }
+    chosen.push_back(group[best].first);
+    out.push_back(group[best].second);
+    group.erase(group.begin() + static_cast<std::ptrdiff_t>(best));
+  };
+  for (int pass = 0; pass < 4; pass += 2) {
+    while (static_cast<int>(out.size()) < count &&
+           !(groups[pass].empty() && groups[pass + 1].empty())) {
+      for (int g = pass; g < pass + 2 && static_cast<int>(out.size()) < count; ++g)
+        if (!groups[g].empty()) pick(groups[g]);
     }
   }
   return out;
@@ -270,8 +353,11 @@ Mesh reference_scene(const Eigen::Matrix4d& m, const Eigen::Vector4d& c, Convent
     const Vec3 p = mark.head<3>() / mark.w();
     const auto [w, h] = half_sizes(m, inverse, p);
     const double size = 0.035 * std::max(w, h);
-    box(mesh.overlay_points, mesh.overlay_colors, p - size * v.up, size * v.right, 2 * size * v.up,
-        size * v.forward, rgba(1, 0, 1));
+    // Flat, facing the eye, at the mark's own depth: the part of it one matrix clips and the
+    // other keeps is around its centre, whichever way the plane between them runs.
+    quad(mesh.overlay_points, mesh.overlay_colors, p - size * v.right - size * v.up,
+         p + size * v.right - size * v.up, p + size * v.right + size * v.up,
+         p - size * v.right + size * v.up, rgba(0.85, 0, 0.85));
   }
   return mesh;
 }

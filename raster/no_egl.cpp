@@ -87,7 +87,8 @@ Expected<Render> draw_mesh(GlContext&, const Mesh&, const Eigen::Matrix4d&, Conv
 }
 
 Expected<CaseRenders> render_case(const Eigen::Matrix4d&, const Eigen::Vector4d&,
-                                  const Eigen::Matrix4d&, const Eigen::Matrix4d&, Convention, int) {
+                                  const Eigen::Matrix4d&, const Eigen::Matrix4d&, Convention,
+                                  const std::vector<Eigen::Vector4d>&, int) {
   return Expected<CaseRenders>::failure(kNoEgl);
 }
 

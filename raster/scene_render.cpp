@@ -221,58 +221,146 @@ Expected<Render> draw_mesh(GlContext& gl, const Mesh& mesh, const Eigen::Matrix4
   return out;
 }
 
-Expected<CaseRenders> render_case(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
-                                  const Eigen::Matrix4d& expected, const Eigen::Matrix4d& answer,
-                                  Convention convention, int size) {
-  CaseRenders out;
-  out.marks = disagreements(m, expected, answer, convention);
-  const Mesh mesh = reference_scene(m, c, convention, out.marks);
-  if (mesh.points.empty())
-    return Expected<CaseRenders>::failure(
-        "M has no view volume to build a scene in (its near face or axis is not finite)");
-  const NoShaderCache no_cache;
-  Expected<std::unique_ptr<GlContext>> gl = GlContext::open(Device::software);
-  if (!gl) return Expected<CaseRenders>::failure(gl.error());
-  const DepthBuffer buffer =
-      convention == Convention::reversed_z ? DepthBuffer::float32 : DepthBuffer::fixed24;
-  Expected<Render> e = draw_mesh(**gl, mesh, expected, convention, buffer, size);
-  if (!e) return Expected<CaseRenders>::failure("the correct M': " + e.error());
-  Expected<Render> a = draw_mesh(**gl, mesh, answer, convention, buffer, size);
-  if (!a) return Expected<CaseRenders>::failure("the answer: " + a.error());
-  out.expected = std::move(*e);
-  out.answered = std::move(*a);
-  // The difference: the correct render faded, each pixel that differs in red.
-  out.difference = report::Picture(size, size);
-  for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) {
-      const std::uint8_t* p = out.expected.colour.at(x, y);
-      const std::uint8_t* q = out.answered.colour.at(x, y);
-      std::uint8_t* d = out.difference.at(x, y);
+namespace {
+
+/// The difference of two renders: `expected` faded, each pixel that differs in red.
+report::Picture difference(const report::Picture& expected, const report::Picture& answered,
+                           long& differing) {
+  report::Picture out(expected.width, expected.height);
+  differing = 0;
+  for (int y = 0; y < out.height; ++y) {
+    for (int x = 0; x < out.width; ++x) {
+      const std::uint8_t* p = expected.at(x, y);
+      const std::uint8_t* q = answered.at(x, y);
+      std::uint8_t* d = out.at(x, y);
       if (std::equal(p, p + 4, q)) {
         const int grey = (p[0] + p[1] + p[2]) / 3;
         d[0] = d[1] = d[2] = static_cast<std::uint8_t>(200 + grey / 5);
       } else {
-        ++out.differing;
+        ++differing;
         d[0] = 220, d[1] = 20, d[2] = 30;
       }
       d[3] = 255;
     }
   }
+  return out;
+}
+
+/// Whether two pictures differ within 3 pixels of (x, y).
+bool differs_near(const report::Picture& a, const report::Picture& b, int x, int y) {
+  for (int v = y - 3; v <= y + 3; ++v)
+    for (int u = x - 3; u <= x + 3; ++u)
+      if (u >= 0 && v >= 0 && u < a.width && v < a.height &&
+          !std::equal(a.at(u, v), a.at(u, v) + 4, b.at(u, v)))
+        return true;
+  return false;
+}
+
+/// `projection` seen zoomed in `factor` times around NDC (x0, y0): clip x and y scaled about the
+/// point; z and w (what is clipped against C and the far plane) as they were.
+Eigen::Matrix4d zoomed(const Eigen::Matrix4d& projection, double factor, double x0, double y0) {
+  Eigen::Matrix4d out = projection;
+  out.row(0) = factor * (projection.row(0) - x0 * projection.row(3));
+  out.row(1) = factor * (projection.row(1) - y0 * projection.row(3));
+  return out;
+}
+
+}  // namespace
+
+Expected<CaseRenders> render_case(const Eigen::Matrix4d& m, const Eigen::Vector4d& c,
+                                  const Eigen::Matrix4d& expected, const Eigen::Matrix4d& answer,
+                                  Convention convention, const std::vector<Eigen::Vector4d>& hints,
+                                  int size) {
+  CaseRenders out;
+  out.marks = disagreements(m, expected, answer, convention, hints);
+  const NoShaderCache no_cache;
+  Expected<std::unique_ptr<GlContext>> gl = GlContext::open(Device::software);
+  if (!gl) return Expected<CaseRenders>::failure(gl.error());
+  const DepthBuffer buffer =
+      convention == Convention::reversed_z ? DepthBuffer::float32 : DepthBuffer::fixed24;
+  // Draws the scene with out.marks through both, and says where each mark is on the screen
+  // (through M: the side planes are M's) and whether the pictures differ there.
+  Mesh mesh;
+  std::vector<std::array<double, 2>> ndc;
+  auto draw = [&]() -> Expected<Done> {
+    mesh = reference_scene(m, c, convention, out.marks);
+    if (mesh.points.empty())
+      return Expected<Done>::failure(
+          "M has no view volume to build a scene in (its near face or axis is not finite)");
+    Expected<Render> e = draw_mesh(**gl, mesh, expected, convention, buffer, size);
+    if (!e) return Expected<Done>::failure("the correct M': " + e.error());
+    Expected<Render> a = draw_mesh(**gl, mesh, answer, convention, buffer, size);
+    if (!a) return Expected<Done>::failure("the answer: " + a.error());
+    out.expected = std::move(*e);
+    out.answered = std::move(*a);
+    out.difference = difference(out.expected.colour, out.answered.colour, out.differing);
+    ndc.clear();
+    out.mark_pixels.clear();
+    out.mark_shown.clear();
+    for (const Eigen::Vector4d& mark : out.marks) {
+      const Eigen::Vector4d q = m * mark;
+      const double x = q.x() / q.w(), y = q.y() / q.w();
+      ndc.push_back({x, y});
+      const int px = static_cast<int>(std::floor((x + 1) / 2 * size));
+      const int py = size - 1 - static_cast<int>(std::floor((y + 1) / 2 * size));
+      out.mark_pixels.push_back({px, py});
+      out.mark_shown.push_back(differs_near(out.expected.colour, out.answered.colour, px, py));
+    }
+    return Done{};
+  };
+  if (const Expected<Done> drawn = draw(); !drawn)
+    return Expected<CaseRenders>::failure(drawn.error());
+  // A mark whose difference is too thin to see is zoomed into (x8, then x64); one that shows
+  // nothing even there disagrees by less than a pixel: it is left out and the scene drawn again.
+  std::vector<CaseRenders::Zoom> zooms;
+  for (std::size_t k = 0; k < out.marks.size(); ++k) {
+    if (out.mark_shown[k]) continue;
+    for (int factor : {8, 64}) {
+      const auto [x0, y0] = ndc[k];
+      Expected<Render> ze =
+          draw_mesh(**gl, mesh, zoomed(expected, factor, x0, y0), convention, buffer, size);
+      Expected<Render> za =
+          draw_mesh(**gl, mesh, zoomed(answer, factor, x0, y0), convention, buffer, size);
+      if (!ze || !za) break;
+      if (!differs_near(ze->colour, za->colour, size / 2, size / 2)) continue;
+      CaseRenders::Zoom zoom;
+      zoom.factor = factor;
+      zoom.mark = static_cast<int>(k);
+      zoom.expected = std::move(ze->colour);
+      zoom.answered = std::move(za->colour);
+      zoom.difference = difference(zoom.expected, zoom.answered, zoom.differing);
+      for (report::Picture* p : {&zoom.expected, &zoom.answered, &zoom.difference})
+        ring(*p, size / 2, size / 2, std::max(6, size / 30), 0x111111);
+      zooms.push_back(std::move(zoom));
+      out.mark_shown[k] = true;
+      break;
+    }
+  }
+  std::vector<Eigen::Vector4d> seen;
+  std::vector<int> renumbered(out.marks.size(), -1);
+  for (std::size_t k = 0; k < out.marks.size(); ++k) {
+    if (!out.mark_shown[k]) continue;
+    renumbered[k] = static_cast<int>(seen.size());
+    seen.push_back(out.marks[k]);
+  }
+  out.unseen_marks = static_cast<int>(out.marks.size() - seen.size());
+  if (out.unseen_marks > 0) {
+    out.marks = seen;
+    if (const Expected<Done> drawn = draw(); !drawn)
+      return Expected<CaseRenders>::failure(drawn.error());
+    for (CaseRenders::Zoom& zoom : zooms) {
+      zoom.mark = renumbered[static_cast<std::size_t>(zoom.mark)];
+      out.mark_shown[static_cast<std::size_t>(zoom.mark)] = true;
+    }
+  }
+  out.zooms = std::move(zooms);
   const auto [de, da] =
       depth_pictures(out.expected, out.answered, convention == Convention::reversed_z);
   out.expected_depth = de;
   out.answered_depth = da;
-  // Where each mark is on the screen (through M: the side planes are M's), ringed in every
-  // picture of colours.
-  for (const Eigen::Vector4d& mark : out.marks) {
-    const Eigen::Vector4d q = m * mark;
-    if (!(q.w() > 0)) continue;
-    const int x = static_cast<int>(std::floor((q.x() / q.w() + 1) / 2 * size));
-    const int y = size - 1 - static_cast<int>(std::floor((q.y() / q.w() + 1) / 2 * size));
-    out.mark_pixels.push_back({x, y});
+  for (const auto& [x, y] : out.mark_pixels)
     for (report::Picture* p : {&out.expected.colour, &out.answered.colour, &out.difference})
       ring(*p, x, y, std::max(6, size / 30), 0x111111);
-  }
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include "oblique/mistakes/consumer_mistakes.h"
 #include "oblique/oblique.h"
 #include "oblique/protocol/protocol.h"
+#include "oblique/report/html_page.h"
 #include "oblique/report/report_files.h"
 #include "oblique/report/views.h"
 
@@ -417,10 +418,13 @@ Rendered render(report::ReportFiles& files, const report::Views& views, const st
 }
 
 std::string stage_pictures(report::ReportFiles& files, const Counterexample& ce,
-                           const std::string& stem, const Mark& mark, nlohmann::json& pictures) {
+                           const std::string& stem, const Mark& mark, nlohmann::json& pictures,
+                           report::Views* shown = nullptr) {
   std::ostringstream md;
   {
-    const Rendered rendered_views = render(files, case_views(ce, stem, mark), stem);
+    const report::Views views = case_views(ce, stem, mark);
+    if (shown) *shown = views;
+    const Rendered rendered_views = render(files, views, stem);
     const bool rendered = rendered_views.views.size() == 2;
     auto has = [&](const char* view) { return rendered_views.has(view); };
     md << "## Pictures\n\nThe case in eye space (the space C is given in): a top view (x, z) and "
@@ -608,7 +612,18 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   // The pictures: staged with the rest, rendered in the staging folder (gnuplot missing or
   // failing leaves the data and scripts, and says so).
   nlohmann::json pictures = nullptr;
-  if (ce.views.set) md << stage_pictures(files, ce, stem, mark_of(ce), pictures);
+  report::Views views;
+  std::vector<report::StagedPicture> staged;
+  report::RenderSummary render_summary;
+  bool render_tried = false;
+  if (ce.views.set) {
+    md << "Interactive: `" << stem << ".html` (the case in 3D, this report beside it).\n\n";
+    if (context.draw_case && ce.views.expected && ce.views.answer) {
+      render_tried = true;
+      md << context.draw_case(files, stem, ce.views, staged, render_summary);
+    }
+    md << stage_pictures(files, ce, stem, mark_of(ce), pictures, &views);
+  }
   md << "## Replay\n\nThe whole run"
      << (context.seed ? ", shrinking included (seed " + std::to_string(context.seed) + ")" : "")
      << ":\n\n```sh\n"
@@ -654,10 +669,25 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
   j["compiler"] = OBLIQUE_COMPILER;
   j["flags"] = OBLIQUE_CXX_FLAGS;
   j["pictures"] = pictures;
+  if (ce.views.set) {
+    j["html"] = stem + ".html";
+    nlohmann::json renders = nlohmann::json::array();
+    for (const report::StagedPicture& p : staged) renders.push_back(p.file);
+    j["renders"] = renders;
+  }
+  j["render"] = nullptr;
+  if (render_tried) {
+    j["render"] = {{"drawn", render_summary.drawn},
+                   {"differing_pixels", render_summary.differing_pixels},
+                   {"marks", render_summary.marks},
+                   {"marks_with_difference", render_summary.marks_with_difference},
+                   {"why", render_summary.why}};
+  }
   // Text from other programs may be any bytes: invalid UTF-8 becomes U+FFFD, never an abort.
   files.open(stem + ".json") << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
                              << "\n";
   files.open(stem + ".md") << md.str();
+  if (ce.views.set) files.open(stem + ".html") << report::views_html(views, md.str(), staged);
   std::ostringstream log;
   if (!files.commit(log)) {
     std::string why = log.str();
@@ -670,6 +700,13 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
     if (!pictures.is_object() || pictures[view].is_null()) {
       std::error_code ignored;
       std::filesystem::remove(context.directory + "/" + stem + "." + view + ".png", ignored);
+    }
+  }
+  for (const char* render : {".render.png", ".depth.png"}) {
+    if (std::none_of(staged.begin(), staged.end(),
+                     [&](const report::StagedPicture& p) { return p.file == stem + render; })) {
+      std::error_code ignored;
+      std::filesystem::remove(context.directory + "/" + stem + render, ignored);
     }
   }
   return md_path;

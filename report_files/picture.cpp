@@ -95,4 +95,22 @@ Picture side_by_side(const std::vector<const Picture*>& pictures, int gap,
   return out;
 }
 
+Picture stacked(const std::vector<const Picture*>& pictures, std::uint32_t background) {
+  int width = 0, height = 0;
+  for (const Picture* p : pictures) {
+    width = std::max(width, p->width);
+    height += p->height;
+  }
+  Picture out(width, height, background);
+  int top = 0;
+  for (const Picture* p : pictures) {
+    const int left = (width - p->width) / 2;
+    for (int y = 0; y < p->height; ++y)
+      std::copy(p->at(0, y), p->at(0, y) + static_cast<std::size_t>(p->width) * 4,
+                out.at(left, top + y));
+    top += p->height;
+  }
+  return out;
+}
+
 }  // namespace oblique::report

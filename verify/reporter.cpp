@@ -16,6 +16,7 @@
 #include "oblique/oracle/problem.h"
 #include "oblique/protocol/interrupts.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/raster/case_scene.h"
 #include "oblique/report/counterexample_report.h"
 #include "oblique/report/report_files.h"
 
@@ -113,6 +114,16 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
   context.replay_case = "echo " + shell_quote(request) + " | " + options_.command;
   context.contract = contract_json(draws_.contract());
   context.keep_existing = true;
+  context.draw_case = [](report::ReportFiles& files, const std::string& stem,
+                         const report::CaseViews& views, std::vector<report::StagedPicture>& staged,
+                         report::RenderSummary& summary) {
+    // Where the finding is: the far corner Q and a vertex the answer clips.
+    std::vector<Eigen::Vector4d> hints;
+    for (const auto& point : {views.far_corner, views.clipped})
+      if (point) hints.push_back(*point);
+    return raster::stage_case_renders(files, stem, views.projection, views.plane, *views.expected,
+                                      *views.answer, views.convention, hints, staged, summary);
+  };
   std::string path;
   try {
     path = report::write_report(ce, context);

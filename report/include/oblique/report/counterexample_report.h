@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 #include "oblique/oracle/judge.h"
 #include "oblique/oracle/problem.h"
 #include "oblique/projection.h"
+#include "oblique/report/picture.h"
 
 namespace oblique::report {
 
@@ -92,14 +94,23 @@ struct ReportContext {
   std::string contract;
   /// Never replace an earlier report: a taken stem gets "-2", "-3", ... (oblique verify).
   bool keep_existing = false;
+  /// Draws what an engine would draw through the correct M' and the answer (a case with both),
+  /// staging its pictures in the report's files under STEM and adding them to `staged`; returns
+  /// the Markdown section. Set by the ways in that link the rasterizer
+  /// (raster::stage_case_renders(), oblique/raster/case_scene.h); empty: no such section.
+  std::function<std::string(ReportFiles& files, const std::string& stem, const CaseViews& views,
+                            std::vector<StagedPicture>& staged, RenderSummary& summary)>
+      draw_case;
 };
 
 /// Writes NAME.md and NAME.json into the reports folder and, when ce.views is set, the case's
 /// top and side views: NAME.views.dat, NAME.top.gp, NAME.side.gp and (with gnuplot)
 /// NAME.top.png, NAME.side.png; the Markdown links the pictures, or says why they were not
-/// rendered. Every file is staged and moved into place only when all were written in full
-/// (report::ReportFiles), so a failed write leaves an earlier report as it was. Returns the
-/// Markdown path; throws std::runtime_error when it cannot write the report.
+/// rendered; NAME.html, the case in 3D with the report beside it (oblique/report/html_page.h);
+/// and, with context.draw_case, what an engine would draw (NAME.render.png, NAME.depth.png). Every
+/// file is staged and moved into place only when all were written in full (report::ReportFiles), so
+/// a failed write leaves an earlier report as it was. Returns the Markdown path; throws
+/// std::runtime_error when it cannot write the report.
 std::string write_report(const Counterexample& ce, const ReportContext& context);
 
 /// A consumer finding's report as every tool writes it (oblique::testing, `oblique verify`), up

@@ -22,6 +22,22 @@ struct Picture {
   }
 };
 
+/// A picture a report staged itself (STEM.render.png, ...): its file name in the report's folder,
+/// what it shows, and its PNG bytes (for an HTML page to carry inline).
+struct StagedPicture {
+  std::string file, caption, png;
+};
+
+/// What a render of a finding shows, for its report's JSON ("render"): the pixels that differ
+/// between the correct M''s picture and the answer's, and how many of the places where the two
+/// disagree (each marked in the scene) have a differing pixel within 3 pixels of it.
+struct RenderSummary {
+  bool drawn = false;
+  long differing_pixels = 0;
+  int marks = 0, marks_with_difference = 0;
+  std::string why;  ///< not drawn: why
+};
+
 /// The picture as PNG bytes; empty when libpng fails (or the picture is empty).
 std::string png_bytes(const Picture& picture);
 
@@ -32,5 +48,9 @@ std::string base64(std::string_view bytes);
 /// ones centred vertically.
 Picture side_by_side(const std::vector<const Picture*>& pictures, int gap,
                      std::uint32_t background = 0xffffffffu);
+
+/// Pictures one above the other, the narrower ones centred.
+Picture stacked(const std::vector<const Picture*>& pictures,
+                std::uint32_t background = 0xffffffffu);
 
 }  // namespace oblique::report

@@ -1,0 +1,22 @@
+// A report's interactive page: one self-contained HTML file (no network: script, data and
+// pictures inline) with the report's views in 3D to turn and zoom (WebGL2; a plain canvas where
+// there is none), a toggle per layer, and the report's text and pictures beside them. A page
+// opened with #selftest checks itself (each layer is seen in its colour, a toggle changes the
+// picture) and writes the result into its #selftest element, for a headless browser to read.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "oblique/report/picture.h"
+#include "oblique/report/views.h"
+
+namespace oblique::report {
+
+/// The page of `views` (each dataset a layer: its segments, its points as small crosses, in the
+/// colour, width and dashes of its gnuplot style), beside `markdown` (shown as text) and
+/// `pictures` (inline, with their captions).
+std::string views_html(const Views& views, const std::string& markdown,
+                       const std::vector<StagedPicture>& pictures);
+
+}  // namespace oblique::report
