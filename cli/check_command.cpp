@@ -4,11 +4,14 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include "commands.h"
 #include "oblique/cases/contract.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/raster/raster.h"
+#include "oblique/report/html_page.h"
+#include "oblique/report/report_files.h"
 #include "oblique/scene/check.h"
 #include "oblique/scene/plot.h"
 #include "oblique/shader/shader_runner.h"
@@ -23,6 +26,7 @@ struct CheckSettings {
   std::string shader;  ///< --shader FILE[:FUNCTION]: the reconstruction consumer's shader
   std::optional<oblique::shader::Language> shader_language;
   std::string plot_dir;  ///< --plot DIR
+  std::string html;      ///< --html FILE
   double timeout_seconds = 10;
   bool rasterize = false;           ///< --rasterize
   std::string device = "software";  ///< --device
@@ -240,9 +244,23 @@ int run_check(const CheckSettings& settings) {
   } else {
     std::cout << oblique::scene::to_text(check) << raster_text;
   }
+  const std::string page_text = oblique::scene::to_text(check) + raster_text;
+  if (!settings.html.empty()) {
+    // One file, whole or not at all (written beside its place, then renamed).
+    const std::filesystem::path page = settings.html;
+    oblique::report::ReportFiles files(page.parent_path().empty() ? "." : page.parent_path());
+    files.open(page.filename().string()) << oblique::report::views_html(
+        oblique::scene::scene_views(*parsed.scene, check).views, page_text, {});
+    std::ostringstream log;
+    if (!files.commit(log)) {
+      std::cerr << "oblique check: cannot write the page " << settings.html << ": " << log.str();
+      return 2;
+    }
+    (settings.as_json ? std::cerr : std::cout) << "page: " << settings.html << "\n";
+  }
   if (!settings.plot_dir.empty()) {
     const oblique::scene::PlotResult plot =
-        oblique::scene::write_plot(*parsed.scene, check, settings.plot_dir);
+        oblique::scene::write_plot(*parsed.scene, check, settings.plot_dir, page_text);
     if (!plot.error.empty()) {
       std::cerr << "oblique check: cannot write the picture to " << settings.plot_dir << ": "
                 << plot.error << "\n";
@@ -258,6 +276,8 @@ int run_check(const CheckSettings& settings) {
       if (file.extension() == ".png" && file != plot.across)
         paths << "picture: " << file.string() << "\n";
     }
+    for (const auto& file : plot.written)
+      if (file.extension() == ".html") paths << "page: " << file.string() << " (in 3D)\n";
   }
   // A pass means judged: a consumer the scene names with nothing judged is no pass; one mostly
   // left out is said (and fails under --strict).
@@ -325,7 +345,11 @@ void setup_check(CLI::App& app, int& exit_code) {
                    "dispatch)")
       ->check(CLI::PositiveNumber);
   check->add_option("--plot", settings->plot_dir,
-                    "Write a top and a side view (gnuplot PNG) of the scene and its passes here");
+                    "Write a top and a side view (gnuplot PNG) of the scene and its passes here, "
+                    "and scene.html (the scene in 3D)");
+  check->add_option("--html", settings->html,
+                    "Write the scene as one self-contained HTML page: the camera, every rendered "
+                    "pass and its volume in 3D to turn, layers to show or hide, the check beside");
   check->add_flag("--rasterize", settings->rasterize,
                   "Also draw each rendered pass's matrix (ours, or the --impl program's) on a real "
                   "rasterizer, one sample a pixel, and judge what it clipped and stored: nothing "

@@ -1,9 +1,13 @@
 // `oblique fuzz-report`: a fuzz target's crash files, one report per distinct finding.
+#include <unistd.h>
+
 #include <iostream>
 #include <memory>
 
 #include "commands.h"
 #include "oblique/fuzzing/fuzz_report.h"
+#include "oblique/protocol/interrupts.h"
+#include "oblique/protocol/shell_text.h"
 
 namespace oblique::cli {
 
@@ -29,8 +33,31 @@ void setup_fuzz_report(CLI::App& app, int& exit_code, const char* self) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   sub->callback([options, &exit_code] {
+    // A Ctrl-C stops the run and keeps the reports of the inputs that ran (then exits 130).
+    oblique::protocol::finish_on_interrupt();
+    if (::isatty(STDERR_FILENO)) options->progress = &std::cerr;
     const oblique::Expected<oblique::fuzzing::FuzzReport> report =
         oblique::fuzzing::fuzz_report(*options);
+    if (const int sig = oblique::protocol::interrupted(); sig != 0) {
+      std::cerr << "oblique fuzz-report: interrupted after "
+                << (report ? std::to_string(report->inputs) + " of " +
+                                 std::to_string(report->total) + " inputs"
+                           : std::string("the run"))
+                << (report && !report->index.empty() ? "; their reports: " + report->index : "")
+                << (report ? "; " + std::to_string(report->not_run.size()) + " not run" : "");
+      if (report && !report->not_run.empty() && report->not_run.size() <= 10) {
+        std::string command = options->self + " fuzz-report --target " +
+                              oblique::protocol::shell_quote(options->target) + " --report-dir " +
+                              oblique::protocol::shell_quote(options->report_dir);
+        for (const std::string& input : report->not_run)
+          command += " " + oblique::protocol::shell_quote(input);
+        std::cerr << "; to go on with them: " << command;
+      } else if (report && !report->not_run.empty()) {
+        std::cerr << " (listed in the index)";
+      }
+      std::cerr << "\n";
+      oblique::protocol::die_of_interrupt(sig);
+    }
     if (!report) {
       std::cerr << "oblique fuzz-report: " << report.error() << "\n";
       exit_code = 2;

@@ -15,6 +15,7 @@
 #include "oblique/client/program.h"
 #include "oblique/mistakes/diagnosis.h"
 #include "oblique/oracle/problem.h"
+#include "oblique/protocol/interrupts.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/protocol/shell_text.h"
 #include "oblique/report/counterexample_report.h"
@@ -371,8 +372,21 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
   };
   std::vector<CauseGroup> cause_groups;
   std::vector<std::string> first_output;  // per finding: its smallest input's output
+  out.total = static_cast<long>(files.size());
+  auto last_progress = std::chrono::steady_clock::now();
   for (const auto& [size, path] : files) {
+    if (options.progress &&
+        std::chrono::steady_clock::now() - last_progress >= std::chrono::seconds(1)) {
+      last_progress = std::chrono::steady_clock::now();
+      *options.progress << "oblique fuzz-report: input " << out.inputs + 1 << " of " << out.total
+                        << ", " << out.findings.size() << " distinct findings so far\n"
+                        << std::flush;
+    }
+    // An interrupt (protocol::finish_on_interrupt()) stops the run: the inputs run so far are
+    // reported, the rest named.
+    if (protocol::interrupted() != 0) break;
     const Run r = run(options, path);
+    if (protocol::interrupted() != 0) break;  // its run was cut short: not counted
     ++out.inputs;
     if (r.status == -1) return Result::failure("cannot start /bin/sh to run the target");
     if (r.status == 127 || r.status == 126)
@@ -428,6 +442,9 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
         ++it->second;
     }
   }
+  out.interrupted = protocol::interrupted();
+  for (std::size_t i = static_cast<std::size_t>(out.inputs); i < files.size(); ++i)
+    out.not_run.push_back(files[i].second);
   // Groups that end with the same causes are one cause: the later merged into the earlier (whose
   // first input is the smaller: inputs come smallest first).
   std::vector<bool> merged(out.findings.size(), false);
@@ -491,7 +508,12 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
   const std::string name = files_out.reserve_stem("fuzz-index", {".md"}) + ".md";
   std::ostream& index = files_out.open(name);
   index << "# Fuzz findings: " << out.findings.size() << " distinct, in " << out.inputs
-        << " inputs\n\nTarget `" << options.target << "`; " << out.holds
+        << " inputs\n\n";
+  if (out.interrupted)
+    index << "**Interrupted** after " << out.inputs << " of " << out.total
+          << " inputs: these are the findings of the inputs that ran; " << out.not_run.size()
+          << " were not run (listed at the end).\n\n";
+  index << "Target `" << options.target << "`; " << out.holds
         << " inputs run without a finding now. A finding whose likely cause the diagnosis names "
            "groups every input of that cause (one bug, one report), with what they found listed "
            "inside.\n\n| finding | inputs | what they found (property x family x convention) | "
@@ -502,6 +524,10 @@ Expected<FuzzReport> fuzz_report(const FuzzReportOptions& options) {
       kinds += (kinds.empty() ? "" : "; ") + kind + ": " + std::to_string(count);
     index << "| " << f.key << " | " << f.inputs.size() << " | " << kinds << " | " << f.report
           << " |\n";
+  }
+  if (!out.not_run.empty()) {
+    index << "\n## Not run (interrupted)\n\n";
+    for (const std::string& input : out.not_run) index << "- `" << input << "`\n";
   }
   std::ostringstream log;
   if (!files_out.commit(log)) return Result::failure(log.str());

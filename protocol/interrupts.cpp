@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 
@@ -24,6 +25,23 @@ char lines[2][kLineBytes];
 std::size_t lengths[2];
 std::atomic<int> shown{-1};  ///< the buffer the handler writes; -1: none
 std::mutex writing;
+std::atomic<bool> finishing{false};
+std::atomic<int> noted{0};
+
+void end_groups_and_die(int sig);
+
+/// The handler: in finish mode, the first interrupt ends the programs' groups and is noted.
+void on_interrupt(int sig) {
+  if (finishing.load() && noted.load() == 0) {
+    noted.store(sig);
+    for (auto& g : running_groups) {
+      const pid_t pid = g.load();
+      if (pid > 0) ::kill(-pid, SIGKILL);
+    }
+    return;
+  }
+  end_groups_and_die(sig);
+}
 
 void end_groups_and_die(int sig) {
   const int which = shown.load();
@@ -53,13 +71,27 @@ void handle_interrupts() {
       struct sigaction old {};
       if (::sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL) continue;
       struct sigaction action {};
-      action.sa_handler = end_groups_and_die;
+      action.sa_handler = on_interrupt;
       sigemptyset(&action.sa_mask);
       ::sigaction(sig, &action, nullptr);
     }
     return true;
   }();
   (void)installed;
+}
+
+void finish_on_interrupt() {
+  handle_interrupts();
+  finishing.store(true);
+}
+
+int interrupted() {
+  return noted.load();
+}
+
+void die_of_interrupt(int sig) {
+  end_groups_and_die(sig);
+  std::abort();  // (raise() of a default handler does not return)
 }
 
 void set_interrupt_line(const std::string& line) {

@@ -304,7 +304,7 @@ report::Views case_views(const Counterexample& ce, const std::string& stem, cons
       d.title += ": nothing to draw";
   }
   // One legend entry a line, its sample first: the entries are long.
-  views.key = "below left Left reverse maxcols 1";
+  views.key = "outside right top vertical Left reverse samplen 1.5 spacing 0.9 font ',9'";
   // The box: the eye, M's volume, Q and the marked point, with a margin.
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
   auto include = [&](const Eigen::Vector3d& p) {
@@ -634,7 +634,9 @@ std::string write_report(const Counterexample& ce, const ReportContext& context)
           "test (`oblique::read_contract(R\"(...)\").value()`):\n\n```json\n"
        << context.contract << "\n```\n\n";
   }
-  md << "Built with " << OBLIQUE_COMPILER << ", flags `" << OBLIQUE_CXX_FLAGS << "`.\n";
+  // The build of the judge (oblique's libraries), not of the code judged.
+  md << "Judged by oblique built with " << OBLIQUE_COMPILER << ", flags `" << OBLIQUE_CXX_FLAGS
+     << "` (oblique's build, not the code under test's).\n";
 
   nlohmann::json j;
   j["property"] = std::string(check_name(f.check));

@@ -9,9 +9,8 @@
 
 namespace oblique::report {
 
-namespace detail {
-extern const char* const kView3dHtml;  // html/view3d.html, compiled in (view3d_html.cpp)
-}  // namespace detail
+/// html/view3d.html, compiled in (CMake writes it into view3d_html.cpp).
+extern const char* const kView3dPageTemplate;
 
 namespace {
 
@@ -127,7 +126,7 @@ std::string views_html(const Views& views, const std::string& markdown,
     from = end + 1;
   }
   text += "<pre>" + html_escaped(kept) + "</pre>\n";
-  std::string page = detail::kView3dHtml;
+  std::string page = kView3dPageTemplate;
   replace_once(page, "<!--OBLIQUE_TITLE-->", html_escaped(views.title));
   replace_once(page, "/*OBLIQUE_DATA*/", script_safe(data));
   replace_once(page, "<!--OBLIQUE_REPORT-->", text);

@@ -228,6 +228,8 @@ void ReportFiles::die_of(int sig) {
   std::filesystem::remove_all(staging_, ec);
   release_reservations();
   ::raise(sig);  // with the handler that was there before (or the default: the exit is 128 + sig)
+  ::signal(sig, SIG_DFL);  // (a handler that returned: one that finishes on a first interrupt)
+  ::raise(sig);
   ::signal(sig, SIG_DFL);
   ::raise(sig);
   std::_Exit(128 + sig);  // the signal blocked: the status a shell gives its death

@@ -122,7 +122,7 @@ void stage_views(ReportFiles& files, const Views& views) {
         std::tuple{views.side, "side", "3:2", std::array<int, 2>{2, 1}}}) {
     const char* names = "xyz";
     std::ostream& gp = files.open(stem + ".gp");
-    gp << "set terminal pngcairo size 1000,800 noenhanced\n"
+    gp << "set terminal pngcairo size 1200,760 noenhanced font ',11'\n"
        << "set output " << gnuplot_string(stem + ".png") << "\n"
        << "set title " << gnuplot_string(std::string(view) + " view: " + views.title) << "\n"
        << "set xlabel '" << views.space << " " << names[axes[0]] << "'\nset ylabel '" << views.space
@@ -148,11 +148,26 @@ void stage_views(ReportFiles& files, const Views& views) {
       else
         same->second += ", " + label.text;
     }
+    // A label near one placed before (within a line's height and its text's width) goes a line
+    // lower each time, so none is written over another.
+    std::vector<std::pair<Eigen::Vector2d, int>> placed;  // where, and its line offset
     for (const auto& [at, text] : spots) {
       const bool right_half = at.x() > views.lo[axes[0]] + width / 2;
+      int line = 1;
+      for (bool moved = true; moved;) {
+        moved = false;
+        for (const auto& [other, other_line] : placed) {
+          if (other_line == line && std::abs(other.y() - at.y()) < 0.06 * height &&
+              std::abs(other.x() - at.x()) < 0.35 * width) {
+            --line;
+            moved = true;
+          }
+        }
+      }
+      placed.emplace_back(at, line);
       gp << "set label " << gnuplot_string(text) << " at " << protocol::format_number(at.x()) << ","
          << protocol::format_number(at.y())
-         << (right_half ? " right offset -1,1" : " left offset 1,1") << " front\n";
+         << (right_half ? " right offset -1," : " left offset 1,") << line << " front\n";
     }
     gp << "plot \\\n";
     for (std::size_t i = 0; i < views.sets.size(); ++i) {

@@ -248,9 +248,13 @@ std::string to_text(const SceneCheck& check) {
       out << "  " << printable(s.name) << ": " << (holds ? "pass" : "FAIL") << "\n";
       for (const oracle::Finding& f : s.impl_findings) {
         if (f.holds) continue;
+        // A status finding is what the input allows against what came; the others a residual
+        // against its bound.
+        const bool statuses = f.shows == oracle::Shows::statuses;
         out << "    FAIL " << oracle::check_name(f.check) << ": " << oracle::relation_text(f)
-            << "\n      " << printable(oracle::residual_text(f))
-            << "\n      bound: " << printable(oracle::bound_text(f)) << "\n";
+            << "\n      " << (statuses ? "got:      " : "residual: ")
+            << printable(oracle::residual_text(f)) << "\n      "
+            << (statuses ? "expected: " : "bound:    ") << printable(oracle::bound_text(f)) << "\n";
       }
     }
     if (check.impl_diagnosis.ran)

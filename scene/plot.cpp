@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "oblique/protocol/numbers.h"
+#include "oblique/report/html_page.h"
 #include "oblique/report/report_files.h"
 #include "oblique/report/views.h"
 
@@ -45,9 +46,8 @@ std::pair<Vector3, Vector3> frame(const std::vector<Vector3>& points) {
 
 }  // namespace
 
-PlotResult write_plot(const Scene& scene, const SceneCheck& check,
-                      const std::filesystem::path& dir) {
-  PlotResult result;
+SceneViews scene_views(const Scene& scene, const SceneCheck& check) {
+  SceneViews out;
   // How far an unbounded volume is drawn: three times the scene's extent around the eye.
   const Vector3 eye = scene.camera.eye;
   double extent = 1;
@@ -95,7 +95,7 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
     }
   }
   std::size_t color = 0;
-  const SurfaceCheck* first_virtual = nullptr;
+  const SurfaceCheck*& first_virtual = out.first_virtual;
   for (const SurfaceCheck& s : check.surfaces) {
     if (!s.render || !s.projection) continue;
     // The virtual volume in the pass's world (the pass camera's view), within its scissor, from
@@ -113,7 +113,7 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
       continue;
     // What the virtual camera would draw without the oblique near plane: everything behind the
     // surface too.
-    sets.push_back({s.name + ": virtual volume without the oblique near plane",
+    sets.push_back({s.name + ": without the oblique near plane",
                     "lines lc rgb '#999999' dt 3 lw 1",
                     volume_edges(s.view, scene.camera.projection, scene.convention, reach, rect),
                     {}});
@@ -123,20 +123,30 @@ PlotResult write_plot(const Scene& scene, const SceneCheck& check,
     if (!first_virtual) first_virtual = &s;
     framed.push_back(pass_eye);
   }
+  // The picture frames what matters (volumes are cut at its edge).
+  const auto [lo, hi] = frame(framed);
+  report::Views& views = out.views;
+  views.title = check.scene;
+  views.space = "world";
+  views.data = "scene.dat";
+  views.top = "top";
+  views.side = "side";
+  views.lo = lo;
+  views.hi = hi;
+  views.sets = std::move(sets);
+  views.labels = std::move(labels);
+  return out;
+}
+
+PlotResult write_plot(const Scene& scene, const SceneCheck& check, const std::filesystem::path& dir,
+                      const std::string& page_markdown) {
+  PlotResult result;
+  const SceneViews shown = scene_views(scene, check);
+  const report::Views& views = shown.views;
+  const SurfaceCheck* first_virtual = shown.first_virtual;
   try {
     report::ReportFiles files(dir);
-    // The picture frames what matters (volumes are cut at its edge).
-    const auto [lo, hi] = frame(framed);
-    report::Views views;
-    views.title = check.scene;
-    views.space = "world";
-    views.data = "scene.dat";
-    views.top = "top";
-    views.side = "side";
-    views.lo = lo;
-    views.hi = hi;
-    views.sets = std::move(sets);
-    views.labels = std::move(labels);
+    files.open("scene.html") << report::views_html(views, page_markdown, {});
     report::stage_views(files, views);
     // Every file whole in place (or none), then the pictures.
     std::ostringstream commit_log;

@@ -23,7 +23,7 @@ void fail(const std::string& consumer, const oracle::ConsumerFinding& finding,
   tally().markdown_failure = report::consumer_report_markdown(consumer, finding, inputs);
   tally().markdown_pictures = std::move(pictures);
   tally().failure.reset();
-  RC_FAIL(consumer + " violates " + oracle::describe(finding) + "\n" + inputs);
+  fail_case(consumer + " violates " + oracle::describe(finding) + "\n" + inputs);
 }
 
 /// Counts the finding; fails the case when it is violated (with the pictures of the case when it

@@ -131,10 +131,10 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
           };
         }
         if (r.outcome == raster::Outcome::fail)
-          RC_FAIL(impl.name + " fails on the rasterizer (" + rasterizer->renderer() + ", " +
-                  std::string(depth_buffer_name(buffer)) + "): " + r.why);
-        RC_FAIL("inconclusive, no verdict about " + impl.name + ": the rasterizer (" +
-                rasterizer->renderer() + ") could not judge: " + r.why);
+          fail_case(impl.name + " fails on the rasterizer (" + rasterizer->renderer() + ", " +
+                    std::string(depth_buffer_name(buffer)) + "): " + r.why);
+        fail_case("inconclusive, no verdict about " + impl.name + ": the rasterizer (" +
+                  rasterizer->renderer() + ") could not judge: " + r.why);
       },
       Coverage::valid, "rasterizer", contract);
 }

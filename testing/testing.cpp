@@ -65,6 +65,10 @@ std::string summary(const std::map<std::string, int>& counts) {
   return out;
 }
 
+void fail_case(const std::string& message) {
+  throw rc::detail::CaseResult(rc::detail::CaseResult::Type::Failure, message);
+}
+
 std::string current_test_id(char separator) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   return std::string(info->test_suite_name()) + separator + info->name();

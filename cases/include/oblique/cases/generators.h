@@ -17,6 +17,7 @@
 #include "oblique/cases/contract.h"
 #include "oblique/oblique.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/references/depth_reconstruction.h"
 
 namespace oblique::cases {
 
@@ -189,6 +190,9 @@ namespace oblique {
 
 inline void showValue(Convention c, std::ostream& os) {
   os << convention_name(c);
+}
+inline void showValue(DepthBuffer b, std::ostream& os) {
+  os << depth_buffer_name(b);
 }
 
 }  // namespace oblique

@@ -23,6 +23,8 @@ struct FuzzReportOptions {
   std::string report_dir = "oblique-reports";
   double timeout_seconds = 10;   ///< per input: longer is a hang
   std::string self = "oblique";  ///< how to invoke this tool, for the index's replay command
+  /// Where "input i of n" lines go while it runs (a line at most every second); null: none.
+  std::ostream* progress = nullptr;
 };
 
 /// One distinct finding and the inputs that show it.
@@ -38,7 +40,10 @@ struct FuzzFinding {
 
 struct FuzzReport {
   long inputs = 0;  ///< inputs run
-  long holds = 0;   ///< inputs the target runs without a finding now
+  long total = 0;   ///< inputs given (more than `inputs` when an interrupt stopped the run)
+  std::vector<std::string> not_run;  ///< the inputs an interrupt left unrun
+  int interrupted = 0;               ///< the signal that stopped the run (its reports written)
+  long holds = 0;                    ///< inputs the target runs without a finding now
   std::vector<FuzzFinding> findings;
   std::string index;  ///< the index's path ("" without findings)
 };

@@ -58,7 +58,8 @@ struct Views {
   Eigen::Vector3d lo, hi;  ///< the box the pictures show
   std::vector<Dataset> sets;
   std::vector<Label> labels;
-  std::string key = "below";  ///< gnuplot's `set key` options
+  /// gnuplot's `set key` options: outside the plot, at its right, compact.
+  std::string key = "outside right top vertical Left reverse samplen 1.5 spacing 0.9 font ',9'";
 };
 
 /// Stages views.data, views.top + ".gp" and views.side + ".gp" in `files`. The scripts name the

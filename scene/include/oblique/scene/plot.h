@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "oblique/report/views.h"
 #include "oblique/scene/check.h"
 #include "oblique/scene/scene.h"
 
@@ -25,12 +26,19 @@ struct PlotResult {
   std::string across_surface;
 };
 
-/// Writes DIR/scene.dat, DIR/top.gp, DIR/side.gp and (with gnuplot) DIR/top.png, DIR/side.png:
-/// the camera and each rendered pass's virtual camera (labelled), the surfaces, the main view
-/// volume, each pass's oblique volume (dashed) and what its camera would draw without the
-/// oblique near plane (dotted), framed to the eyes, the surfaces and where the view axis meets
-/// them.
-PlotResult write_plot(const Scene& scene, const SceneCheck& check,
-                      const std::filesystem::path& dir);
+/// What the pictures of a scene show: the camera and each rendered pass's virtual camera
+/// (labelled), the surfaces, the main view volume, each pass's oblique volume (dashed) and what
+/// its camera would draw without the oblique near plane (dotted), framed to the eyes, the
+/// surfaces and where the view axis meets them; and the first mirror or portal pass, if any.
+struct SceneViews {
+  report::Views views;
+  const SurfaceCheck* first_virtual = nullptr;
+};
+SceneViews scene_views(const Scene& scene, const SceneCheck& check);
+
+/// Writes DIR/scene.dat, DIR/top.gp, DIR/side.gp, DIR/scene.html (scene_views() in 3D to turn,
+/// beside `page_markdown`: the check's table) and (with gnuplot) DIR/top.png, DIR/side.png.
+PlotResult write_plot(const Scene& scene, const SceneCheck& check, const std::filesystem::path& dir,
+                      const std::string& page_markdown = "");
 
 }  // namespace oblique::scene
