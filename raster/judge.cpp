@@ -293,6 +293,9 @@ Result judge_frame(const Frame& frame, const Readback& readback, const Matrix4d&
   }
   // Where each sample was drawn (ids are index + 1), and whether the id buffer is consistent.
   std::vector<long> drawn_at(static_cast<std::size_t>(count), -1);
+  r.drawn_pixels.resize(static_cast<std::size_t>(count));
+  for (long p = 0; p < count; ++p)
+    r.drawn_pixels[static_cast<std::size_t>(p)] = readback.ids[static_cast<std::size_t>(p)] != 0;
   for (long p = 0; p < count; ++p) {
     const std::uint32_t id = readback.ids[static_cast<std::size_t>(p)];
     if (id == 0) continue;

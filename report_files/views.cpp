@@ -122,7 +122,12 @@ void stage_views(ReportFiles& files, const Views& views) {
         std::tuple{views.side, "side", "3:2", std::array<int, 2>{2, 1}}}) {
     const char* names = "xyz";
     std::ostream& gp = files.open(stem + ".gp");
-    gp << "set terminal pngcairo size 1200,760 noenhanced font ',11'\n"
+    // The canvas is shaped to the view (equal scales on both axes), the legend beside it: the
+    // plot fills its height, whatever the box's proportions.
+    const double aspect = (views.hi[axes[0]] - views.lo[axes[0]]) /
+                          std::max(1e-300, views.hi[axes[1]] - views.lo[axes[1]]);
+    const int plot_width = static_cast<int>(std::clamp(560 * aspect, 420.0, 1100.0));
+    gp << "set terminal pngcairo size " << plot_width + 520 << ",720 noenhanced font ',11'\n"
        << "set output " << gnuplot_string(stem + ".png") << "\n"
        << "set title " << gnuplot_string(std::string(view) + " view: " + views.title) << "\n"
        << "set xlabel '" << views.space << " " << names[axes[0]] << "'\nset ylabel '" << views.space

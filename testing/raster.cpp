@@ -125,9 +125,10 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
             c, impl, outcome.projection, r, rasterizer->renderer(), buffer, settings.size, seed);
         tally().markdown_pictures = nullptr;
         if (r.rendered) {
-          tally().markdown_pictures = [r, size = settings.size](report::ReportFiles& files,
-                                                                const std::string& stem) {
-            return raster::stage_flagged_section(files, stem, r, size);
+          tally().markdown_pictures = [r, size = settings.size, m, plane, answer,
+                                       convention = c.convention](report::ReportFiles& files,
+                                                                  const std::string& stem) {
+            return raster::stage_raster_finding(files, stem, r, size, m, plane, answer, convention);
           };
         }
         if (r.outcome == raster::Outcome::fail)

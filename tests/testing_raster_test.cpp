@@ -64,7 +64,9 @@ void expect_caught(mistakes::Mistake mistake, const Contract& contract, const st
       << text;
   EXPECT_NE(text.find("| " + flag + " |"), std::string::npos) << text;
   EXPECT_NE(text.find("RC_PARAMS="), std::string::npos) << text;
-  EXPECT_EQ(files_ending(dir, ".rasterizer.pixels.dat").size(), 1u) << dir;
+  // The frame as drawn with the flagged samples over it, linked from the report.
+  EXPECT_EQ(files_ending(dir, ".rasterizer.pixels.png").size(), 1u) << dir;
+  EXPECT_NE(text.find("with the flagged samples over it"), std::string::npos) << text;
 }
 
 // Skips where there is no EGL (the reason printed), as check_on_rasterizer() itself does.

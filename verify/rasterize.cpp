@@ -192,7 +192,13 @@ Verdict RasterLook<T>::report(const cases::Case<T>& v, const std::string& reques
       "\n- M: " + oracle::numbers_text(v.matrix) + "\n- C: " + oracle::numbers_text(v.plane) +
       "\n\nAnswer " + std::to_string(index) + " of the run. The request:\n\n```\n" + request +
       "\n```\n\nThe answer:\n\n```\n" + answer + "\n```\n\n";
-  md += raster::stage_flagged_section(files, stem, r, raster_.size);
+  const Expected<Answer<double>> answered = protocol::read_answer<double>(answer);
+  if (answered && answered->status == Status::ok)
+    md += raster::stage_raster_finding(
+        files, stem, r, raster_.size, v.matrix.template cast<double>(),
+        v.plane.template cast<double>(), answered->projection, v.convention);
+  else
+    md += raster::stage_flagged_section(files, stem, r, raster_.size);
   md += "\n## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
         "\n# this request again, its answer drawn (exit 0 holds, 1 fails, 3 inconclusive)\n" +
         options_.self + " verify --replay " + shell_quote(json_path) + " --impl " +

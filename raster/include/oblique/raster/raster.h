@@ -112,6 +112,8 @@ struct Result {
   std::vector<Flag> examples;  ///< the first few flags of each kind
   /// Every flagged sample (index, kind), for a picture of where they are (at most 2^18).
   std::vector<std::pair<long, Flag::Kind>> flagged;
+  /// The frame as drawn: per pixel (j * size + i), 1 where the renderer kept a sample.
+  std::vector<std::uint8_t> drawn_pixels;
   bool rendered = false;  ///< the frame was drawn and read back (else `why` says why not)
   double render_seconds = 0, judge_seconds = 0;
 };
