@@ -128,8 +128,11 @@ void stage_views(ReportFiles& files, const Views& views) {
                           std::max(1e-300, views.hi[axes[1]] - views.lo[axes[1]]);
     const int plot_width = static_cast<int>(std::clamp(560 * aspect, 420.0, 1100.0));
     gp << "set terminal pngcairo size " << plot_width + 520 << ",720 noenhanced font ',11'\n"
-       << "set output " << gnuplot_string(stem + ".png") << "\n"
-       << "set title " << gnuplot_string(std::string(view) + " view: " + views.title) << "\n"
+       << "set output " << gnuplot_string(stem + ".png")
+       << "\n"
+       // The title from the canvas's left edge (a long one over the plot would be cut).
+       << "set label " << gnuplot_string(std::string(view) + " view: " + views.title)
+       << " at screen 0.01, 0.97 left front font ',12'\nset tmargin 3\n"
        << "set xlabel '" << views.space << " " << names[axes[0]] << "'\nset ylabel '" << views.space
        << " " << names[axes[1]] << "'\n"
        << "set size ratio -1\nset key " << views.key << "\nset grid\n"
