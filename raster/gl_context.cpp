@@ -177,6 +177,59 @@ NoShaderCache::~NoShaderCache() {
 GlContext::GlContext(std::unique_ptr<State> state) : state_(std::move(state)) {}
 GlContext::~GlContext() = default;
 
+Expected<unsigned> link_program(const char* vertex, const char* fragment) {
+  const GLuint shaders[2] = {glCreateShader(GL_VERTEX_SHADER), glCreateShader(GL_FRAGMENT_SHADER)};
+  const char* sources[2] = {vertex, fragment};
+  const GLuint program = glCreateProgram();
+  std::string failed;
+  for (int s = 0; s < 2 && failed.empty(); ++s) {
+    glShaderSource(shaders[s], 1, &sources[s], nullptr);
+    glCompileShader(shaders[s]);
+    GLint ok = 0;
+    glGetShaderiv(shaders[s], GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      char log[512] = {};
+      glGetShaderInfoLog(shaders[s], sizeof log, nullptr, log);
+      failed =
+          std::string(s == 0 ? "the vertex" : "the fragment") + " shader did not compile: " + log;
+    }
+    glAttachShader(program, shaders[s]);
+  }
+  if (failed.empty()) glLinkProgram(program);
+  glDeleteShader(shaders[0]);
+  glDeleteShader(shaders[1]);
+  GLint linked = 0;
+  if (failed.empty()) glGetProgramiv(program, GL_LINK_STATUS, &linked);
+  if (failed.empty() && !linked) failed = "the shaders did not link";
+  if (!failed.empty()) {
+    glDeleteProgram(program);
+    return Expected<unsigned>::failure(failed);
+  }
+  return program;
+}
+
+float set_engine_depth(Convention convention) {
+  glClipControl(GL_LOWER_LEFT,
+                convention == Convention::gl ? GL_NEGATIVE_ONE_TO_ONE : GL_ZERO_TO_ONE);
+  glDisable(GL_DEPTH_CLAMP);
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+  // Reversed Z as engines set it: cleared to 0, GL_GEQUAL; the others cleared to 1, GL_LEQUAL.
+  const bool reversed = convention == Convention::reversed_z;
+  glDepthFunc(reversed ? GL_GEQUAL : GL_LEQUAL);
+  const GLfloat far_value = reversed ? 0.0f : 1.0f;
+  glClearBufferfv(GL_DEPTH, 0, &far_value);
+  return far_value;
+}
+
+std::string gl_error_after(const char* what) {
+  const GLenum e = glGetError();
+  if (e == GL_NO_ERROR) return "";
+  char line[160];
+  std::snprintf(line, sizeof line, "%s: GL error 0x%04x", what, static_cast<unsigned>(e));
+  return line;
+}
+
 Expected<std::unique_ptr<GlContext>> GlContext::open(Device device) {
   auto state = std::make_unique<State>();
   state->device = device;

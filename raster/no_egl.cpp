@@ -81,6 +81,18 @@ Expected<std::shared_ptr<Rasterizer>> Rasterizer::open(const Options&) {
   return Expected<std::shared_ptr<Rasterizer>>::failure(kNoEgl);
 }
 
+Expected<unsigned> link_program(const char*, const char*) {
+  return Expected<unsigned>::failure(kNoEgl);
+}
+
+float set_engine_depth(Convention convention) {
+  return convention == Convention::reversed_z ? 0.0f : 1.0f;
+}
+
+std::string gl_error_after(const char*) {
+  return kNoEgl;
+}
+
 Expected<Render> draw_mesh(GlContext&, const Mesh&, const Eigen::Matrix4d&, Convention, DepthBuffer,
                            int) {
   return Expected<Render>::failure(kNoEgl);

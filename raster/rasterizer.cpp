@@ -74,27 +74,9 @@ struct Rasterizer::State {
   }
 
   Expected<Done> build() {
-    GLuint shaders[2] = {glCreateShader(GL_VERTEX_SHADER), glCreateShader(GL_FRAGMENT_SHADER)};
-    const char* sources[2] = {kVertexShader, kFragmentShader};
-    program = glCreateProgram();
-    for (int s = 0; s < 2; ++s) {
-      glShaderSource(shaders[s], 1, &sources[s], nullptr);
-      glCompileShader(shaders[s]);
-      GLint ok = 0;
-      glGetShaderiv(shaders[s], GL_COMPILE_STATUS, &ok);
-      if (!ok) {
-        char log[512] = {};
-        glGetShaderInfoLog(shaders[s], sizeof log, nullptr, log);
-        return Expected<Done>::failure(std::string("a shader did not compile: ") + log);
-      }
-      glAttachShader(program, shaders[s]);
-    }
-    glLinkProgram(program);
-    glDeleteShader(shaders[0]);
-    glDeleteShader(shaders[1]);
-    GLint linked = 0;
-    glGetProgramiv(program, GL_LINK_STATUS, &linked);
-    if (!linked) return Expected<Done>::failure("the shaders did not link");
+    const Expected<unsigned> linked = link_program(kVertexShader, kFragmentShader);
+    if (!linked) return Expected<Done>::failure(linked.error());
+    program = *linked;
     projection_at = glGetUniformLocation(program, "projection");
     placed_by_id_at = glGetUniformLocation(program, "placed_by_id");
     size_at = glGetUniformLocation(program, "size");
@@ -103,11 +85,8 @@ struct Rasterizer::State {
     glGenFramebuffers(1, &framebuffer);
     glGenRenderbuffers(1, &id_buffer);
     glGenRenderbuffers(1, &depth_buffer);
-    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
-      char line[64];
-      std::snprintf(line, sizeof line, "setting up the frame: GL error 0x%04x", e);
-      return Expected<Done>::failure(line);
-    }
+    if (const std::string error = gl_error_after("setting up the frame"); !error.empty())
+      return Expected<Done>::failure(error);
     return Done{};
   }
 
@@ -146,19 +125,11 @@ struct Rasterizer::State {
     if (const Expected<Done> ready = s.prepare(size, buffer); !ready)
       return Expected<Readback>::failure(ready.error());
     glViewport(0, 0, size, size);
-    glClipControl(GL_LOWER_LEFT,
-                  convention == Convention::gl ? GL_NEGATIVE_ONE_TO_ONE : GL_ZERO_TO_ONE);
-    glDisable(GL_DEPTH_CLAMP);
     glDisable(GL_MULTISAMPLE);
     glEnable(GL_PROGRAM_POINT_SIZE);
-    glEnable(GL_DEPTH_TEST);
-    // Reversed Z as engines set it: cleared to 0, GL_GEQUAL; the others cleared to 1, GL_LEQUAL.
-    const bool reversed = convention == Convention::reversed_z;
-    glDepthFunc(reversed ? GL_GEQUAL : GL_LEQUAL);
+    set_engine_depth(convention);
     const GLuint no_id[4] = {0, 0, 0, 0};
-    const GLfloat clear_depth = reversed ? 0.0f : 1.0f;
     glClearBufferuiv(GL_COLOR, 0, no_id);
-    glClearBufferfv(GL_DEPTH, 0, &clear_depth);
     glUseProgram(s.program);
     glUniformMatrix4fv(s.projection_at, 1, GL_FALSE, projection.data());  // column-major
     glUniform1i(s.placed_by_id_at, placed_by_id ? 1 : 0);
@@ -183,11 +154,8 @@ struct Rasterizer::State {
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glReadPixels(0, 0, size, size, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data());
     glReadPixels(0, 0, size, size, GL_DEPTH_COMPONENT, GL_FLOAT, out.depths.data());
-    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
-      char line[64];
-      std::snprintf(line, sizeof line, "rendering the frame: GL error 0x%04x", e);
-      return Expected<Readback>::failure(line);
-    }
+    if (const std::string error = gl_error_after("rendering the frame"); !error.empty())
+      return Expected<Readback>::failure(error);
     return out;
   }
 };

@@ -46,37 +46,6 @@ struct Objects {
   }
 };
 
-std::string gl_error(const char* what) {
-  char line[96];
-  std::snprintf(line, sizeof line, "%s: GL error 0x%04x", what, glGetError());
-  return line;
-}
-
-Expected<Done> build_program(Objects& o) {
-  const GLuint shaders[2] = {glCreateShader(GL_VERTEX_SHADER), glCreateShader(GL_FRAGMENT_SHADER)};
-  const char* sources[2] = {kVertexShader, kFragmentShader};
-  o.program = glCreateProgram();
-  for (int s = 0; s < 2; ++s) {
-    glShaderSource(shaders[s], 1, &sources[s], nullptr);
-    glCompileShader(shaders[s]);
-    GLint ok = 0;
-    glGetShaderiv(shaders[s], GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      char log[512] = {};
-      glGetShaderInfoLog(shaders[s], sizeof log, nullptr, log);
-      return Expected<Done>::failure(std::string("the scene's shader did not compile: ") + log);
-    }
-    glAttachShader(o.program, shaders[s]);
-  }
-  glLinkProgram(o.program);
-  glDeleteShader(shaders[0]);
-  glDeleteShader(shaders[1]);
-  GLint linked = 0;
-  glGetProgramiv(o.program, GL_LINK_STATUS, &linked);
-  if (!linked) return Expected<Done>::failure("the scene's shaders did not link");
-  return Done{};
-}
-
 void draw_triangles(Objects& o, const std::vector<Eigen::Vector4f>& points,
                     const std::vector<Eigen::Vector4f>& colors) {
   if (points.empty()) return;
@@ -157,8 +126,9 @@ Expected<Render> draw_mesh(GlContext& gl, const Mesh& mesh, const Eigen::Matrix4
   if (std::string error; !gl.make_current(&error)) return Expected<Render>::failure(error);
   const NoShaderCache no_cache;
   Objects o;
-  if (const Expected<Done> built = build_program(o); !built)
-    return Expected<Render>::failure(built.error());
+  const Expected<unsigned> linked = link_program(kVertexShader, kFragmentShader);
+  if (!linked) return Expected<Render>::failure("the scene's shaders: " + linked.error());
+  o.program = *linked;
   glGenVertexArrays(1, &o.vertex_array);
   glGenBuffers(2, o.buffers);
   glGenFramebuffers(1, &o.framebuffer);
@@ -176,23 +146,15 @@ Expected<Render> draw_mesh(GlContext& gl, const Mesh& mesh, const Eigen::Matrix4
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     return Expected<Render>::failure("the scene's frame buffers are not complete");
   glViewport(0, 0, size, size);
-  glClipControl(GL_LOWER_LEFT,
-                convention == Convention::gl ? GL_NEGATIVE_ONE_TO_ONE : GL_ZERO_TO_ONE);
-  glDisable(GL_DEPTH_CLAMP);
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
-  const bool reversed = convention == Convention::reversed_z;
   Render out;
-  out.cleared = reversed ? 0.0f : 1.0f;
+  out.cleared = set_engine_depth(convention);
   glClearBufferfv(GL_COLOR, 0, kBackground);
-  glClearBufferfv(GL_DEPTH, 0, &out.cleared);
   glUseProgram(o.program);
   glUniformMatrix4fv(glGetUniformLocation(o.program, "projection"), 1, GL_FALSE,
                      matrix.data());  // column-major
   glBindVertexArray(o.vertex_array);
-  glEnable(GL_DEPTH_TEST);
-  glDepthMask(GL_TRUE);
-  glDepthFunc(reversed ? GL_GEQUAL : GL_LEQUAL);
   draw_triangles(o, mesh.points, mesh.colors);
   // The markers over everything, out of the depth buffer: seen wherever they are not clipped.
   glDisable(GL_DEPTH_TEST);
@@ -206,7 +168,8 @@ Expected<Render> draw_mesh(GlContext& gl, const Mesh& mesh, const Eigen::Matrix4
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glReadPixels(0, 0, size, size, GL_RGBA, GL_UNSIGNED_BYTE, colour.data());
   glReadPixels(0, 0, size, size, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-  if (glGetError() != GL_NO_ERROR) return Expected<Render>::failure(gl_error("drawing the scene"));
+  if (const std::string error = gl_error_after("drawing the scene"); !error.empty())
+    return Expected<Render>::failure(error);
   // GL's rows are from the bottom; a picture's from the top.
   out.colour = report::Picture(size, size);
   out.depth.resize(count);

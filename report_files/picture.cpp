@@ -22,6 +22,13 @@ void append_bytes(png_structp png, png_bytep data, png_size_t length) {
 
 void no_flush(png_structp) {}
 
+/// Copies `p` into `out` with its top left corner at (left, top).
+void paste(Picture& out, const Picture& p, int left, int top) {
+  for (int y = 0; y < p.height; ++y)
+    std::copy(p.at(0, y), p.at(0, y) + static_cast<std::size_t>(p.width) * 4,
+              out.at(left, top + y));
+}
+
 }  // namespace
 
 Picture::Picture(int w, int h, std::uint32_t fill)
@@ -86,10 +93,7 @@ Picture side_by_side(const std::vector<const Picture*>& pictures, int gap,
   Picture out(width, height, background);
   int left = 0;
   for (const Picture* p : pictures) {
-    const int top = (height - p->height) / 2;
-    for (int y = 0; y < p->height; ++y)
-      std::copy(p->at(0, y), p->at(0, y) + static_cast<std::size_t>(p->width) * 4,
-                out.at(left, top + y));
+    paste(out, *p, left, (height - p->height) / 2);
     left += p->width + gap;
   }
   return out;
@@ -104,10 +108,7 @@ Picture stacked(const std::vector<const Picture*>& pictures, std::uint32_t backg
   Picture out(width, height, background);
   int top = 0;
   for (const Picture* p : pictures) {
-    const int left = (width - p->width) / 2;
-    for (int y = 0; y < p->height; ++y)
-      std::copy(p->at(0, y), p->at(0, y) + static_cast<std::size_t>(p->width) * 4,
-                out.at(left, top + y));
+    paste(out, *p, (width - p->width) / 2, top);
     top += p->height;
   }
   return out;

@@ -1101,9 +1101,8 @@ TEST(Scenes, cliPlotShowsTheCameraTheMirroredCameraAndTheObliqueVolume) {
   EXPECT_NE(output.find("page: " + plot + "/scene.html (in 3D)"), std::string::npos) << output;
   EXPECT_NE(read_file(plot + "/scene.html").find("<canvas"), std::string::npos);
   const std::string side = read_file(plot + "/side.gp");
-  for (const char* expected :
-       {"title 'water reflection (pass)'",
-        "title 'water reflection: without the oblique near plane'"})
+  for (const char* expected : {"title 'water reflection (pass)'",
+                               "title 'water reflection: without the oblique near plane'"})
     EXPECT_NE(side.find(expected), std::string::npos) << expected << "\n" << side;
   // The eye (0, 2, 10) and the mirrored one (0, -2, 10), at (z, y) in the side view.
   const auto label_at = [&](const std::string& text, double z, double y) {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "oblique/depth_convention.h"
 #include "oblique/expected.h"
 
 namespace oblique::raster {
@@ -50,5 +51,18 @@ class GlContext {
   explicit GlContext(std::unique_ptr<State> state);
   std::unique_ptr<State> state_;
 };
+
+/// On the current context: compiles the GLSL `vertex` and `fragment` shaders and links them into a
+/// program (its name), or says which did not compile (with the compiler's log) or link.
+Expected<unsigned> link_program(const char* vertex, const char* fragment);
+
+/// On the current context: depth as an engine sets it for `convention`: glClipControl's [-1, 1]
+/// for gl and [0, 1] for the others, no depth clamp, the depth test on with GL_LEQUAL (reversed Z:
+/// GL_GEQUAL), the depth buffer cleared to the far value; returns that value (1; 0 reversed).
+float set_engine_depth(Convention convention);
+
+/// On the current context: "WHAT: GL error 0x0502" for the error GL has recorded since it was
+/// last asked (clearing it), or "" when there is none.
+std::string gl_error_after(const char* what);
 
 }  // namespace oblique::raster
