@@ -238,18 +238,17 @@ Consumers<T> mistaken_consumers(ConsumerMistake mistake) {
       break;
     case ConsumerMistake::linearises_with_near_far:
       c.linear_depth = [](const oracle::DepthSample<T>& s) {
-        // 1 / n and 1 / f off a right-handed perspective M in its convention, and the depth
-        // turned forward on reversed Z, as _ZBufferParams do: n f / (f - d (f - n)) as
-        // 1 / ((1 / f - 1 / n) d + 1 / n), finite for an infinite f.
-        const T a = s.original(2, 2), b = s.original(2, 3);
-        T near_inverse = a / b, far_inverse = (a + T(1)) / b, d = s.depth;  // [0, 1]
-        if (s.convention == Convention::gl) {
-          near_inverse = (a - T(1)) / b;
-        } else if (s.convention == Convention::reversed_z) {
-          near_inverse = (a + T(1)) / b;
-          far_inverse = a / b;
-          d = T(1) - d;
-        }
+        // 1 / n and 1 / f off the perspective M in its convention (n, f distances along its view
+        // axis, which M43 = -1 or +1 points down -z or +z), and the depth turned forward on
+        // reversed Z, as _ZBufferParams do: n f / (f - d (f - n)) as
+        // 1 / ((1 / f - 1 / n) d + 1 / n), finite for an infinite f. The face at NDC z = F is at
+        // the distance b / (F - a M43) (M33 = a, M34 = b).
+        const T a = s.original(2, 2), b = s.original(2, 3), axis = s.original(3, 2);
+        const bool reversed = s.convention == Convention::reversed_z;
+        const T near_face = s.convention == Convention::gl ? T(-1) : reversed ? T(1) : T(0);
+        const T far_face = reversed ? T(0) : T(1);
+        const T near_inverse = (near_face - a * axis) / b, far_inverse = (far_face - a * axis) / b;
+        const T d = reversed ? T(1) - s.depth : s.depth;  // [0, 1], forward
         return T(1) / ((far_inverse - near_inverse) * d + near_inverse);
       };
       break;
@@ -346,18 +345,37 @@ void explain_consumer(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& a
   finding.likely_cause = names;
 }
 
-std::string consumer_cause_line(const std::string& likely_cause) {
-  if (likely_cause.empty()) return "";
-  if (const auto m = parse_consumer_mistake(likely_cause)) {
-    const ConsumerMistakeEntry& e = consumer_mistake_entry(*m);
-    return "likely cause: " + likely_cause + " (" + std::string(e.title) +
-           "); fix: " + std::string(e.fix);
-  }
-  return "likely cause: " + likely_cause;
+namespace {
+
+/// `likely_cause` without kNamedBeforeShrinking, and whether it had it.
+std::pair<std::string, bool> undecorated(const std::string& likely_cause) {
+  const std::string mark = kNamedBeforeShrinking;
+  if (likely_cause.size() > mark.size() &&
+      likely_cause.compare(likely_cause.size() - mark.size(), mark.size(), mark) == 0)
+    return {likely_cause.substr(0, likely_cause.size() - mark.size()), true};
+  return {likely_cause, false};
 }
 
-std::string consumer_cause_markdown(const std::string& likely_cause) {
+}  // namespace
+
+std::string consumer_cause_line(const std::string& likely_cause) {
   if (likely_cause.empty()) return "";
+  const auto [names, before_shrinking] = undecorated(likely_cause);
+  const std::string where =
+      before_shrinking ? ", named on the first failing case: on this shrunk one the answer is "
+                         "within half of the digits of the correct one"
+                       : "";
+  if (const auto m = parse_consumer_mistake(names)) {
+    const ConsumerMistakeEntry& e = consumer_mistake_entry(*m);
+    return "likely cause: " + names + " (" + std::string(e.title) + where +
+           "); fix: " + std::string(e.fix);
+  }
+  return "likely cause: " + names + (before_shrinking ? " (" + where.substr(2) + ")" : "");
+}
+
+std::string consumer_cause_markdown(const std::string& decorated) {
+  if (decorated.empty()) return "";
+  const auto [likely_cause, before_shrinking] = undecorated(decorated);
   std::ostringstream md;
   md << "## Likely cause\n\n";
   std::vector<std::string> names;
@@ -375,8 +393,14 @@ std::string consumer_cause_markdown(const std::string& likely_cause) {
     md << "**`" << e.name << "`: " << e.title << ".** " << e.explanation << "\n\nFix: " << e.fix
        << "\n\n";
   }
-  md << "The answer is this wrong function's on the same inputs (to half of the precision's "
-        "digits), and not the correct one's (catalogue: docs/consumers.md).\n\n";
+  if (before_shrinking)
+    md << "Named on the run's first failing case, where the answer was this wrong function's on "
+          "the same inputs (to half of the precision's digits) and not the correct one's; on "
+          "this shrunk case the answer is that close to the correct one too, so the case alone "
+          "names nothing (catalogue: docs/consumers.md).\n\n";
+  else
+    md << "The answer is this wrong function's on the same inputs (to half of the precision's "
+          "digits), and not the correct one's (catalogue: docs/consumers.md).\n\n";
   return md.str();
 }
 

@@ -37,6 +37,15 @@ void judged(const std::string& consumer, const oracle::ConsumerFinding& finding,
   }
   ++tally().applied[std::string(oracle::consumer_check_name(finding.check))];
   if (finding.holds) return;
+  // Shrinking can end on a case where the answer is within half of the digits of the correct
+  // one (it names no cause there): the cause the first failing case named is kept, said so.
+  if (!finding.likely_cause.empty() && tally().first_consumer_cause.empty())
+    tally().first_consumer_cause = finding.likely_cause;
+  if (finding.likely_cause.empty() && !tally().first_consumer_cause.empty()) {
+    oracle::ConsumerFinding carried = finding;
+    carried.likely_cause = tally().first_consumer_cause + mistakes::kNamedBeforeShrinking;
+    return judged(consumer, carried, inputs, c);
+  }
   std::function<std::string(report::ReportFiles&, const std::string&)> pictures;
   if (c) {
     pictures = [c = *c, finding, consumer](report::ReportFiles& files, const std::string& stem) {

@@ -28,7 +28,12 @@ foreach(wrong CameraMatrix:camera_matrix_view_position:view_position:reconstruct
                        -DTEST=WrongShaders.${language}${test} -DPROPERTY=${kind} -DPICTURES=1
                        -DCAUSE=${cause} -DREPORTS=${shader_reports}/${language}${test}
                        -P ${CMAKE_CURRENT_SOURCE_DIR}/expect_consumer_caught.cmake)
+      # At a fixed seed: at a fresh one a few runs in a hundred first fail on a case where the
+      # camera-matrix shader's answer is within half of float's digits of the right one (caught,
+      # but no cause can be named from that case); the campaign (scripts/false_alarms.sh) runs
+      # them at fresh seeds.
       set_tests_properties(shaders_catch_${language}${test} PROPERTIES LABELS shaders TIMEOUT 60
+                           ENVIRONMENT "RC_PARAMS=seed=20261206"
                            SKIP_REGULAR_EXPRESSION "${shader_skip}")
     endif()
     # verify --shader: caught in every convention, named, reported, replayed (and the right

@@ -64,6 +64,11 @@ template <class T>
 void explain_consumer(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& answer,
                       oracle::ConsumerFinding& finding);
 
+/// Appended to a likely cause named on a run's first failing case and carried to its shrunk one,
+/// where the answer is too close to the correct one to name it (consumer_cause_line() and
+/// consumer_cause_markdown() say so).
+inline constexpr const char* kNamedBeforeShrinking = " (named on the first failing case)";
+
 /// "likely cause: NAME (title); fix: ..." for a finding's likely_cause ("" for none).
 std::string consumer_cause_line(const std::string& likely_cause);
 /// The report's "Likely cause" section for it (Markdown, from its heading; "" for none).

@@ -56,6 +56,9 @@ struct Tally {
   /// The last failure's diagnosis, run when its report is written (not at every shrinking step).
   std::function<mistakes::Diagnosis()> diagnose_failure;
   std::string property;  ///< the RapidCheck test id of the run
+  /// The likely cause named on the run's first failing consumer case (before shrinking), carried
+  /// to a shrunk case too close to the correct answer to name one.
+  std::string first_consumer_cause;
 };
 
 /// The tally of the property run under way.
