@@ -10,6 +10,7 @@
 #include "oblique/mistakes/consumer_mistakes.h"
 #include "oblique/oblique.h"
 #include "oblique/oracle/consumers.h"
+#include "oblique/projection.h"
 
 namespace {
 
@@ -93,6 +94,57 @@ TYPED_TEST(ConsumerMistakes, theRightAnswerIsNoCause) {
     }
   }
   EXPECT_GT(explained, 0);
+}
+
+// A cause carried from a run's first failing case to its shrunk one says so, in the line and in
+// the report; a cause named on the case itself does not.
+TEST(ConsumerMistakes, aCauseNamedBeforeShrinkingIsSaidSo) {
+  using namespace oblique::mistakes;
+  const std::string carried = std::string("linearises_with_near_far") + kNamedBeforeShrinking;
+  const std::string line = consumer_cause_line(carried);
+  EXPECT_EQ(line.rfind("likely cause: linearises_with_near_far (linear depth from the near and "
+                       "far planes (zparams), named on the first failing case",
+                       0),
+            0u)
+      << line;
+  EXPECT_NE(line.find("; fix: "), std::string::npos) << line;
+  const std::string md = consumer_cause_markdown(carried);
+  EXPECT_NE(md.find("**`linearises_with_near_far`"), std::string::npos) << md;
+  EXPECT_NE(md.find("Named on the run's first failing case"), std::string::npos) << md;
+  const std::string own = consumer_cause_line("linearises_with_near_far");
+  EXPECT_EQ(own.find("first failing case"), std::string::npos) << own;
+  EXPECT_EQ(consumer_cause_markdown("linearises_with_near_far").find("first failing case"),
+            std::string::npos);
+}
+
+// The zparams shortcut reads n and f along the camera's view axis, as _ZBufferParams do: a
+// left-handed camera (M43 = +1, looking down +z) linearises as the right-handed one of the same n
+// and f, in every convention.
+TEST(ConsumerMistakes, theZparamsShortcutReadsNearAndFarAlongTheViewAxis) {
+  using oblique::mistakes::ConsumerMistake;
+  const auto zparams =
+      oblique::mistakes::mistaken_consumers<double>(ConsumerMistake::linearises_with_near_far)
+          .linear_depth;
+  const double n = 0.5, f = 40;
+  for (Convention k : oblique::all_conventions) {
+    const Matrix4<double> right = oblique::frustum<double>(-0.4, 0.4, -0.3, 0.3, n, f, k);
+    Matrix4<double> left = right;
+    left.col(2) = -right.col(2);  // z flipped: M43 = +1
+    for (double depth : {0.0, 0.25, 0.9, 1.0}) {
+      oblique::oracle::DepthSample<double> s;
+      s.convention = k;
+      s.depth = depth;
+      const double forward = k == Convention::reversed_z ? 1 - depth : depth;
+      const double expected = n * f / (f - forward * (f - n));
+      for (const Matrix4<double>* m : {&right, static_cast<const Matrix4<double>*>(&left)}) {
+        s.original = *m;
+        s.projection = *m;
+        EXPECT_NEAR(zparams(s), expected, 1e-12 * expected)
+            << oblique::convention_name(k) << (m == &left ? " left-handed" : " right-handed")
+            << " d = " << depth;
+      }
+    }
+  }
 }
 
 TEST(ConsumerMistakes, everyEntryHasOneNameReadBackToItself) {

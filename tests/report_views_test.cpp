@@ -232,8 +232,9 @@ TEST(VerifyReportViews, withoutGnuplotTheReportIsWrittenAndSaysThePicturesAreNot
        at = markdown.find("](", at + 2)) {
     const std::size_t end = markdown.find(')', at);
     const std::string linked = markdown.substr(at + 2, end - at - 2);
-    if (linked.size() > 4 && linked.compare(linked.size() - 4, 4, ".png") == 0)
+    if (linked.size() > 4 && linked.compare(linked.size() - 4, 4, ".png") == 0) {
       EXPECT_TRUE(fs::exists(dir / linked)) << "links a picture that is not there: " << linked;
+    }
   }
   EXPECT_EQ(markdown.find(".top.png)"), std::string::npos);
   for (const std::string& name : {stem + ".views.dat", stem + ".top.gp", stem + ".side.gp"})
