@@ -1,6 +1,7 @@
 // `oblique check`: a scene file, its passes, --impl, --plot and --rasterize.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -248,6 +249,13 @@ int run_check(const CheckSettings& settings) {
   if (!settings.html.empty()) {
     // One file, whole or not at all (written beside its place, then renamed).
     const std::filesystem::path page = settings.html;
+    // The page replaces a file of that name, never anything else (a device, a folder).
+    std::error_code ec;
+    if (std::filesystem::exists(page, ec) && !std::filesystem::is_regular_file(page, ec)) {
+      std::cerr << "oblique check: cannot write the page " << settings.html
+                << ": it names something other than a file; nothing written\n";
+      return 2;
+    }
     oblique::report::ReportFiles files(page.parent_path().empty() ? "." : page.parent_path());
     files.open(page.filename().string()) << oblique::report::views_html(
         oblique::scene::scene_views(*parsed.scene, check).views, page_text, {});

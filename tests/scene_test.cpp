@@ -1007,6 +1007,24 @@ TEST(Scenes, cliPrintsTheWarningsAndStillChecks) {
       << output;
 }
 
+// --html replaces a file of its name, never a device or a folder (it once replaced /dev/full).
+TEST(Scenes, cliHtmlWritesOnlyAFile) {
+  const std::string dir = OBLIQUE_SCENES_DIR;
+  std::string output;
+  EXPECT_EQ(run_check_capturing(dir + "/lake.json --html /dev/null", output), 2) << output;
+  EXPECT_NE(output.find("names something other than a file"), std::string::npos) << output;
+  EXPECT_TRUE(std::filesystem::exists("/dev/null") &&
+              !std::filesystem::is_regular_file("/dev/null"));
+  const std::string folder = ::testing::TempDir() + "oblique_html_folder";
+  std::filesystem::create_directories(folder);
+  EXPECT_EQ(run_check_capturing(dir + "/lake.json --html " + folder, output), 2) << output;
+  EXPECT_TRUE(std::filesystem::is_directory(folder));
+  const std::string page = ::testing::TempDir() + "oblique_page.html";
+  std::ofstream(page) << "an earlier page\n";
+  EXPECT_EQ(run_check_capturing(dir + "/lake.json --html " + page, output), 0) << output;
+  EXPECT_NE(read_file(page).find("<canvas"), std::string::npos);
+}
+
 TEST(Scenes, cliExitStatus) {
   const std::string dir = OBLIQUE_SCENES_DIR;
   EXPECT_EQ(run_check(dir + "/lake.json"), 0);
