@@ -467,6 +467,13 @@ AccuracyReport measure_accuracy(const AccuracyOptions& options, std::ostream& pr
       if (!report.error.empty()) return report;
     }
   }
+  for (const cases::Family f : contract.families) {
+    if (std::none_of(all.begin(), all.end(), [f](const Regime& r) { return r.family == f; }))
+      report.unmeasured_families.emplace_back(cases::family_name(f));
+  }
+  if (options.progress && !report.unmeasured_families.empty())
+    progress << "report accuracy: not measured (no regime builds them): "
+             << protocol::name_list(report.unmeasured_families) << "\n";
   if (report.regimes.empty()) {
     std::vector<std::string> families;
     for (const Regime& regime : all) {
@@ -573,7 +580,12 @@ std::optional<std::vector<std::filesystem::path>> write_accuracy_report(
   if (contract_json(options.contract) != contract_json(Contract{}))
     md << "Measured under the contract `" << contract_json(options.contract) << "`: the regimes "
        << protocol::name_list(report.regimes)
-       << ", an implementation's refusals judged by its statuses.\n\n";
+       << ", an implementation's refusals judged by its statuses."
+       << (report.unmeasured_families.empty()
+               ? std::string()
+               : " Not measured: the families " + protocol::name_list(report.unmeasured_families) +
+                     " of the contract (no regime builds them).")
+       << "\n\n";
   md << "| method | scalar | max error (ulp) | max error (bits) | worst 99.9th pct (ulp) | "
         "ns per answer (mean over regimes) | max error / checker bound | on the front |\n"
         "|---|---|---:|---:|---:|---:|---:|:---:|\n";

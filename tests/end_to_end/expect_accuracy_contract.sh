@@ -25,6 +25,10 @@ for regime in infinite orthographic scaled; do
   if grep -q "^| $regime |" "$md"; then fail "regime $regime of a family not claimed was measured"; fi
 done
 grep -q "^| typical |" "$md" || fail "the perspective regime typical was not measured"
+"$oblique" report accuracy --cases 2 --quiet --out "$dir/some" --families perspective,y_flipped \
+  > "$dir.some.log" 2>&1 || fail "--families perspective,y_flipped exited $?"
+grep -q "Not measured: the families y_flipped of the contract" "$dir/some/accuracy.md" ||
+  fail "a claimed family no regime builds is not said to be unmeasured"
 out=$("$oblique" report accuracy --cases 2 --quiet --out "$dir/none" --families y_flipped 2>&1)
 status=$?
 [ "$status" = 2 ] || fail "--families y_flipped exited $status, expected 2: $out"

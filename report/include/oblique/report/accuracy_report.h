@@ -64,6 +64,8 @@ struct StiffnessPoint {
 
 struct AccuracyReport {
   std::vector<std::string> regimes;  ///< those measured (the contract's families' own)
+  /// Families the contract claims that no regime builds: not measured, and said so.
+  std::vector<std::string> unmeasured_families;
   std::vector<AccuracyRow> rows;
   std::vector<StiffnessPoint> stiffness;
   std::string error;  ///< an implementation could not be asked (nothing is written then)
