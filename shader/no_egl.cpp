@@ -19,7 +19,7 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(const std::vector<Sha
 }
 
 bool cannot_run_here(const std::string& error) {
-  return error.rfind("no EGL", 0) == 0;
+  return error.rfind("no EGL", 0) == 0 || error.find("which is not installed") != std::string::npos;
 }
 
 const std::string& ShaderRunner::renderer() const {

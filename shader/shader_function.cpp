@@ -2,12 +2,14 @@
 // parameters bound by name, and the compute shader that runs it on a batch.
 #include "oblique/shader/shader_function.h"
 
+#include "oblique/shader/shader_scanner.h"
+#include "oblique/shader/shader_tools.h"
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <sstream>
 
 namespace oblique::shader {
@@ -80,32 +82,12 @@ std::string type_in(const std::string& glsl, Language language) {
   return names.at(glsl);
 }
 
-/// The source with comments replaced by spaces (new lines kept, so lines still count).
-std::string without_comments(const std::string& s) {
-  std::string out = s;
-  for (std::size_t i = 0; i + 1 < out.size(); ++i) {
-    if (out[i] == '/' && out[i + 1] == '/') {
-      for (; i < out.size() && out[i] != '\n'; ++i) out[i] = ' ';
-    } else if (out[i] == '/' && out[i + 1] == '*') {
-      const std::size_t end = out.find("*/", i + 2);
-      const std::size_t stop = end == std::string::npos ? out.size() : end + 2;
-      for (; i < stop; ++i)
-        if (out[i] != '\n') out[i] = ' ';
-      --i;
-    }
-  }
-  return out;
-}
-
-std::string trimmed(const std::string& s) {
-  const auto a = s.find_first_not_of(" \t\r\n");
-  if (a == std::string::npos) return "";
-  return s.substr(a, s.find_last_not_of(" \t\r\n") - a + 1);
-}
-
 std::string names_list(const std::vector<std::string>& names) {
+  constexpr std::size_t kShown = 20;
   std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  for (std::size_t k = 0; k < names.size() && k < kShown; ++k)
+    out += (out.empty() ? "" : ", ") + names[k];
+  if (names.size() > kShown) out += " and " + std::to_string(names.size() - kShown) + " more";
   return out.empty() ? "none" : out;
 }
 
@@ -132,51 +114,62 @@ Expected<Signature> find_signature(const std::string& source, const std::string&
                                    Language language, ConsumerKind kind) {
   using Found = Expected<Signature>;
   const std::string text = without_comments(source);
-  // A definition: a return type, a name, parameters without parentheses, an HLSL semantic
-  // perhaps, and its body's brace.
-  static const std::regex definition(R"((\w+)\s+(\w+)\s*\(([^()]*)\)\s*(:\s*\w+\s*)?\{)");
+  const std::vector<Definition> found = definitions(tokens(text));
   std::vector<std::string> found_names;
-  std::vector<std::smatch> matches;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), definition);
-       it != std::sregex_iterator(); ++it) {
-    const std::string name = (*it)[2];
-    static const std::vector<std::string> keywords = {"if", "for", "while", "switch", "return"};
-    if (std::find(keywords.begin(), keywords.end(), name) != keywords.end()) continue;
-    if (name == function)
-      matches.push_back(*it);
-    else if (std::find(found_names.begin(), found_names.end(), name) == found_names.end())
-      found_names.push_back(name);
+  std::vector<const Definition*> matches;
+  for (const Definition& d : found) {
+    if (d.name == function)
+      matches.push_back(&d);
+    else if (std::find(found_names.begin(), found_names.end(), d.name) == found_names.end())
+      found_names.emplace_back(d.name.substr(0, 64));
   }
   if (matches.empty())
     return Found::failure("no function named " + function +
                           " is defined (functions found: " + names_list(found_names) + ")");
   if (matches.size() > 1)
     return Found::failure("function " + function + " is defined " + std::to_string(matches.size()) +
-                          " times (overloads): name the one to run");
-  const std::smatch& m = matches.front();
+                          " times (overloads, or #if variants the defines leave both of): name "
+                          "the one to run, or give the engine's defines (--define)");
+  const Definition& m = *matches.front();
   Signature sig;
   sig.name = function;
-  sig.return_type = m[1];
-  sig.line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + m.position(0), '\n'));
+  sig.return_type = std::string(m.return_type.substr(0, 64));
+  sig.line = m.line;
   const std::string where = function + " (line " + std::to_string(sig.line) + ")";
   if (glsl_type(sig.return_type) != kind_return(kind))
     return Found::failure(where + " returns " + sig.return_type + "; a " +
                           std::string(protocol::consumer_kind_name(kind)) + " function returns " +
                           type_in(std::string(kind_return(kind)), language));
-  std::stringstream params(m[3].str());
-  for (std::string piece; std::getline(params, piece, ',');) {
-    piece = trimmed(piece.substr(0, piece.find(':')));  // an HLSL semantic
-    if (piece.empty() || piece == "void") continue;
-    std::vector<std::string> words;
-    std::stringstream w(piece);
-    for (std::string word; w >> word;) {
-      static const std::vector<std::string> qualifiers = {"in",   "const",   "highp",  "mediump",
-                                                          "lowp", "precise", "uniform"};
-      if (std::find(qualifiers.begin(), qualifiers.end(), word) == qualifiers.end())
-        words.push_back(word);
+  // The parameters: pieces between commas, an HLSL semantic (": NAME") left out.
+  std::vector<std::vector<Token>> pieces(1);
+  for (const Token& t : m.parameters) {
+    if (t.kind == Token::Kind::punctuation && t.text == ",")
+      pieces.emplace_back();
+    else
+      pieces.back().push_back(t);
+  }
+  for (std::vector<Token>& piece : pieces) {
+    std::string written;
+    for (std::size_t k = 0; k < piece.size(); ++k) {
+      if (piece[k].kind == Token::Kind::punctuation && piece[k].text == ":") {
+        piece.resize(k);
+        break;
+      }
+      if (written.size() < 80) written += (written.empty() ? "" : " ") + std::string(piece[k].text);
     }
-    if (words.size() != 2)
-      return Found::failure(where + ": parameter \"" + piece +
+    if (written.size() > 80) written = written.substr(0, 80) + "...";
+    if (piece.empty() || (piece.size() == 1 && piece[0].text == "void")) continue;
+    std::vector<std::string> words;
+    bool only_words = true;
+    for (const Token& t : piece) {
+      static const std::vector<std::string_view> qualifiers = {
+          "in", "const", "highp", "mediump", "lowp", "precise", "uniform"};
+      only_words = only_words && t.kind == Token::Kind::identifier;
+      if (std::find(qualifiers.begin(), qualifiers.end(), t.text) == qualifiers.end())
+        words.emplace_back(t.text.substr(0, 64));
+    }
+    if (!only_words || words.size() != 2)
+      return Found::failure(where + ": parameter \"" + written +
                             "\" is not a type and a name (out and inout parameters are not "
                             "part of the convention: return the answer)");
     Parameter p{words[0], words[1], Input::depth};
@@ -240,17 +233,25 @@ std::pair<std::string, std::string> split_shader_spec(const std::string& spec) {
 }
 
 Expected<ShaderFunction> shader_function_in(const std::string& path, const std::string& function,
-                                            std::optional<Language> language) {
+                                            std::optional<Language> language,
+                                            const std::vector<std::string>& defines,
+                                            double seconds) {
   using Found = Expected<ShaderFunction>;
   const Expected<std::vector<ShaderFunction>> named =
       shader_functions(path + ":" + function, {ConsumerKind::view_position}, language);
   if (!named) return Found::failure(named.error());
   ShaderFunction f = named->front();
+  f.defines = defines;
   const Expected<std::string> text = read_shader_file(path);
   if (!text) return Found::failure(text.error());
+  const Expected<std::string> user = define_lines(defines);
+  if (!user) return Found::failure(user.error());
+  const Expected<std::string> kept =
+      preprocessed(*text, path, f.language, convention_defines(0, *user), seconds);
+  if (!kept) return Found::failure(path + ": " + kept.error());
   // The return type decides the kind: find the function as either and keep the one that fits.
   for (const ConsumerKind kind : {ConsumerKind::view_position, ConsumerKind::linear_depth}) {
-    const Expected<Signature> sig = find_signature(*text, function, f.language, kind);
+    const Expected<Signature> sig = find_signature(*kept, function, f.language, kind);
     if (sig) {
       f.kind = kind;
       return f;
@@ -292,30 +293,27 @@ Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
   std::vector<ShaderFunction> out;
   for (const ConsumerKind k : kinds)
     out.push_back({path, function.empty() ? std::string(protocol::consumer_kind_name(k)) : function,
-                   lang, k});
+                   lang, k, {}});
   return out;
 }
 
+std::string convention_defines(int convention, const std::string& user_defines) {
+  return "#define OBLIQUE_GL 0\n#define OBLIQUE_ZERO_ONE 1\n#define OBLIQUE_REVERSED_Z 2\n"
+         "#define OBLIQUE_CONVENTION " +
+         std::to_string(convention) + "\n" + user_defines;
+}
+
 std::string wrapped_source(const std::string& source, const std::string& path,
-                           const Signature& signature, Language language, int convention) {
+                           const Signature& signature, Language language, int convention,
+                           const std::string& user_defines) {
   const bool glsl = language == Language::glsl;
   std::string user = source;
   if (glsl) {
     // The user's own #version line is ours to give (compute, 4.50): kept as an empty line.
-    static const std::regex version(R"([ \t]*#[ \t]*version\b.*)");
-    for (std::size_t at = 0; at < user.size();) {
-      const std::size_t end = std::min(user.find('\n', at), user.size());
-      if (std::regex_match(user.begin() + static_cast<long>(at),
-                           user.begin() + static_cast<long>(end), version)) {
-        user.erase(at, end - at);
-        break;
-      }
-      at = end + 1;
-    }
+    if (const auto v = version_line(user)) user.erase(v->first, v->second);
   }
   std::string out = glsl ? "#version 450 core\n" : "";
-  out += "#define OBLIQUE_GL 0\n#define OBLIQUE_ZERO_ONE 1\n#define OBLIQUE_REVERSED_Z 2\n";
-  out += "#define OBLIQUE_CONVENTION " + std::to_string(convention) + "\n";
+  out += convention_defines(convention, user_defines);
   // The user's lines keep their numbers; the wrapper's start at kWrapperFirstLine (drivers do
   // not all report #line's source-string number; shader_runner.cpp maps lines back). glslang's
   // HLSL takes a file name.

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -16,15 +17,17 @@
 #include <fstream>
 #include <limits>
 #include <mutex>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include "oblique/depth_convention.h"
 #include "oblique/oracle/consumer_wire.h"
+#include "oblique/protocol/interrupts.h"
 #include "oblique/protocol/shell_text.h"
 #include "oblique/references/depth_reconstruction.h"
+#include "oblique/shader/shader_scanner.h"
+#include "oblique/shader/shader_tools.h"
 
 namespace oblique::shader {
 
@@ -32,7 +35,6 @@ namespace {
 
 using protocol::ConsumerKind;
 
-constexpr const char* kToolPackages = "glslang-tools spirv-cross";
 constexpr int kKinds = 2;  // view_position, linear_depth
 constexpr GLuint kGroupSize = 64;
 
@@ -40,96 +42,45 @@ int kind_index(ConsumerKind kind) {
   return kind == ConsumerKind::view_position ? 0 : 1;
 }
 
-/// Runs `command` (its standard error joined to its output); returns the exit status, -1 where
-/// it could not be started.
-int run_tool(const std::string& command, std::string& output) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return -1;
-  char buffer[4096];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
-    output.append(buffer, n);
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-bool tool_present(const char* name) {
-  std::string out;
-  return run_tool(std::string("command -v ") + name, out) == 0;
-}
-
-/// A temporary folder, removed with everything in it when this goes.
-struct TempFolder {
-  std::filesystem::path path;
-  TempFolder() {
-    std::error_code ec;
-    const std::filesystem::path base = std::filesystem::temp_directory_path(ec);
-    if (ec) return;  // path stays empty: the caller says it cannot make one
-    std::string pattern = (base / "oblique-shader-XXXXXX").string();
-    if (mkdtemp(pattern.data())) path = pattern;
-  }
-  ~TempFolder() {
-    std::error_code ec;
-    if (!path.empty()) std::filesystem::remove_all(path, ec);
-  }
-};
-
-/// The HLSL wrapped source as GLSL 4.50: glslangValidator to SPIR-V, spirv-cross back to GLSL.
-/// glslang's messages name the user's file and line (the wrapper's #line), kept as they are.
-Expected<std::string> hlsl_as_glsl(const std::string& hlsl) {
-  for (const char* tool : {"glslangValidator", "spirv-cross"}) {
-    if (!tool_present(tool))
-      return Expected<std::string>::failure(std::string("HLSL needs ") + tool +
-                                            ", which is not installed: install " + kToolPackages +
-                                            " (bash scripts/setup.sh)");
-  }
-  const TempFolder folder;
-  if (folder.path.empty())
-    return Expected<std::string>::failure(
-        "cannot make a temporary folder for glslang's files (is TMPDIR a writable folder?)");
-  const std::string in = (folder.path / "wrapped.hlsl").string();
-  const std::string spv = (folder.path / "wrapped.spv").string();
-  const std::string glsl = (folder.path / "wrapped.comp").string();
-  std::ofstream(in, std::ios::binary) << hlsl;
-  std::string log;
-  if (run_tool("glslangValidator -D -V -S comp -e oblique_main -o " + protocol::shell_quote(spv) +
-                   " " + protocol::shell_quote(in),
-               log) != 0) {
-    // glslang echoes the input's name first, and ends with its summary lines.
-    std::string kept;
-    std::istringstream lines(log);
-    for (std::string line; std::getline(lines, line);) {
-      if (line == in || line.empty() || line.rfind("SPIR-V is not generated", 0) == 0) continue;
-      kept += "  " + line + "\n";
-    }
-    return Expected<std::string>::failure("the HLSL did not compile (glslang):\n" + kept);
-  }
-  std::string cross_log;
-  if (run_tool("spirv-cross --version 450 --no-es " + protocol::shell_quote(spv) + " --output " +
-                   protocol::shell_quote(glsl),
-               cross_log) != 0)
-    return Expected<std::string>::failure("spirv-cross could not turn the SPIR-V into GLSL: " +
-                                          cross_log);
-  return read_shader_file(glsl);
-}
-
 /// A GL compiler's log with its lines named: the user's file's, or the wrapper's from
 /// kWrapperFirstLine (Mesa writes "0:12(5): error: ...", others "0(12) : error ...").
 std::string mapped_log(const std::string& log, const std::string& path) {
-  static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\): (.*)$)");
-  static const std::regex other(R"(^(\d+)\((\d+)\) ?: (.*)$)");
-  auto where = [&path](const std::string&, const std::string& line) {
-    const long n = std::strtol(line.c_str(), nullptr, 10);
-    if (n < kWrapperFirstLine) return path + ":" + line;
+  auto where = [&path](long n) {
+    if (n < kWrapperFirstLine) return path + ":" + std::to_string(n);
     return "(oblique's wrapper, line " + std::to_string(n - kWrapperFirstLine + 1) + ")";
+  };
+  // Digits from `k`: their value (at most 9 of them) and where they end.
+  auto number = [](const std::string& s, std::size_t k, long& value) {
+    const std::size_t from = k;
+    value = 0;
+    while (k < s.size() && k < from + 9 && std::isdigit(static_cast<unsigned char>(s[k])))
+      value = value * 10 + (s[k++] - '0');
+    return k == from ? std::string::npos : k;
   };
   std::string out;
   std::istringstream lines(log);
   for (std::string line; std::getline(lines, line);) {
-    std::smatch m;
-    if (std::regex_match(line, m, mesa))
-      line = where(m[1], m[2]) + ":" + m[3].str() + ": " + m[4].str();
-    else if (std::regex_match(line, m, other))
-      line = where(m[1], m[2]) + ": " + m[3].str();
+    long source = 0, n = 0, column = 0;
+    std::size_t k = number(line, 0, source);
+    if (k != std::string::npos && k < line.size() && line[k] == ':') {
+      // Mesa: "0:12(5): error: ..."
+      const std::size_t c = number(line, k + 1, n);
+      std::size_t e = c == std::string::npos || c >= line.size() || line[c] != '('
+                          ? std::string::npos
+                          : number(line, c + 1, column);
+      if (e != std::string::npos && line.compare(e, 3, "): ") == 0)
+        line = where(n) + ":" + std::to_string(column) + ": " + line.substr(e + 3);
+    } else if (k != std::string::npos && k < line.size() && line[k] == '(') {
+      // Others: "0(12) : error ..."
+      const std::size_t c = number(line, k + 1, n);
+      if (c != std::string::npos && c < line.size() && line[c] == ')') {
+        std::size_t e = c + 1;
+        if (e < line.size() && line[e] == ' ') ++e;
+        if (e < line.size() && line[e] == ':')
+          line = where(n) + ": " + line.substr(std::min(line.size(), e + 2));
+      }
+    }
+    if (line.size() > 400) line = line.substr(0, 400) + "...";
     if (!line.empty()) out += "  " + line + "\n";
   }
   return out;
@@ -138,14 +89,14 @@ std::string mapped_log(const std::string& log, const std::string& path) {
 /// The process's end where a dispatch outlives its time: said on standard error first.
 class Watchdog {
  public:
-  Watchdog(double seconds, std::string what) : what_(std::move(what)) {
+  Watchdog(double seconds, const std::string& what) : what_(protocol::escape_bytes(what)) {
     thread_ = std::thread([this, seconds] {
       std::unique_lock<std::mutex> lock(mutex_);
       if (cv_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return done_; }))
         return;
       std::fprintf(stderr,
-                   "oblique: %s did not finish within %g s (a loop that does not end?); a GPU "
-                   "dispatch cannot be cancelled, so the process stops here (exit status %d)\n",
+                   "oblique: %s did not finish within %g s (a loop that does not end?); the "
+                   "driver cannot be stopped, so the process stops here (exit status %d)\n",
                    what_.c_str(), seconds, kHangExitStatus);
       std::fflush(stderr);
       std::_Exit(kHangExitStatus);
@@ -295,6 +246,14 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
     const std::vector<ShaderFunction>& functions, const RunnerOptions& options) {
   using Opened = Expected<std::unique_ptr<ShaderRunner>>;
   if (functions.empty()) return Opened::failure("no shader function to run");
+  // An interrupt while the tools run ends their process groups and says what it stopped.
+  std::string names;
+  for (const ShaderFunction& f : functions) names += (names.empty() ? "" : ", ") + f.path;
+  protocol::set_interrupt_line("oblique: interrupted while compiling " +
+                               protocol::escape_bytes(names) + "; nothing was judged");
+  struct ClearLine {
+    ~ClearLine() { protocol::set_interrupt_line(""); }
+  } clear_line;
   auto state = std::make_unique<State>();
   state->options = options;
   state->functions = functions;
@@ -311,20 +270,35 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
     const Expected<std::string> read = read_shader_file(f.path);
     if (!read) return Opened::failure(read.error());
     const std::string& source = *read;
-    const Expected<Signature> sig = find_signature(source, f.function, f.language, f.kind);
-    if (!sig) return Opened::failure(f.path + ": " + sig.error());
+    const Expected<std::string> user_defines = define_lines(f.defines);
+    if (!user_defines) return Opened::failure(user_defines.error());
     const int k = kind_index(f.kind);
     state->names[k] = f.path + ":" + f.function;
-    for (const Parameter& p : sig->parameters)
-      state->perspective[k] = state->perspective[k] || shader::needs_perspective_camera(p.input);
     Wrapped w{k, f.path, {}};
     for (int c = 0; c < 3; ++c) {
-      const std::string text = wrapped_source(source, f.path, *sig, f.language, c);
+      // The variant the preprocessor keeps in this convention, under the engine's defines.
+      const Expected<std::string> kept = preprocessed(
+          source, f.path, f.language, convention_defines(c, *user_defines), options.timeout_seconds);
+      if (!kept) return Opened::failure(f.path + ": " + kept.error());
+      // A depth function answers from its inputs: one that reaches the runner's buffers, memory
+      // other invocations see or which invocation it is could write another request's answer.
+      if (const auto beyond = reaches_beyond_its_inputs(tokens(without_comments(*kept))))
+        return Opened::failure(f.path + ": " + *beyond +
+                               ": a depth function answers from its inputs alone; declare no "
+                               "buffers, images, shared memory or invocation ids");
+      const Expected<Signature> sig = find_signature(*kept, f.function, f.language, f.kind);
+      if (!sig) return Opened::failure(f.path + ": " + sig.error());
+      for (const Parameter& p : sig->parameters)
+        state->perspective[k] = state->perspective[k] || shader::needs_perspective_camera(p.input);
+      const std::string text = wrapped_source(source, f.path, *sig, f.language, c, *user_defines);
       if (f.language == Language::glsl) {
+        // glslang first, under the limits: the driver compiles in this process.
+        const Expected<Done> compiles = glsl_compiles(text, f.path, options.timeout_seconds);
+        if (!compiles) return Opened::failure(f.path + ": " + compiles.error());
         w.sources[c] = text;
         continue;
       }
-      Expected<std::string> glsl = hlsl_as_glsl(text);
+      Expected<std::string> glsl = hlsl_as_glsl(text, options.timeout_seconds);
       if (!glsl) return Opened::failure(f.path + ": " + glsl.error());
       w.sources[c] = *glsl;
     }
@@ -336,6 +310,10 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
   const raster::NoShaderCache no_cache;
   for (const Wrapped& w : wrapped) {
     for (int c = 0; c < 3; ++c) {
+      // The driver compiles in this process and cannot be stopped: past the time limit the
+      // process ends, saying so (glslang compiled the same text within it just before).
+      const Watchdog watchdog(std::max(options.timeout_seconds, kToolLeastSeconds),
+                              "compiling " + w.path + " in the driver");
       Expected<GLuint> program = state->compile(w.sources[c], w.path);
       if (!program) return Opened::failure(w.path + ": " + program.error());
       state->programs[w.kind][c] = *program;

@@ -97,7 +97,7 @@ oblique_shader_refusal(a_parameter_of_another_type "parameter depth is vec2; the
                        ${verify_shader} --consumers view_position
                        --shader ${hostile_shaders}/signatures.glsl:depth_as_vec2)
 # The compiler's message, its line in the user's file.
-oblique_shader_refusal(a_compile_error "compile_error.glsl:5:[0-9]+: error: .undeclared_name. undeclared"
+oblique_shader_refusal(a_compile_error "compile_error.glsl:5: 'undeclared_name' : undeclared identifier"
                        ${verify_shader} --consumers view_position
                        --shader ${hostile_shaders}/compile_error.glsl)
 oblique_shader_refusal(an_hlsl_compile_error "compile_error.hlsl:4: 'undeclared_name' : unknown variable"

@@ -71,7 +71,8 @@ struct Signature {
   int line = 0;  ///< where it is defined, from 1
 };
 
-/// Finds the definition of `function` in `source` (comments skipped) and binds each parameter by
+/// Finds the definition of `function` in `source` (comments skipped; give it the text the
+/// preprocessor keeps, preprocessed(), so that #if variants are chosen) and binds each parameter by
 /// its name and type for a function of `kind` (view_position returns vec3 / float3, linear_depth
 /// float). The error says what is wrong in the user's words: no such function (naming the ones
 /// found), more than one, a return type or a parameter's type that does not fit, a parameter
@@ -86,6 +87,9 @@ struct ShaderFunction {
   std::string function;
   Language language = Language::glsl;
   protocol::ConsumerKind kind = protocol::ConsumerKind::view_position;
+  /// The engine's defines (NAME or NAME=VALUE, as -D takes them): the preprocessor keeps the
+  /// #if variant they choose, beside OBLIQUE_CONVENTION.
+  std::vector<std::string> defines;
 };
 
 /// `--shader FILE[:FUNCTION]` split: the file, and the function ("" when none is named; the part
@@ -107,18 +111,26 @@ inline constexpr std::size_t kMaxShaderBytes = 16u << 20;
 Expected<std::string> read_shader_file(const std::string& path);
 
 /// The function `function` of the file `path` as a ShaderFunction: its kind from its return
-/// type (vec3 / float3: view_position; float: linear_depth), its language from `language` or the
-/// file's extension. The error says why not (the file unreadable, no such function, another
-/// return type).
+/// type (vec3 / float3: view_position; float: linear_depth) in the variant the preprocessor keeps
+/// under `defines` (preprocessed() within `seconds`), its language from `language` or the file's
+/// extension. The error says why not (the file unreadable, no such function, another return
+/// type, the preprocessor stopped).
 Expected<ShaderFunction> shader_function_in(const std::string& path, const std::string& function,
-                                            std::optional<Language> language = std::nullopt);
+                                            std::optional<Language> language = std::nullopt,
+                                            const std::vector<std::string>& defines = {},
+                                            double seconds = 10);
+
+/// The `#define` lines the wrapper and the preprocessor begin with: OBLIQUE_GL, OBLIQUE_ZERO_ONE,
+/// OBLIQUE_REVERSED_Z, OBLIQUE_CONVENTION (`convention`), then `user_defines` (define_lines()).
+std::string convention_defines(int convention, const std::string& user_defines);
 
 /// The compute shader that runs `signature` of the user's `source` on a batch of requests, in
 /// the user's language: GLSL 4.50 (or HLSL for glslang), the user's file included with line
 /// directives so that a compiler's message names the user's file and line. `convention` is
-/// defined as OBLIQUE_CONVENTION.
+/// defined as OBLIQUE_CONVENTION, and `user_defines` (define_lines()) after it.
 std::string wrapped_source(const std::string& source, const std::string& path,
-                           const Signature& signature, Language language, int convention);
+                           const Signature& signature, Language language, int convention,
+                           const std::string& user_defines = "");
 
 /// The first line number of the GLSL wrapper's own code: a compiler's line below it is the
 /// user's file's.

@@ -18,9 +18,11 @@ namespace oblique::shader {
 
 struct RunnerOptions {
   raster::Device device = raster::Device::software;
-  /// The longest one dispatch may take. A GPU dispatch cannot be cancelled: a shader that runs
-  /// longer (a loop that does not end) is said on standard error and the process exits with
-  /// status 2 (kHangExitStatus).
+  /// The longest one dispatch may take, and each step of compiling (glslang and spirv-cross as
+  /// programs under a memory limit, shader_tools.h; the driver's compile in this process; at
+  /// least kToolLeastSeconds). A GPU dispatch or a driver's compile cannot be cancelled: one that
+  /// runs longer (a loop that does not end) is said on standard error and the process exits with
+  /// status 2 (kHangExitStatus). A tool that runs longer is stopped and open() fails.
   double timeout_seconds = 10;
 };
 
