@@ -26,6 +26,7 @@ struct CheckSettings {
   std::string impl;    ///< --impl CMD: the user's implementation, over the apply protocol
   std::string shader;  ///< --shader FILE[:FUNCTION]: the reconstruction consumer's shader
   std::optional<oblique::shader::Language> shader_language;
+  std::vector<std::string> shader_defines;
   std::string plot_dir;  ///< --plot DIR
   std::string html;      ///< --html FILE
   double timeout_seconds = 10;
@@ -185,7 +186,9 @@ int run_check(const CheckSettings& settings) {
     oblique::Expected<std::vector<oblique::shader::ShaderFunction>> functions =
         std::vector<oblique::shader::ShaderFunction>{};
     if (!function.empty()) {
-      const auto f = oblique::shader::shader_function_in(file, function, settings.shader_language);
+      const auto f = oblique::shader::shader_function_in(
+          file, function, settings.shader_language, settings.shader_defines,
+          settings.timeout_seconds);
       if (f)
         functions->push_back(*f);
       else
@@ -202,6 +205,7 @@ int run_check(const CheckSettings& settings) {
                 << "\n";
       return 2;
     }
+    for (oblique::shader::ShaderFunction& f : *functions) f.defines = settings.shader_defines;
     oblique::shader::RunnerOptions options;
     options.device =
         settings.device == "gpu" ? oblique::raster::Device::gpu : oblique::raster::Device::software;
@@ -347,6 +351,9 @@ void setup_check(CLI::App& app, int& exit_code) {
           },
           "glsl or hlsl (default: by the file's extension)")
       ->check(CLI::IsMember({"glsl", "hlsl"}));
+  check->add_option("-D,--define", settings->shader_defines,
+                    "With --shader: a define of the engine's, NAME or NAME=VALUE (repeat it): the "
+                    "shader's #if variants are chosen under them and OBLIQUE_CONVENTION");
   check
       ->add_option("--timeout", settings->timeout_seconds,
                    "With --impl: seconds to wait for each answer (with --shader: for each "

@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "oblique/protocol/names.h"
+#include "oblique/protocol/shell_text.h"
 #include "oblique_version.h"
 
 namespace {
@@ -89,6 +90,10 @@ void keep_freed_buffers() {
 int main(int argc, char** argv) {
   give_closed_standard_fds_dev_null();
   keep_freed_buffers();
+  // Every message echoes paths, names and programs' output: their control characters are shown
+  // escaped, never obeyed by the terminal. (Never freed: std::cerr may be written at exit.)
+  std::cerr.rdbuf(new oblique::protocol::EscapingBuffer(std::cerr.rdbuf()));
+  std::clog.rdbuf(std::cerr.rdbuf());
   CLI::App app{"oblique: oblique near-plane clipping, verified"};
   app.set_version_flag(
       "--version", std::string("oblique ") + OBLIQUE_VERSION + " (commit " + OBLIQUE_COMMIT + ")",

@@ -198,6 +198,9 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
           },
           "glsl or hlsl (default: by the file's extension, .hlsl and .fx HLSL)")
       ->check(CLI::IsMember({"glsl", "hlsl"}));
+  verify->add_option("-D,--define", options.shader_defines,
+                     "With --shader: a define of the engine's, NAME or NAME=VALUE (repeat it): the "
+                     "shader's #if variants are chosen under them and OBLIQUE_CONVENTION");
   verify->add_flag("--rasterize", settings->rasterize,
                    "Also draw answers on a real rasterizer (EGL + OpenGL 4.5, llvmpipe): the "
                    "first, one in --raster-every, and every finding's; an answer that passes the "

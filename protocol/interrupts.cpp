@@ -9,6 +9,8 @@
 #include <cstring>
 #include <mutex>
 
+#include "oblique/protocol/shell_text.h"
+
 namespace oblique::protocol {
 
 namespace {
@@ -102,7 +104,7 @@ void set_interrupt_line(const std::string& line) {
   }
   const int next = shown.load() == 0 ? 1 : 0;
   // A line too long for the buffer keeps its end (the command to run), marked as cut.
-  std::string text = line + "\n";
+  std::string text = escape_bytes(line) + "\n";
   if (text.size() > kLineBytes) text = "..." + text.substr(text.size() - (kLineBytes - 3));
   std::memcpy(lines[next], text.data(), text.size());
   lengths[next] = text.size();

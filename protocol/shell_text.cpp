@@ -31,6 +31,8 @@ std::size_t utf8_sequence_length(std::string_view s, std::size_t i) {
   if (b == 0xED && byte(i + 1) >= 0xA0) return 0;
   if (b == 0xF0 && byte(i + 1) < 0x90) return 0;
   if (b == 0xF4 && byte(i + 1) >= 0x90) return 0;
+  // The C1 controls (U+0080 to U+009F): some terminals take U+009B as ESC [.
+  if (b == 0xC2 && byte(i + 1) < 0xA0) return 0;
   return n;
 }
 
@@ -84,6 +86,37 @@ std::string escape_bytes(std::string_view bytes) {
     }
   }
   return out;
+}
+
+EscapingBuffer::EscapingBuffer(std::streambuf* to) : to_(to) {}
+
+EscapingBuffer::~EscapingBuffer() {
+  pass_line();
+  if (to_) to_->pubsync();
+}
+
+void EscapingBuffer::pass_line() {
+  if (line_.empty() || !to_) return;
+  const std::string out = escape_bytes(line_);
+  to_->sputn(out.data(), static_cast<std::streamsize>(out.size()));
+  line_.clear();
+}
+
+EscapingBuffer::int_type EscapingBuffer::overflow(int_type ch) {
+  if (traits_type::eq_int_type(ch, traits_type::eof())) return traits_type::not_eof(ch);
+  line_ += traits_type::to_char_type(ch);
+  if (line_.back() == '\n' || line_.size() >= 4096) pass_line();
+  return ch;
+}
+
+std::streamsize EscapingBuffer::xsputn(const char* s, std::streamsize n) {
+  for (std::streamsize k = 0; k < n; ++k) overflow(traits_type::to_int_type(s[k]));
+  return n;
+}
+
+int EscapingBuffer::sync() {
+  pass_line();
+  return to_ ? to_->pubsync() : 0;
 }
 
 }  // namespace oblique::protocol

@@ -177,6 +177,7 @@ std::string answerer_flags(const VerifyOptions& options) {
   if (options.shader_language)
     flags += " --shader-language " + std::string(shader::language_name(*options.shader_language));
   if (options.shader_device != "software") flags += " --device " + options.shader_device;
+  for (const std::string& d : options.shader_defines) flags += " --define " + shell_quote(d);
   return flags;
 }
 
@@ -191,11 +192,12 @@ std::unique_ptr<Answerer<T>> answerer_for(const VerifyOptions& options,
         options.command,
         std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000)));
   if constexpr (std::is_same_v<T, float>) {
-    const auto functions = shader::shader_functions(options.shader, kinds, options.shader_language);
+    auto functions = shader::shader_functions(options.shader, kinds, options.shader_language);
     if (!functions) {
       err << "oblique verify: --shader " << options.shader << ": " << functions.error() << "\n";
       return nullptr;
     }
+    for (shader::ShaderFunction& f : *functions) f.defines = options.shader_defines;
     shader::RunnerOptions run;
     run.device = options.shader_device == "gpu" ? raster::Device::gpu : raster::Device::software;
     run.timeout_seconds = options.request_timeout_seconds;

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "oblique/raster/gl_context.h"
 #include "oblique/testing.h"
@@ -27,6 +28,9 @@ struct ShaderSettings {
   raster::Device device = raster::Device::software;
   /// The longest one dispatch may take before the process is stopped (a shader that hangs).
   double timeout_seconds = 10;
+  /// The engine's defines (NAME or NAME=VALUE): the shader's #if variant is the one the
+  /// preprocessor keeps under them and OBLIQUE_CONVENTION.
+  std::vector<std::string> defines;
 };
 
 /// Checks the function `function` of the shader file `path` against the consumer properties
@@ -43,4 +47,12 @@ void check_shader(const std::string& path, const std::string& function,
 #define OBLIQUE_SHADER_TEST(Suite, Name, path, function, contract)    \
   TEST(Suite, Name) {                                                 \
     ::oblique::testing::check_shader((path), (function), (contract)); \
+  }
+
+/// OBLIQUE_SHADER_TEST with oblique::testing::ShaderSettings (the engine's defines, the device,
+/// the time limit): OBLIQUE_SHADER_TEST_WITH(Ssr, hdrp, "ssr.hlsl", "view_position",
+/// oblique::Contract{}, (oblique::testing::ShaderSettings{{}, 10, {"UNITY_REVERSED_Z=1"}})).
+#define OBLIQUE_SHADER_TEST_WITH(Suite, Name, path, function, contract, settings)     \
+  TEST(Suite, Name) {                                                                \
+    ::oblique::testing::check_shader((path), (function), (contract), (settings));    \
   }

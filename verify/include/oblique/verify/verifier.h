@@ -33,6 +33,8 @@ struct VerifyOptions {
   std::string shader;
   std::optional<shader::Language> shader_language;  ///< none: by the file's extension
   std::string shader_device = "software";           ///< software (llvmpipe) or gpu
+  /// --define NAME[=VALUE]: the engine's defines the shader is preprocessed and compiled under.
+  std::vector<std::string> shader_defines;
   /// What the implementation promises, and so which inputs it is sent and how its answers are
   /// judged (the summary says what was left out). Its empty conventions mean gl (the protocol's
   /// default), its unset statuses any_refusal (a program need not name our refusals).
