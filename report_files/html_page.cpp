@@ -3,6 +3,8 @@
 #include <array>
 #include <cstdlib>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "oblique/protocol/json.h"
 #include "oblique/protocol/numbers.h"
@@ -53,33 +55,71 @@ std::string point(const Eigen::Vector3d& p) {
   return number(p.x()) + "," + number(p.y()) + "," + number(p.z());
 }
 
-/// JSON text safe inside a <script> element.
-std::string script_safe(std::string text) {
-  for (std::size_t at = 0; (at = text.find("</", at)) != std::string::npos; at += 3)
-    text.replace(at, 2, "<\\/");
-  return text;
+/// `template_text` with each mark replaced by its text, the marks found in the template alone (a
+/// value that holds a mark, a surface named "/*OBLIQUE_DATA*/", stays as it is).
+std::string filled(const std::string& template_text,
+                   const std::vector<std::pair<std::string, std::string>>& marks) {
+  std::string out;
+  std::size_t from = 0;
+  for (;;) {
+    std::size_t first = std::string::npos;
+    const std::pair<std::string, std::string>* which = nullptr;
+    for (const auto& m : marks) {
+      const std::size_t at = template_text.find(m.first, from);
+      if (at < first) {
+        first = at;
+        which = &m;
+      }
+    }
+    if (!which) break;
+    out.append(template_text, from, first - from);
+    out += which->second;
+    from = first + which->first.size();
+  }
+  out.append(template_text, from, std::string::npos);
+  return out;
 }
 
-std::string html_escaped(const std::string& text) {
+}  // namespace
+
+std::string html_escaped(std::string_view text) {
   std::string out;
+  out.reserve(text.size());
   for (char c : text) {
     switch (c) {
       case '&': out += "&amp;"; break;
       case '<': out += "&lt;"; break;
       case '>': out += "&gt;"; break;
       case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
       default: out += c;
     }
   }
   return out;
 }
 
-void replace_once(std::string& text, const std::string& mark, const std::string& with) {
-  const std::size_t at = text.find(mark);
-  if (at != std::string::npos) text.replace(at, mark.size(), with);
+std::string script_safe(std::string_view json) {
+  std::string out;
+  out.reserve(json.size());
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    // '<', '>' and '&' occur in JSON only inside strings, where \u escapes mean the same.
+    if (c == '<') {
+      out += "\\u003c";
+    } else if (c == '>') {
+      out += "\\u003e";
+    } else if (c == '&') {
+      out += "\\u0026";
+    } else if (c == '\xE2' && i + 2 < json.size() && json[i + 1] == '\x80' &&
+               (json[i + 2] == '\xA8' || json[i + 2] == '\xA9')) {
+      out += json[i + 2] == '\xA8' ? "\\u2028" : "\\u2029";  // line ends to older parsers
+      i += 2;
+    } else {
+      out += c;
+    }
+  }
+  return out;
 }
-
-}  // namespace
 
 std::string views_html(const Views& views, const std::string& markdown,
                        const std::vector<StagedPicture>& pictures) {
@@ -126,11 +166,9 @@ std::string views_html(const Views& views, const std::string& markdown,
     from = end + 1;
   }
   text += "<pre>" + html_escaped(kept) + "</pre>\n";
-  std::string page = kView3dPageTemplate;
-  replace_once(page, "<!--OBLIQUE_TITLE-->", html_escaped(views.title));
-  replace_once(page, "/*OBLIQUE_DATA*/", script_safe(data));
-  replace_once(page, "<!--OBLIQUE_REPORT-->", text);
-  return page;
+  return filled(kView3dPageTemplate, {{"<!--OBLIQUE_TITLE-->", html_escaped(views.title)},
+                                      {"/*OBLIQUE_DATA*/", script_safe(data)},
+                                      {"<!--OBLIQUE_REPORT-->", text}});
 }
 
 }  // namespace oblique::report

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "oblique/report/picture.h"
@@ -18,5 +19,12 @@ namespace oblique::report {
 /// `pictures` (inline, with their captions).
 std::string views_html(const Views& views, const std::string& markdown,
                        const std::vector<StagedPicture>& pictures);
+
+/// The two ways a user's string (a surface's name, a path, a report's text) enters a page, each
+/// the only one of its kind: as HTML text or an attribute's value (& < > " ' as entities), and as
+/// JSON inside a <script> element (< > & as \u escapes, so no "</script>", "<!--" or "<script"
+/// can end or change the element; U+2028 and U+2029 escaped too).
+std::string html_escaped(std::string_view text);
+std::string script_safe(std::string_view json);
 
 }  // namespace oblique::report
