@@ -255,6 +255,15 @@ int run_check(const CheckSettings& settings) {
     const std::filesystem::path page = settings.html;
     // The page replaces a file of that name, never anything else (a device, a folder).
     std::error_code ec;
+    const std::string name = page.filename().string();
+    if (name.empty() || name == "." || name == "..") {
+      std::cerr << "oblique check: cannot write the page " << settings.html
+                << ": it names a folder, not a file (give the page's file name, such as "
+                << (page.parent_path().empty() ? std::string("scene.html")
+                                               : (page.parent_path() / "scene.html").string())
+                << "); nothing written\n";
+      return 2;
+    }
     if (std::filesystem::exists(page, ec) && !std::filesystem::is_regular_file(page, ec)) {
       std::cerr << "oblique check: cannot write the page " << settings.html
                 << ": it names something other than a file; nothing written\n";

@@ -1,6 +1,10 @@
 #include "oblique/protocol/interrupts.h"
 
+#include <dirent.h>
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -29,6 +33,52 @@ std::atomic<int> shown{-1};  ///< the buffer the handler writes; -1: none
 std::mutex writing;
 std::atomic<bool> finishing{false};
 std::atomic<int> noted{0};
+
+/// The paths to remove (remove_on_interrupt()): a slot is 0 free, 1 being written, 2 set.
+struct Removal {
+  std::atomic<int> state{0};
+  bool folder = false;
+  char path[kMaxRemovalPath];
+};
+Removal removals[kMaxRemovals];
+
+/// Removes what the slots name; only async-signal-safe calls (getdents64 through syscall()).
+void remove_what_is_half_made() {
+  for (Removal& r : removals) {
+    if (r.state.load() != 2) continue;
+    if (!r.folder) {
+      struct stat st {};
+      if (::lstat(r.path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size == 0) ::unlink(r.path);
+      continue;
+    }
+    const int dir = ::open(r.path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (dir < 0) continue;
+    alignas(8) char buffer[4096];
+    for (;;) {
+      const long n = ::syscall(SYS_getdents64, dir, buffer, sizeof buffer);
+      if (n <= 0) break;
+      bool removed = false;
+      for (long at = 0; at < n;) {
+        struct Entry {
+          ino64_t ino;
+          off64_t off;
+          unsigned short reclen;
+          unsigned char type;
+          char name[1];
+        };
+        const auto* e = reinterpret_cast<const Entry*>(buffer + at);
+        at += e->reclen;
+        if (std::strcmp(e->name, ".") == 0 || std::strcmp(e->name, "..") == 0) continue;
+        if (::unlinkat(dir, e->name, 0) == 0 || ::unlinkat(dir, e->name, AT_REMOVEDIR) == 0)
+          removed = true;
+      }
+      if (!removed) break;  // what is left cannot go: stop rather than loop
+      ::lseek(dir, 0, SEEK_SET);
+    }
+    ::close(dir);
+    ::rmdir(r.path);
+  }
+}
 
 void end_groups_and_die(int sig);
 
@@ -61,6 +111,7 @@ void end_groups_and_die(int sig) {
     const pid_t pid = g.load();
     if (pid > 0) ::kill(-pid, SIGKILL);
   }
+  remove_what_is_half_made();
   ::signal(sig, SIG_DFL);
   ::raise(sig);
 }
@@ -109,6 +160,30 @@ void set_interrupt_line(const std::string& line) {
   std::memcpy(lines[next], text.data(), text.size());
   lengths[next] = text.size();
   shown.store(next);
+}
+
+void remove_on_interrupt(const std::string& path, bool folder) {
+  if (path.empty() || path.size() >= kMaxRemovalPath) return;
+  for (Removal& r : removals) {
+    int expected = 0;
+    if (!r.state.compare_exchange_strong(expected, 1)) continue;
+    std::memcpy(r.path, path.c_str(), path.size() + 1);
+    r.folder = folder;
+    r.state.store(2);
+    return;
+  }
+}
+
+void keep_on_interrupt(const std::string& path) {
+  for (Removal& r : removals) {
+    int expected = 2;
+    if (r.state.load() != 2 || path != r.path) continue;
+    if (r.state.compare_exchange_strong(expected, 1)) {
+      r.path[0] = '\0';
+      r.state.store(0);
+      return;
+    }
+  }
 }
 
 void remember_child_group(pid_t group) {

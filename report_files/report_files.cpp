@@ -19,24 +19,34 @@
 #include <string>
 #include <system_error>
 
+#include "oblique/protocol/interrupts.h"
 #include "oblique/protocol/shell_text.h"
 
 namespace oblique::report {
 
 ReportFiles::ReportFiles(std::filesystem::path dir) : dir_(std::move(dir)) {
-  // One folder per object: two reports staged at once in one folder never share one.
-  static std::atomic<unsigned> count{0};
-  staging_ =
-      dir_ / (".oblique-staging-" + std::to_string(::getpid()) + "-" + std::to_string(count++));
+  // One new folder per object, its name not guessable (mkdtemp): two reports staged at once in
+  // one folder never share one, and a folder or a link found under that name is never used.
   std::error_code ec;
-  std::filesystem::create_directories(staging_, ec);
-  if (ec) error_ = "cannot create " + staging_.string() + ": " + ec.message();
+  std::filesystem::create_directories(dir_, ec);
+  std::string pattern = (dir_ / ".oblique-staging-XXXXXX").string();
+  if (::mkdtemp(pattern.data()) == nullptr) {
+    error_ = "cannot create a staging folder in " + dir_.string() + ": " + std::strerror(errno);
+    return;
+  }
+  staging_ = pattern;
+  // An interrupt (while a picture is drawn, say) removes it, and the names reserved.
+  protocol::handle_interrupts();
+  protocol::remove_on_interrupt(staging_.string(), true);
 }
 
 ReportFiles::~ReportFiles() {
   staged_.clear();  // closes the streams
   std::error_code ec;
-  std::filesystem::remove_all(staging_, ec);
+  if (!staging_.empty()) {
+    std::filesystem::remove_all(staging_, ec);
+    protocol::keep_on_interrupt(staging_.string());
+  }
   release_reservations();
 }
 
@@ -47,6 +57,7 @@ void ReportFiles::release_reservations() {
     if (std::find(written_.begin(), written_.end(), held) == written_.end() &&
         std::filesystem::file_size(held, ec) == 0 && !ec)
       std::filesystem::remove(held, ec);
+    protocol::keep_on_interrupt(held.string());
   }
 }
 
@@ -225,7 +236,7 @@ void ReportFiles::die_of(int sig) {
   // Nothing of this report is committed after an interrupt: the folder stays as it was.
   staged_.clear();
   std::error_code ec;
-  std::filesystem::remove_all(staging_, ec);
+  if (!staging_.empty()) std::filesystem::remove_all(staging_, ec);
   release_reservations();
   ::raise(sig);  // with the handler that was there before (or the default: the exit is 128 + sig)
   ::signal(sig, SIG_DFL);  // (a handler that returned: one that finishes on a first interrupt)
@@ -314,6 +325,7 @@ std::string ReportFiles::reserve_stem(const std::string& stem,
     if (fd >= 0) {
       ::close(fd);
       reserved_.push_back(held);
+      protocol::remove_on_interrupt(held.string(), false);
       return name;
     }
     if (errno != EEXIST) return name;  // the folder cannot take it: commit() says why

@@ -1019,6 +1019,13 @@ TEST(Scenes, cliHtmlWritesOnlyAFile) {
   std::filesystem::create_directories(folder);
   EXPECT_EQ(run_check_capturing(dir + "/lake.json --html " + folder, output), 2) << output;
   EXPECT_TRUE(std::filesystem::is_directory(folder));
+  // A name ending in a slash names a folder: refused before anything is made (it once left an
+  // empty folder x.html/ behind).
+  const std::string slashed = ::testing::TempDir() + "oblique_never_made.html/";
+  std::filesystem::remove_all(slashed);
+  EXPECT_EQ(run_check_capturing(dir + "/lake.json --html " + slashed, output), 2) << output;
+  EXPECT_NE(output.find("it names a folder, not a file"), std::string::npos) << output;
+  EXPECT_FALSE(std::filesystem::exists(slashed));
   const std::string page = ::testing::TempDir() + "oblique_page.html";
   std::ofstream(page) << "an earlier page\n";
   EXPECT_EQ(run_check_capturing(dir + "/lake.json --html " + page, output), 0) << output;

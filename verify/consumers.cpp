@@ -688,6 +688,7 @@ class ConsumerRun {
   }
 
   Verdict report(double seconds) {
+    set_reporting_line(options_);
     const Caught<T>& c = *caught_;
     const std::string check = c.lost
                                   ? (c.lost->kind() == Failure::Kind::crash ? "crash" : "timeout")

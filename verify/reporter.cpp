@@ -66,6 +66,7 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
       return Verdict::violated;
     }
   }
+  set_reporting_line(options_);
   report::Counterexample ce = report::make_counterexample(v.matrix, v.plane, v.convention);
   ce.finding = f;
   ce.implementation = options_.command;
@@ -307,6 +308,13 @@ void set_interrupted_line(const VerifyOptions& options, long judged, const std::
 void set_shrinking_line(const VerifyOptions& options) {
   protocol::set_interrupt_line(
       "oblique verify: interrupted while shrinking a violation, before its report was written "
+      "(seed " +
+      std::to_string(options.seed) + "); to repeat it: " + rerun_command(options));
+}
+
+void set_reporting_line(const VerifyOptions& options) {
+  protocol::set_interrupt_line(
+      "oblique verify: interrupted while writing a violation's report; nothing of it was kept "
       "(seed " +
       std::to_string(options.seed) + "); to repeat it: " + rerun_command(options));
 }

@@ -25,6 +25,9 @@ void set_interrupted_line(const VerifyOptions& options, long judged, const std::
                           double seconds);
 /// The same once a violation is being shrunk: the run is repeated to find it again.
 void set_shrinking_line(const VerifyOptions& options);
+/// The same once the shrunk violation's report is being written (its pictures drawn): nothing of
+/// it is left behind (report::ReportFiles), and the run is repeated to write it.
+void set_reporting_line(const VerifyOptions& options);
 
 /// A matrix or vector's entries, row by row, as a JSON list of exact hex strings (what a report
 /// keeps for its replay).

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <sys/types.h>
+#include <cstddef>
 #include <string>
 
 namespace oblique::protocol {
@@ -26,6 +27,16 @@ void finish_on_interrupt();
 int interrupted();
 /// Writes the interrupted line (if any) and dies of `sig` as the interrupt asked.
 [[noreturn]] void die_of_interrupt(int sig);
+
+/// What the handler removes before dying, so an interrupt leaves nothing half made: a staging
+/// `folder` (the files in it, then itself; never a link) or an empty file holding a reserved name
+/// (removed only while it is empty). keep_on_interrupt() takes one back once it is committed or
+/// gone. At most kMaxRemovals at once, paths of at most kMaxRemovalPath bytes (others are not
+/// remembered: the destructors still remove them on a normal exit).
+inline constexpr int kMaxRemovals = 32;
+inline constexpr std::size_t kMaxRemovalPath = 4096;
+void remove_on_interrupt(const std::string& path, bool folder);
+void keep_on_interrupt(const std::string& path);
 
 /// A process group that the handler ends (SIGKILL) before dying; forget it once it is reaped.
 void remember_child_group(pid_t group);
