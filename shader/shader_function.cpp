@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <unordered_set>
 
 namespace oblique::shader {
 
@@ -82,6 +83,19 @@ std::string type_in(const std::string& glsl, Language language) {
   return names.at(glsl);
 }
 
+/// The input a parameter's name stands for (ignoring case and underscores), if any.
+std::optional<Input> input_named(const std::string& name) {
+  static const std::map<std::string, Input> by_folded_name = [] {
+    std::map<std::string, Input> out;
+    for (const InputEntry& e : inputs())
+      for (const std::string_view n : e.names) out.emplace(folded(n), e.input);
+    return out;
+  }();
+  const auto it = by_folded_name.find(folded(name));
+  if (it == by_folded_name.end()) return std::nullopt;
+  return it->second;
+}
+
 std::string names_list(const std::vector<std::string>& names) {
   constexpr std::size_t kShown = 20;
   std::string out;
@@ -115,12 +129,13 @@ Expected<Signature> find_signature(const std::string& source, const std::string&
   using Found = Expected<Signature>;
   const std::string text = without_comments(source);
   const std::vector<Definition> found = definitions(tokens(text));
-  std::vector<std::string> found_names;
+  std::vector<std::string> found_names;  // in order, each once
+  std::unordered_set<std::string_view> seen;
   std::vector<const Definition*> matches;
   for (const Definition& d : found) {
     if (d.name == function)
       matches.push_back(&d);
-    else if (std::find(found_names.begin(), found_names.end(), d.name) == found_names.end())
+    else if (seen.insert(d.name).second)
       found_names.emplace_back(d.name.substr(0, 64));
   }
   if (matches.empty())
@@ -173,14 +188,9 @@ Expected<Signature> find_signature(const std::string& source, const std::string&
                             "\" is not a type and a name (out and inout parameters are not "
                             "part of the convention: return the answer)");
     Parameter p{words[0], words[1], Input::depth};
-    bool known = false;
-    for (const InputEntry& e : inputs()) {
-      for (const std::string_view n : e.names) {
-        if (known || folded(n) != folded(p.name)) continue;
-        p.input = e.input;
-        known = true;
-      }
-    }
+    const std::optional<Input> input = input_named(p.name);
+    const bool known = input.has_value();
+    if (known) p.input = *input;
     if (!known) {
       std::string vocabulary;
       for (const InputEntry& e : inputs())

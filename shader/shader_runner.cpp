@@ -246,14 +246,6 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
     const std::vector<ShaderFunction>& functions, const RunnerOptions& options) {
   using Opened = Expected<std::unique_ptr<ShaderRunner>>;
   if (functions.empty()) return Opened::failure("no shader function to run");
-  // An interrupt while the tools run ends their process groups and says what it stopped.
-  std::string names;
-  for (const ShaderFunction& f : functions) names += (names.empty() ? "" : ", ") + f.path;
-  protocol::set_interrupt_line("oblique: interrupted while compiling " +
-                               protocol::escape_bytes(names) + "; nothing was judged");
-  struct ClearLine {
-    ~ClearLine() { protocol::set_interrupt_line(""); }
-  } clear_line;
   auto state = std::make_unique<State>();
   state->options = options;
   state->functions = functions;
@@ -308,6 +300,14 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
   if (!gl) return Opened::failure(gl.error());
   state->gl = std::move(*gl);
   const raster::NoShaderCache no_cache;
+  // What an interrupt says while the driver compiles (the tools say theirs, shader_tools.cpp).
+  std::string names;
+  for (const ShaderFunction& f : functions) names += (names.empty() ? "" : ", ") + f.path;
+  protocol::set_interrupt_line("oblique: interrupted while compiling " + names +
+                               " in the driver; nothing was judged");
+  struct ClearLine {
+    ~ClearLine() { protocol::set_interrupt_line(""); }
+  } clear_line;
   for (const Wrapped& w : wrapped) {
     for (int c = 0; c < 3; ++c) {
       // The driver compiles in this process and cannot be stopped: past the time limit the

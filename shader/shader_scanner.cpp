@@ -32,40 +32,40 @@ std::string_view reach(std::string_view w) {
   // Storage a shader writes or other invocations see: GLSL's storage blocks, images and atomic
   // counters; HLSL's read-write and structured buffers and textures (the runner's own buffers
   // are such).
-  if (w == "buffer") return "a storage block (the runner's buffers are storage blocks)";
-  if (w == "atomic_uint") return "an atomic counter";
+  if (w == "buffer") return "declares a storage block, as the runner's own buffers are";
+  if (w == "atomic_uint") return "declares an atomic counter";
   if (one_of(w, {"coherent", "volatile", "restrict", "readonly", "writeonly"}))
-    return "a memory qualifier of a buffer or an image";
+    return "qualifies the memory of a buffer or an image";
   for (const std::string_view prefix : {"image", "iimage", "uimage"}) {
     if (!starts_with(w, prefix) || w.size() == prefix.size()) continue;
     const std::string_view rest = w.substr(prefix.size());
     if (std::isdigit(static_cast<unsigned char>(rest[0])) != 0 ||
         one_of(rest, {"Cube", "CubeArray", "Buffer"}))
-      return "an image";
+      return "declares an image";
   }
   if (starts_with(w, "RW") && w.size() > 2 && std::isupper(static_cast<unsigned char>(w[2])) != 0)
-    return "a read-write resource";
+    return "declares a read-write resource";
   if (one_of(w, {"StructuredBuffer", "ByteAddressBuffer", "AppendStructuredBuffer",
                  "ConsumeStructuredBuffer", "RasterizerOrderedBuffer", "globallycoherent"}))
-    return "a buffer";
+    return "declares a buffer";
   // Memory shared between the invocations of a work group.
-  if (w == "shared" || w == "groupshared") return "memory shared between invocations";
-  if (starts_with(w, "Interlocked") || starts_with(w, "atomic")) return "an atomic operation";
+  if (w == "shared" || w == "groupshared") return "declares memory shared between invocations";
+  if (starts_with(w, "Interlocked") || starts_with(w, "atomic")) return "is an atomic operation";
   // Which invocation or lane it is, or another lane's values.
   if (one_of(w, {"gl_GlobalInvocationID", "gl_LocalInvocationID", "gl_LocalInvocationIndex",
                  "gl_WorkGroupID", "gl_NumWorkGroups", "gl_WorkGroupSize"}))
-    return "which invocation it is (an answer depends on its inputs only)";
+    return "tells the function which invocation it is";
   if (starts_with(w, "gl_Subgroup") || starts_with(w, "subgroup") || starts_with(w, "WaveActive") ||
       starts_with(w, "WavePrefix") || starts_with(w, "WaveMultiPrefix") ||
       starts_with(w, "WaveRead") || starts_with(w, "WaveGetLane") || w == "WaveIsFirstLane" ||
       w == "WaveMatch" || starts_with(w, "QuadRead") || starts_with(w, "gl_SM") || starts_with(w, "gl_Warp") ||
       starts_with(w, "ballotARB") || starts_with(w, "readInvocationARB") ||
       starts_with(w, "readFirstInvocationARB"))
-    return "another lane's values (subgroup or wave operations)";
+    return "reads other lanes' values (a subgroup or wave operation)";
   if (one_of(w, {"barrier", "memoryBarrier", "memoryBarrierShared", "groupMemoryBarrier",
                  "GroupMemoryBarrierWithGroupSync", "GroupMemoryBarrier",
                  "DeviceMemoryBarrier", "AllMemoryBarrier"}))
-    return "a barrier between invocations";
+    return "waits on other invocations";
   return {};
 }
 
@@ -199,7 +199,7 @@ std::optional<std::string> reaches_beyond_its_inputs(const std::vector<Token>& t
     const std::string_view why = reach(t.text);
     if (why.empty()) continue;
     std::string word(t.text.substr(0, 64));
-    return "line " + std::to_string(t.line) + ": " + word + " (" + std::string(why) + ")";
+    return "line " + std::to_string(t.line) + ": " + word + " " + std::string(why);
   }
   return std::nullopt;
 }

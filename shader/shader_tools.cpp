@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "oblique/protocol/child_process.h"
+#include "oblique/protocol/interrupts.h"
 #include "oblique/protocol/shell_text.h"
 #include "oblique/shader/shader_scanner.h"
 
@@ -69,6 +70,12 @@ ToolRun run_limited(const std::string& tool, const std::string& arguments, doubl
   seconds = std::max(seconds, kToolLeastSeconds);
   const std::string command = "ulimit -v " + std::to_string(kToolAddressSpaceBytes >> 10) +
                               " && exec " + tool + " " + arguments + " 2>&1";
+  // An interrupt ends the tool's process group (ChildProcess) and says what it stopped.
+  protocol::set_interrupt_line("oblique: interrupted while " + what + " (" + tool +
+                               "); nothing was judged");
+  struct ClearLine {
+    ~ClearLine() { protocol::set_interrupt_line(""); }
+  } clear_line;
   protocol::ChildProcess child(command);
   if (const Expected<Done> started = child.start(); !started) {
     run.error = "cannot start " + tool + ": " + started.error();

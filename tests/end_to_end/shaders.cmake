@@ -155,3 +155,126 @@ endforeach()
 oblique_shader_refusal(a_scene_without_reconstruction "the scene names none: add \"reconstruction\""
                        $<TARGET_FILE:oblique> check ${PROJECT_SOURCE_DIR}/examples/scenes/lake.json
                        --shader ${shaders}/depth_right.glsl)
+
+# Hostile shader files (issue 64), each way in a shader reaches: verify --shader, check --shader
+# and OBLIQUE_SHADER_TEST (a test binary of a user's, on the file its environment names). Each
+# gets a right verdict, or exit 2 (the test binary: a failed test) with one line naming what is
+# wrong, within --timeout, compiles included; never a crash (the scanner's std::regex overflowed
+# the stack at about 50 KB) or a hang (glslang ran without limits). The files are made at test
+# time (make_hostile_shaders.sh: some are megabytes).
+set(hostile_files ${PROJECT_BINARY_DIR}/hostile_shaders)
+add_test(NAME shaders_make_hostile_files
+         COMMAND sh ${hostile_shaders}/make_hostile_shaders.sh ${hostile_files})
+set_tests_properties(shaders_make_hostile_files PROPERTIES LABELS shaders
+                     FIXTURES_SETUP hostile_shader_files)
+# (shader_test_of_a_file is built in tests/CMakeLists.txt, where GoogleTest is found.)
+set(portal_room_check $<TARGET_FILE:oblique> check ${portal_room})
+# oblique_hostile_shader(NAME FILE:FUNCTION OUTCOME REGEX [verify and check arguments...]):
+# OUTCOME right (exit 0; the test passes) or refused (exit 2; the test fails with REGEX).
+function(oblique_hostile_shader name spec outcome regex)
+  if(outcome STREQUAL "right")
+    set(verify_status 0)
+    set(verify_regex "no violation in [1-9][0-9]* answers judged")
+    set(check_status 0)
+    set(check_regex "reconstruction ok \\([1-9][0-9]* judged\\)")
+    set(test_status 0)
+    set(test_regex "\\[  PASSED  \\] 1 test")
+  elseif(outcome STREQUAL "wrong")
+    set(verify_status 1)
+    set(verify_regex "view_position violated")
+    set(check_status 1)
+    set(check_regex "reconstruction FAIL")
+    set(test_status 1)
+    set(test_regex "view_position violated")
+  else()
+    set(verify_status 2)
+    set(verify_regex "${regex}")
+    set(check_status 2)
+    set(check_regex "${regex}")
+    set(test_status 1)
+    set(test_regex "${regex}")
+  endif()
+  set(timeout 10)
+  set(defines "")
+  set(flags ${ARGN})
+  list(FIND flags --timeout at)
+  if(at GREATER -1)
+    math(EXPR next "${at} + 1")
+    list(GET flags ${next} timeout)
+  endif()
+  foreach(flag IN LISTS flags)
+    if(flag MATCHES "^-D(.*)$")
+      list(APPEND defines ${CMAKE_MATCH_1})
+    endif()
+  endforeach()
+  string(REPLACE ";" "," defines "${defines}")
+  add_test(NAME shaders_hostile_verify_${name}
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh ${verify_status} "${verify_regex}"
+                   ${verify_shader} --consumers view_position --convention all --shader ${spec}
+                   ${ARGN})
+  add_test(NAME shaders_hostile_check_${name}
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh ${check_status} "${check_regex}"
+                   ${portal_room_check} --shader ${spec} ${ARGN})
+  set(tests shaders_hostile_verify_${name} shaders_hostile_check_${name})
+  if(TARGET shader_test_of_a_file)
+    add_test(NAME shaders_hostile_test_macro_${name}
+             COMMAND env OBLIQUE_TRIED_SHADER=${spec} OBLIQUE_TRIED_DEFINES=${defines}
+                     OBLIQUE_TRIED_TIMEOUT=${timeout}
+                     OBLIQUE_REPORT_DIR=${shader_reports}/hostile_macro
+                     sh ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh ${test_status} "${test_regex}"
+                     $<TARGET_FILE:shader_test_of_a_file>)
+    list(APPEND tests shaders_hostile_test_macro_${name})
+  endif()
+  set_tests_properties(${tests} PROPERTIES LABELS "shaders;hostile" TIMEOUT 120
+                       FIXTURES_REQUIRED hostile_shader_files
+                       SKIP_REGULAR_EXPRESSION "${shader_skip}")
+endfunction()
+# 1. Files the scanner once crashed on: 900 comment lines after a word, a 300 KB #version line
+# (ours replaces it), a 50 KB identifier (glslang's limit is 1,024 characters), 10,000 parameters.
+oblique_hostile_shader(comments_after_version ${hostile_files}/comments_after_version.glsl:view_position right "")
+oblique_hostile_shader(comments_after_endif ${hostile_files}/comments_after_endif.glsl:view_position right "")
+oblique_hostile_shader(long_version_line ${hostile_files}/long_version_line.glsl:view_position right "")
+oblique_hostile_shader(long_identifier ${hostile_files}/long_identifier.glsl:view_position refused
+                       "long_identifier.glsl:1: '' : name too long")
+oblique_hostile_shader(ten_thousand_parameters ${hostile_files}/ten_thousand_parameters.glsl:view_position refused
+                       "parameter extra0 is not an input the harness knows")
+# 2. Compiles that grew to gigabytes or ran for minutes: stopped at --timeout, said.
+foreach(slow macro_bomb.glsl if_bomb.hlsl fifteen_megabytes.glsl)
+  string(REGEX REPLACE "\\..*$" "" name ${slow})
+  oblique_hostile_shader(${name} ${hostile_files}/${slow}:view_position refused
+                         "(preprocessing|compiling) .*${slow} did not finish within 3 s" --timeout 3)
+endforeach()
+# 3. A wrong function that wrote a right answer into its neighbour's slot (its replay said "the
+# round holds"): a depth function reaches no buffer, shared memory or invocation id. Through a
+# macro that pastes the words together too (the preprocessor's text is scanned).
+foreach(neighbour writes_its_neighbour writes_its_neighbour_pasted)
+  oblique_hostile_shader(${neighbour} ${hostile_files}/${neighbour}.glsl:view_position refused
+                         "${neighbour}.glsl: line [12]: buffer declares a storage block")
+endforeach()
+# 4. #if variants of one function, as shipped: the engine's define chooses the right one; without
+# it the wrong one runs and is caught.
+oblique_hostile_shader(ifdef_variant_defined ${hostile_shaders}/ifdef_variants.glsl:view_position
+                       right "" -DENGINE_INVERSE_ON_GPU=1)
+oblique_hostile_shader(ifdef_variant_undefined ${hostile_shaders}/ifdef_variants.glsl:view_position
+                       wrong "")
+# SIGTERM while glslang preprocesses the macro bomb: exit 143, the interrupt line, glslang ended;
+# each way in.
+set(bomb ${hostile_files}/macro_bomb.glsl:view_position)
+string(JOIN "|" verify_way verify ${verify_shader} --consumers view_position --timeout 60
+       --shader ${bomb})
+string(JOIN "|" check_way check ${portal_room_check} --timeout 60 --shader ${bomb})
+set(interrupt_ways ${verify_way} ${check_way})
+if(TARGET shader_test_of_a_file)
+  string(JOIN "|" test_way test_macro env OBLIQUE_TRIED_SHADER=${bomb} OBLIQUE_TRIED_TIMEOUT=60
+         $<TARGET_FILE:shader_test_of_a_file>)
+  list(APPEND interrupt_ways ${test_way})
+endif()
+foreach(way IN LISTS interrupt_ways)
+  string(REPLACE "|" ";" way "${way}")
+  list(POP_FRONT way name)
+  add_test(NAME shaders_hostile_${name}_interrupted_while_compiling
+           COMMAND sh ${hostile_shaders}/interrupt_while_compiling.sh ${way})
+  set_tests_properties(shaders_hostile_${name}_interrupted_while_compiling PROPERTIES
+                       LABELS "shaders;hostile" TIMEOUT 60 FIXTURES_REQUIRED hostile_shader_files
+                       SKIP_REGULAR_EXPRESSION "${shader_skip}")
+endforeach()

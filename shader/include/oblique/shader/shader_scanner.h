@@ -47,8 +47,8 @@ std::optional<std::pair<std::size_t, std::size_t>> version_line(std::string_view
 
 /// The first word among `tokens` that reaches beyond a depth function's own inputs (a buffer,
 /// an image or an atomic counter another invocation reads or the runner writes; memory shared
-/// between invocations; which invocation or lane it is), and why, as "line N: buffer (a storage
-/// block...)"; none when there is none.
+/// between invocations; which invocation or lane it is), and why, as "line N: buffer declares a
+/// storage block, ..."; none when there is none.
 std::optional<std::string> reaches_beyond_its_inputs(const std::vector<Token>& tokens);
 
 }  // namespace oblique::shader
