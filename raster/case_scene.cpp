@@ -303,8 +303,11 @@ Mesh reference_scene(const Eigen::Matrix4d& m, const Eigen::Vector4d& c, Convent
   };
   // The floor: a plane below the axis, under the screen at the near end and at 30% below the
   // centre at the far end (seen from above by every projection, orthographic ones included).
-  const auto [near_w, near_h] = half_sizes(m, inverse, axis_point(0.02));
-  const auto [far_w, far_h] = half_sizes(m, inverse, axis_point(1));
+  // Plain variables, not structured bindings: clang 14 (the fuzz preset) cannot capture those.
+  const auto near_size = half_sizes(m, inverse, axis_point(0.02));
+  const auto far_size = half_sizes(m, inverse, axis_point(1));
+  const double near_w = near_size.first, near_h = near_size.second;
+  const double far_w = far_size.first, far_h = far_size.second;
   if (!(near_h > 0) || !(far_h > 0)) return mesh;
   auto floor_height = [&](double t) { return -(1.1 * near_h) * (1 - t) - (0.3 * far_h) * t; };
   auto half_width = [&](double t) { return 1.4 * ((1 - t) * near_w + t * far_w); };

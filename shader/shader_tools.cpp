@@ -32,11 +32,15 @@ struct TempFolder {
     const std::filesystem::path base = std::filesystem::temp_directory_path(ec);
     if (ec) return;  // path stays empty: the caller says it cannot make one
     std::string pattern = (base / "oblique-shader-XXXXXX").string();
-    if (mkdtemp(pattern.data())) path = pattern;
+    if (!mkdtemp(pattern.data())) return;
+    path = pattern;
+    protocol::remove_on_interrupt(path.string(), true);  // an interrupt leaves no folder behind
   }
   ~TempFolder() {
     std::error_code ec;
-    if (!path.empty()) std::filesystem::remove_all(path, ec);
+    if (path.empty()) return;
+    std::filesystem::remove_all(path, ec);
+    protocol::keep_on_interrupt(path.string());
   }
   TempFolder(const TempFolder&) = delete;
   TempFolder& operator=(const TempFolder&) = delete;

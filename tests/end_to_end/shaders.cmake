@@ -278,3 +278,18 @@ foreach(way IN LISTS interrupt_ways)
                        LABELS "shaders;hostile" TIMEOUT 60 FIXTURES_REQUIRED hostile_shader_files
                        SKIP_REGULAR_EXPRESSION "${shader_skip}")
 endforeach()
+# A shader path holding terminal escapes is shown escaped in the message that echoes it.
+foreach(way verify check test_macro)
+  if(way STREQUAL "test_macro")
+    if(NOT TARGET shader_test_of_a_file)
+      continue()
+    endif()
+    set(bin $<TARGET_FILE:shader_test_of_a_file>)
+  else()
+    set(bin $<TARGET_FILE:oblique>)
+  endif()
+  add_test(NAME shaders_hostile_${way}_escapes_a_path
+           COMMAND sh ${hostile_shaders}/expect_escaped.sh ${way} ${bin} ${portal_room})
+  set_tests_properties(shaders_hostile_${way}_escapes_a_path PROPERTIES LABELS "shaders;hostile"
+                       TIMEOUT 60)
+endforeach()

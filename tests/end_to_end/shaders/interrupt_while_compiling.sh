@@ -2,9 +2,11 @@
 # interrupt_while_compiling.sh COMMAND [ARG...]: SIGTERM to COMMAND (verify, check or a user's test
 # binary) while glslang preprocesses a macro bomb for it. It must die of the signal (exit 143), say
 # what it stopped (the interrupt line: "interrupted while preprocessing FILE"), and leave no glslang
-# running (it once exited 143 saying nothing, glslangValidator still spinning).
+# running (it once exited 143 saying nothing, glslangValidator still spinning) nor any of its files.
 log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+TMPDIR=$(mktemp -d)  # glslang's files go here: nothing may be left in it
+export TMPDIR
+trap 'rm -f "$log"; rm -rf "$TMPDIR"' EXIT
 "$@" > "$log" 2>&1 &
 run=$!
 tool=""
@@ -40,4 +42,8 @@ if ! grep -Eq "interrupted while (preprocessing|compiling) .*macro_bomb.glsl .*;
   echo "interrupt_while_compiling: no interrupt line naming the shader"
   exit 1
 fi
-echo "interrupt_while_compiling: exit 143, said, glslang ended"
+if [ -n "$(ls -A "$TMPDIR")" ]; then
+  echo "interrupt_while_compiling: left in TMPDIR: $(ls -A "$TMPDIR")"
+  exit 1
+fi
+echo "interrupt_while_compiling: exit 143, said, glslang ended, nothing left behind"
