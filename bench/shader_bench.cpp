@@ -23,9 +23,12 @@ constexpr int kRounds = 8192;
 constexpr int kRoundsPerCase = 64;
 
 oblique::shader::ShaderRunner* runner(benchmark::State& state) {
-  static const auto opened = oblique::shader::ShaderRunner::open(
-      {{std::string(OBLIQUE_SHADERS) + "/depth_right.glsl", "view_position",
-        oblique::shader::Language::glsl, ConsumerKind::view_position, {}}});
+  static const auto opened =
+      oblique::shader::ShaderRunner::open({{std::string(OBLIQUE_SHADERS) + "/depth_right.glsl",
+                                            "view_position",
+                                            oblique::shader::Language::glsl,
+                                            ConsumerKind::view_position,
+                                            {}}});
   if (!opened) {
     state.SkipWithError(opened.error().c_str());
     return nullptr;

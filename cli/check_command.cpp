@@ -186,9 +186,9 @@ int run_check(const CheckSettings& settings) {
     oblique::Expected<std::vector<oblique::shader::ShaderFunction>> functions =
         std::vector<oblique::shader::ShaderFunction>{};
     if (!function.empty()) {
-      const auto f = oblique::shader::shader_function_in(
-          file, function, settings.shader_language, settings.shader_defines,
-          settings.timeout_seconds);
+      const auto f =
+          oblique::shader::shader_function_in(file, function, settings.shader_language,
+                                              settings.shader_defines, settings.timeout_seconds);
       if (f)
         functions->push_back(*f);
       else

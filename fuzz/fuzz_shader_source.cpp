@@ -59,10 +59,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const char* last = text.data();
   int last_line = 1;
   for (const Token& t : tokens_found) {
-    if (t.text.empty() || t.text.data() < last || t.text.data() + t.text.size() > text.data() + text.size())
+    if (t.text.empty() || t.text.data() < last ||
+        t.text.data() + t.text.size() > text.data() + text.size())
       fail("a token out of order or outside the text", source);
     if (t.line < last_line ||
-        static_cast<std::size_t>(t.line) != 1 + lines_in(std::string_view(text.data(), static_cast<std::size_t>(t.text.data() - text.data()))))
+        static_cast<std::size_t>(t.line) !=
+            1 + lines_in(std::string_view(text.data(),
+                                          static_cast<std::size_t>(t.text.data() - text.data()))))
       fail("a token's line is not where it is", source);
     last = t.text.data() + t.text.size();
     last_line = t.line;
@@ -119,8 +122,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t user_at = wrapped.find("#line 1");
   if (user_at == std::string::npos) fail("the wrapper has no #line for the user's text", source);
   const std::size_t user_from = wrapped.find('\n', user_at) + 1;
-  if (language == Language::hlsl &&
-      wrapped.compare(user_from, source.size(), source) != 0)
+  if (language == Language::hlsl && wrapped.compare(user_from, source.size(), source) != 0)
     fail("the wrapper changed the user's HLSL", source);
   if (lines_in(std::string_view(wrapped).substr(user_from, source.size())) != lines_in(source) &&
       language == Language::glsl && !version_line(source))

@@ -302,8 +302,11 @@ Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
   }
   std::vector<ShaderFunction> out;
   for (const ConsumerKind k : kinds)
-    out.push_back({path, function.empty() ? std::string(protocol::consumer_kind_name(k)) : function,
-                   lang, k, {}});
+    out.push_back({path,
+                   function.empty() ? std::string(protocol::consumer_kind_name(k)) : function,
+                   lang,
+                   k,
+                   {}});
   return out;
 }
 

@@ -58,13 +58,13 @@ std::string_view reach(std::string_view w) {
   if (starts_with(w, "gl_Subgroup") || starts_with(w, "subgroup") || starts_with(w, "WaveActive") ||
       starts_with(w, "WavePrefix") || starts_with(w, "WaveMultiPrefix") ||
       starts_with(w, "WaveRead") || starts_with(w, "WaveGetLane") || w == "WaveIsFirstLane" ||
-      w == "WaveMatch" || starts_with(w, "QuadRead") || starts_with(w, "gl_SM") || starts_with(w, "gl_Warp") ||
-      starts_with(w, "ballotARB") || starts_with(w, "readInvocationARB") ||
-      starts_with(w, "readFirstInvocationARB"))
+      w == "WaveMatch" || starts_with(w, "QuadRead") || starts_with(w, "gl_SM") ||
+      starts_with(w, "gl_Warp") || starts_with(w, "ballotARB") ||
+      starts_with(w, "readInvocationARB") || starts_with(w, "readFirstInvocationARB"))
     return "reads other lanes' values (a subgroup or wave operation)";
   if (one_of(w, {"barrier", "memoryBarrier", "memoryBarrierShared", "groupMemoryBarrier",
-                 "GroupMemoryBarrierWithGroupSync", "GroupMemoryBarrier",
-                 "DeviceMemoryBarrier", "AllMemoryBarrier"}))
+                 "GroupMemoryBarrierWithGroupSync", "GroupMemoryBarrier", "DeviceMemoryBarrier",
+                 "AllMemoryBarrier"}))
     return "waits on other invocations";
   return {};
 }

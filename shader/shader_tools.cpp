@@ -86,8 +86,9 @@ ToolRun run_limited(const std::string& tool, const std::string& arguments, doubl
     return run;
   }
   int status = 0;
-  const auto deadline = protocol::Clock::now() + std::chrono::duration_cast<protocol::Clock::duration>(
-                                                     std::chrono::duration<double>(seconds));
+  const auto deadline =
+      protocol::Clock::now() +
+      std::chrono::duration_cast<protocol::Clock::duration>(std::chrono::duration<double>(seconds));
   const protocol::ChildProcess::Outcome outcome =
       child.run_to_end(run.output, kToolOutputBytes + 1, deadline, status);
   char limit[64];
@@ -162,8 +163,9 @@ Expected<std::string> define_lines(const std::vector<std::string>& defines) {
     const std::string name = d.substr(0, eq);
     const std::string value = eq == std::string::npos ? "1" : d.substr(eq + 1);
     const bool identifier = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
-                            name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRS"
-                                                   "TUVWXYZ0123456789_") == std::string::npos;
+                            name.find_first_not_of(
+                                "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRS"
+                                "TUVWXYZ0123456789_") == std::string::npos;
     if (!identifier)
       return Expected<std::string>::failure("the define " + protocol::escape_bytes(d) +
                                             " does not start with a name (NAME or NAME=VALUE)");
@@ -176,8 +178,7 @@ Expected<std::string> define_lines(const std::vector<std::string>& defines) {
 }
 
 Expected<std::string> preprocessed(const std::string& source, const std::string& path,
-                                   Language language, const std::string& defines,
-                                   double seconds) {
+                                   Language language, const std::string& defines, double seconds) {
   using Text = Expected<std::string>;
   const bool glsl = language == Language::glsl;
   if (const Expected<Done> has = need("glslangValidator", glsl ? "GLSL" : "HLSL"); !has)
@@ -195,10 +196,10 @@ Expected<std::string> preprocessed(const std::string& source, const std::string&
   std::string text = glsl ? "#version 450 core\n" : "";
   text += defines + "#line 1\n" + user + "\n";
   std::ofstream(in, std::ios::binary) << text;
-  const ToolRun run =
-      run_limited("glslangValidator", std::string("-E ") + (glsl ? "" : "-D -e oblique_main ") +
-                                          "-S comp " + protocol::shell_quote(in),
-                  seconds, "preprocessing " + path);
+  const ToolRun run = run_limited("glslangValidator",
+                                  std::string("-E ") + (glsl ? "" : "-D -e oblique_main ") +
+                                      "-S comp " + protocol::shell_quote(in),
+                                  seconds, "preprocessing " + path);
   if (!run.error.empty()) return Text::failure(run.error);
   if (!run.ok)
     return Text::failure("the shader did not preprocess (glslang):\n" +
@@ -206,8 +207,9 @@ Expected<std::string> preprocessed(const std::string& source, const std::string&
   // The user's part: after the first line "#line 1" (the define lines before it are blank now).
   std::size_t mark = run.output.rfind("#line 1\n", 0) == 0 ? 0 : run.output.find("\n#line 1\n");
   if (mark == std::string::npos)
-    return Text::failure("glslang's preprocessed output lost its #line mark (glslang changed "
-                         "its output?)");
+    return Text::failure(
+        "glslang's preprocessed output lost its #line mark (glslang changed "
+        "its output?)");
   if (mark != 0) ++mark;
   return run.output.substr(mark + 8);
 }
@@ -242,19 +244,20 @@ Expected<std::string> hlsl_as_glsl(const std::string& hlsl, double seconds) {
   const std::string spv = (folder.path / "wrapped.spv").string();
   const std::string glsl = (folder.path / "wrapped.comp").string();
   std::ofstream(in, std::ios::binary) << hlsl;
-  const ToolRun compiled = run_limited(
-      "glslangValidator",
-      "-D -V -S comp -e oblique_main -o " + protocol::shell_quote(spv) + " " + protocol::shell_quote(in),
-      seconds, "compiling the HLSL");
+  const ToolRun compiled =
+      run_limited("glslangValidator",
+                  "-D -V -S comp -e oblique_main -o " + protocol::shell_quote(spv) + " " +
+                      protocol::shell_quote(in),
+                  seconds, "compiling the HLSL");
   if (!compiled.error.empty()) return Text::failure(compiled.error);
   // glslang's messages name the user's file and line already (the wrapper's #line).
   if (!compiled.ok)
     return Text::failure("the HLSL did not compile (glslang):\n" +
                          mapped_glslang_log(compiled.output, in, in));
-  const ToolRun crossed = run_limited(
-      "spirv-cross",
-      "--version 450 --no-es " + protocol::shell_quote(spv) + " --output " + protocol::shell_quote(glsl),
-      seconds, "spirv-cross");
+  const ToolRun crossed = run_limited("spirv-cross",
+                                      "--version 450 --no-es " + protocol::shell_quote(spv) +
+                                          " --output " + protocol::shell_quote(glsl),
+                                      seconds, "spirv-cross");
   if (!crossed.error.empty()) return Text::failure(crossed.error);
   if (!crossed.ok)
     return Text::failure("spirv-cross could not turn the SPIR-V into GLSL: " +

@@ -53,8 +53,8 @@ TEST(ShaderScanner, whatReachesBeyondAFunctionsInputsIsNamed) {
   EXPECT_EQ(beyond("float image_depth; float images2; float WaveHeight; float subgroupish;"),
             "line 1: subgroupish reads other lanes' values (a subgroup or wave operation)");
   EXPECT_EQ(beyond("float image_depth; float WaveHeight;"), "(none)");
-  EXPECT_NE(beyond("\nlayout(std430, binding = 1) buffer B { vec4 a[]; };").find(
-                "line 2: buffer declares a storage block"),
+  EXPECT_NE(beyond("\nlayout(std430, binding = 1) buffer B { vec4 a[]; };")
+                .find("line 2: buffer declares a storage block"),
             std::string::npos);
   EXPECT_NE(beyond("layout(rgba32f) uniform image2D img;").find("image2D declares an image"),
             std::string::npos);
@@ -62,8 +62,7 @@ TEST(ShaderScanner, whatReachesBeyondAFunctionsInputsIsNamed) {
             std::string::npos);
   EXPECT_NE(beyond("groupshared float4 s[64];").find("memory shared between invocations"),
             std::string::npos);
-  EXPECT_NE(beyond("RWStructuredBuffer<float4> a;").find("read-write resource"),
-            std::string::npos);
+  EXPECT_NE(beyond("RWStructuredBuffer<float4> a;").find("read-write resource"), std::string::npos);
   EXPECT_NE(beyond("uint i = gl_GlobalInvocationID.x;").find("which invocation it is"),
             std::string::npos);
   EXPECT_NE(beyond("float x = WaveReadLaneAt(d, 1);").find("other lanes"), std::string::npos);
@@ -104,8 +103,7 @@ TEST(ShaderScanner, sixteenMebibytesOfParametersAreRead) {
   const Expected<Signature> u =
       find_signature(unknown, "view_position", Language::glsl, ConsumerKind::view_position);
   ASSERT_FALSE(u);
-  EXPECT_NE(u.error().find("parameter extra is not an input the harness knows"),
-            std::string::npos);
+  EXPECT_NE(u.error().find("parameter extra is not an input the harness knows"), std::string::npos);
 }
 
 TEST(ShaderScanner, manyDefinitionsAreListedInShort) {

@@ -31,8 +31,7 @@ Expected<std::string> define_lines(const std::vector<std::string>& defines);
 /// Run by glslangValidator -E within `seconds`; the error says what stopped it, the user's file
 /// (`path`) and line named.
 Expected<std::string> preprocessed(const std::string& source, const std::string& path,
-                                   Language language, const std::string& defines,
-                                   double seconds);
+                                   Language language, const std::string& defines, double seconds);
 
 /// Whether glslang compiles the GLSL compute shader `glsl` within `seconds`: said before the
 /// driver is given it, so a file the driver would take minutes or gigabytes on is stopped here.

@@ -52,7 +52,7 @@ void check_shader(const std::string& path, const std::string& function,
 /// OBLIQUE_SHADER_TEST with oblique::testing::ShaderSettings (the engine's defines, the device,
 /// the time limit): OBLIQUE_SHADER_TEST_WITH(Ssr, hdrp, "ssr.hlsl", "view_position",
 /// oblique::Contract{}, (oblique::testing::ShaderSettings{{}, 10, {"UNITY_REVERSED_Z=1"}})).
-#define OBLIQUE_SHADER_TEST_WITH(Suite, Name, path, function, contract, settings)     \
-  TEST(Suite, Name) {                                                                \
-    ::oblique::testing::check_shader((path), (function), (contract), (settings));    \
+#define OBLIQUE_SHADER_TEST_WITH(Suite, Name, path, function, contract, settings) \
+  TEST(Suite, Name) {                                                             \
+    ::oblique::testing::check_shader((path), (function), (contract), (settings)); \
   }
