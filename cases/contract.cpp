@@ -1,6 +1,8 @@
 // The contract's JSON reader and writer, its name tables and its resolution.
 #include "oblique/cases/contract.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <iterator>
 
@@ -213,6 +215,16 @@ std::string read_field(Contract& c, const std::string& key, const JsonValue& val
 }
 
 }  // namespace
+
+bool left_out_beyond(long left, long drawn, double share) {
+  if (left < 2 || drawn <= 0) return false;  // one case left out is no pattern
+  // The Wilson score interval's lower end at z = 3.29 (one-sided 99.95%): a run tests every kind
+  // it claims (families, conventions, properties: dozens), so each test takes a small error rate.
+  const double n = static_cast<double>(drawn), p = static_cast<double>(left) / n, z = 3.29;
+  const double centre = p + z * z / (2 * n);
+  const double spread = z * std::sqrt(p * (1 - p) / n + z * z / (4 * n * n));
+  return (centre - spread) / (1 + z * z / n) > share;
+}
 
 std::string partly_judged_warning(const std::string& partly, bool strict) {
   return "warning: judged in part only: more than " +

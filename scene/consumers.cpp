@@ -224,7 +224,7 @@ ConsumerCoverage consumer_coverage(const Scene& scene, const SceneCheck& check, 
                                "): ask in a wider precision (--precision), or leave " + name +
                                " out of \"consumers\"");
       }
-    } else if (left_out >= 2 && left_out > kLeftOutWarning * double(judged + left_out)) {
+    } else if (left_out_beyond(left_out, judged + left_out)) {
       out.partly += (out.partly.empty() ? "" : ", ") + name + " " + std::to_string(left_out) +
                     " of " + std::to_string(judged + left_out);
     }

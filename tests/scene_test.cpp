@@ -276,15 +276,16 @@ TEST(SceneConsumers, aNamedConsumerMostlyLeftOutIsNamedWithItsShare) {
   SceneCheck check;
   SurfaceCheck a, b;
   a.render = b.render = true;
-  // reconstruction: 14 of 128 left out over two passes (10.9%); cascades 1 of 2 (one is no
-  // pattern).
-  a.consumers = {consumer_result(SceneConsumer::reconstruction, 57, 7),
+  // reconstruction: 40 of 128 left out over two passes (31%, 20% at least: beyond chance);
+  // cascades 1 of 2 (one is no pattern).
+  a.consumers = {consumer_result(SceneConsumer::reconstruction, 44, 20),
                  consumer_result(SceneConsumer::cascades, 1, 1)};
-  b.consumers = {consumer_result(SceneConsumer::reconstruction, 57, 7),
+  b.consumers = {consumer_result(SceneConsumer::reconstruction, 44, 20),
                  consumer_result(SceneConsumer::cascades, 1, 0)};
   check.surfaces = {a, b};
-  EXPECT_EQ(consumer_coverage(scene, check, false).partly, "reconstruction 14 of 128");
-  b.consumers[0] = consumer_result(SceneConsumer::reconstruction, 63, 1);  // 8 of 128: 6.3%
+  EXPECT_EQ(consumer_coverage(scene, check, false).partly, "reconstruction 40 of 128");
+  // 14 of 128 (10.9%) is within chance of a tenth (left_out_beyond()).
+  a.consumers[0] = b.consumers[0] = consumer_result(SceneConsumer::reconstruction, 57, 7);
   check.surfaces = {a, b};
   EXPECT_EQ(consumer_coverage(scene, check, false).partly, "");
 }

@@ -27,7 +27,8 @@ Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
       auto problem =
           std::make_unique<oracle::FilteredProblem<T>>(value.matrix, value.plane, value.convention);
       if (const std::string why = draws.left_out(*problem); !why.empty()) {
-        left_out.count(value, why);
+        // No answer, and no status of the contract's for it: outside what it claims.
+        left_out.count(value, why, problem->exact_status() != Status::ok);
         continue;
       }
       b.problems.push_back(std::move(problem));

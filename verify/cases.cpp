@@ -125,10 +125,15 @@ std::string Seen::summary(const std::map<std::string, long>& counts) {
 }
 
 template <class T>
-void LeftOut::count(const cases::Case<T>& v, const std::string& reason) {
+void LeftOut::count(const cases::Case<T>& v, const std::string& reason, bool unclaimed) {
   ++why[reason];
-  ++families[std::string(cases::family_name(v.family))];
-  ++conventions[std::string(convention_name(v.convention))];
+  const std::string family(cases::family_name(v.family)), convention(convention_name(v.convention));
+  ++families[family];
+  ++conventions[convention];
+  if (unclaimed) {
+    ++unclaimed_families[family];
+    ++unclaimed_conventions[convention];
+  }
 }
 
 namespace {
@@ -142,19 +147,21 @@ long count_of(const std::map<std::string, long>& counts, const std::string& key)
 struct Claim {
   std::string what, name;
   long judged, left;
+  long unclaimed;  ///< of `left`, inputs the contract does not claim
 };
 
 std::vector<Claim> claims(const Contract& contract, const Seen& seen, const LeftOut& left_out) {
   std::vector<Claim> out;
   for (cases::Family f : contract.families) {
     const std::string name(cases::family_name(f));
-    out.push_back(
-        {"family", name, count_of(seen.families, name), count_of(left_out.families, name)});
+    out.push_back({"family", name, count_of(seen.families, name), count_of(left_out.families, name),
+                   count_of(left_out.unclaimed_families, name)});
   }
   for (Convention c : contract.conventions) {
     const std::string name(convention_name(c));
     out.push_back({"convention", name, count_of(seen.conventions, name),
-                   count_of(left_out.conventions, name)});
+                   count_of(left_out.conventions, name),
+                   count_of(left_out.unclaimed_conventions, name)});
   }
   return out;
 }
@@ -187,10 +194,10 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
                           double share) {
   std::string out;
   for (const Claim& c : claims(contract, seen, left_out)) {
-    if (c.judged == 0 || c.left < 2 || c.left <= share * static_cast<double>(c.judged + c.left))
-      continue;
-    out += (out.empty() ? "" : ", ") + c.what + " " + c.name + " " + std::to_string(c.left) +
-           " of " + std::to_string(c.judged + c.left);
+    const long left = c.left - c.unclaimed;  // of what the contract claims
+    if (c.judged == 0 || !left_out_beyond(left, c.judged + left, share)) continue;
+    out += (out.empty() ? "" : ", ") + c.what + " " + c.name + " " + std::to_string(left) + " of " +
+           std::to_string(c.judged + left);
   }
   return out;
 }
@@ -203,7 +210,7 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
   template bool consistent_with_float<T>(const cases::Case<T>&, const Matrix4<T>&,          \
                                          const cases::Checks&);                             \
   template void Seen::count<T>(const cases::Case<T>&);                                      \
-  template void LeftOut::count<T>(const cases::Case<T>&, const std::string&);
+  template void LeftOut::count<T>(const cases::Case<T>&, const std::string&, bool);
 OBLIQUE_VERIFY_CASES(float)
 OBLIQUE_VERIFY_CASES(double)
 #undef OBLIQUE_VERIFY_CASES

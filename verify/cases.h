@@ -87,9 +87,12 @@ struct Seen {
 /// the family and convention drawn.
 struct LeftOut {
   std::map<std::string, long> why, families, conventions;
+  /// Of those, the inputs the contract does not claim (without an answer, and no status of the
+  /// contract's for them): said among the reasons, no gap in what it claims.
+  std::map<std::string, long> unclaimed_families, unclaimed_conventions;
 
   template <class T>
-  void count(const cases::Case<T>& v, const std::string& reason);
+  void count(const cases::Case<T>& v, const std::string& reason, bool unclaimed = false);
 };
 
 /// One line for each family and convention the contract claims of which no case was judged in
@@ -98,8 +101,9 @@ struct LeftOut {
 std::vector<std::string> unjudged_claims(const Contract& contract, const Seen& seen,
                                          const LeftOut& left_out, long done);
 
-/// The claimed families and conventions of which more than `share` of the drawn cases were left
-/// out: "family NAME L of D, ..." (empty: none). A single case left out is no pattern.
+/// The claimed families and conventions of which more than `share` of the drawn cases the
+/// contract claims were left out: "family NAME L of D, ..." (empty: none). A single case left out
+/// is no pattern; inputs the contract does not claim are not counted.
 std::string partly_judged(const Contract& contract, const Seen& seen, const LeftOut& left_out,
                           double share);
 

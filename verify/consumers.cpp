@@ -583,7 +583,7 @@ class ConsumerRun {
     std::string partly;
     for (const auto& [check, left] : left_out_checks_) {
       const long judged = judged_.count(check) ? judged_.at(check) : 0;
-      if (left < 2 || left <= kLeftOutWarning * static_cast<double>(judged + left)) continue;
+      if (!left_out_beyond(left, judged + left)) continue;
       partly += (partly.empty() ? "" : ", ") + check + " " + std::to_string(left) + " of " +
                 std::to_string(judged + left);
     }

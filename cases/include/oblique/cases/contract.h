@@ -77,6 +77,12 @@ std::vector<std::string> preset_names();
 /// is named in a warning line of every way in's summary (a failure under their strict flags).
 inline constexpr double kLeftOutWarning = 0.10;
 
+/// Whether `left` of `drawn` cases of a kind left out is more than `share` beyond chance: the
+/// lower end of the Wilson interval (one-sided 99.95%) of the share left out exceeds `share`. A
+/// run of 13 cases with 2 left out is no pattern (the interval reaches down to 2%); 13,899 of
+/// 111,575 is (12.1% at least). The one test of every way in's "judged in part only".
+bool left_out_beyond(long left, long drawn, double share = kLeftOutWarning);
+
 /// The summary's warning line for kinds judged in part only (`partly`: "KIND L of D, ..."), for
 /// the command-line ways in (verify's matrix and consumer runs, check's consumers), saying what
 /// their --strict does.

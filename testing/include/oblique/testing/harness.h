@@ -45,7 +45,8 @@ struct Tally {
   std::map<std::string, int> refused;           ///< by kind: cases every function's accepts refused
   std::map<std::string, int> left_out;          ///< answers not judged, by oracle::not_judged()
   std::map<std::string, int> left_out_by_kind;  ///< the same, by kind
-  std::vector<std::string> refusing;            ///< the functions whose accepts refused a case
+  std::map<std::string, int> unclaimed_by_kind;  ///< of those, inputs the contract does not claim
+  std::vector<std::string> refusing;             ///< the functions whose accepts refused a case
   std::optional<Counterexample> failure;
   /// The last failure of a run judged by other than the matrix properties (a consumer property,
   /// testing/consumers.cpp; the rasterizer, testing/raster.cpp), as the Markdown of its report.
@@ -135,9 +136,12 @@ void count_judged(const cases::Case<T>& c) {
 }
 
 /// Counts a case some function left out: refused by its accepts (`refused_by`, the function's
-/// name) or not judged (`why`, oracle::not_judged()'s reason), by `kind`.
+/// name) or not judged (`why`, oracle::not_judged()'s reason), by `kind`. A case the contract
+/// does not claim (`unclaimed`: an input without an answer under a contract that lists no status
+/// for it) is said among the reasons but is no gap in what the contract claims: it does not count
+/// toward a kind judged in part only.
 void count_left_out(const std::string& kind, const std::string& why,
-                    const std::string& refused_by = "");
+                    const std::string& refused_by = "", bool unclaimed = false);
 
 template <class T>
 Counterexample describe(const cases::Case<T>& c, const Implementation<T>& impl) {
@@ -209,6 +213,7 @@ bool for_each_answer(const std::vector<Implementation<T>>& implementations, cons
   if (kind.empty()) kind = std::string(cases::family_name(c.family));
   bool judged = false;
   std::string refused_by, left_out_why;
+  bool unclaimed = false;
   for (const Implementation<T>& impl : implementations) {
     if (!impl.accepts(c.convention, c.matrix)) {
       refused_by = impl.name;
@@ -220,6 +225,8 @@ bool for_each_answer(const std::vector<Implementation<T>>& implementations, cons
     if (const std::string why = oracle::not_judged(problem, statuses, refusals); !why.empty()) {
       if (!judge_statuses || problem.exact_status() == Status::ok) {
         left_out_why = why;
+        // No answer, and no status of the contract's for it: outside what it claims.
+        unclaimed = problem.exact_status() != Status::ok;
         continue;
       }
     }
@@ -236,7 +243,7 @@ bool for_each_answer(const std::vector<Implementation<T>>& implementations, cons
       fail_with(c, impl, *violation, &outcome, &checks);
   }
   if (!judged && !left_out_why.empty())
-    count_left_out(kind, left_out_why);
+    count_left_out(kind, left_out_why, "", unclaimed);
   else if (!judged && !refused_by.empty())
     count_left_out(kind, "", refused_by);
   return judged;
