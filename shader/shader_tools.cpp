@@ -169,9 +169,15 @@ Expected<std::string> define_lines(const std::vector<std::string>& defines) {
     if (!identifier)
       return Expected<std::string>::failure("the define " + protocol::escape_bytes(d) +
                                             " does not start with a name (NAME or NAME=VALUE)");
-    if (value.find_first_of("\r\n") != std::string::npos)
+    if (value.find_first_of("\r\n") != std::string::npos ||
+        (!value.empty() && value.back() == '\\'))
       return Expected<std::string>::failure("the define " + name +
                                             " has a value of more than one line");
+    if (value.find("/*") != std::string::npos)
+      return Expected<std::string>::failure(
+          "the define " + name +
+          " has a value that opens a comment (/*): it would run on into "
+          "the shader");
     out += "#define " + name + " " + value + "\n";
   }
   return out;

@@ -293,3 +293,10 @@ foreach(way verify check test_macro)
   set_tests_properties(shaders_hostile_${way}_escapes_a_path PROPERTIES LABELS "shaders;hostile"
                        TIMEOUT 60)
 endforeach()
+# A define that is no NAME[=VALUE], or whose value would run on into the shader, is refused.
+oblique_shader_refusal(a_define_without_a_name "the define 1ABC does not start with a name"
+                       ${verify_shader} --consumers view_position
+                       --shader ${shaders}/depth_right.glsl -D 1ABC)
+oblique_shader_refusal(a_define_opening_a_comment "the define A has a value that opens a comment"
+                       ${verify_shader} --consumers view_position
+                       --shader ${shaders}/depth_right.glsl "-DA=1 /* x")
