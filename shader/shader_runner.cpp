@@ -4,7 +4,6 @@
 #include "oblique/shader/shader_runner.h"
 
 #include <GL/glcorearb.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -13,8 +12,6 @@
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <mutex>
 #include <sstream>

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <sstream>
 
 #include "oblique/protocol/child_process.h"
@@ -46,13 +48,22 @@ struct TempFolder {
   TempFolder& operator=(const TempFolder&) = delete;
 };
 
-bool tool_present(const char* name) {
-  protocol::ChildProcess which(std::string("command -v ") + name + " > /dev/null");
-  if (!which.start()) return false;
-  std::string out;
-  int status = 1;
-  which.run_to_end(out, 0, protocol::Clock::now() + std::chrono::seconds(10), status);
-  return status == 0;
+/// Whether `name` is on PATH, looked for once per process (a shader's open runs the tools six
+/// times and more).
+bool tool_present(const std::string& name) {
+  static std::mutex looking;
+  static std::map<std::string, bool> found;
+  const std::lock_guard<std::mutex> lock(looking);
+  if (const auto it = found.find(name); it != found.end()) return it->second;
+  protocol::ChildProcess which("command -v " + name + " > /dev/null");
+  bool present = false;
+  if (which.start()) {
+    std::string out;
+    int status = 1;
+    which.run_to_end(out, 0, protocol::Clock::now() + std::chrono::seconds(10), status);
+    present = status == 0;
+  }
+  return found[name] = present;
 }
 
 std::string gib(std::size_t bytes) {
