@@ -27,8 +27,10 @@ struct CheckSettings {
   std::string shader;  ///< --shader FILE[:FUNCTION]: the reconstruction consumer's shader
   std::optional<oblique::shader::Language> shader_language;
   std::vector<std::string> shader_defines;
-  std::string plot_dir;  ///< --plot DIR
-  std::string html;      ///< --html FILE
+  std::optional<oblique::shader::VDirection> shader_v;                     ///< --uv-v
+  oblique::oracle::Sampling sampling = oblique::oracle::Sampling::pixels;  ///< --sampling
+  std::string plot_dir;                                                    ///< --plot DIR
+  std::string html;                                                        ///< --html FILE
   double timeout_seconds = 10;
   bool rasterize = false;           ///< --rasterize
   std::string device = "software";  ///< --device
@@ -186,9 +188,9 @@ int run_check(const CheckSettings& settings) {
     oblique::Expected<std::vector<oblique::shader::ShaderFunction>> functions =
         std::vector<oblique::shader::ShaderFunction>{};
     if (!function.empty()) {
-      const auto f =
-          oblique::shader::shader_function_in(file, function, settings.shader_language,
-                                              settings.shader_defines, settings.timeout_seconds);
+      const auto f = oblique::shader::shader_function_in(
+          file, function, settings.shader_language, settings.shader_defines,
+          settings.timeout_seconds, settings.shader_v);
       if (f)
         functions->push_back(*f);
       else
@@ -205,7 +207,10 @@ int run_check(const CheckSettings& settings) {
                 << "\n";
       return 2;
     }
-    for (oblique::shader::ShaderFunction& f : *functions) f.defines = settings.shader_defines;
+    for (oblique::shader::ShaderFunction& f : *functions) {
+      f.defines = settings.shader_defines;
+      if (settings.shader_v) f.v = *settings.shader_v;
+    }
     oblique::shader::RunnerOptions options;
     options.device =
         settings.device == "gpu" ? oblique::raster::Device::gpu : oblique::raster::Device::software;
@@ -217,7 +222,8 @@ int run_check(const CheckSettings& settings) {
     }
     runner = std::move(*opened);
     const oblique::Expected<oblique::Done> judged = oblique::scene::judge_shader_consumers(
-        *parsed.scene, check, oblique::shader::shader_consumers(*runner, settings.shader));
+        *parsed.scene, check,
+        oblique::shader::shader_consumers(*runner, settings.shader, settings.sampling));
     if (!judged) {
       std::cerr << "oblique check: " << judged.error() << "\n";
       return 2;
@@ -232,7 +238,7 @@ int run_check(const CheckSettings& settings) {
     }
     const oblique::Expected<oblique::Done> consumers =
         oblique::scene::judge_implementation_consumers(*parsed.scene, check, settings.impl,
-                                                       settings.timeout_seconds);
+                                                       settings.timeout_seconds, settings.sampling);
     if (!consumers) {
       std::cerr << "oblique check: " << consumers.error() << "\n";
       return 2;
@@ -360,6 +366,8 @@ void setup_check(CLI::App& app, int& exit_code) {
           },
           "glsl or hlsl (default: by the file's extension)")
       ->check(CLI::IsMember({"glsl", "hlsl"}));
+  add_uv_v_option(check, settings->shader_v);
+  add_sampling_option(check, settings->sampling);
   check->add_option("-D,--define", settings->shader_defines,
                     "With --shader: a define of the engine's, NAME or NAME=VALUE (repeat it): the "
                     "shader's #if variants are chosen under them and OBLIQUE_CONVENTION");

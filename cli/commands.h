@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "oblique/cases/contract.h"
+#include "oblique/oracle/consumers.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/shader/shader_function.h"
 
 namespace oblique::cli {
 
@@ -40,6 +42,12 @@ CLI::Validator one_of(const std::vector<std::string>& names, const std::string& 
 /// apply, verify and check; `allowed` are those the subcommand computes or judges in.
 CLI::Option* add_precision_option(CLI::App* app, std::string& precision, const std::string& what,
                                   std::vector<protocol::Precision> allowed);
+
+/// --uv-v (verify and check, with --shader): which way the shader's texture coordinate v runs.
+CLI::Option* add_uv_v_option(CLI::App* app, std::optional<shader::VDirection>& v);
+
+/// --sampling (verify and check): where depth functions are asked, pixels or arbitrary.
+CLI::Option* add_sampling_option(CLI::App* app, oracle::Sampling& sampling);
 
 /// A contract given on the command line (verify, report accuracy): --contract FILE and flags that
 /// each set one of its JSON fields from a comma list (--families perspective,infinite).

@@ -45,6 +45,27 @@ CLI::Option* add_precision_option(CLI::App* app, std::string& precision, const s
       ->capture_default_str();
 }
 
+CLI::Option* add_uv_v_option(CLI::App* app, std::optional<shader::VDirection>& v) {
+  return app
+      ->add_option_function<std::string>(
+          "--uv-v", [&v](const std::string& name) { v = shader::parse_v_direction(name); },
+          "With --shader: which way the texture coordinate v (and the rows of frag_coord and "
+          "texel) runs: up, v = (NDC y + 1) / 2 (GL; Vulkan, whose NDC y points down the image), "
+          "or down, v = (1 - NDC y) / 2 (Direct3D, Metal). Default: up for GLSL, down for HLSL")
+      ->check(CLI::IsMember({"up", "down"}));
+}
+
+CLI::Option* add_sampling_option(CLI::App* app, oracle::Sampling& sampling) {
+  return app
+      ->add_option_function<std::string>(
+          "--sampling",
+          [&sampling](const std::string& name) { sampling = *oracle::parse_sampling(name); },
+          "Where depth functions (view_position, linear_depth) are asked: pixels, the centres "
+          "of render targets of real sizes (what a GPU evaluates; the default), or arbitrary, any "
+          "NDC position (a stiff mode; a shader that reads a texel is still asked at pixels)")
+      ->check(CLI::IsMember({"pixels", "arbitrary"}));
+}
+
 Expected<Contract> ContractFlags::read(const std::vector<Field>& first) const {
   Expected<Contract> contract = Contract{};
   if (!file.empty()) contract = read_contract_file(file);

@@ -112,8 +112,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // The wrapper: the user's lines where they were, one argument per parameter, the convention.
   const oblique::Expected<std::string> defines = define_lines({"ENGINE_DEFINE=1"});
   if (!defines) fail("a plain define refused", defines.error());
-  const std::string wrapped =
-      wrapped_source(source, "shader.glsl", *sig, language, convention, *defines);
+  const std::string wrapped = wrapped_source(source, "shader.glsl", *sig, language, convention,
+                                             default_v_direction(language), *defines);
   if (wrapped.find("#define OBLIQUE_CONVENTION " + std::to_string(convention) + "\n") ==
       std::string::npos)
     fail("the wrapper does not define the convention", wrapped.substr(0, 400));

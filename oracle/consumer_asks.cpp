@@ -241,10 +241,22 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
                     {bool(consumers.linear_depth), ConsumerCheck::linear_depth}},
                    "the point leaves no depth sample (behind the eye or outside [0, 1])");
         } else {
+          // Read at a pixel of a target of a real size (or where the point projects, asked so),
+          // the pixel handed as the consumer reads it.
+          s = at_pixel(*s, oracle::consumer_cases::render_target(pick), consumers.sampling);
+          s->ndc_error = ndc_error_of<T>(consumers.pixel_input, consumers.arithmetic);
+          const std::string where =
+              "pixel (" + std::to_string(s->pixel.x) + ", " + std::to_string(s->pixel.y) +
+              ") of a " + std::to_string(s->pixel.width) + " x " + std::to_string(s->pixel.height) +
+              " target (rows from the bottom), " +
+              (consumers.sampling == Sampling::pixels ? "at its centre" : "off its centre") +
+              (s->ndc_error != 0 ? ", handed as a GPU hands it (the ray within " +
+                                       protocol::format_number(s->ndc_error) + " in NDC x and y)"
+                                 : "");
           const std::string inputs = base + "- buffer: " + std::string(depth_buffer_name(buffer)) +
                                      "\n- the point: " + numbers_text(point) +
                                      "\n- the sample: NDC x " + protocol::format_number(s->ndc_x) +
-                                     ", y " + protocol::format_number(s->ndc_y) +
+                                     ", y " + protocol::format_number(s->ndc_y) + ", " + where +
                                      ", window depth " + protocol::format_number(s->depth) +
                                      " (stored " + std::to_string(s->stored) + ")\n";
           if (consumers.view_position)

@@ -318,7 +318,14 @@ Segment ray_segment(const DepthSample<T>& s, int bits) {
     // |v^ - v| <= dv; the divide v^_i / v^_w rounds once: the answer times v^_w is within
     // u |v^_i| <= u (|v_i| + dv_i) of v^_i. Along the segment, |b| and |v| are at most the
     // larger of their ends' (both linear in the depth, which keeps its sign or passes 0).
-    const Vec dv = oracle::exact::mul(*error, oracle::exact::abs(b));
+    Vec dv = oracle::exact::mul(*error, oracle::exact::abs(b));
+    // A position handed as a GPU hands it: the NDC the consumer derives is within ndc_error of
+    // (x, y) in each, which M'^-1 carries to |M'^-1|'s first two columns times it.
+    if (s.ndc_error != 0) {
+      const Rational delta = oracle::exact::to_rational(s.ndc_error);
+      for (int i = 0; i < 4; ++i)
+        dv[i] += (oracle::exact::abs((*inv)[i][0]) + oracle::exact::abs((*inv)[i][1])) * delta;
+    }
     for (int i = 0; i < 4; ++i) {
       const Rational divide =
           i < 3 ? Rational(u * (oracle::exact::abs(v[i]) + dv[i])) : Rational(0);
@@ -532,6 +539,14 @@ std::optional<ConsumerFinding> certified_holds(ConsumerCheck check, const DepthS
           dv = std::max(
               0.0, down(dv + std::max(0.0, down(a.error_below[i][j] * b[j].magnitude_below()))));
         }
+        if (s.ndc_error != 0) {
+          // As ray_segment(): |M'^-1|'s first two columns times ndc_error, from below.
+          const double delta = static_cast<double>(s.ndc_error);
+          dv = std::max(
+              0.0, down(dv + std::max(0.0, down(a.inv_enclosure[i][0].magnitude_below() * delta))));
+          dv = std::max(
+              0.0, down(dv + std::max(0.0, down(a.inv_enclosure[i][1].magnitude_below() * delta))));
+        }
         if (!v.finite() || !std::isfinite(dv)) return std::nullopt;
         ends[e][i] = v;
         dv_ends[e][i] = dv;
@@ -712,6 +727,39 @@ std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const M
   return s;
 }
 
+template <class T>
+DepthSample<T> at_pixel(const DepthSample<T>& sample, Pixel target, Sampling sampling) {
+  DepthSample<T> s = sample;
+  if (target.width < 1 || target.height < 1) return s;
+  // The pixel holding NDC v: floor((v + 1) / 2 size), the edges' pixels for what is outside.
+  auto index = [](T v, int size) {
+    const Rational at = (oracle::exact::to_rational(v) + 1) * size / 2;
+    if (at < 0) return 0;
+    const mpz_class floor = at.get_num() / at.get_den();  // truncation: at >= 0
+    if (floor >= size) return size - 1;
+    return static_cast<int>(floor.get_si());
+  };
+  auto centre = [](int p, int size) -> Rational {
+    return Rational(2 * p + 1) / Rational(size) - 1;
+  };
+  s.pixel = target;
+  s.pixel.x = index(sample.ndc_x, target.width);
+  s.pixel.y = index(sample.ndc_y, target.height);
+  s.pixel.at_centre = sampling == Sampling::pixels;
+  if (s.pixel.at_centre) {
+    // The centre: (2 p + 1) / size - 1.
+    s.ndc_x = oracle::exact::round_to<T>(centre(s.pixel.x, target.width));
+    s.ndc_y = oracle::exact::round_to<T>(centre(s.pixel.y, target.height));
+  }
+  return s;
+}
+
+template <class T>
+T ndc_error_of(PixelInput input, ConsumerArithmetic arithmetic) {
+  if (input == PixelInput::ndc) return 0;
+  return std::ldexp(T(oracle::tolerance::kPixelToNdcRoundings), -arithmetic_bits<T>(arithmetic));
+}
+
 /// ray_segment() of the last sample judged on this thread: a round asks view_position and
 /// linear_depth of the same sample, and its exact analysis is most of either judge's time.
 template <class T>
@@ -722,7 +770,8 @@ const Segment& ray_segment_of(const DepthSample<T>& s, ConsumerArithmetic arithm
                     last->first.projection == s.projection && last->first.original == s.original &&
                     last->first.convention == s.convention && last->first.buffer == s.buffer &&
                     last->first.ndc_x == s.ndc_x && last->first.ndc_y == s.ndc_y &&
-                    last->first.depth == s.depth && last->first.stored == s.stored;
+                    last->first.depth == s.depth && last->first.stored == s.stored &&
+                    last->first.ndc_error == s.ndc_error;
   if (!same) {
     last.emplace(s, ray_segment(s, arithmetic_bits<T>(arithmetic)));
     last_arithmetic = arithmetic;
@@ -811,6 +860,8 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer, ConsumerAr
 #define OBLIQUE_DEPTH_JUDGES(T)                                                                    \
   template std::optional<DepthSample<T>> depth_sample(const Matrix4<T>&, const Matrix4<T>&,        \
                                                       Convention, DepthBuffer, const Vector4<T>&); \
+  template DepthSample<T> at_pixel(const DepthSample<T>&, Pixel, Sampling);                        \
+  template T ndc_error_of<T>(PixelInput, ConsumerArithmetic);                                      \
   template ConsumerFinding judge_view_position(const DepthSample<T>&, const Vector3<T>&,           \
                                                ConsumerArithmetic, Arithmetic);                    \
   template ConsumerFinding judge_linear_depth(const DepthSample<T>&, T, ConsumerArithmetic,        \

@@ -63,11 +63,7 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
     const oracle::Pick pick = [&engine](int lo, int hi) {
       return std::uniform_int_distribution<int>(lo, hi - 1)(engine);
     };
-    Consumers<T> only;
-    only.name = who.name;
-    only.accepts = who.accepts;
-    only.arithmetic = who.arithmetic;
-    only.mirror_design = who.mirror_design;
+    Consumers<T> only = settings_of(who);
     int rounds = 1;
     switch (consumer) {
       case SceneConsumer::reconstruction:
@@ -123,7 +119,7 @@ namespace {
 
 template <class T>
 Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::string& command,
-                           double timeout_seconds) {
+                           double timeout_seconds, oracle::Sampling sampling) {
   std::vector<protocol::ConsumerKind> kinds;
   for (const SceneConsumer c : scene.consumers)
     for (const protocol::ConsumerKind k : kinds_of(c)) kinds.push_back(k);
@@ -131,6 +127,7 @@ Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::str
       command, std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000)));
   Consumers<T> asked = program.consumers(kinds, command);
   asked.mirror_design = scene.mirror_design;  // the design the scene's engine declares
+  asked.sampling = sampling;
   try {
     for (SurfaceCheck& s : check.surfaces) {
       if (s.render) s.impl_consumers = judge_consumers<T>(scene, s, asked);
@@ -233,16 +230,17 @@ ConsumerCoverage consumer_coverage(const Scene& scene, const SceneCheck& check, 
 }
 
 Expected<Done> judge_implementation_consumers(const Scene& scene, SceneCheck& check,
-                                              const std::string& command, double timeout_seconds) {
+                                              const std::string& command, double timeout_seconds,
+                                              oracle::Sampling sampling) {
   if (scene.consumers.empty()) return Done{};
   switch (check.impl_precision) {
     case protocol::Precision::float32:
-      return ask_program<float>(scene, check, command, timeout_seconds);
+      return ask_program<float>(scene, check, command, timeout_seconds, sampling);
     case protocol::Precision::float64: break;
     case protocol::Precision::long_double:
-      return ask_program<long double>(scene, check, command, timeout_seconds);
+      return ask_program<long double>(scene, check, command, timeout_seconds, sampling);
   }
-  return ask_program<double>(scene, check, command, timeout_seconds);
+  return ask_program<double>(scene, check, command, timeout_seconds, sampling);
 }
 
 }  // namespace oblique::scene

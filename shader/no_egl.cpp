@@ -33,11 +33,17 @@ const std::vector<ShaderFunction>& ShaderRunner::functions() const {
 bool ShaderRunner::needs_perspective_camera(protocol::ConsumerKind) const {
   return false;
 }
+bool ShaderRunner::reads_pixel(protocol::ConsumerKind) const {
+  return false;
+}
+bool ShaderRunner::reads_texel(protocol::ConsumerKind) const {
+  return false;
+}
 Expected<std::vector<std::vector<float>>> ShaderRunner::run(
     protocol::ConsumerKind, const std::vector<oracle::DepthSample<float>>&) {
   return Expected<std::vector<std::vector<float>>>::failure("no EGL in this build");
 }
-Consumers<float> shader_consumers(ShaderRunner&, const std::string& name) {
+Consumers<float> shader_consumers(ShaderRunner&, const std::string& name, oracle::Sampling) {
   Consumers<float> out;
   out.name = name;
   return out;

@@ -23,6 +23,7 @@ struct InputEntry {
   Input input;
   const char* glsl_type;
   std::vector<std::string_view> names;
+  const char* other_type = nullptr;  ///< a second type it may have (frag_coord: vec4)
 };
 
 const std::vector<InputEntry>& inputs() {
@@ -42,7 +43,25 @@ const std::vector<InputEntry>& inputs() {
       {Input::zparams, "vec4", {"zparams", "zbuffer_params", "z_buffer_params"}},
       {Input::projection_params, "vec4", {"projection_params", "proj_params"}},
       {Input::ndc, "vec2", {"ndc", "ndc_xy", "clip_xy"}},
-      {Input::uv, "vec2", {"uv", "texcoord", "screen_uv"}},
+      {Input::uv,
+       "vec2",
+       {"uv", "texcoord", "screen_uv", "tex_coord", "texcoords", "screen_pos", "uv0"}},
+      {Input::frag_coord,
+       "vec2",
+       {"frag_coord", "fragcoord", "sv_position", "position_ss", "position_cs", "pixel_position",
+        "screen_position"},
+       "vec4"},
+      {Input::texel,
+       "ivec2",
+       {"texel", "texel_coord", "pixel_coord", "pixel", "texel_position", "dispatch_id"}},
+      {Input::target_size,
+       "vec2",
+       {"target_size", "screen_size", "resolution", "viewport_size", "render_size", "buffer_size",
+        "texture_size"}},
+      {Input::texel_size,
+       "vec2",
+       {"texel_size", "inv_screen_size", "inverse_screen_size", "rcp_screen_size", "pixel_size",
+        "inv_resolution", "inv_viewport_size"}},
       {Input::depth, "float", {"depth", "raw_depth", "device_depth", "depth_sample", "d"}},
       {Input::near_plane, "float", {"near", "near_plane", "z_near"}},
       {Input::far_plane, "float", {"far", "far_plane", "z_far"}},
@@ -67,9 +86,9 @@ std::string folded(std::string_view name) {
 
 /// An HLSL type in GLSL's words (float4x4 -> mat4, float3 -> vec3); GLSL's as written.
 std::string glsl_type(const std::string& type) {
-  static const std::map<std::string, std::string> hlsl = {{"float4x4", "mat4"}, {"float4", "vec4"},
-                                                          {"float3", "vec3"},   {"float2", "vec2"},
-                                                          {"float", "float"},   {"int", "int"}};
+  static const std::map<std::string, std::string> hlsl = {
+      {"float4x4", "mat4"}, {"float4", "vec4"}, {"float3", "vec3"}, {"float2", "vec2"},
+      {"float", "float"},   {"int", "int"},     {"int2", "ivec2"}};
   const auto it = hlsl.find(type);
   return it == hlsl.end() ? type : it->second;
 }
@@ -77,9 +96,9 @@ std::string glsl_type(const std::string& type) {
 /// The type as the user's language writes it.
 std::string type_in(const std::string& glsl, Language language) {
   if (language == Language::glsl) return glsl;
-  static const std::map<std::string, std::string> names = {{"mat4", "float4x4"}, {"vec4", "float4"},
-                                                           {"vec3", "float3"},   {"vec2", "float2"},
-                                                           {"float", "float"},   {"int", "int"}};
+  static const std::map<std::string, std::string> names = {
+      {"mat4", "float4x4"}, {"vec4", "float4"}, {"vec3", "float3"}, {"vec2", "float2"},
+      {"float", "float"},   {"int", "int"},     {"ivec2", "int2"}};
   return names.at(glsl);
 }
 
@@ -117,6 +136,10 @@ const std::vector<std::string_view>& input_names(Input input) {
 
 std::string_view input_name(Input input) {
   return entry(input).names.front();
+}
+
+bool is_pixel_position(Input input) {
+  return input == Input::uv || input == Input::frag_coord || input == Input::texel;
 }
 
 bool needs_perspective_camera(Input input) {
@@ -201,10 +224,12 @@ Expected<Signature> find_signature(const std::string& source, const std::string&
                             "takes: " +
                             vocabulary + " (docs/shaders.md lists the other names of each)");
     }
-    if (glsl_type(p.type) != entry(p.input).glsl_type)
+    const InputEntry& e = entry(p.input);
+    if (glsl_type(p.type) != e.glsl_type && !(e.other_type && glsl_type(p.type) == e.other_type))
       return Found::failure(where + ": parameter " + p.name + " is " + p.type + "; the " +
                             std::string(input_name(p.input)) + " input is " +
-                            type_in(entry(p.input).glsl_type, language));
+                            type_in(e.glsl_type, language) +
+                            (e.other_type ? " or " + type_in(e.other_type, language) : ""));
     sig.parameters.push_back(p);
   }
   return sig;
@@ -244,20 +269,21 @@ std::pair<std::string, std::string> split_shader_spec(const std::string& spec) {
 
 Expected<ShaderFunction> shader_function_in(const std::string& path, const std::string& function,
                                             std::optional<Language> language,
-                                            const std::vector<std::string>& defines,
-                                            double seconds) {
+                                            const std::vector<std::string>& defines, double seconds,
+                                            std::optional<VDirection> v) {
   using Found = Expected<ShaderFunction>;
   const Expected<std::vector<ShaderFunction>> named =
       shader_functions(path + ":" + function, {ConsumerKind::view_position}, language);
   if (!named) return Found::failure(named.error());
   ShaderFunction f = named->front();
   f.defines = defines;
+  if (v) f.v = *v;
   const Expected<std::string> text = read_shader_file(path);
   if (!text) return Found::failure(text.error());
   const Expected<std::string> user = define_lines(defines);
   if (!user) return Found::failure(user.error());
   const Expected<std::string> kept =
-      preprocessed(*text, path, f.language, convention_defines(0, *user), seconds);
+      preprocessed(*text, path, f.language, convention_defines(0, f.v, *user), seconds);
   if (!kept) return Found::failure(path + ": " + kept.error());
   // The return type decides the kind: find the function as either and keep the one that fits.
   for (const ConsumerKind kind : {ConsumerKind::view_position, ConsumerKind::linear_depth}) {
@@ -306,19 +332,21 @@ Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
                    function.empty() ? std::string(protocol::consumer_kind_name(k)) : function,
                    lang,
                    k,
-                   {}});
+                   {},
+                   default_v_direction(lang)});
   return out;
 }
 
-std::string convention_defines(int convention, const std::string& user_defines) {
+std::string convention_defines(int convention, VDirection v, const std::string& user_defines) {
   return "#define OBLIQUE_GL 0\n#define OBLIQUE_ZERO_ONE 1\n#define OBLIQUE_REVERSED_Z 2\n"
          "#define OBLIQUE_CONVENTION " +
-         std::to_string(convention) + "\n" + user_defines;
+         std::to_string(convention) + "\n#define OBLIQUE_UV_V_DOWN " +
+         (v == VDirection::down ? "1" : "0") + "\n" + user_defines;
 }
 
 std::string wrapped_source(const std::string& source, const std::string& path,
                            const Signature& signature, Language language, int convention,
-                           const std::string& user_defines) {
+                           VDirection v, const std::string& user_defines) {
   const bool glsl = language == Language::glsl;
   std::string user = source;
   if (glsl) {
@@ -326,7 +354,7 @@ std::string wrapped_source(const std::string& source, const std::string& path,
     if (const auto v = version_line(user)) user.erase(v->first, v->second);
   }
   std::string out = glsl ? "#version 450 core\n" : "";
-  out += convention_defines(convention, user_defines);
+  out += convention_defines(convention, v, user_defines);
   // The user's lines keep their numbers; the wrapper's start at kWrapperFirstLine (drivers do
   // not all report #line's source-string number; shader_runner.cpp maps lines back). glslang's
   // HLSL takes a file name.
@@ -336,9 +364,9 @@ std::string wrapped_source(const std::string& source, const std::string& path,
   out += user;
   out += glsl ? "\n#line " + std::to_string(kWrapperFirstLine) + "\n"
               : "\n#line 1 \"oblique-wrapper\"\n";
-  auto argument = [&](Input input) -> std::string {
+  auto argument = [&](const Parameter& p) -> std::string {
     const std::string v = "oblique_requests[i].v";
-    switch (input) {
+    switch (p.input) {
       case Input::projection: return "oblique_matrix(i, 0)";
       case Input::inverse_projection: return "oblique_matrix(i, 4)";
       case Input::camera_projection: return "oblique_matrix(i, 8)";
@@ -349,6 +377,13 @@ std::string wrapped_source(const std::string& source, const std::string& path,
       case Input::depth: return v + "[18].z";
       case Input::view_axis: return v + "[18].w";
       case Input::uv: return v + "[19].xy";
+      case Input::frag_coord:
+        if (glsl_type(p.type) == "vec4")
+          return (glsl ? "vec4(" : "float4(") + v + "[20].xy, 0.0, 1.0)";
+        return v + "[20].xy";
+      case Input::target_size: return v + "[20].zw";
+      case Input::texel: return (glsl ? "ivec2(" : "int2(") + v + "[21].xy)";
+      case Input::texel_size: return v + "[21].zw";
       case Input::near_plane: return v + "[19].z";
       case Input::far_plane: return v + "[19].w";
       case Input::convention: return "OBLIQUE_CONVENTION";
@@ -357,7 +392,7 @@ std::string wrapped_source(const std::string& source, const std::string& path,
   };
   std::string call = signature.name + "(";
   for (std::size_t k = 0; k < signature.parameters.size(); ++k)
-    call += (k ? ", " : "") + argument(signature.parameters[k].input);
+    call += (k ? ", " : "") + argument(signature.parameters[k]);
   call += ")";
   const bool vector = glsl_type(signature.return_type) == "vec3";
   const std::string n = std::to_string(kRequestVectors);

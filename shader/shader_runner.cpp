@@ -120,7 +120,8 @@ class Watchdog {
 
 }  // namespace
 
-std::array<float, kRequestVectors * 4> request_of(const oracle::DepthSample<float>& s) {
+std::array<float, kRequestVectors * 4> request_of(const oracle::DepthSample<float>& s,
+                                                  VDirection v) {
   std::array<float, kRequestVectors * 4> out{};
   const Eigen::Matrix4d projection = s.projection.cast<double>();
   const Eigen::Matrix4d original = s.original.cast<double>();
@@ -156,19 +157,45 @@ std::array<float, kRequestVectors * 4> request_of(const oracle::DepthSample<floa
     zp[3] = infinite ? 0 : 1 / f;
   }
   const double params[4] = {1 / original(0, 0), 1 / original(1, 1), original(0, 2), original(1, 2)};
-  const double rest[8] = {s.ndc_x,
-                          s.ndc_y,
-                          s.depth,
-                          static_cast<double>(axis),
-                          (s.ndc_x + 1.0) / 2,
-                          (s.ndc_y + 1.0) / 2,
-                          n,
-                          f};
+  // The pixel as a GPU hands it: its position in pixels from the target's lower left corner (the
+  // centre, px + 1/2, exactly; or the sample's own NDC), rows counted from the top where v runs
+  // down; a sample of no target is placed on a 1920 x 1080 one.
+  const bool target = s.pixel.width > 0 && s.pixel.height > 0;
+  const double width = target ? s.pixel.width : 1920, height = target ? s.pixel.height : 1080;
+  double fx = (s.ndc_x + 1.0) / 2 * width, fy = (s.ndc_y + 1.0) / 2 * height;
+  int column = static_cast<int>(std::clamp(std::floor(fx), 0.0, width - 1));
+  int row = static_cast<int>(std::clamp(std::floor(fy), 0.0, height - 1));
+  if (target && s.pixel.at_centre) {
+    column = s.pixel.x;
+    row = s.pixel.y;
+    fx = column + 0.5;
+    fy = row + 0.5;
+  }
+  if (v == VDirection::down) {
+    fy = height - fy;
+    row = static_cast<int>(height) - 1 - row;
+  }
+  const double rest[16] = {s.ndc_x,
+                           s.ndc_y,
+                           s.depth,
+                           static_cast<double>(axis),
+                           fx / width,
+                           fy / height,
+                           n,
+                           f,
+                           fx,
+                           fy,
+                           width,
+                           height,
+                           static_cast<double>(column),
+                           static_cast<double>(row),
+                           1 / width,
+                           1 / height};
   for (int i = 0; i < 4; ++i) {
     out[static_cast<std::size_t>(64 + i)] = static_cast<float>(zp[i]);
     out[static_cast<std::size_t>(68 + i)] = static_cast<float>(params[i]);
   }
-  for (int i = 0; i < 8; ++i) out[static_cast<std::size_t>(72 + i)] = static_cast<float>(rest[i]);
+  for (int i = 0; i < 16; ++i) out[static_cast<std::size_t>(72 + i)] = static_cast<float>(rest[i]);
   return out;
 }
 
@@ -190,6 +217,9 @@ struct ShaderRunner::State {
   std::unique_ptr<raster::GlContext> gl;
   GLuint programs[kKinds][3] = {{0, 0, 0}, {0, 0, 0}};
   bool perspective[kKinds] = {false, false};
+  bool pixel[kKinds] = {false, false};  ///< reads uv, frag_coord or texel
+  bool texel[kKinds] = {false, false};
+  VDirection v[kKinds] = {VDirection::up, VDirection::up};
   std::string names[kKinds];
   GLuint buffers[2] = {0, 0};
 
@@ -267,7 +297,7 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
     for (int c = 0; c < 3; ++c) {
       // The variant the preprocessor keeps in this convention, under the engine's defines.
       const Expected<std::string> kept =
-          preprocessed(source, f.path, f.language, convention_defines(c, *user_defines),
+          preprocessed(source, f.path, f.language, convention_defines(c, f.v, *user_defines),
                        options.timeout_seconds);
       if (!kept) return Opened::failure(f.path + ": " + kept.error());
       // A depth function answers from its inputs: one that reaches the runner's buffers, memory
@@ -278,9 +308,14 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
                                "buffers, images, shared memory or invocation ids");
       const Expected<Signature> sig = find_signature(*kept, f.function, f.language, f.kind);
       if (!sig) return Opened::failure(f.path + ": " + sig.error());
-      for (const Parameter& p : sig->parameters)
+      for (const Parameter& p : sig->parameters) {
         state->perspective[k] = state->perspective[k] || shader::needs_perspective_camera(p.input);
-      const std::string text = wrapped_source(source, f.path, *sig, f.language, c, *user_defines);
+        state->pixel[k] = state->pixel[k] || is_pixel_position(p.input);
+        state->texel[k] = state->texel[k] || p.input == Input::texel;
+      }
+      state->v[k] = f.v;
+      const std::string text =
+          wrapped_source(source, f.path, *sig, f.language, c, f.v, *user_defines);
       if (f.language == Language::glsl) {
         // glslang first, under the limits: the driver compiles in this process.
         const Expected<Done> compiles = glsl_compiles(text, f.path, options.timeout_seconds);
@@ -333,6 +368,14 @@ bool ShaderRunner::needs_perspective_camera(ConsumerKind kind) const {
   return state_->perspective[kind_index(kind)];
 }
 
+bool ShaderRunner::reads_pixel(ConsumerKind kind) const {
+  return state_->pixel[kind_index(kind)];
+}
+
+bool ShaderRunner::reads_texel(ConsumerKind kind) const {
+  return state_->texel[kind_index(kind)];
+}
+
 Expected<std::vector<std::vector<float>>> ShaderRunner::run(
     ConsumerKind kind, const std::vector<oracle::DepthSample<float>>& samples) {
   using Answers = Expected<std::vector<std::vector<float>>>;
@@ -360,7 +403,7 @@ Expected<std::vector<std::vector<float>>> ShaderRunner::run(
       const std::size_t padded = (count + kGroupSize - 1) / kGroupSize * kGroupSize;
       std::vector<float> requests(padded * kRequestVectors * 4);
       for (std::size_t j = 0; j < padded; ++j) {
-        const auto r = request_of(samples[at[from + std::min(j, count - 1)]]);
+        const auto r = request_of(samples[at[from + std::min(j, count - 1)]], state_->v[k]);
         std::copy(r.begin(), r.end(), requests.begin() + static_cast<long>(j * r.size()));
       }
       glBindBuffer(GL_SHADER_STORAGE_BUFFER, state_->buffers[0]);
@@ -398,13 +441,18 @@ Expected<std::vector<std::vector<float>>> ShaderRunner::run(
   return out;
 }
 
-Consumers<float> shader_consumers(ShaderRunner& runner, const std::string& name) {
+Consumers<float> shader_consumers(ShaderRunner& runner, const std::string& name,
+                                  oracle::Sampling sampling) {
   Consumers<float> out;
   out.name = name;
   out.arithmetic = oracle::ConsumerArithmetic::gpu;
+  out.sampling = sampling;
   bool perspective = false;
   for (const ShaderFunction& f : runner.functions()) {
     perspective = perspective || runner.needs_perspective_camera(f.kind);
+    if (runner.reads_pixel(f.kind)) out.pixel_input = oracle::PixelInput::gpu;
+    // A texel names a pixel: its centre is the only position it can be judged at.
+    if (runner.reads_texel(f.kind)) out.sampling = oracle::Sampling::pixels;
     if (f.kind == ConsumerKind::view_position) {
       out.view_position = [&runner](const oracle::DepthSample<float>& s) {
         const auto a = runner.run(ConsumerKind::view_position, {s});

@@ -140,11 +140,7 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
   auto with = [&](auto member, std::initializer_list<Check> checks) {
     if (!(consumers.*member)) return;
     any = true;
-    oblique::Consumers<T> only;
-    only.name = consumers.name;
-    only.accepts = consumers.accepts;
-    only.mirror_design = consumers.mirror_design;
-    only.arithmetic = consumers.arithmetic;
+    oblique::Consumers<T> only = settings_of(consumers);
     only.*member = consumers.*member;
     for (const Check check : checks) run_check(only, check, contract);
   };

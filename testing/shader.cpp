@@ -10,7 +10,7 @@ namespace oblique::testing {
 void check_shader(const std::string& path, const std::string& function, const Contract& contract,
                   const ShaderSettings& settings) {
   const Expected<shader::ShaderFunction> found = shader::shader_function_in(
-      path, function, std::nullopt, settings.defines, settings.timeout_seconds);
+      path, function, std::nullopt, settings.defines, settings.timeout_seconds, settings.v);
   if (!found) {
     if (shader::cannot_run_here(found.error()))
       GTEST_SKIP() << "oblique::testing: the GPU path cannot run here: "
@@ -30,7 +30,8 @@ void check_shader(const std::string& path, const std::string& function, const Co
     ADD_FAILURE() << "oblique::testing: " << protocol::escape_bytes(runner.error());
     return;
   }
-  check_consumers(shader::shader_consumers(**runner, path + ":" + function), contract);
+  check_consumers(shader::shader_consumers(**runner, path + ":" + function, settings.sampling),
+                  contract);
 }
 
 }  // namespace oblique::testing

@@ -95,7 +95,8 @@ TEST(ShaderFunction, theWrapperKeepsTheUsersLinesAndDefinesTheConvention) {
   const Expected<Signature> sig =
       find_signature(user, "view_position", Language::glsl, ConsumerKind::view_position);
   ASSERT_TRUE(sig) << sig.error();
-  const std::string wrapped = wrapped_source(user, "u.glsl", *sig, Language::glsl, 2);
+  const std::string wrapped =
+      wrapped_source(user, "u.glsl", *sig, Language::glsl, 2, VDirection::up);
   EXPECT_EQ(wrapped.rfind("#version 450 core\n", 0), 0u);
   EXPECT_EQ(wrapped.find("#version 330"), std::string::npos);  // the user's, taken out
   EXPECT_NE(wrapped.find("#define OBLIQUE_CONVENTION 2\n"), std::string::npos);

@@ -115,10 +115,10 @@ std::string shader_answer_line(ConsumerKind kind, const std::vector<T>& numbers)
 /// shown as the protocol's request and answer lines, so reports read alike.
 class ShaderAnswerer final : public Answerer<float> {
  public:
-  explicit ShaderAnswerer(std::unique_ptr<shader::ShaderRunner> runner)
-      : runner_(std::move(runner)) {}
+  ShaderAnswerer(std::unique_ptr<shader::ShaderRunner> runner, oracle::Sampling sampling)
+      : runner_(std::move(runner)), sampling_(sampling) {}
   Consumers<float> consumers(const std::vector<ConsumerKind>&, const std::string& name) override {
-    Consumers<float> c = shader::shader_consumers(*runner_, name);
+    Consumers<float> c = shader::shader_consumers(*runner_, name, sampling_);
     if (c.view_position) c.view_position = recorded(c.view_position, ConsumerKind::view_position);
     if (c.linear_depth) c.linear_depth = recorded(c.linear_depth, ConsumerKind::linear_depth);
     return c;
@@ -165,6 +165,7 @@ class ShaderAnswerer final : public Answerer<float> {
   static std::vector<float> numbers(float x) { return {x}; }
   static std::vector<float> numbers(const Vector3<float>& v) { return {v.x(), v.y(), v.z()}; }
   std::unique_ptr<shader::ShaderRunner> runner_;
+  oracle::Sampling sampling_;
   std::string last_request_, last_answer_;
   long answered_ = 0;
 };
@@ -178,6 +179,8 @@ std::string answerer_flags(const VerifyOptions& options) {
     flags += " --shader-language " + std::string(shader::language_name(*options.shader_language));
   if (options.shader_device != "software") flags += " --device " + options.shader_device;
   for (const std::string& d : options.shader_defines) flags += " --define " + shell_quote(d);
+  if (options.shader_v)
+    flags += " --uv-v " + std::string(shader::v_direction_name(*options.shader_v));
   return flags;
 }
 
@@ -197,7 +200,10 @@ std::unique_ptr<Answerer<T>> answerer_for(const VerifyOptions& options,
       err << "oblique verify: --shader " << options.shader << ": " << functions.error() << "\n";
       return nullptr;
     }
-    for (shader::ShaderFunction& f : *functions) f.defines = options.shader_defines;
+    for (shader::ShaderFunction& f : *functions) {
+      f.defines = options.shader_defines;
+      if (options.shader_v) f.v = *options.shader_v;
+    }
     shader::RunnerOptions run;
     run.device = options.shader_device == "gpu" ? raster::Device::gpu : raster::Device::software;
     run.timeout_seconds = options.request_timeout_seconds;
@@ -208,7 +214,7 @@ std::unique_ptr<Answerer<T>> answerer_for(const VerifyOptions& options,
     }
     if (options.progress)
       err << "oblique verify: the shader runs on " << (*runner)->renderer() << "\n";
-    return std::make_unique<ShaderAnswerer>(std::move(*runner));
+    return std::make_unique<ShaderAnswerer>(std::move(*runner), options.sampling);
   } else {
     err << "oblique verify: a shader computes in float: --shader runs with --precision float\n";
     return nullptr;
@@ -227,6 +233,7 @@ class ConsumerRun {
         program_(std::move(answerer)),
         asked_(program_->consumers(kinds_, options.command)) {
     asked_.mirror_design = mode.mirror_design;
+    if (options.shader.empty()) asked_.sampling = options.sampling;  // a shader's has its own
   }
 
   /// A round's choices from `picks`, in order from `next`, each clamped to its range (a report

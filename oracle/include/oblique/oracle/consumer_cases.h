@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <iterator>
 #include <string_view>
 #include <vector>
 
@@ -80,6 +81,20 @@ Vector4<T> toward_centre(const Matrix4<T>& m, const Vector4<T>& c, Convention co
         away / away.template head<3>().norm() * std::max(Wide(1), centre.template head<3>().norm());
   const Vector4<Wide> p = point.template cast<Wide>();
   return Vector4<T>((p + fraction * (centre - p)).template cast<T>());
+}
+
+/// A render target of a size engines render at: the common screens, a quarter-size buffer,
+/// odd and prime sizes, 1 x 1, and the widest and tallest a GPU allows (16384).
+template <class Pick>
+oracle::Pixel render_target(Pick&& pick) {
+  static constexpr int kSizes[][2] = {{1920, 1080}, {1280, 720}, {3840, 2160}, {2560, 1440},
+                                      {960, 540},   {1, 1},      {7, 3},       {641, 479},
+                                      {1023, 767},  {16384, 9},  {5, 16384},   {2, 2}};
+  const auto& size = kSizes[pick(0, static_cast<int>(std::size(kSizes)))];
+  oracle::Pixel target;
+  target.width = size[0];
+  target.height = size[1];
+  return target;
 }
 
 /// A rotation by angles picked in sixteenths of pi about x, then y, then z.

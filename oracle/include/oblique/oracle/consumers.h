@@ -95,6 +95,47 @@ struct ConsumerFinding {
   std::string likely_cause;
 };
 
+/// The pixel of a render target a sample is read at: the target's size and the pixel's column
+/// and row, the row counted from the bottom (NDC y = -1) up. An empty target (width 0) is an
+/// arbitrary position, no pixel's.
+struct Pixel {
+  int width = 0, height = 0;
+  int x = 0, y = 0;
+  /// Read at the pixel's centre (Sampling::pixels), else at the sample's NDC, within the pixel.
+  bool at_centre = false;
+};
+
+/// Where the depth functions are asked (Consumers::sampling).
+enum class Sampling {
+  /// At pixel centres of render targets of real sizes (1920 x 1080, odd sizes, 1 x 1, 16384
+  /// wide, ...): what a GPU evaluates.
+  pixels,
+  /// At arbitrary NDC positions (the kept region's points as they project): positions no target
+  /// has, a stiff mode.
+  arbitrary,
+};
+inline constexpr EnumName<Sampling> sampling_names[] = {
+    {Sampling::pixels, "pixels"},
+    {Sampling::arbitrary, "arbitrary"},
+};
+constexpr std::string_view sampling_name(Sampling s) noexcept {
+  return name_in(sampling_names, s);
+}
+constexpr std::optional<Sampling> parse_sampling(std::string_view name) noexcept {
+  return value_in(sampling_names, name);
+}
+
+/// How the depth functions are handed the pixel (Consumers::pixel_input).
+enum class PixelInput {
+  /// Its NDC x and y, as the sample holds them: judged against that ray exactly.
+  ndc,
+  /// As a GPU hands it (a texture coordinate, a fragment coordinate, a texel and the target's
+  /// size), from which the function derives NDC in its own arithmetic: judged against the ray of
+  /// the position handed, within the rounding of handing it and of that derivation
+  /// (tolerance.h, kPixelToNdcRoundings).
+  gpu,
+};
+
 /// What a depth consumer reads at one pixel.
 template <class T>
 struct DepthSample {
@@ -102,7 +143,14 @@ struct DepthSample {
   Matrix4<T> original;    ///< M, the camera's projection before the oblique modification
   Convention convention = Convention::gl;
   DepthBuffer buffer = DepthBuffer::fixed24;
-  T ndc_x = 0, ndc_y = 0;  ///< the pixel's NDC
+  T ndc_x = 0, ndc_y = 0;  ///< the pixel's NDC (its centre's, rounded to T, for a target's pixel)
+  /// The target's pixel the sample is read at (its centre is at NDC x, y), or none (width 0).
+  Pixel pixel;
+  /// How far in NDC x and in NDC y the position the consumer reads may be from (ndc_x, ndc_y):
+  /// 0 where it is handed NDC; for a position handed as a GPU hands it, the rounding of handing
+  /// it and of the consumer's derivation of NDC from it (PixelInput::gpu). The judges widen the
+  /// ray by it.
+  T ndc_error = 0;
   /// The window depth as a shader reads it: fixed24, k / (2^24 - 1) rounded to T; float32, the
   /// stored float.
   T depth = 0;
@@ -117,6 +165,13 @@ std::optional<DepthSample<T>> depth_sample(const Matrix4<T>& projection, const M
                                            Convention convention, DepthBuffer buffer,
                                            const Vector4<T>& point);
 
+/// `sample` read at a pixel of `target` (its width and height): Sampling::pixels moves it to the
+/// centre of the pixel that holds its NDC (the nearest pixel where it is outside), its NDC that
+/// centre's rounded to T; Sampling::arbitrary keeps its NDC and notes the pixel that holds it.
+/// The depth is kept (a depth of that pixel's ray within the volume).
+template <class T>
+DepthSample<T> at_pixel(const DepthSample<T>& sample, Pixel target, Sampling sampling);
+
 /// How a judge computes what it compares: certified floating-point bounds first and exact
 /// rational arithmetic where they cannot decide (filtered, the verdict the same), or exact
 /// arithmetic throughout (the reference the filtered judge is tested against).
@@ -126,6 +181,12 @@ enum class Arithmetic { filtered, exact };
 /// (every operation correctly rounded), or a GPU's in T (a shader: the shading language's stated
 /// precision per operation, tolerance.h kGpuLostBits; the depth judges only).
 enum class ConsumerArithmetic { ieee, gpu };
+
+/// DepthSample::ndc_error for a consumer that reads the pixel as `input` in `arithmetic`: 0 for
+/// NDC; for a position as a GPU hands it, kPixelToNdcRoundings units of the arithmetic
+/// (tolerance.h).
+template <class T>
+T ndc_error_of(PixelInput input, ConsumerArithmetic arithmetic);
 
 /// `answer`, the view position the consumer reconstructed from `sample`, against the segment of
 /// the pixel ray whose window depths the stored value stands for (fixed24: k +- 1/2 over 2^24 - 1;
@@ -276,7 +337,27 @@ struct Consumers {
   /// The arithmetic view_position and linear_depth compute in (their bounds): T's IEEE one, or a
   /// GPU's (a shader run by oblique/shader).
   oracle::ConsumerArithmetic arithmetic = oracle::ConsumerArithmetic::ieee;
+  /// How view_position and linear_depth read the pixel: the sample's NDC, or as a GPU hands it
+  /// (a shader's texture coordinate, fragment coordinate or texel: sample.pixel).
+  oracle::PixelInput pixel_input = oracle::PixelInput::ndc;
+  /// Where view_position and linear_depth are asked: pixel centres of real targets, or arbitrary
+  /// positions (stiff).
+  oracle::Sampling sampling = oracle::Sampling::pixels;
 };
+
+/// A Consumers with the settings of `c` (its name, accepts, arithmetic, designs, pixel input and
+/// sampling) and none of its functions: a run asks one function of it at a time.
+template <class T>
+Consumers<T> settings_of(const Consumers<T>& c) {
+  Consumers<T> out;
+  out.name = c.name;
+  out.accepts = c.accepts;
+  out.arithmetic = c.arithmetic;
+  out.mirror_design = c.mirror_design;
+  out.pixel_input = c.pixel_input;
+  out.sampling = c.sampling;
+  return out;
+}
 
 }  // namespace oblique
 

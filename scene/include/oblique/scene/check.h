@@ -160,9 +160,11 @@ inline constexpr int kConsumerSamples = 64;
 
 /// `oblique check --impl` on a scene with consumers: the user's program (`command`, a new process)
 /// asked the consumer request kinds of every rendered pass in check.impl_precision, stored in
-/// impl_consumers. Fails, saying why, when the program does not answer as the protocol says.
+/// impl_consumers, its depth consumers at `sampling`'s positions. Fails, saying why, when the
+/// program does not answer as the protocol says.
 Expected<Done> judge_implementation_consumers(const Scene& scene, SceneCheck& check,
-                                              const std::string& command, double timeout_seconds);
+                                              const std::string& command, double timeout_seconds,
+                                              oracle::Sampling sampling = oracle::Sampling::pixels);
 
 /// `oblique check --shader`: the scene's reconstruction consumer answered by a shader's depth
 /// functions (`shader`, a Consumers<float> of oblique::shader, judged with the GPU's arithmetic)

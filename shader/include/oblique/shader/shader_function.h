@@ -41,12 +41,16 @@ enum class Input {
   zparams,                    ///< vec4: Unity's _ZBufferParams from M's near and far
   projection_params,          ///< vec4: (1 / M11, 1 / M22, M13, M23) of M
   ndc,                        ///< vec2: the pixel's NDC x and y
-  uv,                         ///< vec2: the pixel's texture coordinate, (ndc + 1) / 2
-  depth,                      ///< float: the window depth as the shader samples it
-  near_plane,                 ///< float: M's near distance
-  far_plane,                  ///< float: M's far distance (inf for an infinite M)
-  view_axis,                  ///< float: -1 for a camera looking down -z, +1 down +z
-  convention,                 ///< int: OBLIQUE_CONVENTION (0 gl, 1 zero_one, 2 reversed_z)
+  uv,  ///< vec2: the pixel's texture coordinate, its centre's (x + 1/2) / size, v up or down
+  frag_coord,   ///< vec2 or vec4: gl_FragCoord / SV_Position, the pixel's centre in pixels
+  texel,        ///< ivec2: the pixel's column and row, as texelFetch and Load take them
+  target_size,  ///< vec2: the render target's width and height in pixels
+  texel_size,   ///< vec2: 1 / width and 1 / height, set on the CPU
+  depth,        ///< float: the window depth as the shader samples it
+  near_plane,   ///< float: M's near distance
+  far_plane,    ///< float: M's far distance (inf for an infinite M)
+  view_axis,    ///< float: -1 for a camera looking down -z, +1 down +z
+  convention,   ///< int: OBLIQUE_CONVENTION (0 gl, 1 zero_one, 2 reversed_z)
 };
 
 /// The names a parameter may have for `input` (matched ignoring case and underscores), the
@@ -56,6 +60,30 @@ std::string_view input_name(Input input);
 /// Whether `input` is read off M as a perspective camera (near, far, zparams, projection params):
 /// a function that takes one is asked only about perspective cameras looking along z.
 bool needs_perspective_camera(Input input);
+
+/// Which way the texture coordinate v (and the rows of gl_FragCoord, SV_Position and texel
+/// coordinates) runs against NDC y: up (v = (NDC y + 1) / 2, rows from the bottom: GL, and Vulkan,
+/// whose NDC y already points down the image) or down (v = (1 - NDC y) / 2, rows from the top:
+/// Direct3D, Metal). A shader sees it as OBLIQUE_UV_V_DOWN (0 or 1).
+enum class VDirection { up, down };
+
+inline constexpr EnumName<VDirection> v_direction_names[] = {
+    {VDirection::up, "up"},
+    {VDirection::down, "down"},
+};
+constexpr std::string_view v_direction_name(VDirection v) noexcept {
+  return name_in(v_direction_names, v);
+}
+constexpr std::optional<VDirection> parse_v_direction(std::string_view name) noexcept {
+  return value_in(v_direction_names, name);
+}
+/// The direction engines of `language` mostly use: GLSL up, HLSL down.
+constexpr VDirection default_v_direction(Language language) noexcept {
+  return language == Language::hlsl ? VDirection::down : VDirection::up;
+}
+/// Whether `input` is the pixel as a GPU hands it (uv, frag_coord, texel): the function derives
+/// NDC from it in its own arithmetic (oracle::PixelInput::gpu).
+bool is_pixel_position(Input input);
 
 struct Parameter {
   std::string type;  ///< as written (vec4, float4, ...)
@@ -90,6 +118,8 @@ struct ShaderFunction {
   /// The engine's defines (NAME or NAME=VALUE, as -D takes them): the preprocessor keeps the
   /// #if variant they choose, beside OBLIQUE_CONVENTION.
   std::vector<std::string> defines;
+  /// Which way v runs (uv, and the rows of frag_coord and texel).
+  VDirection v = VDirection::up;
 };
 
 /// `--shader FILE[:FUNCTION]` split: the file, and the function ("" when none is named; the part
@@ -113,16 +143,18 @@ Expected<std::string> read_shader_file(const std::string& path);
 /// The function `function` of the file `path` as a ShaderFunction: its kind from its return
 /// type (vec3 / float3: view_position; float: linear_depth) in the variant the preprocessor keeps
 /// under `defines` (preprocessed() within `seconds`), its language from `language` or the file's
-/// extension. The error says why not (the file unreadable, no such function, another return
-/// type, the preprocessor stopped).
+/// extension, its v direction `v` or the language's default. The error says why not (the file
+/// unreadable, no such function, another return type, the preprocessor stopped).
 Expected<ShaderFunction> shader_function_in(const std::string& path, const std::string& function,
                                             std::optional<Language> language = std::nullopt,
                                             const std::vector<std::string>& defines = {},
-                                            double seconds = 10);
+                                            double seconds = 10,
+                                            std::optional<VDirection> v = std::nullopt);
 
 /// The `#define` lines the wrapper and the preprocessor begin with: OBLIQUE_GL, OBLIQUE_ZERO_ONE,
-/// OBLIQUE_REVERSED_Z, OBLIQUE_CONVENTION (`convention`), then `user_defines` (define_lines()).
-std::string convention_defines(int convention, const std::string& user_defines);
+/// OBLIQUE_REVERSED_Z, OBLIQUE_CONVENTION (`convention`), OBLIQUE_UV_V_DOWN (`v`), then
+/// `user_defines` (define_lines()).
+std::string convention_defines(int convention, VDirection v, const std::string& user_defines);
 
 /// The compute shader that runs `signature` of the user's `source` on a batch of requests, in
 /// the user's language: GLSL 4.50 (or HLSL for glslang), the user's file included with line
@@ -130,13 +162,13 @@ std::string convention_defines(int convention, const std::string& user_defines);
 /// defined as OBLIQUE_CONVENTION, and `user_defines` (define_lines()) after it.
 std::string wrapped_source(const std::string& source, const std::string& path,
                            const Signature& signature, Language language, int convention,
-                           const std::string& user_defines = "");
+                           VDirection v, const std::string& user_defines = "");
 
 /// The first line number of the GLSL wrapper's own code: a compiler's line below it is the
 /// user's file's.
 inline constexpr int kWrapperFirstLine = 100001;
 
 /// A request's inputs as the wrapped shader reads them: kRequestVectors vec4 per request.
-inline constexpr int kRequestVectors = 20;
+inline constexpr int kRequestVectors = 22;
 
 }  // namespace oblique::shader

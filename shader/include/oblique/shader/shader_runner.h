@@ -29,10 +29,14 @@ struct RunnerOptions {
 inline constexpr int kHangExitStatus = 2;
 
 /// The inputs of one request as the wrapped shader reads them (kRequestVectors vec4): M', M'^-1,
-/// M, M^-1 by rows, zparams, projection params, (ndc x, ndc y, depth, view axis) and
-/// (uv x, uv y, near, far). The inverses and the parameters are computed in double from the
-/// float inputs and rounded to float, as an engine's CPU code sets them.
-std::array<float, kRequestVectors * 4> request_of(const oracle::DepthSample<float>& sample);
+/// M, M^-1 by rows, zparams, projection params, (ndc x, ndc y, depth, view axis),
+/// (uv x, uv y, near, far), (frag coord x, y, target width, height) and (texel column, row,
+/// texel width, height), the pixel's rows counted the way `v` runs. The inverses and the
+/// parameters are computed in double from the float inputs and rounded to float, as an engine's
+/// CPU code sets them; the pixel is its centre at a target's pixel (sample.pixel.at_centre), else
+/// the sample's NDC.
+std::array<float, kRequestVectors * 4> request_of(const oracle::DepthSample<float>& sample,
+                                                  VDirection v = VDirection::up);
 
 /// Whether a camera M is one the parameters read off a perspective camera (zparams, near, far,
 /// projection params) describe: fourth row (0, 0, +-1, 0), no shear of z into x, y beyond M13,
@@ -60,6 +64,10 @@ class ShaderRunner {
   const std::vector<ShaderFunction>& functions() const;
   /// Whether the function for `kind` takes an input read off a perspective camera.
   bool needs_perspective_camera(protocol::ConsumerKind kind) const;
+  /// Whether it takes the pixel as a GPU hands it (uv, frag_coord, texel: is_pixel_position()).
+  bool reads_pixel(protocol::ConsumerKind kind) const;
+  /// Whether it takes a texel, which names a pixel (asked at pixel centres only).
+  bool reads_texel(protocol::ConsumerKind kind) const;
 
   /// The `kind` function's answers for `samples`, in order: 3 numbers each for view_position, 1
   /// for linear_depth. Fails where the kind has no function or the driver reports an error.
@@ -74,9 +82,12 @@ class ShaderRunner {
 
 /// The runner's functions as an oblique::Consumers<float> (view_position and linear_depth, each
 /// call one dispatch; a Failure-like std::runtime_error where the driver fails), judged with the
-/// GPU's arithmetic, asking only the cameras the functions' inputs describe. `runner` must
-/// outlive it.
-Consumers<float> shader_consumers(ShaderRunner& runner, const std::string& name);
+/// GPU's arithmetic and by the pixel as it was handed (oracle::PixelInput::gpu where a function
+/// reads uv, frag_coord or texel), asking only the cameras the functions' inputs describe, at
+/// `sampling`'s positions (pixel centres where a function reads a texel). `runner` must outlive
+/// it.
+Consumers<float> shader_consumers(ShaderRunner& runner, const std::string& name,
+                                  oracle::Sampling sampling = oracle::Sampling::pixels);
 
 /// `asks` (view_position and linear_depth asks of a consumer round) answered in one dispatch per
 /// kind: their samples taken by calling each ask on a recording Consumers.

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "oblique/raster/gl_context.h"
+#include "oblique/shader/shader_function.h"
 #include "oblique/testing.h"
 
 namespace oblique::testing {
@@ -31,6 +32,10 @@ struct ShaderSettings {
   /// The engine's defines (NAME or NAME=VALUE): the shader's #if variant is the one the
   /// preprocessor keeps under them and OBLIQUE_CONVENTION.
   std::vector<std::string> defines;
+  /// Which way the texture coordinate v runs (none: GLSL up, HLSL down; shader_function.h).
+  std::optional<shader::VDirection> v;
+  /// Where the function is asked: pixel centres of real targets, or arbitrary positions.
+  oracle::Sampling sampling = oracle::Sampling::pixels;
 };
 
 /// Checks the function `function` of the shader file `path` against the consumer properties

@@ -35,6 +35,11 @@ struct VerifyOptions {
   std::string shader_device = "software";           ///< software (llvmpipe) or gpu
   /// --define NAME[=VALUE]: the engine's defines the shader is preprocessed and compiled under.
   std::vector<std::string> shader_defines;
+  /// --uv-v: which way the shader's v runs (none: its language's default, GLSL up, HLSL down).
+  std::optional<shader::VDirection> shader_v;
+  /// --sampling: where depth functions are asked, pixel centres of real targets or arbitrary
+  /// positions.
+  oracle::Sampling sampling = oracle::Sampling::pixels;
   /// What the implementation promises, and so which inputs it is sent and how its answers are
   /// judged (the summary says what was left out). Its empty conventions mean gl (the protocol's
   /// default), its unset statuses any_refusal (a program need not name our refusals).
