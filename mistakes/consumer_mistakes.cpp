@@ -6,8 +6,10 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -26,26 +28,50 @@ using protocol::ConsumerKind;
 constexpr ConsumerMistakeEntry kConsumerCatalogue[] = {
     {ConsumerMistake::reconstructs_with_original, ConsumerKind::view_position,
      "reconstructs_with_original", "the depth decompressed with the camera's unmodified matrix",
-     "The pixel's depth was written through the oblique M', but the code inverts the camera's "
-     "own projection M (the one it keeps for the main view) to get the view position back. The "
-     "two matrices share rows 1, 2 and 4 only: the depth maps to another point on the pixel's "
-     "ray, nearer or farther than the surface (Unity Graphics#3919, three.js#21403, ioq3#641).",
+     "The pixel's depth was written through the oblique M', but the answers are M's: code that "
+     "inverts the camera's own projection M (the one it keeps for the main view), or that takes "
+     "view z from M's near and far (a perspectiveDepthToViewZ-style helper) and the ray from "
+     "rows 1 and 2, gives them. The two matrices share rows 1, 2 and 4 only: the depth maps to "
+     "another point on the pixel's ray, nearer or farther than the surface (Unity "
+     "Graphics#3919, three.js#21403, ioq3#641).",
      "Reconstruct with the matrix the depth was rendered with: M'^-1 (x, y, z_ndc, 1), divided "
-     "by w."},
+     "by w.",
+     "your answers are a reconstruction with the camera's own projection M: each pixel's depth placed as if the near plane had not moved"},
     {ConsumerMistake::ndc_depth_of_other_convention, ConsumerKind::view_position,
      "ndc_depth_of_other_convention", "the window depth mapped to NDC by the other convention",
      "The code maps the stored depth d to NDC z as the other depth convention does: z = 2 d - 1 "
      "on a [0, 1] (or reversed-Z) buffer, z = d on an OpenGL [-1, 1] one. Every pixel lands at "
      "another depth on its ray.",
      "z_ndc = 2 d - 1 for [-1, 1] depth and z_ndc = d for [0, 1] and reversed-Z depth, from the "
-     "matrix's convention."},
+     "matrix's convention.",
+     "your answers place each depth as the other depth convention would: every point lands at another depth on its pixel's ray"},
     {ConsumerMistake::reads_reversed_as_forward, ConsumerKind::view_position,
      "reads_reversed_as_forward", "a reversed-Z depth turned forward before the inverse",
      "On a reversed-Z buffer the code flips the stored depth, 1 - d, as a linearisation written "
      "for forward depth needs, but then applies M'^-1, which already maps reversed depth: the "
      "near and far ends of every ray trade places.",
      "Give M'^-1 the depth as stored (z_ndc = d on reversed Z); flip only for code that reads "
-     "forward depth."},
+     "forward depth.",
+     "your answers trade the near and far ends of each pixel's ray: a reversed-Z depth read as forward depth"},
+    {ConsumerMistake::reads_v_the_other_way, ConsumerKind::view_position,
+     "reads_v_the_other_way", "the pixel's v read the other way up",
+     "The code maps the pixel's texture coordinate to NDC as an API whose v runs the other way "
+     "does: uv * 2 - 1 on a top-down (Direct3D, Metal) coordinate, or 1 - 2 v on one that runs "
+     "with NDC y (OpenGL, Vulkan). Each pixel is reconstructed on the ray of the pixel mirrored "
+     "in y; only the middle row is right.",
+     "NDC y = 2 v - 1 where v runs with NDC y, 1 - 2 v where it runs against it; declare which "
+     "(--uv-v) and test both.",
+     "your answers are those of the pixel mirrored in y: the texture coordinate's v read the "
+     "other way up"},
+    {ConsumerMistake::ignores_oblique_row, ConsumerKind::view_position, "ignores_oblique_row",
+     "the depth solved from the projection's z entries alone",
+     "The code solves view z from M'33, M'34 and M'43 (z_ndc = (M'33 z + M'34) / (M'43 z)) and x "
+     "and y by dividing by M'11 and M'22, the fast path for an ordinary perspective matrix. The "
+     "oblique row has x and y entries too (M'31, M'32): the depth of a tilted near plane is "
+     "read as that of an untilted one.",
+     "Reconstruct with the whole inverse, M'^-1 (x, y, z_ndc, 1) / w, or solve with M'31 and "
+     "M'32 included.",
+     "your answers are those of a matrix without the oblique tilt: M'31 and M'32 ignored"},
     {ConsumerMistake::linearises_with_near_far, ConsumerKind::linear_depth,
      "linearises_with_near_far", "linear depth from the near and far planes (zparams)",
      "The code linearises with the textbook n f / (f - d (f - n)), n and f read off the "
@@ -54,7 +80,8 @@ constexpr ConsumerMistakeEntry kConsumerCatalogue[] = {
      "near and far planes at n and f: its depth is a function of the tilted plane, so the "
      "linear depth is wrong everywhere the near plane moved.",
      "Linearise with the matrix the depth was rendered with: the view position M'^-1 (x, y, "
-     "z_ndc, 1) / w, its distance along the view axis."},
+     "z_ndc, 1) / w, its distance along the view axis.",
+     "your linear depths are those of the camera's own near and far planes: depth linearised as if the near plane had not moved"},
     {ConsumerMistake::gl_planes_on_any_matrix, ConsumerKind::culling_planes,
      "gl_planes_on_any_matrix", "OpenGL's culling rows on a matrix of another convention",
      "The code extracts the near and far culling planes as OpenGL does (near = M'_4 + M'_3, far "
@@ -62,32 +89,37 @@ constexpr ConsumerMistakeEntry kConsumerCatalogue[] = {
      "matrix the near plane is then not C, and the far plane not the one the rasterizer clips "
      "at: objects are culled that are drawn, or drawn that are culled.",
      "Near = M'_4 + M'_3, far = M'_4 - M'_3 for [-1, 1]; near = M'_3, far = M'_4 - M'_3 for "
-     "[0, 1]; near = M'_4 - M'_3, far = M'_3 for reversed Z."},
+     "[0, 1]; near = M'_4 - M'_3, far = M'_3 for reversed Z.",
+     "your near and far planes are OpenGL's rows on a matrix of another depth convention"},
     {ConsumerMistake::planes_of_transpose, ConsumerKind::culling_planes, "planes_of_transpose",
      "the culling planes of the transposed matrix",
      "The code extracts the planes from columns instead of rows (a row-major array read as "
      "column-major, or the other way round): the planes of M'^T, which bound nothing the camera "
      "sees.",
-     "Combine the rows of M': left = M'_4 + M'_1, right = M'_4 - M'_1, and so on."},
+     "Combine the rows of M': left = M'_4 + M'_1, right = M'_4 - M'_1, and so on.",
+     "your planes are those of the transposed matrix: the matrix read in the other layout"},
     {ConsumerMistake::plane_without_translation, ConsumerKind::camera_plane,
      "plane_without_translation", "the plane's normal rotated, its distance kept",
      "The code rotates the world plane's normal into the pass camera's space but keeps its "
      "distance C_w from world space (three.js#16013, drei#721). Only a camera at the world's "
      "origin sees the plane there; elsewhere the clip plane is moved off the surface.",
      "Transform the plane by the inverse transpose of the view matrix: C_camera = W^-T C_world "
-     "(for a rigid W: n' = R n, d' = d - n' . t)."},
+     "(for a rigid W: n' = R n, d' = d - n' . t).",
+     "your plane has the right normal but the world plane's distance: it is moved off the surface"},
     {ConsumerMistake::plane_flipped_for_mirrors, ConsumerKind::camera_plane,
      "plane_flipped_for_mirrors", "the camera-space plane negated again for a mirrored view",
      "The code negates the transformed plane when the pass view mirrors (det < 0), reasoning that "
      "the reflection turns the plane around. The inverse transpose already has: the plane now "
      "keeps the side behind the mirror, and the pass draws what it should clip.",
-     "C_camera = W^-T C_world for every pass view, mirrored or not."},
+     "C_camera = W^-T C_world for every pass view, mirrored or not.",
+     "your plane keeps the wrong side where the pass view mirrors"},
     {ConsumerMistake::plane_through_view, ConsumerKind::camera_plane, "plane_through_view",
      "the plane transformed like a point, W C instead of W^-T C",
      "The code multiplies the world plane by the view matrix as if it were a point or a "
      "direction. Planes transform by the inverse transpose: W C is another plane whenever W is "
      "not a pure rotation.",
-     "C_camera = W^-T C_world."},
+     "C_camera = W^-T C_world.",
+     "your plane is the world plane transformed as a point is, not as a plane"},
     {ConsumerMistake::mirror_by_reflected_look_at, ConsumerKind::mirror_view,
      "mirror_by_reflected_look_at", "a look-at view of the reflected eye",
      "The code reflects the eye, the view direction and up through the mirror and builds a "
@@ -96,13 +128,15 @@ constexpr ConsumerMistakeEntry kConsumerCatalogue[] = {
      "the texture lookup flips it, and the winding is not flipped either.",
      "View = main view * R, with R the reflection through the mirror's plane (det -1), and flip "
      "the winding; or keep a proper camera and flip x in the projection or the lookup, and say "
-     "so (--mirror-design)."},
+     "so (--mirror-design).",
+     "your mirror view is a proper rotation: the reflected scene seen unmirrored"},
     {ConsumerMistake::portal_without_turn, ConsumerKind::portal_view, "portal_without_turn",
      "the portal view without the half turn",
      "The code composes view * frame * linked^-1, leaving out the half turn about up between "
      "the two portals. What is in front of the linked portal is then seen behind this one, "
      "mirrored through the wall.",
-     "View = main view * frame * turn * linked^-1 with turn = diag(-1, 1, -1, 1)."},
+     "View = main view * frame * turn * linked^-1 with turn = diag(-1, 1, -1, 1).",
+     "your portal view looks out of the linked portal's back"},
     {ConsumerMistake::corners_of_oblique_matrix, ConsumerKind::corners,
      "corners_of_oblique_matrix", "the oblique matrix's eight corners as the drawn volume",
      "The code bounds what the oblique pass draws by M'^-1's eight clip-space corners divided by "
@@ -110,7 +144,8 @@ constexpr ConsumerMistakeEntry kConsumerCatalogue[] = {
      "C cuts an edge of the view volume behind the eye, a corner lands behind the camera and "
      "their hull misses part of the region the pass draws.",
      "Bound the original view volume cut by C: the vertices of its part on C's kept side "
-     "(kept_region_vertices())."},
+     "(kept_region_vertices()).",
+     "your corners are the oblique matrix's eight corners, some behind the camera"},
 };
 // clang-format on
 
@@ -196,6 +231,105 @@ bool alike_answers(ConsumerKind kind, const std::vector<T>& a, const std::vector
   return false;
 }
 
+/// A number for the words (6 significant digits; the report's inputs carry the exact ones).
+std::string short_number(long double x) {
+  std::ostringstream out;
+  out.precision(6);
+  out << static_cast<double>(x);
+  return out.str();
+}
+
+/// What a view position answer shows against the sample it answered: where it projects under
+/// M' (on the pixel's ray or off it, by how many pixels, mirrored in y) and how far along.
+template <class T>
+std::string view_position_shows(const oracle::DepthSample<T>& s, const std::vector<T>& answer,
+                                const std::vector<T>& right) {
+  using Wide = long double;
+  const Vector4<Wide> a(answer[0], answer[1], answer[2], 1);
+  const Vector4<Wide> clip = s.projection.template cast<Wide>() * a;
+  if (!std::isfinite(clip.w()) || clip.w() <= 0)
+    return "the answer projects to no pixel under M' (it is behind the eye, at it, or not "
+           "finite)";
+  const Wide x = clip.x() / clip.w(), y = clip.y() / clip.w(), z = clip.z() / clip.w();
+  const Wide window = s.convention == Convention::gl ? (z + 1) / 2 : z;
+  const Wide nx = s.ndc_x, ny = s.ndc_y;
+  // Pixels of the sample's target (NDC spans 2 over its width), or of a 1920 x 1080 one.
+  const Wide width = s.pixel.width > 0 ? s.pixel.width : 1920;
+  const Wide height = s.pixel.height > 0 ? s.pixel.height : 1080;
+  const Wide dx = (x - nx) * width / 2, dy = (y - ny) * height / 2;
+  const Wide close = 0.01L;  // of a pixel
+  const Wide right_distance =
+      std::hypot(std::hypot(Wide(right[0]), Wide(right[1])), Wide(right[2]));
+  const Wide distance = std::hypot(std::hypot(a.x(), a.y()), a.z());
+  const std::string along =
+      right_distance > 0
+          ? short_number(distance / right_distance) +
+                " times as far from the eye as the point the stored depth stands for (window "
+                "depth " +
+                short_number(window) + " under M', where the buffer holds " +
+                short_number(s.depth) + ")"
+          : "at window depth " + short_number(window) + " under M'";
+  if (std::fabs(dx) <= close && std::fabs(dy) <= close)
+    return "the answer is on the pixel's ray, " + along;
+  const Wide my = (y + ny) * height / 2;
+  if (std::fabs(dx) <= close && std::fabs(my) <= close && std::fabs(dy) > 1)
+    return "the answer is on the ray of the pixel mirrored in y (NDC y " + short_number(y) +
+           " for " + short_number(ny) + "), " + along;
+  return "the answer is off the pixel's ray: it projects (" + short_number(dx) + ", " +
+         short_number(dy) + ") pixels from the pixel's centre (NDC (" + short_number(x) + ", " +
+         short_number(y) + ") for (" + short_number(nx) + ", " + short_number(ny) + ") on a " +
+         short_number(width) + " x " + short_number(height) + " target), " + along;
+}
+
+/// What a violated answer shows, in words: for the depth kinds where it lies against the pixel's
+/// ray; for the others how far it is from the core's reference answer.
+template <class T>
+std::string answers_show(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& answer) {
+  std::vector<T> right;
+  try {
+    right = ask.call(oracle::reference_consumers<T>());
+  } catch (...) {
+    return "";
+  }
+  for (const T x : answer)
+    if (!std::isfinite(x)) return "the answer is not finite (NaN or infinity)";
+  if (right.size() != answer.size()) return "";
+  if (ask.kind == ConsumerKind::view_position) {
+    std::optional<oracle::DepthSample<T>> sample;
+    Consumers<T> recording;
+    recording.view_position = [&sample](const oracle::DepthSample<T>& s) {
+      sample = s;
+      return Vector3<T>::Zero().eval();
+    };
+    try {
+      (void)ask.call(recording);
+    } catch (...) {
+    }
+    if (sample) return view_position_shows(*sample, answer, right);
+  }
+  if (ask.kind == ConsumerKind::linear_depth) {
+    const long double r = right[0], a = answer[0];
+    if (r == 0) return "the answer is " + short_number(a) + " where the right linear depth is 0";
+    return "the answer is " + short_number(a / r) + " times the right linear depth (" +
+           short_number(a) + " for " + short_number(r) + ")";
+  }
+  long double largest = 0, scale = 0;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < answer.size(); ++i) {
+    const long double d = std::fabs(static_cast<long double>(answer[i]) - right[i]);
+    scale = std::max(scale, std::fabs(static_cast<long double>(right[i])));
+    if (d > largest) {
+      largest = d;
+      at = i;
+    }
+  }
+  return "the answer differs from the core's reference answer most in its number " +
+         std::to_string(at + 1) + " of " + std::to_string(answer.size()) + ", by " +
+         short_number(largest) +
+         (scale > 0 ? " (" + short_number(largest / scale) + " of the largest reference number)"
+                    : "");
+}
+
 }  // namespace
 
 const ConsumerMistakeEntry& consumer_mistake_entry(ConsumerMistake mistake) {
@@ -234,6 +368,21 @@ Consumers<T> mistaken_consumers(ConsumerMistake mistake) {
       c.view_position = [](const oracle::DepthSample<T>& s) {
         const T d = s.convention == Convention::reversed_z ? T(1) - s.depth : s.depth;
         return view_position(s.projection, s.ndc_x, s.ndc_y, d, s.convention);
+      };
+      break;
+    case ConsumerMistake::reads_v_the_other_way:
+      c.view_position = [](const oracle::DepthSample<T>& s) {
+        return view_position(s.projection, s.ndc_x, -s.ndc_y, s.depth, s.convention);
+      };
+      break;
+    case ConsumerMistake::ignores_oblique_row:
+      c.view_position = [](const oracle::DepthSample<T>& s) {
+        const Matrix4<T>& p = s.projection;
+        const T z_ndc = s.convention == Convention::gl ? T(2) * s.depth - T(1) : s.depth;
+        const T z = p(2, 3) / (z_ndc * p(3, 2) - p(2, 2));
+        const T w = p(3, 2) * z;
+        return Vector3<T>((s.ndc_x * w - p(0, 2) * z) / p(0, 0),
+                          (s.ndc_y * w - p(1, 2) * z) / p(1, 1), z);
       };
       break;
     case ConsumerMistake::linearises_with_near_far:
@@ -326,9 +475,17 @@ template <class T>
 void explain_consumer(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& answer,
                       oracle::ConsumerFinding& finding) {
   if (!finding.judged || finding.holds) return;
+  finding.answers_show = answers_show(ask, answer);
   // An answer as close to the correct one is a precision finding, no formula's.
   try {
-    if (alike_answers(ask.kind, answer, ask.call(oracle::reference_consumers<T>()))) return;
+    if (alike_answers(ask.kind, answer, ask.call(oracle::reference_consumers<T>()))) {
+      finding.answers_show +=
+          (finding.answers_show.empty() ? "" : "; ") +
+          std::string(
+              "it agrees with the right answer to half of the precision's digits, too "
+              "close for the catalogue's formulas to be told from it");
+      return;
+    }
   } catch (...) {
   }
   std::string names;
@@ -367,17 +524,23 @@ std::string consumer_cause_line(const std::string& likely_cause) {
                        : "";
   if (const auto m = parse_consumer_mistake(names)) {
     const ConsumerMistakeEntry& e = consumer_mistake_entry(*m);
-    return "likely cause: " + names + " (" + std::string(e.title) + where +
-           "); fix: " + std::string(e.fix);
+    return "likely cause: " + names + ": " + std::string(e.effect) + " (" + std::string(e.title) +
+           where + "); fix: " + std::string(e.fix);
   }
   return "likely cause: " + names + (before_shrinking ? " (" + where.substr(2) + ")" : "");
 }
 
-std::string consumer_cause_markdown(const std::string& decorated) {
-  if (decorated.empty()) return "";
+std::string consumer_cause_markdown(const std::string& decorated, const std::string& shows) {
+  if (decorated.empty() && shows.empty()) return "";
   const auto [likely_cause, before_shrinking] = undecorated(decorated);
   std::ostringstream md;
   md << "## Likely cause\n\n";
+  if (!shows.empty()) md << "What the answers show: " << shows << ".\n\n";
+  if (likely_cause.empty()) {
+    md << "No known mistake gives this answer (catalogue: docs/consumers.md): what it shows, "
+          "above, is what is known of it.\n\n";
+    return md.str();
+  }
   std::vector<std::string> names;
   for (std::size_t at = 0; at <= likely_cause.size();) {
     const std::size_t end = std::min(likely_cause.find(" or ", at), likely_cause.size());
@@ -390,8 +553,10 @@ std::string consumer_cause_markdown(const std::string& decorated) {
     const auto m = parse_consumer_mistake(name);
     if (!m) continue;
     const ConsumerMistakeEntry& e = consumer_mistake_entry(*m);
-    md << "**`" << e.name << "`: " << e.title << ".** " << e.explanation << "\n\nFix: " << e.fix
-       << "\n\n";
+    std::string effect(e.effect);
+    if (!effect.empty()) effect[0] = static_cast<char>(std::toupper(effect[0]));
+    md << "**`" << e.name << "`: " << effect << ".** The code that gives it (" << e.title
+       << "): " << e.explanation << "\n\nFix: " << e.fix << "\n\n";
   }
   if (before_shrinking)
     md << "Named on the run's first failing case, where the answer was this wrong function's on "

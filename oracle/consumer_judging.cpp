@@ -312,6 +312,8 @@ std::string describe(const ConsumerFinding& f) {
   out += f.detail;
   out += " (residual / bound " + protocol::format_number(f.ratio) + ")";
   if (!f.holds && !f.likely_cause.empty()) out += "; likely cause: " + f.likely_cause;
+  if (!f.holds && f.likely_cause.empty() && !f.answers_show.empty())
+    out += "; likely cause: no known mistake; " + f.answers_show;
   return out;
 }
 

@@ -465,7 +465,8 @@ std::string consumer_report_markdown(const std::string& consumer, const Consumer
   const std::string name(consumer_check_name(finding.check));
   return "# Counterexample: " + name + "\n\n`" + consumer + "` violates **" + name +
          "**.\n\n## What was found\n\n" + describe(finding) + "\n\n" +
-         mistakes::consumer_cause_markdown(finding.likely_cause) + "## The inputs\n\n" + inputs +
+         mistakes::consumer_cause_markdown(finding.likely_cause, finding.answers_show) +
+         "## The inputs\n\n" + inputs +
          "\nNumbers print so that they read back to the same value; matrices are row by row, "
          "planes keep P . x >= 0. The properties and their bounds: docs/consumers.md.\n";
 }

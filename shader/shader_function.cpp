@@ -58,6 +58,7 @@ const std::vector<InputEntry>& inputs() {
        "vec2",
        {"target_size", "screen_size", "resolution", "viewport_size", "render_size", "buffer_size",
         "texture_size"}},
+      {Input::viewport, "vec4", {"viewport", "viewport_rect", "view_rect"}},
       {Input::texel_size,
        "vec2",
        {"texel_size", "inv_screen_size", "inverse_screen_size", "rcp_screen_size", "pixel_size",
@@ -382,6 +383,8 @@ std::string wrapped_source(const std::string& source, const std::string& path,
           return (glsl ? "vec4(" : "float4(") + v + "[20].xy, 0.0, 1.0)";
         return v + "[20].xy";
       case Input::target_size: return v + "[20].zw";
+      case Input::viewport:
+        return (glsl ? "vec4(0.0, 0.0, " : "float4(0.0, 0.0, ") + v + "[20].zw)";
       case Input::texel: return (glsl ? "ivec2(" : "int2(") + v + "[21].xy)";
       case Input::texel_size: return v + "[21].zw";
       case Input::near_plane: return v + "[19].z";

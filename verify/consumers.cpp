@@ -304,8 +304,9 @@ class ConsumerRun {
     set_shrinking_line(options_);
     // Said first (and flushed): an interrupted shrink still leaves the finding on the terminal.
     (err_ << "oblique verify: " << oracle::consumer_check_name(caught_->finding.check)
-          << " violated in round " << caught_->index + 1 << "; shrinking its picks\n  request: "
-          << caught_->request << "\n  answer: " << caught_->answer << "\n")
+          << " violated in round " << caught_->index + 1
+          << "; shrinking its picks\n  request (before shrinking): " << caught_->request
+          << "\n  answer (before shrinking): " << caught_->answer << "\n")
         .flush();
     constexpr int kShrinkTries = 300;
     constexpr auto kShrinkSeconds = std::chrono::seconds(10);
@@ -342,7 +343,8 @@ class ConsumerRun {
     if (tries > 0)
       err_ << "oblique verify: shrank the round's picks: " << steps << " steps (" << tries
            << " tries" << (shrink_stopped_ ? "; stopped: " + *shrink_stopped_ : std::string())
-           << ")\n";
+           << ")\n  request (shrunk, as the report has it): " << caught_->request
+           << "\n  answer (shrunk): " << caught_->answer << "\n";
   }
 
   /// A request that got no answer to judge: a protocol error is said on err_ (false); a crash or

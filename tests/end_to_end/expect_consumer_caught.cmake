@@ -1,7 +1,9 @@
 # Runs one test of example_consumers_wrong and passes only when it fails on PROPERTY and writes a
 # report naming it, with its replay command (and, with PICTURES=1, its pictures' section); with
-# CAUSE, the failure and the report name that likely cause (mistakes/consumer_mistakes.h).
-# cmake -DBINARY=... -DTEST=Suite.Name -DPROPERTY=... [-DPICTURES=1] [-DCAUSE=name] -DREPORTS=...
+# CAUSE, the failure and the report name that likely cause (mistakes/consumer_mistakes.h); with
+# SHOWS (a regular expression), they say no known mistake and what the answers show, matching it.
+# cmake -DBINARY=... -DTEST=Suite.Name -DPROPERTY=... [-DPICTURES=1] [-DCAUSE=name | -DSHOWS=re]
+#       -DREPORTS=...
 #       -P expect_consumer_caught.cmake
 file(REMOVE_RECURSE "${REPORTS}")
 set(ENV{OBLIQUE_REPORT_DIR} "${REPORTS}")
@@ -16,6 +18,9 @@ endif()
 if(CAUSE AND NOT output MATCHES "likely cause: ${CAUSE}")
   message(FATAL_ERROR "${TEST} failed, but the likely cause ${CAUSE} is not named:\n${output}")
 endif()
+if(SHOWS AND NOT output MATCHES "likely cause: no known mistake; [^\n]*${SHOWS}")
+  message(FATAL_ERROR "${TEST} failed, but what its answers show (${SHOWS}) is not said:\n${output}")
+endif()
 file(GLOB reports "${REPORTS}/*.md")
 if(NOT reports)
   message(FATAL_ERROR "${TEST} was caught but no report was written:\n${output}")
@@ -27,8 +32,11 @@ foreach(report ${reports})
     if(PICTURES AND NOT text MATCHES "## Pictures")
       message(FATAL_ERROR "the report ${report} has no pictures:\n${text}")
     endif()
-    if(CAUSE AND NOT text MATCHES "## Likely cause\n\n\\*\\*`${CAUSE}`")
+    if(CAUSE AND NOT text MATCHES "## Likely cause\n\n(What the answers show: [^\n]*\n\n)?\\*\\*`${CAUSE}`")
       message(FATAL_ERROR "the report ${report} does not name the likely cause ${CAUSE}:\n${text}")
+    endif()
+    if(SHOWS AND NOT text MATCHES "## Likely cause\n\nWhat the answers show: [^\n]*${SHOWS}")
+      message(FATAL_ERROR "the report ${report} does not say what the answers show:\n${text}")
     endif()
     set(named "${report}")
   endif()

@@ -19,6 +19,8 @@ enum class ConsumerMistake {
   reconstructs_with_original,     ///< view_position: the unmodified matrix's inverse on M' depth
   ndc_depth_of_other_convention,  ///< view_position: z = 2 d - 1 on [0, 1] depth, z = d on gl
   reads_reversed_as_forward,      ///< view_position: 1 - d on reversed Z before M'^-1
+  reads_v_the_other_way,          ///< view_position: NDC y negated (v read the other way up)
+  ignores_oblique_row,            ///< view_position: z from M'33, M'34, M'43 alone, x / M'11
   linearises_with_near_far,       ///< linear_depth: n f / (f - d (f - n)), n, f off M ("zparams")
   gl_planes_on_any_matrix,        ///< culling_planes: OpenGL's near and far rows on any matrix
   planes_of_transpose,            ///< culling_planes: the rows of M^T (the layout misread)
@@ -32,7 +34,8 @@ enum class ConsumerMistake {
 
 inline constexpr ConsumerMistake all_consumer_mistakes[] = {
     ConsumerMistake::reconstructs_with_original, ConsumerMistake::ndc_depth_of_other_convention,
-    ConsumerMistake::reads_reversed_as_forward,  ConsumerMistake::linearises_with_near_far,
+    ConsumerMistake::reads_reversed_as_forward,  ConsumerMistake::reads_v_the_other_way,
+    ConsumerMistake::ignores_oblique_row,        ConsumerMistake::linearises_with_near_far,
     ConsumerMistake::gl_planes_on_any_matrix,    ConsumerMistake::planes_of_transpose,
     ConsumerMistake::plane_without_translation,  ConsumerMistake::plane_flipped_for_mirrors,
     ConsumerMistake::plane_through_view,         ConsumerMistake::mirror_by_reflected_look_at,
@@ -46,6 +49,8 @@ struct ConsumerMistakeEntry {
   std::string_view title;        ///< a short phrase
   std::string_view explanation;  ///< what the code does and why it is wrong
   std::string_view fix;
+  /// What the answers show, first: "your answers are a reconstruction with ...".
+  std::string_view effect;
 };
 
 const ConsumerMistakeEntry& consumer_mistake_entry(ConsumerMistake mistake);
@@ -71,8 +76,11 @@ inline constexpr const char* kNamedBeforeShrinking = " (named on the first faili
 
 /// "likely cause: NAME (title); fix: ..." for a finding's likely_cause ("" for none).
 std::string consumer_cause_line(const std::string& likely_cause);
-/// The report's "Likely cause" section for it (Markdown, from its heading; "" for none).
-std::string consumer_cause_markdown(const std::string& likely_cause);
+/// The report's "Likely cause" section for it and what the answers show (a finding's
+/// answers_show): Markdown, from its heading; "" where both are empty. Without a name it says no
+/// known mistake gives the answer, after what the answer shows.
+std::string consumer_cause_markdown(const std::string& likely_cause,
+                                    const std::string& answers_show = "");
 
 #define OBLIQUE_CONSUMER_MISTAKES_EXTERN(T)                                                      \
   extern template Consumers<T> mistaken_consumers<T>(ConsumerMistake);                           \

@@ -93,6 +93,10 @@ struct ConsumerFinding {
   /// (mistakes/consumer_mistakes.h; names joined by " or "), empty when none is known or the
   /// finding was not explained.
   std::string likely_cause;
+  /// For a violated finding explained: what the answer shows, in words, whatever names it (for
+  /// a view position where it projects against the pixel's ray; else how far it is from the
+  /// right answer).
+  std::string answers_show;
 };
 
 /// The pixel of a render target a sample is read at: the target's size and the pixel's column

@@ -45,6 +45,7 @@ enum class Input {
   frag_coord,   ///< vec2 or vec4: gl_FragCoord / SV_Position, the pixel's centre in pixels
   texel,        ///< ivec2: the pixel's column and row, as texelFetch and Load take them
   target_size,  ///< vec2: the render target's width and height in pixels
+  viewport,     ///< vec4: (x, y, width, height) of the viewport: (0, 0, the target's size)
   texel_size,   ///< vec2: 1 / width and 1 / height, set on the CPU
   depth,        ///< float: the window depth as the shader samples it
   near_plane,   ///< float: M's near distance
