@@ -102,10 +102,15 @@ TEST(ConsumerMistakes, aCauseNamedBeforeShrinkingIsSaidSo) {
   using namespace oblique::mistakes;
   const std::string carried = std::string("linearises_with_near_far") + kNamedBeforeShrinking;
   const std::string line = consumer_cause_line(carried);
-  EXPECT_EQ(line.rfind("likely cause: linearises_with_near_far (linear depth from the near and "
-                       "far planes (zparams), named on the first failing case",
+  // The effect first, then the mechanism and where it was named.
+  EXPECT_EQ(line.rfind("likely cause: linearises_with_near_far: your linear depths are those of "
+                       "the camera's own near and far planes",
                        0),
             0u)
+      << line;
+  EXPECT_NE(line.find("(linear depth from the near and far planes (zparams), named on the first "
+                      "failing case"),
+            std::string::npos)
       << line;
   EXPECT_NE(line.find("; fix: "), std::string::npos) << line;
   const std::string md = consumer_cause_markdown(carried);
