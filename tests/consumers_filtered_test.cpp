@@ -172,6 +172,9 @@ TYPED_TEST(FilteredConsumers, depthJudgesAgreeWithTheExactOnes) {
   };
   const int wanted = std::is_same_v<T, long double> ? 20 : 120;
   for (int i = 0; static_cast<int>(samples.size()) < wanted && i < 4 * wanted; ++i) {
+    // Pixel centres and arbitrary positions, the pixel handed as NDC and as a GPU hands it.
+    asking.sampling = i % 2 ? Sampling::arbitrary : Sampling::pixels;
+    asking.pixel_input = i % 3 ? PixelInput::gpu : PixelInput::ndc;
     const cases::Case<T> g = gen(random.split(), i % 101).value();
     for (const auto& ask :
          consumer_asks<T>(g.matrix, g.plane, g.convention, asking, pick,
@@ -208,6 +211,58 @@ TYPED_TEST(FilteredConsumers, depthJudgesAgreeWithTheExactOnes) {
   }
   EXPECT_GT(tally.held, 0);
   EXPECT_GT(tally.violated, 0);
+}
+
+// The ray is widened by ndc_error in NDC x and y, and by nothing else: an answer on the ray of a
+// position within it holds, one beyond it is violated, with and without the widening, in both
+// arithmetics (exact; the filtered path agrees, above).
+TYPED_TEST(FilteredConsumers, theRayIsWidenedByTheNdcErrorAlone) {
+  using T = TypeParam;
+  const Matrix4<T> m = perspective<T>(T(1.2), T(1.5), T(1), T(100), Convention::gl);
+  const auto sample = depth_sample<T>(m, m, Convention::gl, DepthBuffer::float32,
+                                      Vector4<T>(T(0.75), T(-0.5), T(-4), T(1)));
+  ASSERT_TRUE(sample.has_value());
+  const T delta = T(1) / T(1024);
+  for (const ConsumerArithmetic arithmetic : {ConsumerArithmetic::ieee, ConsumerArithmetic::gpu}) {
+    auto at = [&](T dx) {
+      return view_position(m, T(sample->ndc_x + dx), sample->ndc_y, sample->depth, Convention::gl);
+    };
+    DepthSample<T> widened = *sample;
+    widened.ndc_error = delta;
+    for (const Arithmetic method : {Arithmetic::exact, Arithmetic::filtered}) {
+      EXPECT_TRUE(judge_view_position(widened, at(delta / 2), arithmetic, method).holds);
+      EXPECT_FALSE(judge_view_position(*sample, at(delta / 2), arithmetic, method).holds);
+      EXPECT_FALSE(judge_view_position(widened, at(delta * 4), arithmetic, method).holds);
+      EXPECT_TRUE(judge_view_position(*sample, at(0), arithmetic, method).holds);
+    }
+  }
+}
+
+// A sample moved to a target's pixel: its centre's NDC (rounded to T) at Sampling::pixels, its
+// own NDC in the pixel that holds it at Sampling::arbitrary; outside the target, the nearest
+// edge pixel; the depth kept.
+TYPED_TEST(FilteredConsumers, aSampleIsReadAtItsPixel) {
+  using T = TypeParam;
+  DepthSample<T> s;
+  s.ndc_x = T(0.1);
+  s.ndc_y = T(-1.5);
+  s.depth = T(0.25);
+  Pixel target;
+  target.width = 1920;
+  target.height = 1080;
+  const DepthSample<T> centre = at_pixel(s, target, Sampling::pixels);
+  EXPECT_EQ(centre.pixel.x, 1056);  // floor(1.1 / 2 * 1920)
+  EXPECT_EQ(centre.pixel.y, 0);     // below the target: the bottom row
+  EXPECT_TRUE(centre.pixel.at_centre);
+  // (2 p + 1) / size - 1 rounded once: (2 p + 1 - size) / size.
+  EXPECT_EQ(centre.ndc_x, T(2 * 1056 + 1 - 1920) / T(1920));
+  EXPECT_EQ(centre.ndc_y, T(1 - 1080) / T(1080));
+  EXPECT_EQ(centre.depth, s.depth);
+  const DepthSample<T> own = at_pixel(s, target, Sampling::arbitrary);
+  EXPECT_EQ(own.pixel.x, 1056);
+  EXPECT_FALSE(own.pixel.at_centre);
+  EXPECT_EQ(own.ndc_x, s.ndc_x);
+  EXPECT_EQ(own.ndc_y, s.ndc_y);
 }
 
 }  // namespace
