@@ -27,10 +27,11 @@ struct CheckSettings {
   std::string shader;  ///< --shader FILE[:FUNCTION]: the reconstruction consumer's shader
   std::optional<oblique::shader::Language> shader_language;
   std::vector<std::string> shader_defines;
-  std::optional<oblique::shader::VDirection> shader_v;                     ///< --uv-v
-  oblique::oracle::Sampling sampling = oblique::oracle::Sampling::pixels;  ///< --sampling
-  std::string plot_dir;                                                    ///< --plot DIR
-  std::string html;                                                        ///< --html FILE
+  std::optional<oblique::shader::VDirection> shader_v;                         ///< --uv-v
+  oblique::shader::Vectors shader_vectors = oblique::shader::Vectors::column;  ///< --vectors
+  oblique::oracle::Sampling sampling = oblique::oracle::Sampling::pixels;      ///< --sampling
+  std::string plot_dir;                                                        ///< --plot DIR
+  std::string html;                                                            ///< --html FILE
   double timeout_seconds = 10;
   bool rasterize = false;           ///< --rasterize
   std::string device = "software";  ///< --device
@@ -190,7 +191,7 @@ int run_check(const CheckSettings& settings) {
     if (!function.empty()) {
       const auto f = oblique::shader::shader_function_in(
           file, function, settings.shader_language, settings.shader_defines,
-          settings.timeout_seconds, settings.shader_v);
+          settings.timeout_seconds, settings.shader_v, settings.shader_vectors);
       if (f)
         functions->push_back(*f);
       else
@@ -210,6 +211,7 @@ int run_check(const CheckSettings& settings) {
     for (oblique::shader::ShaderFunction& f : *functions) {
       f.defines = settings.shader_defines;
       if (settings.shader_v) f.v = *settings.shader_v;
+      f.vectors = settings.shader_vectors;
     }
     oblique::shader::RunnerOptions options;
     options.device =
@@ -367,6 +369,7 @@ void setup_check(CLI::App& app, int& exit_code) {
           "glsl or hlsl (default: by the file's extension)")
       ->check(CLI::IsMember({"glsl", "hlsl"}));
   add_uv_v_option(check, settings->shader_v);
+  add_vectors_option(check, settings->shader_vectors);
   add_sampling_option(check, settings->sampling);
   check->add_option("-D,--define", settings->shader_defines,
                     "With --shader: a define of the engine's, NAME or NAME=VALUE (repeat it): the "

@@ -46,6 +46,9 @@ CLI::Option* add_precision_option(CLI::App* app, std::string& precision, const s
 /// --uv-v (verify and check, with --shader): which way the shader's texture coordinate v runs.
 CLI::Option* add_uv_v_option(CLI::App* app, std::optional<shader::VDirection>& v);
 
+/// --vectors (verify and check, with --shader): how the shader's matrices multiply vectors.
+CLI::Option* add_vectors_option(CLI::App* app, shader::Vectors& vectors);
+
 /// --sampling (verify and check): where depth functions are asked, pixels or arbitrary.
 CLI::Option* add_sampling_option(CLI::App* app, oracle::Sampling& sampling);
 

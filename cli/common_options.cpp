@@ -55,6 +55,17 @@ CLI::Option* add_uv_v_option(CLI::App* app, std::optional<shader::VDirection>& v
       ->check(CLI::IsMember({"up", "down"}));
 }
 
+CLI::Option* add_vectors_option(CLI::App* app, shader::Vectors& vectors) {
+  return app
+      ->add_option_function<std::string>(
+          "--vectors",
+          [&vectors](const std::string& name) { vectors = *shader::parse_vectors(name); },
+          "With --shader: how the engine's matrices multiply vectors: column (M v: GLSL M * v, "
+          "HLSL mul(M, v); the default) or row (v M: HLSL mul(v, M), DirectXMath style); a "
+          "row-vector shader is handed M^T, as its engine's uniforms hold it")
+      ->check(CLI::IsMember({"column", "row"}));
+}
+
 CLI::Option* add_sampling_option(CLI::App* app, oracle::Sampling& sampling) {
   return app
       ->add_option_function<std::string>(

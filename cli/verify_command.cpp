@@ -199,6 +199,7 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
           "glsl or hlsl (default: by the file's extension, .hlsl and .fx HLSL)")
       ->check(CLI::IsMember({"glsl", "hlsl"}));
   add_uv_v_option(verify, options.shader_v);
+  add_vectors_option(verify, options.shader_vectors);
   add_sampling_option(verify, options.sampling);
   verify->add_option("-D,--define", options.shader_defines,
                      "With --shader: a define of the engine's, NAME or NAME=VALUE (repeat it): the "

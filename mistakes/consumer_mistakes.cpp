@@ -72,6 +72,15 @@ constexpr ConsumerMistakeEntry kConsumerCatalogue[] = {
      "Reconstruct with the whole inverse, M'^-1 (x, y, z_ndc, 1) / w, or solve with M'31 and "
      "M'32 included.",
      "your answers are those of a matrix without the oblique tilt: M'31 and M'32 ignored"},
+    {ConsumerMistake::transposed_matrix, ConsumerKind::view_position, "transposed_matrix",
+     "the inverse projection used transposed",
+     "The code multiplies by the transpose of the matrix it was handed: a column-vector product "
+     "(M v, mul(M, v)) on a matrix stored for row vectors (v M, DirectXMath and D3DX style), or "
+     "the other way round. Every coordinate of the reconstructed point mixes the wrong entries.",
+     "Multiply as the matrix is stored: mul(v, M) for row vectors, mul(M, v) for column vectors; "
+     "declare the engine's layout (--vectors row) so that it is handed what its uniforms hold.",
+     "your answers are those of the transposed matrix: the matrix read in the other layout (row "
+     "vectors for column vectors)"},
     {ConsumerMistake::linearises_with_near_far, ConsumerKind::linear_depth,
      "linearises_with_near_far", "linear depth from the near and far planes (zparams)",
      "The code linearises with the textbook n f / (f - d (f - n)), n and f read off the "
@@ -383,6 +392,14 @@ Consumers<T> mistaken_consumers(ConsumerMistake mistake) {
         const T w = p(3, 2) * z;
         return Vector3<T>((s.ndc_x * w - p(0, 2) * z) / p(0, 0),
                           (s.ndc_y * w - p(1, 2) * z) / p(1, 1), z);
+      };
+      break;
+    case ConsumerMistake::transposed_matrix:
+      c.view_position = [](const oracle::DepthSample<T>& s) {
+        const T z = s.convention == Convention::gl ? T(2) * s.depth - T(1) : s.depth;
+        const Vector4<T> v =
+            s.projection.inverse().transpose() * Vector4<T>(s.ndc_x, s.ndc_y, z, T(1));
+        return Vector3<T>(v.template head<3>() / v.w());
       };
       break;
     case ConsumerMistake::linearises_with_near_far:

@@ -202,7 +202,8 @@ Expected<Signature> find_signature(const std::string& source, const std::string&
     bool only_words = true;
     for (const Token& t : piece) {
       static const std::vector<std::string_view> qualifiers = {
-          "in", "const", "highp", "mediump", "lowp", "precise", "uniform"};
+          "in",      "const",   "highp",     "mediump",     "lowp",
+          "precise", "uniform", "row_major", "column_major"};
       only_words = only_words && t.kind == Token::Kind::identifier;
       if (std::find(qualifiers.begin(), qualifiers.end(), t.text) == qualifiers.end())
         words.emplace_back(t.text.substr(0, 64));
@@ -271,7 +272,7 @@ std::pair<std::string, std::string> split_shader_spec(const std::string& spec) {
 Expected<ShaderFunction> shader_function_in(const std::string& path, const std::string& function,
                                             std::optional<Language> language,
                                             const std::vector<std::string>& defines, double seconds,
-                                            std::optional<VDirection> v) {
+                                            std::optional<VDirection> v, Vectors vectors) {
   using Found = Expected<ShaderFunction>;
   const Expected<std::vector<ShaderFunction>> named =
       shader_functions(path + ":" + function, {ConsumerKind::view_position}, language);
@@ -279,12 +280,13 @@ Expected<ShaderFunction> shader_function_in(const std::string& path, const std::
   ShaderFunction f = named->front();
   f.defines = defines;
   if (v) f.v = *v;
+  f.vectors = vectors;
   const Expected<std::string> text = read_shader_file(path);
   if (!text) return Found::failure(text.error());
   const Expected<std::string> user = define_lines(defines);
   if (!user) return Found::failure(user.error());
   const Expected<std::string> kept =
-      preprocessed(*text, path, f.language, convention_defines(0, f.v, *user), seconds);
+      preprocessed(*text, path, f.language, convention_defines(0, f.v, *user, f.vectors), seconds);
   if (!kept) return Found::failure(path + ": " + kept.error());
   // The return type decides the kind: find the function as either and keep the one that fits.
   for (const ConsumerKind kind : {ConsumerKind::view_position, ConsumerKind::linear_depth}) {
@@ -338,16 +340,18 @@ Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
   return out;
 }
 
-std::string convention_defines(int convention, VDirection v, const std::string& user_defines) {
+std::string convention_defines(int convention, VDirection v, const std::string& user_defines,
+                               Vectors vectors) {
   return "#define OBLIQUE_GL 0\n#define OBLIQUE_ZERO_ONE 1\n#define OBLIQUE_REVERSED_Z 2\n"
          "#define OBLIQUE_CONVENTION " +
          std::to_string(convention) + "\n#define OBLIQUE_UV_V_DOWN " +
-         (v == VDirection::down ? "1" : "0") + "\n" + user_defines;
+         (v == VDirection::down ? "1" : "0") + "\n#define OBLIQUE_ROW_VECTORS " +
+         (vectors == Vectors::row ? "1" : "0") + "\n" + user_defines;
 }
 
 std::string wrapped_source(const std::string& source, const std::string& path,
                            const Signature& signature, Language language, int convention,
-                           VDirection v, const std::string& user_defines) {
+                           VDirection v, const std::string& user_defines, Vectors vectors) {
   const bool glsl = language == Language::glsl;
   std::string user = source;
   if (glsl) {
@@ -355,7 +359,8 @@ std::string wrapped_source(const std::string& source, const std::string& path,
     if (const auto v = version_line(user)) user.erase(v->first, v->second);
   }
   std::string out = glsl ? "#version 450 core\n" : "";
-  out += convention_defines(convention, v, user_defines);
+  out += convention_defines(convention, v, user_defines, vectors);
+  const bool row = vectors == Vectors::row;
   // The user's lines keep their numbers; the wrapper's start at kWrapperFirstLine (drivers do
   // not all report #line's source-string number; shader_runner.cpp maps lines back). glslang's
   // HLSL takes a file name.
@@ -410,7 +415,9 @@ std::string wrapped_source(const std::string& source, const std::string& path,
         "layout(std430, binding = 1) writeonly buffer ObliqueAnswers {\n"
         "  vec4 oblique_answers[];\n};\n"
         "mat4 oblique_matrix(uint i, int at) {  // stored by rows\n"
-        "  return transpose(mat4(oblique_requests[i].v[at], oblique_requests[i].v[at + 1],\n"
+        "  return " +
+        std::string(row ? "(" : "transpose(") +
+        "mat4(oblique_requests[i].v[at], oblique_requests[i].v[at + 1],\n"
         "                        oblique_requests[i].v[at + 2], oblique_requests[i].v[at + 3]));\n"
         "}\n"
         "void main() {\n"
@@ -424,8 +431,10 @@ std::string wrapped_source(const std::string& source, const std::string& path,
            "[[vk::binding(0)]] StructuredBuffer<ObliqueRequest> oblique_requests;\n"
            "[[vk::binding(1)]] RWStructuredBuffer<float4> oblique_answers;\n"
            "float4x4 oblique_matrix(uint i, int at) {  // stored by rows\n"
-           "  return float4x4(oblique_requests[i].v[at], oblique_requests[i].v[at + 1],\n"
-           "                  oblique_requests[i].v[at + 2], oblique_requests[i].v[at + 3]);\n"
+           "  return " +
+           std::string(row ? "transpose(" : "(") +
+           "float4x4(oblique_requests[i].v[at], oblique_requests[i].v[at + 1],\n"
+           "                  oblique_requests[i].v[at + 2], oblique_requests[i].v[at + 3]));\n"
            "}\n"
            "[numthreads(64, 1, 1)]\n"
            "void oblique_main(uint3 id : SV_DispatchThreadID) {\n"

@@ -296,9 +296,9 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
     Wrapped w{k, f.path, {}};
     for (int c = 0; c < 3; ++c) {
       // The variant the preprocessor keeps in this convention, under the engine's defines.
-      const Expected<std::string> kept =
-          preprocessed(source, f.path, f.language, convention_defines(c, f.v, *user_defines),
-                       options.timeout_seconds);
+      const Expected<std::string> kept = preprocessed(
+          source, f.path, f.language, convention_defines(c, f.v, *user_defines, f.vectors),
+          options.timeout_seconds);
       if (!kept) return Opened::failure(f.path + ": " + kept.error());
       // A depth function answers from its inputs: one that reaches the runner's buffers, memory
       // other invocations see or which invocation it is could write another request's answer.
@@ -315,7 +315,7 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
       }
       state->v[k] = f.v;
       const std::string text =
-          wrapped_source(source, f.path, *sig, f.language, c, f.v, *user_defines);
+          wrapped_source(source, f.path, *sig, f.language, c, f.v, *user_defines, f.vectors);
       if (f.language == Language::glsl) {
         // glslang first, under the limits: the driver compiles in this process.
         const Expected<Done> compiles = glsl_compiles(text, f.path, options.timeout_seconds);

@@ -9,8 +9,9 @@ namespace oblique::testing {
 
 void check_shader(const std::string& path, const std::string& function, const Contract& contract,
                   const ShaderSettings& settings) {
-  const Expected<shader::ShaderFunction> found = shader::shader_function_in(
-      path, function, std::nullopt, settings.defines, settings.timeout_seconds, settings.v);
+  const Expected<shader::ShaderFunction> found =
+      shader::shader_function_in(path, function, std::nullopt, settings.defines,
+                                 settings.timeout_seconds, settings.v, settings.vectors);
   if (!found) {
     if (shader::cannot_run_here(found.error()))
       GTEST_SKIP() << "oblique::testing: the GPU path cannot run here: "

@@ -181,6 +181,8 @@ std::string answerer_flags(const VerifyOptions& options) {
   for (const std::string& d : options.shader_defines) flags += " --define " + shell_quote(d);
   if (options.shader_v)
     flags += " --uv-v " + std::string(shader::v_direction_name(*options.shader_v));
+  if (options.shader_vectors != shader::Vectors::column)
+    flags += " --vectors " + std::string(shader::vectors_name(options.shader_vectors));
   return flags;
 }
 
@@ -203,6 +205,7 @@ std::unique_ptr<Answerer<T>> answerer_for(const VerifyOptions& options,
     for (shader::ShaderFunction& f : *functions) {
       f.defines = options.shader_defines;
       if (options.shader_v) f.v = *options.shader_v;
+      f.vectors = options.shader_vectors;
     }
     shader::RunnerOptions run;
     run.device = options.shader_device == "gpu" ? raster::Device::gpu : raster::Device::software;

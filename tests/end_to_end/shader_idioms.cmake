@@ -13,7 +13,8 @@ foreach(line ${idiom_lines})
   list(GET fields 3 conventions)
   list(GET fields 4 families)
   list(GET fields 5 v)
-  list(GET fields 6 shows)
+  list(GET fields 6 vectors)
+  list(GET fields 7 shows)
   string(REGEX REPLACE "\\.([a-z]+)$" "_wrong.\\1" wrong ${file})
   set(claims --consumers ${kind} --precision float --convention ${conventions})
   if(families)
@@ -22,6 +23,9 @@ foreach(line ${idiom_lines})
   set(way "")
   if(v)
     set(way --uv-v ${v})
+  endif()
+  if(vectors)
+    list(APPEND way --vectors ${vectors})
   endif()
   add_test(NAME shader_idiom_verify_right_${name}
            COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh 0 "no violation in [1-9][0-9]* answers judged"
@@ -59,3 +63,12 @@ foreach(line ${idiom_lines})
                          SKIP_REGULAR_EXPRESSION "${shader_skip}")
   endif()
 endforeach()
+# A row-vector engine's right function declared without its layout is handed M, not the M^T its
+# uniforms hold: caught, and named as the transpose it then computes.
+add_test(NAME shader_idiom_verify_row_vectors_undeclared_named_transposed
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh 1 "likely cause: transposed_matrix"
+                 $<TARGET_FILE:oblique> verify --consumers view_position --precision float
+                 --convention all --shader ${idioms}/d3d_row_vectors.hlsl --time-limit 30
+                 --seed 20261207 --report-dir ${shader_reports}/idioms_undeclared)
+set_tests_properties(shader_idiom_verify_row_vectors_undeclared_named_transposed PROPERTIES
+                     LABELS "shaders;idioms" TIMEOUT 90 SKIP_REGULAR_EXPRESSION "${shader_skip}")

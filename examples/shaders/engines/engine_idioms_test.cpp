@@ -39,6 +39,13 @@ oblique::testing::ShaderSettings v(oblique::shader::VDirection direction) {
   return s;
 }
 
+/// A Direct3D engine's settings: v down (HLSL's default) and row vectors.
+oblique::testing::ShaderSettings row_vectors() {
+  oblique::testing::ShaderSettings s;
+  s.vectors = oblique::shader::Vectors::row;
+  return s;
+}
+
 }  // namespace
 
 // Each idiom's files are FILE.EXT and FILE_wrong.EXT: the macro takes the stem and the extension.
@@ -74,3 +81,5 @@ OBLIQUE_IDIOM_FILES(cross_api_v_up, "cross_api_uv", "glsl", "view_position", cla
                     v(oblique::shader::VDirection::up))
 OBLIQUE_IDIOM_FILES(gl_view_ray, "gl_projection_params_view_ray", "glsl", "view_position",
                     claims(every, along_z), by_language)
+OBLIQUE_IDIOM_FILES(d3d_row_vectors, "d3d_row_vectors", "hlsl", "view_position", claims(every),
+                    row_vectors())

@@ -21,6 +21,7 @@ enum class ConsumerMistake {
   reads_reversed_as_forward,      ///< view_position: 1 - d on reversed Z before M'^-1
   reads_v_the_other_way,          ///< view_position: NDC y negated (v read the other way up)
   ignores_oblique_row,            ///< view_position: z from M'33, M'34, M'43 alone, x / M'11
+  transposed_matrix,              ///< view_position: (M'^-1)^T b (the layout read as the other)
   linearises_with_near_far,       ///< linear_depth: n f / (f - d (f - n)), n, f off M ("zparams")
   gl_planes_on_any_matrix,        ///< culling_planes: OpenGL's near and far rows on any matrix
   planes_of_transpose,            ///< culling_planes: the rows of M^T (the layout misread)
@@ -33,13 +34,14 @@ enum class ConsumerMistake {
 };
 
 inline constexpr ConsumerMistake all_consumer_mistakes[] = {
-    ConsumerMistake::reconstructs_with_original, ConsumerMistake::ndc_depth_of_other_convention,
-    ConsumerMistake::reads_reversed_as_forward,  ConsumerMistake::reads_v_the_other_way,
-    ConsumerMistake::ignores_oblique_row,        ConsumerMistake::linearises_with_near_far,
-    ConsumerMistake::gl_planes_on_any_matrix,    ConsumerMistake::planes_of_transpose,
-    ConsumerMistake::plane_without_translation,  ConsumerMistake::plane_flipped_for_mirrors,
-    ConsumerMistake::plane_through_view,         ConsumerMistake::mirror_by_reflected_look_at,
-    ConsumerMistake::portal_without_turn,        ConsumerMistake::corners_of_oblique_matrix,
+    ConsumerMistake::reconstructs_with_original,  ConsumerMistake::ndc_depth_of_other_convention,
+    ConsumerMistake::reads_reversed_as_forward,   ConsumerMistake::reads_v_the_other_way,
+    ConsumerMistake::ignores_oblique_row,         ConsumerMistake::transposed_matrix,
+    ConsumerMistake::linearises_with_near_far,    ConsumerMistake::gl_planes_on_any_matrix,
+    ConsumerMistake::planes_of_transpose,         ConsumerMistake::plane_without_translation,
+    ConsumerMistake::plane_flipped_for_mirrors,   ConsumerMistake::plane_through_view,
+    ConsumerMistake::mirror_by_reflected_look_at, ConsumerMistake::portal_without_turn,
+    ConsumerMistake::corners_of_oblique_matrix,
 };
 
 struct ConsumerMistakeEntry {

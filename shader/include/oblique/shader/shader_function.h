@@ -82,6 +82,23 @@ constexpr std::optional<VDirection> parse_v_direction(std::string_view name) noe
 constexpr VDirection default_v_direction(Language language) noexcept {
   return language == Language::hlsl ? VDirection::down : VDirection::up;
 }
+/// How the engine's matrices multiply vectors: column vectors (M v: GLSL `M * v`, HLSL
+/// `mul(M, v)`; the harness hands M) or row vectors (v M: HLSL `mul(v, M)`, DirectXMath and D3DX
+/// style; the harness hands M^T, as such an engine's uniform holds it). A shader sees it as
+/// OBLIQUE_ROW_VECTORS (0 or 1).
+enum class Vectors { column, row };
+
+inline constexpr EnumName<Vectors> vectors_names[] = {
+    {Vectors::column, "column"},
+    {Vectors::row, "row"},
+};
+constexpr std::string_view vectors_name(Vectors v) noexcept {
+  return name_in(vectors_names, v);
+}
+constexpr std::optional<Vectors> parse_vectors(std::string_view name) noexcept {
+  return value_in(vectors_names, name);
+}
+
 /// Whether `input` is the pixel as a GPU hands it (uv, frag_coord, texel): the function derives
 /// NDC from it in its own arithmetic (oracle::PixelInput::gpu).
 bool is_pixel_position(Input input);
@@ -121,6 +138,8 @@ struct ShaderFunction {
   std::vector<std::string> defines;
   /// Which way v runs (uv, and the rows of frag_coord and texel).
   VDirection v = VDirection::up;
+  /// How its matrices multiply vectors (the matrices handed: M, or M^T for row vectors).
+  Vectors vectors = Vectors::column;
 };
 
 /// `--shader FILE[:FUNCTION]` split: the file, and the function ("" when none is named; the part
@@ -144,18 +163,21 @@ Expected<std::string> read_shader_file(const std::string& path);
 /// The function `function` of the file `path` as a ShaderFunction: its kind from its return
 /// type (vec3 / float3: view_position; float: linear_depth) in the variant the preprocessor keeps
 /// under `defines` (preprocessed() within `seconds`), its language from `language` or the file's
-/// extension, its v direction `v` or the language's default. The error says why not (the file
-/// unreadable, no such function, another return type, the preprocessor stopped).
+/// extension, its v direction `v` or the language's default, its matrices' `vectors`. The error
+/// says why not (the file unreadable, no such function, another return type, the preprocessor
+/// stopped).
 Expected<ShaderFunction> shader_function_in(const std::string& path, const std::string& function,
                                             std::optional<Language> language = std::nullopt,
                                             const std::vector<std::string>& defines = {},
                                             double seconds = 10,
-                                            std::optional<VDirection> v = std::nullopt);
+                                            std::optional<VDirection> v = std::nullopt,
+                                            Vectors vectors = Vectors::column);
 
 /// The `#define` lines the wrapper and the preprocessor begin with: OBLIQUE_GL, OBLIQUE_ZERO_ONE,
-/// OBLIQUE_REVERSED_Z, OBLIQUE_CONVENTION (`convention`), OBLIQUE_UV_V_DOWN (`v`), then
-/// `user_defines` (define_lines()).
-std::string convention_defines(int convention, VDirection v, const std::string& user_defines);
+/// OBLIQUE_REVERSED_Z, OBLIQUE_CONVENTION (`convention`), OBLIQUE_UV_V_DOWN (`v`),
+/// OBLIQUE_ROW_VECTORS (`vectors`), then `user_defines` (define_lines()).
+std::string convention_defines(int convention, VDirection v, const std::string& user_defines,
+                               Vectors vectors = Vectors::column);
 
 /// The compute shader that runs `signature` of the user's `source` on a batch of requests, in
 /// the user's language: GLSL 4.50 (or HLSL for glslang), the user's file included with line
@@ -163,7 +185,8 @@ std::string convention_defines(int convention, VDirection v, const std::string& 
 /// defined as OBLIQUE_CONVENTION, and `user_defines` (define_lines()) after it.
 std::string wrapped_source(const std::string& source, const std::string& path,
                            const Signature& signature, Language language, int convention,
-                           VDirection v, const std::string& user_defines = "");
+                           VDirection v, const std::string& user_defines = "",
+                           Vectors vectors = Vectors::column);
 
 /// The first line number of the GLSL wrapper's own code: a compiler's line below it is the
 /// user's file's.

@@ -34,6 +34,8 @@ struct ShaderSettings {
   std::vector<std::string> defines;
   /// Which way the texture coordinate v runs (none: GLSL up, HLSL down; shader_function.h).
   std::optional<shader::VDirection> v;
+  /// How its matrices multiply vectors (row: it is handed M^T).
+  shader::Vectors vectors = shader::Vectors::column;
   /// Where the function is asked: pixel centres of real targets, or arbitrary positions.
   oracle::Sampling sampling = oracle::Sampling::pixels;
 };

@@ -37,6 +37,8 @@ struct VerifyOptions {
   std::vector<std::string> shader_defines;
   /// --uv-v: which way the shader's v runs (none: its language's default, GLSL up, HLSL down).
   std::optional<shader::VDirection> shader_v;
+  /// --vectors: how the shader's matrices multiply vectors (row: it is handed M^T).
+  shader::Vectors shader_vectors = shader::Vectors::column;
   /// --sampling: where depth functions are asked, pixel centres of real targets or arbitrary
   /// positions.
   oracle::Sampling sampling = oracle::Sampling::pixels;
