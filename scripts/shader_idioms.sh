@@ -48,19 +48,19 @@ mapfile -t lines < <(grep -E '^[a-z]' "$idioms/idioms.txt")
 
 # The flags of an idiom's claims: kind, conventions, families, the way v runs.
 claims() {
-  local kind=$1 conventions=$2 families=$3 v=$4
-  echo "--consumers $kind --precision float --convention $conventions${families:+ --families $families}${v:+ --uv-v $v}"
+  local kind=$1 conventions=$2 families=$3 v=$4 vectors=$5
+  echo "--consumers $kind --precision float --convention $conventions${families:+ --families $families}${v:+ --uv-v $v}${vectors:+ --vectors $vectors}"
 }
 
 # One right idiom, one way in, in the background: its log and "judged rc" in <n>.figures.
 run_right() {
   set +e +o pipefail
-  local n=$1 way=$2 name=$3 file=$4 kind=$5 conventions=$6 families=$7 v=$8 s=$9
+  local n=$1 way=$2 name=$3 file=$4 kind=$5 conventions=$6 families=$7 v=$8 vectors=$9 s=${10}
   local log="$out/$n.$way.log" rc=0 judged=0
   case "$way" in
     verify)
       # shellcheck disable=SC2046
-      "$oblique" verify $(claims "$kind" "$conventions" "$families" "$v") --shader "$idioms/$file" \
+      "$oblique" verify $(claims "$kind" "$conventions" "$families" "$v" "$vectors") --shader "$idioms/$file" \
         --seed "$s" --time-limit "$secs" --quiet --report-dir "$out/reports$n" > "$log" 2>&1 || rc=$?
       judged=$(sed -n 's/^oblique verify: no violation in \([0-9]*\) answers judged.*/\1/p' "$log")
       ;;
@@ -76,7 +76,7 @@ run_right() {
       judged=$(grep -o '^[a-z_]*: OK, passed [0-9]* tests' "$log" | awk '{s += $4} END {print s + 0}')
       ;;
     check)
-      "$oblique" check "$scene" ${v:+--uv-v "$v"} --shader "$idioms/$file:$kind" > "$log" 2>&1 || rc=$?
+      "$oblique" check "$scene" ${v:+--uv-v "$v"} ${vectors:+--vectors "$vectors"} --shader "$idioms/$file:$kind" > "$log" 2>&1 || rc=$?
       judged=$(sed -n 's/.*reconstruction ok (\([0-9]*\) judged).*/\1/p' "$log" | awk '{s += $1} END {print s + 0}')
       ;;
   esac
@@ -89,11 +89,12 @@ say "$minutes min per idiom per way (verify, OBLIQUE_SHADER_TEST), $jobs at a ti
 say ""
 n=0
 for line in "${lines[@]}"; do
-  IFS='|' read -r name file kind conventions families v shows <<< "$line"
+  IFS='|' read -r name file kind conventions families v vectors shows <<< "$line"
   n=$((n + 1))
   for way in verify macro check; do
     while (($(jobs -rp | wc -l) >= jobs)); do wait -n || true; done
-    run_right "$n" "$way" "$name" "$file" "$kind" "$conventions" "$families" "$v" "$((seed + n))" &
+    run_right "$n" "$way" "$name" "$file" "$kind" "$conventions" "$families" "$v" "$vectors" \
+      "$((seed + n))" &
   done
 done
 wait
@@ -102,7 +103,7 @@ say "|---|---|---|---|---|"
 failures=0
 n=0
 for line in "${lines[@]}"; do
-  IFS='|' read -r name file kind conventions families v shows <<< "$line"
+  IFS='|' read -r name file kind conventions families v vectors shows <<< "$line"
   n=$((n + 1))
   row="| $name"
   findings=""
@@ -117,23 +118,26 @@ done
 say ""
 say "Wrong twins (verify --shader, fresh seed): each must be caught and named."
 say ""
-say "| idiom | caught | seconds (compiling included) | named |"
+say "| idiom | caught (the round of the finding) | seconds (compiling included) | named |"
 say "|---|---|---|---|"
 missed=0
 n=0
 for line in "${lines[@]}"; do
-  IFS='|' read -r name file kind conventions families v shows <<< "$line"
+  IFS='|' read -r name file kind conventions families v vectors shows <<< "$line"
   n=$((n + 1))
   wrong=${file%.*}_wrong.${file##*.}
   log="$out/$n.wrong.log"
   start=$(date +%s.%N)
   rc=0
   # shellcheck disable=SC2046
-  "$oblique" verify $(claims "$kind" "$conventions" "$families" "$v") --shader "$idioms/$wrong" \
+  "$oblique" verify $(claims "$kind" "$conventions" "$families" "$v" "$vectors") --shader "$idioms/$wrong" \
     --seed "$((seed + 100 + n))" --time-limit 60 --report-dir "$out/wrong$n" > "$log" 2>&1 || rc=$?
   elapsed=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {printf "%.1f", b - a}')
   if ((rc == 1)) && grep -Eq "likely cause: .*$shows" "$log"; then
-    say "| $name | yes | $elapsed | $(grep -Eo "likely cause: [a-z_]+" "$log" | head -1 | cut -d' ' -f3-)$(grep -q 'likely cause: no known' "$log" && echo 'what the answers show')|"
+    named=$(grep -Eo "likely cause: [a-z_]+" "$log" | head -1 | cut -d' ' -f3-)
+    [[ "$named" == no ]] && named="no known mistake; what the answers show"
+    round=$(grep -Eo "violated in round [0-9]+" "$log" | head -1 | grep -Eo "[0-9]+$")
+    say "| $name | yes, round ${round:-?} | $elapsed | $named |"
   else
     say "| $name | NO (exit $rc, or not named: $shows) | $elapsed | |"
     missed=$((missed + 1))
