@@ -118,16 +118,18 @@ constexpr int kGpuLostBits = 3;
 // A depth function handed the pixel as a GPU hands it (oblique/oracle/consumers.h,
 // PixelInput::gpu: a texture coordinate, a fragment coordinate, a texel and the target's size)
 // derives NDC itself; it is judged against the ray of the sample's NDC widened, in NDC x and y,
-// by how far the NDC it can derive may be from it, in units u of its arithmetic (u <= 2^-24 for
-// float; 2^-21 for a GPU's):
-//  - handing: the sample's NDC is the pixel centre's rounded to float (|NDC| <= 1: 2^-25), a
-//    texture coordinate the centre's (px + 1/2) / W rounded to float (in [0, 1]: 2^-25, so
-//    2^-24 in NDC), a fragment coordinate px + 1/2 and the size exact: 1.5 2^-24 <= 2u;
+// by how far the NDC it can derive may be from it, in units u of its arithmetic (u >= 2^-24:
+// 2^-24 for float, 2^-21 for a GPU's):
+//  - handing: the sample's NDC is the position's rounded to float (|NDC| <= 1: 2^-25); a texture
+//    coordinate is (NDC + 1) / 2 rounded to float (in [0, 1]: 2^-25, so 2^-24 in NDC); a fragment
+//    coordinate is exact at a pixel's centre (px + 1/2) and (NDC + 1) / 2 W rounded to float off
+//    it (2^-24 relative of at most W: 2^-23 in NDC); the size exact. At most 2^-25 + 2^-23 =
+//    2.5 2^-24 <= 3u;
 //  - deriving: q = position / size, or position times the size's reciprocal (set on the CPU,
 //    rounded: 2^-24 <= u), with q <= 1: at most 3u; then 2 q - 1 (the factor 2 exact, the
 //    difference at most u as |2 q - 1| <= 1): 2 (3u) + u = 7u. A flip (1 - 2 v, -y) is exact.
-// So 2u + 7u: kPixelToNdcRoundings.
-constexpr int kPixelToNdcRoundings = 9;
+// So 3u + 7u: kPixelToNdcRoundings.
+constexpr int kPixelToNdcRoundings = 10;
 constexpr int kPlaneRoundings = 8;
 /// An inverse by cofactors: each cofactor a sum of six products of three (2 roundings each,
 /// then 5 in a sum taken in order: 7); the determinant from a row and its cofactors (7, 1 for the
