@@ -271,10 +271,10 @@ class ConsumerRun {
   }
 
   /// The caught round asked again with `picks` (clamped as a report's are): its first violation
-  /// of `check`, with the exchange and the picks as the round took them; none where it holds,
-  /// or the program failed.
+  /// of `check` whose likely cause is `cause` (any, where `cause` is empty), with the exchange
+  /// and the picks as the round took them; none where it holds, or the program failed.
   std::optional<Caught<T>> violation_with(const Round<T>& round, const std::vector<int>& picks,
-                                          oracle::ConsumerCheck check) {
+                                          oracle::ConsumerCheck check, const std::string& cause) {
     Round<T> taken{round.c, {}};
     std::size_t next = 0;
     const oracle::Pick pick = recorded_picks(picks, next, taken.picks);
@@ -282,6 +282,7 @@ class ConsumerRun {
     const oracle::Settle settle = [&](const oracle::ConsumerFinding& f, const std::string& inputs,
                                       bool about) {
       if (found || !f.judged || f.holds || f.check != check) return;
+      if (!cause.empty() && f.likely_cause != cause) return;
       found =
           Caught<T>{f, inputs,      program_->last_request(), program_->last_answer(), about, round,
                     0, std::nullopt};
@@ -299,7 +300,9 @@ class ConsumerRun {
 
   /// Shrinks the caught round's picks (the choices a round makes: which pixel, pass, sample):
   /// each pick in turn tried at its range's low end, at half and one less, kept where the round
-  /// still violates the same check; the program is asked again each time (at most kShrinkTries
+  /// still violates the same check with the same likely cause (a shrunk case where the answer
+  /// comes within half of the digits of the right one, or another mistake's, would name none or
+  /// another: what the finding was is kept); the program is asked again each time (at most kShrinkTries
   /// rounds and kShrinkSeconds; none after a crash or a timeout). Said on err_, and the report
   /// has the shrunk round.
   void shrink() {
@@ -329,7 +332,8 @@ class ConsumerRun {
           std::vector<int> picks = best.round.picks;
           picks[i] = candidate;
           ++tries;
-          if (std::optional<Caught<T>> c = violation_with(best.round, picks, best.finding.check);
+          if (std::optional<Caught<T>> c = violation_with(best.round, picks, best.finding.check,
+                                                           caught_->finding.likely_cause);
               c && c->round.picks < best.round.picks) {
             c->index = best.index;
             best = *c;
