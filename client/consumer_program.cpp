@@ -134,6 +134,11 @@ Consumers<T> ConsumerProgram<T>::consumers(const std::vector<ConsumerKind>& kind
           return wire::vector3(s->ask(wire::depth_request(kind, sample), kind));
         };
         break;
+      case ConsumerKind::world_position:
+        c.world_position = [s, kind](const oracle::DepthSample<T>& sample) {
+          return wire::vector3(s->ask(wire::depth_request(kind, sample), kind));
+        };
+        break;
       case ConsumerKind::linear_depth:
         c.linear_depth = [s, kind](const oracle::DepthSample<T>& sample) {
           return s->ask(wire::depth_request(kind, sample), kind).front();

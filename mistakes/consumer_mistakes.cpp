@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
+#include <functional>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -91,6 +92,24 @@ constexpr ConsumerMistakeEntry kConsumerCatalogue[] = {
      "Linearise with the matrix the depth was rendered with: the view position M'^-1 (x, y, "
      "z_ndc, 1) / w, its distance along the view axis.",
      "your linear depths are those of the camera's own near and far planes: depth linearised as if the near plane had not moved"},
+    {ConsumerMistake::world_with_original, ConsumerKind::world_position, "world_with_original",
+     "the world position through the camera's unmodified view-projection",
+     "The code reconstructs the world position through the inverse of M V, the view-projection "
+     "the camera keeps for its main view (an inverse view-projection uniform set once per "
+     "camera), while the pixel's depth was written through the oblique M' V of the mirror or "
+     "portal pass: the depth maps to another point on the pixel's ray.",
+     "Invert the view-projection the pass rendered with, (M' V)^-1, and set it per pass.",
+     "your world positions are reconstructed with the camera's own projection M: each pixel's "
+     "depth placed as if the near plane had not moved"},
+    {ConsumerMistake::world_through_view, ConsumerKind::world_position, "world_through_view",
+     "the view position carried by the view matrix, not its inverse",
+     "The code reconstructs the view position right and then multiplies it by the view matrix V "
+     "(world to camera) where the inverse view V^-1 (camera to world) belongs: the point is "
+     "carried away from the world a second time.",
+     "World = V^-1 (view position, 1): the inverse view (camera to world), or the inverse "
+     "view-projection applied to the pixel's NDC.",
+     "your answers are the view position carried by the view matrix (world to camera), not by "
+     "its inverse"},
     {ConsumerMistake::gl_planes_on_any_matrix, ConsumerKind::culling_planes,
      "gl_planes_on_any_matrix", "OpenGL's culling rows on a matrix of another convention",
      "The code extracts the near and far culling planes as OpenGL does (near = M'_4 + M'_3, far "
@@ -229,7 +248,8 @@ bool alike(const std::vector<T>& a, const std::vector<T>& b, std::size_t group, 
 template <class T>
 bool alike_answers(ConsumerKind kind, const std::vector<T>& a, const std::vector<T>& b) {
   switch (kind) {
-    case ConsumerKind::view_position: return alike(a, b, 3, false, false);
+    case ConsumerKind::view_position:
+    case ConsumerKind::world_position: return alike(a, b, 3, false, false);
     case ConsumerKind::linear_depth: return alike(a, b, 1, false, false);
     case ConsumerKind::culling_planes:
     case ConsumerKind::camera_plane: return alike(a, b, 4, true, false);
@@ -303,18 +323,29 @@ std::string answers_show(const oracle::ConsumerAsk<T>& ask, const std::vector<T>
   for (const T x : answer)
     if (!std::isfinite(x)) return "the answer is not finite (NaN or infinity)";
   if (right.size() != answer.size()) return "";
-  if (ask.kind == ConsumerKind::view_position) {
+  if (ask.kind == ConsumerKind::view_position || ask.kind == ConsumerKind::world_position) {
     std::optional<oracle::DepthSample<T>> sample;
     Consumers<T> recording;
-    recording.view_position = [&sample](const oracle::DepthSample<T>& s) {
-      sample = s;
-      return Vector3<T>::Zero().eval();
-    };
+    recording.view_position = recording.world_position =
+        [&sample](const oracle::DepthSample<T>& s) {
+          sample = s;
+          return Vector3<T>::Zero().eval();
+        };
     try {
       (void)ask.call(recording);
     } catch (...) {
     }
-    if (sample) return view_position_shows(*sample, answer, right);
+    if (sample && ask.kind == ConsumerKind::view_position)
+      return view_position_shows(*sample, answer, right);
+    if (sample) {
+      // Carried into the pass camera's space by its view, where the pixel's ray is.
+      auto in_view = [&sample](const std::vector<T>& p) {
+        const Vector4<T> v = sample->view * Vector4<T>(p[0], p[1], p[2], T(1));
+        return std::vector<T>{v.x(), v.y(), v.z()};
+      };
+      return "in the pass camera's space (the answer times its view), " +
+             view_position_shows(*sample, in_view(answer), in_view(right));
+    }
   }
   if (ask.kind == ConsumerKind::linear_depth) {
     const long double r = right[0], a = answer[0];
@@ -418,6 +449,17 @@ Consumers<T> mistaken_consumers(ConsumerMistake mistake) {
         return T(1) / ((far_inverse - near_inverse) * d + near_inverse);
       };
       break;
+    case ConsumerMistake::world_with_original:
+      c.world_position = [](const oracle::DepthSample<T>& s) {
+        return world_position(s.original, s.view, s.ndc_x, s.ndc_y, s.depth, s.convention);
+      };
+      break;
+    case ConsumerMistake::world_through_view:
+      c.world_position = [](const oracle::DepthSample<T>& s) {
+        const Vector3<T> v = view_position(s.projection, s.ndc_x, s.ndc_y, s.depth, s.convention);
+        return Vector3<T>((s.view * Vector4<T>(v.x(), v.y(), v.z(), T(1))).template head<3>());
+      };
+      break;
     case ConsumerMistake::gl_planes_on_any_matrix:
       c.culling_planes = [](const Matrix4<T>& m, Convention) {
         return frustum_planes(m, Convention::gl);
@@ -488,14 +530,51 @@ Consumers<T> mistaken_consumers(ConsumerMistake mistake) {
   return c;
 }
 
+/// The sample a depth ask is about (none for the other kinds).
 template <class T>
-void explain_consumer(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& answer,
+std::optional<oracle::DepthSample<T>> sample_of(const oracle::ConsumerAsk<T>& ask) {
+  std::optional<oracle::DepthSample<T>> sample;
+  Consumers<T> recording;
+  recording.view_position = recording.world_position = [&sample](const oracle::DepthSample<T>& s) {
+    sample = s;
+    return Vector3<T>::Zero().eval();
+  };
+  recording.linear_depth = [&sample](const oracle::DepthSample<T>& s) {
+    sample = s;
+    return T(0);
+  };
+  try {
+    (void)ask.call(recording);
+  } catch (...) {
+  }
+  return sample;
+}
+
+template <class T>
+void explain_consumer(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& answer_as_given,
                       oracle::ConsumerFinding& finding) {
   if (!finding.judged || finding.holds) return;
-  finding.answers_show = answers_show(ask, answer);
+  finding.answers_show = answers_show(ask, answer_as_given);
+  // World positions are compared in the pass camera's space, where the pixel's ray is: in world
+  // space a camera far from the origin makes every answer alike to its translation's digits.
+  std::function<std::vector<T>(const std::vector<T>&)> comparable = [](const std::vector<T>& v) {
+    return v;
+  };
+  if (ask.kind == ConsumerKind::world_position) {
+    if (const auto s = sample_of(ask)) {
+      const Matrix4<long double> view = s->view.template cast<long double>();
+      comparable = [view](const std::vector<T>& v) {
+        if (v.size() != 3) return v;
+        const Vector4<long double> p =
+            view * Vector4<long double>(v[0], v[1], v[2], 1.0L);
+        return std::vector<T>{static_cast<T>(p.x()), static_cast<T>(p.y()), static_cast<T>(p.z())};
+      };
+    }
+  }
+  const std::vector<T> answer = comparable(answer_as_given);
   // An answer as close to the correct one is a precision finding, no formula's.
   try {
-    if (alike_answers(ask.kind, answer, ask.call(oracle::reference_consumers<T>()))) {
+    if (alike_answers(ask.kind, answer, comparable(ask.call(oracle::reference_consumers<T>())))) {
       finding.answers_show +=
           (finding.answers_show.empty() ? "" : "; ") +
           std::string(
@@ -510,7 +589,7 @@ void explain_consumer(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& a
     const ConsumerMistakeEntry& e = consumer_mistake_entry(m);
     if (e.kind != ask.kind) continue;
     try {
-      if (alike_answers(ask.kind, answer, ask.call(mistaken_consumers<T>(m))))
+      if (alike_answers(ask.kind, answer, comparable(ask.call(mistaken_consumers<T>(m)))))
         names += (names.empty() ? "" : " or ") + std::string(e.name);
     } catch (...) {
       // a wrong function that cannot answer these inputs is no cause of this answer

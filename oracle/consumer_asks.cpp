@@ -38,6 +38,15 @@ ConsumerAsk<T> depth_ask(ConsumerKind kind, const DepthSample<T>& s, const std::
       settle(judge_view_position(s, answer, arithmetic),
              inputs + "- answered: " + numbers_text(answer) + "\n", true);
     };
+  } else if (kind == ConsumerKind::world_position) {
+    a.call = [s](const Consumers<T>& c) { return wire::numbers_of(c.world_position(s)); };
+    a.judge = [s, inputs, arithmetic](const std::vector<T>& v, const Settle& settle) {
+      const Vector3<T> answer = wire::vector3(v);
+      settle(judge_world_position(s, answer, arithmetic),
+             inputs + "- the pass camera's view (world to camera): " + numbers_text(s.view) +
+                 "\n- answered: " + numbers_text(answer) + "\n",
+             true);
+    };
   } else {
     a.call = [s](const Consumers<T>& c) { return std::vector<T>{c.linear_depth(s)}; };
     a.judge = [s, inputs, arithmetic](const std::vector<T>& v, const Settle& settle) {
@@ -185,8 +194,8 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
                                           Convention convention, const Consumers<T>& consumers,
                                           const Pick& pick, const Settle& settle) {
   std::vector<ConsumerAsk<T>> asks;
-  const bool needs_oblique = consumers.view_position || consumers.linear_depth ||
-                             consumers.culling_planes || consumers.corners;
+  const bool depth = consumers.view_position || consumers.linear_depth || consumers.world_position;
+  const bool needs_oblique = depth || consumers.culling_planes || consumers.corners;
   // A case none of `checks` can be judged on: one finding left out for each of them.
   auto left_out = [&settle](std::initializer_list<std::pair<bool, ConsumerCheck>> checks,
                             const std::string& why) {
@@ -199,10 +208,10 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
       settle(none, "", false);
     }
   };
-  const bool depth = consumers.view_position || consumers.linear_depth;
   if (needs_oblique && consumers.accepts && !consumers.accepts(convention, m)) {
     left_out({{bool(consumers.view_position), ConsumerCheck::view_position},
               {bool(consumers.linear_depth), ConsumerCheck::linear_depth},
+              {bool(consumers.world_position), ConsumerCheck::world_position},
               {bool(consumers.culling_planes), ConsumerCheck::culling_keeps_visible},
               {bool(consumers.culling_planes), ConsumerCheck::culling_near_is_c},
               {bool(consumers.corners), ConsumerCheck::corners_contain_kept}},
@@ -213,6 +222,7 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
       const bool culling = bool(consumers.culling_planes);
       left_out({{bool(consumers.view_position), ConsumerCheck::view_position},
                 {bool(consumers.linear_depth), ConsumerCheck::linear_depth},
+              {bool(consumers.world_position), ConsumerCheck::world_position},
                 {culling, ConsumerCheck::culling_keeps_visible},
                 {culling, ConsumerCheck::culling_near_is_c},
                 {bool(consumers.corners), ConsumerCheck::corners_contain_kept}},
@@ -238,7 +248,8 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
         }
         if (!s) {
           left_out({{bool(consumers.view_position), ConsumerCheck::view_position},
-                    {bool(consumers.linear_depth), ConsumerCheck::linear_depth}},
+                    {bool(consumers.linear_depth), ConsumerCheck::linear_depth},
+                    {bool(consumers.world_position), ConsumerCheck::world_position}},
                    "the point leaves no depth sample (behind the eye or outside [0, 1])");
         } else {
           // Read at a pixel of a target of a real size (or where the point projects, asked so),
@@ -264,6 +275,12 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
                 depth_ask(ConsumerKind::view_position, *s, inputs, consumers.arithmetic));
           if (consumers.linear_depth)
             asks.push_back(depth_ask(ConsumerKind::linear_depth, *s, inputs, consumers.arithmetic));
+          if (consumers.world_position) {
+            // Drawn only where asked: the other kinds' rounds keep their picks.
+            s->view = oracle::consumer_cases::pass_view<T>(pick);
+            asks.push_back(
+                depth_ask(ConsumerKind::world_position, *s, inputs, consumers.arithmetic));
+          }
         }
       }
       if (consumers.culling_planes) asks.push_back(culling_ask(m, c, convention, mo, base));
@@ -345,6 +362,9 @@ Consumers<T> reference_consumers() {
   c.linear_depth = [](const DepthSample<T>& s) {
     return linear_depth(s.projection, s.ndc_x, s.ndc_y, s.depth, s.convention,
                         view_axis_sign(s.original, s.convention));
+  };
+  c.world_position = [](const DepthSample<T>& s) {
+    return world_position(s.projection, s.view, s.ndc_x, s.ndc_y, s.depth, s.convention);
   };
   c.culling_planes = [](const Matrix4<T>& m, Convention k) { return frustum_planes(m, k); };
   c.camera_plane = [](const Matrix4<T>& view, const Vector4<T>& plane) {

@@ -805,6 +805,158 @@ ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& a
   return f;
 }
 
+namespace {
+
+/// What judge_world_position() judges by: the sample's segment (ray_segment()) in the pass
+/// camera's space, its box the larger of two routes' errors in world space (tolerance.h, world
+/// position) carried back into that space by |view|; `view` exactly, to carry the answer there.
+struct WorldSegment {
+  Segment seg;
+  Mat view;
+};
+
+template <class T>
+WorldSegment world_segment(const DepthSample<T>& s, int bits) {
+  WorldSegment out;
+  out.seg = ray_segment(s, bits);
+  if (!out.seg.judged) return out;
+  Segment& seg = out.seg;
+  auto refuse = [&seg](const std::string& why) {
+    seg.judged = false;
+    seg.why = why;
+  };
+  const Mat v = oracle::exact::to_rational(s.view);
+  out.view = v;
+  if (v[3][0] != 0 || v[3][1] != 0 || v[3][2] != 0 || v[3][3] != 1) {
+    refuse("the view is not affine (its last row is not (0, 0, 0, 1))");
+    return out;
+  }
+  const std::optional<Mat> v_inv = oracle::exact::inverse(v);
+  if (!v_inv) {
+    refuse("a singular view");
+    return out;
+  }
+  const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+  const std::optional<Mat> view_error = solve_error<T>(v, *v_inv, bits);
+  if (!view_error) {
+    refuse("the view's determinant is within T's rounding of 0: its inverse is not determined "
+           "in T");
+    return out;
+  }
+  // (M' view)^-1 = view^-1 M'^-1, exactly: the inverse view-projection as handed, rounded once.
+  const Mat vp_inv = mul(*v_inv, a.inv);
+  const Rational g_handed = gamma_of<T>(oracle::tolerance::kViewProjectionRoundings, bits);
+  const Rational g_view = gamma_of<T>(oracle::tolerance::kWorldViewRoundings, bits);
+  const Rational u = unit<T>(bits);
+  const auto [lo, hi] = depth_interval(s);
+  const Rational x = oracle::exact::to_rational(s.ndc_x), y = oracle::exact::to_rational(s.ndc_y);
+  const Rational delta = oracle::exact::to_rational(s.ndc_error);
+  const Mat abs_v = oracle::exact::abs(v), abs_v_inv = oracle::exact::abs(*v_inv);
+  const Mat abs_inv = oracle::exact::abs(a.inv), abs_vp_inv = oracle::exact::abs(vp_inv);
+  const Rational largest = oracle::exact::to_rational(std::numeric_limits<T>::max());
+  Vec box{0, 0, 0, 0};
+  const Rational depths[2] = {lo, hi};
+  for (int e = 0; e < 2; ++e) {
+    const Vec b{x, y, ndc_of(depths[e], s.convention), 1};
+    const Vec abs_b = oracle::exact::abs(b);
+    const Vec view_point = oracle::exact::mul(a.inv, b);
+    const Vec world = oracle::exact::mul(*v_inv, view_point);
+    // Through the view position: its solve's error (as ray_segment(), the pixel's handing
+    // included, and its divide by w), carried by |view^-1|, and view^-1's own (handed rounded,
+    // or inverted in T, and applied; or multiplied with M'^-1 first):
+    // (S_view + gamma |view^-1|) (|M'^-1| |b| + dv).
+    Vec dv = oracle::exact::mul(a.error, abs_b);
+    const Vec reach_b = oracle::exact::mul(abs_inv, abs_b);
+    Vec through_view, through_vp;
+    for (int i = 0; i < 4; ++i) dv[i] += (abs_inv[i][0] + abs_inv[i][1]) * delta;
+    // The view position may be divided by w before view^-1 is applied: (p^ v^_w, v^_w) is within
+    // dv + u (|v| + dv) of v in x, y and z (the divide's rounding).
+    for (int i = 0; i < 3; ++i) dv[i] += u * (oracle::exact::abs(view_point[i]) + dv[i]);
+    Vec carried;
+    for (int i = 0; i < 4; ++i) carried[i] = reach_b[i] + dv[i];
+    const Vec route_a1 = oracle::exact::mul(abs_v_inv, dv);
+    const Vec route_a2 = oracle::exact::mul(*view_error, carried);
+    const Vec route_a3 = oracle::exact::mul(abs_v_inv, carried);
+    // Through the inverse view-projection as handed: its rounding and its application, and
+    // the pixel's handing carried by its first two columns.
+    const Vec route_b = oracle::exact::mul(abs_vp_inv, abs_b);
+    Vec error;
+    for (int i = 0; i < 4; ++i) {
+      through_view[i] = route_a1[i] + route_a2[i] + g_view * route_a3[i];
+      through_vp[i] = g_handed * route_b[i] + (abs_vp_inv[i][0] + abs_vp_inv[i][1]) * delta;
+      error[i] = std::max(through_view[i], through_vp[i]);
+    }
+    // Carried into the pass camera's space by |view| (its last row keeps w), with the divide's
+    // rounding u |h^| in x, y and z.
+    const Vec in_view = oracle::exact::mul(abs_v, error);
+    Vec reach_h;
+    for (int i = 0; i < 4; ++i) reach_h[i] = oracle::exact::abs(world[i]) + error[i];
+    reach_h[3] = 0;
+    const Vec divide = oracle::exact::mul(abs_v, reach_h);
+    for (int i = 0; i < 4; ++i) {
+      const Rational b_i = i < 3 ? Rational(in_view[i] + u * divide[i]) : error[3];
+      box[i] = std::max(box[i], b_i);
+      if (oracle::exact::abs(world[i]) + error[i] >= largest ||
+          (world[3] != 0 && oracle::exact::abs(world[i] / world[3]) >= largest))
+        seg.beyond_range = true;
+    }
+  }
+  seg.box = box;
+  seg.bound.reset();
+  seg.w_reaches_zero =
+      seg.box[3] >= std::min(oracle::exact::abs(seg.ha[3]), oracle::exact::abs(seg.hb[3]));
+  return out;
+}
+
+/// world_segment() of the last sample judged on this thread (a shader's batch asks many).
+template <class T>
+const WorldSegment& world_segment_of(const DepthSample<T>& s, ConsumerArithmetic arithmetic) {
+  thread_local std::optional<std::pair<DepthSample<T>, WorldSegment>> last;
+  thread_local ConsumerArithmetic last_arithmetic = ConsumerArithmetic::ieee;
+  const bool same = last && last_arithmetic == arithmetic &&
+                    last->first.projection == s.projection && last->first.original == s.original &&
+                    last->first.view == s.view && last->first.convention == s.convention &&
+                    last->first.buffer == s.buffer && last->first.ndc_x == s.ndc_x &&
+                    last->first.ndc_y == s.ndc_y && last->first.depth == s.depth &&
+                    last->first.stored == s.stored && last->first.ndc_error == s.ndc_error;
+  if (!same) {
+    last.emplace(s, world_segment(s, arithmetic_bits<T>(arithmetic)));
+    last_arithmetic = arithmetic;
+  }
+  return last->second;
+}
+
+}  // namespace
+
+template <class T>
+ConsumerFinding judge_world_position(const DepthSample<T>& s, const Vector3<T>& answer,
+                                     ConsumerArithmetic arithmetic) {
+  const WorldSegment& world = world_segment_of(s, arithmetic);
+  const Segment& seg = world.seg;
+  if (auto early = before_the_answer(ConsumerCheck::world_position, seg, answer.allFinite(),
+                                     !answer.array().isFinite().any(), numbers_text(answer)))
+    return *early;
+  // The answer in the pass camera's space, exactly: view (answer, 1).
+  const Vec in_view = oracle::exact::mul(world.view, point_of(answer));
+  ConsumerFinding f;
+  f.check = ConsumerCheck::world_position;
+  const auto [ok, ratio] = judge_on_segment(seg, in_view, {0, 1, 2});
+  f.holds = ok;
+  f.ratio = ratio;
+  f.points = {approx_point(in_view), approx_point(seg.a), approx_point(seg.b)};
+  f.points_what =
+      "the answer in the pass camera's space, and the ends of the pixel ray's segment the stored "
+      "depth stands for";
+  std::optional<Mat> inverse = oracle::exact::inverse(world.view);
+  const Vec wa = oracle::exact::mul(*inverse, seg.a), wb = oracle::exact::mul(*inverse, seg.b);
+  f.detail = "answered " + numbers_text(answer) + " (in the pass camera's space " +
+             text(in_view, 3) + "); the stored depth stands for the world points from " +
+             text(wa, 3) + " to " + text(wb, 3) + " (in that space " + text(seg.a, 3) + " to " +
+             text(seg.b, 3) + "); judged there in homogeneous coordinates: (x, y, z, w) within " +
+             text(seg.box, 4) + " of the segment's";
+  return f;
+}
+
 template <class T>
 ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer, ConsumerArithmetic arithmetic,
                                    Arithmetic method) {
@@ -865,7 +1017,9 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer, ConsumerAr
   template ConsumerFinding judge_view_position(const DepthSample<T>&, const Vector3<T>&,           \
                                                ConsumerArithmetic, Arithmetic);                    \
   template ConsumerFinding judge_linear_depth(const DepthSample<T>&, T, ConsumerArithmetic,        \
-                                              Arithmetic);
+                                              Arithmetic);                                         \
+  template ConsumerFinding judge_world_position(const DepthSample<T>&, const Vector3<T>&,          \
+                                                ConsumerArithmetic);
 OBLIQUE_DEPTH_JUDGES(float)
 OBLIQUE_DEPTH_JUDGES(double)
 OBLIQUE_DEPTH_JUDGES(long double)

@@ -7,7 +7,8 @@ namespace oblique::protocol {
 
 std::string_view consumer_answer_field(ConsumerKind kind) {
   switch (kind) {
-    case ConsumerKind::view_position: return "position";
+    case ConsumerKind::view_position:
+    case ConsumerKind::world_position: return "position";
     case ConsumerKind::linear_depth: return "depth";
     case ConsumerKind::culling_planes: return "planes";
     case ConsumerKind::camera_plane: return "plane";

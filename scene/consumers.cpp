@@ -69,6 +69,8 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
       case SceneConsumer::reconstruction:
         only.view_position = who.view_position;
         only.linear_depth = who.linear_depth;
+        // (A world position is asked through pass views of the round's own, not the scene's.)
+        only.world_position = who.world_position;
         rounds = kConsumerSamples;
         break;
       case SceneConsumer::culling: only.culling_planes = who.culling_planes; break;

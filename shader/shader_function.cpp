@@ -68,6 +68,19 @@ const std::vector<InputEntry>& inputs() {
       {Input::far_plane, "float", {"far", "far_plane", "z_far"}},
       {Input::view_axis, "float", {"view_axis", "axis"}},
       {Input::convention, "int", {"convention"}},
+      {Input::view, "mat4", {"view", "view_matrix", "world_to_view", "world_to_camera"}},
+      {Input::inverse_view,
+       "mat4",
+       {"inverse_view", "inv_view", "inverse_view_matrix", "inv_view_matrix", "view_to_world",
+        "camera_to_world"}},
+      {Input::view_projection,
+       "mat4",
+       {"view_projection", "view_proj", "view_projection_matrix", "view_proj_matrix",
+        "world_to_clip"}},
+      {Input::inverse_view_projection,
+       "mat4",
+       {"inverse_view_projection", "inv_view_projection", "inv_view_proj", "inverse_view_proj",
+        "inv_view_proj_matrix", "inverse_view_projection_matrix", "clip_to_world"}},
   };
   return table;
 }
@@ -126,7 +139,7 @@ std::string names_list(const std::vector<std::string>& names) {
 }
 
 std::string_view kind_return(ConsumerKind kind) {
-  return kind == ConsumerKind::view_position ? "vec3" : "float";
+  return kind == ConsumerKind::linear_depth ? "float" : "vec3";
 }
 
 }  // namespace
@@ -288,19 +301,22 @@ Expected<ShaderFunction> shader_function_in(const std::string& path, const std::
   const Expected<std::string> kept =
       preprocessed(*text, path, f.language, convention_defines(0, f.v, *user, f.vectors), seconds);
   if (!kept) return Found::failure(path + ": " + kept.error());
-  // The return type decides the kind: find the function as either and keep the one that fits.
+  // The return type decides the kind (a vec3 whose name says world is a world position):
+  // find the function as either and keep the one that fits.
   for (const ConsumerKind kind : {ConsumerKind::view_position, ConsumerKind::linear_depth}) {
     const Expected<Signature> sig = find_signature(*kept, function, f.language, kind);
     if (sig) {
       f.kind = kind;
+      if (kind == ConsumerKind::view_position && folded(function).find("world") != std::string::npos)
+        f.kind = ConsumerKind::world_position;
       return f;
     }
     if (sig.error().find(" returns ") == std::string::npos)
       return Found::failure(path + ": " + sig.error());
   }
   return Found::failure(path + ": " + function +
-                        " returns neither a view position (vec3 / float3) nor a linear depth "
-                        "(float)");
+                        " returns neither a view or world position (vec3 / float3) nor a linear "
+                        "depth (float)");
 }
 
 Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
@@ -308,8 +324,9 @@ Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
                                                        std::optional<Language> language) {
   using Functions = Expected<std::vector<ShaderFunction>>;
   for (const ConsumerKind k : kinds) {
-    if (k != ConsumerKind::view_position && k != ConsumerKind::linear_depth)
-      return Functions::failure("a shader answers view_position and linear_depth; " +
+    if (k != ConsumerKind::view_position && k != ConsumerKind::linear_depth &&
+        k != ConsumerKind::world_position)
+      return Functions::failure("a shader answers view_position, linear_depth and world_position; " +
                                 std::string(protocol::consumer_kind_name(k)) +
                                 " is asked of a program (--impl)");
   }
@@ -320,7 +337,8 @@ Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
     return Functions::failure("one function (" + function + ") for " +
                               std::to_string(kinds.size()) +
                               " request kinds; give the file alone, with a function named after "
-                              "each kind (view_position, linear_depth), or ask one kind");
+                              "each kind (view_position, linear_depth, world_position), or ask "
+                              "one kind");
   Language lang = Language::glsl;
   if (language) {
     lang = *language;
@@ -395,6 +413,10 @@ std::string wrapped_source(const std::string& source, const std::string& path,
       case Input::near_plane: return v + "[19].z";
       case Input::far_plane: return v + "[19].w";
       case Input::convention: return "OBLIQUE_CONVENTION";
+      case Input::view: return "oblique_matrix(i, 22)";
+      case Input::inverse_view: return "oblique_matrix(i, 26)";
+      case Input::view_projection: return "oblique_matrix(i, 30)";
+      case Input::inverse_view_projection: return "oblique_matrix(i, 34)";
     }
     return "0";
   };

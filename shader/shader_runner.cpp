@@ -32,12 +32,18 @@ namespace {
 
 using protocol::ConsumerKind;
 
-constexpr int kKinds = 2;  // view_position, linear_depth
+constexpr int kKinds = 3;  // view_position, linear_depth, world_position
 constexpr GLuint kGroupSize = 64;
+constexpr ConsumerKind kShaderKinds[kKinds] = {
+    ConsumerKind::view_position, ConsumerKind::linear_depth, ConsumerKind::world_position};
 
 int kind_index(ConsumerKind kind) {
-  return kind == ConsumerKind::view_position ? 0 : 1;
+  for (int k = 0; k < kKinds; ++k)
+    if (kShaderKinds[k] == kind) return k;
+  return -1;
 }
+
+constexpr const char* kShaderKindsText = "view_position, linear_depth and world_position";
 
 /// A GL compiler's log with its lines named: the user's file's, or the wrapper's from
 /// kWrapperFirstLine (Mesa writes "0:12(5): error: ...", others "0(12) : error ...").
@@ -125,8 +131,16 @@ std::array<float, kRequestVectors * 4> request_of(const oracle::DepthSample<floa
   std::array<float, kRequestVectors * 4> out{};
   const Eigen::Matrix4d projection = s.projection.cast<double>();
   const Eigen::Matrix4d original = s.original.cast<double>();
+  const Eigen::Matrix4d view = s.view.cast<double>();
+  const Eigen::Matrix4d view_projection = projection * view;
   const Eigen::Matrix4d matrices[4] = {projection, projection.inverse(), original,
                                        original.inverse()};
+  const Eigen::Matrix4d world[4] = {view, view.inverse(), view_projection,
+                                    view_projection.inverse()};
+  for (int k = 0; k < 4; ++k)
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        out[static_cast<std::size_t>(88 + 16 * k + 4 * r + c)] = static_cast<float>(world[k](r, c));
   for (int k = 0; k < 4; ++k)
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c)
@@ -215,11 +229,11 @@ struct ShaderRunner::State {
   RunnerOptions options;
   std::vector<ShaderFunction> functions;
   std::unique_ptr<raster::GlContext> gl;
-  GLuint programs[kKinds][3] = {{0, 0, 0}, {0, 0, 0}};
-  bool perspective[kKinds] = {false, false};
-  bool pixel[kKinds] = {false, false};  ///< reads uv, frag_coord or texel
-  bool texel[kKinds] = {false, false};
-  VDirection v[kKinds] = {VDirection::up, VDirection::up};
+  GLuint programs[kKinds][3] = {};
+  bool perspective[kKinds] = {};
+  bool pixel[kKinds] = {};  ///< reads uv, frag_coord or texel
+  bool texel[kKinds] = {};
+  VDirection v[kKinds] = {};
   std::string names[kKinds];
   GLuint buffers[2] = {0, 0};
 
@@ -283,8 +297,8 @@ Expected<std::unique_ptr<ShaderRunner>> ShaderRunner::open(
   };
   std::vector<Wrapped> wrapped;
   for (const ShaderFunction& f : functions) {
-    if (f.kind != ConsumerKind::view_position && f.kind != ConsumerKind::linear_depth)
-      return Opened::failure("a shader answers view_position and linear_depth, not " +
+    if (kind_index(f.kind) < 0)
+      return Opened::failure(std::string("a shader answers ") + kShaderKindsText + ", not " +
                              std::string(protocol::consumer_kind_name(f.kind)));
     const Expected<std::string> read = read_shader_file(f.path);
     if (!read) return Opened::failure(read.error());
@@ -379,9 +393,8 @@ bool ShaderRunner::reads_texel(ConsumerKind kind) const {
 Expected<std::vector<std::vector<float>>> ShaderRunner::run(
     ConsumerKind kind, const std::vector<oracle::DepthSample<float>>& samples) {
   using Answers = Expected<std::vector<std::vector<float>>>;
-  if (kind != ConsumerKind::view_position && kind != ConsumerKind::linear_depth)
-    return Answers::failure("a shader answers view_position and linear_depth only");
   const int k = kind_index(kind);
+  if (k < 0) return Answers::failure(std::string("a shader answers ") + kShaderKindsText + " only");
   if (!state_->programs[k][0])
     return Answers::failure("no shader function answers " +
                             std::string(protocol::consumer_kind_name(kind)));
@@ -391,7 +404,7 @@ Expected<std::vector<std::vector<float>>> ShaderRunner::run(
   GLint most_groups = 0;
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &most_groups);
   const std::size_t per_dispatch = static_cast<std::size_t>(most_groups) * kGroupSize;
-  const int numbers = kind == ConsumerKind::view_position ? 3 : 1;
+  const int numbers = kind == ConsumerKind::linear_depth ? 1 : 3;
   // One dispatch per convention's program (each sample's own convention), in slices the device
   // takes.
   for (int c = 0; c < 3; ++c) {
@@ -453,12 +466,14 @@ Consumers<float> shader_consumers(ShaderRunner& runner, const std::string& name,
     if (runner.reads_pixel(f.kind)) out.pixel_input = oracle::PixelInput::gpu;
     // A texel names a pixel: its centre is the only position it can be judged at.
     if (runner.reads_texel(f.kind)) out.sampling = oracle::Sampling::pixels;
-    if (f.kind == ConsumerKind::view_position) {
-      out.view_position = [&runner](const oracle::DepthSample<float>& s) {
-        const auto a = runner.run(ConsumerKind::view_position, {s});
-        if (!a) throw std::runtime_error(a.error());
-        return Vector3<float>(a->front()[0], a->front()[1], a->front()[2]);
-      };
+    if (f.kind == ConsumerKind::view_position || f.kind == ConsumerKind::world_position) {
+      const ConsumerKind kind = f.kind;
+      (kind == ConsumerKind::view_position ? out.view_position : out.world_position) =
+          [&runner, kind](const oracle::DepthSample<float>& s) {
+            const auto a = runner.run(kind, {s});
+            if (!a) throw std::runtime_error(a.error());
+            return Vector3<float>(a->front()[0], a->front()[1], a->front()[2]);
+          };
     } else {
       out.linear_depth = [&runner](const oracle::DepthSample<float>& s) {
         const auto a = runner.run(ConsumerKind::linear_depth, {s});
@@ -488,17 +503,21 @@ Expected<std::vector<std::vector<float>>> answer_asks(
     kind = ConsumerKind::linear_depth;
     return 0.0f;
   };
+  recording.world_position = [&](const oracle::DepthSample<float>& s) {
+    samples[2].push_back(s);
+    kind = ConsumerKind::world_position;
+    return Vector3<float>::Zero().eval();
+  };
   for (std::size_t i = 0; i < asks.size(); ++i) {
-    if (asks[i]->kind != ConsumerKind::view_position && asks[i]->kind != ConsumerKind::linear_depth)
-      return Answers::failure("a shader answers view_position and linear_depth only");
+    if (kind_index(asks[i]->kind) < 0)
+      return Answers::failure(std::string("a shader answers ") + kShaderKindsText + " only");
     (void)asks[i]->call(recording);
     places[kind_index(kind)].push_back(i);
   }
   std::vector<std::vector<float>> out(asks.size());
   for (int k = 0; k < kKinds; ++k) {
     if (samples[k].empty()) continue;
-    const auto answers =
-        runner.run(k == 0 ? ConsumerKind::view_position : ConsumerKind::linear_depth, samples[k]);
+    const auto answers = runner.run(kShaderKinds[k], samples[k]);
     if (!answers) return Answers::failure(answers.error());
     for (std::size_t j = 0; j < places[k].size(); ++j) out[places[k][j]] = (*answers)[j];
   }

@@ -65,7 +65,8 @@ void judged(const std::string& consumer, const oracle::ConsumerFinding& finding,
 template <class T>
 void run_check(const oblique::Consumers<T>& only, oracle::ConsumerCheck check, Contract contract) {
   const bool needs_oblique =
-      only.view_position || only.linear_depth || only.culling_planes || only.corners;
+      only.view_position || only.linear_depth || only.world_position || only.culling_planes ||
+      only.corners;
   const std::string property(oracle::consumer_check_name(check));
   if (needs_oblique) {
     // The families the property has something to judge on (not_applicable()), said once.
@@ -147,6 +148,7 @@ void check_consumers(const oblique::Consumers<T>& consumers, const Contract& giv
   using C = oblique::Consumers<T>;
   with(&C::view_position, {Check::view_position});
   with(&C::linear_depth, {Check::linear_depth});
+  with(&C::world_position, {Check::world_position});
   with(&C::culling_planes, {Check::culling_keeps_visible, Check::culling_near_is_c});
   with(&C::camera_plane, {Check::plane_on_surface, Check::plane_kept_side});
   with(&C::mirror_view, {Check::mirror_view});

@@ -109,6 +109,76 @@ TEST(DepthReconstruction, rightAnswersHoldAndTheOriginalMatrixIsCaught) {
   }
 }
 
+/// A pass camera's view: a rotation, a translation far from the origin, mirrored or not.
+Matrix4<double> far_pass_view(bool mirrored) {
+  Matrix4<double> v = Matrix4<double>::Identity();
+  v.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(0.7, Vector3<double>(0.3, -0.8, 0.5).normalized()).toRotationMatrix();
+  v.topRightCorner<3, 1>() = Vector3<double>(3000.5, -1200.25, 4100);
+  if (mirrored) v.col(0) = -v.col(0);
+  return v;
+}
+
+// world_position: the right world point (through the inverse view-projection as handed, and
+// through the view position and the inverse view, in double and float) holds; the camera's own
+// view-projection and the view matrix where its inverse belongs are caught; and the view
+// position judged as a world one (the view left out) is caught: the property alone rejects an
+// answer in the wrong space.
+TEST(DepthReconstruction, worldPositionHoldsEitherRouteAndCatchesItsMistakes) {
+  for (Convention k : kConventions) {
+    for (bool mirrored : {false, true}) {
+      const Matrix4<double> m = perspective(k);
+      const Vector4<double> c = tilted_plane();
+      const Matrix4<double> mo = oblique_of(m, c, k);
+      auto sample = oblique::oracle::depth_sample(mo, m, k, DepthBuffer::fixed24,
+                                                  kept_centre(m, c, k));
+      ASSERT_TRUE(sample.has_value());
+      sample->view = far_pass_view(mirrored);
+      const Matrix4<double> to_world = sample->view.inverse();
+      const Vector3<double> view_point =
+          oblique::view_position(mo, sample->ndc_x, sample->ndc_y, sample->depth, k);
+      // The inverse view-projection as an engine hands it (computed in double).
+      const Vector4<double> clip(sample->ndc_x, sample->ndc_y,
+                                 oblique::ndc_depth(sample->depth, k), 1);
+      const Vector4<double> h = (mo * sample->view).inverse() * clip;
+      const Vector3<double> through_vp = h.head<3>() / h.w();
+      const Vector3<double> through_view = (to_world * view_point.homogeneous()).head<3>();
+      for (const Vector3<double>& right : {through_vp, through_view}) {
+        const ConsumerFinding f = oblique::oracle::judge_world_position(*sample, right);
+        EXPECT_TRUE(f.judged && f.holds) << describe(f);
+      }
+      const Vector3<double> original = oblique::world_position(
+          m, sample->view, sample->ndc_x, sample->ndc_y, sample->depth, k);
+      const Vector3<double> carried_by_view = (sample->view * view_point.homogeneous()).head<3>();
+      for (const Vector3<double>& wrong : {original, carried_by_view, view_point}) {
+        const ConsumerFinding f = oblique::oracle::judge_world_position(*sample, wrong);
+        EXPECT_TRUE(f.judged);
+        EXPECT_FALSE(f.holds) << describe(f);
+      }
+      // In float, from the float inputs: the same verdicts.
+      oblique::oracle::DepthSample<float> fs;
+      fs.projection = mo.cast<float>();
+      fs.original = m.cast<float>();
+      fs.view = sample->view.cast<float>();
+      fs.convention = k;
+      fs.buffer = sample->buffer;
+      fs.ndc_x = static_cast<float>(sample->ndc_x);
+      fs.ndc_y = static_cast<float>(sample->ndc_y);
+      fs.depth = static_cast<float>(sample->depth);
+      fs.stored = sample->stored;
+      const Vector3<float> right_float =
+          oblique::world_position(fs.projection, fs.view, fs.ndc_x, fs.ndc_y, fs.depth, k);
+      const ConsumerFinding held = oblique::oracle::judge_world_position(
+          fs, right_float, oblique::oracle::ConsumerArithmetic::gpu);
+      EXPECT_TRUE(held.judged && held.holds) << describe(held);
+      const Vector3<float> wrong_float =
+          oblique::world_position(fs.original, fs.view, fs.ndc_x, fs.ndc_y, fs.depth, k);
+      const ConsumerFinding caught = oblique::oracle::judge_world_position(fs, wrong_float);
+      EXPECT_FALSE(caught.holds) << describe(caught);
+    }
+  }
+}
+
 // The textbook linearisation n f / (f - d (f - n)) ([0, 1] depth) with the camera's n and f, used
 // on a depth written through M': caught, and the error it makes is a large part of the depth.
 TEST(DepthReconstruction, textbookLinearisationOnAnObliqueMatrixIsCaughtWithItsError) {

@@ -121,6 +121,8 @@ class ShaderAnswerer final : public Answerer<float> {
     Consumers<float> c = shader::shader_consumers(*runner_, name, sampling_);
     if (c.view_position) c.view_position = recorded(c.view_position, ConsumerKind::view_position);
     if (c.linear_depth) c.linear_depth = recorded(c.linear_depth, ConsumerKind::linear_depth);
+    if (c.world_position)
+      c.world_position = recorded(c.world_position, ConsumerKind::world_position);
     return c;
   }
   Batch answer(const std::vector<const oracle::ConsumerAsk<float>*>& asks) override {

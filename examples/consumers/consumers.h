@@ -36,6 +36,15 @@ T linear_depth(const oblique::oracle::DepthSample<T>& s) {
   return T(axis) * view_position(s).z();
 }
 
+/// The pixel's world point: its view position carried back by the inverse of the pass camera's
+/// view (camera to world). (Inverting the view-projection M' V in float instead loses every digit
+/// a few thousand units from the origin.)
+template <class T>
+Vector3<T> world_position(const oblique::oracle::DepthSample<T>& s) {
+  const Vector3<T> v = view_position(s);
+  return (s.view.inverse() * Vector4<T>(v.x(), v.y(), v.z(), T(1))).template head<3>();
+}
+
 /// Gribb-Hartmann, with the depth rows of the matrix's own convention.
 template <class T>
 oblique::FrustumPlanes<T> culling_planes(const Matrix4<T>& m, Convention convention) {
@@ -92,6 +101,15 @@ Vector3<T> reconstructs_with_original(const oblique::oracle::DepthSample<T>& s) 
   oblique::oracle::DepthSample<T> wrong = s;
   wrong.projection = s.original;
   return view_position(wrong);
+}
+
+/// world_position: the inverse view-projection the camera keeps for its main view, M V, on a
+/// depth the pass wrote through M' V. Caught by world_position.
+template <class T>
+Vector3<T> world_with_original(const oblique::oracle::DepthSample<T>& s) {
+  oblique::oracle::DepthSample<T> wrong = s;
+  wrong.projection = s.original;
+  return world_position(wrong);
 }
 
 /// linear_depth: the textbook n f / (f - d (f - n)) with n and f read off the unmodified

@@ -75,7 +75,7 @@ std::string answer(const json& request, const std::string& wrong) {
     return "{\"status\": \"ok\", \"projection\": " + list(r.projection) + "}";
   }
   const std::string kind = request.at("kind").get<std::string>();
-  if (kind == "view_position" || kind == "linear_depth") {
+  if (kind == "view_position" || kind == "linear_depth" || kind == "world_position") {
     oblique::oracle::DepthSample<T> s;
     s.projection = numbers<T, 4, 4>(request.at("projection"));
     s.original = numbers<T, 4, 4>(request.at("original"));
@@ -86,6 +86,13 @@ std::string answer(const json& request, const std::string& wrong) {
     s.ndc_y = static_cast<T>(number(request.at("ndc").at(1)));
     s.depth = static_cast<T>(number(request.at("depth")));
     s.stored = static_cast<std::uint32_t>(number(request.at("stored")));
+    if (kind == "world_position") {
+      s.view = numbers<T, 4, 4>(request.at("view"));
+      return "{\"position\": " +
+             list(wrong == "world_with_original" ? ec::world_with_original(s)
+                                                 : ec::world_position(s)) +
+             "}";
+    }
     if (kind == "view_position")
       return "{\"position\": " +
              list(wrong == "reconstructs_with_original" ? ec::reconstructs_with_original(s)
@@ -164,7 +171,8 @@ int main(int argc, char** argv) {
       static const char* const known[] = {
           "reconstructs_with_original",  "linearises_with_near_far",  "gl_planes_on_any_matrix",
           "planes_of_transpose",         "plane_without_translation", "plane_flipped_for_mirrors",
-          "mirror_by_reflected_look_at", "portal_without_turn",       "corners_of_oblique_matrix"};
+          "mirror_by_reflected_look_at", "portal_without_turn",       "corners_of_oblique_matrix",
+          "world_with_original"};
       bool found = false;
       for (const char* k : known) found = found || wrong == k;
       if (!found) {

@@ -12,6 +12,7 @@ oblique::Consumers<T> right() {
   c.name = "engine_consumers";
   c.view_position = engine_consumers::view_position<T>;
   c.linear_depth = engine_consumers::linear_depth<T>;
+  c.world_position = engine_consumers::world_position<T>;
   c.culling_planes = engine_consumers::culling_planes<T>;
   c.camera_plane = engine_consumers::camera_plane<T>;
   c.mirror_view = engine_consumers::mirror_view<T>;
@@ -28,6 +29,7 @@ oblique::Consumers<T> depth_only() {
   c.name = all.name;
   c.view_position = all.view_position;
   c.linear_depth = all.linear_depth;
+  c.world_position = all.world_position;
   return c;
 }
 

@@ -34,6 +34,12 @@ OBLIQUE_CONSUMERS_TEST(WrongConsumers, reconstructsWithOriginal,
                               c.view_position = engine_consumers::reconstructs_with_original<float>;
                             }),
                        Contract{})
+OBLIQUE_CONSUMERS_TEST(WrongConsumers, worldWithOriginal,
+                       only("world_with_original",
+                            [](auto& c) {
+                              c.world_position = engine_consumers::world_with_original<float>;
+                            }),
+                       Contract{})
 OBLIQUE_CONSUMERS_TEST(WrongConsumers, linearisesWithNearFar,
                        only("linearises_with_near_far",
                             [](auto& c) {

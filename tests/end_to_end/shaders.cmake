@@ -103,7 +103,7 @@ oblique_shader_refusal(a_compile_error "compile_error.glsl:5: 'undeclared_name' 
 oblique_shader_refusal(an_hlsl_compile_error "compile_error.hlsl:4: 'undeclared_name' : unknown variable"
                        ${verify_shader} --consumers view_position
                        --shader ${hostile_shaders}/compile_error.hlsl)
-oblique_shader_refusal(a_kind_no_shader_answers "a shader answers view_position and linear_depth; culling_planes"
+oblique_shader_refusal(a_kind_no_shader_answers "a shader answers view_position, linear_depth and world_position; culling_planes"
                        ${verify_shader} --consumers culling_planes --shader ${shaders}/depth_right.glsl)
 oblique_shader_refusal(double_precision "a shader computes in float"
                        ${verify_shader} --consumers view_position --precision double

@@ -83,3 +83,7 @@ OBLIQUE_IDIOM_FILES(gl_view_ray, "gl_projection_params_view_ray", "glsl", "view_
                     claims(every, along_z), by_language)
 OBLIQUE_IDIOM_FILES(d3d_row_vectors, "d3d_row_vectors", "hlsl", "view_position", claims(every),
                     row_vectors())
+OBLIQUE_IDIOM_FILES(gl_world, "gl_inverse_view_projection_world", "glsl", "world_position",
+                    claims(every), by_language)
+OBLIQUE_IDIOM_FILES(d3d_world_row_vectors, "d3d_world_position_row_vectors", "hlsl",
+                    "world_position", claims(every), row_vectors())

@@ -97,6 +97,17 @@ Vector3<T> view_position(const Matrix4<T>& m, T ndc_x, T ndc_y, T depth, Convent
   return v.template head<3>() / v.w();
 }
 
+/// The world point the pixel stands for, through the pass camera's `view` (world -> camera,
+/// affine): view_position() carried by view^-1. (Not through the inverse of m view computed in
+/// T: the condition of m view grows with the square of the camera's distance from the origin,
+/// and in float, a few thousand units out, that inverse has no correct digit.)
+template <class T>
+Vector3<T> world_position(const Matrix4<T>& m, const Matrix4<T>& view, T ndc_x, T ndc_y, T depth,
+                          Convention convention) {
+  const Vector3<T> v = view_position(m, ndc_x, ndc_y, depth, convention);
+  return (view.inverse() * Vector4<T>(v.x(), v.y(), v.z(), T(1))).template head<3>();
+}
+
 /// +1 when the camera looks along +z (left-handed camera space), -1 along -z (OpenGL's
 /// right-handed one): the sign of the camera-space z of the centre of `original`'s view volume
 /// (the unmodified projection, perspective or orthographic, looking along z: its fourth row is

@@ -23,6 +23,8 @@ enum class ConsumerMistake {
   ignores_oblique_row,            ///< view_position: z from M'33, M'34, M'43 alone, x / M'11
   transposed_matrix,              ///< view_position: (M'^-1)^T b (the layout read as the other)
   linearises_with_near_far,       ///< linear_depth: n f / (f - d (f - n)), n, f off M ("zparams")
+  world_with_original,            ///< world_position: (M V)^-1, the unmodified matrix's
+  world_through_view,             ///< world_position: V v instead of V^-1 v
   gl_planes_on_any_matrix,        ///< culling_planes: OpenGL's near and far rows on any matrix
   planes_of_transpose,            ///< culling_planes: the rows of M^T (the layout misread)
   plane_without_translation,      ///< camera_plane: the normal rotated, C_w kept from world space
@@ -37,7 +39,8 @@ inline constexpr ConsumerMistake all_consumer_mistakes[] = {
     ConsumerMistake::reconstructs_with_original,  ConsumerMistake::ndc_depth_of_other_convention,
     ConsumerMistake::reads_reversed_as_forward,   ConsumerMistake::reads_v_the_other_way,
     ConsumerMistake::ignores_oblique_row,         ConsumerMistake::transposed_matrix,
-    ConsumerMistake::linearises_with_near_far,    ConsumerMistake::gl_planes_on_any_matrix,
+    ConsumerMistake::linearises_with_near_far,    ConsumerMistake::world_with_original,
+    ConsumerMistake::world_through_view,          ConsumerMistake::gl_planes_on_any_matrix,
     ConsumerMistake::planes_of_transpose,         ConsumerMistake::plane_without_translation,
     ConsumerMistake::plane_flipped_for_mirrors,   ConsumerMistake::plane_through_view,
     ConsumerMistake::mirror_by_reflected_look_at, ConsumerMistake::portal_without_turn,

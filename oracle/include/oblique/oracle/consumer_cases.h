@@ -114,6 +114,19 @@ Matrix4<T> rigid_view(Pick&& pick) {
   return r;
 }
 
+/// A pass camera's view for a world-position consumer: rigid_view()'s rotation and translation,
+/// the translation scaled by a power of two up to 128 (a camera up to 8,000 units from the
+/// origin, where float world positions have lost digits), and half the time mirrored (times
+/// diag(-1, 1, 1, 1): a mirror pass's reflected view, det < 0).
+template <class T, class Pick>
+Matrix4<T> pass_view(Pick&& pick) {
+  Matrix4<T> v = rigid_view<T>(pick);
+  const T scale = std::ldexp(T(1), pick(0, 8));
+  for (int i = 0; i < 3; ++i) v(i, 3) *= scale;
+  if (pick(0, 2)) v.col(0) = -v.col(0);
+  return v;
+}
+
 /// A world plane through a point within 64 units of the origin, its normal of small integers.
 template <class T, class Pick>
 Vector4<T> world_plane(Pick&& pick) {

@@ -18,7 +18,8 @@ namespace oblique::oracle::wire {
 inline std::pair<std::size_t, std::size_t> answer_shape(protocol::ConsumerKind kind) {
   using protocol::ConsumerKind;
   switch (kind) {
-    case ConsumerKind::view_position: return {3, 3};
+    case ConsumerKind::view_position:
+    case ConsumerKind::world_position: return {3, 3};
     case ConsumerKind::linear_depth: return {1, 1};
     case ConsumerKind::culling_planes: return {24, 4};
     case ConsumerKind::camera_plane: return {4, 4};
@@ -39,6 +40,7 @@ protocol::ConsumerRequest depth_request(protocol::ConsumerKind kind, const Depth
       .numbers("ndc", Eigen::Matrix<T, 1, 2>(s.ndc_x, s.ndc_y))
       .number("depth", s.depth)
       .number("stored", static_cast<double>(s.stored));
+  if (kind == protocol::ConsumerKind::world_position) r.numbers("view", s.view);
   return r;
 }
 

@@ -28,6 +28,7 @@ enum class ConsumerCheck {
   view_position,          ///< the reconstructed point is the pixel's point within the buffer's
                           ///< quantisation and the solve's rounding
   linear_depth,           ///< the same, for its distance along the view axis
+  world_position,         ///< the same, for the point in world space (the pass camera's view)
   culling_keeps_visible,  ///< no vertex of the kept region is outside an extracted plane
   culling_near_is_c,      ///< the extracted near plane is C up to a positive scale
   plane_on_surface,       ///< world points of the surface lie on the camera-space plane
@@ -40,6 +41,7 @@ enum class ConsumerCheck {
 inline constexpr EnumName<ConsumerCheck> consumer_check_names[] = {
     {ConsumerCheck::view_position, "view_position"},
     {ConsumerCheck::linear_depth, "linear_depth"},
+    {ConsumerCheck::world_position, "world_position"},
     {ConsumerCheck::culling_keeps_visible, "culling_keeps_visible"},
     {ConsumerCheck::culling_near_is_c, "culling_near_is_c"},
     {ConsumerCheck::plane_on_surface, "plane_on_surface"},
@@ -155,6 +157,9 @@ struct DepthSample {
   /// it and of the consumer's derivation of NDC from it (PixelInput::gpu). The judges widen the
   /// ray by it.
   T ndc_error = 0;
+  /// The pass camera's view (world -> its camera space, affine: last row (0, 0, 0, 1)), for a
+  /// consumer that reconstructs the world position; the identity otherwise.
+  Matrix4<T> view = Matrix4<T>::Identity();
   /// The window depth as a shader reads it: fixed24, k / (2^24 - 1) rounded to T; float32, the
   /// stored float.
   T depth = 0;
@@ -207,6 +212,16 @@ template <class T>
 ConsumerFinding judge_linear_depth(const DepthSample<T>& sample, T answer,
                                    ConsumerArithmetic arithmetic = ConsumerArithmetic::ieee,
                                    Arithmetic method = Arithmetic::filtered);
+
+/// `answer`, the world position the consumer reconstructed from `sample` (through the pass
+/// camera's sample.view), judged as judge_view_position() judges its image under the view
+/// (sample.view times it, exactly), the segment widened by what reaching world space may add:
+/// the larger of a route through the view position and the inverse view, and one through the
+/// inverse of the view-projection M' view (tolerance.h, world position), each in `arithmetic`.
+/// In exact arithmetic (no certified path yet).
+template <class T>
+ConsumerFinding judge_world_position(const DepthSample<T>& sample, const Vector3<T>& answer,
+                                     ConsumerArithmetic arithmetic = ConsumerArithmetic::ieee);
 
 /// The culling planes the consumer extracted from `oblique` (the answer for m, c, convention in T),
 /// each keeping P . x >= 0: culling_keeps_visible (every vertex of the kept region of m and c,
@@ -311,6 +326,9 @@ struct Consumers {
   /// Its linear depth: the distance in front of the camera along the view axis (-z for a camera
   /// looking down -z).
   std::function<T(const oracle::DepthSample<T>& sample)> linear_depth;
+  /// The world point of the pixel: the camera-space point carried back through the pass camera's
+  /// view (sample.view, world -> camera), as engines do with an inverse view-projection.
+  std::function<Vector3<T>(const oracle::DepthSample<T>& sample)> world_position;
   /// The six culling planes of an oblique projection (camera space, kept side positive).
   std::function<FrustumPlanes<T>(const Matrix4<T>& oblique, Convention convention)> culling_planes;
   /// The plane in a pass camera's space (pass_view: world -> that camera) whose positive side is

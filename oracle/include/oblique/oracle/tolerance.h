@@ -130,6 +130,28 @@ constexpr int kGpuLostBits = 3;
 //    difference at most u as |2 q - 1| <= 1): 2 (3u) + u = 7u. A flip (1 - 2 v, -y) is exact.
 // So 3u + 7u: kPixelToNdcRoundings.
 constexpr int kPixelToNdcRoundings = 10;
+
+// A world position (judge_world_position()) is the view position carried through the pass
+// camera's view V (world -> camera, affine) back to world space, h = V^-1 v; engines take one of
+// two routes, and the answer is judged against the larger of their bounds, per coordinate of
+// the homogeneous world point h (with |b| the NDC point's, S_X a solve's bound for X as above,
+// dv the view solve's error with the pixel's handing, kPixelToNdcRoundings):
+//  - through the view position (divided by w or not: dv + u (|v| + dv)) and the inverse view
+//    (handed rounded, or inverted in T, then applied; or multiplied with M'^-1 first, then
+//    applied): |V^-1| dv + (S_V + gamma(k) |V^-1|) (|M'^-1| |b| + dv), k =
+//    kWorldViewRoundings: the inverse's rounding as handed (1), a 4-term matrix product (4) and
+//    its application (4);
+//  - through the inverse view-projection (M' V)^-1 as handed (computed on the CPU in double and
+//    rounded: 1) and applied (4): gamma(kViewProjectionRoundings) |(M' V)^-1| |b|, and the
+//    pixel's handing through its first two columns. A function that inverts M' V itself in
+//    float is not given this bound: the componentwise condition of M' V grows with the square
+//    of the camera's distance from the origin, and at a few thousand units such an inverse has
+//    no correct digit left (its answers are caught; camera-relative matrices avoid it).
+// The error E so bounded is carried into the camera's space by |V| (V's last row keeps w), with
+// the divide's rounding u |V| (|h| + E) in x, y and z: the answer V p is judged against the
+// camera-space segment there, as a view position is.
+constexpr int kViewProjectionRoundings = 5;
+constexpr int kWorldViewRoundings = 9;
 constexpr int kPlaneRoundings = 8;
 /// An inverse by cofactors: each cofactor a sum of six products of three (2 roundings each,
 /// then 5 in a sum taken in order: 7); the determinant from a row and its cofactors (7, 1 for the

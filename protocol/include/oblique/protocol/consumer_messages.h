@@ -6,6 +6,7 @@
 //   view_position   projection, original [16], convention, buffer,     {"position": [x, y, z]}
 //                   ndc [x, y], depth, stored
 //   linear_depth    (as view_position)                                 {"depth": d}
+//   world_position  (as view_position), view [16]                      {"position": [x, y, z]}
 //   culling_planes  projection [16], convention                        {"planes": [[4] x 6]}
 //   camera_plane    view [16], plane [4]                               {"plane": [4]}
 //   mirror_view     view [16], plane [4]                               {"view": [16]}
@@ -33,6 +34,7 @@ namespace oblique::protocol {
 enum class ConsumerKind {
   view_position,
   linear_depth,
+  world_position,
   culling_planes,
   camera_plane,
   mirror_view,
@@ -43,6 +45,7 @@ enum class ConsumerKind {
 inline constexpr EnumName<ConsumerKind> consumer_kind_names[] = {
     {ConsumerKind::view_position, "view_position"},
     {ConsumerKind::linear_depth, "linear_depth"},
+    {ConsumerKind::world_position, "world_position"},
     {ConsumerKind::culling_planes, "culling_planes"},
     {ConsumerKind::camera_plane, "camera_plane"},
     {ConsumerKind::mirror_view, "mirror_view"},

@@ -52,6 +52,12 @@ enum class Input {
   far_plane,    ///< float: M's far distance (inf for an infinite M)
   view_axis,    ///< float: -1 for a camera looking down -z, +1 down +z
   convention,   ///< int: OBLIQUE_CONVENTION (0 gl, 1 zero_one, 2 reversed_z)
+  // The pass camera's view (world -> camera) and what engines derive from it, set on the CPU
+  // (computed in double, rounded): for a world position, or a view position through world space.
+  view,                     ///< mat4: V
+  inverse_view,             ///< mat4: V^-1
+  view_projection,          ///< mat4: M' V
+  inverse_view_projection,  ///< mat4: (M' V)^-1
 };
 
 /// The names a parameter may have for `input` (matched ignoring case and underscores), the
@@ -193,6 +199,6 @@ std::string wrapped_source(const std::string& source, const std::string& path,
 inline constexpr int kWrapperFirstLine = 100001;
 
 /// A request's inputs as the wrapped shader reads them: kRequestVectors vec4 per request.
-inline constexpr int kRequestVectors = 22;
+inline constexpr int kRequestVectors = 38;
 
 }  // namespace oblique::shader
