@@ -83,7 +83,7 @@ int rasterize(const CheckSettings& settings, const scene::Scene& scene,
   const bool float_requests = check.impl_precision == protocol::Precision::float32;
   for (const scene::SurfaceCheck& pass : check.surfaces) {
     if (!pass.render || !pass.projection) continue;
-    Eigen::Matrix4d m = scene.camera.projection;
+    Eigen::Matrix4d m = pass.camera_projection;
     Eigen::Vector4d c = pass.plane_in_camera;
     Eigen::Matrix4d answer = *pass.projection;
     std::string refused;

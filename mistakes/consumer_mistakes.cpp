@@ -6,9 +6,9 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
-#include <functional>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -326,8 +326,8 @@ std::string answers_show(const oracle::ConsumerAsk<T>& ask, const std::vector<T>
   if (ask.kind == ConsumerKind::view_position || ask.kind == ConsumerKind::world_position) {
     std::optional<oracle::DepthSample<T>> sample;
     Consumers<T> recording;
-    recording.view_position = recording.world_position =
-        [&sample](const oracle::DepthSample<T>& s) {
+    recording.view_position =
+        recording.world_position = [&sample](const oracle::DepthSample<T>& s) {
           sample = s;
           return Vector3<T>::Zero().eval();
         };
@@ -565,8 +565,7 @@ void explain_consumer(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& a
       const Matrix4<long double> view = s->view.template cast<long double>();
       comparable = [view](const std::vector<T>& v) {
         if (v.size() != 3) return v;
-        const Vector4<long double> p =
-            view * Vector4<long double>(v[0], v[1], v[2], 1.0L);
+        const Vector4<long double> p = view * Vector4<long double>(v[0], v[1], v[2], 1.0L);
         return std::vector<T>{static_cast<T>(p.x()), static_cast<T>(p.y()), static_cast<T>(p.z())};
       };
     }

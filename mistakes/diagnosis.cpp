@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 
+#include "oblique/oblique.h"
 #include "oblique/oracle/exact.h"
 #include "oblique/oracle/exact_arithmetic.h"
 #include "oblique/oracle/tolerance.h"
@@ -519,6 +520,28 @@ std::vector<std::vector<Mistake>> causes_tried(int size) {
   return out;
 }
 
+/// Whether every answer of `cases` is the correct modification of M^T transposed back (a
+/// refusal where that refuses, else its matrix to half of T's digits), and at least one of them
+/// a wrong answer: the matrix read in the other layout.
+template <class T>
+bool transposed_layout_explains(const std::vector<Case<T>>& cases) {
+  const T tolerance = std::sqrt(std::numeric_limits<T>::epsilon()) * T(4);
+  bool wrong_explained = false;
+  for (const Case<T>& k : cases) {
+    const Observation<T>& o = k.seen;
+    const ObliqueResult<T> r = apply<T>(Matrix4<T>(o.matrix.transpose()), o.plane, o.convention);
+    if ((o.status == Status::ok) != r.ok()) return false;
+    if (!r.ok()) continue;  // a refusal where the transposed one refuses: any refusal
+    const Matrix4<T> expected = r.projection.transpose();
+    const T scale = std::max(expected.cwiseAbs().maxCoeff(), T(1));
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (!(std::abs(o.projection(i, j) - expected(i, j)) <= tolerance * scale)) return false;
+    wrong_explained = wrong_explained || o.wrong;
+  }
+  return wrong_explained;
+}
+
 template <class T>
 Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& probe) {
   Diagnosis out;
@@ -551,6 +574,8 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
       std::count_if(cases.begin(), cases.end(), [](const Case<T>& k) { return k.seen.wrong; }));
   out.causes = causes_of(cases);
   if (out.causes.empty()) {
+    out.transposed_layout = transposed_layout_explains(cases);
+    if (out.transposed_layout) return out;
     out.numerical = numerical_cause_of(cases);
     if (out.numerical) return out;
     out.families = by_family(cases);

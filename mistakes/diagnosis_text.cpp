@@ -62,8 +62,21 @@ std::string you_text(const std::vector<Mistake>& cause) {
 
 }  // namespace
 
+namespace {
+
+constexpr const char* kTransposedLayout =
+    "the matrix read transposed: every answer is the right modification of M^T, transposed back "
+    "(a row-vector engine, v M as DirectXMath and D3DX multiply, declared as column vectors; or "
+    "its 16 numbers read in the other order)";
+constexpr const char* kTransposedLayoutFix =
+    "declare how the function stores its matrix: oblique::Layout::row_vectors for a row-vector "
+    "engine (adapt()), or the other of row_major and column_major";
+
+}  // namespace
+
 std::string cause_names(const Diagnosis& d) {
   if (!d.ran) return "";
+  if (d.transposed_layout) return "transposed_layout";
   if (d.numerical)
     return "numerical: " + std::string(numerical_route_entry(d.numerical->route).name);
   if (d.causes.empty() && !d.families.empty()) return by_family_text(d.families);
@@ -72,6 +85,9 @@ std::string cause_names(const Diagnosis& d) {
 
 std::string likely_cause_line(const Diagnosis& d) {
   if (!d.ran) return "";
+  if (d.transposed_layout)
+    return std::string("likely cause: transposed_layout (") + kTransposedLayout +
+           "); fix: " + kTransposedLayoutFix;
   if (d.numerical) {
     const NumericalRouteEntry& e = numerical_route_entry(d.numerical->route);
     return "likely cause: numerical: " + std::string(e.name) + " (" + std::string(e.title) +
@@ -134,6 +150,13 @@ std::string likely_cause_markdown(const Diagnosis& d) {
   if (!d.ran) return "";
   std::ostringstream md;
   md << "## Likely cause\n\n";
+  if (d.transposed_layout) {
+    md << "**`transposed_layout`: " << kTransposedLayout << ".** No formula mistake reproduces "
+       << "these answers (" << d.seen << " cases judged, " << d.wrong << " answers wrong); the "
+       << "correct modification of the transposed matrix, transposed back, reproduces each.\n\n"
+       << "Fix: " << kTransposedLayoutFix << ".\n\n";
+    return md.str();
+  }
   if (d.numerical) {
     const NumericalRouteEntry& e = numerical_route_entry(d.numerical->route);
     md << "**A numerical cause, `" << e.name << "`: " << e.title << ".** No formula mistake "

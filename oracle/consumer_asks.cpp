@@ -222,7 +222,7 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
       const bool culling = bool(consumers.culling_planes);
       left_out({{bool(consumers.view_position), ConsumerCheck::view_position},
                 {bool(consumers.linear_depth), ConsumerCheck::linear_depth},
-              {bool(consumers.world_position), ConsumerCheck::world_position},
+                {bool(consumers.world_position), ConsumerCheck::world_position},
                 {culling, ConsumerCheck::culling_keeps_visible},
                 {culling, ConsumerCheck::culling_near_is_c},
                 {bool(consumers.corners), ConsumerCheck::corners_contain_kept}},

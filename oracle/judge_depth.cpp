@@ -839,8 +839,9 @@ WorldSegment world_segment(const DepthSample<T>& s, int bits) {
   const MatrixAnalysis& a = matrix_analysis_of(s, bits);
   const std::optional<Mat> view_error = solve_error<T>(v, *v_inv, bits);
   if (!view_error) {
-    refuse("the view's determinant is within T's rounding of 0: its inverse is not determined "
-           "in T");
+    refuse(
+        "the view's determinant is within T's rounding of 0: its inverse is not determined "
+        "in T");
     return out;
   }
   // (M' view)^-1 = view^-1 M'^-1, exactly: the inverse view-projection as handed, rounded once.

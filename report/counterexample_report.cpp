@@ -345,6 +345,7 @@ nlohmann::json diagnosis_object(const Diagnosis& d) {
                       {"bits_lost", d.numerical->bits_lost},
                       {"precision", d.numerical->precision}};
   }
+  if (d.transposed_layout) j["transposed_layout"] = true;
   j["line"] = likely_cause_line(d);
   j["seen"] = d.seen;
   j["wrong"] = d.wrong;

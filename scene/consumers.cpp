@@ -37,7 +37,7 @@ std::vector<protocol::ConsumerKind> kinds_of(SceneConsumer c) {
 template <class T>
 std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceCheck& pass,
                                             const Consumers<T>& who) {
-  const Matrix4<T> m = scene.camera.projection.template cast<T>();
+  const Matrix4<T> m = pass.camera_projection.template cast<T>();
   const Vector4<T> c = pass.plane_in_camera.template cast<T>();
   const Surface& surface = scene.surfaces[pass.path.back()];
   std::vector<ConsumerResult> out;

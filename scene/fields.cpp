@@ -113,7 +113,9 @@ int integer(const json& v, const std::string& where, int low, int high) {
   return static_cast<int>(x);
 }
 
-/// 16 numbers in a named layout ("row_major" or "column_major"), or 4 rows of 4 ("rows").
+/// 16 numbers in a named layout ("row_major" or "column_major" of the column-vector matrix, or
+/// "row_vectors": a row-vector engine's matrix, M^T, by rows, as DirectXMath stores it), or 4
+/// rows of 4 ("rows").
 Matrix4<double> matrix16(const json& object, const std::string& path) {
   Matrix4<double> m;
   if (has(object, "rows")) {
@@ -137,8 +139,8 @@ Matrix4<double> matrix16(const json& object, const std::string& path) {
   }
   const json& values = member(object, path, "matrix");
   const std::string layout = text(object, path, "layout");
-  if (layout != "row_major" && layout != "column_major")
-    fail_unknown(path + ".layout", "layout", layout, {"row_major", "column_major"});
+  if (layout != "row_major" && layout != "column_major" && layout != "row_vectors")
+    fail_unknown(path + ".layout", "layout", layout, {"row_major", "column_major", "row_vectors"});
   if (!values.is_array() || values.size() != 16)
     fail(path + ".matrix", "must be 16 numbers, not " + type_of(values));
   for (std::size_t k = 0; k < 16; ++k) {
@@ -149,7 +151,7 @@ Matrix4<double> matrix16(const json& object, const std::string& path) {
     const int a = static_cast<int>(k / 4), b = static_cast<int>(k % 4);
     if (layout == "row_major") {
       m(a, b) = x;
-    } else {
+    } else {  // column_major, and row_vectors' M^T by rows: the same numbers
       m(b, a) = x;
     }
   }

@@ -18,9 +18,9 @@ namespace {
 
 /// The request's M and C in T (Eigen's cast: IEEE rounding, an infinity beyond T's range).
 template <class T>
-Matrix4<T> request_projection(const Scene& scene) {
+Matrix4<T> request_projection(const SurfaceCheck& pass) {
   static_assert(std::numeric_limits<T>::is_iec559);
-  return scene.camera.projection.template cast<T>();
+  return pass.camera_projection.template cast<T>();
 }
 template <class T>
 Vector4<T> request_plane(const SurfaceCheck& pass) {
@@ -41,7 +41,7 @@ void judge_answer_in(const Scene& scene, SurfaceCheck& pass, const std::string& 
   const Expected<Answer<T>> answer = protocol::read_answer<T>(line);
   if (!answer) return protocol_error(answer.error());
   const Answer<T> outcome{answer->status, answer->projection};
-  const oracle::Problem<T> problem(request_projection<T>(scene), request_plane<T>(pass),
+  const oracle::Problem<T> problem(request_projection<T>(pass), request_plane<T>(pass),
                                    scene.convention);
   cases::Checks checks;
   checks.statuses = cases::StatusContract::any_refusal;
@@ -59,7 +59,7 @@ mistakes::Diagnosis diagnose_in(const Scene& scene, const std::vector<SurfaceChe
   for (std::size_t i = 0; i < passes.size(); ++i) {
     const Expected<Answer<T>> answer = protocol::read_answer<T>(lines[i]);
     if (!answer) continue;
-    mistakes::Observation<T> o{request_projection<T>(scene),
+    mistakes::Observation<T> o{request_projection<T>(*passes[i]),
                                request_plane<T>(*passes[i]),
                                scene.convention,
                                answer->status,
@@ -78,15 +78,15 @@ std::string impl_request(const Scene& scene, const SurfaceCheck& pass,
                          protocol::Precision precision) {
   switch (precision) {
     case protocol::Precision::float32:
-      return protocol::request_line<float>(request_projection<float>(scene),
+      return protocol::request_line<float>(request_projection<float>(pass),
                                            request_plane<float>(pass), scene.convention);
     case protocol::Precision::float64: break;
     case protocol::Precision::long_double:
-      return protocol::request_line<long double>(request_projection<long double>(scene),
+      return protocol::request_line<long double>(request_projection<long double>(pass),
                                                  request_plane<long double>(pass),
                                                  scene.convention);
   }
-  return protocol::request_line<double>(request_projection<double>(scene),
+  return protocol::request_line<double>(request_projection<double>(pass),
                                         request_plane<double>(pass), scene.convention);
 }
 

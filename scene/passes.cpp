@@ -193,8 +193,18 @@ class Checker {
       s.level = level;
       s.kind = surface.kind;
       const Vector4<double> world_plane = surface.plane();
+      // The pass camera, as the scene's engine builds it: a mirror's flip in its view, or a
+      // proper camera S V R (S = diag(-1, 1, 1, 1)) with the flip in its projection (P S: the same
+      // image) or in the texture lookup.
+      const Matrix4<double> flip = Vector4<double>(-1, 1, 1, 1).asDiagonal();
+      s.camera_projection = parent.original;
       switch (surface.kind) {
-        case SurfaceKind::mirror: s.view = mirror_view(parent.view, world_plane); break;
+        case SurfaceKind::mirror:
+          s.view = mirror_view(parent.view, world_plane);
+          if (scene_.mirror_flip != MirrorFlip::view) s.view = flip * s.view;
+          if (scene_.mirror_flip == MirrorFlip::projection_x)
+            s.camera_projection = parent.original * flip;
+          break;
         case SurfaceKind::portal: s.view = parent.view * surface.portal_transform; break;
         case SurfaceKind::clip: s.view = parent.view; break;
       }
@@ -208,7 +218,7 @@ class Checker {
       s.parent_view = parent.view;
       s.kept_plane = kept_plane;
       const ObliqueResult<double> result =
-          apply<double>(scene_.camera.projection, s.plane_in_camera, scene_.convention);
+          apply<double>(s.camera_projection, s.plane_in_camera, scene_.convention);
       s.status = result.status;
       s.method = result.method;
       // Visible through the parent: the polygon clipped by what the parent renders (and its
@@ -247,9 +257,9 @@ class Checker {
         s.render = true;
         s.projection = result.projection;
         s.scissor = scissor;
-        s.properties = judge(scene_.camera.projection, s.plane_in_camera, scene_.convention,
-                             result.projection);
-        s.depth = depth_precision(scene_.camera.projection, result.projection, s.plane_in_camera,
+        s.properties =
+            judge(s.camera_projection, s.plane_in_camera, scene_.convention, result.projection);
+        s.depth = depth_precision(s.camera_projection, result.projection, s.plane_in_camera,
                                   scene_.convention, scene_.depth_buffer);
         if (!scene_.consumers.empty())
           s.consumers = judge_consumers<double>(scene_, s, oracle::reference_consumers<double>());
@@ -257,7 +267,7 @@ class Checker {
       // Beyond the depth limit only the passes that would have been rendered are listed.
       if (level > scene_.max_depth && s.reason.rfind("depth limit", 0) != 0) continue;
       const bool render = s.render;
-      Through next{s.view, result.projection, scene_.camera.projection, scissor, s.path, s.name,
+      Through next{s.view, result.projection, s.camera_projection, scissor, s.path, s.name,
                    level,  kept_plane};
       out_.surfaces.push_back(std::move(s));
       if (render && surface.kind != SurfaceKind::clip) passes_through(next);

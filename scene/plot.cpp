@@ -115,7 +115,7 @@ SceneViews scene_views(const Scene& scene, const SceneCheck& check) {
     // surface too.
     sets.push_back({s.name + ": without the oblique near plane",
                     "lines lc rgb '#999999' dt 3 lw 1",
-                    volume_edges(s.view, scene.camera.projection, scene.convention, reach, rect),
+                    volume_edges(s.view, s.camera_projection, scene.convention, reach, rect),
                     {}});
     sets.push_back(
         {s.name + ": virtual camera", "points pt 7 ps 1.5 lc rgb '" + rgb + "'", {}, {pass_eye}});

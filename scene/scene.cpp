@@ -69,7 +69,7 @@ ParsedScene parse_scene(std::string_view text_in) {
       fail("(top level)", std::string("must be an object, not ") + type_of(root));
     only_keys(root, "",
               {"name", "convention", "depth_buffer", "camera", "surfaces", "max_depth", "viewport",
-               "consumers", "mirror_design"});
+               "consumers", "mirror_design", "mirror_flip"});
     scene.name = text(root, "", "name");
     const std::string convention = text(root, "", "convention");
     const auto c = parse_convention(convention);
@@ -120,6 +120,25 @@ ParsedScene parse_scene(std::string_view text_in) {
         fail_unknown("mirror_design", "mirror design", design,
                      names_in(oracle::mirror_design_names));
       scene.mirror_design = *parsed_design;
+    }
+    if (has(root, "mirror_flip")) {
+      const std::string flip = text(root, "", "mirror_flip");
+      const auto parsed_flip = parse_mirror_flip(flip);
+      if (!parsed_flip)
+        fail_unknown("mirror_flip", "mirror flip", flip, names_in(mirror_flip_names));
+      scene.mirror_flip = *parsed_flip;
+      const oracle::MirrorDesign implied = *parsed_flip == MirrorFlip::view
+                                               ? oracle::MirrorDesign::reflected_view
+                                               : oracle::MirrorDesign::proper_camera;
+      if (has(root, "mirror_design") && scene.mirror_design != implied)
+        fail("mirror_flip", "\"" + flip + "\" builds a " +
+                                std::string(oracle::mirror_design_name(implied)) +
+                                " mirror pass, but mirror_design says " +
+                                std::string(oracle::mirror_design_name(scene.mirror_design)) +
+                                ": give one of them, or both alike");
+      scene.mirror_design = implied;
+    } else if (scene.mirror_design == oracle::MirrorDesign::proper_camera) {
+      scene.mirror_flip = MirrorFlip::projection_x;  // a proper camera's flip: the projection's
     }
     scene.camera = read_camera(root, scene.convention, out.warnings);
     const json& surfaces = member(root, "", "surfaces");

@@ -307,7 +307,8 @@ Expected<ShaderFunction> shader_function_in(const std::string& path, const std::
     const Expected<Signature> sig = find_signature(*kept, function, f.language, kind);
     if (sig) {
       f.kind = kind;
-      if (kind == ConsumerKind::view_position && folded(function).find("world") != std::string::npos)
+      if (kind == ConsumerKind::view_position &&
+          folded(function).find("world") != std::string::npos)
         f.kind = ConsumerKind::world_position;
       return f;
     }
@@ -326,9 +327,9 @@ Expected<std::vector<ShaderFunction>> shader_functions(const std::string& spec,
   for (const ConsumerKind k : kinds) {
     if (k != ConsumerKind::view_position && k != ConsumerKind::linear_depth &&
         k != ConsumerKind::world_position)
-      return Functions::failure("a shader answers view_position, linear_depth and world_position; " +
-                                std::string(protocol::consumer_kind_name(k)) +
-                                " is asked of a program (--impl)");
+      return Functions::failure(
+          "a shader answers view_position, linear_depth and world_position; " +
+          std::string(protocol::consumer_kind_name(k)) + " is asked of a program (--impl)");
   }
   if (kinds.empty()) return Functions::failure("--consumers names no request kind");
   const auto [path, function] = split_shader_spec(spec);

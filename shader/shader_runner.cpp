@@ -135,8 +135,10 @@ std::array<float, kRequestVectors * 4> request_of(const oracle::DepthSample<floa
   const Eigen::Matrix4d view_projection = projection * view;
   const Eigen::Matrix4d matrices[4] = {projection, projection.inverse(), original,
                                        original.inverse()};
+  // (M' V)^-1 as V^-1 M'^-1: inverting the product itself, even in double, loses what a stiff M'
+  // keeps in a tiny entry (a plane through the eye: M'34 ~ 1e-20 beside V's translation).
   const Eigen::Matrix4d world[4] = {view, view.inverse(), view_projection,
-                                    view_projection.inverse()};
+                                    view.inverse() * projection.inverse()};
   for (int k = 0; k < 4; ++k)
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c)

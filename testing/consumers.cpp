@@ -64,9 +64,8 @@ void judged(const std::string& consumer, const oracle::ConsumerFinding& finding,
 /// an oblique matrix), one consumer round with only `only` given, and the findings of `check`.
 template <class T>
 void run_check(const oblique::Consumers<T>& only, oracle::ConsumerCheck check, Contract contract) {
-  const bool needs_oblique =
-      only.view_position || only.linear_depth || only.world_position || only.culling_planes ||
-      only.corners;
+  const bool needs_oblique = only.view_position || only.linear_depth || only.world_position ||
+                             only.culling_planes || only.corners;
   const std::string property(oracle::consumer_check_name(check));
   if (needs_oblique) {
     // The families the property has something to judge on (not_applicable()), said once.

@@ -87,6 +87,44 @@ TEST(Adapt, matrixShapedFunctions) {
   expect_same_as_core(impl);
 }
 
+// A row-vector engine (v R, R = M^T, DirectXMath): its matrix by rows, its oblique row R's third
+// column. Declared Layout::row_vectors it is the core; declared row_major (the natural guess) it
+// is handed M for R and answers something else.
+TEST(Adapt, rowVectorEnginesAreHandedTheTranspose) {
+  auto row_vector_engine = [](float* r, const float* c) {
+    Matrix4<float> rows;  // R, as the engine holds it
+    for (int i = 0; i < 16; ++i) rows(i / 4, i % 4) = r[i];
+    const auto answer = apply<float>(Matrix4<float>(rows.transpose()),
+                                     Vector4<float>(c[0], c[1], c[2], c[3]), Convention::zero_one);
+    if (!answer.ok()) return false;
+    const Matrix4<float> out = answer.projection.transpose();
+    for (int i = 0; i < 16; ++i) r[i] = out(i / 4, i % 4);
+    return true;
+  };
+  const auto declared =
+      adapt<float>("d3d", Layout::row_vectors, Convention::zero_one, row_vector_engine);
+  const Matrix4<float> m = frustum<float>(-1, 2, -0.5f, 1.5f, 1, 100, Convention::zero_one);
+  const auto core = apply<float>(m, plane_in_view<float>(), Convention::zero_one);
+  ASSERT_TRUE(core.ok());
+  const Answer<float> got = declared.run(m, plane_in_view<float>(), Convention::zero_one);
+  EXPECT_EQ(got.status, Status::ok);
+  EXPECT_EQ(got.projection, core.projection);
+  const auto misdeclared =
+      adapt<float>("d3d", Layout::row_major, Convention::zero_one, row_vector_engine);
+  const Answer<float> wrong = misdeclared.run(m, plane_in_view<float>(), Convention::zero_one);
+  EXPECT_FALSE(wrong.status == Status::ok && wrong.projection == core.projection);
+  // A function of matrices written for row vectors is handed R = M^T, its answer transposed back.
+  const auto matrices =
+      adapt<float>("d3d_matrices", Layout::row_vectors,
+                   [](const Matrix4<float>& r, const Vector4<float>& c, Convention convention) {
+                     auto a = apply<float>(Matrix4<float>(r.transpose()), c, convention);
+                     a.projection.transposeInPlace();
+                     return a;
+                   });
+  const Answer<float> by_matrices = matrices.run(m, plane_in_view<float>(), Convention::zero_one);
+  EXPECT_EQ(by_matrices.projection, core.projection);
+}
+
 TEST(Adapt, layoutsStoreTheTransposeOfEachOther) {
   const Matrix4<double> m = frustum_matrix<double>();
   double row[16], column[16];

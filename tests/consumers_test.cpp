@@ -130,16 +130,16 @@ TEST(DepthReconstruction, worldPositionHoldsEitherRouteAndCatchesItsMistakes) {
       const Matrix4<double> m = perspective(k);
       const Vector4<double> c = tilted_plane();
       const Matrix4<double> mo = oblique_of(m, c, k);
-      auto sample = oblique::oracle::depth_sample(mo, m, k, DepthBuffer::fixed24,
-                                                  kept_centre(m, c, k));
+      auto sample =
+          oblique::oracle::depth_sample(mo, m, k, DepthBuffer::fixed24, kept_centre(m, c, k));
       ASSERT_TRUE(sample.has_value());
       sample->view = far_pass_view(mirrored);
       const Matrix4<double> to_world = sample->view.inverse();
       const Vector3<double> view_point =
           oblique::view_position(mo, sample->ndc_x, sample->ndc_y, sample->depth, k);
       // The inverse view-projection as an engine hands it (computed in double).
-      const Vector4<double> clip(sample->ndc_x, sample->ndc_y,
-                                 oblique::ndc_depth(sample->depth, k), 1);
+      const Vector4<double> clip(sample->ndc_x, sample->ndc_y, oblique::ndc_depth(sample->depth, k),
+                                 1);
       const Vector4<double> h = (mo * sample->view).inverse() * clip;
       const Vector3<double> through_vp = h.head<3>() / h.w();
       const Vector3<double> through_view = (to_world * view_point.homogeneous()).head<3>();
@@ -147,8 +147,8 @@ TEST(DepthReconstruction, worldPositionHoldsEitherRouteAndCatchesItsMistakes) {
         const ConsumerFinding f = oblique::oracle::judge_world_position(*sample, right);
         EXPECT_TRUE(f.judged && f.holds) << describe(f);
       }
-      const Vector3<double> original = oblique::world_position(
-          m, sample->view, sample->ndc_x, sample->ndc_y, sample->depth, k);
+      const Vector3<double> original =
+          oblique::world_position(m, sample->view, sample->ndc_x, sample->ndc_y, sample->depth, k);
       const Vector3<double> carried_by_view = (sample->view * view_point.homogeneous()).head<3>();
       for (const Vector3<double>& wrong : {original, carried_by_view, view_point}) {
         const ConsumerFinding f = oblique::oracle::judge_world_position(*sample, wrong);

@@ -250,6 +250,27 @@ TYPED_TEST(Diagnose, aRightFormulaAlongALosingRouteIsNamedNumerical) {
   }
 }
 
+// A row-vector engine (v R, R = M^T) declared as column vectors: handed M for R, it modifies
+// M^T and its answer is read back transposed. Named as the layout, not as a formula mistake.
+TYPED_TEST(Diagnose, aRowVectorFunctionDeclaredAsColumnVectorsIsTheTransposedLayout) {
+  using T = TypeParam;
+  Implementation<T> impl;
+  impl.name = "row_vectors_as_columns";
+  impl.accepts = [](Convention, const Matrix4<T>&) { return true; };
+  impl.reports_statuses = true;
+  impl.run = [](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+    const ObliqueResult<T> r = apply<T>(Matrix4<T>(m.transpose()), c, convention);
+    return Answer<T>{r.status, Matrix4<T>(r.projection.transpose())};
+  };
+  const Diagnosis d = first_finding_diagnosed(impl);
+  ASSERT_TRUE(d.ran);
+  EXPECT_TRUE(d.causes.empty()) << likely_cause_line(d);
+  EXPECT_TRUE(d.transposed_layout) << likely_cause_line(d);
+  EXPECT_EQ(likely_cause_line(d).rfind("likely cause: transposed_layout (", 0), 0u)
+      << likely_cause_line(d);
+  EXPECT_NE(likely_cause_markdown(d).find("Layout::row_vectors"), std::string::npos);
+}
+
 // a = 3 / (C . Q): a wrong scale no catalogued mistake gives.
 TYPED_TEST(Diagnose, anUnlistedMistakeIsNoKnownMistake) {
   using T = TypeParam;

@@ -118,6 +118,55 @@ TEST(Scenes, bundledExamplesGiveTheirVerdicts) {
   }
 }
 
+// mirror_flip: the same lake, its reflection pass built three ways. In the view (the default) the
+// pass camera is improper and the projection the camera's; with the flip in the projection the
+// camera is proper (diag(-1, 1, 1, 1) V R) and M11 negated, and the image the same (P' V' = P V
+// R); in the texture, the same proper camera with the projection as it is. The oblique matrix of
+// each holds every property; a flip that contradicts a declared mirror_design is refused.
+TEST(EngineScenes, mirrorPassesAreBuiltAsTheSceneSays) {
+  const std::string lake = read_file(std::string(OBLIQUE_SCENES_DIR) + "/lake.json");
+  auto with_flip = [&lake](const std::string& extra) {
+    std::string text = lake;
+    text.replace(text.find("\"convention\""), 0, extra + ", ");
+    return text;
+  };
+  std::map<std::string, SurfaceCheck> reflection;
+  for (const std::string flip : {"view", "projection_x", "texture"}) {
+    const ParsedScene parsed = parse_scene(with_flip("\"mirror_flip\": \"" + flip + "\""));
+    ASSERT_TRUE(parsed.scene) << parsed.error;
+    const SceneCheck check = check_scene(*parsed.scene);
+    ASSERT_FALSE(check.surfaces.empty());
+    EXPECT_TRUE(check.passes()) << flip;
+    EXPECT_TRUE(check.surfaces[0].render) << flip;
+    reflection[flip] = check.surfaces[0];
+    EXPECT_EQ(parsed.scene->mirror_design, flip == "view"
+                                               ? oblique::oracle::MirrorDesign::reflected_view
+                                               : oblique::oracle::MirrorDesign::proper_camera);
+  }
+  const SurfaceCheck& in_view = reflection["view"];
+  const SurfaceCheck& in_projection = reflection["projection_x"];
+  const SurfaceCheck& in_texture = reflection["texture"];
+  EXPECT_LT((in_view.view.topLeftCorner<3, 3>().determinant()), 0);
+  EXPECT_GT((in_projection.view.topLeftCorner<3, 3>().determinant()), 0);
+  EXPECT_GT(in_view.camera_projection(0, 0), 0);
+  EXPECT_LT(in_projection.camera_projection(0, 0), 0);
+  EXPECT_GT(in_texture.camera_projection(0, 0), 0);
+  EXPECT_TRUE((in_projection.camera_projection * in_projection.view)
+                  .isApprox(in_view.camera_projection * in_view.view, 1e-12));
+  EXPECT_TRUE(in_texture.view.isApprox(in_projection.view, 1e-12));
+  // proper_camera alone flips in the projection; contradicting declarations are refused.
+  const ParsedScene proper = parse_scene(with_flip("\"mirror_design\": \"proper_camera\""));
+  ASSERT_TRUE(proper.scene) << proper.error;
+  EXPECT_EQ(proper.scene->mirror_flip, oblique::scene::MirrorFlip::projection_x);
+  const ParsedScene contradicting =
+      parse_scene(with_flip("\"mirror_design\": \"reflected_view\", \"mirror_flip\": \"texture\""));
+  EXPECT_FALSE(contradicting.scene);
+  EXPECT_NE(contradicting.error.find("mirror_flip"), std::string::npos) << contradicting.error;
+  const ParsedScene unknown = parse_scene(with_flip("\"mirror_flip\": \"projection_y\""));
+  EXPECT_FALSE(unknown.scene);
+  EXPECT_NE(unknown.error.find("unknown mirror flip"), std::string::npos) << unknown.error;
+}
+
 /// A scene with one camera and the given surfaces (JSON fragments).
 std::string scene_json(const std::string& convention, const std::string& projection,
                        const std::string& eye, const std::string& target,
@@ -755,11 +804,18 @@ TEST(EngineScenes, cameraFormsAgree) {
       R"("view": {"layout": "row_major", "matrix": [0, 0, -1, 3,  0, 1, 0, -2,  1, 0, 0, -1,  0, 0, 0, 1]})";
   const std::string columns =
       R"("view": {"layout": "column_major", "matrix": [0, 0, 1, 0,  0, 1, 0, 0,  -1, 0, 0, 0,  3, -2, -1, 1]})";
+  // A row-vector engine's view (DirectXMath): the transpose, by rows: column_major's numbers.
+  const std::string row_vectors =
+      R"("view": {"layout": "row_vectors", "matrix": [0, 0, 1, 0,  0, 1, 0, 0,  -1, 0, 0, 0,  3, -2, -1, 1]})";
   const std::string quaternion =
       R"("view": {"position": [1, 2, 3], "quaternion_xyzw": [0, 0.7071067811865476, 0, 0.7071067811865476]})";
   std::vector<SceneCheck> checks;
-  for (const auto& [projection, view] :
-       {std::pair{deg, look}, {deg, rows}, {deg, columns}, {deg, quaternion}, {rad, look}}) {
+  for (const auto& [projection, view] : {std::pair{deg, look},
+                                         {deg, rows},
+                                         {deg, columns},
+                                         {deg, row_vectors},
+                                         {deg, quaternion},
+                                         {rad, look}}) {
     const ParsedScene parsed = parse_scene(head + projection + ", " + view + tail);
     ASSERT_TRUE(parsed.scene) << view << ": " << parsed.error;
     checks.push_back(check_scene(*parsed.scene));

@@ -59,8 +59,8 @@ TEST(ShaderFunction, aFunctionThatDoesNotFitIsRefusedInTheUsersWords) {
             std::string::npos);
   EXPECT_NE(error("float4 f(float depth) { }", vp, Language::hlsl).find("returns float3"),
             std::string::npos);
-  EXPECT_NE(error("vec3 f(mat4 invViewProj) { }", vp, Language::glsl)
-                .find("parameter invViewProj is not an input the harness knows"),
+  EXPECT_NE(error("vec3 f(mat4 lightViewProj) { }", vp, Language::glsl)
+                .find("parameter lightViewProj is not an input the harness knows"),
             std::string::npos);
   EXPECT_NE(error("vec3 f(vec2 depth) { }", vp, Language::glsl)
                 .find("parameter depth is vec2; the depth input is float"),

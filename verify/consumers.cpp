@@ -304,9 +304,9 @@ class ConsumerRun {
   /// each pick in turn tried at its range's low end, at half and one less, kept where the round
   /// still violates the same check with the same likely cause (a shrunk case where the answer
   /// comes within half of the digits of the right one, or another mistake's, would name none or
-  /// another: what the finding was is kept); the program is asked again each time (at most kShrinkTries
-  /// rounds and kShrinkSeconds; none after a crash or a timeout). Said on err_, and the report
-  /// has the shrunk round.
+  /// another: what the finding was is kept); the program is asked again each time (at most
+  /// kShrinkTries rounds and kShrinkSeconds; none after a crash or a timeout). Said on err_, and
+  /// the report has the shrunk round.
   void shrink() {
     if (!caught_ || caught_->lost) return;
     set_shrinking_line(options_);
@@ -335,7 +335,7 @@ class ConsumerRun {
           picks[i] = candidate;
           ++tries;
           if (std::optional<Caught<T>> c = violation_with(best.round, picks, best.finding.check,
-                                                           caught_->finding.likely_cause);
+                                                          caught_->finding.likely_cause);
               c && c->round.picks < best.round.picks) {
             c->index = best.index;
             best = *c;

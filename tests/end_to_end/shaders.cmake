@@ -90,7 +90,7 @@ oblique_shader_refusal(a_missing_function "no function named nosuch is defined \
 oblique_shader_refusal(a_wrong_return_type "returns vec4; a view_position function returns vec3"
                        ${verify_shader} --consumers view_position
                        --shader ${hostile_shaders}/signatures.glsl:returns_vec4)
-oblique_shader_refusal(an_unknown_parameter "parameter invViewProj is not an input the harness knows"
+oblique_shader_refusal(an_unknown_parameter "parameter lightViewProj is not an input the harness knows"
                        ${verify_shader} --consumers view_position
                        --shader ${hostile_shaders}/signatures.glsl:unknown_parameter)
 oblique_shader_refusal(a_parameter_of_another_type "parameter depth is vec2; the depth input is float"

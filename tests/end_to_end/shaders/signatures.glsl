@@ -5,7 +5,7 @@ vec4 returns_vec4(mat4 inverse_projection, vec2 ndc, float depth) {
   return vec4(0.0);
 }
 
-vec3 unknown_parameter(mat4 invViewProj, vec2 ndc, float depth) {
+vec3 unknown_parameter(mat4 lightViewProj, vec2 ndc, float depth) {
   return vec3(0.0);
 }
 

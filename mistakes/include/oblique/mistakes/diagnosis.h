@@ -105,6 +105,11 @@ struct Diagnosis {
   int row = 2;
   std::optional<std::array<double, 4>> answered_row, mistaken_row, right_row;
   std::vector<ChoiceDifference> differences;  ///< what the cause decided otherwise there
+  /// Where no known mistake reproduces the answers but the correct modification of M^T,
+  /// transposed back, does (each refusal and each answer to half of T's digits, at least one
+  /// wrong one among them): the function reads its matrix in the other layout (a row-vector
+  /// engine declared as column vectors, or the 16 numbers in the other order).
+  bool transposed_layout = false;
   /// Where no known mistake reproduces the answers but the correct formula along a numerical
   /// route does (computed in T): that route.
   std::optional<NumericalCause> numerical;

@@ -8,8 +8,11 @@
 //   ObliqueResult<T> or Answer<T> f(const Matrix4<T>&, const Vector4<T>&, Convention);
 //
 // with the 16 numbers in `Layout::row_major` (m[4 * row + column]) or `Layout::column_major`
-// (m[4 * column + row], OpenGL's and Listing 5.1's) order. The plane is (a, b, c, d) in camera
-// space, the side seen and kept where a x + b y + c z + d > 0.
+// (m[4 * column + row], OpenGL's and Listing 5.1's) order, or `Layout::row_vectors` for an engine
+// whose points are rows (v M: DirectXMath, D3DX, XNA, Unity's C# API is not one): its matrix is
+// the transpose of the column-vector one, stored row by row, and its oblique row is M's third
+// column (Lengyel's Direct3D version). The plane is (a, b, c, d) in camera space, the side seen
+// and kept where a x + b y + c z + d > 0, whichever way vectors are written.
 //
 // A function that takes no convention serves one, and says which:
 //   adapt<float>("make_oblique", Layout::column_major, Convention::gl, make_oblique)
@@ -29,13 +32,21 @@
 
 namespace oblique {
 
-/// How a function stores a 4x4 matrix in 16 numbers.
-enum class Layout { row_major, column_major };
+/// How a function stores a 4x4 matrix in 16 numbers, and which way it multiplies vectors.
+enum class Layout {
+  row_major,     ///< column vectors (M v), m[4 * row + column]
+  column_major,  ///< column vectors (M v), m[4 * column + row]: OpenGL's, GLM's, Listing 5.1's
+  /// Row vectors (v R, R = M^T: DirectXMath, D3DX), R stored row by row, m[4 * row + column] of
+  /// R: the same 16 numbers as column_major. A function of Matrix4<T> is handed R = M^T and its
+  /// answer R' read back as M' = R'^T.
+  row_vectors,
+};
 
 namespace adapting {
 
 template <class T>
 void store(const Matrix4<T>& m, Layout layout, T* out) {
+  // row_vectors stores R = M^T by rows: M's entry (r, c) at 4 c + r, as column_major does.
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) out[layout == Layout::row_major ? 4 * r + c : 4 * c + r] = m(r, c);
   }
@@ -48,6 +59,13 @@ Matrix4<T> load(const T* in, Layout layout) {
     for (int c = 0; c < 4; ++c) m(r, c) = in[layout == Layout::row_major ? 4 * r + c : 4 * c + r];
   }
   return m;
+}
+
+/// The matrix a function of Matrix4<T> is handed for M in `layout` (and M' from its answer: the
+/// same map, a transpose being its own inverse).
+template <class T>
+Matrix4<T> as_handed(const Matrix4<T>& m, Layout layout) {
+  return layout == Layout::row_vectors ? Matrix4<T>(m.transpose()) : m;
 }
 
 /// A refusal of a function that says only "no" (returns false): judged as any refusal.
@@ -80,9 +98,10 @@ oracle::Implementation<T> wrap(std::string name, Layout layout, F function,
     static_assert(std::is_same_v<R, ObliqueResult<T>> || std::is_same_v<R, Answer<T>>,
                   "a matrix-shaped function returns ObliqueResult<T> or Answer<T>");
     impl.reports_statuses = true;
-    impl.run = [function](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) mutable {
-      const R r = function(m, c, convention);
-      return Answer<T>{r.status, r.projection};
+    impl.run = [function, layout](const Matrix4<T>& m, const Vector4<T>& c,
+                                  Convention convention) mutable {
+      const R r = function(adapting::as_handed(m, layout), c, convention);
+      return Answer<T>{r.status, adapting::as_handed(r.projection, layout)};
     };
   } else if constexpr (std::is_invocable_v<F&, T*, const T*>) {
     using R = std::invoke_result_t<F&, T*, const T*>;

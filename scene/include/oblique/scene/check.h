@@ -69,10 +69,13 @@ struct SurfaceCheck {
   int level = 1;                  ///< 1 for a pass the main camera sees
   SurfaceKind kind = SurfaceKind::mirror;
   bool render = false;
-  std::string reason;               ///< why it is skipped (empty when rendered)
-  Status status = Status::ok;       ///< what the core answered (ok when it was not asked)
-  Matrix4<double> view;             ///< world -> pass camera (mirrors: main view x reflection)
-  Vector4<double> plane_in_camera;  ///< the surface plane in the pass camera's space
+  std::string reason;          ///< why it is skipped (empty when rendered)
+  Status status = Status::ok;  ///< what the core answered (ok when it was not asked)
+  Matrix4<double> view;        ///< world -> pass camera (mirrors: main view x reflection)
+  /// The pass camera's own projection, before the oblique modification: the scene camera's, its
+  /// x negated on a mirror pass whose flip is in the projection (mirror_flip projection_x).
+  Matrix4<double> camera_projection = Matrix4<double>::Identity();
+  Vector4<double> plane_in_camera;            ///< the surface plane in the pass camera's space
   std::optional<Matrix4<double>> projection;  ///< the oblique projection, when rendered
   Method method = Method::automatic;
   /// The properties that apply to its camera and convention, judged (oracle::judge()).

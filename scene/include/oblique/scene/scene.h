@@ -92,6 +92,25 @@ constexpr std::optional<SceneConsumer> parse_scene_consumer(std::string_view nam
   return value_in(scene_consumer_names, name);
 }
 
+/// Where a mirror pass puts the mirror's flip, as the scene's engine builds the pass
+/// ("mirror_flip"): in the view (main view times the reflection: an improper camera, its winding
+/// flipped), or a proper camera diag(-1, 1, 1, 1) V R whose horizontal flip is done in the
+/// projection (M11 negated: the pass asks the oblique function about M diag(-1, 1, 1, 1)) or in
+/// the texture lookup (the projection as it is).
+enum class MirrorFlip { view, projection_x, texture };
+
+inline constexpr EnumName<MirrorFlip> mirror_flip_names[] = {
+    {MirrorFlip::view, "view"},
+    {MirrorFlip::projection_x, "projection_x"},
+    {MirrorFlip::texture, "texture"},
+};
+constexpr std::string_view mirror_flip_name(MirrorFlip value) noexcept {
+  return name_in(mirror_flip_names, value);
+}
+constexpr std::optional<MirrorFlip> parse_mirror_flip(std::string_view name) noexcept {
+  return value_in(mirror_flip_names, name);
+}
+
 struct Scene {
   std::string name;
   Convention convention = Convention::gl;
@@ -105,6 +124,9 @@ struct Scene {
   /// How the engine builds a mirror pass's camera ("mirror_design": reflected_view, the default,
   /// or proper_camera): what `check --impl` judges the program's mirror_view by.
   oracle::MirrorDesign mirror_design = oracle::MirrorDesign::reflected_view;
+  /// Where its mirror passes put the flip ("mirror_flip"); a flip outside the view makes the
+  /// design proper_camera, and a proper_camera design without it flips in the projection.
+  MirrorFlip mirror_flip = MirrorFlip::view;
 };
 
 /// A scene, or why the text is not one (naming the field, or the line and column).
