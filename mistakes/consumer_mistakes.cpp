@@ -310,6 +310,35 @@ std::string view_position_shows(const oracle::DepthSample<T>& s, const std::vect
          short_number(width) + " x " + short_number(height) + " target), " + along;
 }
 
+/// The sample a depth ask is about (none for the other kinds).
+template <class T>
+std::optional<oracle::DepthSample<T>> sample_of(const oracle::ConsumerAsk<T>& ask) {
+  std::optional<oracle::DepthSample<T>> sample;
+  Consumers<T> recording;
+  recording.view_position = recording.world_position = [&sample](const oracle::DepthSample<T>& s) {
+    sample = s;
+    return Vector3<T>::Zero().eval();
+  };
+  recording.linear_depth = [&sample](const oracle::DepthSample<T>& s) {
+    sample = s;
+    return T(0);
+  };
+  try {
+    (void)ask.call(recording);
+  } catch (...) {
+  }
+  return sample;
+}
+
+/// A world position carried into the pass camera's space (view (p, 1)), where the pixel's ray is.
+template <class T>
+std::vector<T> in_pass_camera(const Matrix4<T>& view, const std::vector<T>& p) {
+  if (p.size() != 3) return p;
+  const Vector4<long double> v =
+      view.template cast<long double>() * Vector4<long double>(p[0], p[1], p[2], 1.0L);
+  return {static_cast<T>(v.x()), static_cast<T>(v.y()), static_cast<T>(v.z())};
+}
+
 /// What a violated answer shows, in words: for the depth kinds where it lies against the pixel's
 /// ray; for the others how far it is from the core's reference answer.
 template <class T>
@@ -324,27 +353,12 @@ std::string answers_show(const oracle::ConsumerAsk<T>& ask, const std::vector<T>
     if (!std::isfinite(x)) return "the answer is not finite (NaN or infinity)";
   if (right.size() != answer.size()) return "";
   if (ask.kind == ConsumerKind::view_position || ask.kind == ConsumerKind::world_position) {
-    std::optional<oracle::DepthSample<T>> sample;
-    Consumers<T> recording;
-    recording.view_position =
-        recording.world_position = [&sample](const oracle::DepthSample<T>& s) {
-          sample = s;
-          return Vector3<T>::Zero().eval();
-        };
-    try {
-      (void)ask.call(recording);
-    } catch (...) {
-    }
-    if (sample && ask.kind == ConsumerKind::view_position)
-      return view_position_shows(*sample, answer, right);
-    if (sample) {
-      // Carried into the pass camera's space by its view, where the pixel's ray is.
-      auto in_view = [&sample](const std::vector<T>& p) {
-        const Vector4<T> v = sample->view * Vector4<T>(p[0], p[1], p[2], T(1));
-        return std::vector<T>{v.x(), v.y(), v.z()};
-      };
+    if (const auto sample = sample_of(ask)) {
+      if (ask.kind == ConsumerKind::view_position)
+        return view_position_shows(*sample, answer, right);
       return "in the pass camera's space (the answer times its view), " +
-             view_position_shows(*sample, in_view(answer), in_view(right));
+             view_position_shows(*sample, in_pass_camera(sample->view, answer),
+                                 in_pass_camera(sample->view, right));
     }
   }
   if (ask.kind == ConsumerKind::linear_depth) {
@@ -530,26 +544,6 @@ Consumers<T> mistaken_consumers(ConsumerMistake mistake) {
   return c;
 }
 
-/// The sample a depth ask is about (none for the other kinds).
-template <class T>
-std::optional<oracle::DepthSample<T>> sample_of(const oracle::ConsumerAsk<T>& ask) {
-  std::optional<oracle::DepthSample<T>> sample;
-  Consumers<T> recording;
-  recording.view_position = recording.world_position = [&sample](const oracle::DepthSample<T>& s) {
-    sample = s;
-    return Vector3<T>::Zero().eval();
-  };
-  recording.linear_depth = [&sample](const oracle::DepthSample<T>& s) {
-    sample = s;
-    return T(0);
-  };
-  try {
-    (void)ask.call(recording);
-  } catch (...) {
-  }
-  return sample;
-}
-
 template <class T>
 void explain_consumer(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& answer_as_given,
                       oracle::ConsumerFinding& finding) {
@@ -562,12 +556,7 @@ void explain_consumer(const oracle::ConsumerAsk<T>& ask, const std::vector<T>& a
   };
   if (ask.kind == ConsumerKind::world_position) {
     if (const auto s = sample_of(ask)) {
-      const Matrix4<long double> view = s->view.template cast<long double>();
-      comparable = [view](const std::vector<T>& v) {
-        if (v.size() != 3) return v;
-        const Vector4<long double> p = view * Vector4<long double>(v[0], v[1], v[2], 1.0L);
-        return std::vector<T>{static_cast<T>(p.x()), static_cast<T>(p.y()), static_cast<T>(p.z())};
-      };
+      comparable = [view = s->view](const std::vector<T>& v) { return in_pass_camera(view, v); };
     }
   }
   const std::vector<T> answer = comparable(answer_as_given);
