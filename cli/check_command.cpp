@@ -1,4 +1,5 @@
 // `oblique check`: a scene file, its passes, --impl, --plot and --rasterize.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +10,7 @@
 
 #include "commands.h"
 #include "oblique/cases/contract.h"
+#include "oblique/protocol/names.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/raster/raster.h"
 #include "oblique/report/html_page.h"
@@ -37,6 +39,8 @@ struct CheckSettings {
   std::string device = "software";  ///< --device
   int raster_size = 1000;           ///< --raster-size
   bool strict = false;              ///< --strict
+  /// --consumers LIST: of the scene's consumers, those asked and judged ("none": none).
+  std::optional<std::string> consumers;
 };
 
 /// The exit status of a raster check that could not judge (no EGL, a self-check tripped).
@@ -175,7 +179,33 @@ int run_check(const CheckSettings& settings) {
   }
   for (const std::string& warning : parsed.warnings)
     std::cerr << "oblique check: " << path << ": warning: " << warning << "\n";
-  oblique::scene::SceneCheck check = oblique::scene::check_scene(*parsed.scene);
+  oblique::scene::Scene scene = *parsed.scene;
+  if (settings.consumers) {
+    // --consumers: the scene's consumers narrowed (a program that answers the matrix alone, a
+    // shader that answers reconstruction alone, on a scene that names more).
+    std::vector<oblique::scene::SceneConsumer> kept;
+    for (const std::string& name : split_list(*settings.consumers)) {
+      if (name == "none") continue;
+      const auto consumer = oblique::scene::parse_scene_consumer(name);
+      if (!consumer) {
+        std::cerr << "oblique check: --consumers: "
+                  << oblique::protocol::unknown_name(
+                         "scene consumer", name,
+                         oblique::names_in(oblique::scene::scene_consumer_names))
+                  << ", or none\n";
+        return 2;
+      }
+      if (std::find(scene.consumers.begin(), scene.consumers.end(), *consumer) ==
+          scene.consumers.end()) {
+        std::cerr << "oblique check: --consumers: " << path << " names no consumer " << name
+                  << "\n";
+        return 2;
+      }
+      if (std::find(kept.begin(), kept.end(), *consumer) == kept.end()) kept.push_back(*consumer);
+    }
+    scene.consumers = kept;
+  }
+  oblique::scene::SceneCheck check = oblique::scene::check_scene(scene);
   check.impl_precision = *oblique::protocol::parse_precision(settings.precision);
   if (!settings.shader.empty() && !settings.impl.empty()) {
     std::cerr << "oblique check: --shader and --impl each name what answers: give one\n";
@@ -224,7 +254,7 @@ int run_check(const CheckSettings& settings) {
     }
     runner = std::move(*opened);
     const oblique::Expected<oblique::Done> judged = oblique::scene::judge_shader_consumers(
-        *parsed.scene, check,
+        scene, check,
         oblique::shader::shader_consumers(*runner, settings.shader, settings.sampling));
     if (!judged) {
       std::cerr << "oblique check: " << judged.error() << "\n";
@@ -232,14 +262,14 @@ int run_check(const CheckSettings& settings) {
     }
   }
   if (!settings.impl.empty()) {
-    const oblique::Expected<std::size_t> judged = oblique::scene::judge_implementation(
-        *parsed.scene, check, settings.impl, settings.timeout_seconds);
+    const oblique::Expected<std::size_t> judged =
+        oblique::scene::judge_implementation(scene, check, settings.impl, settings.timeout_seconds);
     if (!judged) {
       std::cerr << "oblique check: " << judged.error() << "\n";
       return 2;
     }
     const oblique::Expected<oblique::Done> consumers =
-        oblique::scene::judge_implementation_consumers(*parsed.scene, check, settings.impl,
+        oblique::scene::judge_implementation_consumers(scene, check, settings.impl,
                                                        settings.timeout_seconds, settings.sampling);
     if (!consumers) {
       std::cerr << "oblique check: " << consumers.error() << "\n";
@@ -248,7 +278,7 @@ int run_check(const CheckSettings& settings) {
   }
   std::string raster_text, raster_json;
   const int raster_status =
-      settings.rasterize ? rasterize(settings, *parsed.scene, check, raster_text, raster_json) : 0;
+      settings.rasterize ? rasterize(settings, scene, check, raster_text, raster_json) : 0;
   if (settings.as_json) {
     std::string json = oblique::scene::to_json(check);
     if (settings.rasterize && !json.empty() && json.back() == '}')
@@ -279,7 +309,7 @@ int run_check(const CheckSettings& settings) {
     }
     oblique::report::ReportFiles files(page.parent_path().empty() ? "." : page.parent_path());
     files.open(page.filename().string()) << oblique::report::views_html(
-        oblique::scene::scene_views(*parsed.scene, check).views, page_text, {});
+        oblique::scene::scene_views(scene, check).views, page_text, {});
     std::ostringstream log;
     if (!files.commit(log)) {
       std::cerr << "oblique check: cannot write the page " << settings.html << ": " << log.str();
@@ -289,7 +319,7 @@ int run_check(const CheckSettings& settings) {
   }
   if (!settings.plot_dir.empty()) {
     const oblique::scene::PlotResult plot =
-        oblique::scene::write_plot(*parsed.scene, check, settings.plot_dir, page_text);
+        oblique::scene::write_plot(scene, check, settings.plot_dir, page_text);
     if (!plot.error.empty()) {
       std::cerr << "oblique check: cannot write the picture to " << settings.plot_dir << ": "
                 << plot.error << "\n";
@@ -311,8 +341,8 @@ int run_check(const CheckSettings& settings) {
   // A pass means judged: a consumer the scene names with nothing judged is no pass; one mostly
   // left out is said (and fails under --strict).
   const oblique::scene::ConsumerCoverage coverage = oblique::scene::consumer_coverage(
-      settings.shader.empty() ? *parsed.scene : oblique::scene::reconstruction_only(*parsed.scene),
-      check, !settings.impl.empty() || !settings.shader.empty());
+      settings.shader.empty() ? scene : oblique::scene::reconstruction_only(scene), check,
+      !settings.impl.empty() || !settings.shader.empty());
   if (!coverage.partly.empty())
     (settings.as_json ? std::cerr : std::cout)
         << oblique::partly_judged_warning(coverage.partly, settings.strict);
@@ -400,6 +430,11 @@ void setup_check(CLI::App& app, int& exit_code) {
       ->add_option("--raster-size", settings->raster_size,
                    "With --rasterize: the frame is N x N pixels, one sample each")
       ->check(CLI::Range(16, 4096));
+  check->add_option_function<std::string>(
+      "--consumers", [settings](const std::string& list) { settings->consumers = list; },
+      "Of the consumers the scene names, ask and judge these only (a comma list, or none): a "
+      "program that answers the matrix alone (--impl), or a shader that answers "
+      "reconstruction, on a scene that names more");
   check->add_flag("--strict", settings->strict,
                   "A consumer the scene names with more than 10% of its answers left out fails "
                   "the check (exit 2) instead of a warning");

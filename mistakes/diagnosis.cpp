@@ -101,11 +101,12 @@ Exact exact_answer(const Matrix4<T>& m, variant::Evaluation<Rational> evaluation
   for (int row : {2, 3}) {
     if (row == 3 && !e.row4_changed) continue;
     const int r = row == 2 ? e.r3 : 1, t = row == 2 ? e.t3 : 1;
+    const oracle::exact::Vec m4 = variant::row_m4(mx, row == 2 && e.m4_assumed);
     for (int i = 0; i < 4; ++i) {
       const Rational ac = r * e.a * e.c[i];
-      x.values[row][i] = ac + t * mx[3][i];
+      x.values[row][i] = ac + t * m4[i];
       x.bounds[row][i] = oracle::tolerance::row3_entry_bound<Arithmetic>(
-          oracle::exact::abs(ac), oracle::exact::abs(t * mx[3][i]), scale,
+          oracle::exact::abs(ac), oracle::exact::abs(t * m4[i]), scale,
           oracle::tolerance::underflow_unit<T>());
       if (oracle::exact::abs(x.values[row][i]) >= largest)
         return x;  // near overflow: out_of_range too
@@ -178,7 +179,7 @@ std::vector<PanelCase<T>> panel(Convention convention) {
     bool left_handed;
   };
   const Matrix4<T> p = frustum<T>(-1, 1, -0.75, 0.75, 1, 64, convention);
-  Matrix4<T> x = p, y = p, xy = p, s = p, left = p;
+  Matrix4<T> x = p, y = p, xy = p, s = p, left = p, left_x = p;
   x.row(0) *= T(-1);
   y.row(1) *= T(-1);
   xy.row(0) *= T(-1);
@@ -189,6 +190,14 @@ std::vector<PanelCase<T>> panel(Convention convention) {
   xs.col(3) = ys.col(3) = s.col(3);
   xs(0, 3) = -xs(0, 3);
   left.col(2) *= T(-1);  // a left-handed camera: z negated
+  // A deep frustum (f / n = 10^7), right- and left-handed: where a route that forms 1 + n / (f - n)
+  // in T (reversed Z taken forward) loses every bit of it.
+  const Matrix4<T> deep =
+      frustum<T>(T(-0.01), T(0.01), T(-0.0075), T(0.0075), T(0.01), T(100000), convention);
+  Matrix4<T> deep_left = deep;
+  deep_left.col(2) *= T(-1);
+  left_x = left;
+  left_x.row(0) *= T(-1);  // its mirror pass, x flipped (Direct3D-style engines)
   // The camera turned about y and x (P R): C' mixes C's components (a head-on plane has
   // C'_x, C'_y != 0).
   Matrix4<T> about_y = Matrix4<T>::Identity(), about_x = Matrix4<T>::Identity();
@@ -208,6 +217,9 @@ std::vector<PanelCase<T>> panel(Convention convention) {
       {xs, Family::general, false},
       {ys, Family::general, false},
       {left, Family::left_handed, true},
+      {left_x, Family::left_handed_x_flipped, true},
+      {deep, Family::perspective, false},
+      {deep_left, Family::left_handed, true},
       {orthographic<T>(-2, 2, -1.5, 1.5, 1, 64, convention), Family::orthographic, false},
       // an orthographic volume reaching behind the eye: C'_z < 0 for the last plane below
       {orthographic<T>(-2, 2, -2, 2, -5, 10, convention), Family::orthographic, false},
@@ -223,7 +235,7 @@ std::vector<PanelCase<T>> panel(Convention convention) {
                          {0.25, 0.5, -1, 2},      {0, 0, -1, -100},       {1, 1, 0.125, -1},
                          {0.125, 0.25, -1, -100}, {-0.25, 0.5, -1, -0.5}, {-1, 0.5, -1, -0.125},
                          {1, -0.5, -1, -0.125},   {1, 0.5, 0, -2}};
-  static_assert(std::size(shapes) * std::size(planes) == kPanelCasesPerConvention);
+  static_assert(std::size(shapes) * std::size(planes) + 1 == kPanelCasesPerConvention);
   std::vector<PanelCase<T>> out;
   for (const Shape& shape : shapes) {
     for (const auto& c : planes) {
@@ -231,6 +243,17 @@ std::vector<PanelCase<T>> panel(Convention convention) {
           shape.m, Vector4<T>(c[0], c[1], shape.left_handed ? -c[2] : c[2], c[3]), shape.family});
     }
   }
+  // C'_z = 0 exactly on a matrix a closed form still answers finitely: a sign computed at 0 (x /
+  // |x|) shows there and nowhere else once the corner's x and y signs are fixed. (On the
+  // perspective shape C'_z = C_w / M34, so C'_z = 0 only for a plane through the eye.) M shifted,
+  // every entry a binary fraction; C = M^T (-1, 1, 0, 1) = (-1, 1, -1, -0.375), exact.
+  Matrix4<T> shifted = Matrix4<T>::Zero();
+  shifted(0, 0) = shifted(1, 1) = T(1);
+  shifted(0, 3) = T(0.25);
+  shifted(1, 3) = T(-0.125);
+  shifted(2, 2) = shifted(3, 2) = T(-1);
+  shifted(2, 3) = T(-2);
+  out.push_back(PanelCase<T>{shifted, Vector4<T>(-1, 1, -1, -0.375), Family::general});
   return out;
 }
 
@@ -332,6 +355,7 @@ void add_differences(const variant::Choices& mine, const variant::Choices& right
   add(Choice::form, mine.t3, right.t3);
   add(Choice::q_z, mine.q_z_assumed, right.q_z_assumed);
   add(Choice::q_w, mine.left_handed_qw, right.left_handed_qw);
+  add(Choice::m4, mine.m4_assumed, right.m4_assumed);
 }
 
 std::optional<std::array<double, 4>> row_of(const Exact& x, int row) {
@@ -433,6 +457,9 @@ std::optional<NumericalCause> numerical_cause_of(const std::vector<Case<T>>& cas
       if (converted) {
         modified = exact_answer(r.modified, variant::evaluate<Rational>(r.modified, o.plane,
                                                                         r.modified_convention, {}));
+        // Where the converted matrix's own answer is within rounding of a choice (C . Q near 0 in
+        // T), the route taken in another order of operations may give anything: no evidence.
+        if (!modified.decided) continue;
       }
       const bool right_matrix = right.kind == Exact::Kind::matrix;
       // Evidence needs both the route's answer and the one observed beyond the correct answer's
@@ -520,11 +547,35 @@ std::vector<std::vector<Mistake>> causes_tried(int size) {
   return out;
 }
 
+/// Whether every answer of `cases` leaves M as it was but for its third column, and at least
+/// one changes that column off row 3 and is wrong: whatever formula the function ran, it wrote
+/// its oblique row where the other layout keeps row 3 (the modification is a row's; M^T's row 3
+/// read back in the other layout is M's column 3).
+template <class T>
+bool column_three_written(const std::vector<Case<T>>& cases) {
+  bool wrong_written = false;
+  for (const Case<T>& k : cases) {
+    const Observation<T>& o = k.seen;
+    if (o.status != Status::ok) continue;
+    bool written = false;
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        const bool same = o.projection(i, j) == o.matrix(i, j);
+        if (j != 2 && !same) return false;
+        if (j == 2 && i != 2 && !same) written = true;
+      }
+    }
+    wrong_written = wrong_written || (written && o.wrong);
+  }
+  return wrong_written;
+}
+
 /// Whether every answer of `cases` is the correct modification of M^T transposed back (a
 /// refusal where that refuses, else its matrix to half of T's digits), and at least one of them
-/// a wrong answer: the matrix read in the other layout.
+/// a wrong answer, or column_three_written(): the matrix read in the other layout.
 template <class T>
 bool transposed_layout_explains(const std::vector<Case<T>>& cases) {
+  if (column_three_written(cases)) return true;
   const T tolerance = std::sqrt(std::numeric_limits<T>::epsilon()) * T(4);
   bool wrong_explained = false;
   for (const Case<T>& k : cases) {

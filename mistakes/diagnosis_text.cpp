@@ -65,9 +65,10 @@ std::string you_text(const std::vector<Mistake>& cause) {
 namespace {
 
 constexpr const char* kTransposedLayout =
-    "the matrix read transposed: every answer is the right modification of M^T, transposed back "
-    "(a row-vector engine, v M as DirectXMath and D3DX multiply, declared as column vectors; or "
-    "its 16 numbers read in the other order)";
+    "the matrix read transposed: every answer is the right modification of M^T, transposed back, "
+    "or changes M's third column where the modification changes its third row (a row-vector "
+    "engine, v M as DirectXMath and D3DX multiply, declared as column vectors; or its 16 numbers "
+    "read in the other order)";
 constexpr const char* kTransposedLayoutFix =
     "declare how the function stores its matrix: oblique::Layout::row_vectors for a row-vector "
     "engine (adapt()), or the other of row_major and column_major";
@@ -142,6 +143,8 @@ std::string choice_text(const ChoiceDifference& c) {
       return "row 3's multiple of M_4: " + number(c.mistaken) + " (right: " + number(c.right) + ")";
     case Choice::q_z: return "the closed form's Q_z taken as -1: " + yes(c.mistaken);
     case Choice::q_w: return "the closed form's Q_w of a left-handed matrix: " + yes(c.mistaken);
+    case Choice::m4:
+      return "row 3's M_4 taken as the perspective shape's (0, 0, -1, 0): " + yes(c.mistaken);
   }
   return "";
 }
@@ -152,8 +155,9 @@ std::string likely_cause_markdown(const Diagnosis& d) {
   md << "## Likely cause\n\n";
   if (d.transposed_layout) {
     md << "**`transposed_layout`: " << kTransposedLayout << ".** No formula mistake reproduces "
-       << "these answers (" << d.seen << " cases judged, " << d.wrong << " answers wrong); the "
-       << "correct modification of the transposed matrix, transposed back, reproduces each.\n\n"
+       << "these answers (" << d.seen << " cases judged, " << d.wrong << " answers wrong); each "
+       << "is what a function that reads its matrix transposed returns: the correct modification "
+       << "of M^T transposed back, or M with its third column rewritten.\n\n"
        << "Fix: " << kTransposedLayoutFix << ".\n\n";
     return md.str();
   }

@@ -243,6 +243,27 @@ constexpr MistakeEntry kCatalogue[] = {
      "Q_z = 1 / M43 and Q_w = (Q'_z - M33 Q_z) / M34, which hold for either handedness.",
      "perspective-shaped matrices with M43 != -1",
      "you take Q_z = -1 on every perspective matrix, left-handed ones too"},
+    {Mistake::perspective_m4, "perspective_m4",
+     "row 3 written as printed for the perspective shape: a C + (0, 0, 1, 0)",
+     "The code writes row 3 as a C + (0, 0, 1, 0) (OpenGL; the third entry of row 3 plus one), "
+     "which is a C - M_4 only where M_4 = (0, 0, -1, 0). An orthographic matrix (M_4 = "
+     "(0, 0, 0, 1)), a left-handed one (M_4 = (0, 0, 1, 0)) or a turned one keeps its own M_4, "
+     "so its near plane is not C.",
+     "Subtract the matrix's own row 4: M'_3 = a C - M_4 (OpenGL), a C (Direct3D's [0, 1]).",
+     "matrices whose row 4 is not (0, 0, -1, 0): orthographic, left-handed, turned",
+     "you write row 3 as a C + (0, 0, 1, 0) whatever the matrix's row 4 is"},
+    {Mistake::perspective_listing, "perspective_listing",
+     "the perspective-only formula (Listing 5.1 as printed) on a matrix of another shape",
+     "The code is the printed listing whole: Q = ((s_x + M13) / M11, (s_y + M23) / M22, -1, "
+     "(1 + M33) / M34) (the far corner Q' = (s_x, s_y, 1, 1)) and row 3 = a C + (0, 0, 1, 0). "
+     "Both assume the right-handed perspective shape (M_4 = (0, 0, -1, 0)). It is right on every perspective frustum; on an orthographic "
+     "camera (a shadow map, a top-down map, an editor view) Q is no corner and row 3 keeps the "
+     "wrong M_4, so the near plane is not C.",
+     "Branch on the matrix: the listing for the right-handed perspective shape only; otherwise "
+     "Q = M^-1 Q' and M'_3 = a C - M_4 (for an orthographic camera Q = M^-1 (s_x, s_y, 1, 1)).",
+     "orthographic (and left-handed or turned) matrices; every perspective frustum is right",
+     "you run the perspective-only listing (its Q and its row 3) on every matrix, orthographic "
+     "ones too"},
 };
 // clang-format on
 
@@ -285,6 +306,11 @@ unsigned choices_changed(Mistake mistake) {
     case Mistake::divides_by_m43: return bit(C::corner_solve);
     case Mistake::perspective_rows: return bit(C::corner_solve) | bit(C::q_z);
     case Mistake::assumes_m43_minus_one: return bit(C::q_z);
+    case Mistake::perspective_m4: return bit(C::form_m4);
+    case Mistake::perspective_listing:
+      // The listing reads no M14, M24 (its Q is the perspective shape's, its face fixed): it
+      // decides the shift too, and a shift mistake with it is the same program.
+      return bit(C::corner_solve) | bit(C::q_z) | bit(C::face) | bit(C::form_m4) | bit(C::shift);
     case Mistake::skips_head_on: return bit(C::head_on);
     case Mistake::no_camera_guard: return bit(C::camera_guard);
     case Mistake::no_corner_guard: return bit(C::corner_guard);
@@ -310,7 +336,7 @@ bool Knobs::operator==(const Knobs& o) const {
          note_flip == o.note_flip && zero_one_factor_on_gl == o.zero_one_factor_on_gl &&
          gl_factor_on_zero_one == o.gl_factor_on_zero_one &&
          zero_one_form_on_gl == o.zero_one_form_on_gl &&
-         gl_form_on_zero_one == o.gl_form_on_zero_one;
+         gl_form_on_zero_one == o.gl_form_on_zero_one && m4_assumed == o.m4_assumed;
 }
 
 Knobs knobs_of(Mistake mistake) {
@@ -345,6 +371,13 @@ Knobs knobs_of(Mistake mistake) {
     case Mistake::perspective_rows:
       k.closed_form = ClosedForm::always;
       k.assumes_m43_minus_one = true;
+      break;
+    case Mistake::perspective_m4: k.m4_assumed = true; break;
+    case Mistake::perspective_listing:
+      k.closed_form = ClosedForm::always;
+      k.assumes_m43_minus_one = true;
+      k.face_fixed = true;
+      k.m4_assumed = true;
       break;
     case Mistake::skips_head_on: k.skips_head_on = true; break;
     case Mistake::no_camera_guard: k.camera_guard = false; break;
@@ -383,6 +416,7 @@ Knobs knobs_of(const std::vector<Mistake>& mistakes) {
     k.gl_factor_on_zero_one = k.gl_factor_on_zero_one || one.gl_factor_on_zero_one;
     k.zero_one_form_on_gl = k.zero_one_form_on_gl || one.zero_one_form_on_gl;
     k.gl_form_on_zero_one = k.gl_form_on_zero_one || one.gl_form_on_zero_one;
+    k.m4_assumed = k.m4_assumed || one.m4_assumed;
   }
   return k;
 }

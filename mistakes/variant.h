@@ -48,6 +48,9 @@ struct Knobs {
   /// a C - M_4 on a [0, 1] one.
   bool zero_one_factor_on_gl = false, gl_factor_on_zero_one = false;
   bool zero_one_form_on_gl = false, gl_form_on_zero_one = false;
+  /// Row 3's M_4 taken as the perspective shape's (0, 0, -1, 0), as Listing 5.1 prints it (row 3
+  /// = a C + (0, 0, 1, 0) on a gl matrix), whatever M_4 is.
+  bool m4_assumed = false;
 
   bool operator==(const Knobs& o) const;
   bool operator!=(const Knobs& o) const { return !(*this == o); }
@@ -74,6 +77,7 @@ struct Choices {
   Convention formula = Convention::gl;  ///< whose formula: range, a's numerator, row 3's form
   int numerator = 2;                    ///< a = numerator / (C . Q)
   int r3 = 1, t3 = -1;                  ///< row 3 = r3 a C + t3 M_4
+  bool m4_assumed = false;              ///< M_4 in row 3 taken as (0, 0, -1, 0)
 
   bool operator==(const Choices& o) const {
     return refused_camera == o.refused_camera && head_on_skipped == o.head_on_skipped &&
@@ -81,7 +85,8 @@ struct Choices {
            refused_corner == o.refused_corner && unguarded_corner == o.unguarded_corner &&
            note_flip == o.note_flip && solved == o.solved && q_z_assumed == o.q_z_assumed &&
            left_handed_qw == o.left_handed_qw && sx == o.sx && sy == o.sy && z_twice == o.z_twice &&
-           formula == o.formula && numerator == o.numerator && r3 == o.r3 && t3 == o.t3;
+           formula == o.formula && numerator == o.numerator && r3 == o.r3 && t3 == o.t3 &&
+           m4_assumed == o.m4_assumed;
   }
   bool operator!=(const Choices& o) const { return !(*this == o); }
 };
@@ -103,11 +108,18 @@ struct Evaluation {
   Choices choices;
   S a{}, d{};
   Vec<S> c{}, c_clip{}, q_clip{}, q{},
-      q_magnitude{};   ///< q_magnitude: |Q| as the closed form sums it
-  Mat<S> solved{};     ///< the matrix solved with (M with the dropped entries zero)
-  int r3 = 1, t3 = 0;  ///< row 3 = r3 a C + t3 M_4
+      q_magnitude{};        ///< q_magnitude: |Q| as the closed form sums it
+  Mat<S> solved{};          ///< the matrix solved with (M with the dropped entries zero)
+  int r3 = 1, t3 = 0;       ///< row 3 = r3 a C + t3 M_4
+  bool m4_assumed = false;  ///< M_4 in row 3 taken as (0, 0, -1, 0) (row_m4())
   bool row4_changed = false;
 };
+
+/// The M_4 a variant's row 3 takes: M's own, or the perspective shape's (0, 0, -1, 0).
+template <class S>
+Vec<S> row_m4(const Mat<S>& m, bool assumed) {
+  return assumed ? Vec<S>{S(0), S(0), S(-1), S(0)} : m[3];
+}
 
 template <class S>
 S magnitude(const S& x) {
@@ -220,6 +232,7 @@ Decision decide(const Knobs& knobs, Convention convention, bool perspective,
   ch.t3 = -near.m3 * near.m4;
   if (knobs.zero_one_form_on_gl && convention == Convention::gl) ch.t3 = 0;
   if (knobs.gl_form_on_zero_one && convention == Convention::zero_one) ch.t3 = -1;
+  ch.m4_assumed = knobs.m4_assumed && ch.t3 != 0;
   if (!(c_sign[3] < 0) && knobs.camera_guard) {
     ch.refused_camera = true;
     d.status = Status::camera_not_behind_plane;
@@ -416,6 +429,7 @@ Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Conven
   e.perspective_shape = d.perspective_shape;
   e.r3 = ch.r3;
   e.t3 = ch.t3;
+  e.m4_assumed = ch.m4_assumed;
   e.row4_changed = ch.note_flip;
   if (d.status != Status::ok || d.unchanged) return e;
   e.solved = solved_matrix(m, ch.solved);
@@ -488,7 +502,8 @@ Matrix4<T> answer_matrix(const Matrix4<T>& m, const Evaluation<T>& e) {
   }
   const T s = T(e.r3), t = T(-e.t3 * e.r3);  // row 3 = s (a C - t M_4), s = +-1
   for (int i = 0; i < 4; ++i) {
-    out(2, i) = s * (e.a * e.c[i] - t * m(3, i));
+    const T m4 = e.m4_assumed ? (i == 2 ? T(-1) : T(0)) : m(3, i);
+    out(2, i) = s * (e.a * e.c[i] - t * m4);
     if (e.row4_changed) out(3, i) = e.a * e.c[i] + m(3, i);
   }
   return out;

@@ -59,7 +59,9 @@ TYPED_TEST(ConsumerMistakes, eachWrongFunctionIsNamedAsItself) {
     for (const std::string& c : causes) {
       // Named alone or with entries the inputs cannot tell apart from it; none where its answer is
       // as close to the right one (a violation of precision, no formula's); never another alone.
-      if (!c.empty()) EXPECT_NE(c.find(name), std::string::npos) << name << ": " << c;
+      if (!c.empty()) {
+        EXPECT_NE(c.find(name), std::string::npos) << name << ": " << c;
+      }
       named += c == name;
     }
     if (causes.empty() && (m == ConsumerMistake::plane_flipped_for_mirrors ||

@@ -271,6 +271,31 @@ TYPED_TEST(Diagnose, aRowVectorFunctionDeclaredAsColumnVectorsIsTheTransposedLay
   EXPECT_NE(likely_cause_markdown(d).find("Layout::row_vectors"), std::string::npos);
 }
 
+// A closed form written for a row-vector engine's matrix, declared as column vectors: handed M
+// for R it runs Listing 5.1 on numbers that are not a perspective matrix, and writes its row 3
+// into M's third column. No formula reproduces the answers; where they are written is the layout.
+TYPED_TEST(Diagnose, aClosedFormWritingColumnThreeIsTheTransposedLayout) {
+  using T = TypeParam;
+  Implementation<T> impl;
+  impl.name = "listing_on_the_transpose";
+  impl.accepts = [](Convention, const Matrix4<T>& m) { return has_perspective_shape(m); };
+  impl.run = [](const Matrix4<T>& m, const Vector4<T>& c, Convention) {
+    Matrix4<T> r = m.transpose();
+    const T sx = c(0) > 0 ? T(1) : (c(0) < 0 ? T(-1) : T(0));
+    const T sy = c(1) > 0 ? T(1) : (c(1) < 0 ? T(-1) : T(0));
+    const Vector4<T> q((sx + r(0, 2)) / r(0, 0), (sy + r(1, 2)) / r(1, 1), T(-1),
+                       (T(1) + r(2, 2)) / r(2, 3));
+    const T a = T(2) / c.dot(q);
+    r.row(2) = a * c.transpose();
+    r(2, 2) += T(1);
+    return Answer<T>{Status::ok, Matrix4<T>(r.transpose())};
+  };
+  const Diagnosis d = first_finding_diagnosed(impl);
+  ASSERT_TRUE(d.ran);
+  EXPECT_TRUE(d.causes.empty()) << likely_cause_line(d);
+  EXPECT_TRUE(d.transposed_layout) << likely_cause_line(d);
+}
+
 // a = 3 / (C . Q): a wrong scale no catalogued mistake gives.
 TYPED_TEST(Diagnose, anUnlistedMistakeIsNoKnownMistake) {
   using T = TypeParam;

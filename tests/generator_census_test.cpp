@@ -42,8 +42,9 @@ std::vector<std::string> features(const cases::Case<T>& c) {
     case Family::xy_flipped:
       return {family + " M13" + sign(double(m(0, 2))), family + " M23" + sign(double(m(1, 2)))};
     case Family::left_handed:
+    case Family::left_handed_x_flipped:
       return {family + " M13" + sign(double(m(0, 2))), family + " M23" + sign(double(m(1, 2))),
-              family + " M43" + sign(double(m(3, 2))),
+              family + " M43" + sign(double(m(3, 2))), family + " M11" + sign(double(m(0, 0))),
               family + (far_plane(m, c.convention).template head<3>().isZero(0) ? " infinite"
                                                                                 : " finite")};
     case Family::stereo_shift:
@@ -76,8 +77,10 @@ std::set<std::string> required(const std::vector<Family>& families) {
       case Family::x_flipped:
       case Family::xy_flipped: either_sign({"M13", "M23"}); break;
       case Family::left_handed:
+      case Family::left_handed_x_flipped:
         either_sign({"M13", "M23"});
         out.insert(name + " M43>0");
+        out.insert(name + (f == Family::left_handed ? " M11>0" : " M11<0"));
         out.insert(name + " finite");
         out.insert(name + " infinite");
         break;

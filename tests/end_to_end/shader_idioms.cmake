@@ -72,3 +72,4 @@ add_test(NAME shader_idiom_verify_row_vectors_undeclared_named_transposed
                  --seed 20261207 --report-dir ${shader_reports}/idioms_undeclared)
 set_tests_properties(shader_idiom_verify_row_vectors_undeclared_named_transposed PROPERTIES
                      LABELS "shaders;idioms" TIMEOUT 90 SKIP_REGULAR_EXPRESSION "${shader_skip}")
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${idioms}/idioms.txt)

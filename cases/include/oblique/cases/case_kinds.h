@@ -38,22 +38,34 @@ enum class Family {
   /// way, finite or infinite, with camera z negated, so M43 = +1 and M13, M23, M33 change sign.
   /// The perspective shape; code that assumes M43 = -1 (Listing 5.1's Q) is wrong only here.
   left_handed,
+  /// A left-handed camera's mirror pass as Direct3D-style engines build it: the left-handed
+  /// frustum (M43 = +1) with clip x negated (M11 < 0), finite or infinite, leaning either way.
+  /// Code that assumes M43 = -1, or takes the far corner's x sign from C, is wrong here.
+  left_handed_x_flipped,
 };
 inline constexpr EnumName<Family> family_names[] = {
-    {Family::perspective, "perspective"},   {Family::off_axis, "off_axis"},
-    {Family::infinite, "infinite"},         {Family::orthographic, "orthographic"},
-    {Family::y_flipped, "y_flipped"},       {Family::jittered, "jittered"},
-    {Family::rotated, "rotated"},           {Family::general, "general"},
-    {Family::stereo_shift, "stereo_shift"}, {Family::x_flipped, "x_flipped"},
-    {Family::xy_flipped, "xy_flipped"},     {Family::left_handed, "left_handed"},
+    {Family::perspective, "perspective"},
+    {Family::off_axis, "off_axis"},
+    {Family::infinite, "infinite"},
+    {Family::orthographic, "orthographic"},
+    {Family::y_flipped, "y_flipped"},
+    {Family::jittered, "jittered"},
+    {Family::rotated, "rotated"},
+    {Family::general, "general"},
+    {Family::stereo_shift, "stereo_shift"},
+    {Family::x_flipped, "x_flipped"},
+    {Family::xy_flipped, "xy_flipped"},
+    {Family::left_handed, "left_handed"},
+    {Family::left_handed_x_flipped, "left_handed_x_flipped"},
 };
 inline constexpr auto all_families = values_in(family_names);
 
 /// The families whose matrices have the perspective shape (has_perspective_shape()): the inputs
 /// of the closed form.
 inline constexpr Family perspective_shape_families[] = {
-    Family::perspective, Family::off_axis,  Family::infinite,   Family::y_flipped,
-    Family::jittered,    Family::x_flipped, Family::xy_flipped, Family::left_handed};
+    Family::perspective, Family::off_axis,    Family::infinite,
+    Family::y_flipped,   Family::jittered,    Family::x_flipped,
+    Family::xy_flipped,  Family::left_handed, Family::left_handed_x_flipped};
 
 /// The perspective shape as engines build it, right-handed (M43 = -1): the families of the
 /// engine contract (contract.h's engine_contract()) and of engine_perspective_only (adapter.h).
@@ -85,6 +97,7 @@ constexpr std::string_view family_shape(Family value) noexcept {
     case Family::x_flipped: return "clip x flipped (M11 < 0, a mirror camera)";
     case Family::xy_flipped: return "both clip axes flipped (M11 < 0, M22 < 0)";
     case Family::left_handed: return "a left-handed camera (M43 = +1)";
+    case Family::left_handed_x_flipped: return "a left-handed mirror camera (M43 = +1, M11 < 0)";
   }
   return "";
 }

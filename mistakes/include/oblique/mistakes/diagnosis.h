@@ -64,6 +64,7 @@ enum class Choice {
   form,          ///< row 3's multiple of M_4
   q_z,           ///< the closed form's Q_z = -1 assumed (1)
   q_w,           ///< the closed form's left-handed Q_w (1)
+  m4,            ///< row 3's M_4 taken as (0, 0, -1, 0) (1)
 };
 
 struct ChoiceDifference {
@@ -130,7 +131,7 @@ inline constexpr int kMostMistakes = 3;
 std::vector<std::vector<Mistake>> causes_tried(int size);
 
 /// How many cases the diagnosis asks a probe per convention (its fixed panel).
-inline constexpr int kPanelCasesPerConvention = 182;
+inline constexpr int kPanelCasesPerConvention = 225;
 
 /// The diagnosis of the answers `seen` (at least one wrong), with more cases asked through
 /// `probe` when given (in every convention the probe does not decline).

@@ -42,6 +42,8 @@ enum class Mistake {
   negated_off_axis,        ///< -M13, -M23 in C' and Q (the lean's sign slipped)
   negated_shift,           ///< -M14, -M24 in C' and Q
   assumes_m43_minus_one,   ///< the perspective closed form with Q_z = -1 (Listing 5.1) on M43 = 1
+  perspective_m4,          ///< row 3 = a C + (0, 0, 1, 0) as printed: M_4 = (0, 0, -1, 0) assumed
+  perspective_listing,     ///< Listing 5.1 whole (its Q and its row 3) on every matrix
 };
 
 inline constexpr Mistake all_mistakes[] = {
@@ -71,6 +73,8 @@ inline constexpr Mistake all_mistakes[] = {
     Mistake::negated_off_axis,
     Mistake::negated_shift,
     Mistake::assumes_m43_minus_one,
+    Mistake::perspective_m4,
+    Mistake::perspective_listing,
 };
 
 /// The modification's choices (docs/mistakes.md, "The model of the computation"): the correct
@@ -95,8 +99,9 @@ enum class ModelChoice {
   form_gl,           ///< row 3's form on a gl matrix
   form_zero_one,     ///< row 3's form on a [0, 1] matrix
   route_reversed,    ///< the route reversed Z is computed by
+  form_m4,           ///< the M_4 row 3's form takes: M's, or the perspective shape's
 };
-inline constexpr int kModelChoices = 19;
+inline constexpr int kModelChoices = 20;
 
 /// The choices `mistake` changes, as bits (1 << ModelChoice). Mistakes combine (a program with
 /// several) where they change no choice in common.

@@ -152,10 +152,14 @@ Counterexample describe(const cases::Case<T>& c, const Implementation<T>& impl) 
   return ce;
 }
 
-/// Fails the current RapidCheck case with `finding` as its report.
+/// Fails the current RapidCheck case with `finding` as its report. The diagnosis asks the
+/// implementation its panel within `contract` (when given): its families, and only inputs the
+/// contract judges (oracle::not_judged(): an answers-only function is not asked where no answer
+/// exists).
 template <class T>
 void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Finding& finding,
-               const Answer<T>* outcome = nullptr, const Checks* checks = nullptr) {
+               const Answer<T>* outcome = nullptr, const Checks* checks = nullptr,
+               const Contract* contract = nullptr) {
   Counterexample ce = describe(c, impl);
   ce.finding = finding;
   if (outcome && outcome->status == Status::ok) report::set_result(ce, outcome->projection);
@@ -170,7 +174,11 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
     // status contract.
     Checks every_property;
     every_property.statuses = checks->statuses;
-    tally().diagnose_failure = [c, impl, out = *outcome, judged = every_property]() {
+    const std::vector<cases::Family> families =
+        contract ? contract->families : std::vector<cases::Family>{};
+    const std::vector<Status> refusals = contract ? contract->refusals : std::vector<Status>{};
+    tally().diagnose_failure = [c, impl, out = *outcome, judged = every_property, families,
+                                refusals]() {
       auto observe = [&impl, &judged](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
                                       const Answer<T>& answer) {
         const Judgement j = judge(Problem<T>(m, p, k), answer, judged);
@@ -178,10 +186,13 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
             m, p, k, answer.status, answer.projection, j.violation() != nullptr, std::nullopt};
       };
       const mistakes::Probe<T> probe = [&](const Matrix4<T>& m, const Vector4<T>& p, Convention k,
-                                           cases::Family) {
+                                           cases::Family family) {
         if (std::find(impl.conventions.begin(), impl.conventions.end(), k) ==
                 impl.conventions.end() ||
-            !impl.accepts(k, m))
+            !impl.accepts(k, m) ||
+            (!families.empty() &&
+             std::find(families.begin(), families.end(), family) == families.end()) ||
+            !oracle::not_judged(Problem<T>(m, p, k), judged.statuses, refusals).empty())
           return std::optional<mistakes::Observation<T>>();
         return std::optional(observe(m, p, k, impl.run(m, p, k)));
       };
@@ -240,7 +251,7 @@ bool for_each_answer(const std::vector<Implementation<T>>& implementations, cons
         ++tally().applied[std::string(check_name(f.check))];
     }
     if (const Finding* violation = judgement.violation())
-      fail_with(c, impl, *violation, &outcome, &checks);
+      fail_with(c, impl, *violation, &outcome, &checks, contract);
   }
   if (!judged && !left_out_why.empty())
     count_left_out(kind, left_out_why, "", unclaimed);

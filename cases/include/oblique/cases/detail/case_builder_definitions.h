@@ -147,7 +147,8 @@ Matrix4<T> build_projection(Family family, Convention convention, int round, con
       if (family != Family::x_flipped) m.row(1) *= T(-1);
       return m;
     }
-    case Family::left_handed: {
+    case Family::left_handed:
+    case Family::left_handed_x_flipped: {
       // Camera z negated (M times diag(1, 1, -1, 1)): M43 = +1, M33 and a lean's M13, M23
       // change sign. Finite or infinite: by the round (rounds 4 .. 7 of each 8), so a run
       // draws each sign pattern both ways. 0 - x, so a centred frustum's M13 and M23 stay +0
@@ -155,6 +156,8 @@ Matrix4<T> build_projection(Family family, Convention convention, int round, con
       const bool infinite_far = round >= 0 ? (round / 4) % 2 == 1 : pick(0, 4) == 3;
       Matrix4<T> m = leaning(sign_x * lean_x(), sign_y * lean_y(), infinite_far);
       m.col(2) = Vector4<T>::Zero() - m.col(2);
+      // A Direct3D-style mirror pass: clip x negated after building, as for x_flipped.
+      if (family == Family::left_handed_x_flipped) m.row(0) *= T(-1);
       return m;
     }
     case Family::jittered: {
