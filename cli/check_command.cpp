@@ -41,6 +41,7 @@ struct CheckSettings {
   bool strict = false;              ///< --strict
   /// --consumers LIST: of the scene's consumers, those asked and judged ("none": none).
   std::optional<std::string> consumers;
+  std::string layout = "row_major";  ///< --layout: the --impl program's matrix storage
 };
 
 /// The exit status of a raster check that could not judge (no EGL, a self-check tripped).
@@ -207,6 +208,7 @@ int run_check(const CheckSettings& settings) {
   }
   oblique::scene::SceneCheck check = oblique::scene::check_scene(scene);
   check.impl_precision = *oblique::protocol::parse_precision(settings.precision);
+  check.impl_order = *oblique::protocol::matrix_order_of_layout(settings.layout);
   if (!settings.shader.empty() && !settings.impl.empty()) {
     std::cerr << "oblique check: --shader and --impl each name what answers: give one\n";
     return 2;
@@ -379,6 +381,12 @@ void setup_check(CLI::App& app, int& exit_code) {
                     "Send each rendered pass's request to this command (run by /bin/sh, speaking "
                     "the apply protocol) and judge its answers as oblique verify does; the scene's "
                     "consumers are asked of it too, in their request kinds");
+  check
+      ->add_option("--layout", settings->layout,
+                   "With --impl: how it takes and writes its matrices: row_major (M by rows, the "
+                   "protocol's order; the default), column_major or row_vectors (a row-vector "
+                   "engine's R = M^T by rows, the same numbers), as oblique verify --layout")
+      ->check(CLI::IsMember({"row_major", "column_major", "row_vectors"}));
   add_precision_option(
       check, settings->precision,
       "With --impl: the scalar type the implementation computes in; its requests "

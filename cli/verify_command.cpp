@@ -96,6 +96,14 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
       "written); 2: usage or protocol error.");
   // --impl, or --shader for depth functions: run_verify() says when neither is given.
   verify->add_option("--impl", options.command, "The implementation's command (run by sh)");
+  verify
+      ->add_option("--layout", options.layout,
+                   "How the implementation takes and writes its matrices: row_major (M by rows, "
+                   "the protocol's order; the default), column_major (M by columns, OpenGL's "
+                   "storage) or row_vectors (a row-vector engine's R = M^T by rows: Direct3D, "
+                   "DirectXMath; the same numbers as column_major). Every 4x4 matrix of a request "
+                   "is put in that order at the program's end, and every one it answers read so")
+      ->check(CLI::IsMember({"row_major", "column_major", "row_vectors"}));
   // The contract's fields, each a flag taking a comma list of the names its JSON field takes.
   auto contract_flag = [&](const std::string& flag, const std::string& field,
                            const std::string& what) {

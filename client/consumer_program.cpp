@@ -13,7 +13,8 @@ struct ConsumerProgram<T>::State {
   Program program;
   std::string request, answer;
 
-  State(std::string command, std::chrono::milliseconds t) : program(std::move(command), t) {}
+  State(std::string command, std::chrono::milliseconds t, protocol::MatrixOrder order)
+      : program(std::move(command), t, order) {}
 
   /// An answer line's numbers, or why it is not an answer of its kind.
   Expected<std::vector<T>> read_answer(const std::string& line, ConsumerKind kind) const {
@@ -90,8 +91,9 @@ typename ConsumerProgram<T>::Batch ConsumerProgram<T>::answer(
 }
 
 template <class T>
-ConsumerProgram<T>::ConsumerProgram(std::string command, std::chrono::milliseconds timeout)
-    : state_(std::make_unique<State>(std::move(command), timeout)) {}
+ConsumerProgram<T>::ConsumerProgram(std::string command, std::chrono::milliseconds timeout,
+                                    protocol::MatrixOrder order)
+    : state_(std::make_unique<State>(std::move(command), timeout, order)) {}
 
 template <class T>
 ConsumerProgram<T>::~ConsumerProgram() = default;

@@ -1,8 +1,10 @@
 #include "oblique/client/program.h"
 
+#include <algorithm>
 #include <csignal>
 
 #include "oblique/protocol/child_process.h"
+#include "oblique/protocol/matrix_order.h"
 
 namespace oblique::client {
 
@@ -12,9 +14,18 @@ static_assert(kMaxLineBytes == ChildProcess::kMaxLineBytes);
 struct Program::State {
   ChildProcess child;
   std::chrono::milliseconds timeout;
+  protocol::MatrixOrder order;
   long answered = 0;
 
-  State(std::string command, std::chrono::milliseconds t) : child(std::move(command)), timeout(t) {}
+  State(std::string command, std::chrono::milliseconds t, protocol::MatrixOrder o)
+      : child(std::move(command)), timeout(t), order(o) {}
+
+  /// The lines from `from` on put in the program's order (or back from it: the same map).
+  void reorder(std::vector<std::string>& lines, std::size_t from = 0) const {
+    if (order == protocol::MatrixOrder::rows) return;
+    for (std::size_t i = from; i < lines.size(); ++i)
+      lines[i] = protocol::other_matrix_order(lines[i]);
+  }
 
   /// Starts the program. One that exits early must not take us down with it: a write to its
   /// closed input fails with EPIPE instead of raising SIGPIPE.
@@ -80,8 +91,9 @@ struct Program::State {
   }
 };
 
-Program::Program(std::string command, std::chrono::milliseconds timeout)
-    : state_(std::make_unique<State>(std::move(command), timeout)) {}
+Program::Program(std::string command, std::chrono::milliseconds timeout,
+                 protocol::MatrixOrder order)
+    : state_(std::make_unique<State>(std::move(command), timeout, order)) {}
 
 Program::~Program() = default;
 
@@ -89,10 +101,13 @@ Reply Program::ask(const std::string& request, Clock::time_point deadline) {
   return ask(std::vector<std::string>{request}, deadline);
 }
 
-Reply Program::ask(const std::vector<std::string>& requests, Clock::time_point deadline) {
+Reply Program::ask(const std::vector<std::string>& asked, Clock::time_point deadline) {
   State& s = *state_;
   Reply out;
-  if (requests.empty()) return out;
+  if (asked.empty()) return out;
+  // What the program is handed (and what a failure quotes): the requests in its order.
+  std::vector<std::string> requests = asked;
+  s.reorder(requests);
   if (std::optional<Failure> f = s.ready(requests.front())) {
     out.failure = std::move(f);
     return out;
@@ -103,6 +118,7 @@ Reply Program::ask(const std::vector<std::string>& requests, Clock::time_point d
   const Clock::time_point end = Clock::now() + all < deadline ? Clock::now() + all : deadline;
   const auto outcome = s.child.exchange(input, requests.size(), out.lines, s.timeout, end);
   s.answered += static_cast<long>(out.lines.size());
+  s.reorder(out.lines);  // its answers in the protocol's order
   if (outcome != ChildProcess::Outcome::done) {
     out.failure = s.lost(outcome, requests[out.lines.size()], {});
   } else if (std::vector<std::string> extra = s.child.unasked_output(); !extra.empty()) {
@@ -121,7 +137,18 @@ Expected<Done> Program::start() {
 }
 
 void Program::queue(std::string_view text) {
-  state_->child.send(text);
+  if (state_->order == protocol::MatrixOrder::rows) {
+    state_->child.send(text);
+    return;
+  }
+  std::string reordered;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    reordered += protocol::other_matrix_order(text.substr(at, end - at));
+    if (end < text.size()) reordered += '\n';
+    at = end + 1;
+  }
+  state_->child.send(reordered);
 }
 
 std::optional<Failure> Program::read(std::size_t count, std::vector<std::string>& lines,
@@ -130,6 +157,7 @@ std::optional<Failure> Program::read(std::size_t count, std::vector<std::string>
   const std::size_t before = lines.size();
   const auto outcome = s.child.exchange({}, count, lines, s.timeout, deadline);
   s.answered += static_cast<long>(lines.size() - before);
+  s.reorder(lines, before);
   if (outcome == ChildProcess::Outcome::done) return std::nullopt;
   return s.lost(outcome, "", {}, /*stop=*/false);
 }

@@ -126,7 +126,8 @@ Expected<Done> ask_program(const Scene& scene, SceneCheck& check, const std::str
   for (const SceneConsumer c : scene.consumers)
     for (const protocol::ConsumerKind k : kinds_of(c)) kinds.push_back(k);
   client::ConsumerProgram<T> program(
-      command, std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000)));
+      command, std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000)),
+      check.impl_order);
   Consumers<T> asked = program.consumers(kinds, command);
   asked.mirror_design = scene.mirror_design;  // the design the scene's engine declares
   asked.sampling = sampling;

@@ -110,7 +110,7 @@ Expected<std::size_t> judge_implementation(const Scene& scene, SceneCheck& check
   }
   if (rendered.empty()) return std::size_t{0};
   const auto idle = std::chrono::milliseconds(static_cast<long>(timeout_seconds * 1000));
-  client::Program program(command, idle);
+  client::Program program(command, idle, check.impl_order);
   const client::Reply reply = program.ask(requests, client::Clock::now() + 4 * idle);
   const std::vector<std::string>& lines = reply.lines;
   using Cause = client::Failure::Cause;

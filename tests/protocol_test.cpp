@@ -1,4 +1,5 @@
 #include "oblique/protocol/apply.h"
+#include "oblique/protocol/matrix_order.h"
 
 #include <gtest/gtest.h>
 
@@ -419,6 +420,56 @@ TEST(ConsumerMessages, answersThatAreNotAnswersSayWhy) {
             "\"depth\" must be a number, not a boolean");
   EXPECT_EQ(why("[1]", ConsumerKind::linear_depth, 1, 1),
             "an answer must be a JSON object, not an array");
+}
+
+// --layout: every matrix of a line (a flat array of 16) transposed, its number tokens moved whole;
+// planes, nested arrays, objects and strings left as they are; twice gives the line back.
+TEST(MatrixOrder, transposesEveryMatrixAndNothingElse) {
+  const std::string request =
+      R"({"projection": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 1.5e-300], )"
+      R"("plane": [0.1, 0.2, 0.3, -4], "convention": "gl", "note": "[1, 2], {3}"})";
+  const std::string reordered = other_matrix_order(request);
+  EXPECT_EQ(reordered,
+            R"({"projection": [1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 4, 8, 12, 1.5e-300], )"
+            R"("plane": [0.1, 0.2, 0.3, -4], "convention": "gl", "note": "[1, 2], {3}"})");
+  EXPECT_EQ(other_matrix_order(reordered), request);
+  // Two matrices on one line (a world_position request's projection and view), a nested list
+  // of planes, and an answer's non-finite tokens.
+  const std::string two = R"({"a": [0,1,2,3,4,5,6,7,8,9,10,11,12,13,14,15], "planes": [[1,2,3,4],)"
+                          R"([5,6,7,8]], "b": ["NaN",1,2,3,4,5,6,7,8,9,10,11,12,13,14,"-inf"]})";
+  EXPECT_EQ(other_matrix_order(two),
+            R"({"a": [0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15], "planes": )"
+            R"([[1,2,3,4],[5,6,7,8]], "b": ["NaN", 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, )"
+            R"(11, "-inf"]})");
+  EXPECT_EQ(other_matrix_order(other_matrix_order(two)),
+            R"({"a": [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15], "planes": )"
+            R"([[1,2,3,4],[5,6,7,8]], "b": ["NaN", 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, )"
+            R"(14, "-inf"]})");
+}
+
+TEST(MatrixOrder, leavesWhatIsNoMatrixAndSurvivesHostileText) {
+  // 16 elements of which one is an array or an object: no matrix.
+  const std::string nested = R"([[1],2,3,4,5,6,7,8,9,10,11,12,13,14,15,16])";
+  EXPECT_EQ(other_matrix_order(nested), nested);
+  const std::string object = R"([{"x":1},2,3,4,5,6,7,8,9,10,11,12,13,14,15,16])";
+  EXPECT_EQ(other_matrix_order(object), object);
+  // 15 or 17 elements: no matrix.
+  EXPECT_EQ(other_matrix_order("[1,2,3,4,5,6,7,8,9,10,11,12,13,14,15]"),
+            "[1,2,3,4,5,6,7,8,9,10,11,12,13,14,15]");
+  // Unbalanced, unterminated strings, stray closers, deep nesting: returned, never a crash.
+  for (const std::string& hostile :
+       {std::string("]]]}}}"),
+        std::string("[[[[\"), std::string("
+                    "unterminated [1,2"),
+        std::string(100000, '['), std::string("[1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16")}) {
+    EXPECT_NO_THROW((void)other_matrix_order(hostile));
+  }
+  EXPECT_EQ(in_matrix_order("[1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16]", MatrixOrder::rows),
+            "[1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16]");
+  EXPECT_EQ(matrix_order_of_layout("row_vectors"), MatrixOrder::columns);
+  EXPECT_EQ(matrix_order_of_layout("column_major"), MatrixOrder::columns);
+  EXPECT_EQ(matrix_order_of_layout("row_major"), MatrixOrder::rows);
+  EXPECT_FALSE(matrix_order_of_layout("rows").has_value());
 }
 
 }  // namespace oblique::protocol

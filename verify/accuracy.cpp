@@ -49,7 +49,8 @@ bool AccuracyLook<T>::write() {
     for (std::size_t i = 0; i < timed; ++i) requests.push_back(inputs_[i].request);
     client::Program program(
         options_.command,
-        std::chrono::milliseconds(static_cast<long>(options_.request_timeout_seconds * 1000)));
+        std::chrono::milliseconds(static_cast<long>(options_.request_timeout_seconds * 1000)),
+        options_.matrix_order());
     mine_.ns = report::time_round_trip(program, requests).ns;
     program.stop();
     if (std::isnan(mine_.ns))
@@ -62,8 +63,7 @@ bool AccuracyLook<T>::write() {
   o.dir = dir_;
   o.title = mine_.name + " (" + mine_.scalar + ")";
   o.replay = [this](const report::ProfiledAnswer&, const std::string& json) {
-    return options_.self + " verify --replay " + shell_quote(json) + " --impl " +
-           shell_quote(options_.command);
+    return options_.self + " verify --replay " + shell_quote(json) + " " + impl_flags(options_);
   };
   const auto written = report::write_profile_report(profiles, o, err_);
   if (!written) {

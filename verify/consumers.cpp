@@ -82,8 +82,9 @@ template <class T>
 class ProgramAnswerer final : public Answerer<T> {
  public:
   using typename Answerer<T>::Batch;
-  ProgramAnswerer(const std::string& command, std::chrono::milliseconds timeout)
-      : program_(command, timeout) {}
+  ProgramAnswerer(const std::string& command, std::chrono::milliseconds timeout,
+                  protocol::MatrixOrder order)
+      : program_(command, timeout, order) {}
   Consumers<T> consumers(const std::vector<ConsumerKind>& kinds, const std::string& name) override {
     return program_.consumers(kinds, name);
   }
@@ -175,7 +176,7 @@ class ShaderAnswerer final : public Answerer<float> {
 /// How the replay commands name what answers: --impl COMMAND, or --shader SPEC (and its
 /// language where given).
 std::string answerer_flags(const VerifyOptions& options) {
-  if (options.shader.empty()) return "--impl " + shell_quote(options.command);
+  if (options.shader.empty()) return impl_flags(options);
   std::string flags = "--shader " + shell_quote(options.shader);
   if (options.shader_language)
     flags += " --shader-language " + std::string(shader::language_name(*options.shader_language));
@@ -197,7 +198,8 @@ std::unique_ptr<Answerer<T>> answerer_for(const VerifyOptions& options,
   if (options.shader.empty())
     return std::make_unique<ProgramAnswerer<T>>(
         options.command,
-        std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000)));
+        std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000)),
+        options.matrix_order());
   if constexpr (std::is_same_v<T, float>) {
     auto functions = shader::shader_functions(options.shader, kinds, options.shader_language);
     if (!functions) {
@@ -742,7 +744,9 @@ class ConsumerRun {
           "\n# this round again, judged (exit 0 holds, 1 violated)\n" + options_.self +
           " verify --replay " + shell_quote(json_path) + " " + answerer_flags(options_) +
           (options_.shader.empty()
-               ? "\n# the one request\necho " + shell_quote(c.request) + " | " + options_.command
+               ? "\n# the one request\necho " +
+                     shell_quote(protocol::in_matrix_order(c.request, options_.matrix_order())) +
+                     " | " + options_.command
                : std::string()) +
           "\n```\n";
     files.open(stem + ".md") << md;

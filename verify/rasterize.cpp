@@ -201,9 +201,10 @@ Verdict RasterLook<T>::report(const cases::Case<T>& v, const std::string& reques
     md += raster::stage_flagged_section(files, stem, r, raster_.size);
   md += "\n## Replay\n\n```sh\n# the whole run\n" + rerun_command(options_) +
         "\n# this request again, its answer drawn (exit 0 holds, 1 fails, 3 inconclusive)\n" +
-        options_.self + " verify --replay " + shell_quote(json_path) + " --impl " +
-        shell_quote(options_.command) + "\n# the one request\necho " + shell_quote(request) +
-        " | " + options_.command + "\n```\n";
+        options_.self + " verify --replay " + shell_quote(json_path) + " " + impl_flags(options_) +
+        "\n# the one request\necho " +
+        shell_quote(protocol::in_matrix_order(request, options_.matrix_order())) + " | " +
+        options_.command + "\n```\n";
   files.open(stem + ".md") << md;
   files.open(stem + ".json")
       << "{\"type\": \"raster\", \"finding\": " << protocol::json_string(r.why)
@@ -269,7 +270,7 @@ Verdict replay_raster_report(const VerifyOptions& options, const ReplayMode& mod
   v.convention = *parsed;
   const auto timeout =
       std::chrono::milliseconds(static_cast<long>(options.request_timeout_seconds * 1000));
-  client::Program program(options.command, timeout);
+  client::Program program(options.command, timeout, options.matrix_order());
   const client::Reply reply = program.ask(request->text);
   program.stop();
   if (reply.failure) {

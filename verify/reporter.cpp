@@ -112,7 +112,9 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
   context.stem = "verify-" + std::string(check_name(f.check));
   context.seed = options_.seed;
   context.replay_run = replay_run_command();
-  context.replay_case = "echo " + shell_quote(request) + " | " + options_.command;
+  context.replay_case = "echo " +
+                        shell_quote(protocol::in_matrix_order(request, options_.matrix_order())) +
+                        " | " + options_.command;
   context.contract = contract_json(draws_.contract());
   context.keep_existing = true;
   context.draw_case = [](report::ReportFiles& files, const std::string& stem,
@@ -290,9 +292,14 @@ std::string rerun_command(const VerifyOptions& options) {
     if (a == "--seed" || a.rfind("--seed=", 0) == 0) has_seed = true;
     command += " " + shell_quote(a);
   }
-  if (options.arguments.empty()) command += " --impl " + shell_quote(options.command);
+  if (options.arguments.empty()) command += " " + impl_flags(options);
   if (!has_seed) command += " --seed " + std::to_string(options.seed);
   return command;
+}
+
+std::string impl_flags(const VerifyOptions& options) {
+  return "--impl " + shell_quote(options.command) +
+         (options.layout == "row_major" ? "" : " --layout " + options.layout);
 }
 
 void set_interrupted_line(const VerifyOptions& options, long judged, const std::string& what,
@@ -338,8 +345,8 @@ std::string Reporter<T>::replay_run_command() const {
 
 template <class T>
 std::string Reporter<T>::replay_case_command(const std::string& report_json) const {
-  std::string command = options_.self + " verify --replay " + shell_quote(report_json) +
-                        " --impl " + shell_quote(options_.command);
+  std::string command =
+      options_.self + " verify --replay " + shell_quote(report_json) + " " + impl_flags(options_);
   // The flags that decide how one case is judged (which properties, which statuses are right,
   // whether it is sent at all); those that only steer what is drawn do not matter here.
   static const char* const kept[] = {"--answers-only", "--statuses", "--planes",   "--properties",

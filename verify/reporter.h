@@ -19,6 +19,10 @@ namespace oblique::verify {
 /// The command that runs `options`' run again: every flag it was given, and its seed.
 std::string rerun_command(const VerifyOptions& options);
 
+/// The flags that name the program a replay asks: --impl and, where not the protocol's own,
+/// --layout.
+std::string impl_flags(const VerifyOptions& options);
+
 /// What a Ctrl-C says (oblique/protocol/interrupts.h): `judged` `what` ("cases judged") in
 /// `seconds`, no violation so far, the seed, and rerun_command(); published for the handler.
 void set_interrupted_line(const VerifyOptions& options, long judged, const std::string& what,

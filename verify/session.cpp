@@ -9,7 +9,7 @@ Session<T>::Session(const VerifyOptions& options, const Draws<T>& draws)
     : options_(options),
       draws_(draws),
       idle_(static_cast<long>(options.request_timeout_seconds * 1000)),
-      program_(options.command, idle_) {
+      program_(options.command, idle_, options.matrix_order()) {
   start_clock();
 }
 

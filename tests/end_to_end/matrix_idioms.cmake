@@ -101,3 +101,31 @@ add_test(NAME check_d3d_engine_hlsl_undeclared_vectors_named_transposed
                  --shader ${PROJECT_SOURCE_DIR}/examples/shaders/engines/d3d_row_vectors.hlsl:view_position)
 set_tests_properties(check_d3d_engine_hlsl_undeclared_vectors_named_transposed PROPERTIES
                      LABELS "idioms;matrices;shaders" TIMEOUT 90 SKIP_REGULAR_EXPRESSION "${shader_skip}")
+# --layout: the row-vector engine's program takes its matrices as its engine stores them (R = M^T
+# by rows) and writes them so; verify and check put every matrix in that order at its end alone.
+# Declared, it passes; undeclared, its answers are the transposed use, named transposed_layout.
+set(d3d_claims --preset engine --precision float --convention zero_one
+               --families left_handed,left_handed_x_flipped)
+add_test(NAME verify_layout_row_vectors_passes_the_stored_d3d_engine
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh 0 "no violation"
+                 $<TARGET_FILE:oblique> verify ${d3d_claims} --layout row_vectors
+                 --impl "${examples_dir}/example_engine_matrices d3d_mirror_pass --as-stored"
+                 --time-limit 5 --seed 20261207
+                 --report-dir ${PROJECT_BINARY_DIR}/verify_reports/layout_row_vectors)
+add_test(NAME verify_layout_undeclared_names_transposed_layout
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.sh 1 "likely cause: transposed_layout"
+                 $<TARGET_FILE:oblique> verify ${d3d_claims}
+                 --impl "${examples_dir}/example_engine_matrices d3d_mirror_pass --as-stored"
+                 --time-limit 30 --seed 20261207
+                 --report-dir ${PROJECT_BINARY_DIR}/verify_reports/layout_undeclared)
+set_tests_properties(verify_layout_row_vectors_passes_the_stored_d3d_engine
+                     verify_layout_undeclared_names_transposed_layout PROPERTIES
+                     LABELS "verify;idioms;matrices" TIMEOUT 90)
+oblique_check_impl_test(d3d_engine_layout_row_vectors_passes d3d_wall_mirror.json
+                        "${examples_dir}/example_engine_matrices d3d_mirror_pass --as-stored" 0
+                        "wall mirror: pass"
+                        ARGS --consumers none --precision float --layout row_vectors)
+oblique_check_impl_test(d3d_engine_layout_row_vectors_bug_caught d3d_wall_mirror.json
+                        "${examples_dir}/example_engine_matrices d3d_mirror_pass_wrong --as-stored" 1
+                        "wall mirror: FAIL"
+                        ARGS --consumers none --precision float --layout row_vectors)

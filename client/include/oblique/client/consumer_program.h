@@ -25,7 +25,8 @@ template <class T>
 class ConsumerProgram {
  public:
   /// `command` runs under /bin/sh -c when first asked; each answer may take `timeout`.
-  ConsumerProgram(std::string command, std::chrono::milliseconds timeout);
+  ConsumerProgram(std::string command, std::chrono::milliseconds timeout,
+                  protocol::MatrixOrder order = protocol::MatrixOrder::rows);
   ~ConsumerProgram();
   ConsumerProgram(const ConsumerProgram&) = delete;
   ConsumerProgram& operator=(const ConsumerProgram&) = delete;

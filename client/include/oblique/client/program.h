@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "oblique/expected.h"
+#include "oblique/protocol/matrix_order.h"
 
 namespace oblique::client {
 
@@ -72,8 +73,10 @@ struct Reply {
 class Program {
  public:
   /// `command` runs under /bin/sh -c when first asked; each answer line may take `timeout`
-  /// after the one before it.
-  Program(std::string command, std::chrono::milliseconds timeout);
+  /// after the one before it. `order`: how it takes and writes the matrices of the lines (the
+  /// lines given and returned here are in the protocol's own order, M by rows).
+  Program(std::string command, std::chrono::milliseconds timeout,
+          protocol::MatrixOrder order = protocol::MatrixOrder::rows);
   ~Program();
   Program(const Program&) = delete;
   Program& operator=(const Program&) = delete;

@@ -15,6 +15,7 @@
 #include "oblique/oblique.h"
 #include "oblique/oracle/consumers.h"
 #include "oblique/oracle/judge.h"
+#include "oblique/protocol/matrix_order.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/scene/scene.h"
 
@@ -113,6 +114,8 @@ struct SceneCheck {
   /// `--impl --precision`: the scalar type of the requests sent and of the bounds the answers
   /// are judged with (as `oblique verify --precision`).
   protocol::Precision impl_precision = protocol::Precision::float64;
+  /// `--layout`: how the program takes and writes its matrices (its requests put in that order).
+  protocol::MatrixOrder impl_order = protocol::MatrixOrder::rows;
   /// `--shader FILE[:FUNCTION]`: the shader whose depth functions answered impl_consumers (in
   /// float, on the GPU path); empty: --impl's program did.
   std::string impl_shader;

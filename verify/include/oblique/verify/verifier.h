@@ -13,6 +13,7 @@
 #include "oblique/cases/contract.h"
 #include "oblique/oracle/consumers.h"
 #include "oblique/protocol/consumer_messages.h"
+#include "oblique/protocol/matrix_order.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/references/depth_reconstruction.h"
 #include "oblique/shader/shader_function.h"
@@ -27,6 +28,12 @@ int default_threads();
 /// reports go.
 struct VerifyOptions {
   std::string command;  ///< the implementation, run under /bin/sh -c
+  /// --layout: how the program takes and writes its matrices (column_major and row_vectors: by
+  /// columns, each request and answer put in that order at the program's end alone).
+  std::string layout = "row_major";
+  protocol::MatrixOrder matrix_order() const {
+    return protocol::matrix_order_of_layout(layout).value_or(protocol::MatrixOrder::rows);
+  }
   /// --shader FILE[:FUNCTION]: with --consumers view_position, linear_depth, the user's GLSL or
   /// HLSL function answers them on the GPU path (oblique/shader; float, judged with the GPU's
   /// arithmetic) instead of a program; `command` then only names it in reports.
