@@ -74,8 +74,11 @@ Exact exact_answer(const Matrix4<T>& m, variant::Evaluation<Rational> evaluation
   using Arithmetic = oracle::ExactArithmetic<T>;
   const Rational d_error = oracle::tolerance::corner_dot_error<Arithmetic>(
       numerator, oracle::tolerance::underflow_unit<T>());
+  // A route (Knobs::via) forms its matrix's row 3 in T first: one more backward error on the
+  // matrix it solves with, at most the solve's own (gamma of its roundings on the same entries),
+  // so twice the bound covers it.
   const Rational d = oracle::exact::abs(e.d);
-  if (d <= d_error) return x;  // the guard and the scale are not decided in T
+  if (d <= (e.routed ? 2 * d_error : d_error)) return x;  // the guard, the scale: not decided
   if (e.choices.closed_form && !e.perspective_shape) {
     // The closed form on another shape is not M^-1 Q': a corner sign read from a C' component
     // within its solve's error (gamma(12) (|S^-T| |S^T| |C'|)_i) may come out either way in T,
@@ -100,14 +103,20 @@ Exact exact_answer(const Matrix4<T>& m, variant::Evaluation<Rational> evaluation
   const Rational largest = oracle::exact::to_rational(std::numeric_limits<T>::max()) / 256;
   for (int row : {2, 3}) {
     if (row == 3 && !e.row4_changed) continue;
-    const int r = row == 2 ? e.r3 : 1, t = row == 2 ? e.t3 : 1;
+    const int r = row == 2 ? e.r3 : 1, t = row == 2 ? e.t3 : 1, den = row == 2 ? e.den : 1;
     const oracle::exact::Vec m4 = variant::row_m4(mx, row == 2 && e.m4_assumed);
     for (int i = 0; i < 4; ++i) {
       const Rational ac = r * e.a * e.c[i];
-      x.values[row][i] = ac + t * m4[i];
+      x.values[row][i] = (ac + t * m4[i]) / den;
       x.bounds[row][i] = oracle::tolerance::row3_entry_bound<Arithmetic>(
-          oracle::exact::abs(ac), oracle::exact::abs(t * m4[i]), scale,
-          oracle::tolerance::underflow_unit<T>());
+                             oracle::exact::abs(ac), oracle::exact::abs(t * m4[i]), scale,
+                             oracle::tolerance::underflow_unit<T>()) /
+                         den;
+      // The way back, in T: row 3 less a multiple of M_4, times a power of two: one rounding
+      // more of each term (the halving is exact).
+      if (e.routed)
+        x.bounds[row][i] += oracle::tolerance::gamma(2, oracle::tolerance::precision_bits<T>()) *
+                            (oracle::exact::abs(ac) + oracle::exact::abs(t * m4[i])) / den;
       if (oracle::exact::abs(x.values[row][i]) >= largest)
         return x;  // near overflow: out_of_range too
     }
@@ -119,13 +128,15 @@ Exact exact_answer(const Matrix4<T>& m, variant::Evaluation<Rational> evaluation
 
 enum class Match { undecided, agrees, differs };
 
+/// `answers_only`: the program has no refusals, so its answer where the cause refuses says
+/// nothing either way.
 template <class T>
-Match compare(const Observation<T>& o, const Exact& x) {
+Match compare(const Observation<T>& o, const Exact& x, bool answers_only = false) {
   if (!x.decided) return Match::undecided;
   // Refusals agree by name; another refusal than the cause's is no evidence either way (a
   // program may name its refusals otherwise, or refuse out_of_range within rounding).
   if (x.kind == Exact::Kind::refusal) {
-    if (o.status == Status::ok) return Match::differs;
+    if (o.status == Status::ok) return answers_only ? Match::undecided : Match::differs;
     return o.status == x.e.status ? Match::agrees : Match::undecided;
   }
   if (o.status != Status::ok) return Match::differs;
@@ -263,6 +274,7 @@ std::vector<PanelCase<T>> panel(Convention convention) {
 template <class T>
 struct Case {
   Observation<T> seen;
+  bool answers_only = false;  ///< the program has no refusals (diagnose()'s answers_only)
   std::shared_ptr<variant::SolveMemo<Rational>> solves;
   /// Each decision tried on this case: its exact answer, whether the observed answer is it, and
   /// (once asked) whether it differs from the correct one.
@@ -276,8 +288,9 @@ struct Case {
 };
 
 template <class T>
-Case<T> make_case(const Observation<T>& o) {
+Case<T> make_case(const Observation<T>& o, bool answers_only) {
   Case<T> k;
+  k.answers_only = answers_only;
   k.seen = o;
   k.solves = std::make_shared<variant::SolveMemo<Rational>>();
   k.answers = std::make_shared<std::deque<typename Case<T>::Tried>>();
@@ -300,7 +313,7 @@ const typename Case<T>::Tried& tried(const Case<T>& k, const variant::Knobs& kno
   }
   Exact x = exact_answer(o.matrix, variant::evaluate<Rational>(o.matrix, o.plane, o.convention,
                                                                knobs, k.solves.get()));
-  const Match match = compare(o, x);
+  const Match match = compare(o, x, k.answers_only);
   k.answers->push_back(typename Case<T>::Tried{d, std::move(x), match, std::nullopt});
   return k.answers->back();
 }
@@ -356,6 +369,7 @@ void add_differences(const variant::Choices& mine, const variant::Choices& right
   add(Choice::q_z, mine.q_z_assumed, right.q_z_assumed);
   add(Choice::q_w, mine.left_handed_qw, right.left_handed_qw);
   add(Choice::m4, mine.m4_assumed, right.m4_assumed);
+  add(Choice::route, mine.routed, right.routed);
 }
 
 std::optional<std::array<double, 4>> row_of(const Exact& x, int row) {
@@ -374,11 +388,27 @@ struct Candidate {
   variant::Knobs knobs;
 };
 
-/// Every cause of up to kMostMistakes mistakes, by size: each one a different program (causes
-/// whose knobs are a smaller cause's are left out: that one is the name).
+/// The convention a mistake of the formula (its formula, factor or form) is made in: the
+/// mistakes a route through that convention makes a different program of. None for the others
+/// (geometric choices, guards: the same on every route, as the far corner and the planes are).
+std::optional<Convention> formula_mistake_in(Mistake mistake) {
+  switch (mistake) {
+    case Mistake::zero_one_formula_on_gl:
+    case Mistake::zero_one_factor_on_gl:
+    case Mistake::zero_one_form_on_gl: return Convention::gl;
+    case Mistake::gl_formula_on_zero_one:
+    case Mistake::gl_form_on_zero_one:
+    case Mistake::gl_factor_on_zero_one: return Convention::zero_one;
+    default: return std::nullopt;
+  }
+}
+
+/// Every cause of up to kMostMistakes mistakes, by size, and each of them that changes the
+/// formula on a route through another convention (all_routes), one size up: each one a different
+/// program (causes whose knobs are a smaller cause's are left out: that one is the name).
 const std::vector<std::vector<Candidate>>& candidates_by_size() {
   static const std::vector<std::vector<Candidate>> sizes = [] {
-    std::vector<std::vector<Candidate>> out(kMostMistakes);
+    std::vector<std::vector<Candidate>> out(kMostChoices);
     std::vector<variant::Knobs> seen;
     auto add = [&](std::vector<Mistake> mistakes) {
       variant::Knobs knobs = variant::knobs_of(mistakes);
@@ -403,6 +433,24 @@ const std::vector<std::vector<Candidate>>& candidates_by_size() {
         }
       };
       choose(0, 0);
+      // The causes of this size made on a route, a choice more: those with a mistake of the
+      // formula, each made in the route's convention (on the route every matrix runs there, so a
+      // mistake made in another never shows, and the cause is a smaller one's program).
+      for (const Candidate& c : std::vector<Candidate>(out[size - 1])) {
+        unsigned used = 0;
+        for (Mistake m : c.mistakes) used |= choices_changed(m);
+        for (Mistake route : all_routes) {
+          const Convention via = *variant::knobs_of(route).via;
+          bool formula = false, elsewhere = false;
+          for (Mistake m : c.mistakes) {
+            if (const auto in = formula_mistake_in(m)) (*in == via ? formula : elsewhere) = true;
+          }
+          if (!formula || elsewhere || (used & choices_changed(route))) continue;
+          std::vector<Mistake> routed = c.mistakes;
+          routed.push_back(route);
+          add(std::move(routed));
+        }
+      }
     }
     return out;
   }();
@@ -542,7 +590,7 @@ std::vector<FamilyDiagnosis> by_family(const std::vector<Case<T>>& cases) {
 
 std::vector<std::vector<Mistake>> causes_tried(int size) {
   std::vector<std::vector<Mistake>> out;
-  if (size < 1 || size > kMostMistakes) return out;
+  if (size < 1 || size > kMostChoices) return out;
   for (const Candidate& c : candidates_by_size()[size - 1]) out.push_back(c.mistakes);
   return out;
 }
@@ -594,12 +642,13 @@ bool transposed_layout_explains(const std::vector<Case<T>>& cases) {
 }
 
 template <class T>
-Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& probe) {
+Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& probe,
+                   bool answers_only) {
   Diagnosis out;
   std::vector<Case<T>> cases;
-  auto add_case = [&cases](const Observation<T>& o) {
+  auto add_case = [&cases, answers_only](const Observation<T>& o) {
     if (!all_finite(o.matrix) || !all_finite(o.plane)) return;  // invalid input: no mistake
-    cases.push_back(make_case(o));
+    cases.push_back(make_case(o, answers_only));
   };
   for (const Observation<T>& o : seen) add_case(o);
   if (std::none_of(cases.begin(), cases.end(), [](const Case<T>& k) { return k.seen.wrong; }))
@@ -651,7 +700,8 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
     const Exact& right = right_answer(k);
     if (o.wrong && differs) ++out.wrong_where_it_differs;
     if (!o.wrong && !differs && right.decided) ++out.right_where_it_agrees;
-    if (evidence_taken || !o.wrong || !differs || compare(o, x) != Match::agrees) continue;
+    if (evidence_taken || !o.wrong || !differs || compare(o, x, answers_only) != Match::agrees)
+      continue;
     evidence_taken = true;
     out.answered = o.status;
     out.mistaken = x.kind == Exact::Kind::refusal ? x.e.status : Status::ok;
@@ -669,9 +719,11 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
   return out;
 }
 
-template Diagnosis diagnose<float>(const std::vector<Observation<float>>&, const Probe<float>&);
-template Diagnosis diagnose<double>(const std::vector<Observation<double>>&, const Probe<double>&);
+template Diagnosis diagnose<float>(const std::vector<Observation<float>>&, const Probe<float>&,
+                                   bool);
+template Diagnosis diagnose<double>(const std::vector<Observation<double>>&, const Probe<double>&,
+                                    bool);
 template Diagnosis diagnose<long double>(const std::vector<Observation<long double>>&,
-                                         const Probe<long double>&);
+                                         const Probe<long double>&, bool);
 
 }  // namespace oblique::mistakes

@@ -145,6 +145,9 @@ std::string choice_text(const ChoiceDifference& c) {
     case Choice::q_w: return "the closed form's Q_w of a left-handed matrix: " + yes(c.mistaken);
     case Choice::m4:
       return "row 3's M_4 taken as the perspective shape's (0, 0, -1, 0): " + yes(c.mistaken);
+    case Choice::route:
+      return "the formula run in another convention's range, the row brought back: " +
+             yes(c.mistaken);
   }
   return "";
 }

@@ -264,6 +264,23 @@ constexpr MistakeEntry kCatalogue[] = {
      "orthographic (and left-handed or turned) matrices; every perspective frustum is right",
      "you run the perspective-only listing (its Q and its row 3) on every matrix, orthographic "
      "ones too"},
+    {Mistake::through_gl, "through_gl",
+     "a route through OpenGL's range and back",
+     "The code takes its matrix to OpenGL's depth range (row 3 2 M_3 - M_4 from [0, 1]; from "
+     "reversed Z, M_4 - 2 M_3), runs its OpenGL function there and brings row 3 back. The route "
+     "is exact; the mistakes named with it are made on the route, in OpenGL's formula, and come "
+     "back scaled: OpenGL's factor slip lands as half a [0, 1] factor.",
+     "Fix the mistakes on the route, or modify the matrix in its own convention.",
+     "matrices of the other conventions, where the mistakes made on the route show",
+     "you modify the matrix in OpenGL's range and convert it back"},
+    {Mistake::through_zero_one, "through_zero_one",
+     "a route through [0, 1]'s range and back",
+     "The code takes its matrix to Direct3D's [0, 1] range (row 3 (M_3 + M_4) / 2 from "
+     "OpenGL; M_4 - M_3 from reversed Z), runs its [0, 1] function there and brings row 3 back. "
+     "The route is exact; the mistakes named with it are made on the route, in [0, 1]'s formula.",
+     "Fix the mistakes on the route, or modify the matrix in its own convention.",
+     "matrices of the other conventions, where the mistakes made on the route show",
+     "you modify the matrix in [0, 1]'s range and convert it back"},
 };
 // clang-format on
 
@@ -307,6 +324,10 @@ unsigned choices_changed(Mistake mistake) {
     case Mistake::perspective_rows: return bit(C::corner_solve) | bit(C::q_z);
     case Mistake::assumes_m43_minus_one: return bit(C::q_z);
     case Mistake::perspective_m4: return bit(C::form_m4);
+    // A route decides where the formula runs; with the assumed M_4 or the note's flip it would
+    // be another program than the model's (both are written for one convention).
+    case Mistake::through_gl:
+    case Mistake::through_zero_one: return bit(C::route) | bit(C::form_m4) | bit(C::route_reversed);
     case Mistake::perspective_listing:
       // The listing reads no M14, M24 (its Q is the perspective shape's, its face fixed): it
       // decides the shift too, and a shift mistake with it is the same program.
@@ -336,7 +357,7 @@ bool Knobs::operator==(const Knobs& o) const {
          note_flip == o.note_flip && zero_one_factor_on_gl == o.zero_one_factor_on_gl &&
          gl_factor_on_zero_one == o.gl_factor_on_zero_one &&
          zero_one_form_on_gl == o.zero_one_form_on_gl &&
-         gl_form_on_zero_one == o.gl_form_on_zero_one && m4_assumed == o.m4_assumed;
+         gl_form_on_zero_one == o.gl_form_on_zero_one && m4_assumed == o.m4_assumed && via == o.via;
 }
 
 Knobs knobs_of(Mistake mistake) {
@@ -373,6 +394,8 @@ Knobs knobs_of(Mistake mistake) {
       k.assumes_m43_minus_one = true;
       break;
     case Mistake::perspective_m4: k.m4_assumed = true; break;
+    case Mistake::through_gl: k.via = Convention::gl; break;
+    case Mistake::through_zero_one: k.via = Convention::zero_one; break;
     case Mistake::perspective_listing:
       k.closed_form = ClosedForm::always;
       k.assumes_m43_minus_one = true;
@@ -417,6 +440,7 @@ Knobs knobs_of(const std::vector<Mistake>& mistakes) {
     k.zero_one_form_on_gl = k.zero_one_form_on_gl || one.zero_one_form_on_gl;
     k.gl_form_on_zero_one = k.gl_form_on_zero_one || one.gl_form_on_zero_one;
     k.m4_assumed = k.m4_assumed || one.m4_assumed;
+    if (one.via) k.via = one.via;
   }
   return k;
 }

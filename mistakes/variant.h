@@ -51,6 +51,9 @@ struct Knobs {
   /// Row 3's M_4 taken as the perspective shape's (0, 0, -1, 0), as Listing 5.1 prints it (row 3
   /// = a C + (0, 0, 1, 0) on a gl matrix), whatever M_4 is.
   bool m4_assumed = false;
+  /// A route through another convention (route_back()): the matrix taken to `via`'s depth range,
+  /// modified there by `via`'s formula (with the other knobs' mistakes) and brought back.
+  std::optional<Convention> via;
 
   bool operator==(const Knobs& o) const;
   bool operator!=(const Knobs& o) const { return !(*this == o); }
@@ -76,8 +79,10 @@ struct Choices {
   int z_twice = 0;  ///< twice the corner's z (a face or, for a zero sign, the middle)
   Convention formula = Convention::gl;  ///< whose formula: range, a's numerator, row 3's form
   int numerator = 2;                    ///< a = numerator / (C . Q)
-  int r3 = 1, t3 = -1;                  ///< row 3 = r3 a C + t3 M_4
+  int r3 = 1, t3 = -1;                  ///< row 3 = (r3 a C + t3 M_4) / den
+  int den = 1;                          ///< 2 where a route's way back halves the row
   bool m4_assumed = false;              ///< M_4 in row 3 taken as (0, 0, -1, 0)
+  bool routed = false;                  ///< the formula ran in another convention (Knobs::via)
 
   bool operator==(const Choices& o) const {
     return refused_camera == o.refused_camera && head_on_skipped == o.head_on_skipped &&
@@ -86,7 +91,7 @@ struct Choices {
            note_flip == o.note_flip && solved == o.solved && q_z_assumed == o.q_z_assumed &&
            left_handed_qw == o.left_handed_qw && sx == o.sx && sy == o.sy && z_twice == o.z_twice &&
            formula == o.formula && numerator == o.numerator && r3 == o.r3 && t3 == o.t3 &&
-           m4_assumed == o.m4_assumed;
+           den == o.den && m4_assumed == o.m4_assumed && routed == o.routed;
   }
   bool operator!=(const Choices& o) const { return !(*this == o); }
 };
@@ -108,10 +113,12 @@ struct Evaluation {
   Choices choices;
   S a{}, d{};
   Vec<S> c{}, c_clip{}, q_clip{}, q{},
-      q_magnitude{};        ///< q_magnitude: |Q| as the closed form sums it
-  Mat<S> solved{};          ///< the matrix solved with (M with the dropped entries zero)
-  int r3 = 1, t3 = 0;       ///< row 3 = r3 a C + t3 M_4
+      q_magnitude{};   ///< q_magnitude: |Q| as the closed form sums it
+  Mat<S> solved{};     ///< the matrix solved with (M with the dropped entries zero)
+  int r3 = 1, t3 = 0;  ///< row 3 = (r3 a C + t3 M_4) / den
+  int den = 1;
   bool m4_assumed = false;  ///< M_4 in row 3 taken as (0, 0, -1, 0) (row_m4())
+  bool routed = false;      ///< Choices::routed
   bool row4_changed = false;
 };
 
@@ -192,6 +199,34 @@ bool divide(const S& x, const S& y, S& out) {
   }
 }
 
+/// Each convention's row 3 is alpha times [0, 1]'s plus beta times M_4 (z_gl = 2 z - w, z_rev =
+/// w - z): the way back from a route through `via` to `own` multiplies via's row 3 less its
+/// beta_via M_4 by alpha_own / alpha_via = num / den and adds beta_own M_4.
+struct RouteBack {
+  int num = 1, den = 1, beta_via = 0, beta_own = 0;
+};
+constexpr RouteBack route_back(Convention via, Convention own) {
+  auto alpha = [](Convention c) {
+    return c == Convention::gl ? 2 : c == Convention::zero_one ? 1 : -1;
+  };
+  auto beta = [](Convention c) {
+    return c == Convention::gl ? -1 : c == Convention::zero_one ? 0 : 1;
+  };
+  RouteBack b;
+  b.beta_via = beta(via);
+  b.beta_own = beta(own);
+  const int a_own = alpha(own), a_via = alpha(via);
+  // num / den = a_own / a_via, den positive and 1 or 2
+  if (a_own % a_via == 0) {
+    b.num = a_own / a_via;
+    b.den = 1;
+  } else {
+    b.num = a_own * (a_via < 0 ? -1 : 1);
+    b.den = a_via < 0 ? -a_via : a_via;
+  }
+  return b;
+}
+
 /// What a variant decides on one input before it computes anything but C's clip-space signs:
 /// its choices (but the corner guard's outcome, which needs C . Q) and what follows from them.
 /// Two variants whose decisions are equal give the same answer when nothing rounds.
@@ -219,20 +254,30 @@ Decision decide(const Knobs& knobs, Convention convention, bool perspective,
   d.corner_guard = knobs.corner_guard;
   d.perspective_shape = perspective;
   Choices& ch = d.choices;
-  ch.formula = convention;
-  if (knobs.zero_one_on_gl && convention == Convention::gl) ch.formula = Convention::zero_one;
-  if (knobs.gl_on_zero_one && convention == Convention::zero_one) ch.formula = Convention::gl;
-  ch.note_flip = knobs.note_flip && convention == Convention::reversed_z;
+  // The convention the formula runs in: the matrix's own, or a route's (Knobs::via).
+  const Convention own = knobs.via.value_or(convention);
+  ch.routed = own != convention;
+  ch.formula = own;
+  if (knobs.zero_one_on_gl && own == Convention::gl) ch.formula = Convention::zero_one;
+  if (knobs.gl_on_zero_one && own == Convention::zero_one) ch.formula = Convention::gl;
+  ch.note_flip = knobs.note_flip && own == Convention::reversed_z && !ch.routed;
   const DepthRange range = clip_depth_range(ch.formula);
   ch.numerator = range.z_high - range.z_low;
-  if (knobs.zero_one_factor_on_gl && convention == Convention::gl) ch.numerator = 1;
-  if (knobs.gl_factor_on_zero_one && convention != Convention::gl) ch.numerator = 2;
+  if (knobs.zero_one_factor_on_gl && own == Convention::gl) ch.numerator = 1;
+  if (knobs.gl_factor_on_zero_one && own != Convention::gl) ch.numerator = 2;
   const RowCombination near = near_rows(ch.formula);
   ch.r3 = near.m3;
   ch.t3 = -near.m3 * near.m4;
-  if (knobs.zero_one_form_on_gl && convention == Convention::gl) ch.t3 = 0;
-  if (knobs.gl_form_on_zero_one && convention == Convention::zero_one) ch.t3 = -1;
+  if (knobs.zero_one_form_on_gl && own == Convention::gl) ch.t3 = 0;
+  if (knobs.gl_form_on_zero_one && own == Convention::zero_one) ch.t3 = -1;
   ch.m4_assumed = knobs.m4_assumed && ch.t3 != 0;
+  // The way back (route_back()): row 3 in the matrix's own convention, exactly.
+  const RouteBack back = route_back(own, convention);
+  if (ch.routed) {
+    ch.r3 *= back.num;
+    ch.t3 = back.num * (ch.t3 - back.beta_via) + back.beta_own * back.den;
+    ch.den = back.den;
+  }
   if (!(c_sign[3] < 0) && knobs.camera_guard) {
     ch.refused_camera = true;
     d.status = Status::camera_not_behind_plane;
@@ -275,12 +320,17 @@ Decision decide(const Knobs& knobs, Convention convention, bool perspective,
   d.sign_of_computed[2] = true;
   ch.sx = read(knobs.x, 0);
   ch.sy = read(knobs.y, 1);
-  const int sz = sign((*clip)[2], true);
+  // On a route, C'_z in the route's convention: its sign flips where the depth runs the other way.
+  const int sz = sign((*clip)[2], true) * (back.num < 0 ? -1 : 1);
   const int face = knobs.face_opposite ? -sz : sz;
   ch.z_twice = knobs.face_fixed ? 2
                : face > 0       ? 2 * range.z_high
                : face < 0       ? 2 * range.z_low
                                 : range.z_low + range.z_high;
+  // The route's corner in the matrix's own clip space: z_own = (z_via - beta_via) num / den +
+  // beta_own (every route's corner lands on a quarter-integer: twice it is an integer).
+  if (ch.routed)
+    ch.z_twice = back.num * (ch.z_twice - 2 * back.beta_via) / back.den + 2 * back.beta_own;
   if (ch.nan_sign) return d;
   ch.closed_form = knobs.closed_form == ClosedForm::always ||
                    (knobs.closed_form == ClosedForm::perspective_shape && perspective);
@@ -429,6 +479,8 @@ Evaluation<S> evaluate(const Matrix4<T>& matrix, const Vector4<T>& plane, Conven
   e.perspective_shape = d.perspective_shape;
   e.r3 = ch.r3;
   e.t3 = ch.t3;
+  e.den = ch.den;
+  e.routed = ch.routed;
   e.m4_assumed = ch.m4_assumed;
   e.row4_changed = ch.note_flip;
   if (d.status != Status::ok || d.unchanged) return e;
@@ -500,10 +552,9 @@ Matrix4<T> answer_matrix(const Matrix4<T>& m, const Evaluation<T>& e) {
     out.row(2).setConstant(std::numeric_limits<T>::quiet_NaN());
     return out;
   }
-  const T s = T(e.r3), t = T(-e.t3 * e.r3);  // row 3 = s (a C - t M_4), s = +-1
   for (int i = 0; i < 4; ++i) {
     const T m4 = e.m4_assumed ? (i == 2 ? T(-1) : T(0)) : m(3, i);
-    out(2, i) = s * (e.a * e.c[i] - t * m4);
+    out(2, i) = (T(e.r3) * (e.a * e.c[i]) + T(e.t3) * m4) / T(e.den);
     if (e.row4_changed) out(3, i) = e.a * e.c[i] + m(3, i);
   }
   return out;

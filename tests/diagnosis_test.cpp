@@ -122,6 +122,37 @@ TYPED_TEST(Diagnose, threeMistakesTogetherAreTheThree) {
   EXPECT_EQ(named_as_themselves<TypeParam>(triples), static_cast<int>(triples.size()));
 }
 
+// Three mistakes made on a route through OpenGL's range and back (a [0, 1] engine that keeps one
+// OpenGL code path): four choices, named as the four; the route alone is right.
+TYPED_TEST(Diagnose, threeMistakesOnARouteAreTheFour) {
+  using T = TypeParam;
+  const std::vector<Mistake> four = {Mistake::camera_space_signs, Mistake::drops_off_axis,
+                                     Mistake::zero_one_factor_on_gl, Mistake::through_gl};
+  EXPECT_EQ(named_as_themselves<T>({four}), 1);
+  EXPECT_FALSE(first_finding_diagnosed(mistaken_implementation<T>({Mistake::through_gl})).ran);
+  // Every 40th cause of four choices tried (each a route with three mistakes) is among those
+  // named, and each named is of four choices. More than one where the route makes them one
+  // program on every matrix: on a route through OpenGL's range M34 < 0 always, so a closed form
+  // that drops M14, M24 reads C'_z = C_w / M34 > 0 and takes the far face, as far_face_fixed does
+  // (drops_shift + divides_by_m43 + zero_one_factor_on_gl + through_gl is far_face_fixed + ...).
+  const auto tried = causes_tried(4);
+  ASSERT_FALSE(tried.empty());
+  auto sorted = [](std::vector<Mistake> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  for (std::size_t i = 0; i < tried.size(); i += 40) {
+    const Diagnosis d = first_finding_diagnosed(mistaken_implementation<T>(tried[i]));
+    ASSERT_TRUE(d.ran) << cause_name(tried[i]);
+    bool found = false;
+    for (const auto& cause : d.causes) {
+      EXPECT_EQ(cause.size(), 4u) << cause_name(tried[i]) << ": " << likely_cause_line(d);
+      found = found || sorted(cause) == sorted(tried[i]);
+    }
+    EXPECT_TRUE(found) << cause_name(tried[i]) << ": " << likely_cause_line(d);
+  }
+}
+
 // Code right on the symmetric frustum and wrong where clip y is flipped (it takes another path
 // for M22 < 0, and that path puts Q'_z on the near face): no one mistake reproduces every answer,
 // and each family's answers are diagnosed alone.

@@ -125,7 +125,9 @@ mistakes::Diagnosis Shrinker<T>::diagnose(const cases::Case<T>& shrunk, const Fo
       answering = false;
     return seen;
   };
-  return mistakes::diagnose<T>({seen}, probe);
+  const std::optional<cases::StatusContract>& statuses = session_.draws().contract().statuses;
+  return mistakes::diagnose<T>({seen}, probe,
+                               statuses && *statuses == cases::StatusContract::answers_only);
 }
 
 template <class T>

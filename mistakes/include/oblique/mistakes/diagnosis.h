@@ -65,6 +65,7 @@ enum class Choice {
   q_z,           ///< the closed form's Q_z = -1 assumed (1)
   q_w,           ///< the closed form's left-handed Q_w (1)
   m4,            ///< row 3's M_4 taken as (0, 0, -1, 0) (1)
+  route,         ///< the formula run in another convention, the row brought back (1)
 };
 
 struct ChoiceDifference {
@@ -125,25 +126,33 @@ struct Diagnosis {
 /// The most mistakes a cause is made of: the diagnosis tries every cause of up to this many
 /// mistakes that change no choice in common (choices_changed()), and names the smallest that fit.
 inline constexpr int kMostMistakes = 3;
+/// The most choices: those mistakes, and a route through another convention they are made on
+/// (all_routes: a cause with a mistake of the formula, run on the route, is one size up).
+inline constexpr int kMostChoices = kMostMistakes + 1;
 
-/// Every cause of `size` mistakes the diagnosis tries: those that change no choice in common, and
-/// each a program no smaller cause is (their knobs differ).
+/// Every cause of `size` choices the diagnosis tries (1 to kMostChoices): mistakes that change no
+/// choice in common, with a route where one of them changes the formula, each a program no
+/// smaller cause is (their knobs differ).
 std::vector<std::vector<Mistake>> causes_tried(int size);
 
 /// How many cases the diagnosis asks a probe per convention (its fixed panel).
 inline constexpr int kPanelCasesPerConvention = 225;
 
 /// The diagnosis of the answers `seen` (at least one wrong), with more cases asked through
-/// `probe` when given (in every convention the probe does not decline).
+/// `probe` when given (in every convention the probe does not decline). `answers_only`: the
+/// implementation has no refusals (a void function, an answers-only contract): where a cause
+/// refuses and it answers, that is no evidence either way, so no cause needs the guards' mistakes
+/// to explain what it cannot help.
 template <class T>
-Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& probe = {});
+Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& probe = {},
+                   bool answers_only = false);
 
 extern template Diagnosis diagnose<float>(const std::vector<Observation<float>>&,
-                                          const Probe<float>&);
+                                          const Probe<float>&, bool);
 extern template Diagnosis diagnose<double>(const std::vector<Observation<double>>&,
-                                           const Probe<double>&);
+                                           const Probe<double>&, bool);
 extern template Diagnosis diagnose<long double>(const std::vector<Observation<long double>>&,
-                                                const Probe<long double>&);
+                                                const Probe<long double>&, bool);
 
 /// "camera_space_signs" or "no_camera_guard + sign_by_division".
 std::string cause_name(const std::vector<Mistake>& cause);

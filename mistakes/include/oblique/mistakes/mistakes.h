@@ -44,6 +44,11 @@ enum class Mistake {
   assumes_m43_minus_one,   ///< the perspective closed form with Q_z = -1 (Listing 5.1) on M43 = 1
   perspective_m4,          ///< row 3 = a C + (0, 0, 1, 0) as printed: M_4 = (0, 0, -1, 0) assumed
   perspective_listing,     ///< Listing 5.1 whole (its Q and its row 3) on every matrix
+  // Routes: not mistakes alone (a right formula on a route is right), a choice a cause can make
+  // with the mistakes made on it (all_routes; routes_of()).
+  through_gl,        ///< the matrix taken to OpenGL's range, modified there, brought back
+  through_zero_one,  ///< ... to [0, 1]'s (reversed Z's gives the same answers, every mistake
+                     ///< of the model made on it: the two formulas are one up to M_4 - row 3)
 };
 
 inline constexpr Mistake all_mistakes[] = {
@@ -77,6 +82,11 @@ inline constexpr Mistake all_mistakes[] = {
     Mistake::perspective_listing,
 };
 
+/// The routes through another convention and back: each made with mistakes of the formula on it
+/// (the formula, factor and form choices; a route with none of them is the same program as
+/// without it), never alone.
+inline constexpr Mistake all_routes[] = {Mistake::through_gl, Mistake::through_zero_one};
+
 /// The modification's choices (docs/mistakes.md, "The model of the computation"): the correct
 /// method takes one alternative of each, a mistake another of one or a few of them.
 enum class ModelChoice {
@@ -100,8 +110,9 @@ enum class ModelChoice {
   form_zero_one,     ///< row 3's form on a [0, 1] matrix
   route_reversed,    ///< the route reversed Z is computed by
   form_m4,           ///< the M_4 row 3's form takes: M's, or the perspective shape's
+  route,             ///< the convention the formula runs in: the matrix's own, or another's
 };
-inline constexpr int kModelChoices = 20;
+inline constexpr int kModelChoices = 21;
 
 /// The choices `mistake` changes, as bits (1 << ModelChoice). Mistakes combine (a program with
 /// several) where they change no choice in common.
