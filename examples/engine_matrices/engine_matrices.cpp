@@ -166,6 +166,29 @@ void d3d_reversed_z_wrong(float m[16], const float c[4]) {
   for (int i = 0; i < 4; ++i) r[i][2] = r[i][3] - r[i][2];
 }
 
+// --- Vulkan style through the OpenGL code path --------------------------------------------------
+// A [0, 1] engine (column-major, right-handed) that keeps one OpenGL code path: its matrix taken to
+// OpenGL's range (row 3 2 M_3 - M_4), the OpenGL listing run there, row 3 brought back ((M'_3 +
+// M_4) / 2). Right in exact arithmetic. The wrong one's OpenGL path has three slips of a port:
+// the corner's signs from C, the frustum assumed symmetric, and [0, 1]'s factor 1 / (C . Q).
+void through_gl_with(float m[16], const float c[4], bool slips) {
+  for (int j = 0; j < 4; ++j) m[4 * j + 2] = 2.0f * m[4 * j + 2] - m[4 * j + 3];
+  const float sx = slips ? sgn(c[0]) : sgn(c[0]) * sgn(m[0]);
+  const float sy = slips ? sgn(c[1]) : sgn(c[1]) * sgn(m[5]);
+  const float m13 = slips ? 0.0f : m[8], m23 = slips ? 0.0f : m[9];
+  const float q[4] = {(sx + m13) / m[0], (sy + m23) / m[5], -1.0f, (1.0f + m[10]) / m[14]};
+  const float a = (slips ? 1.0f : 2.0f) / dot4(c, q);
+  for (int j = 0; j < 4; ++j) m[4 * j + 2] = a * c[j] - m[4 * j + 3];
+  for (int j = 0; j < 4; ++j) m[4 * j + 2] = 0.5f * (m[4 * j + 2] + m[4 * j + 3]);
+}
+
+void vulkan_through_gl(float m[16], const float c[4]) {
+  through_gl_with(m, c, false);
+}
+void vulkan_through_gl_wrong(float m[16], const float c[4]) {
+  through_gl_with(m, c, true);
+}
+
 // --- OpenGL, column-major, any matrix: the inverse ---------------------------------------------
 // The general method as an engine with a matrix library writes it: C' = M^-T C, Q = M^-1 (s_x,
 // s_y, s_z, 1) on the face C'_z points to, row 3 = a C - M_4, a = 2 / (C . Q) (solved in double,
@@ -248,6 +271,7 @@ const std::vector<Idiom>& idioms() {
       {"d3d_mirror_pass", Storage::row_vectors, d3d_mirror_pass, d3d_mirror_pass_wrong},
       {"vulkan_y_flipped", Storage::column_major, vulkan_y_flipped, vulkan_y_flipped_wrong},
       {"d3d_reversed_z", Storage::row_vectors, d3d_reversed_z, d3d_reversed_z_wrong},
+      {"vulkan_through_gl", Storage::column_major, vulkan_through_gl, vulkan_through_gl_wrong},
       {"gl_inverse", Storage::column_major, gl_inverse, gl_inverse_wrong},
   };
   return all;
