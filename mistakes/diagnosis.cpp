@@ -458,12 +458,16 @@ const std::vector<std::vector<Candidate>>& candidates_by_size() {
 }
 
 /// The smallest causes that explain every answer of `cases`: each mistake alone, or where none
-/// does, each two together, or each three.
+/// does, each two together, or each three; with `routes`, each also made on a route (a choice
+/// more). Routes are tried where the panel was asked: a route rescales row 3 through another
+/// range, and with a mistake of the formula that is two choices more that one case alone (a fuzz
+/// input, a scene's few passes) fits by chance.
 template <class T>
-std::vector<std::vector<Mistake>> causes_of(const std::vector<Case<T>>& cases) {
+std::vector<std::vector<Mistake>> causes_of(const std::vector<Case<T>>& cases, bool routes) {
   std::vector<std::vector<Mistake>> out;
   for (const std::vector<Candidate>& size : candidates_by_size()) {
     for (const Candidate& c : size) {
+      if (!routes && c.knobs.via) continue;
       if (explains<T>(c.knobs, cases)) out.push_back(c.mistakes);
     }
     if (!out.empty()) return out;
@@ -562,7 +566,7 @@ std::optional<NumericalCause> numerical_cause_of(const std::vector<Case<T>>& cas
 /// Each family's answers diagnosed alone, where they part by family: some family with every
 /// answer right and some with a wrong one. Empty otherwise (one family, or wrong everywhere).
 template <class T>
-std::vector<FamilyDiagnosis> by_family(const std::vector<Case<T>>& cases) {
+std::vector<FamilyDiagnosis> by_family(const std::vector<Case<T>>& cases, bool routes) {
   std::vector<FamilyDiagnosis> out;
   for (cases::Family family : cases::all_families) {
     std::vector<Case<T>> group;
@@ -575,7 +579,16 @@ std::vector<FamilyDiagnosis> by_family(const std::vector<Case<T>>& cases) {
     f.seen = static_cast<int>(group.size());
     f.wrong = static_cast<int>(
         std::count_if(group.begin(), group.end(), [](const Case<T>& k) { return k.seen.wrong; }));
-    if (f.wrong > 0) f.causes = causes_of(group);
+    if (f.wrong > 0) f.causes = causes_of(group, routes);
+    if (f.wrong > 0 && f.causes.empty()) {
+      for (const Case<T>& k : group) {
+        const Observation<T>& o = k.seen;
+        if (!o.wrong || o.status != Status::ok || !all_finite(o.projection)) continue;
+        const AnswerGeometry g = answer_geometry(o.matrix, o.plane, o.convention, o.projection);
+        if (g.described) f.geometry = g;
+        break;
+      }
+    }
     out.push_back(std::move(f));
   }
   const bool some_right =
@@ -672,13 +685,13 @@ Diagnosis diagnose(const std::vector<Observation<T>>& seen, const Probe<T>& prob
   out.seen = static_cast<int>(cases.size());
   out.wrong = static_cast<int>(
       std::count_if(cases.begin(), cases.end(), [](const Case<T>& k) { return k.seen.wrong; }));
-  out.causes = causes_of(cases);
+  out.causes = causes_of(cases, static_cast<bool>(probe));
   if (out.causes.empty()) {
     out.transposed_layout = transposed_layout_explains(cases);
     if (out.transposed_layout) return out;
     out.numerical = numerical_cause_of(cases);
     if (out.numerical) return out;
-    out.families = by_family(cases);
+    out.families = by_family(cases, static_cast<bool>(probe));
     for (const Case<T>& k : cases) {
       const Observation<T>& o = k.seen;
       if (!o.wrong || o.status != Status::ok || !all_finite(o.projection)) continue;

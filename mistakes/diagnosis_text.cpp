@@ -25,15 +25,36 @@ std::string causes_text(const std::vector<std::vector<Mistake>>& causes) {
   return out;
 }
 
-/// "right on perspective, off_axis; on y_flipped: wrong_face": each family's own diagnosis.
+/// What an answer does, in a phrase: "C's multiple 0.5 times the right one, the far plane misses
+/// Q".
+std::string geometry_phrase(const AnswerGeometry& g) {
+  if (!g.side_rows_kept)
+    return "row " + std::to_string(g.changed_row) + " changed (only row 3 may change)";
+  std::ostringstream out;
+  out.precision(4);
+  if (!g.in_span)
+    out << "row 3 is no multiple of C plus one of M_4";
+  else
+    out << "C's multiple " << g.alpha_ratio << " times the right one"
+        << (g.beta_right ? "" : ", M_4's off");
+  if (g.near_wrong_side) out << ", the wrong side of C kept";
+  if (!g.far_through_q) out << ", the far plane misses Q";
+  if (g.clips) out << ", the view volume clipped";
+  return out.str();
+}
+
+/// "right on perspective, off_axis; on y_flipped: wrong_face": each family's own diagnosis, and
+/// where none explains a family's answers, what they show.
 std::string by_family_text(const std::vector<FamilyDiagnosis>& families) {
   std::string right, wrong;
   for (const FamilyDiagnosis& f : families) {
     const std::string name(cases::family_name(f.family));
-    if (f.wrong == 0)
+    if (f.wrong == 0) {
       right += (right.empty() ? "" : ", ") + name;
-    else
+    } else {
       wrong += "; on " + name + ": " + causes_text(f.causes);
+      if (f.causes.empty() && f.geometry) wrong += " (" + geometry_phrase(*f.geometry) + ")";
+    }
   }
   return "right on " + right + wrong;
 }
@@ -184,9 +205,11 @@ std::string likely_cause_markdown(const Diagnosis& d) {
          << "| family | what sets it apart | cases | wrong | likely cause |\n"
          << "|---|---|---|---|---|\n";
       for (const FamilyDiagnosis& f : d.families) {
+        std::string cause = f.wrong == 0 ? std::string("right") : "`" + causes_text(f.causes) + "`";
+        if (f.wrong > 0 && f.causes.empty() && f.geometry)
+          cause += ": " + geometry_phrase(*f.geometry);
         md << "| " << cases::family_name(f.family) << " | " << cases::family_shape(f.family)
-           << " | " << f.seen << " | " << f.wrong << " | "
-           << (f.wrong == 0 ? std::string("right") : "`" + causes_text(f.causes) + "`") << " |\n";
+           << " | " << f.seen << " | " << f.wrong << " | " << cause << " |\n";
       }
       md << "\nThe code takes another path on the families where it is wrong; the condition that "
             "sends it there is in what sets them apart.\n\n";

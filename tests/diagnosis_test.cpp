@@ -367,6 +367,44 @@ TYPED_TEST(Diagnose, anUnlistedMistakeIsNoKnownMistake) {
   EXPECT_NE(md.find("is clipped: the far plane cuts away the point"), std::string::npos) << md;
 }
 
+// The same unlisted scale on y-flipped matrices only: the answers part by family, and the family
+// no cause explains says what its answers show.
+TYPED_TEST(Diagnose, aFamilyNoCauseExplainsSaysWhatItsAnswersShow) {
+  using T = TypeParam;
+  Implementation<T> impl;
+  impl.name = "three_halves_scale_where_y_is_flipped";
+  impl.accepts = [](Convention, const Matrix4<T>&) { return true; };
+  impl.run = [](const Matrix4<T>& m, const Vector4<T>& c, Convention convention) {
+    const ObliqueResult<T> r = apply<T>(m, c, convention);
+    Answer<T> out{r.status, r.projection};
+    if (r.status == Status::ok && m(1, 1) < 0 && m(0, 0) > 0) {
+      const RowCombination near = near_rows(convention);
+      const Vector4<T> m4 = m.row(3).transpose();
+      const Vector4<T> ac = (T(near.m3) * r.projection.row(2).transpose() + T(near.m4) * m4);
+      out.projection.row(2) = (T(near.m3) * (T(1.5) * ac - T(near.m4) * m4)).transpose();
+    }
+    return out;
+  };
+  const Diagnosis d = first_finding_diagnosed(impl);
+  ASSERT_TRUE(d.ran);
+  EXPECT_TRUE(d.causes.empty()) << likely_cause_line(d);
+  ASSERT_FALSE(d.families.empty()) << likely_cause_line(d);
+  bool said = false;
+  for (const FamilyDiagnosis& f : d.families) {
+    if (f.family != cases::Family::y_flipped) continue;
+    EXPECT_TRUE(f.causes.empty()) << likely_cause_line(d);
+    ASSERT_TRUE(f.geometry.has_value()) << likely_cause_line(d);
+    EXPECT_NEAR(f.geometry->alpha_ratio, 1.5, 1e-3);
+    said = true;
+  }
+  EXPECT_TRUE(said) << likely_cause_line(d);
+  EXPECT_NE(likely_cause_line(d).find(
+                "on y_flipped: no known mistake (C's multiple 1.5 times the right one, the far "
+                "plane misses Q, the view volume clipped)"),
+            std::string::npos)
+      << likely_cause_line(d);
+}
+
 // The geometry of answers that are not the right one in other ways: the near plane negated (the
 // wrong side kept), a side row changed, and row 3 off the span of C and M_4.
 TEST(AnswerGeometry, namesWhatEachWrongAnswerChanges) {

@@ -79,6 +79,8 @@ struct FamilyDiagnosis {
   int seen = 0, wrong = 0;  ///< cases of the family judged, answers of it the checker rejected
   /// The causes that explain every answer of this family (none where it has no wrong answer).
   std::vector<std::vector<Mistake>> causes;
+  /// Where none explains them: what the family's first wrong answer does (answer_geometry.h).
+  std::optional<AnswerGeometry> geometry;
 };
 
 /// A numerical cause (numerical_routes.h): the correct formula along `route`, rounded in T,

@@ -8,7 +8,8 @@
 // property's own test:
 //  1. near_is_clip_plane: one entry of near' = s M'_3 + t M_4 with its sign flipped, where
 //     C_i != 0 and the flipped entry lies on the wrong side of zero (sgn(C_i) near'_i < 0) by more
-//     than the rounding an entry may carry there (gamma(3) |t M4_i| plus the underflow term):
+//     than the rounding an entry may carry there (gamma(3) |M4_i| in every convention, as the
+//     property allows a row formed through another convention's, plus the underflow term):
 //     no lambda > 0 can bring it within its bound of lambda C_i.
 //  2. side_rows_unchanged: one entry of row 1, 2 or 4 moved up by one ulp (a zero becomes the
 //     smallest subnormal, never -0).
@@ -124,8 +125,9 @@ std::vector<Mutant<T>> mutants(const Problem<T>& problem, const Matrix4<T>& answ
         nr.m3 * oracle::exact::to_rational(mutant(2, i)) + nr.m4 * m4;
     const oracle::exact::Rational signed_flipped =
         c(i) > T(0) ? flipped : oracle::exact::Rational(-flipped);
-    const oracle::exact::Rational allowance =
-        g * oracle::exact::abs(oracle::exact::Rational(nr.m4 * m4)) + underflow;
+    // The rounding the property allows an entry in every convention (problem.h: a row formed
+    // through another convention's carries g |M4_i|, a [0, 1] row too).
+    const oracle::exact::Rational allowance = g * oracle::exact::abs(m4) + underflow;
     if (signed_flipped < -allowance) keep(Property::near_is_clip_plane, i, mutant);
   }
   // 2. One entry of a side row one ulp up.
