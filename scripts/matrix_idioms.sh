@@ -124,16 +124,19 @@ done
 say ""
 say "The Direct3D-style engine's wall mirror (oblique check $scene):"
 say ""
-say "| function | expected | exit | mirror line |"
-say "|---|---|---|---|"
-for pair in d3d_mirror_pass:0 d3d_mirror_pass_wrong:1; do
-  function=${pair%%:*}
-  expected=${pair#*:}
-  log="$out/check_$function.log"
+say "| function | --layout | expected | exit | mirror line |"
+say "|---|---|---|---|---|"
+k=0
+for triple in "d3d_mirror_pass|row_major|0" "d3d_mirror_pass_wrong|row_major|1" \
+              "d3d_mirror_pass --as-stored|row_vectors|0" "d3d_mirror_pass_wrong --as-stored|row_vectors|1"; do
+  IFS='|' read -r function layout expected <<< "$triple"
+  k=$((k + 1))
+  log="$out/check_$k.log"
   rc=0
-  "$oblique" check "$scene" --consumers none --precision float --impl "$program $function" > "$log" 2>&1 || rc=$?
-  line=$(grep -E "wall mirror: " "$log" | head -1)
-  say "| $function | $expected | $rc | ${line:-see log} |"
+  "$oblique" check "$scene" --consumers none --precision float --layout "$layout" \
+    --impl "$program $function" > "$log" 2>&1 || rc=$?
+  line=$(grep -E "wall mirror: " "$log" | tail -1)
+  say "| $function | $layout | $expected | $rc | ${line:-see log} |"
   ((rc == expected)) || failures=$((failures + 1))
 done
 say ""
