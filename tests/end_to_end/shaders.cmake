@@ -37,13 +37,15 @@ foreach(wrong CameraMatrix:camera_matrix_view_position:view_position:reconstruct
                            SKIP_REGULAR_EXPRESSION "${shader_skip}")
     endif()
     # verify --shader: caught in every convention, named, reported, replayed (and the right
-    # shader holds on the replay).
+    # shader holds on the replay). At a fixed seed, as above: at a fresh one about one run in
+    # fifteen of reversed_as_forward first shrinks to a case that ndc_depth_of_other_convention
+    # explains as well (both named); the campaign runs them at fresh seeds.
     add_test(NAME shaders_verify_catches_${language}${test}
              COMMAND ${CMAKE_COMMAND} -DOBLIQUE=$<TARGET_FILE:oblique>
                      -DSHADER=${shaders}/depth_wrong.${language}:${function}
                      -DRIGHT_SHADER=${shaders}/depth_right.${language}:${kind}
                      -DKINDS=${kind} -DEXIT=1 -DPROPERTY=${kind} -DPICTURES=1 -DCAUSE=${cause}
-                     "-DARGS=--time-limit;30;--convention;all"
+                     "-DARGS=--time-limit;30;--convention;all;--seed;20261207"
                      -DREPORTS=${shader_reports}/verify_${language}${test}
                      -P ${CMAKE_CURRENT_SOURCE_DIR}/expect_verify_consumers.cmake)
     set_tests_properties(shaders_verify_catches_${language}${test} PROPERTIES
