@@ -4,12 +4,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "commands.h"
 #include "oblique/cases/contract.h"
+#include "oblique/protocol/matrix_order.h"
 #include "oblique/protocol/names.h"
 #include "oblique/protocol/protocol.h"
 #include "oblique/raster/raster.h"
@@ -386,7 +389,8 @@ void setup_check(CLI::App& app, int& exit_code) {
                    "With --impl: how it takes and writes its matrices: row_major (M by rows, the "
                    "protocol's order; the default), column_major or row_vectors (a row-vector "
                    "engine's R = M^T by rows, the same numbers), as oblique verify --layout")
-      ->check(CLI::IsMember({"row_major", "column_major", "row_vectors"}));
+      ->check(CLI::IsMember(std::vector<std::string>(std::begin(oblique::protocol::kLayoutNames),
+                                                     std::end(oblique::protocol::kLayoutNames))));
   add_precision_option(
       check, settings->precision,
       "With --impl: the scalar type the implementation computes in; its requests "

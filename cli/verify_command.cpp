@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <iostream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string>
@@ -103,7 +104,8 @@ void setup_verify(CLI::App& app, int& exit_code, int argc, char** argv) {
                    "storage) or row_vectors (a row-vector engine's R = M^T by rows: Direct3D, "
                    "DirectXMath; the same numbers as column_major). Every 4x4 matrix of a request "
                    "is put in that order at the program's end, and every one it answers read so")
-      ->check(CLI::IsMember({"row_major", "column_major", "row_vectors"}));
+      ->check(CLI::IsMember(std::vector<std::string>(std::begin(oblique::protocol::kLayoutNames),
+                                                     std::end(oblique::protocol::kLayoutNames))));
   // The contract's fields, each a flag taking a comma list of the names its JSON field takes.
   auto contract_flag = [&](const std::string& flag, const std::string& field,
                            const std::string& what) {

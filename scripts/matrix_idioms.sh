@@ -51,6 +51,11 @@ secs=$((minutes * 60))
 
 mapfile -t lines < <(grep -E '^[a-z]' "$idioms")
 
+# The flags of an idiom's claims: the engine preset narrowed to its convention and families, float.
+claims() {
+  echo "--preset engine --precision float --convention $1 --families $2"
+}
+
 # One right idiom, one way in, in the background: its log and "judged rc" in <n>.<way>.figures.
 run_right() {
   set +e +o pipefail
@@ -58,8 +63,9 @@ run_right() {
   local log="$out/$n.$way.log" rc=0 judged=0
   case "$way" in
     verify)
-      "$oblique" verify --preset engine --precision float --convention "$convention" \
-        --families "$families" --impl "$program $name" --seed "$s" --time-limit "$secs" \
+      # shellcheck disable=SC2046
+      "$oblique" verify $(claims "$convention" "$families") --impl "$program $name" \
+        --seed "$s" --time-limit "$secs" \
         --quiet --report-dir "$out/reports$n" > "$log" 2>&1 || rc=$?
       judged=$(sed -n 's/^oblique verify: \([0-9]*\) cases, no violation.*/\1/p' "$log" | tail -1)
       ;;
@@ -152,8 +158,9 @@ for line in "${lines[@]}"; do
   log="$out/$n.wrong.log"
   start=$(date +%s.%N)
   rc=0
-  "$oblique" verify --preset engine --precision float --convention "$convention" \
-    --families "$families" --impl "$program ${name}_wrong" --seed "$((seed + 100 + n))" \
+  # shellcheck disable=SC2046
+  "$oblique" verify $(claims "$convention" "$families") --impl "$program ${name}_wrong" \
+    --seed "$((seed + 100 + n))" \
     --time-limit 60 --report-dir "$out/wrong$n" > "$log" 2>&1 || rc=$?
   elapsed=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {printf "%.2f", b - a}')
   if ((rc == 1)) && grep -Eq "likely cause.*$names_twin" "$log"; then

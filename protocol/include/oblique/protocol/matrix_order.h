@@ -15,6 +15,9 @@ enum class MatrixOrder {
   columns,  ///< M by columns (--layout column_major, or row_vectors: R = M^T by rows)
 };
 
+/// The names `--layout` takes (adapt()'s Layout names).
+inline constexpr const char* kLayoutNames[] = {"row_major", "column_major", "row_vectors"};
+
 /// The order `--layout NAME` stands for: row_major, column_major or row_vectors; none otherwise.
 std::optional<MatrixOrder> matrix_order_of_layout(std::string_view name);
 
