@@ -59,6 +59,12 @@ int main(int argc, char** argv) {
   const engine_matrices::Function function = wrong ? idiom->wrong : idiom->right;
   const bool as_stored = argc > 2 && std::string(argv[2]) == "--as-stored";
   std::string line;
-  while (std::getline(std::cin, line)) std::cout << answer(function, as_stored, line) << std::endl;
+  while (std::getline(std::cin, line)) {
+    std::cout << answer(function, as_stored, line) << std::endl;
+    if (!std::cout) {  // a closed pipe, a full disk: said, not answered into nothing
+      std::fprintf(stderr, "%s: cannot write the answer\n", argv[0]);
+      return 1;
+    }
+  }
   return 0;
 }
