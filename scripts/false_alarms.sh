@@ -120,11 +120,14 @@ run_one() {
       RC_PARAMS="max_success=$((secs * 3000 / (tests > 0 ? tests : 1))) seed=$s" \
         OBLIQUE_REPORT_DIR="$out/reports$n" \
         "$bin/false_alarms/float_engine_property_test" --gtest_filter="$args" > "$log" 2>&1 || rc=$?
-      judged=$(grep -o '^near_is_clip_plane: OK, passed [0-9]* tests' "$log" |
+      # "passed N" counts the cases left out too, which its line names in parentheses ("(left
+      # out: why N, why N)"): judged is the rest.
+      local passed
+      passed=$(grep -o '^near_is_clip_plane: OK, passed [0-9]* tests' "$log" |
                awk '{s += $4} END {print s + 0}')
-      # What each near_is_clip_plane run's line says it left out: "(left out: why N, why N)".
       left=$(sed -n 's/^near_is_clip_plane: OK, passed [0-9]* tests (left out: \(.*\))$/\1/p' "$log" |
                grep -o '[0-9][0-9]*\(,\|$\)' | tr -d ',' | awk '{s += $1} END {print s + 0}')
+      judged=$((passed - left))
       ;;
     fuzzing)
       # Inputs for the time, at about 60,000 per second per job (each decoded for the three
@@ -155,9 +158,12 @@ run_one() {
         ((chunk < 300)) && chunk=300
         round=$((round + 1))
       done
-      judged=$(grep -o '^[a-z_]*: OK, passed [0-9]* tests' "$log" | awk '{s += $4} END {print s + 0}')
+      # As above: "passed N" less what each line says it left out.
+      local passed
+      passed=$(grep -o '^[a-z_]*: OK, passed [0-9]* tests' "$log" | awk '{s += $4} END {print s + 0}')
       left=$(sed -n 's/^[a-z_]*: OK, passed [0-9]* tests (left out: \(.*\))$/\1/p' "$log" |
                grep -o '[0-9][0-9]*\(,\|$\)' | tr -d ',' | awk '{s += $1} END {print s + 0}')
+      judged=$((passed - left))
       ;;
     consumers_verify|shader_verify)
       # shellcheck disable=SC2086
