@@ -198,12 +198,15 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
   const bool needs_oblique = depth || consumers.culling_planes || consumers.corners;
   // A case none of `checks` can be judged on: one finding left out for each of them.
   auto left_out = [&settle](std::initializer_list<std::pair<bool, ConsumerCheck>> checks,
-                            const std::string& why) {
+                            const std::string& why,
+                            ConsumerFinding::Unjudged unjudged =
+                                ConsumerFinding::Unjudged::undecided) {
     for (const auto& [asked, check] : checks) {
       if (!asked) continue;
       ConsumerFinding none;
       none.check = check;
       none.judged = false;
+      none.unjudged = unjudged;
       none.detail = why;
       settle(none, "", false);
     }
@@ -226,7 +229,8 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
                 {culling, ConsumerCheck::culling_keeps_visible},
                 {culling, ConsumerCheck::culling_near_is_c},
                 {bool(consumers.corners), ConsumerCheck::corners_contain_kept}},
-               "no oblique matrix for M and C (" + std::string(status_code(result.status)) + ")");
+               "no oblique matrix for M and C (" + std::string(status_code(result.status)) + ")",
+               ConsumerFinding::Unjudged::unclaimed);
     } else {
       const Matrix4<T>& mo = result.projection;
       const std::string base =

@@ -33,6 +33,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
       problem.exact_status() == Status::ok ? problem.row3_bounds() : std::nullopt;
   if (!row3 || problem.infinite()) {
     f.judged = false;
+    if (row3) f.unjudged = ConsumerFinding::Unjudged::not_applicable;
     f.detail = row3 ? "an infinite projection: the kept region is unbounded"
                     : "the case has no answer to judge against";
     return f;
@@ -47,6 +48,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   for (const Vec& v : kept) {
     if (v[3] == 0) {
       f.judged = false;
+      f.unjudged = ConsumerFinding::Unjudged::not_applicable;
       f.detail = "the kept region is unbounded";
       return f;
     }

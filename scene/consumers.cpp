@@ -45,8 +45,13 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
     ConsumerResult r;
     r.consumer = consumer;
     const oracle::Explain<T> explain = mistakes::explain_consumer<T>;
-    const oracle::Settle settle = [&r](const oracle::ConsumerFinding& f, const std::string& inputs,
-                                       bool) {
+    std::string not_applicable;  // why a property says nothing of this pass's matrix
+    const oracle::Settle settle = [&r, &not_applicable](const oracle::ConsumerFinding& f,
+                                                        const std::string& inputs, bool) {
+      if (!f.judged && f.unjudged == oracle::ConsumerFinding::Unjudged::not_applicable) {
+        not_applicable = f.detail;  // (corners of an infinite camera's unbounded kept region)
+        return;
+      }
       if (!f.judged) {
         ++r.left_out_why[f.detail];
         return;
@@ -105,6 +110,9 @@ std::vector<ConsumerResult> judge_consumers(const Scene& scene, const SurfaceChe
     }
     for (int i = 0; i < rounds; ++i)
       oracle::consumer_round<T>(m, c, scene.convention, only, pick, settle, explain);
+    // Nothing asked of it applies to this pass: said as a clip pass's note is, not left out.
+    if (r.judged == 0 && r.left_out_why.empty() && !not_applicable.empty() && r.note.empty())
+      r.note = not_applicable;
     out.push_back(std::move(r));
   }
   return out;

@@ -32,7 +32,10 @@ template <class T>
 void judged(const std::string& consumer, const oracle::ConsumerFinding& finding,
             const std::string& inputs, const cases::Case<T>* c) {
   if (!finding.judged) {
-    count_left_out(c ? std::string(cases::family_name(c->family)) : consumer, finding.detail);
+    // Counted against the family only where the contract claims the case (ConsumerFinding::
+    // Unjudged: not an input without an answer, nor a property that says nothing of the matrix).
+    count_left_out(c ? std::string(cases::family_name(c->family)) : consumer, finding.detail, "",
+                   finding.unjudged != oracle::ConsumerFinding::Unjudged::undecided);
     return;
   }
   ++tally().applied[std::string(oracle::consumer_check_name(finding.check))];

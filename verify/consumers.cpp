@@ -392,9 +392,16 @@ class ConsumerRun {
                       std::string(why) + ")"] += 1;
       return;
     }
+    if (!f.judged && f.unjudged == oracle::ConsumerFinding::Unjudged::not_applicable) {
+      // The same on one matrix of a family it applies to (an infinite matrix of x_flipped).
+      not_applicable_[check + " (" + f.detail + ")"] += 1;
+      return;
+    }
     if (!f.judged) {
+      // Said among the reasons; counted against the property only where the contract claims
+      // the case (an input without an answer is claimed by no consumer contract).
       ++left_out_[f.detail];
-      ++left_out_checks_[check];
+      left_out_checks_[check] += f.unjudged == oracle::ConsumerFinding::Unjudged::undecided;
       return;
     }
     ++judged_[check];
@@ -565,11 +572,11 @@ class ConsumerRun {
     std::vector<std::string> unjudged;
     for (const auto& [check, left] : left_out_checks_) {
       if (judged_.count(check)) continue;
-      unjudged.push_back(check + ": all " + std::to_string(left) +
-                         " left out (why, over the run: " + summary(left_out_) +
+      unjudged.push_back(check + ": no answer judged, " + std::to_string(left) +
+                         " of its cases the contract claims left out (why, over the run: " +
+                         summary(left_out_) +
                          "): raise --cases or --time-limit, or narrow --families to cases it has");
-    }
-    for (cases::Family f : contract.families) {
+    }    for (cases::Family f : contract.families) {
       const std::string name(cases::family_name(f));
       const bool applicable = std::any_of(
           asked_checks_.begin(), asked_checks_.end(),

@@ -12,7 +12,7 @@ namespace oblique {
 /// projection and status of apply(projections[i], planes[i], convention, method) (M' when ok,
 /// the input matrix otherwise), bit for bit. The closed form's ordinary requests are answered
 /// without building an ObliqueResult, in blocks over SIMD lanes where the build has them
-/// (detail/batch.h). `out` may be `projections` (in place); the arrays must otherwise not
+/// (detail/batch_lanes.h). `out` may be `projections` (in place); the arrays must otherwise not
 /// overlap.
 template <class T>
 void apply_batch(const Matrix4<T>* projections, const Vector4<T>* planes, std::size_t count,

@@ -1,5 +1,5 @@
 // The definitions of apply() and apply_batch(): what oblique::core compiles once, for float,
-// double and long double (core/src/instances.cpp). Include this header only for a header-only
+// double and long double (core/src/oblique.cpp, batch.cpp and accurate.cpp). Include this header only for a header-only
 // build (any other scalar type, or the core compiled with your own flags); otherwise include
 // oblique/oblique.h (and oblique/batch.h) and link oblique::core.
 //
@@ -123,7 +123,7 @@ OBLIQUE_NOINLINE void batch_answer_apart(const Matrix4<T>& m, const Vector4<T>& 
 }
 
 /// apply_batch()'s blocks: W closed-form requests at a time through closed_form_lanes()
-/// (detail/batch.h), each block read before it is answered; `answered(j, lanes, k)` for request
+/// (detail/batch_lanes.h), each block read before it is answered; `answered(j, lanes, k)` for request
 /// j answered by lane k, `apart(j)` for a request the block leaves. Returns how many requests the
 /// blocks covered (a multiple of W, 0 without a block path or for another method); the rest go
 /// one by one.

@@ -8,7 +8,7 @@
 #define OBLIQUE_NOINLINE
 #endif
 
-/// Forces a small function into its caller: the error-free transformations (accurate/error_free.h)
+/// Forces a small function into its caller: the error-free transformations (numeric/error_free.h)
 /// are a few flops each and sit in the accurate method's inner loops, where a call costs as much
 /// as the arithmetic.
 #if defined(__GNUC__)

@@ -67,9 +67,17 @@ constexpr std::optional<ConsumerCheck> parse_consumer_check(std::string_view nam
 std::string_view not_applicable(ConsumerCheck check, cases::Family family);
 
 /// One consumer property's verdict on one answer.
-struct ConsumerFinding {
+struct [[nodiscard]] ConsumerFinding {
   ConsumerCheck check = ConsumerCheck::view_position;
-  bool judged = true;  ///< false: the case cannot be decided (why: `detail`)
+  bool judged = true;  ///< false: the case was not judged (why: `detail`, and `unjudged`)
+  /// Why a finding is not judged (where `judged` is false), for the tallies that say how much
+  /// of what a contract claims was judged: `undecided`, a case the contract claims that could not
+  /// be decided (within rounding, not determined in T, refused by accepts); `unclaimed`, a case
+  /// no consumer contract claims (M and C have no oblique matrix: an input without an answer);
+  /// `not_applicable`, a property that says nothing of this matrix (the corners of an unbounded
+  /// kept region). Only `undecided` counts toward "judged in part only".
+  enum class Unjudged { undecided, unclaimed, not_applicable };
+  Unjudged unjudged = Unjudged::undecided;
   bool holds = true;
   /// The worst residual over its bound (<= 1 within); for a failed kept-side or near-plane
   /// check, the margin by which the sign is wrong, over its bound.

@@ -17,7 +17,7 @@
 // sides left out ("certified") and the ratio approximate (`every`, which lists residuals, always
 // goes to the exact checker).
 //
-// tests/filtered_checker_test.cpp runs both checkers on generated cases and wrong answers and
+// tests/oracle/filtered_checker_test.cpp runs both checkers on generated cases and wrong answers and
 // fails on any disagreement.
 #pragma once
 

@@ -134,7 +134,7 @@ std::string sides_text(const Finding& f, const std::string& indent);
 std::vector<std::pair<std::string, double>> finding_numbers(const Finding& f);
 
 /// The checks that applied, in order.
-struct Judgement {
+struct [[nodiscard]] Judgement {
   std::vector<Finding> checks;
 
   /// The first check that fails, or nullptr.

@@ -27,7 +27,7 @@ namespace oblique::oracle {
 
 /// One property's verdict on one result (all_properties lists the five that check() judges):
 /// its Finding (check_of(property)), whether it applies, and the point it is about.
-struct Verdict : Finding {
+struct [[nodiscard]] Verdict : Finding {
   explicit Verdict(Property p) {
     check = check_of(p);
     holds = true;
@@ -40,7 +40,7 @@ struct Verdict : Finding {
   std::optional<oracle::exact::Vec> point;
 };
 
-struct Verdicts {
+struct [[nodiscard]] Verdicts {
   std::vector<Verdict> items;
 
   bool all_hold() const {

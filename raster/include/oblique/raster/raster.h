@@ -98,7 +98,7 @@ struct DepthMeasure {
   long observed = 0;
 };
 
-struct Result {
+struct [[nodiscard]] Result {
   Outcome outcome = Outcome::inconclusive;
   std::string why;  ///< one line: what failed, or which self-check tripped
   long samples = 0;

@@ -3,9 +3,9 @@
 # planted break (an include up the layers, a third-party header in the core, the core's
 # internals included elsewhere, a child process outside the client, another library's detail
 # name, a third-party detail name in a header) fails, naming the file and line.
-# Usage: bash tests/check_layers_test.sh   (exit 0: every case behaved)
+# Usage: bash tests/package/check_layers_test.sh   (exit 0: every case behaved)
 set -euo pipefail
-check="$(cd "$(dirname "$0")/.." && pwd)/scripts/check_layers.sh"
+check="$(cd "$(dirname "$0")/../.." && pwd)/scripts/check_layers.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0

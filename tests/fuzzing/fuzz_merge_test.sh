@@ -2,7 +2,7 @@
 # CTest (label fuzz): scripts/fuzz_merge.sh against stub fuzzers that fail, produce nothing, are
 # interrupted mid-merge, or succeed. Whatever the merge does, no input of the corpus may be lost.
 #
-#   bash tests/fuzz_merge_test.sh SOURCE_DIR
+#   bash tests/fuzzing/fuzz_merge_test.sh SOURCE_DIR
 set -uo pipefail
 source_dir="$1"
 merge="$source_dir/scripts/fuzz_merge.sh"

@@ -1,4 +1,4 @@
-# Configures tests/subproject (a parent that adds oblique with add_subdirectory) with every
+# Configures tests/package/subproject (a parent that adds oblique with add_subdirectory) with every
 # combination of OBLIQUE_BUILD_TESTS, OBLIQUE_BUILD_CLI, OBLIQUE_BUILD_BENCH and OBLIQUE_FUZZ, and
 # with and without a build type of the parent's own; each must configure.
 # cmake -DSOURCE=... -DWORK=... -P subproject_test.cmake
@@ -9,7 +9,7 @@ foreach(tests ON OFF)
       foreach(fuzz ON OFF)
         set(combo "TESTS=${tests} CLI=${cli} BENCH=${bench} FUZZ=${fuzz}")
         file(REMOVE_RECURSE "${WORK}")
-        execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE}/tests/subproject" -B "${WORK}"
+        execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE}/tests/package/subproject" -B "${WORK}"
                                 -DOBLIQUE_SOURCE=${SOURCE} -DOBLIQUE_BUILD_TESTS=${tests}
                                 -DOBLIQUE_BUILD_CLI=${cli} -DOBLIQUE_BUILD_BENCH=${bench}
                                 -DOBLIQUE_FUZZ=${fuzz} -DCMAKE_BUILD_TYPE=Debug
@@ -24,7 +24,7 @@ foreach(tests ON OFF)
   endforeach()
 endforeach()
 file(REMOVE_RECURSE "${WORK}")
-execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE}/tests/subproject" -B "${WORK}"
+execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE}/tests/package/subproject" -B "${WORK}"
                         -DOBLIQUE_SOURCE=${SOURCE}
                 RESULT_VARIABLE result OUTPUT_VARIABLE output ERROR_VARIABLE output)
 if(NOT result EQUAL 0)
