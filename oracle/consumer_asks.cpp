@@ -197,10 +197,10 @@ std::vector<ConsumerAsk<T>> consumer_asks(const Matrix4<T>& m, const Vector4<T>&
   const bool depth = consumers.view_position || consumers.linear_depth || consumers.world_position;
   const bool needs_oblique = depth || consumers.culling_planes || consumers.corners;
   // A case none of `checks` can be judged on: one finding left out for each of them.
-  auto left_out = [&settle](std::initializer_list<std::pair<bool, ConsumerCheck>> checks,
-                            const std::string& why,
-                            ConsumerFinding::Unjudged unjudged =
-                                ConsumerFinding::Unjudged::undecided) {
+  auto left_out = [&settle](
+                      std::initializer_list<std::pair<bool, ConsumerCheck>> checks,
+                      const std::string& why,
+                      ConsumerFinding::Unjudged unjudged = ConsumerFinding::Unjudged::undecided) {
     for (const auto& [asked, check] : checks) {
       if (!asked) continue;
       ConsumerFinding none;

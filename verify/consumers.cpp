@@ -572,11 +572,12 @@ class ConsumerRun {
     std::vector<std::string> unjudged;
     for (const auto& [check, left] : left_out_checks_) {
       if (judged_.count(check)) continue;
-      unjudged.push_back(check + ": no answer judged, " + std::to_string(left) +
-                         " of its cases the contract claims left out (why, over the run: " +
-                         summary(left_out_) +
-                         "): raise --cases or --time-limit, or narrow --families to cases it has");
-    }    for (cases::Family f : contract.families) {
+      unjudged.push_back(
+          check + ": no answer judged, " + std::to_string(left) +
+          " of its cases the contract claims left out (why, over the run: " + summary(left_out_) +
+          "): raise --cases or --time-limit, or narrow --families to cases it has");
+    }
+    for (cases::Family f : contract.families) {
       const std::string name(cases::family_name(f));
       const bool applicable = std::any_of(
           asked_checks_.begin(), asked_checks_.end(),

@@ -1,7 +1,7 @@
 // The definitions of apply() and apply_batch(): what oblique::core compiles once, for float,
-// double and long double (core/src/oblique.cpp, batch.cpp and accurate.cpp). Include this header only for a header-only
-// build (any other scalar type, or the core compiled with your own flags); otherwise include
-// oblique/oblique.h (and oblique/batch.h) and link oblique::core.
+// double and long double (core/src/oblique.cpp, batch.cpp and accurate.cpp). Include this header
+// only for a header-only build (any other scalar type, or the core compiled with your own flags);
+// otherwise include oblique/oblique.h (and oblique/batch.h) and link oblique::core.
 //
 // apply() answers the common request (ordinary_input(): the perspective shape, every entry zero
 // or normal, a moderate spread) with the closed form at once; every other request goes through
@@ -123,10 +123,10 @@ OBLIQUE_NOINLINE void batch_answer_apart(const Matrix4<T>& m, const Vector4<T>& 
 }
 
 /// apply_batch()'s blocks: W closed-form requests at a time through closed_form_lanes()
-/// (detail/batch_lanes.h), each block read before it is answered; `answered(j, lanes, k)` for request
-/// j answered by lane k, `apart(j)` for a request the block leaves. Returns how many requests the
-/// blocks covered (a multiple of W, 0 without a block path or for another method); the rest go
-/// one by one.
+/// (detail/batch_lanes.h), each block read before it is answered; `answered(j, lanes, k)` for
+/// request j answered by lane k, `apart(j)` for a request the block leaves. Returns how many
+/// requests the blocks covered (a multiple of W, 0 without a block path or for another method); the
+/// rest go one by one.
 template <class T, bool FarCorner, class Answered, class Apart>
 OBLIQUE_ALWAYS_INLINE std::size_t closed_form_blocks(const Matrix4<T>* projections,
                                                      const Vector4<T>* planes, std::size_t count,

@@ -41,9 +41,9 @@ constexpr bool closed_form_lanes_available() noexcept {
 template <class T>
 inline constexpr int closed_form_lane_count = 64 / int(sizeof(T));
 
-/// sign(x) (detail/closed_form_steps.h), the same value (+0 for zeros and NaN), from two comparisons both
-/// made, so that the compiler can run it on packed registers (it does not make a comparison
-/// that a branch skips, which may trap, unconditional).
+/// sign(x) (detail/closed_form_steps.h), the same value (+0 for zeros and NaN), from two
+/// comparisons both made, so that the compiler can run it on packed registers (it does not make a
+/// comparison that a branch skips, which may trap, unconditional).
 template <class T>
 OBLIQUE_ALWAYS_INLINE T lane_sign(T x) noexcept {
   return T(x > T(0)) - T(x < T(0));

@@ -1,7 +1,7 @@
 // Wrong answers built from a correct one, one class per property: the checker's own mutation test
-// (tests/oracle/checker_mutation_test.cpp) holds each property, alone, to rejecting every member of its
-// class, and the filtered checker's differential test (tests/oracle/filtered_checker_test.cpp) judges
-// them with both checkers.
+// (tests/oracle/checker_mutation_test.cpp) holds each property, alone, to rejecting every member of
+// its class, and the filtered checker's differential test (tests/oracle/filtered_checker_test.cpp)
+// judges them with both checkers.
 //
 // Each class is defined by what the wrong answer does, and its members are the mutants for which
 // the wrongness is certain, decided in exact arithmetic from quantities independent of the

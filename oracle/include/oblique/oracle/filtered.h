@@ -17,8 +17,8 @@
 // sides left out ("certified") and the ratio approximate (`every`, which lists residuals, always
 // goes to the exact checker).
 //
-// tests/oracle/filtered_checker_test.cpp runs both checkers on generated cases and wrong answers and
-// fails on any disagreement.
+// tests/oracle/filtered_checker_test.cpp runs both checkers on generated cases and wrong answers
+// and fails on any disagreement.
 #pragma once
 
 #include <algorithm>
