@@ -1,5 +1,6 @@
 // A matrix finding's renders as its report shows them (case_scene.h's stage_case_renders()).
 #include <sstream>
+#include <string>
 
 #include "oblique/raster/case_scene.h"
 
@@ -19,17 +20,27 @@ std::string stage_case_renders(report::ReportFiles& files, const std::string& st
     md << "Not drawn: " << renders.error() << ".\n\n";
     return md.str();
   }
-  report::Picture row = report::side_by_side(
-      {&renders->expected.colour, &renders->answered.colour, &renders->difference}, 8);
+  // Each panel named above it: which is the right answer, which is yours, which the difference.
+  auto three = [](const report::Picture& right, const report::Picture& yours,
+                  const report::Picture& difference, const std::string& suffix) {
+    const report::Picture a = report::labelled(right, "right answer" + suffix),
+                          b = report::labelled(yours, "yours" + suffix),
+                          d = report::labelled(difference, "difference" + suffix);
+    return report::side_by_side({&a, &b, &d}, 8);
+  };
+  report::Picture row = three(renders->expected.colour, renders->answered.colour,
+                              renders->difference, "");
   // A zoom below its full view: the same three, around the mark whose difference is thin.
   for (const CaseRenders::Zoom& zoom : renders->zooms) {
     const report::Picture zoomed =
-        report::side_by_side({&zoom.expected, &zoom.answered, &zoom.difference}, 8);
+        three(zoom.expected, zoom.answered, zoom.difference,
+              " (mark " + std::to_string(zoom.mark + 1) + ", x" + std::to_string(zoom.factor) + ")");
     const report::Picture gap(row.width, 8);
     row = report::stacked({&row, &gap, &zoomed});
   }
-  const report::Picture depths =
-      report::side_by_side({&renders->expected_depth, &renders->answered_depth}, 8);
+  const report::Picture right_depth = report::labelled(renders->expected_depth, "right answer"),
+                        your_depth = report::labelled(renders->answered_depth, "yours");
+  const report::Picture depths = report::side_by_side({&right_depth, &your_depth}, 8);
   const std::string render_png = report::png_bytes(row), depth_png = report::png_bytes(depths);
   if (render_png.empty() || depth_png.empty()) {
     summary.why = "the pictures could not be encoded as PNG";

@@ -49,6 +49,21 @@ std::string base64(std::string_view bytes);
 Picture side_by_side(const std::vector<const Picture*>& pictures, int gap,
                      std::uint32_t background = 0xffffffffu);
 
+/// The width in pixels of `text` lettered at `scale` (each character 6 scale wide, the last
+/// without its space).
+int lettering_width(std::string_view text, int scale);
+
+/// `text` lettered into `picture` in `ink` (0xRRGGBBAA), its top left corner at (left, top): a 5 x
+/// 7 capital font, each of its pixels drawn `scale` x `scale` (lowercase letters as capitals, a
+/// character the font lacks as a box); what falls outside the picture is left out.
+void letter(Picture& picture, std::string_view text, int left, int top, int scale,
+            std::uint32_t ink = 0x202020ffu);
+
+/// `picture` under a white strip with `label` lettered in it, centred: a panel's name in a row
+/// of pictures ("right answer", "yours", "difference"). The strip is 11 `scale` pixels high; the
+/// result is as wide as the picture, or as the label where that is wider.
+Picture labelled(const Picture& picture, std::string_view label, int scale = 2);
+
 /// Pictures one above the other, the narrower ones centred.
 Picture stacked(const std::vector<const Picture*>& pictures,
                 std::uint32_t background = 0xffffffffu);
