@@ -28,13 +28,13 @@ std::string stage_case_renders(report::ReportFiles& files, const std::string& st
                           d = report::labelled(difference, "difference" + suffix);
     return report::side_by_side({&a, &b, &d}, 8);
   };
-  report::Picture row = three(renders->expected.colour, renders->answered.colour,
-                              renders->difference, "");
+  report::Picture row =
+      three(renders->expected.colour, renders->answered.colour, renders->difference, "");
   // A zoom below its full view: the same three, around the mark whose difference is thin.
   for (const CaseRenders::Zoom& zoom : renders->zooms) {
-    const report::Picture zoomed =
-        three(zoom.expected, zoom.answered, zoom.difference,
-              " (mark " + std::to_string(zoom.mark + 1) + ", x" + std::to_string(zoom.factor) + ")");
+    const report::Picture zoomed = three(
+        zoom.expected, zoom.answered, zoom.difference,
+        " (mark " + std::to_string(zoom.mark + 1) + ", x" + std::to_string(zoom.factor) + ")");
     const report::Picture gap(row.width, 8);
     row = report::stacked({&row, &gap, &zoomed});
   }
