@@ -8,12 +8,14 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "oblique/oracle/problem.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/references/kept_region.h"
+#include "recent.h"
 
 namespace oblique::oracle::consumer_judging {
 
@@ -260,32 +262,67 @@ int axis_sign(const Mat& original_inverse, Convention convention,
   return (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
 }
 
-/// The kept region's vertices, exactly (polytope::clip_volume on M's exact corners); empty when
-/// M is singular or a corner of its volume is behind the eye (w < 0: the volume wraps through
-/// infinity, and has no kept region to judge by).
 template <class T>
-std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>& m, const Vector4<T>& c,
-                                                  Convention convention) {
-  const std::optional<Mat> inv = oracle::exact::inverse(oracle::exact::to_rational(m));
-  if (!inv) return std::nullopt;
-  std::array<Vec, 8> corners;
-  for (int i = 0; i < 8; ++i) {
-    const std::array<int, 4> q = clip_corner(i, convention);
-    Vec v = oracle::exact::mul(*inv, {q[0], q[1], q[2], q[3]});
-    if (v[3] < 0) return std::nullopt;
-    corners[static_cast<std::size_t>(i)] = v;
-  }
-  std::vector<Vec> out;
-  for (const Vec& x : polytope::clip_volume(corners, oracle::exact::to_rational(c))) {
-    if (std::find(out.begin(), out.end(), x) == out.end()) out.push_back(x);
-  }
-  return out;
+std::shared_ptr<const Inverse> inverse_of(const Matrix4<T>& matrix) {
+  thread_local Recent<Matrix4<T>, Inverse> recent;
+  return recent.get(matrix, [&] {
+    Inverse out;
+    out.m = oracle::exact::to_rational(matrix);
+    out.inv = oracle::exact::inverse(out.m);
+    return out;
+  });
 }
 
-#define OBLIQUE_CONSUMER_JUDGING(T)                                                                \
-  template std::optional<Mat> solve_error<T>(const Mat&, const Mat&, int);                         \
-  template std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>&, const Vector4<T>&, \
-                                                             Convention);
+template <class T>
+std::shared_ptr<const std::optional<Mat>> solve_error_of(const Matrix4<T>& matrix, int bits) {
+  thread_local Recent<std::pair<Matrix4<T>, int>, std::optional<Mat>> recent;
+  return recent.get({matrix, bits}, [&]() -> std::optional<Mat> {
+    const std::shared_ptr<const Inverse> a = inverse_of(matrix);
+    if (!a->inv) return std::nullopt;
+    return solve_error<T>(a->m, *a->inv, bits);
+  });
+}
+
+template <class T>
+std::shared_ptr<const Problem<T>> problem_of(const Matrix4<T>& m, const Vector4<T>& c,
+                                             Convention convention) {
+  using Key = std::tuple<Matrix4<T>, Vector4<T>, Convention>;
+  thread_local Recent<Key, Problem<T>> recent;
+  return recent.get(Key{m, c, convention}, [&] { return Problem<T>(m, c, convention); });
+}
+
+template <class T>
+std::shared_ptr<const std::optional<std::vector<Vec>>> exact_kept_region(const Matrix4<T>& m,
+                                                                         const Vector4<T>& c,
+                                                                         Convention convention) {
+  using Key = std::tuple<Matrix4<T>, Vector4<T>, Convention>;
+  thread_local Recent<Key, std::optional<std::vector<Vec>>> recent;
+  return recent.get(Key{m, c, convention}, [&]() -> std::optional<std::vector<Vec>> {
+    const std::shared_ptr<const Inverse> a = inverse_of(m);
+    if (!a->inv) return std::nullopt;
+    std::array<Vec, 8> corners;
+    for (int i = 0; i < 8; ++i) {
+      const std::array<int, 4> q = clip_corner(i, convention);
+      Vec v = oracle::exact::mul(*a->inv, {q[0], q[1], q[2], q[3]});
+      if (v[3] < 0) return std::nullopt;
+      corners[static_cast<std::size_t>(i)] = v;
+    }
+    std::vector<Vec> out;
+    for (const Vec& x : polytope::clip_volume(corners, oracle::exact::to_rational(c))) {
+      if (std::find(out.begin(), out.end(), x) == out.end()) out.push_back(x);
+    }
+    return out;
+  });
+}
+
+#define OBLIQUE_CONSUMER_JUDGING(T)                                                           \
+  template std::optional<Mat> solve_error<T>(const Mat&, const Mat&, int);                    \
+  template std::shared_ptr<const Inverse> inverse_of(const Matrix4<T>&);                      \
+  template std::shared_ptr<const std::optional<Mat>> solve_error_of(const Matrix4<T>&, int);  \
+  template std::shared_ptr<const Problem<T>> problem_of(const Matrix4<T>&, const Vector4<T>&, \
+                                                        Convention);                          \
+  template std::shared_ptr<const std::optional<std::vector<Vec>>> exact_kept_region(          \
+      const Matrix4<T>&, const Vector4<T>&, Convention);
 OBLIQUE_CONSUMER_JUDGING(float)
 OBLIQUE_CONSUMER_JUDGING(double)
 OBLIQUE_CONSUMER_JUDGING(long double)

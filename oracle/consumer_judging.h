@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -13,6 +14,7 @@
 #include "oblique/oracle/certified.h"
 #include "oblique/oracle/consumers.h"
 #include "oblique/oracle/exact.h"
+#include "oblique/oracle/problem.h"
 #include "oblique/oracle/tolerance.h"
 
 namespace oblique::oracle::consumer_judging {
@@ -97,12 +99,38 @@ double ratio_of(const Rational& a, const Rational& b);
 int axis_sign(const Mat& original_inverse, Convention convention,
               const std::optional<std::optional<Mat>>& error = std::nullopt);
 
+/// A matrix in T, exactly, and its exact inverse (empty: singular).
+struct Inverse {
+  Mat m;
+  std::optional<Mat> inv;
+};
+
+// What the judges ask of one matrix, or of one case, exactly: each computed once on a thread for
+// the last few asked (recent.h), since a round asks them of M, M' and the view from several
+// judges.
+
+/// The matrix exactly, and its inverse.
+template <class T>
+std::shared_ptr<const Inverse> inverse_of(const Matrix4<T>& matrix);
+
+/// solve_error() of the matrix, in an arithmetic of `bits` (empty: singular, or its determinant
+/// not determined in T).
+template <class T>
+std::shared_ptr<const std::optional<Mat>> solve_error_of(
+    const Matrix4<T>& matrix, int bits = oracle::tolerance::precision_bits<T>());
+
+/// The matrix oracle's exact analysis of M and C (problem.h).
+template <class T>
+std::shared_ptr<const Problem<T>> problem_of(const Matrix4<T>& m, const Vector4<T>& c,
+                                             Convention convention);
+
 /// The kept region's vertices, exactly (polytope::clip_volume on M's exact corners); empty when
 /// M is singular or a corner of its volume is behind the eye (w < 0: the volume wraps through
 /// infinity, and has no kept region to judge by).
 template <class T>
-std::optional<std::vector<Vec>> exact_kept_region(const Matrix4<T>& m, const Vector4<T>& c,
-                                                  Convention convention);
+std::shared_ptr<const std::optional<std::vector<Vec>>> exact_kept_region(const Matrix4<T>& m,
+                                                                         const Vector4<T>& c,
+                                                                         Convention convention);
 
 /// Why a judge that needs the kept region has none (exact_kept_region() is empty).
 inline constexpr const char* kNotProper =

@@ -28,7 +28,8 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
                               Arithmetic arithmetic) {
   ConsumerFinding f;
   f.check = ConsumerCheck::corners_contain_kept;
-  const Problem<T> problem(m, c, convention);
+  const std::shared_ptr<const Problem<T>> problem_ptr = problem_of(m, c, convention);
+  const Problem<T>& problem = *problem_ptr;
   const std::optional<oracle::exact::Vec> row3 =
       problem.exact_status() == Status::ok ? problem.row3_bounds() : std::nullopt;
   if (!row3 || problem.infinite()) {
@@ -38,7 +39,8 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
                     : "the case has no answer to judge against";
     return f;
   }
-  const std::optional<std::vector<Vec>> region = exact_kept_region(m, c, convention);
+  const auto region_ptr = exact_kept_region(m, c, convention);
+  const std::optional<std::vector<Vec>>& region = *region_ptr;
   if (!region) {
     f.judged = false;
     f.detail = kNotProper;
@@ -81,10 +83,11 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   // the right ones must not widen what they are judged by. A correct corner is within its
   // vertex's bound d of it, so the bound is taken once more at each vertex widened by its own d
   // (every term grows with |x|): it then holds for any corner a correct computation can give.
-  const Mat mo = oracle::exact::to_rational(oblique);
-  const Mat mx = oracle::exact::to_rational(m);
-  const std::optional<Mat> inv = oracle::exact::inverse(mo);
-  const std::optional<Mat> m_inv = oracle::exact::inverse(mx);
+  const std::shared_ptr<const Inverse> oblique_facts = inverse_of(oblique), m_facts = inverse_of(m);
+  const Mat& mo = oblique_facts->m;
+  const Mat& mx = m_facts->m;
+  const std::optional<Mat>& inv = oblique_facts->inv;
+  const std::optional<Mat>& m_inv = m_facts->inv;
   if (!inv || !m_inv) {
     f.judged = false;
     f.detail = "a singular matrix";
@@ -92,8 +95,9 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   }
   // Each solve's error from the matrix at hand (solve_error(): cofactors or elimination, the
   // larger), not partial pivoting's worst case.
-  const std::optional<Mat> chain = solve_error<T>(mo, *inv);
-  const std::optional<Mat> m_chain = solve_error<T>(mx, *m_inv);
+  const auto chain_ptr = solve_error_of(oblique), m_chain_ptr = solve_error_of(m);
+  const std::optional<Mat>& chain = *chain_ptr;
+  const std::optional<Mat>& m_chain = *m_chain_ptr;
   if (!chain || !m_chain) {
     f.judged = false;
     f.detail = "a projection's determinant is within T's rounding of 0";

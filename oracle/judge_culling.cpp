@@ -28,7 +28,8 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
   ConsumerFinding keeps, near;
   keeps.check = ConsumerCheck::culling_keeps_visible;
   near.check = ConsumerCheck::culling_near_is_c;
-  const Problem<T> problem(m, c, convention);
+  const std::shared_ptr<const Problem<T>> problem_ptr = problem_of(m, c, convention);
+  const Problem<T>& problem = *problem_ptr;
   const std::optional<oracle::exact::Vec> row3 =
       problem.exact_status() == Status::ok ? problem.row3_bounds() : std::nullopt;
   if (!row3 || !oblique.allFinite()) {
@@ -59,7 +60,8 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
 
   // (Without a proper original volume there is no kept region to cull, but near = C still
   // holds or not.)
-  const std::optional<std::vector<Vec>> region = exact_kept_region(m, c, convention);
+  const auto region_ptr = exact_kept_region(m, c, convention);
+  const std::optional<std::vector<Vec>>& region = *region_ptr;
   if (!region) {
     keeps.judged = false;
     keeps.detail = kNotProper;

@@ -226,25 +226,21 @@ struct MatrixAnalysis {
 template <class T>
 MatrixAnalysis analyse_matrices(const DepthSample<T>& s, int bits) {
   MatrixAnalysis out;
-  out.m = oracle::exact::to_rational(s.projection);
-  const std::optional<Mat> inv = oracle::exact::inverse(out.m);
-  const std::optional<Mat> original_inv =
-      oracle::exact::inverse(oracle::exact::to_rational(s.original));
-  if (!inv || !original_inv) {
+  const std::shared_ptr<const Inverse> projection = inverse_of(s.projection);
+  const std::shared_ptr<const Inverse> original = inverse_of(s.original);
+  out.m = projection->m;
+  if (!projection->inv || !original->inv) {
     out.why = "a singular projection";
     return out;
   }
-  out.inv = *inv;
-  {
-    // The view axis is z only where M's fourth row is (0, 0, a, b); elsewhere (a rotated or
-    // general matrix) linear depth has no axis to be measured along.
-    const Mat original = oracle::exact::to_rational(s.original);
-    out.axis_is_z = original[3][0] == 0 && original[3][1] == 0;
-    if (out.axis_is_z)
-      out.axis =
-          axis_sign(*original_inv, s.convention, solve_error<T>(original, *original_inv, bits));
-  }
-  const std::optional<Mat> error = solve_error<T>(out.m, out.inv, bits);
+  out.inv = *projection->inv;
+  // The view axis is z only where M's fourth row is (0, 0, a, b); elsewhere (a rotated or
+  // general matrix) linear depth has no axis to be measured along.
+  out.axis_is_z = original->m[3][0] == 0 && original->m[3][1] == 0;
+  if (out.axis_is_z)
+    out.axis = axis_sign(*original->inv, s.convention, *solve_error_of(s.original, bits));
+  const std::shared_ptr<const std::optional<Mat>> error_ptr = solve_error_of(s.projection, bits);
+  const std::optional<Mat>& error = *error_ptr;
   if (!error) {
     out.why =
         "the projection's determinant is within T's rounding of 0: its inverse is not "
@@ -816,28 +812,31 @@ struct WorldSegment {
 };
 
 template <class T>
-WorldSegment world_segment(const DepthSample<T>& s, int bits) {
+WorldSegment world_segment(const DepthSample<T>& s, ConsumerArithmetic arithmetic) {
+  const int bits = arithmetic_bits<T>(arithmetic);
   WorldSegment out;
-  out.seg = ray_segment(s, bits);
+  out.seg = ray_segment_of(s, arithmetic);
   if (!out.seg.judged) return out;
   Segment& seg = out.seg;
   auto refuse = [&seg](const std::string& why) {
     seg.judged = false;
     seg.why = why;
   };
-  const Mat v = oracle::exact::to_rational(s.view);
+  const std::shared_ptr<const Inverse> view = inverse_of(s.view);
+  const Mat& v = view->m;
   out.view = v;
   if (v[3][0] != 0 || v[3][1] != 0 || v[3][2] != 0 || v[3][3] != 1) {
     refuse("the view is not affine (its last row is not (0, 0, 0, 1))");
     return out;
   }
-  const std::optional<Mat> v_inv = oracle::exact::inverse(v);
+  const std::optional<Mat>& v_inv = view->inv;
   if (!v_inv) {
     refuse("a singular view");
     return out;
   }
   const MatrixAnalysis& a = matrix_analysis_of(s, bits);
-  const std::optional<Mat> view_error = solve_error<T>(v, *v_inv, bits);
+  const std::shared_ptr<const std::optional<Mat>> view_error_ptr = solve_error_of(s.view, bits);
+  const std::optional<Mat>& view_error = *view_error_ptr;
   if (!view_error) {
     refuse(
         "the view's determinant is within T's rounding of 0: its inverse is not determined "
@@ -921,7 +920,7 @@ const WorldSegment& world_segment_of(const DepthSample<T>& s, ConsumerArithmetic
                     last->first.ndc_y == s.ndc_y && last->first.depth == s.depth &&
                     last->first.stored == s.stored && last->first.ndc_error == s.ndc_error;
   if (!same) {
-    last.emplace(s, world_segment(s, arithmetic_bits<T>(arithmetic)));
+    last.emplace(s, world_segment(s, arithmetic));
     last_arithmetic = arithmetic;
   }
   return last->second;
@@ -948,8 +947,8 @@ ConsumerFinding judge_world_position(const DepthSample<T>& s, const Vector3<T>& 
   f.points_what =
       "the answer in the pass camera's space, and the ends of the pixel ray's segment the stored "
       "depth stands for";
-  std::optional<Mat> inverse = oracle::exact::inverse(world.view);
-  const Vec wa = oracle::exact::mul(*inverse, seg.a), wb = oracle::exact::mul(*inverse, seg.b);
+  const std::shared_ptr<const Inverse> view = inverse_of(s.view);
+  const Vec wa = oracle::exact::mul(*view->inv, seg.a), wb = oracle::exact::mul(*view->inv, seg.b);
   f.detail = "answered " + numbers_text(answer) + " (in the pass camera's space " +
              text(in_view, 3) + "); the stored depth stands for the world points from " +
              text(wa, 3) + " to " + text(wb, 3) + " (in that space " + text(seg.a, 3) + " to " +
