@@ -481,25 +481,30 @@ std::pair<bool, double> judge_on_segment(const Segment& seg, const Vec& p,
   return {false, std::max(ratio, std::nextafter(1.0, 2.0))};
 }
 
-/// The certified floating-point path of the depth judges: whether the answer p (homogeneous,
-/// w = 1, as doubles) provably holds, on_projected_segment() at scale 1 with every quantity of
-/// ray_segment() enclosed in intervals (the box from below, which only makes holding harder) and
-/// a witness t: a place on the segment where some lambda meets every constraint, shown with the
-/// enclosures. Where it holds, the finding (its ratio and words from the enclosures' middles);
-/// none where it cannot show that (a close call, a violation, or a case ray_segment() leaves
-/// out or might): the exact path then decides.
+/// x / y for intervals, y away from 0 (its interval on one side), rounded outward.
+Interval operator/(const Interval& x, const Interval& y) {
+  const double q[4] = {x.lo / y.lo, x.lo / y.hi, x.hi / y.lo, x.hi / y.hi};
+  return {down(*std::min_element(q, q + 4)), up(*std::max_element(q, q + 4))};
+}
+
+/// What the certified path of the depth judges knows of ray_segment(): its ends (homogeneous)
+/// enclosed, and its box and the solve's part of it (dv) from below, which only makes holding
+/// harder. Empty where the segment is a case ray_segment() leaves out, or might.
+struct CertifiedSegment {
+  std::array<Interval, 4> ends[2];
+  std::array<Interval, 4> b[2];  ///< (x, y, z, 1) at each end: the window depth's z enclosed
+  std::array<double, 4> box{0, 0, 0, 0}, dv_ends[2];
+  double u = 0;  ///< the arithmetic's unit roundoff
+  int axis = -1;
+};
+
 template <class T>
-std::optional<ConsumerFinding> certified_holds(ConsumerCheck check, const DepthSample<T>& s,
-                                               const std::array<double, 4>& p,
-                                               const std::vector<int>& coordinates, int bits,
-                                               const std::string& answered) {
+std::optional<CertifiedSegment> certified_segment(const DepthSample<T>& s, int bits) {
   if constexpr (std::numeric_limits<T>::digits > std::numeric_limits<double>::digits) {
     return std::nullopt;  // inputs a double cannot hold
   } else {
     const MatrixAnalysis& a = matrix_analysis_of(s, bits);
     if (!a.why.empty() || !a.enclosed) return std::nullopt;
-    const bool linear = check == ConsumerCheck::linear_depth;
-    if (linear && (!a.axis_is_z || a.axis == 0)) return std::nullopt;  // the exact path says why
     const bool gpu = bits < oracle::tolerance::precision_bits<T>();
     if (gpu && (a.det_outside_gpu_range || has_subnormal_input(s))) return std::nullopt;
     // The window depths the stored value stands for (depth_interval()), enclosed.
@@ -519,14 +524,15 @@ std::optional<ConsumerFinding> certified_holds(ConsumerCheck check, const DepthS
     const double read = static_cast<double>(s.depth);
     lo = {std::max(0.0, std::min(lo.lo, read)), std::max(0.0, std::min(lo.hi, read))};
     hi = {std::min(1.0, std::max(hi.lo, read)), std::min(1.0, std::max(hi.hi, read))};
-    const double u = std::ldexp(1.0, -bits);
-    std::array<Interval, 4> ends[2];
-    std::array<double, 4> box{0, 0, 0, 0}, dv_ends[2];
+    CertifiedSegment out;
+    out.u = std::ldexp(1.0, -bits);
+    out.axis = a.axis;
     for (int e = 0; e < 2; ++e) {
       const Interval window = e == 0 ? lo : hi;
       const Interval z = s.convention == Convention::gl ? exactly(2) * window - exactly(1) : window;
-      const Interval b[4] = {exactly(static_cast<double>(s.ndc_x)),
-                             exactly(static_cast<double>(s.ndc_y)), z, exactly(1)};
+      out.b[e] = {exactly(static_cast<double>(s.ndc_x)), exactly(static_cast<double>(s.ndc_y)), z,
+                  exactly(1)};
+      const std::array<Interval, 4>& b = out.b[e];
       for (int i = 0; i < 4; ++i) {
         Interval v{0, 0};
         double dv = 0;
@@ -544,151 +550,200 @@ std::optional<ConsumerFinding> certified_holds(ConsumerCheck check, const DepthS
               0.0, down(dv + std::max(0.0, down(a.inv_enclosure[i][1].magnitude_below() * delta))));
         }
         if (!v.finite() || !std::isfinite(dv)) return std::nullopt;
-        ends[e][i] = v;
-        dv_ends[e][i] = dv;
-        const double divide = i < 3 ? std::max(0.0, down(u * down(v.magnitude_below() + dv))) : 0.0;
-        box[i] = std::max(box[i], std::max(0.0, down(dv + divide)));
+        out.ends[e][i] = v;
+        out.dv_ends[e][i] = dv;
+        const double divide =
+            i < 3 ? std::max(0.0, down(out.u * down(v.magnitude_below() + dv))) : 0.0;
+        out.box[i] = std::max(out.box[i], std::max(0.0, down(dv + divide)));
       }
     }
     // The segment must be one ray_segment() judges: w of both ends away from 0, one sign (and,
     // on a GPU, within the range its quotient is stated for).
-    const Interval& wa = ends[0][3];
-    const Interval& wb = ends[1][3];
+    const Interval& wa = out.ends[0][3];
+    const Interval& wb = out.ends[1][3];
     if (!((wa.lo > 0 && wb.lo > 0) || (wa.hi < 0 && wb.hi < 0))) return std::nullopt;
     if (gpu) {
       const double low = std::ldexp(1.0, -126), high = std::ldexp(1.0, 126);
       for (const Interval* w : {&wa, &wb})
         if (w->magnitude_below() < low || w->magnitude_above() > high) return std::nullopt;
     }
-    std::array<int, 4> all{};
-    std::size_t count = 0;
-    for (int i : coordinates) all[count++] = i;
-    all[count++] = 3;
-    // Where to look for a witness: the ends, and where the middles' constraint lines cross
-    // (the double search of on_projected_segment(), without its verdict).
-    std::array<double, 4> ma, mb;
-    for (int i = 0; i < 4; ++i) {
-      ma[i] = (ends[0][i].lo + ends[0][i].hi) / 2;
-      mb[i] = (ends[1][i].lo + ends[1][i].hi) / 2;
-    }
-    // (At most 3 + 8 + 28 places: kept in place, this runs for every answer judged.)
-    std::array<double, 40> candidates{0, 1, 0.5};
-    std::size_t candidate_count = 3;
-    {
-      struct Line {
-        double at0, slope;
-      };
-      std::array<Line, 8> lines{};
-      std::size_t line_count = 0;
-      for (std::size_t k = 0; k < count; ++k) {
-        const int i = all[k];
-        const double d = mb[i] - ma[i];
-        if (p[i] == 0) {
-          if (d != 0) {
-            candidates[candidate_count++] = (-ma[i] - box[i]) / d;
-            candidates[candidate_count++] = (-ma[i] + box[i]) / d;
-          }
-          continue;
-        }
-        lines[line_count++] = {(ma[i] - box[i]) / p[i], d / p[i]};
-        lines[line_count++] = {(ma[i] + box[i]) / p[i], d / p[i]};
-      }
-      for (std::size_t i = 0; i < line_count; ++i)
-        for (std::size_t j = i + 1; j < line_count; ++j)
-          if (lines[i].slope != lines[j].slope)
-            candidates[candidate_count++] =
-                (lines[j].at0 - lines[i].at0) / (lines[i].slope - lines[j].slope);
-    }
-    auto witness = [&](double t) {
-      double most = -std::numeric_limits<double>::infinity();
-      double least = std::numeric_limits<double>::infinity();
-      for (std::size_t k = 0; k < count; ++k) {
-        const int i = all[k];
-        const Interval v = ends[0][i] + exactly(t) * (ends[1][i] - ends[0][i]);
-        if (p[i] == 0) {
-          if (!(v.magnitude_above() <= box[i])) return false;
-          continue;
-        }
-        // lambda p_i within box_i of v_i(t): lambda between (v_i -+ box_i) / p_i, taken from the
-        // side that makes the range smaller.
-        if (p[i] > 0) {
-          most = std::max(most, up(up(v.hi - box[i]) / p[i]));
-          least = std::min(least, down(down(v.lo + box[i]) / p[i]));
-        } else {
-          most = std::max(most, up(down(v.lo + box[i]) / p[i]));
-          least = std::min(least, down(up(v.hi - box[i]) / p[i]));
-        }
-      }
-      return most <= least;
-    };
-    bool holds = false;
-    for (std::size_t k = 0; k < candidate_count; ++k) {
-      const double t = candidates[k];
-      if (std::isfinite(t) && t >= 0 && t <= 1 && witness(t)) {
-        holds = true;
-        break;
-      }
-    }
-    if (!holds) return std::nullopt;
-    // The finding, its numbers from the middles.
-    ConsumerFinding f;
-    f.check = check;
-    auto within = [&](double scale) {
-      return on_projected_segment<double>(ma, mb, box, p, coordinates, scale);
-    };
-    double top = 1, bottom = 0;  // to 2^-30: a ratio for the words
-    for (int k = 0; k < 30; ++k) {
-      const double mid = (bottom + top) / 2;
-      (within(mid) ? top : bottom) = mid;
-    }
-    f.ratio = std::min(top, 1.0);
-    Vec ea, eb;  // the ends divided by w, as Rationals for the words
-    std::array<double, 3> bound{0, 0, 0};
-    bool determined = true;
-    for (int e = 0; e < 2; ++e) {
-      const std::array<double, 4>& m = e == 0 ? ma : mb;
-      const double w = std::fabs(m[3]), dw = dv_ends[e][3];
-      if (dw >= w) determined = false;
-      for (int i = 0; i < 3; ++i) {
-        const double q = m[i] / m[3];
-        if (!std::isfinite(q)) return std::nullopt;  // the exact path has the words for it
-        (e == 0 ? ea : eb)[i] = Rational(q);
-        if (dw < w)
-          bound[i] =
-              std::max(bound[i], (dv_ends[e][i] + std::fabs(q) * dw) / (w - dw) + u * std::fabs(q));
-      }
-      (e == 0 ? ea : eb)[3] = 1;
-    }
-    f.points = {approx_point(ea), approx_point(eb)};
-    f.points_what = "the ends of the pixel ray's segment the stored depth stands for";
-    if (!linear) {
-      f.points.insert(f.points.begin(), Eigen::Vector3d(p[0], p[1], p[2]));
-      f.points_what = "the answer, and " + f.points_what;
-    }
-    std::string within_words;
-    if (!determined) {
-      within_words =
-          "; a solve in T can reach w = 0 there, so the answer is judged in "
-          "homogeneous coordinates: (x, y, z, w) within (" +
-          protocol::format_number(box[0]) + ", " + protocol::format_number(box[1]) + ", " +
-          protocol::format_number(box[2]) + ", " + protocol::format_number(box[3]) +
-          ") of the segment's";
-    } else if (coordinates.size() == 1) {
-      within_words = ", within " + protocol::format_number(bound[2]);
-    } else {
-      within_words = ", each coordinate within (" + protocol::format_number(bound[0]) + ", " +
-                     protocol::format_number(bound[1]) + ", " + protocol::format_number(bound[2]) +
-                     ")";
-    }
-    f.detail =
-        "answered " + answered +
-        (linear ? "; the stored depth stands for linear depths from " +
-                      text(Rational(a.axis * ea[2])) + " to " + text(Rational(a.axis * eb[2]))
-                : "; the stored depth stands for the points from " + text(ea, 3) + " to " +
-                      text(eb, 3)) +
-        within_words;
-    return f;
+    return out;
   }
+}
+
+/// Whether the point p (homogeneous, w = 1, each coordinate enclosed; an interval that holds 0
+/// must be 0 exactly) provably lies within `box` of the segment `ends`: on_projected_segment() at
+/// scale 1, shown by a witness t, a place on the segment where some lambda meets every
+/// constraint for every value the enclosures allow. False where that cannot be shown (a close
+/// call, or a violation): the exact path then decides.
+bool certified_witness(const std::array<Interval, 4> (&ends)[2], const std::array<double, 4>& box,
+                       const std::array<Interval, 4>& p, const std::vector<int>& coordinates) {
+  std::array<int, 4> all{};
+  std::size_t count = 0;
+  for (int i : coordinates) all[count++] = i;
+  all[count++] = 3;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Interval& q = p[static_cast<std::size_t>(all[k])];
+    if (!q.finite() || (q.lo <= 0 && q.hi >= 0 && !(q.lo == 0 && q.hi == 0))) return false;
+  }
+  // Where to look for a witness: the ends, and where the middles' constraint lines cross
+  // (the double search of on_projected_segment(), without its verdict).
+  std::array<double, 4> ma, mb, mp;
+  for (int i = 0; i < 4; ++i) {
+    ma[i] = (ends[0][i].lo + ends[0][i].hi) / 2;
+    mb[i] = (ends[1][i].lo + ends[1][i].hi) / 2;
+    mp[i] = (p[i].lo + p[i].hi) / 2;
+  }
+  // (At most 3 + 8 + 28 places: kept in place, this runs for every answer judged.)
+  std::array<double, 40> candidates{0, 1, 0.5};
+  std::size_t candidate_count = 3;
+  {
+    struct Line {
+      double at0, slope;
+    };
+    std::array<Line, 8> lines{};
+    std::size_t line_count = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const int i = all[k];
+      const double d = mb[i] - ma[i];
+      if (mp[i] == 0) {
+        if (d != 0) {
+          candidates[candidate_count++] = (-ma[i] - box[i]) / d;
+          candidates[candidate_count++] = (-ma[i] + box[i]) / d;
+        }
+        continue;
+      }
+      lines[line_count++] = {(ma[i] - box[i]) / mp[i], d / mp[i]};
+      lines[line_count++] = {(ma[i] + box[i]) / mp[i], d / mp[i]};
+    }
+    for (std::size_t i = 0; i < line_count; ++i)
+      for (std::size_t j = i + 1; j < line_count; ++j)
+        if (lines[i].slope != lines[j].slope)
+          candidates[candidate_count++] =
+              (lines[j].at0 - lines[i].at0) / (lines[i].slope - lines[j].slope);
+  }
+  auto witness = [&](double t) {
+    double most = -std::numeric_limits<double>::infinity();
+    double least = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < count; ++k) {
+      const int i = all[k];
+      const Interval v = ends[0][i] + exactly(t) * (ends[1][i] - ends[0][i]);
+      if (p[i].lo == 0 && p[i].hi == 0) {
+        if (!(v.magnitude_above() <= box[i])) return false;
+        continue;
+      }
+      // lambda p_i within box_i of v_i(t) for every p_i and v_i the enclosures hold: lambda at
+      // least the largest of (v_i - box_i) / p_i (p_i > 0; (v_i + box_i) / p_i for p_i < 0), and
+      // at most the least of the other.
+      const Interval below{down(v.lo - box[i]), up(v.hi - box[i])};
+      const Interval above{down(v.lo + box[i]), up(v.hi + box[i])};
+      const bool positive = p[i].lo > 0;
+      const Interval floor = (positive ? below : above) / p[i];
+      const Interval ceiling = (positive ? above : below) / p[i];
+      most = std::max(most, floor.hi);
+      least = std::min(least, ceiling.lo);
+    }
+    return most <= least;
+  };
+  for (std::size_t k = 0; k < candidate_count; ++k) {
+    const double t = candidates[k];
+    if (std::isfinite(t) && t >= 0 && t <= 1 && witness(t)) return true;
+  }
+  return false;
+}
+
+/// The ratio of an answer that holds, for the words: the least scale of the box that holds the
+/// middles, to 2^-30.
+double certified_ratio(const std::array<double, 4>& a, const std::array<double, 4>& b,
+                       const std::array<double, 4>& box, const std::array<double, 4>& p,
+                       const std::vector<int>& coordinates) {
+  auto within = [&](double scale) {
+    return on_projected_segment<double>(a, b, box, p, coordinates, scale);
+  };
+  double top = 1, bottom = 0;
+  for (int k = 0; k < 30; ++k) {
+    const double mid = (bottom + top) / 2;
+    (within(mid) ? top : bottom) = mid;
+  }
+  return std::min(top, 1.0);
+}
+
+std::array<double, 4> middles(const std::array<Interval, 4>& x) {
+  return {(x[0].lo + x[0].hi) / 2, (x[1].lo + x[1].hi) / 2, (x[2].lo + x[2].hi) / 2,
+          (x[3].lo + x[3].hi) / 2};
+}
+
+/// The certified floating-point path of view_position and linear_depth: whether the answer p
+/// (homogeneous, w = 1, as doubles) provably holds (certified_segment(), certified_witness()).
+/// Where it holds, the finding (its ratio and words from the enclosures' middles); none where it
+/// cannot show that: the exact path then decides.
+template <class T>
+std::optional<ConsumerFinding> certified_holds(ConsumerCheck check, const DepthSample<T>& s,
+                                               const std::array<double, 4>& p,
+                                               const std::vector<int>& coordinates, int bits,
+                                               const std::string& answered) {
+  const bool linear = check == ConsumerCheck::linear_depth;
+  if (linear) {
+    const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+    if (!a.why.empty() || !a.axis_is_z || a.axis == 0) return std::nullopt;  // the exact path says
+  }
+  const std::optional<CertifiedSegment> seg = certified_segment(s, bits);
+  if (!seg) return std::nullopt;
+  const std::array<Interval, 4> point{exactly(p[0]), exactly(p[1]), exactly(p[2]), exactly(p[3])};
+  if (!certified_witness(seg->ends, seg->box, point, coordinates)) return std::nullopt;
+  // The finding, its numbers from the middles.
+  ConsumerFinding f;
+  f.check = check;
+  const std::array<double, 4> ma = middles(seg->ends[0]), mb = middles(seg->ends[1]);
+  f.ratio = certified_ratio(ma, mb, seg->box, p, coordinates);
+  const double u = seg->u;
+  Vec ea, eb;  // the ends divided by w, as Rationals for the words
+  std::array<double, 3> bound{0, 0, 0};
+  bool determined = true;
+  for (int e = 0; e < 2; ++e) {
+    const std::array<double, 4>& m = e == 0 ? ma : mb;
+    const double w = std::fabs(m[3]), dw = seg->dv_ends[e][3];
+    if (dw >= w) determined = false;
+    for (int i = 0; i < 3; ++i) {
+      const double q = m[i] / m[3];
+      if (!std::isfinite(q)) return std::nullopt;  // the exact path has the words for it
+      (e == 0 ? ea : eb)[i] = Rational(q);
+      if (dw < w)
+        bound[i] = std::max(bound[i],
+                            (seg->dv_ends[e][i] + std::fabs(q) * dw) / (w - dw) + u * std::fabs(q));
+    }
+    (e == 0 ? ea : eb)[3] = 1;
+  }
+  f.points = {approx_point(ea), approx_point(eb)};
+  f.points_what = "the ends of the pixel ray's segment the stored depth stands for";
+  if (!linear) {
+    f.points.insert(f.points.begin(), Eigen::Vector3d(p[0], p[1], p[2]));
+    f.points_what = "the answer, and " + f.points_what;
+  }
+  const std::array<double, 4>& box = seg->box;
+  std::string within_words;
+  if (!determined) {
+    within_words =
+        "; a solve in T can reach w = 0 there, so the answer is judged in "
+        "homogeneous coordinates: (x, y, z, w) within (" +
+        protocol::format_number(box[0]) + ", " + protocol::format_number(box[1]) + ", " +
+        protocol::format_number(box[2]) + ", " + protocol::format_number(box[3]) +
+        ") of the segment's";
+  } else if (coordinates.size() == 1) {
+    within_words = ", within " + protocol::format_number(bound[2]);
+  } else {
+    within_words = ", each coordinate within (" + protocol::format_number(bound[0]) + ", " +
+                   protocol::format_number(bound[1]) + ", " + protocol::format_number(bound[2]) +
+                   ")";
+  }
+  f.detail =
+      "answered " + answered +
+      (linear ? "; the stored depth stands for linear depths from " +
+                    text(Rational(seg->axis * ea[2])) + " to " + text(Rational(seg->axis * eb[2]))
+              : "; the stored depth stands for the points from " + text(ea, 3) + " to " +
+                    text(eb, 3)) +
+      within_words;
+  return f;
 }
 
 }  // namespace
@@ -926,11 +981,147 @@ const WorldSegment& world_segment_of(const DepthSample<T>& s, ConsumerArithmetic
   return last->second;
 }
 
+/// The certified path of world_position: the answer carried into the pass camera's space by the
+/// view (enclosed), judged as certified_holds() judges a view position, against
+/// certified_segment()'s ends with world_segment()'s box from below (every term of both routes,
+/// each rounded down). Where it holds, the finding (its numbers from the enclosures' middles);
+/// none where it cannot show that: the exact path then decides.
+template <class T>
+std::optional<ConsumerFinding> certified_world_holds(const DepthSample<T>& s,
+                                                     const Vector3<T>& answer, int bits) {
+  if constexpr (std::numeric_limits<T>::digits > std::numeric_limits<double>::digits) {
+    return std::nullopt;  // inputs a double cannot hold
+  } else {
+    // A view world_segment() judges by: affine, invertible, its inverse determined in T.
+    if (s.view(3, 0) != 0 || s.view(3, 1) != 0 || s.view(3, 2) != 0 || s.view(3, 3) != 1)
+      return std::nullopt;
+    const std::shared_ptr<const Inverse> view = inverse_of(s.view);
+    if (!view->inv) return std::nullopt;
+    const std::shared_ptr<const std::optional<Mat>> view_error = solve_error_of(s.view, bits);
+    if (!*view_error) return std::nullopt;
+    const std::optional<CertifiedSegment> seg = certified_segment(s, bits);
+    if (!seg) return std::nullopt;
+    const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+    // Products and sums of magnitudes, from below.
+    auto times = [](double x, double y) { return std::max(0.0, down(x * y)); };
+    auto plus = [](double x, double y) { return std::max(0.0, down(x + y)); };
+    std::array<std::array<Interval, 4>, 4> v_inv, vp_inv;
+    std::array<std::array<double, 4>, 4> s_view, abs_v;
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        v_inv[i][j] = enclosure((*view->inv)[i][j]);
+        s_view[i][j] = (**view_error)[i][j].get_d();  // truncated: at most the bound
+        abs_v[i][j] = std::fabs(static_cast<double>(s.view(i, j)));
+        if (!v_inv[i][j].finite() || !std::isfinite(s_view[i][j])) return std::nullopt;
+      }
+    }
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        Interval x{0, 0};
+        for (int k = 0; k < 4; ++k) x = x + v_inv[i][k] * a.inv_enclosure[k][j];
+        if (!x.finite()) return std::nullopt;
+        vp_inv[i][j] = x;
+      }
+    }
+    const double u = seg->u;
+    const double g_handed =
+        gamma_of<T>(oracle::tolerance::kViewProjectionRoundings, bits).get_d();  // truncated
+    const double g_view = gamma_of<T>(oracle::tolerance::kWorldViewRoundings, bits).get_d();
+    const double delta = static_cast<double>(s.ndc_error);
+    std::array<double, 4> box{0, 0, 0, 0};
+    for (int e = 0; e < 2; ++e) {
+      const std::array<Interval, 4>& b = seg->b[e];
+      const std::array<Interval, 4>& point = seg->ends[e];
+      // As world_segment(), term by term.
+      std::array<double, 4> dv = seg->dv_ends[e], carried, error;
+      for (int i = 0; i < 3; ++i)
+        dv[i] = plus(dv[i], times(u, plus(point[i].magnitude_below(), dv[i])));
+      for (int i = 0; i < 4; ++i) {
+        double reach_b = 0;
+        for (int j = 0; j < 4; ++j)
+          reach_b =
+              plus(reach_b, times(a.inv_enclosure[i][j].magnitude_below(), b[j].magnitude_below()));
+        carried[i] = plus(reach_b, dv[i]);
+      }
+      std::array<Interval, 4> world;
+      for (int i = 0; i < 4; ++i) {
+        double a1 = 0, a2 = 0, a3 = 0, route_b = 0;
+        Interval w{0, 0};
+        for (int j = 0; j < 4; ++j) {
+          a1 = plus(a1, times(v_inv[i][j].magnitude_below(), dv[j]));
+          a2 = plus(a2, times(s_view[i][j], carried[j]));
+          a3 = plus(a3, times(v_inv[i][j].magnitude_below(), carried[j]));
+          route_b = plus(route_b, times(vp_inv[i][j].magnitude_below(), b[j].magnitude_below()));
+          w = w + v_inv[i][j] * point[j];
+        }
+        const double through_view = plus(plus(a1, a2), times(g_view, a3));
+        const double through_vp = plus(
+            times(g_handed, route_b),
+            times(plus(vp_inv[i][0].magnitude_below(), vp_inv[i][1].magnitude_below()), delta));
+        error[i] = std::max(through_view, through_vp);
+        world[i] = w;
+      }
+      for (int i = 0; i < 4; ++i) {
+        double in_view = 0, divide = 0;
+        for (int j = 0; j < 4; ++j) {
+          in_view = plus(in_view, times(abs_v[i][j], error[j]));
+          if (j < 3)
+            divide = plus(divide, times(abs_v[i][j], plus(world[j].magnitude_below(), error[j])));
+        }
+        const double b_i = i < 3 ? plus(in_view, times(u, divide)) : error[3];
+        box[i] = std::max(box[i], b_i);
+      }
+      if (!std::isfinite(box[0] + box[1] + box[2] + box[3])) return std::nullopt;
+    }
+    // The answer in the pass camera's space: view (answer, 1), enclosed (w is 1 exactly).
+    std::array<Interval, 4> p;
+    for (int i = 0; i < 3; ++i) {
+      Interval x = exactly(static_cast<double>(s.view(i, 3)));
+      for (int j = 0; j < 3; ++j)
+        x = x +
+            exactly(static_cast<double>(s.view(i, j))) * exactly(static_cast<double>(answer(j)));
+      p[static_cast<std::size_t>(i)] = x;
+    }
+    p[3] = exactly(1);
+    if (!certified_witness(seg->ends, box, p, {0, 1, 2})) return std::nullopt;
+    ConsumerFinding f;
+    f.check = ConsumerCheck::world_position;
+    const std::array<double, 4> ma = middles(seg->ends[0]), mb = middles(seg->ends[1]);
+    const std::array<double, 4> mp = middles(p);
+    f.ratio = certified_ratio(ma, mb, box, mp, {0, 1, 2});
+    // The words, from the middles (the exact path's, in doubles).
+    auto divided = [](const std::array<double, 4>& h) {
+      return Vec{Rational(h[0] / h[3]), Rational(h[1] / h[3]), Rational(h[2] / h[3]), Rational(1)};
+    };
+    for (const std::array<double, 4>* h : {&ma, &mb})
+      for (int i = 0; i < 3; ++i)
+        if (!std::isfinite((*h)[i] / (*h)[3])) return std::nullopt;  // the exact path's words
+    const Vec ea = divided(ma), eb = divided(mb);
+    const Vec in_view{Rational(mp[0]), Rational(mp[1]), Rational(mp[2]), Rational(1)};
+    const Vec wa = oracle::exact::mul(*view->inv, ea), wb = oracle::exact::mul(*view->inv, eb);
+    f.points = {approx_point(in_view), approx_point(ea), approx_point(eb)};
+    f.points_what =
+        "the answer in the pass camera's space, and the ends of the pixel ray's segment the "
+        "stored depth stands for";
+    f.detail = "answered " + numbers_text(answer) + " (in the pass camera's space " +
+               text(in_view, 3) + "); the stored depth stands for the world points from " +
+               text(wa, 3) + " to " + text(wb, 3) + " (in that space " + text(ea, 3) + " to " +
+               text(eb, 3) + "); judged there in homogeneous coordinates: (x, y, z, w) within (" +
+               protocol::format_number(box[0]) + ", " + protocol::format_number(box[1]) + ", " +
+               protocol::format_number(box[2]) + ", " + protocol::format_number(box[3]) +
+               ") of the segment's";
+    return f;
+  }
+}
+
 }  // namespace
 
 template <class T>
 ConsumerFinding judge_world_position(const DepthSample<T>& s, const Vector3<T>& answer,
-                                     ConsumerArithmetic arithmetic) {
+                                     ConsumerArithmetic arithmetic, Arithmetic method) {
+  if (method == Arithmetic::filtered && answer.allFinite()) {
+    if (auto f = certified_world_holds(s, answer, arithmetic_bits<T>(arithmetic))) return *f;
+  }
   const WorldSegment& world = world_segment_of(s, arithmetic);
   const Segment& seg = world.seg;
   if (auto early = before_the_answer(ConsumerCheck::world_position, seg, answer.allFinite(),
@@ -1019,7 +1210,7 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer, ConsumerAr
   template ConsumerFinding judge_linear_depth(const DepthSample<T>&, T, ConsumerArithmetic,        \
                                               Arithmetic);                                         \
   template ConsumerFinding judge_world_position(const DepthSample<T>&, const Vector3<T>&,          \
-                                                ConsumerArithmetic);
+                                                ConsumerArithmetic, Arithmetic);
 OBLIQUE_DEPTH_JUDGES(float)
 OBLIQUE_DEPTH_JUDGES(double)
 OBLIQUE_DEPTH_JUDGES(long double)

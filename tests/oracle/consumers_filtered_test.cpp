@@ -167,6 +167,12 @@ TYPED_TEST(FilteredConsumers, depthJudgesAgreeWithTheExactOnes) {
     samples.push_back(s);
     return Vector3<T>::Zero().eval();
   };
+  // The world position's samples carry the pass camera's view.
+  std::vector<DepthSample<T>> world_samples;
+  asking.world_position = [&world_samples](const DepthSample<T>& s) {
+    world_samples.push_back(s);
+    return Vector3<T>::Zero().eval();
+  };
   const Pick pick = [&engine](int lo, int hi) {
     return std::uniform_int_distribution<int>(lo, hi - 1)(engine);
   };
@@ -211,6 +217,30 @@ TYPED_TEST(FilteredConsumers, depthJudgesAgreeWithTheExactOnes) {
   }
   EXPECT_GT(tally.held, 0);
   EXPECT_GT(tally.violated, 0);
+  // The world position: the right one (through the view position and the inverse view, in T),
+  // moved off its place by 2^-e of itself.
+  ASSERT_GE(static_cast<int>(world_samples.size()), wanted / 2);
+  Tally world;
+  for (std::size_t n = 0; n < world_samples.size(); ++n) {
+    const DepthSample<T>& s = world_samples[n];
+    const Vector3<T> right =
+        world_position(s.projection, s.view, s.ndc_x, s.ndc_y, s.depth, s.convention);
+    for (const ConsumerArithmetic arithmetic :
+         {ConsumerArithmetic::ieee, ConsumerArithmetic::gpu}) {
+      for (int e = 0; e <= std::numeric_limits<T>::digits; e += 3) {
+        const T moved = e == std::numeric_limits<T>::digits ? T(0) : std::ldexp(T(1), -e);
+        const Vector3<T> answer = right * (T(1) + moved);
+        expect_same_depth_verdict(
+            [&](Arithmetic method) { return judge_world_position(s, answer, arithmetic, method); },
+            "world_position, sample " + std::to_string(n) + ", moved by 2^-" + std::to_string(e) +
+                (arithmetic == ConsumerArithmetic::gpu ? " (gpu)" : ""),
+            ratio_tolerance, world);
+        if (::testing::Test::HasFatalFailure()) return;
+      }
+    }
+  }
+  EXPECT_GT(world.held, 0);
+  EXPECT_GT(world.violated, 0);
 }
 
 // The ray is widened by ndc_error in NDC x and y, and by nothing else: an answer on the ray of a

@@ -226,10 +226,12 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& sample, T answer,
 /// (sample.view times it, exactly), the segment widened by what reaching world space may add:
 /// the larger of a route through the view position and the inverse view, and one through the
 /// inverse of the view-projection M' view (tolerance.h, world position), each in `arithmetic`.
-/// In exact arithmetic (no certified path yet).
+/// Filtered as judge_view_position() is: an answer shown to hold in certified bounds (the box from
+/// below) is settled there, every other in exact arithmetic.
 template <class T>
 ConsumerFinding judge_world_position(const DepthSample<T>& sample, const Vector3<T>& answer,
-                                     ConsumerArithmetic arithmetic = ConsumerArithmetic::ieee);
+                                     ConsumerArithmetic arithmetic = ConsumerArithmetic::ieee,
+                                     Arithmetic method = Arithmetic::filtered);
 
 /// The culling planes the consumer extracted from `oblique` (the answer for m, c, convention in T),
 /// each keeping P . x >= 0: culling_keeps_visible (every vertex of the kept region of m and c,
