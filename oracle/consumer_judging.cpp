@@ -9,9 +9,11 @@
 #include <limits>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "oblique/oracle/algebra.h"
 #include "oblique/oracle/problem.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/references/kept_region.h"
@@ -20,6 +22,51 @@
 namespace oblique::oracle::consumer_judging {
 
 namespace {
+
+// solve_error() is written once over its number type N: exact rationals, or certified intervals
+// (certified::Num, whose comparisons throw certified::Undecided where they cannot decide, and the
+// exact computation then answers). The few operations it takes beyond + - * /, for each:
+using certified::Num;
+using NumMat = algebra::Mat<Num>;
+
+Rational magnitude(const Rational& x) {
+  return oracle::exact::abs(x);
+}
+Num magnitude(const Num& x) {
+  return certified::abs(x);
+}
+Rational larger(const Rational& x, const Rational& y) {
+  return x < y ? y : x;
+}
+Num larger(const Num& x, const Num& y) {
+  return certified::larger_of(x, y);
+}
+Rational smaller(const Rational& x, const Rational& y) {
+  return y < x ? y : x;
+}
+Num smaller(const Num& x, const Num& y) {
+  return certified::smaller_of(x, y);
+}
+bool is_less(const Rational& x, const Rational& y) {
+  return x < y;
+}
+bool is_less(const Num& x, const Num& y) {
+  return certified::less(x, y);
+}
+bool is_less_equal(const Rational& x, const Rational& y) {
+  return x <= y;
+}
+bool is_less_equal(const Num& x, const Num& y) {
+  return certified::less_equal(x, y);
+}
+/// A rational constant (a gamma, a unit roundoff) in N.
+template <class N>
+N number(const Rational& r) {
+  if constexpr (std::is_same_v<N, Rational>)
+    return r;
+  else
+    return certified_of(r);
+}
 
 /// The rows r and columns c of m's 3 x 3 minor without row i and column j.
 void minor_indices(int i, int j, int (&r)[3], int (&c)[3]) {
@@ -32,18 +79,19 @@ void minor_indices(int i, int j, int (&r)[3], int (&c)[3]) {
 /// The six products of the minor of m without row i and column j, with their signs in its
 /// determinant: permanent = false gives the determinant, true the permanent of its magnitudes
 /// (the sum of the magnitudes of the products the cofactor of m_ij adds up).
-Rational minor_sum(const Mat& m, int i, int j, bool permanent) {
+template <class N>
+N minor_sum(const algebra::Mat<N>& m, int i, int j, bool permanent) {
   int r[3], c[3];
   minor_indices(i, j, r, c);
   constexpr int kOrders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {1, 0, 2}, {2, 1, 0}};
-  Rational sum = 0;
+  N sum{};
   for (int k = 0; k < 6; ++k) {
     const auto& o = kOrders[k];
-    const Rational p = m[r[0]][c[o[0]]] * m[r[1]][c[o[1]]] * m[r[2]][c[o[2]]];
+    const N p = m[r[0]][c[o[0]]] * m[r[1]][c[o[1]]] * m[r[2]][c[o[2]]];
     if (permanent)
-      sum += oracle::exact::abs(p);
+      sum = sum + magnitude(p);
     else
-      sum += k < 3 ? p : Rational(-p);
+      sum = k < 3 ? N(sum + p) : N(sum - p);
   }
   return sum;
 }
@@ -56,59 +104,123 @@ Rational minor_sum(const Mat& m, int i, int j, bool permanent) {
 /// error e = g sum of the largest is followed. The computed factors are bounded from the exact
 /// ones: |u^| <= |u| + e and |l^| <= (|a_rk| + e_rk) / (|a_kk| - e_kk) (1 + u), at most 1 (the
 /// pivot is the largest in T). False where a pivot is not determined in T (within e of 0).
-bool lu_orders(Mat a, Mat sum, std::array<int, 4> row_of, int k, const Rational& g,
-               const Rational& u, Mat& out) {
-  Rational largest = -1;
+template <class N>
+bool lu_orders(algebra::Mat<N> a, algebra::Mat<N> sum, std::array<int, 4> row_of, int k, const N& g,
+               const N& u, algebra::Mat<N>& out) {
+  const N one = number<N>(1);
+  N largest = number<N>(-1);
   int at = k;
   for (int r = k; r < 4; ++r) {
-    if (oracle::exact::abs(a[r][k]) > largest) {
-      largest = oracle::exact::abs(a[r][k]);
+    if (is_less(largest, magnitude(a[r][k]))) {
+      largest = magnitude(a[r][k]);
       at = r;
     }
   }
-  const Rational reach = largest - g * sum[at][k];
+  const N reach = largest - g * sum[at][k];
   for (int r = k; r < 4; ++r) {
-    const Rational e = g * sum[r][k];
-    if (oracle::exact::abs(a[r][k]) + e < reach) continue;
-    if (oracle::exact::abs(a[r][k]) <= e) return false;
-    Mat b = a, s = sum;
+    const N e = g * sum[r][k];
+    // (The largest itself is always followed: e >= 0.)
+    if (r != at && is_less(magnitude(a[r][k]) + e, reach)) continue;
+    if (is_less_equal(magnitude(a[r][k]), e)) return false;
+    algebra::Mat<N> b = a, s = sum;
     std::array<int, 4> order = row_of;
     std::swap(b[r], b[k]);
     std::swap(s[r], s[k]);
     std::swap(order[r], order[k]);
-    Vec u_bar{};  // |u^| of the pivot row
-    for (int c = k; c < 4; ++c) u_bar[c] = oracle::exact::abs(b[k][c]) + g * s[k][c];
+    algebra::Vec<N> u_bar{};  // |u^| of the pivot row
+    for (int c = k; c < 4; ++c) u_bar[c] = magnitude(b[k][c]) + g * s[k][c];
     for (int c = 0; c < 4; ++c) {
-      const Rational row = s[k][c] + u_bar[c];
-      out[order[k]][c] = std::max(out[order[k]][c], row);
+      const N row = s[k][c] + u_bar[c];
+      out[order[k]][c] = larger(out[order[k]][c], row);
     }
-    const Rational pivot_low = oracle::exact::abs(b[k][k]) - g * s[k][k];
+    const N pivot_low = magnitude(b[k][k]) - g * s[k][k];
     for (int q = k + 1; q < 4; ++q) {
-      const Rational l_bar = std::min(
-          Rational(1), Rational((oracle::exact::abs(b[q][k]) + g * s[q][k]) / pivot_low * (1 + u)));
-      const Rational l = b[q][k] / b[k][k];
+      const N l_bar = smaller(one, N((magnitude(b[q][k]) + g * s[q][k]) / pivot_low * (one + u)));
+      const N l = b[q][k] / b[k][k];
       for (int c = k; c < 4; ++c) {
-        s[q][c] += l_bar * u_bar[c];
-        if (c > k) b[q][c] -= l * b[k][c];
+        s[q][c] = s[q][c] + l_bar * u_bar[c];
+        if (c > k) b[q][c] = b[q][c] - l * b[k][c];
       }
-      b[q][k] = 0;
+      b[q][k] = N{};
     }
     if (k < 3 && !lu_orders(b, s, order, k + 1, g, u, out)) return false;
   }
   return true;
 }
 
+/// The 4 x 4 matrix whose every entry is 32 max|m| (tolerance.h, lu_entry_bound()).
+template <class N>
+algebra::Mat<N> lu_bound_of(const algebra::Mat<N>& m) {
+  N largest{};
+  for (const auto& row : m)
+    for (const N& x : row) largest = larger(largest, magnitude(x));
+  algebra::Mat<N> out;
+  for (auto& row : out) row.fill(number<N>(32) * largest);
+  return out;
+}
+
 /// The bound on |L^||U^| for m's LU factors with partial pivoting computed in T (lu_orders()),
 /// rows in m's order; the worst case, lu_bound(), where a pivot is not determined in T.
-template <class T>
-Mat lu_magnitudes(const Mat& m, int bits) {
-  Mat out{};
-  for (auto& row : out) row.fill(0);
-  Mat sum{};
-  for (auto& row : sum) row.fill(0);
-  if (!lu_orders(m, sum, {0, 1, 2, 3}, 0, gamma_of<T>(oracle::tolerance::kSolveRoundings, bits),
-                 unit<T>(bits), out))
-    return lu_bound(m);
+template <class T, class N>
+algebra::Mat<N> lu_magnitudes(const algebra::Mat<N>& m, int bits) {
+  algebra::Mat<N> out{}, sum{};
+  for (auto& row : out) row.fill(N{});
+  for (auto& row : sum) row.fill(N{});
+  if (!lu_orders(m, sum, {0, 1, 2, 3}, 0,
+                 number<N>(gamma_of<T>(oracle::tolerance::kSolveRoundings, bits)),
+                 number<N>(unit<T>(bits)), out))
+    return lu_bound_of(m);
+  return out;
+}
+
+template <class N>
+algebra::Mat<N> product(const algebra::Mat<N>& a, const algebra::Mat<N>& b) {
+  algebra::Mat<N> out;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      N s{};
+      for (int k = 0; k < 4; ++k) s = s + a[i][k] * b[k][j];
+      out[i][j] = s;
+    }
+  }
+  return out;
+}
+
+/// solve_error() in N: m and its inverse in N (exact, or enclosed).
+template <class T, class N>
+std::optional<algebra::Mat<N>> solve_error_in(const algebra::Mat<N>& m, const algebra::Mat<N>& inv,
+                                              int bits) {
+  const N one = number<N>(1);
+  const N g = number<N>(gamma_of<T>(oracle::tolerance::kCofactorRoundings, bits));
+  algebra::Mat<N> perm, abs_inv;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      perm[i][j] = minor_sum(m, i, j, true);
+      abs_inv[i][j] = magnitude(inv[i][j]);
+    }
+  }
+  N det{}, det_perm{};  // along row 0
+  for (int j = 0; j < 4; ++j) {
+    const N term = m[0][j] * minor_sum(m, 0, j, false);
+    det = j % 2 == 0 ? N(det + term) : N(det - term);
+    det_perm = det_perm + magnitude(m[0][j]) * perm[0][j];
+  }
+  const N size = magnitude(det);
+  const N det_error = g * det_perm;
+  if (!is_less(det_error, size)) return std::nullopt;
+  // Applying the inverse: 4 roundings, and the window depth's conversion to NDC 2 more.
+  const N g_apply = number<N>(gamma_of<T>(6, bits));
+  const algebra::Mat<N> lu = product(product(abs_inv, lu_magnitudes<T>(m, bits)), abs_inv);
+  const N g_lu = number<N>(gamma_of<T>(oracle::tolerance::kConsumerSolveRoundings, bits));
+  algebra::Mat<N> out;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const N& x = abs_inv[i][j];
+      // adj_ij is the cofactor of m_ji; then the quotient (or the reciprocal and a product).
+      const N e = (one + g) * (g * perm[j][i] + x * det_error) / (size - det_error) + g * x;
+      out[i][j] = larger(N(e + g_apply * (x + e)), N(g_lu * lu[i][j]));
+    }
+  }
   return out;
 }
 
@@ -124,15 +236,7 @@ Mat lu_bound(const Mat& m) {
 }
 
 Mat mul(const Mat& a, const Mat& b) {
-  Mat out;
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      Rational s = 0;
-      for (int k = 0; k < 4; ++k) s += a[i][k] * b[k][j];
-      out[i][j] = s;
-    }
-  }
-  return out;
+  return product(a, b);
 }
 
 /// A bound S, entry by entry, on the error of v = M^-1 b computed in T by a correct
@@ -146,33 +250,7 @@ Mat mul(const Mat& a, const Mat& b) {
 /// Empty where the determinant computed by cofactors is not determined in T.
 template <class T>
 std::optional<Mat> solve_error(const Mat& m, const Mat& inv, int bits) {
-  const Rational g = gamma_of<T>(oracle::tolerance::kCofactorRoundings, bits);
-  Mat perm;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) perm[i][j] = minor_sum(m, i, j, true);
-  Rational det = 0, det_perm = 0;  // along row 0
-  for (int j = 0; j < 4; ++j) {
-    det += (j % 2 == 0 ? 1 : -1) * m[0][j] * minor_sum(m, 0, j, false);
-    det_perm += oracle::exact::abs(m[0][j]) * perm[0][j];
-  }
-  const Rational size = oracle::exact::abs(det);
-  const Rational det_error = g * det_perm;
-  if (det_error >= size) return std::nullopt;
-  // Applying the inverse: 4 roundings, and the window depth's conversion to NDC 2 more.
-  const Rational g_apply = gamma_of<T>(6, bits);
-  const Mat lu =
-      mul(mul(oracle::exact::abs(inv), lu_magnitudes<T>(m, bits)), oracle::exact::abs(inv));
-  const Rational g_lu = gamma_of<T>(oracle::tolerance::kConsumerSolveRoundings, bits);
-  Mat out;
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      const Rational x = oracle::exact::abs(inv[i][j]);
-      // adj_ij is the cofactor of m_ji; then the quotient (or the reciprocal and a product).
-      const Rational e = (1 + g) * (g * perm[j][i] + x * det_error) / (size - det_error) + g * x;
-      out[i][j] = std::max(Rational(e + g_apply * (x + e)), Rational(g_lu * lu[i][j]));
-    }
-  }
-  return out;
+  return solve_error_in<T, Rational>(m, inv, bits);
 }
 
 Rational max_abs(const Vec& v) {
@@ -284,6 +362,70 @@ std::shared_ptr<const std::optional<Mat>> solve_error_of(const Matrix4<T>& matri
 }
 
 template <class T>
+std::shared_ptr<const SolveBound> solve_bound_of(const Matrix4<T>& matrix, int bits) {
+  thread_local Recent<std::pair<Matrix4<T>, int>, SolveBound> recent;
+  return recent.get({matrix, bits}, [&] {
+    SolveBound out;
+    const std::shared_ptr<const Inverse> a = inverse_of(matrix);
+    if (!a->inv) return out;
+    try {
+      NumMat m, inv;
+      for (int i = 0; i < 4; ++i) {
+        for (int j = 0; j < 4; ++j) {
+          m[i][j] = certified::exactly(matrix(i, j));
+          inv[i][j] = certified_of((*a->inv)[i][j]);
+        }
+      }
+      const std::optional<NumMat> bound = solve_error_in<T, Num>(m, inv, bits);
+      out.exists = bound.has_value();
+      if (bound) {
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 4; ++j) out.range[i][j] = certified::magnitude_of((*bound)[i][j]);
+        out.ranged = true;
+      }
+      return out;
+    } catch (const certified::Undecided&) {
+    }
+    const std::shared_ptr<const std::optional<Mat>> exact = solve_error_of(matrix, bits);
+    out.exists = exact->has_value();
+    if (!out.exists) return out;
+    try {
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) out.range[i][j] = range_of((**exact)[i][j]);
+      out.ranged = true;
+    } catch (const certified::Undecided&) {
+      out.ranged = false;  // beyond double's range (a long double's)
+    }
+    return out;
+  });
+}
+
+template <class T>
+int axis_sign_of(const Matrix4<T>& original, Convention convention, int bits) {
+  const std::shared_ptr<const Inverse> a = inverse_of(original);
+  const std::shared_ptr<const SolveBound> bound = solve_bound_of(original, bits);
+  if (!bound->exists) return 0;
+  if (bound->ranged) {
+    // As axis_sign(): the centre's z and w against dv = S |b|, b = (0, 0, z_mid, 1), with S's
+    // ranges: 0 where either is certainly within dv, the sign where both are certainly beyond.
+    const DepthRange range = clip_depth_range(convention);
+    const Vec b{0, 0, Rational(range.z_low + range.z_high, 2), 1};
+    const Vec centre = oracle::exact::mul(*a->inv, b);
+    const certified::Range z_mid = range_of(oracle::exact::abs(b[2]));
+    const certified::Range one{1, 1};
+    bool beyond = true;
+    for (int k : {2, 3}) {
+      const certified::Range dv = bound->range[k][2] * z_mid + bound->range[k][3] * one;
+      const Rational c = oracle::exact::abs(centre[k]);
+      if (c <= dv.lo) return 0;
+      beyond = beyond && c > dv.hi;
+    }
+    if (beyond) return (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
+  }
+  return axis_sign(*a->inv, convention, *solve_error_of(original, bits));
+}
+
+template <class T>
 std::shared_ptr<const Problem<T>> problem_of(const Matrix4<T>& m, const Vector4<T>& c,
                                              Convention convention) {
   using Key = std::tuple<Matrix4<T>, Vector4<T>, Convention>;
@@ -319,6 +461,8 @@ std::shared_ptr<const std::optional<std::vector<Vec>>> exact_kept_region(const M
   template std::optional<Mat> solve_error<T>(const Mat&, const Mat&, int);                    \
   template std::shared_ptr<const Inverse> inverse_of(const Matrix4<T>&);                      \
   template std::shared_ptr<const std::optional<Mat>> solve_error_of(const Matrix4<T>&, int);  \
+  template std::shared_ptr<const SolveBound> solve_bound_of(const Matrix4<T>&, int);          \
+  template int axis_sign_of(const Matrix4<T>&, Convention, int);                              \
   template std::shared_ptr<const Problem<T>> problem_of(const Matrix4<T>&, const Vector4<T>&, \
                                                         Convention);                          \
   template std::shared_ptr<const std::optional<std::vector<Vec>>> exact_kept_region(          \

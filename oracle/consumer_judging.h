@@ -124,6 +124,28 @@ template <class T>
 std::shared_ptr<const Problem<T>> problem_of(const Matrix4<T>& m, const Vector4<T>& c,
                                              Convention convention);
 
+/// solve_error()'s bound as ranges that hold it, entry by entry: what the judges' certified paths
+/// compare with, and the exact bound's existence (the determinant determined in T).
+struct SolveBound {
+  bool exists = false;  ///< solve_error() is not empty
+  bool ranged = false;  ///< `range` holds it (false: beyond double's range; only the exact one)
+  std::array<std::array<certified::Range, 4>, 4> range{};
+};
+
+/// solve_error() of the matrix as ranges: computed in certified intervals (solve_error() is
+/// written once over its number type) from the exact inverse rounded outward, and exactly where
+/// they cannot decide (a pivot order, the determinant). `exists` is exactly whether solve_error()
+/// gives a bound. Kept for the last few matrices (recent.h).
+template <class T>
+std::shared_ptr<const SolveBound> solve_bound_of(const Matrix4<T>& matrix,
+                                                 int bits = oracle::tolerance::precision_bits<T>());
+
+/// axis_sign() of the original projection with its solve's bound in an arithmetic of `bits`
+/// (solve_bound_of(): its ranges where they decide, the exact bound where they cannot).
+/// Precondition: `original` is invertible.
+template <class T>
+int axis_sign_of(const Matrix4<T>& original, Convention convention, int bits);
+
 /// The kept region's vertices, exactly (polytope::clip_volume on M's exact corners); empty when
 /// M is singular or a corner of its volume is behind the eye (w < 0: the volume wraps through
 /// infinity, and has no kept region to judge by).

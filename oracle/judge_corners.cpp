@@ -56,6 +56,7 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
     }
   }
   std::vector<Vec> points;
+  std::vector<Vector3<T>> distinct;  // the same, in T
   for (const Vector3<T>& p : answer) {
     if (!p.allFinite()) {
       f.holds = false;
@@ -64,7 +65,10 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
       return f;
     }
     const Vec x = point_of(p);
-    if (std::find(points.begin(), points.end(), x) == points.end()) points.push_back(x);
+    if (std::find(points.begin(), points.end(), x) == points.end()) {
+      points.push_back(x);
+      distinct.push_back(p);
+    }
   }
   // The hull is found from every triple of points (n^4 exact products): a corner set, not a
   // point cloud.
@@ -95,14 +99,20 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   }
   // Each solve's error from the matrix at hand (solve_error(): cofactors or elimination, the
   // larger), not partial pivoting's worst case.
-  const auto chain_ptr = solve_error_of(oblique), m_chain_ptr = solve_error_of(m);
-  const std::optional<Mat>& chain = *chain_ptr;
-  const std::optional<Mat>& m_chain = *m_chain_ptr;
-  if (!chain || !m_chain) {
+  const std::shared_ptr<const SolveBound> chain = solve_bound_of(oblique),
+                                          m_chain = solve_bound_of(m);
+  if (!chain->exists || !m_chain->exists) {
     f.judged = false;
     f.detail = "a projection's determinant is within T's rounding of 0";
     return f;
   }
+  // The exact bounds, asked only by the exact path.
+  std::shared_ptr<const std::optional<Mat>> chain_exact, m_chain_exact;
+  auto exact_solve = [&](bool with_m) -> const Mat& {
+    std::shared_ptr<const std::optional<Mat>>& kept = with_m ? chain_exact : m_chain_exact;
+    if (!kept) kept = solve_error_of(with_m ? oblique : m);
+    return **kept;
+  };
   const Rational u = unit<T>();
   const Vec cx = oracle::exact::to_rational(c);
   const Rational c_normal =
@@ -115,13 +125,14 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
     for (int i = 0; i < 3; ++i) size[i] = oracle::exact::abs(x[i]) + widen;
     size[3] = 1;
     Rational d = 0;
-    for (const auto& [solve, with_m] : {std::pair{&*chain, true}, std::pair{&*m_chain, false}}) {
+    for (const bool with_m : {true, false}) {
+      const Mat& solve = exact_solve(with_m);
       const Mat& matrix = with_m ? mo : mx;
       Vec q =
           oracle::exact::abs(oracle::exact::mul(matrix, x));  // its clip-space point, widened below
       for (int r = 0; r < 4; ++r)
         for (int k = 0; k < 3; ++k) q[r] += oracle::exact::abs(matrix[r][k]) * widen;
-      Vec dv = oracle::exact::mul(*solve, q);
+      Vec dv = oracle::exact::mul(solve, q);
       const Rational row3_part = with_m ? oracle::exact::dot(*row3, size) : Rational(0);
       const Mat& inverse = with_m ? *inv : *m_inv;
       for (int i = 0; i < 4; ++i) dv[i] += oracle::exact::abs(inverse[i][2]) * row3_part;
@@ -168,14 +179,15 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
         Solve& out = solves[static_cast<std::size_t>(s)];
         out.with_m = s == 0;
         const Mat& matrix = out.with_m ? mo : mx;
-        const Mat& error = out.with_m ? *chain : *m_chain;
+        const SolveBound& error = out.with_m ? *chain : *m_chain;
+        if (!error.ranged) throw certified::Undecided{__LINE__};
         const Mat& inverse = out.with_m ? *inv : *m_inv;
         for (std::size_t i = 0; i < 4; ++i) {
           out.inverse_column[i] = range_of(oracle::exact::abs(inverse[i][2]));
           for (std::size_t j = 0; j < 4; ++j) {
             out.matrix[i][j] = certified_of(matrix[i][j]);
             out.magnitude[i][j] = range_of(oracle::exact::abs(matrix[i][j]));
-            out.error[i][j] = range_of(error[i][j]);
+            out.error[i][j] = error.range[i][j];
           }
         }
       }
@@ -267,34 +279,47 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
   };
   // delta as a double, for ratios: the exact one's when known, else the range's top.
   auto delta_double = [&] { return delta_exact ? delta_exact->get_d() : delta_high.get_d(); };
-  // The hull's facets: planes through three corners with every corner on one side.
+  // The hull's facets: planes through three corners with every corner on one side. Found on the
+  // corners as integers in units of the lowest power of two any coordinate needs (GMP integers:
+  // no gcd per operation), so a facet's normal is a positive multiple of the exact cross product;
+  // what the tests below take of it (the side a point is on, s^2 / |normal|^2) is the same.
   struct Facet {
     Vec origin, normal;  // inward normal (x, y, z; w unused)
   };
   std::vector<Facet> facets;
   const std::size_t n = points.size();
+  std::array<T, 3 * kMaxCorners> flat{};
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) flat[3 * i + static_cast<std::size_t>(d)] = distinct[i](d);
+  int unit_exponent = 0;
+  const std::array<oracle::exact::Integer, 3 * kMaxCorners> corner_integers =
+      oracle::exact::to_integers(flat, unit_exponent);
+  auto at = [&](std::size_t i, int d) -> const oracle::exact::Integer& {
+    return corner_integers[3 * i + static_cast<std::size_t>(d)];
+  };
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       for (std::size_t k = j + 1; k < n; ++k) {
-        Vec e1, e2, normal{0, 0, 0, 0};
+        oracle::exact::Integer e1[3], e2[3], normal[3];
         for (int d = 0; d < 3; ++d) {
-          e1[d] = points[j][d] - points[i][d];
-          e2[d] = points[k][d] - points[i][d];
+          e1[d] = at(j, d) - at(i, d);
+          e2[d] = at(k, d) - at(i, d);
         }
         normal[0] = e1[1] * e2[2] - e1[2] * e2[1];
         normal[1] = e1[2] * e2[0] - e1[0] * e2[2];
         normal[2] = e1[0] * e2[1] - e1[1] * e2[0];
         if (normal[0] == 0 && normal[1] == 0 && normal[2] == 0) continue;
         bool any_above = false, any_below = false;
-        for (const Vec& x : points) {
-          Rational s = 0;
-          for (int d = 0; d < 3; ++d) s += normal[d] * (x[d] - points[i][d]);
+        for (std::size_t x = 0; x < n && !(any_above && any_below); ++x) {
+          oracle::exact::Integer s = 0;
+          for (int d = 0; d < 3; ++d) s += normal[d] * (at(x, d) - at(i, d));
           any_above = any_above || s > 0;
           any_below = any_below || s < 0;
         }
-        if (!any_below) facets.push_back({points[i], normal});
+        const Vec inward{Rational(normal[0]), Rational(normal[1]), Rational(normal[2]), 0};
+        if (!any_below) facets.push_back({points[i], inward});
         if (!any_above) {
-          Vec flipped = normal;
+          Vec flipped = inward;
           for (auto& x : flipped) x = -x;
           facets.push_back({points[i], flipped});
         }

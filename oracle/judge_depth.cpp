@@ -208,10 +208,11 @@ std::string gpu_unbounded(const DepthSample<T>& s, const Rational& det, const Ve
 }
 
 /// What ray_segment() needs of the sample's matrices alone, whatever the pixel: M' exactly, its
-/// inverse and a solve's error bound, M's axis, and the GPU's divisor M' determinant.
+/// inverse, M's axis, and the GPU's divisor M' determinant (a solve's exact error bound is
+/// solve_error_of(), asked only by the exact path).
 struct MatrixAnalysis {
   std::string why;  ///< not empty: no segment can be judged on these matrices
-  Mat m, inv, error;
+  Mat m, inv;
   Rational det;
   bool axis_is_z = true;
   int axis = -1;
@@ -237,27 +238,24 @@ MatrixAnalysis analyse_matrices(const DepthSample<T>& s, int bits) {
   // The view axis is z only where M's fourth row is (0, 0, a, b); elsewhere (a rotated or
   // general matrix) linear depth has no axis to be measured along.
   out.axis_is_z = original->m[3][0] == 0 && original->m[3][1] == 0;
-  if (out.axis_is_z)
-    out.axis = axis_sign(*original->inv, s.convention, *solve_error_of(s.original, bits));
-  const std::shared_ptr<const std::optional<Mat>> error_ptr = solve_error_of(s.projection, bits);
-  const std::optional<Mat>& error = *error_ptr;
-  if (!error) {
+  if (out.axis_is_z) out.axis = axis_sign_of(s.original, s.convention, bits);
+  const std::shared_ptr<const SolveBound> bound = solve_bound_of(s.projection, bits);
+  if (!bound->exists) {
     out.why =
         "the projection's determinant is within T's rounding of 0: its inverse is not "
         "determined in T";
     return out;
   }
-  out.error = *error;
   if (bits < oracle::tolerance::precision_bits<T>()) {
     out.det = determinant(out.m);
     out.det_outside_gpu_range = oracle::exact::abs(out.det) < oracle::exact::power_of_two(-126) ||
                                 oracle::exact::abs(out.det) > oracle::exact::power_of_two(126);
   }
-  out.enclosed = true;
+  out.enclosed = bound->ranged;
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) {
       out.inv_enclosure[i][j] = enclosure(out.inv[i][j]);
-      out.error_below[i][j] = out.error[i][j].get_d();  // truncated: at most the bound
+      out.error_below[i][j] = bound->range[i][j].lo;
       out.enclosed =
           out.enclosed && out.inv_enclosure[i][j].finite() && std::isfinite(out.error_below[i][j]);
     }
@@ -294,7 +292,8 @@ Segment ray_segment(const DepthSample<T>& s, int bits) {
   out.axis_is_z = a.axis_is_z;
   out.axis = a.axis;
   const Mat* const inv = &a.inv;
-  const Mat* const error = &a.error;
+  const std::shared_ptr<const std::optional<Mat>> exact_error = solve_error_of(s.projection, bits);
+  const Mat* const error = &**exact_error;
   const auto [lo, hi] = depth_interval(s);
   const Rational x = oracle::exact::to_rational(s.ndc_x), y = oracle::exact::to_rational(s.ndc_y);
   const Rational u = unit<T>(bits);
@@ -890,6 +889,8 @@ WorldSegment world_segment(const DepthSample<T>& s, ConsumerArithmetic arithmeti
     return out;
   }
   const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+  const std::shared_ptr<const std::optional<Mat>> projection_error =
+      solve_error_of(s.projection, bits);
   const std::shared_ptr<const std::optional<Mat>> view_error_ptr = solve_error_of(s.view, bits);
   const std::optional<Mat>& view_error = *view_error_ptr;
   if (!view_error) {
@@ -920,7 +921,7 @@ WorldSegment world_segment(const DepthSample<T>& s, ConsumerArithmetic arithmeti
     // included, and its divide by w), carried by |view^-1|, and view^-1's own (handed rounded,
     // or inverted in T, and applied; or multiplied with M'^-1 first):
     // (S_view + gamma |view^-1|) (|M'^-1| |b| + dv).
-    Vec dv = oracle::exact::mul(a.error, abs_b);
+    Vec dv = oracle::exact::mul(**projection_error, abs_b);
     const Vec reach_b = oracle::exact::mul(abs_inv, abs_b);
     Vec through_view, through_vp;
     for (int i = 0; i < 4; ++i) dv[i] += (abs_inv[i][0] + abs_inv[i][1]) * delta;
@@ -997,8 +998,8 @@ std::optional<ConsumerFinding> certified_world_holds(const DepthSample<T>& s,
       return std::nullopt;
     const std::shared_ptr<const Inverse> view = inverse_of(s.view);
     if (!view->inv) return std::nullopt;
-    const std::shared_ptr<const std::optional<Mat>> view_error = solve_error_of(s.view, bits);
-    if (!*view_error) return std::nullopt;
+    const std::shared_ptr<const SolveBound> view_error = solve_bound_of(s.view, bits);
+    if (!view_error->exists || !view_error->ranged) return std::nullopt;
     const std::optional<CertifiedSegment> seg = certified_segment(s, bits);
     if (!seg) return std::nullopt;
     const MatrixAnalysis& a = matrix_analysis_of(s, bits);
@@ -1010,7 +1011,7 @@ std::optional<ConsumerFinding> certified_world_holds(const DepthSample<T>& s,
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
         v_inv[i][j] = enclosure((*view->inv)[i][j]);
-        s_view[i][j] = (**view_error)[i][j].get_d();  // truncated: at most the bound
+        s_view[i][j] = view_error->range[i][j].lo;
         abs_v[i][j] = std::fabs(static_cast<double>(s.view(i, j)));
         if (!v_inv[i][j].finite() || !std::isfinite(s_view[i][j])) return std::nullopt;
       }
