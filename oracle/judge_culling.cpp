@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "oblique/oblique.h"
+#include "oblique/oracle/algebra.h"
 #include "oblique/oracle/problem.h"
 #include "oblique/protocol/numbers.h"
 #include "oblique/references/kept_region.h"
@@ -24,7 +25,8 @@ using namespace consumer_judging;
 template <class T>
 std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vector4<T>& c,
                                                   Convention convention, const Matrix4<T>& oblique,
-                                                  const FrustumPlanes<T>& answer) {
+                                                  const FrustumPlanes<T>& answer,
+                                                  Arithmetic arithmetic) {
   ConsumerFinding keeps, near;
   keeps.check = ConsumerCheck::culling_keeps_visible;
   near.check = ConsumerCheck::culling_near_is_c;
@@ -67,6 +69,16 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
     keeps.detail = kNotProper;
   }
   const std::vector<Vec> kept = region ? *region : std::vector<Vec>{};
+  // The vertices enclosed (certified_of), for the sign of P . v; none where a coordinate is beyond
+  // double's range.
+  std::vector<std::array<certified::Num, 4>> kept_num;
+  try {
+    for (const Vec& v : kept)
+      kept_num.push_back(
+          {certified_of(v[0]), certified_of(v[1]), certified_of(v[2]), certified_of(v[3])});
+  } catch (const certified::Undecided&) {
+    kept_num.clear();
+  }
   const Vector4<T>* planes[] = {&answer.left, &answer.right,      &answer.bottom,
                                 &answer.top,  &answer.near_plane, &answer.far_plane};
   const char* plane_names[] = {"left", "right", "bottom", "top", "near", "far"};
@@ -100,11 +112,26 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
       continue;
     }
     const Vec p = oracle::exact::to_rational(plane);
-    for (const Vec& v : kept) {
+    std::array<certified::Num, 4> p_num{};
+    bool filtered = arithmetic == Arithmetic::filtered && kept_num.size() == kept.size();
+    try {
+      for (int i = 0; i < 4; ++i) p_num[static_cast<std::size_t>(i)] = certified::exactly(plane(i));
+    } catch (const certified::Undecided&) {
+      filtered = false;
+    }
+    for (std::size_t at = 0; at < kept.size(); ++at) {
+      const Vec& v = kept[at];
+      // P . v >= 0 shown in certified intervals where they can: most vertices are well inside.
+      if (filtered) {
+        try {
+          if (certified::non_negative(algebra::dot(p_num, kept_num[at]))) continue;
+        } catch (const certified::Undecided&) {
+        }
+      }
       const Rational value = oracle::exact::dot(p, v);
+      if (value >= 0) continue;
       const Rational slack = g * oracle::exact::dot(oracle::exact::abs(p), oracle::exact::abs(v)) +
                              rho * max_abs(p) * sum_abs(v);
-      if (value >= 0) continue;
       const double r = ratio_of(value, slack);
       if (r > worst) {
         worst = r;
@@ -197,7 +224,7 @@ std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vec
 #define OBLIQUE_CULLING_JUDGE(T)                                                                   \
   template std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>&, const Vector4<T>&, \
                                                              Convention, const Matrix4<T>&,        \
-                                                             const FrustumPlanes<T>&);
+                                                             const FrustumPlanes<T>&, Arithmetic);
 OBLIQUE_CULLING_JUDGE(float)
 OBLIQUE_CULLING_JUDGE(double)
 OBLIQUE_CULLING_JUDGE(long double)

@@ -98,8 +98,8 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
   const Rational rr = oracle::exact::dot(reference, reference);
   const Rational lambda = rr > 0 ? Rational(oracle::exact::dot(p, reference) / rr) : Rational(0);
   const Vec chain =
-      oracle::exact::mul(mul(mul(oracle::exact::abs(inv_t), lu_bound(oracle::exact::transpose(w))),
-                             oracle::exact::abs(inv_t)),
+      oracle::exact::mul(through_lu_bound(oracle::exact::abs(inv_t), oracle::exact::transpose(w),
+                                          oracle::exact::abs(inv_t)),
                          oracle::exact::abs(world));
   Vec bound;
   for (int i = 0; i < 4; ++i)
@@ -339,7 +339,7 @@ ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& fram
   const Mat v = oracle::exact::to_rational(view), fr = oracle::exact::to_rational(frame);
   const Mat reference = mul(mul(mul(v, fr), turn), *l_inv);
   Mat bound = mul(mul(oracle::exact::abs(v), oracle::exact::abs(fr)),
-                  mul(mul(oracle::exact::abs(*l_inv), lu_bound(l)), oracle::exact::abs(*l_inv)));
+                  through_lu_bound(oracle::exact::abs(*l_inv), l, oracle::exact::abs(*l_inv)));
   const Rational g = gamma_of<T>(oracle::tolerance::kPassViewRoundings);
   for (auto& row : bound)
     for (auto& x : row) x *= g;

@@ -243,6 +243,56 @@ TYPED_TEST(FilteredConsumers, depthJudgesAgreeWithTheExactOnes) {
   EXPECT_GT(world.violated, 0);
 }
 
+// The culling judge's certified signs (a vertex certainly on a plane's kept side) against the exact
+// ones: the right planes, and each plane moved toward the kept region by 2^-e of its size (some
+// vertices culled by less than, some by more than the rounding allows): the same findings.
+TYPED_TEST(FilteredConsumers, cullingJudgeAgreesWithTheExactOne) {
+  using T = TypeParam;
+  const auto gen = cases::valid_case<T>();
+  rc::Random random(20261207);
+  Tally tally;
+  const int wanted = std::is_same_v<T, long double> ? 6 : 30;
+  int cases = 0;
+  for (int i = 0; cases < wanted && i < 400; ++i) {
+    const cases::Case<T> g = gen(random.split(), i % 101).value();
+    const ObliqueResult<T> r = apply<T>(g.matrix, g.plane, g.convention);
+    if (r.status != Status::ok) continue;
+    ++cases;
+    const FrustumPlanes<T> right = frustum_planes(r.projection, g.convention);
+    for (int e = 0; e <= std::numeric_limits<T>::digits + 6; e += 4) {
+      for (int k = 0; k < 6; ++k) {
+        FrustumPlanes<T> planes = right;
+        Vector4<T>* moved[] = {&planes.left, &planes.right,      &planes.bottom,
+                               &planes.top,  &planes.near_plane, &planes.far_plane};
+        Vector4<T>& plane = *moved[k];
+        if (e > 0) plane(3) -= std::ldexp(plane.template head<3>().norm(), -e);
+        const std::string what = "case " + std::to_string(i) + ", plane " + std::to_string(k) +
+                                 " moved by 2^-" + std::to_string(e);
+        const auto filtered =
+            judge_culling_planes(g.matrix, g.plane, g.convention, r.projection, planes);
+        const auto exact = judge_culling_planes(g.matrix, g.plane, g.convention, r.projection,
+                                                planes, Arithmetic::exact);
+        ASSERT_EQ(filtered.size(), exact.size()) << what;
+        for (std::size_t n = 0; n < exact.size(); ++n) {
+          const std::string where = what + " (" + describe(exact[n]) + ")";
+          ASSERT_EQ(filtered[n].judged, exact[n].judged) << where;
+          ASSERT_EQ(filtered[n].holds, exact[n].holds) << where;
+          EXPECT_EQ(filtered[n].ratio, exact[n].ratio) << where;
+          EXPECT_EQ(filtered[n].detail, exact[n].detail) << where;
+          if (!exact[n].judged)
+            ++tally.not_judged;
+          else
+            ++(exact[n].holds ? tally.held : tally.violated);
+        }
+        if (e == 0) break;  // the right planes once
+      }
+    }
+  }
+  EXPECT_EQ(cases, wanted);
+  EXPECT_GT(tally.held, 0);
+  EXPECT_GT(tally.violated, 0);
+}
+
 // The ray is widened by ndc_error in NDC x and y, and by nothing else: an answer on the ray of a
 // position within it holds, one beyond it is violated, with and without the widening, in both
 // arithmetics (exact; the filtered path agrees, above).

@@ -236,11 +236,14 @@ ConsumerFinding judge_world_position(const DepthSample<T>& sample, const Vector3
 /// The culling planes the consumer extracted from `oblique` (the answer for m, c, convention in T),
 /// each keeping P . x >= 0: culling_keeps_visible (every vertex of the kept region of m and c,
 /// directions at infinity included, on each plane's kept side within its rounding and row 3's
-/// error bound) and culling_near_is_c (near_plane = s C, s > 0, within those bounds).
+/// error bound) and culling_near_is_c (near_plane = s C, s > 0, within those bounds). Filtered:
+/// a vertex certainly on a plane's kept side is settled in certified intervals, every other
+/// exactly (Arithmetic::exact: all exactly).
 template <class T>
 std::vector<ConsumerFinding> judge_culling_planes(const Matrix4<T>& m, const Vector4<T>& c,
                                                   Convention convention, const Matrix4<T>& oblique,
-                                                  const FrustumPlanes<T>& answer);
+                                                  const FrustumPlanes<T>& answer,
+                                                  Arithmetic arithmetic = Arithmetic::filtered);
 
 /// The plane the consumer gives in the pass camera's space (pass_view: world -> pass camera) for
 /// the world plane whose front the pass keeps: plane_on_surface (points of the world plane,
