@@ -239,16 +239,13 @@ Mat mul(const Mat& a, const Mat& b) {
   return product(a, b);
 }
 
-Mat through_lu_bound(const Mat& a, const Mat& m, const Mat& b) {
+Mat through_lu_bound(const Vec& a_rows, const Mat& m, const Mat& b) {
   const Rational bound = oracle::tolerance::lu_entry_bound(m);
-  Vec rows, columns;  // a 1 and 1^T b
-  for (int i = 0; i < 4; ++i) {
-    rows[i] = a[i][0] + a[i][1] + a[i][2] + a[i][3];
-    columns[i] = b[0][i] + b[1][i] + b[2][i] + b[3][i];
-  }
+  Vec columns;  // 1^T b
+  for (int i = 0; i < 4; ++i) columns[i] = b[0][i] + b[1][i] + b[2][i] + b[3][i];
   Mat out;
   for (int i = 0; i < 4; ++i) {
-    const Rational scaled = bound * rows[i];
+    const Rational scaled = bound * a_rows[i];
     for (int j = 0; j < 4; ++j) out[i][j] = scaled * columns[j];
   }
   return out;

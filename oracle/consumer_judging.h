@@ -42,9 +42,10 @@ Mat lu_bound(const Mat& m);
 /// The product of two exact matrices.
 Mat mul(const Mat& a, const Mat& b);
 
-/// a lu_bound(m) b, as the outer product it is (lu_bound(m) holds one number, 32 max|m|, in
-/// every entry): 32 max|m| (a 1)(1^T b), the same rationals as the two products.
-Mat through_lu_bound(const Mat& a, const Mat& m, const Mat& b);
+/// a lu_bound(m) b, given a's row sums (a 1), as the outer product it is (lu_bound(m) holds one
+/// number, 32 max|m|, in every entry): 32 max|m| (a 1)(1^T b), the same rationals as the two
+/// products.
+Mat through_lu_bound(const Vec& a_rows, const Mat& m, const Mat& b);
 
 /// A bound S, entry by entry, on the error of v = M^-1 b computed in T by a correct
 /// implementation: |v^ - v| <= S |b| (tolerance.h, "a solve with a projection"). The larger of

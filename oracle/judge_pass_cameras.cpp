@@ -97,9 +97,10 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
   const Vec p = oracle::exact::to_rational(answer);
   const Rational rr = oracle::exact::dot(reference, reference);
   const Rational lambda = rr > 0 ? Rational(oracle::exact::dot(p, reference) / rr) : Rational(0);
+  const Mat abs_inv_t = oracle::exact::abs(inv_t);
   const Vec chain =
-      oracle::exact::mul(through_lu_bound(oracle::exact::abs(inv_t), oracle::exact::transpose(w),
-                                          oracle::exact::abs(inv_t)),
+      oracle::exact::mul(through_lu_bound(oracle::exact::mul(abs_inv_t, Vec{1, 1, 1, 1}),
+                                          oracle::exact::transpose(w), abs_inv_t),
                          oracle::exact::abs(world));
   Vec bound;
   for (int i = 0; i < 4; ++i)
@@ -338,8 +339,13 @@ ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& fram
   turn[3][3] = 1;
   const Mat v = oracle::exact::to_rational(view), fr = oracle::exact::to_rational(frame);
   const Mat reference = mul(mul(mul(v, fr), turn), *l_inv);
-  Mat bound = mul(mul(oracle::exact::abs(v), oracle::exact::abs(fr)),
-                  through_lu_bound(oracle::exact::abs(*l_inv), l, oracle::exact::abs(*l_inv)));
+  // |v| |fr| |l^-1| lu_bound(l) |l^-1| = 32 max|l| (|v| |fr| |l^-1| 1)(1^T |l^-1|), as
+  // through_lu_bound() has it: matrix-vector products only.
+  const Mat abs_l_inv = oracle::exact::abs(*l_inv);
+  const Vec rows = oracle::exact::mul(
+      oracle::exact::abs(v),
+      oracle::exact::mul(oracle::exact::abs(fr), oracle::exact::mul(abs_l_inv, Vec{1, 1, 1, 1})));
+  Mat bound = through_lu_bound(rows, l, abs_l_inv);
   const Rational g = gamma_of<T>(oracle::tolerance::kPassViewRoundings);
   for (auto& row : bound)
     for (auto& x : row) x *= g;
