@@ -224,6 +224,46 @@ std::optional<algebra::Mat<N>> solve_error_in(const algebra::Mat<N>& m, const al
   return out;
 }
 
+/// The exact inverse of a finite matrix in T by its adjugate in integers: M = N 2^e (N integers,
+/// exact::to_integers), so M^-1 = adj(N) / det(N) 2^-e; each entry one canonicalised quotient,
+/// where elimination in rationals takes a gcd per operation. Empty where det N = 0.
+template <class T>
+std::optional<Mat> integer_inverse(const Matrix4<T>& matrix) {
+  std::array<T, 16> flat;
+  for (int i = 0; i < 16; ++i) flat[static_cast<std::size_t>(i)] = matrix(i / 4, i % 4);
+  int exponent = 0;
+  const std::array<oracle::exact::Integer, 16> entries = oracle::exact::to_integers(flat, exponent);
+  oracle::exact::IntegerMat n;
+  for (int i = 0; i < 16; ++i) n[i / 4][i % 4] = entries[static_cast<std::size_t>(i)];
+  const oracle::exact::Integer det = oracle::exact::determinant(n);
+  if (det == 0) return std::nullopt;
+  Mat inv;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      // inv_ij = (-1)^(i + j) minor_ji / det: the minor of n without row j and column i.
+      int r[3], c[3];
+      for (int k = 0, a = 0, b = 0; k < 4; ++k) {
+        if (k != j) r[a++] = k;
+        if (k != i) c[b++] = k;
+      }
+      oracle::exact::Integer minor =
+          n[r[0]][c[0]] * (n[r[1]][c[1]] * n[r[2]][c[2]] - n[r[1]][c[2]] * n[r[2]][c[1]]) -
+          n[r[0]][c[1]] * (n[r[1]][c[0]] * n[r[2]][c[2]] - n[r[1]][c[2]] * n[r[2]][c[0]]) +
+          n[r[0]][c[2]] * (n[r[1]][c[0]] * n[r[2]][c[1]] - n[r[1]][c[1]] * n[r[2]][c[0]]);
+      if ((i + j) % 2 == 1) minor = -minor;
+      Rational x(minor, det);
+      x.canonicalize();
+      // times 2^-exponent
+      if (exponent > 0)
+        mpq_div_2exp(x.get_mpq_t(), x.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
+      else if (exponent < 0)
+        mpq_mul_2exp(x.get_mpq_t(), x.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
+      inv[i][j] = x;
+    }
+  }
+  return inv;
+}
+
 }  // namespace
 
 /// The 4 x 4 matrix whose every entry is oracle::tolerance::lu_entry_bound(m): what |L||U| of m's
@@ -358,7 +398,11 @@ std::shared_ptr<const Inverse> inverse_of(const Matrix4<T>& matrix) {
   return recent.get(matrix, [&] {
     Inverse out;
     out.m = oracle::exact::to_rational(matrix);
-    out.inv = oracle::exact::inverse(out.m);
+    if (!matrix.allFinite()) {
+      out.inv = oracle::exact::inverse(out.m);  // (to_rational's own answer for what is not finite)
+      return out;
+    }
+    out.inv = integer_inverse(matrix);
     return out;
   });
 }

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <type_traits>
@@ -68,6 +70,38 @@ TYPED_TEST(ConsumerJudging, theSolveBoundsRangesHoldTheExactBound) {
   }
   EXPECT_GT(exists, wanted);
   EXPECT_GT(ranged, exists * 3 / 4);  // the intervals decide most
+}
+
+TYPED_TEST(ConsumerJudging, theInverseIsTheExactOne) {
+  using T = TypeParam;
+  int singular = 0, inverted = 0;
+  const int wanted = std::is_same_v<T, long double> ? 40 : 200;
+  for (const auto& [m, convention] : matrices<T>(wanted)) {
+    (void)convention;
+    const std::shared_ptr<const Inverse> fast = inverse_of(m);
+    const std::optional<Mat> exact = oracle::exact::inverse(oracle::exact::to_rational(m));
+    ASSERT_EQ(fast->inv.has_value(), exact.has_value());
+    if (exact) {
+      EXPECT_EQ(*fast->inv, *exact);
+      ++inverted;
+    }
+  }
+  // Singular matrices, and entries far apart in magnitude.
+  Matrix4<T> m = Matrix4<T>::Identity();
+  m(0, 1) = std::ldexp(T(3), std::numeric_limits<T>::min_exponent + 2);
+  m(2, 3) = std::ldexp(T(5), std::numeric_limits<T>::max_exponent - 4);
+  m(3, 2) = T(-1);
+  m(3, 3) = T(0);
+  for (int k = 0; k < 2; ++k) {
+    const std::optional<Mat> exact = oracle::exact::inverse(oracle::exact::to_rational(m));
+    const std::shared_ptr<const Inverse> fast = inverse_of(m);
+    ASSERT_EQ(fast->inv.has_value(), exact.has_value());
+    if (exact) EXPECT_EQ(*fast->inv, *exact);
+    singular += !exact;
+    m.row(1) = m.row(0) * T(2);  // then singular
+  }
+  EXPECT_GE(inverted, wanted);
+  EXPECT_EQ(singular, 1);
 }
 
 TEST(ConsumerJudging, throughLuBoundIsTheTwoProducts) {
