@@ -387,8 +387,38 @@ ConsumerFinding judge_corners(const Matrix4<T>& m, const Vector4<T>& c, Conventi
       worst = std::max(worst, r_v);
     }
   }
-  for (const Vec& v : kept) {
-    for (const Facet& facet : facets) {
+  // The facets and the kept region's vertices enclosed, for the side a vertex is on: most are
+  // certainly inside every facet (filtered; exact where the intervals cannot tell).
+  std::vector<std::array<certified::Num, 6>> facets_num;  // normal, then origin (x, y, z)
+  std::vector<std::array<certified::Num, 3>> kept_num;
+  if (arithmetic == Arithmetic::filtered) {
+    try {
+      for (const Facet& facet : facets)
+        facets_num.push_back({certified_of(facet.normal[0]), certified_of(facet.normal[1]),
+                              certified_of(facet.normal[2]), certified_of(facet.origin[0]),
+                              certified_of(facet.origin[1]), certified_of(facet.origin[2])});
+      for (const Vec& v : kept)
+        kept_num.push_back({certified_of(v[0]), certified_of(v[1]), certified_of(v[2])});
+    } catch (const certified::Undecided&) {
+      facets_num.clear();
+      kept_num.clear();
+    }
+  }
+  const bool signs_filtered =
+      !facets.empty() && facets_num.size() == facets.size() && kept_num.size() == kept.size();
+  for (std::size_t at = 0; at < kept.size(); ++at) {
+    const Vec& v = kept[at];
+    for (std::size_t fi = 0; fi < facets.size(); ++fi) {
+      const Facet& facet = facets[fi];
+      if (signs_filtered) {
+        try {
+          const std::array<certified::Num, 6>& q = facets_num[fi];
+          certified::Num s{};
+          for (std::size_t d = 0; d < 3; ++d) s = s + q[d] * (kept_num[at][d] - q[3 + d]);
+          if (certified::non_negative(s)) continue;
+        } catch (const certified::Undecided&) {
+        }
+      }
       Rational s = 0, nn = 0;
       for (int d = 0; d < 3; ++d) {
         s += facet.normal[d] * (v[d] - facet.origin[d]);
