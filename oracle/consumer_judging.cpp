@@ -469,14 +469,16 @@ int axis_sign_of(const Matrix4<T>& original, Convention convention, int bits) {
     const Vec centre = oracle::exact::mul(*a->inv, b);
     const certified::Range z_mid = range_of(oracle::exact::abs(b[2]));
     const certified::Range one{1, 1};
-    bool beyond = true;
+    bool beyond = true, finite = true;
     for (int k : {2, 3}) {
       const certified::Range dv = bound->range[k][2] * z_mid + bound->range[k][3] * one;
+      finite = finite && std::isfinite(dv.hi);  // (GMP compares with no infinity)
+      if (!finite) break;
       const Rational c = oracle::exact::abs(centre[k]);
       if (c <= dv.lo) return 0;
       beyond = beyond && c > dv.hi;
     }
-    if (beyond) return (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
+    if (finite && beyond) return (centre[2] > 0) == (centre[3] > 0) ? 1 : -1;
   }
   return axis_sign(*a->inv, convention, *solve_error_of(original, bits));
 }

@@ -667,9 +667,10 @@ double certified_ratio(const std::array<double, 4>& a, const std::array<double, 
   return std::min(top, 1.0);
 }
 
+/// The middles of finite intervals (halved first: lo + hi may overflow).
 std::array<double, 4> middles(const std::array<Interval, 4>& x) {
-  return {(x[0].lo + x[0].hi) / 2, (x[1].lo + x[1].hi) / 2, (x[2].lo + x[2].hi) / 2,
-          (x[3].lo + x[3].hi) / 2};
+  return {x[0].lo * 0.5 + x[0].hi * 0.5, x[1].lo * 0.5 + x[1].hi * 0.5,
+          x[2].lo * 0.5 + x[2].hi * 0.5, x[3].lo * 0.5 + x[3].hi * 0.5};
 }
 
 /// The certified floating-point path of view_position and linear_depth: whether the answer p
@@ -1094,9 +1095,12 @@ std::optional<ConsumerFinding> certified_world_holds(const DepthSample<T>& s,
     auto divided = [](const std::array<double, 4>& h) {
       return Vec{Rational(h[0] / h[3]), Rational(h[1] / h[3]), Rational(h[2] / h[3]), Rational(1)};
     };
+    // Every number of the words finite (GMP has no infinity), else the exact path's words.
     for (const std::array<double, 4>* h : {&ma, &mb})
       for (int i = 0; i < 3; ++i)
-        if (!std::isfinite((*h)[i] / (*h)[3])) return std::nullopt;  // the exact path's words
+        if (!std::isfinite((*h)[i] / (*h)[3])) return std::nullopt;
+    for (int i = 0; i < 3; ++i)
+      if (!std::isfinite(mp[static_cast<std::size_t>(i)])) return std::nullopt;
     const Vec ea = divided(ma), eb = divided(mb);
     const Vec in_view{Rational(mp[0]), Rational(mp[1]), Rational(mp[2]), Rational(1)};
     const Vec wa = oracle::exact::mul(*view->inv, ea), wb = oracle::exact::mul(*view->inv, eb);
