@@ -269,10 +269,7 @@ std::optional<Mat> integer_inverse(const Matrix4<T>& matrix) {
 /// The 4 x 4 matrix whose every entry is oracle::tolerance::lu_entry_bound(m): what |L||U| of m's
 /// LU factors is at most, entry by entry.
 Mat lu_bound(const Mat& m) {
-  const Rational b = oracle::tolerance::lu_entry_bound(m);
-  Mat out;
-  for (auto& row : out) row.fill(b);
-  return out;
+  return lu_bound_of(m);
 }
 
 Mat mul(const Mat& a, const Mat& b) {
