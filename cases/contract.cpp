@@ -216,29 +216,6 @@ std::string read_field(Contract& c, const std::string& key, const JsonValue& val
 
 }  // namespace
 
-bool left_out_beyond(long left, long drawn, double share) {
-  if (left < 2 || drawn <= 0) return false;  // one case left out is no pattern
-  // The Wilson score interval's lower end at z = 3.29 (one-sided 99.95%): a run tests every kind
-  // it claims (families, conventions, properties: dozens), so each test takes a small error rate.
-  const double n = static_cast<double>(drawn), p = static_cast<double>(left) / n, z = 3.29;
-  const double centre = p + z * z / (2 * n);
-  const double spread = z * std::sqrt(p * (1 - p) / n + z * z / (4 * n * n));
-  return (centre - spread) / (1 + z * z / n) > share;
-}
-
-std::string partly_judged_warning(const std::string& partly, bool strict) {
-  return "warning: judged in part only: more than " +
-         std::to_string(static_cast<int>(100 * kLeftOutWarning + 0.5)) + "% left out: " + partly +
-         (strict ? " [--strict: not a pass]" : " [--strict makes it a failure]") + "\n";
-}
-
-std::string counts_text(const std::map<std::string, long>& counts) {
-  std::string out;
-  for (const auto& [name, n] : counts)
-    out += (out.empty() ? "" : ", ") + name + " " + std::to_string(n);
-  return out.empty() ? "none" : out;
-}
-
 Contract engine_contract() {
   Contract c;
   c.families.assign(std::begin(cases::engine_families), std::end(cases::engine_families));

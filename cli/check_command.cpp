@@ -18,6 +18,7 @@
 #include "oblique/raster/raster.h"
 #include "oblique/report/html_page.h"
 #include "oblique/report/report_files.h"
+#include "oblique/run/tally.h"
 #include "oblique/scene/check.h"
 #include "oblique/scene/plot.h"
 #include "oblique/shader/shader_runner.h"
@@ -350,7 +351,7 @@ int run_check(const CheckSettings& settings) {
       !settings.impl.empty() || !settings.shader.empty());
   if (!coverage.partly.empty())
     (settings.as_json ? std::cerr : std::cout)
-        << oblique::partly_judged_warning(coverage.partly, settings.strict);
+        << oblique::run::partly_judged_warning(coverage.partly, settings.strict);
   if (!check.passes() || raster_status == 1) return 1;
   if (!coverage.unjudged.empty() || (settings.strict && !coverage.partly.empty())) {
     for (const std::string& line : coverage.unjudged)

@@ -1,4 +1,4 @@
-# The installed package: headers, libraries, exported targets (oblique::core, ::accurate, ::batch, ::protocol, ::cases, ::oracle, ::mistakes, ::client,
+# The installed package: headers, libraries, exported targets (oblique::core, ::accurate, ::batch, ::protocol, ::cases, ::oracle, ::mistakes, ::run, ::client,
 # ::properties, ::generators, ::report_files, ::counterexample_reports, ::accuracy_profile,
 # ::testing, ::raster,
 # ::testing_raster, ::fuzzing, ::fuzzing_replay),
@@ -9,10 +9,11 @@ set(OBLIQUE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/oblique)
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/core/include/ ${PROJECT_SOURCE_DIR}/protocol/include/
                   ${PROJECT_SOURCE_DIR}/cases/include/ ${PROJECT_SOURCE_DIR}/oracle/include/
-                  ${PROJECT_SOURCE_DIR}/mistakes/include/ ${PROJECT_SOURCE_DIR}/fuzzing/include/
+                  ${PROJECT_SOURCE_DIR}/mistakes/include/ ${PROJECT_SOURCE_DIR}/run/include/
+                  ${PROJECT_SOURCE_DIR}/fuzzing/include/
                   ${PROJECT_SOURCE_DIR}/report_files/include/ ${PROJECT_SOURCE_DIR}/client/include/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
-set(OBLIQUE_EXPORTED oblique_accurate oblique_core oblique_batch oblique_protocol oblique_cases oblique_oracle oblique_mistakes oblique_properties
+set(OBLIQUE_EXPORTED oblique_accurate oblique_core oblique_batch oblique_protocol oblique_cases oblique_oracle oblique_mistakes oblique_run oblique_properties
     oblique_client oblique_report_files oblique_counterexample_reports oblique_fuzzing oblique_fuzzing_replay)
 if(TARGET oblique_generators)
   list(APPEND OBLIQUE_EXPORTED oblique_generators)

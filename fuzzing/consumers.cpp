@@ -19,10 +19,10 @@ namespace {
 void settle(const std::string& consumer, const oracle::ConsumerFinding& finding,
             const std::string& inputs) {
   if (!finding.judged) {
-    ++counts().left_out[finding.detail];
+    counts().left_out({}, finding.detail);
     return;
   }
-  ++counts().judged;
+  counts().judged({});
   if (finding.holds) return;
   std::fprintf(stderr, "oblique: %s violates %s\n%s", consumer.c_str(),
                oracle::describe(finding).c_str(), inputs.c_str());

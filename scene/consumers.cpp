@@ -5,11 +5,11 @@
 #include <cmath>
 #include <random>
 
-#include "oblique/cases/contract.h"
 #include "oblique/client/consumer_program.h"
 #include "oblique/mistakes/consumer_mistakes.h"
 #include "oblique/oracle/consumer_cases.h"
 #include "oblique/protocol/shell_text.h"
+#include "oblique/run/tally.h"
 #include "oblique/scene/check.h"
 
 namespace oblique::scene {
@@ -192,50 +192,38 @@ Expected<Done> judge_shader_consumers(const Scene& scene, SceneCheck& check,
 
 ConsumerCoverage consumer_coverage(const Scene& scene, const SceneCheck& check, bool impl) {
   ConsumerCoverage out;
+  long rendered = 0;
+  for (const SurfaceCheck& s : check.surfaces) rendered += s.render ? 1 : 0;
+  run::Advice advice;
+  advice.claimant = "the scene names";
+  advice.unit = "answer";
+  advice.rounds = "rendered passes";
+  advice.none_drawn = "no pass was rendered to ask it on (each surface's reason is above)";
+  advice.more = "move the camera or the surfaces so that one renders";
+  advice.judge_left_out = "ask in a wider precision (--precision)";
+  advice.applicable = "add a surface it applies to";
+  advice.leave_out = [](const run::Kind& k) { return "leave " + k.name + " out of \"consumers\""; };
   for (const SceneConsumer consumer : scene.consumers) {
-    const std::string name(scene_consumer_name(consumer));
-    long rendered = 0, applies = 0, judged = 0, left_out = 0;
-    std::map<std::string, long> why;
-    std::string note;
+    const run::Kind kind{"consumer", std::string(scene_consumer_name(consumer))};
+    run::Tally tally;  // one a consumer: the reasons said are its own
     for (const SurfaceCheck& s : check.surfaces) {
       if (!s.render) continue;
-      ++rendered;
       for (const ConsumerResult& r : impl ? s.impl_consumers : s.consumers) {
         if (r.consumer != consumer) continue;
         if (!r.note.empty()) {
-          note = r.note;
+          tally.not_applicable({kind}, r.note);
           continue;
         }
-        ++applies;
-        judged += r.judged;
-        for (const auto& [reason, n] : r.left_out_why) {
-          why[reason] += n;
-          left_out += n;
-        }
+        tally.judged({kind}, r.judged);
+        for (const auto& [reason, n] : r.left_out_why) tally.left_out({kind}, reason, true, n);
       }
     }
-    const std::string claim = "the scene names consumer " + name + ", and ";
-    if (judged == 0) {
-      if (rendered == 0) {
-        out.unjudged.push_back(claim +
-                               "no pass was rendered to ask it on (each surface's reason is "
-                               "above): move the camera or the surfaces so that one renders, or "
-                               "leave " +
-                               name + " out of \"consumers\"");
-      } else if (applies == 0) {
-        out.unjudged.push_back(claim + "it applies to none of the " + std::to_string(rendered) +
-                               " rendered passes (" + note + "): leave " + name +
-                               " out of \"consumers\", or add a surface it applies to");
-      } else {
-        out.unjudged.push_back(claim + "none of its answers was judged: all " +
-                               std::to_string(left_out) + " left out (why: " + counts_text(why) +
-                               "): ask in a wider precision (--precision), or leave " + name +
-                               " out of \"consumers\"");
-      }
-    } else if (left_out_beyond(left_out, judged + left_out)) {
-      out.partly += (out.partly.empty() ? "" : ", ") + name + " " + std::to_string(left_out) +
-                    " of " + std::to_string(judged + left_out);
-    }
+    for (std::string& line : run::unjudged(tally, {kind}, rendered, advice))
+      out.unjudged.push_back(std::move(line));
+    if (const std::string partly =
+            run::partly_judged(tally, {kind}, run::kLeftOutWarning, /*with_axis=*/false);
+        !partly.empty())
+      out.partly += (out.partly.empty() ? "" : ", ") + partly;
   }
   return out;
 }

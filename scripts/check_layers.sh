@@ -35,16 +35,17 @@ declare -A below=(
   [oracle]="core protocol cases"
   [mistakes]="core protocol cases oracle"
   [client]="core protocol cases oracle"
+  [run]="core protocol cases"
   [report]="core protocol report_files cases oracle mistakes client"
   [raster]="core protocol report_files cases oracle mistakes"
   [shader]="core protocol report_files cases oracle mistakes raster"
-  [fuzzing]="core protocol report_files cases oracle mistakes client report"
-  [scene]="core protocol report_files cases oracle mistakes client report"
-  [testing]="core protocol report_files cases oracle mistakes client report raster shader"
-  [verify]="core protocol report_files cases oracle mistakes client report raster shader"
-  [cli]="core protocol report_files cases oracle mistakes client report raster shader fuzzing verify scene"
+  [fuzzing]="core protocol report_files cases run oracle mistakes client report"
+  [scene]="core protocol report_files cases run oracle mistakes client report"
+  [testing]="core protocol report_files cases run oracle mistakes client report raster shader"
+  [verify]="core protocol report_files cases run oracle mistakes client report raster shader"
+  [cli]="core protocol report_files cases run oracle mistakes client report raster shader fuzzing verify scene"
 )
-libraries=(core protocol report_files cases oracle mistakes client report raster shader fuzzing scene testing verify cli)
+libraries=(core protocol report_files cases run oracle mistakes client report raster shader fuzzing scene testing verify cli)
 
 sources_of() {  # the library's own files, tests left out
   find "$1" -type f \( -name '*.h' -o -name '*.cpp' \) ! -name '*_test.cpp' | sort

@@ -34,7 +34,8 @@ void judged(const std::string& consumer, const oracle::ConsumerFinding& finding,
   if (!finding.judged) {
     // Counted against the family only where the contract claims the case (ConsumerFinding::
     // Unjudged: not an input without an answer, nor a property that says nothing of the matrix).
-    count_left_out(c ? std::string(cases::family_name(c->family)) : consumer, finding.detail, "",
+    count_left_out(c ? run::kinds_of(*c) : std::vector<run::Kind>{{"consumer", consumer}},
+                   finding.detail, "",
                    finding.unjudged != oracle::ConsumerFinding::Unjudged::undecided);
     return;
   }
@@ -101,7 +102,7 @@ void run_check(const oblique::Consumers<T>& only, oracle::ConsumerCheck check, C
           // A camera the functions are not for: counted refused, never judged (a claimed family
           // with every case refused fails the run, saying so).
           if (only.accepts && !only.accepts(c.convention, c.matrix)) {
-            count_left_out(std::string(cases::family_name(c.family)), "", only.name);
+            count_left_out(run::kinds_of(c), "", only.name);
             return;
           }
         }

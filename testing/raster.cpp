@@ -89,9 +89,9 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
       [=] {
         const cases::Case<T> c = *cases::valid_case_for<T>(contract);
         count_generated(c);
-        const std::string family(cases::family_name(c.family));
+        const std::vector<run::Kind> kinds = run::kinds_of(c);
         if (!impl.accepts(c.convention, c.matrix)) {
-          count_left_out(family, "", impl.name);
+          count_left_out(kinds, "", impl.name);
           return;
         }
         const Eigen::Matrix4d m = c.matrix.template cast<double>();
@@ -99,17 +99,17 @@ void check_on_rasterizer(const Implementation<T>& impl, const Contract& given,
         // The judge's reference is the core's answer in double; cases without one have nothing
         // to draw against (the properties judge their statuses).
         if (apply<double>(m, plane, c.convention).status != Status::ok) {
-          count_left_out(family, "no answer to judge against");
+          count_left_out(kinds, "no answer to judge against");
           return;
         }
         const Answer<T> outcome = impl.run(c.matrix, c.plane, c.convention);
         if (outcome.status != Status::ok) {
-          count_left_out(family, impl.name + " answered a status (the properties judge it)");
+          count_left_out(kinds, impl.name + " answered a status (the properties judge it)");
           return;
         }
         const Eigen::Matrix4d answer = outcome.projection.template cast<double>();
         if (!answer.template cast<float>().allFinite()) {
-          count_left_out(family, "the answer does not fit float32");
+          count_left_out(kinds, "the answer does not fit float32");
           return;
         }
         count_judged(c);

@@ -42,18 +42,12 @@ std::string& current_contract() {
 }
 }  // namespace
 
-void count_left_out(const std::string& kind, const std::string& why, const std::string& refused_by,
-                    bool unclaimed) {
-  Tally& t = tally();
-  if (!refused_by.empty()) {
-    ++t.refused[kind];
-    if (std::find(t.refusing.begin(), t.refusing.end(), refused_by) == t.refusing.end())
-      t.refusing.push_back(refused_by);
-    return;
-  }
-  ++t.left_out[why];
-  ++t.left_out_by_kind[kind];
-  if (unclaimed) ++t.unclaimed_by_kind[kind];
+void count_left_out(const std::vector<run::Kind>& kinds, const std::string& why,
+                    const std::string& refused_by, bool unclaimed) {
+  if (!refused_by.empty())
+    tally().cases.refused(kinds, refused_by);
+  else
+    tally().cases.left_out(kinds, why, !unclaimed);
 }
 
 void append_item(std::string& list, const std::string& item) {
@@ -185,63 +179,57 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   std::ostringstream message;
   rc::detail::printResultMessage(result, message);
   const Tally& t = tally();
+  const run::Tally& cases = t.cases;
+  auto text = [](const std::map<std::string, long>& counts) {
+    return counts.empty() ? std::string() : run::counts_text(counts);
+  };
   std::ostringstream statistics;
   statistics << "ran: " << summary(t.implementations)
-             << "\njudged, by family: " << summary(t.families)
-             << "\njudged, by convention: " << summary(t.conventions)
-             << "\njudged, by place: " << summary(t.places);
-  if (!t.defects.empty()) statistics << "\njudged, by defect: " << summary(t.defects);
-  if (!t.generated.empty()) statistics << "\nmade: " << summary(t.generated);
-  if (!t.refused.empty()) statistics << "\nrefused by accepts: " << summary(t.refused);
+             << "\njudged, by family: " << text(cases.by("family"))
+             << "\njudged, by convention: " << text(cases.by("convention"))
+             << "\njudged, by place: " << text(cases.by("place"));
+  if (!cases.by("defect").empty())
+    statistics << "\njudged, by defect: " << text(cases.by("defect"));
+  if (!cases.by("family", &run::Counts::made).empty())
+    statistics << "\nmade: " << text(cases.by("family", &run::Counts::made));
+  if (!cases.by("family", &run::Counts::refused).empty())
+    statistics << "\nrefused by accepts: " << text(cases.by("family", &run::Counts::refused));
   if (!t.applied.empty()) statistics << "\napplied: " << summary(t.applied);
-  if (!t.left_out.empty()) statistics << "\nleft out: " << summary(t.left_out);
+  if (!cases.reasons().empty()) statistics << "\nleft out: " << text(cases.reasons());
   const std::string name = property.empty() ? "" : property + ": ";
   rc::detail::SuccessResult success;
   const bool passed = result.match(success);
-  // The kinds of case the contract claims, by what the coverage counts (empty: not checked).
-  std::vector<std::string> kinds;
-  std::map<std::string, int> judged_kinds;
+  // The kinds the contract claims, by what the coverage counts (empty: not checked): its
+  // families (or defects) and conventions.
+  std::vector<run::Kind> kinds, conventions;
   if (!reproducing && (coverage == Coverage::valid || coverage == Coverage::invalid)) {
-    judged_kinds = coverage == Coverage::valid ? t.families : t.defects;
     if (coverage == Coverage::valid) {
-      for (auto f : require.families) kinds.emplace_back(cases::family_name(f));
+      for (auto f : require.families)
+        kinds.push_back({"family", std::string(cases::family_name(f))});
     } else {
-      for (auto d : require.defects) kinds.emplace_back(cases::defect_name(d));
+      for (auto d : require.defects)
+        kinds.push_back({"defect", std::string(cases::defect_name(d))});
     }
   }
-  auto count = [](const std::map<std::string, int>& counts, const std::string& key) {
-    const auto it = counts.find(key);
-    return it == counts.end() ? 0 : it->second;
-  };
-  // Why a kind the contract claims had no case judged, and what to change.
-  std::string refusing;
-  for (const std::string& n : t.refusing) append_item(refusing, n);
-  auto why_none = [&](const std::string& kind, const char* what) {
-    const int made = count(t.generated, kind), refused = count(t.refused, kind),
-              left = count(t.left_out_by_kind, kind);
-    std::ostringstream why;
-    why << id << ": the contract claims " << what << " " << kind
-        << ", and no case of it was judged: ";
-    if (made == 0 && refused == 0 && left == 0) {
-      why << "none was made in " << success.numSuccess
-          << " cases: raise max_success (RC_PARAMS=\"max_success=N\")";
-    } else if (refused > 0 && left == 0) {
-      why << (refused == made || made == 0 ? "all " : "") << refused << " refused by accepts ("
-          << refusing << "): widen accepts or leave " << kind << " out of the contract";
-    } else {
-      why << refused << " refused by accepts, " << left
-          << " left out (why, over the run: " << summary(t.left_out)
-          << "): raise max_success, or leave " << kind << " out of the contract";
-    }
-    return why.str();
+  for (auto c : require.conventions)
+    conventions.push_back({"convention", std::string(convention_name(c))});
+  run::Advice advice;
+  advice.more = "raise max_success (RC_PARAMS=\"max_success=N\")";
+  advice.judge_left_out = "raise max_success";
+  // Why a kind the contract claims had no case judged, and what to change (a pass means judged).
+  auto unjudged = [&](const std::vector<run::Kind>& claims) {
+    std::vector<std::string> lines = run::unjudged(cases, claims, success.numSuccess, advice);
+    for (std::string& line : lines) line = id + ": " + line;
+    return lines;
   };
   if (!passed) {
     // A claimed kind that accepts refused every case of, said beside the finding: the run fails
     // for the finding, and would fail for the kind too (a pass means judged).
-    std::string unjudged;
-    for (const std::string& kind : kinds) {
-      if (count(judged_kinds, kind) == 0 && count(t.refused, kind) > 0)
-        unjudged += "\n" + why_none(kind, coverage == Coverage::valid ? "family" : "defect");
+    std::string refused;
+    for (const run::Kind& kind : kinds) {
+      const run::Counts c = cases.of(kind);
+      if (c.judged == 0 && c.refused > 0)
+        for (const std::string& line : unjudged({kind})) refused += "\n" + line;
     }
     // Printed once, as the test's failure: RapidCheck's message, the statistics, the report.
     std::string where;
@@ -262,7 +250,7 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
         // The same bug as an earlier failure of this process: its report, not a second one.
         ADD_FAILURE() << name << message.str() << where << "\nreport: " << earlier->second
                       << " (the same likely cause as an earlier failure; no second report)"
-                      << unjudged;
+                      << refused;
         return;
       }
       const std::string path = write_report(failure, report_context(property));
@@ -271,28 +259,21 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     } else if (!t.markdown_failure.empty()) {
       where = "\nreport: " + write_markdown_report(t.markdown_failure, report_context(property));
     }
-    ADD_FAILURE() << name << message.str() << "\n" << statistics.str() << where << unjudged;
+    ADD_FAILURE() << name << message.str() << "\n" << statistics.str() << where << refused;
     return;
   }
-  // Kinds judged in part only: more than the warning share of their cases left out.
-  std::string partly;
-  for (const std::string& kind : kinds) {
-    // What the contract does not claim (inputs without an answer it lists no status for) is left
-    // out by design: no gap in what it claims.
-    const int judged = count(judged_kinds, kind),
-              left = count(t.left_out_by_kind, kind) - count(t.unclaimed_by_kind, kind);
-    // (one case left out of a handful is no pattern)
-    if (judged == 0 || !left_out_beyond(left, judged + left, settings().left_out_warning)) continue;
-    append_item(partly, kind + " " + std::to_string(left) + " of " + std::to_string(judged + left));
-  }
+  // Kinds judged in part only: more than the warning share of what the contract claims of their
+  // cases left out (inputs without an answer it lists no status for are left out by design).
+  const std::string partly =
+      run::partly_judged(cases, kinds, settings().left_out_warning, /*with_axis=*/false);
   // Hard places made but never judged (the places' coverage counts what was made: a place is a
   // property of the plane, and its cases are often the ones within rounding of no answer).
   std::string unjudged_places;
   if (!reproducing && coverage != Coverage::invalid && coverage != Coverage::none) {
     for (auto p : require.places) {
-      const std::string place(cases::place_name(p));
-      if (count(t.generated_places, place) > 0 && count(t.places, place) == 0)
-        append_item(unjudged_places, place);
+      const run::Counts c = cases.of({"place", std::string(cases::place_name(p))});
+      if (c.made > 0 && c.judged == 0)
+        append_item(unjudged_places, std::string(cases::place_name(p)));
     }
   }
   std::string warning;
@@ -305,13 +286,13 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     }
     if (!unjudged_places.empty())
       w << " hard places made but none judged: " << unjudged_places << ";";
-    w << " why: " << summary(t.left_out);
+    w << " why: " << text(cases.reasons());
     warning = w.str();
   }
   // A pass is one line (and its warnings); the tag table and the statistics with
   // OBLIQUE_STATISTICS=1.
   std::cout << name << "OK, passed " << success.numSuccess << " tests";
-  if (!t.left_out.empty()) std::cout << " (left out: " << summary(t.left_out) << ")";
+  if (!cases.reasons().empty()) std::cout << " (left out: " << text(cases.reasons()) << ")";
   std::cout << "\n";
   if (!warning.empty()) {
     std::cout << "warning: " << id << ": " << warning
@@ -324,34 +305,28 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     ADD_FAILURE() << id
                   << ": no implementation ran: check OBLIQUE_IMPL and the contract (or the "
                      "generator discarded every case)"
-                  << (t.refused.empty() ? "" : "; refused by accepts: " + summary(t.refused))
-                  << (t.left_out.empty() ? "" : "; left out: " + summary(t.left_out));
+                  << (cases.by("family", &run::Counts::refused).empty()
+                          ? ""
+                          : "; refused by accepts: " +
+                                text(cases.by("family", &run::Counts::refused)))
+                  << (cases.reasons().empty() ? "" : "; left out: " + text(cases.reasons()));
     return;
   }
   if (settings().strict && !warning.empty())
     ADD_FAILURE() << id << ": " << warning << " [OBLIQUE_STRICT=1]";
   if (reproducing || coverage == Coverage::none) return;  // one case: nothing to cover
-  for (const std::string& kind : kinds) {
-    if (count(judged_kinds, kind) == 0)
-      ADD_FAILURE() << why_none(kind, coverage == Coverage::valid ? "family" : "defect");
-  }
-  auto needs = [&](const std::map<std::string, int>& counts, auto names, const char* what) {
-    for (const auto& n : names) {
-      EXPECT_GT(count(counts, std::string(n)), 0)
-          << id << ": no case of " << what << " " << n << " was "
-          << (&counts == &t.generated_places ? "made" : "judged") << ": raise max_success"
-          << (t.refused.empty() ? "" : " (refused by accepts: " + summary(t.refused) + ")")
-          << (t.left_out.empty() ? "" : " (left out: " + summary(t.left_out) + ")");
-    }
-  };
-  std::vector<std::string_view> conventions, places;
-  for (auto c : require.conventions) conventions.push_back(convention_name(c));
-  for (auto p : require.places) places.push_back(cases::place_name(p));
-  needs(t.conventions, conventions, "convention");
+  for (const std::string& line : unjudged(kinds)) ADD_FAILURE() << line;
+  for (const std::string& line : unjudged(conventions)) ADD_FAILURE() << line;
   switch (coverage) {
     case Coverage::valid:
     case Coverage::places_only:
-    case Coverage::perspective_shape: needs(t.generated_places, places, "hard place"); break;
+    case Coverage::perspective_shape:
+      for (auto p : require.places) {
+        const std::string place(cases::place_name(p));
+        EXPECT_GT(cases.of({"place", place}).made, 0)
+            << id << ": no case of hard place " << place << " was made: " << advice.more;
+      }
+      break;
     case Coverage::invalid:
     case Coverage::none: break;
   }
@@ -411,16 +386,11 @@ void check_properties(const Implementation<T>& impl, const Contract& given) {
       [=] {
         const cases::Case<T> c = *cases::invalid_case_for<T>(contract);
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-        const std::string defect(cases::defect_name(*c.defect));
-        ++tally().generated[defect];
-        RC_TAG(defect);
+        count_generated(c);
         Checks checks;  // an ok answer is allowed only in a gray zone, and then has every property
         checks.properties = contract.properties;
         checks.row3_accuracy = *contract.row3_accuracy;
-        if (for_each_answer(implementations, c, problem, checks, true, &contract, defect)) {
-          ++tally().defects[defect];
-          ++tally().conventions[std::string(convention_name(c.convention))];
-        }
+        if (for_each_answer(implementations, c, problem, checks, true, &contract)) count_judged(c);
       },
       Coverage::invalid, "invalid_inputs_get_their_status", contract);
 }

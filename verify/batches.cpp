@@ -17,7 +17,7 @@ std::string Batch<T>::text() const {
 
 template <class T>
 Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
-                    LeftOut& left_out) {
+                    run::Tally& tally) {
   Batch<T> b;
   for (std::size_t k = 0, tries = 0; k < size && tries < 64 * size + 64; ++tries) {
     rc::Shrinkable<cases::Case<T>> drawn =
@@ -28,7 +28,7 @@ Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size,
           std::make_unique<oracle::FilteredProblem<T>>(value.matrix, value.plane, value.convention);
       if (const std::string why = draws.left_out(*problem); !why.empty()) {
         // No answer, and no status of the contract's for it: outside what it claims.
-        left_out.count(value, why, problem->exact_status() != Status::ok);
+        tally.left_out(run::kinds_of(value), why, problem->exact_status() == Status::ok);
         continue;
       }
       b.problems.push_back(std::move(problem));
@@ -80,10 +80,10 @@ std::vector<Judged<T>> judge_batch(const Draws<T>& draws, const Batch<T>& b,
   return out;
 }
 
-#define OBLIQUE_VERIFY_BATCHES(T)                                                       \
-  template struct Batch<T>;                                                             \
-  template Batch<T> draw_batch<T>(const Draws<T>&, rc::Random&, std::size_t, LeftOut&); \
-  template std::vector<Judged<T>> judge_batch<T>(const Draws<T>&, const Batch<T>&,      \
+#define OBLIQUE_VERIFY_BATCHES(T)                                                          \
+  template struct Batch<T>;                                                                \
+  template Batch<T> draw_batch<T>(const Draws<T>&, rc::Random&, std::size_t, run::Tally&); \
+  template std::vector<Judged<T>> judge_batch<T>(const Draws<T>&, const Batch<T>&,         \
                                                  const std::vector<std::string>&, int);
 OBLIQUE_VERIFY_BATCHES(float)
 OBLIQUE_VERIFY_BATCHES(double)

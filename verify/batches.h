@@ -31,9 +31,9 @@ struct Batch {
 };
 
 /// Draws up to `size` cases the contract sends (at most 64 draws per case, then fewer); what it
-/// leaves out is counted in `left_out` by oracle::not_judged()'s reason and by its family.
+/// leaves out is counted in `tally` (left out) by oracle::not_judged()'s reason and by its family.
 template <class T>
-Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size, LeftOut& left_out);
+Batch<T> draw_batch(const Draws<T>& draws, rc::Random& random, std::size_t size, run::Tally& tally);
 
 /// One answer judged: a protocol error (the line is no answer), a finding, or neither.
 template <class T>

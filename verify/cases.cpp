@@ -110,96 +110,10 @@ bool consistent_with_float(const cases::Case<T>& c, const Matrix4<T>& answer,
   }
 }
 
-template <class T>
-void Seen::count(const cases::Case<T>& v) {
-  ++families[std::string(cases::family_name(v.family))];
-  ++conventions[std::string(convention_name(v.convention))];
-  if (v.defect)
-    ++defects[std::string(cases::defect_name(*v.defect))];
-  else
-    ++places[std::string(cases::place_name(v.place))];
-}
-
-std::string Seen::summary(const std::map<std::string, long>& counts) {
-  return counts_text(counts);
-}
-
-template <class T>
-void LeftOut::count(const cases::Case<T>& v, const std::string& reason, bool unclaimed) {
-  ++why[reason];
-  const std::string family(cases::family_name(v.family)), convention(convention_name(v.convention));
-  ++families[family];
-  ++conventions[convention];
-  if (unclaimed) {
-    ++unclaimed_families[family];
-    ++unclaimed_conventions[convention];
-  }
-}
-
-namespace {
-
-long count_of(const std::map<std::string, long>& counts, const std::string& key) {
-  const auto it = counts.find(key);
-  return it == counts.end() ? 0 : it->second;
-}
-
-/// The contract's families and conventions by name, each with its judged and left-out counts.
-struct Claim {
-  std::string what, name;
-  long judged, left;
-  long unclaimed;  ///< of `left`, inputs the contract does not claim
-};
-
-std::vector<Claim> claims(const Contract& contract, const Seen& seen, const LeftOut& left_out) {
-  std::vector<Claim> out;
-  for (cases::Family f : contract.families) {
-    const std::string name(cases::family_name(f));
-    out.push_back({"family", name, count_of(seen.families, name), count_of(left_out.families, name),
-                   count_of(left_out.unclaimed_families, name)});
-  }
-  for (Convention c : contract.conventions) {
-    const std::string name(convention_name(c));
-    out.push_back({"convention", name, count_of(seen.conventions, name),
-                   count_of(left_out.conventions, name),
-                   count_of(left_out.unclaimed_conventions, name)});
-  }
-  return out;
-}
-
-}  // namespace
-
-std::vector<std::string> unjudged_claims(const Contract& contract, const Seen& seen,
-                                         const LeftOut& left_out, long done) {
-  std::vector<std::string> out;
-  for (const Claim& c : claims(contract, seen, left_out)) {
-    if (c.judged > 0) continue;
-    std::string line =
-        "the contract claims " + c.what + " " + c.name + ", and no case of it was judged: ";
-    if (c.left == 0) {
-      line += "none was drawn in " + std::to_string(done) +
-              " cases: raise --cases or --time-limit, or leave " + c.name + " out of the contract";
-    } else {
-      line += "all " + std::to_string(c.left) +
-              " drawn were left out by the contract (why, over the run: " +
-              Seen::summary(left_out.why) +
-              "): list the statuses those inputs get (\"statuses\", \"refusals\"), or leave " +
-              c.name + " out of the contract";
-    }
-    out.push_back(std::move(line));
-  }
-  return out;
-}
-
-std::string partly_judged(const Contract& contract, const Seen& seen, const LeftOut& left_out,
-                          double share) {
-  std::string out;
-  for (const Claim& c : claims(contract, seen, left_out)) {
-    const long left = c.left - c.unclaimed;  // of what the contract claims
-    if (c.judged == 0 || !left_out_beyond(left, c.judged + left, share)) continue;
-    out += (out.empty() ? "" : ", ") + c.what + " " + c.name + " " + std::to_string(left) + " of " +
-           std::to_string(c.judged + left);
-  }
-  return out;
+run::Advice matrix_advice() {
+  run::Advice advice;
+  advice.judge_left_out = "list the statuses those inputs get (\"statuses\", \"refusals\")";
+  return advice;
 }
 
 #define OBLIQUE_VERIFY_CASES(T)                                                             \
@@ -208,9 +122,7 @@ std::string partly_judged(const Contract& contract, const Seen& seen, const Left
   template std::optional<Found<T>> judge_answer<T>(const oracle::FilteredProblem<T>&,       \
                                                    const Answer<T>&, const cases::Checks&); \
   template bool consistent_with_float<T>(const cases::Case<T>&, const Matrix4<T>&,          \
-                                         const cases::Checks&);                             \
-  template void Seen::count<T>(const cases::Case<T>&);                                      \
-  template void LeftOut::count<T>(const cases::Case<T>&, const std::string&, bool);
+                                         const cases::Checks&);
 OBLIQUE_VERIFY_CASES(float)
 OBLIQUE_VERIFY_CASES(double)
 #undef OBLIQUE_VERIFY_CASES

@@ -16,6 +16,7 @@
 #include "oblique/oracle/filtered.h"
 #include "oblique/oracle/finding.h"
 #include "oblique/protocol/protocol.h"
+#include "oblique/run/tally.h"
 
 namespace oblique::verify {
 
@@ -73,38 +74,7 @@ template <class T>
 bool consistent_with_float(const cases::Case<T>& c, const Matrix4<T>& answer,
                            const cases::Checks& checks);
 
-/// What the judged cases covered, for the summary of a passing run.
-struct Seen {
-  std::map<std::string, long> families, conventions, places, defects;
-
-  template <class T>
-  void count(const cases::Case<T>& v);
-  /// "name count, ..." or "none".
-  static std::string summary(const std::map<std::string, long>& counts);
-};
-
-/// Drawn cases the contract left out (not sent: it does not judge their status), by why and by
-/// the family and convention drawn.
-struct LeftOut {
-  std::map<std::string, long> why, families, conventions;
-  /// Of those, the inputs the contract does not claim (without an answer, and no status of the
-  /// contract's for them): said among the reasons, no gap in what it claims.
-  std::map<std::string, long> unclaimed_families, unclaimed_conventions;
-
-  template <class T>
-  void count(const cases::Case<T>& v, const std::string& reason, bool unclaimed = false);
-};
-
-/// One line for each family and convention the contract claims of which no case was judged in
-/// `done` cases: none drawn (raise the budget), or every one left out (why, and what to change).
-/// Empty when each had a case judged.
-std::vector<std::string> unjudged_claims(const Contract& contract, const Seen& seen,
-                                         const LeftOut& left_out, long done);
-
-/// The claimed families and conventions of which more than `share` of the drawn cases the
-/// contract claims were left out: "family NAME L of D, ..." (empty: none). A single case left out
-/// is no pattern; inputs the contract does not claim are not counted.
-std::string partly_judged(const Contract& contract, const Seen& seen, const LeftOut& left_out,
-                          double share);
+/// How verify's matrix run tells its user what to change when a claimed kind had nothing judged.
+run::Advice matrix_advice();
 
 }  // namespace oblique::verify

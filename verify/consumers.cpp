@@ -24,6 +24,7 @@
 #include "oblique/protocol/shell_text.h"
 #include "oblique/report/counterexample_report.h"
 #include "oblique/report/report_files.h"
+#include "oblique/run/tally.h"
 #include "oblique/shader/shader_runner.h"
 #include "reporter.h"
 
@@ -56,7 +57,13 @@ struct Caught {
 };
 
 std::string summary(const std::map<std::string, long>& counts) {
-  return counts_text(counts);
+  return run::counts_text(counts);
+}
+
+/// A consumer finding's kinds: its property and the family of the round's case.
+std::vector<run::Kind> kinds_of(oracle::ConsumerCheck check, cases::Family family) {
+  return {{"property", std::string(oracle::consumer_check_name(check))},
+          {"family", std::string(cases::family_name(family))}};
 }
 
 /// What answers a run's requests: a program over the protocol (ConsumerProgram), or a shader on
@@ -384,30 +391,29 @@ class ConsumerRun {
              const std::string& answer) {
     const std::string check(oracle::consumer_check_name(f.check));
     asked_checks_.insert(f.check);
+    const std::vector<run::Kind> kinds = kinds_of(f.check, round.c.family);
     if (const std::string_view why = oracle::not_applicable(f.check, round.c.family);
         !f.judged && !why.empty()) {
       // Nothing to judge on this family (corners of an infinite frustum, ...): said once in
       // the summary, not counted as left out. (A judged answer on it is settled as any.)
-      not_applicable_[check + " on " + std::string(cases::family_name(round.c.family)) + " (" +
-                      std::string(why) + ")"] += 1;
+      tally_.not_applicable(kinds, check + " on " +
+                                       std::string(cases::family_name(round.c.family)) + " (" +
+                                       std::string(why) + ")");
       return;
     }
     if (!f.judged && f.unjudged == oracle::ConsumerFinding::Unjudged::not_applicable) {
       // The same on one matrix of a family it applies to (an infinite matrix of x_flipped); the
-      // property stays in the gate below, so one never judged on any matrix is no pass.
-      not_applicable_[check + " (" + f.detail + ")"] += 1;
-      left_out_checks_[check] += 0;
+      // property stays claimed, so one never judged on any matrix is no pass.
+      tally_.not_applicable(kinds, check + " (" + f.detail + ")");
       return;
     }
     if (!f.judged) {
       // Said among the reasons; counted against the property only where the contract claims
       // the case (an input without an answer is claimed by no consumer contract).
-      ++left_out_[f.detail];
-      left_out_checks_[check] += f.unjudged == oracle::ConsumerFinding::Unjudged::undecided;
+      tally_.left_out(kinds, f.detail, f.unjudged == oracle::ConsumerFinding::Unjudged::undecided);
       return;
     }
-    ++judged_[check];
-    ++judged_families_[std::string(cases::family_name(round.c.family))];
+    tally_.judged(kinds);
     if (f.holds || caught_) return;
     caught_ = Caught<T>{f, inputs, request, answer, about, round, index, std::nullopt};
   }
@@ -547,11 +553,11 @@ class ConsumerRun {
       index += settled;
       if (caught_) break;
       const auto now = std::chrono::steady_clock::now();
-      set_interrupted_line(options_, total(judged_), "answers judged",
+      set_interrupted_line(options_, tally_.judged(), "answers judged",
                            std::chrono::duration<double>(now - start).count());
       if (options_.progress && now - last_progress > std::chrono::seconds(5)) {
         last_progress = now;
-        err_ << "oblique verify: " << index << " rounds, " << total(judged_) << " answers judged, "
+        err_ << "oblique verify: " << index << " rounds, " << tally_.judged() << " answers judged, "
              << static_cast<long>(std::chrono::duration<double>(now - start).count()) << " s\n";
       }
     }
@@ -562,63 +568,61 @@ class ConsumerRun {
       shrink();
       return report(seconds);
     }
-    if (total(judged_) == 0) {
+    if (tally_.judged() == 0) {
       err_ << "oblique verify: no answer was judged in " << index
-           << " rounds (left out: " << summary(left_out_)
-           << (not_applicable_.empty() ? "" : "; not applicable: " + summary(not_applicable_))
+           << " rounds (left out: " << summary(tally_.reasons())
+           << (tally_.not_applicable_reasons().empty()
+                   ? ""
+                   : "; not applicable: " + summary(tally_.not_applicable_reasons()))
            << "): nothing was verified\n";
       return Verdict::error;
     }
     // A pass means judged: every property asked and every family the contract claims had an
-    // answer judged.
-    std::vector<std::string> unjudged;
-    for (const auto& [check, left] : left_out_checks_) {
-      if (judged_.count(check)) continue;
-      unjudged.push_back(
-          check + ": no answer judged, " + std::to_string(left) +
-          " of its cases the contract claims left out (why, over the run: " + summary(left_out_) +
-          "): raise --cases or --time-limit, or narrow --families to cases it has");
+    // answer judged, where the property applies to a claimed family.
+    std::vector<run::Kind> properties, claims;
+    for (const oracle::ConsumerCheck c : asked_checks_) {
+      if (std::any_of(contract.families.begin(), contract.families.end(),
+                      [c](cases::Family f) { return oracle::not_applicable(c, f).empty(); }))
+        properties.push_back({"property", std::string(oracle::consumer_check_name(c))});
     }
-    for (cases::Family f : contract.families) {
-      const std::string name(cases::family_name(f));
-      const bool applicable = std::any_of(
-          asked_checks_.begin(), asked_checks_.end(),
-          [f](oracle::ConsumerCheck c) { return oracle::not_applicable(c, f).empty(); });
-      if (!applicable || judged_families_.count(name)) continue;
-      unjudged.push_back(
-          "the contract claims family " + name + ", and no answer on it was judged: " +
-          (families.count(name) ? std::to_string(families[name]) +
-                                      " rounds of it, every answer left out (why, over the run: " +
-                                      summary(left_out_) + "): leave " + name + " out of --families"
-                                : "none was drawn in " + std::to_string(index) +
-                                      " rounds: raise --cases or --time-limit"));
+    claims = properties;
+    for (const cases::Family f : contract.families) {
+      if (std::any_of(asked_checks_.begin(), asked_checks_.end(), [f](oracle::ConsumerCheck c) {
+            return oracle::not_applicable(c, f).empty();
+          }))
+        claims.push_back({"family", std::string(cases::family_name(f))});
     }
-    if (!unjudged.empty()) {
+    run::Advice advice;
+    advice.claimant = "the run claims";
+    advice.unit = "answer";
+    advice.rounds = "rounds";
+    advice.leave_out = [](const run::Kind& k) {
+      return k.axis == "family" ? "leave " + k.name + " out of --families"
+                                : std::string("narrow --families to cases it has");
+    };
+    if (const std::vector<std::string> unjudged = run::unjudged(tally_, claims, index, advice);
+        !unjudged.empty()) {
       for (const std::string& u : unjudged) err_ << "oblique verify: " << u << "\n";
-      err_ << "oblique verify: no violation in " << total(judged_)
+      err_ << "oblique verify: no violation in " << tally_.judged()
            << " answers judged, but not all that was claimed was judged; not a pass\n";
       return Verdict::error;
     }
     std::ostringstream line;
     line.precision(3);
     line << std::fixed << seconds;
-    out_ << "oblique verify: no violation in " << total(judged_) << " answers judged, " << index
+    out_ << "oblique verify: no violation in " << tally_.judged() << " answers judged, " << index
          << " rounds of " << kind_list() << " (" << protocol::scalar_name<T>() << ", seed "
-         << options_.seed << ", " << line.str() << " s)\n  judged: " << summary(judged_)
+         << options_.seed << ", " << line.str()
+         << " s)\n  judged: " << summary(tally_.by("property"))
          << "\n  conventions: " << summary(conventions) << "\n  families: " << summary(families)
-         << "\n  left out: " << summary(left_out_) << "\n";
-    if (!not_applicable_.empty())
-      out_ << "  not applicable (rounds): " << summary(not_applicable_) << "\n";
+         << "\n  left out: " << summary(tally_.reasons()) << "\n";
+    if (!tally_.not_applicable_reasons().empty())
+      out_ << "  not applicable (rounds): " << summary(tally_.not_applicable_reasons()) << "\n";
     // Judged in part only: a property with more than the warning share of its samples left out.
-    std::string partly;
-    for (const auto& [check, left] : left_out_checks_) {
-      const long judged = judged_.count(check) ? judged_.at(check) : 0;
-      if (!left_out_beyond(left, judged + left)) continue;
-      partly += (partly.empty() ? "" : ", ") + check + " " + std::to_string(left) + " of " +
-                std::to_string(judged + left);
-    }
-    if (!partly.empty()) {
-      out_ << partly_judged_warning(partly, options_.strict);
+    if (const std::string partly =
+            run::partly_judged(tally_, properties, run::kLeftOutWarning, /*with_axis=*/false);
+        !partly.empty()) {
+      out_ << run::partly_judged_warning(partly, options_.strict);
       if (options_.strict) return Verdict::error;
     }
     return Verdict::holds;
@@ -631,16 +635,16 @@ class ConsumerRun {
       return Verdict::error;
     }
     if (!counted()) return Verdict::error;
-    if (!caught_ && total(judged_) == 0) {
+    if (!caught_ && tally_.judged() == 0) {
       // An edited report, or a case the program is never asked about: no verdict at all.
       err_ << "oblique verify: --replay " << report_path
-           << ": the round judged nothing (left out: " << summary(left_out_)
+           << ": the round judged nothing (left out: " << summary(tally_.reasons())
            << "); nothing is verified\n";
       return Verdict::error;
     }
     if (!caught_) {
-      out_ << "oblique verify: the round holds (" << summary(judged_)
-           << " judged; left out: " << summary(left_out_) << ")\n";
+      out_ << "oblique verify: the round holds (" << summary(tally_.by("property"))
+           << " judged; left out: " << summary(tally_.reasons()) << ")\n";
       return Verdict::holds;
     }
     if (caught_->lost) {
@@ -654,12 +658,6 @@ class ConsumerRun {
   }
 
  private:
-  static long total(const std::map<std::string, long>& counts) {
-    long n = 0;
-    for (const auto& [name, k] : counts) n += k;
-    return n;
-  }
-
   /// The count check at the end (ConsumerProgram::finish()): a program that wrote lines beyond
   /// one answer per request had its answers judged against other requests, so neither a pass nor
   /// a violation stands; says so on err_ and returns false.
@@ -775,9 +773,8 @@ class ConsumerRun {
   std::ostream& err_;
   std::unique_ptr<Answerer<T>> program_;
   Consumers<T> asked_;
-  std::map<std::string, long> judged_, left_out_;
-  /// Left out by property, and the families with an answer judged.
-  std::map<std::string, long> left_out_checks_, judged_families_, not_applicable_;
+  /// Judged, left out and not applicable, by property and family.
+  run::Tally tally_;
   std::set<oracle::ConsumerCheck> asked_checks_;
   std::optional<Caught<T>> caught_;
   /// The case the last planned round asked (a shader's run asks several rounds of each).

@@ -158,7 +158,7 @@ Verdict Reporter<T>::finding(const cases::Case<T>& v, const Found<T>& found, int
 }
 
 template <class T>
-Verdict Reporter<T>::passed(long done, double elapsed, const Seen& seen, const LeftOut& left_out,
+Verdict Reporter<T>::passed(long done, double elapsed, const run::Tally& tally,
                             bool stopped_by_time, long dropped) {
   out_ << "oblique verify: " << done << " cases, no violation (" << protocol::scalar_name<T>()
        << ", seed " << options_.seed << ", " << std::fixed;
@@ -168,18 +168,18 @@ Verdict Reporter<T>::passed(long done, double elapsed, const Seen& seen, const L
   out_.unsetf(std::ios::floatfield);
   out_.precision(6);
   out_ << "  contract: " << contract_json(draws_.contract()) << "\n";
-  out_ << "  families: " << Seen::summary(seen.families)
-       << "\n  conventions: " << Seen::summary(seen.conventions)
-       << "\n  places (with an answer): " << Seen::summary(seen.places)
-       << "\n  inputs without an answer: " << Seen::summary(seen.defects) << "\n";
-  if (!left_out.why.empty() || !draws_.notes().empty()) {
+  out_ << "  families: " << run::counts_text(tally.by("family"))
+       << "\n  conventions: " << run::counts_text(tally.by("convention"))
+       << "\n  places (with an answer): " << run::counts_text(tally.by("place"))
+       << "\n  inputs without an answer: " << run::counts_text(tally.by("defect")) << "\n";
+  if (!tally.reasons().empty() || !draws_.notes().empty()) {
     out_ << "  left out by the contract:";
     std::string sep = " ";
     for (const std::string& note : draws_.notes()) {
       out_ << sep << note;
       sep = ", ";
     }
-    for (const auto& [why, n] : left_out.why) {
+    for (const auto& [why, n] : tally.reasons()) {
       out_ << sep << why << " " << n << " drawn";
       sep = ", ";
     }
@@ -194,9 +194,9 @@ Verdict Reporter<T>::passed(long done, double elapsed, const Seen& seen, const L
                          : "")
          << "\n";
   // Judged in part only: a claimed kind with more than the warning share of its cases left out.
-  if (const std::string partly = partly_judged(draws_.contract(), seen, left_out, kLeftOutWarning);
+  if (const std::string partly = run::partly_judged(tally, run::claims_of(draws_.contract()));
       !partly.empty()) {
-    out_ << partly_judged_warning(partly, options_.strict);
+    out_ << run::partly_judged_warning(partly, options_.strict);
     if (options_.strict) return Verdict::error;
   }
   return Verdict::holds;

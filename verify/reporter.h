@@ -78,8 +78,8 @@ class Reporter {
   const std::string& last_cause() const { return last_cause_; }
 
   /// The summary of a run without a finding: Verdict::holds.
-  Verdict passed(long done, double elapsed, const Seen& seen, const LeftOut& left_out,
-                 bool stopped_by_time, long dropped);
+  Verdict passed(long done, double elapsed, const run::Tally& tally, bool stopped_by_time,
+                 long dropped);
   /// The index of a --keep-going run's findings: Verdict::violated.
   Verdict index(const std::map<std::string, Kind>& kinds, long done);
 

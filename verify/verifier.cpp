@@ -82,18 +82,17 @@ class Verifier {
     std::size_t batch = 16;
     auto last_progress = session_.start();
     std::map<std::string, Kind> kinds;
-    LeftOut left_out;
-    Seen seen;
+    run::Tally tally;
     bool stopped_by_time = false;
     long dropped = 0;
     // Batch k + 1 is generated and queued before batch k's answers are read, so the
     // implementation works on it while batch k is judged (on --threads threads).
-    Batch<T> current = next_batch(random, generated, batch, left_out);
+    Batch<T> current = next_batch(random, generated, batch, tally);
     while (!current.cases.empty()) {
       batch = std::min<std::size_t>(batch * 2, 1024);
       Batch<T> following;
       if (generated < case_limit() && Clock::now() < deadline)
-        following = next_batch(random, generated, batch, left_out);
+        following = next_batch(random, generated, batch, tally);
       const std::size_t n = current.cases.size();
       std::vector<std::string> answers;
       bool restarted = false;  // --keep-going: a fresh process after a finding in this batch
@@ -145,7 +144,7 @@ class Verifier {
           program.queue(following.text());
           restarted = true;
         }
-        seen.count(current.values[k]);
+        tally.judged(run::kinds_of(current.values[k]));
         if (!mode_.accuracy_dir.empty() && !judged[k].finding)
           accuracy_.passed(current.values[k], current.requests[k], answers[k]);
         // Drawing stops at the time limit (the answers left are judged, not drawn).
@@ -234,15 +233,15 @@ class Verifier {
     }
     // A pass means judged: every family and convention the contract claims had a case judged.
     if (const std::vector<std::string> unjudged =
-            unjudged_claims(draws_.contract(), seen, left_out, done);
+            run::unjudged(tally, run::claims_of(draws_.contract()), done, matrix_advice());
         !unjudged.empty()) {
       for (const std::string& line : unjudged) err_ << "oblique verify: " << line << "\n";
       err_ << "oblique verify: no violation in " << done
            << " cases, but not all the contract claims was judged; not a pass\n";
       return Verdict::error;
     }
-    const Verdict verdict = reporter_.passed(done, session_.seconds_since_start(), seen, left_out,
-                                             stopped_by_time, dropped);
+    const Verdict verdict =
+        reporter_.passed(done, session_.seconds_since_start(), tally, stopped_by_time, dropped);
     if (verdict != Verdict::holds) return verdict;
     if (mode_.rasterize) raster_.summary();
     if (!mode_.accuracy_dir.empty() && verdict == Verdict::holds && !accuracy_.write())
@@ -256,10 +255,10 @@ class Verifier {
   }
 
   /// The next batch (at most `size`, within --cases), sent to the implementation at once.
-  Batch<T> next_batch(rc::Random& random, long& generated, std::size_t size, LeftOut& left_out) {
+  Batch<T> next_batch(rc::Random& random, long& generated, std::size_t size, run::Tally& tally) {
     const std::size_t n =
         std::min<std::size_t>(size, static_cast<std::size_t>(case_limit() - generated));
-    Batch<T> b = draw_batch(draws_, random, n, left_out);
+    Batch<T> b = draw_batch(draws_, random, n, tally);
     generated += static_cast<long>(b.cases.size());
     session_.program().queue(b.text());
     return b;

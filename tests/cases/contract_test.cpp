@@ -191,22 +191,6 @@ TEST(Contract, resolvedFillsEveryListAndTheImplementationsOwn) {
   EXPECT_EQ(g.row3_accuracy, false);
 }
 
-// "Judged in part only" is a share beyond chance: a handful of cases with two left out is no
-// pattern, a hundred thousand with an eighth left out is. (The engine suite's default 100 cases
-// gave "jittered 2 of 13" and failed OBLIQUE_STRICT=1 on correct code.)
-TEST(LeftOut, aShareCountsOnlyBeyondChance) {
-  EXPECT_FALSE(left_out_beyond(0, 100));
-  EXPECT_FALSE(left_out_beyond(1, 1));          // one case is no pattern
-  EXPECT_FALSE(left_out_beyond(2, 13));         // 15% seen, 2% at least
-  EXPECT_FALSE(left_out_beyond(15, 100));       // 15% seen, 7% at least
-  EXPECT_TRUE(left_out_beyond(25, 100));        // 25% seen, 13.7% at least
-  EXPECT_TRUE(left_out_beyond(13899, 111575));  // 12.5% of a long run, 12.1% at least
-  EXPECT_FALSE(left_out_beyond(5213, 102889));  // 5% of a long run
-  EXPECT_TRUE(left_out_beyond(2, 2));
-  EXPECT_FALSE(left_out_beyond(30, 100, 0.5));
-  EXPECT_TRUE(left_out_beyond(80, 100, 0.5));
-}
-
 TEST(Names, theClosestNameIsWithinAThirdOfItsLetters) {
   const std::vector<std::string> known = {"apply", "verify", "check", "report"};
   EXPECT_EQ(protocol::closest_name("verfy", known), "verify");

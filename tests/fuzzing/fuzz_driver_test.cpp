@@ -207,7 +207,7 @@ TEST(FuzzDriverBuilder, underANarrowContractBuiltInputsReachTheFunctionAndAreJud
   boxes.defects = {cases::Defect::camera_in_front, cases::Defect::misses_view_volume};
   std::mt19937 random(4503);
   given_matrices.clear();
-  const long judged_before = fuzzing::counts().judged;
+  const long judged_before = fuzzing::counts().judged();
   constexpr int kInputs = 400;
   for (int i = 0; i < kInputs; ++i) {
     const std::vector<std::uint8_t> bytes = built_input(random, 1);  // double
@@ -215,7 +215,7 @@ TEST(FuzzDriverBuilder, underANarrowContractBuiltInputsReachTheFunctionAndAreJud
   }
   // Every built input is a box: most reach the function and are judged (some have no answer
   // that is decidable in double, or are spoiled into one a function is not asked).
-  const long judged = fuzzing::counts().judged - judged_before;
+  const long judged = fuzzing::counts().judged() - judged_before;
   EXPECT_GT(judged, kInputs / 2);
   EXPECT_EQ(static_cast<long>(given_matrices.size()), judged);
   for (const Matrix4<double>& m : given_matrices)

@@ -29,7 +29,7 @@ oblique::cases::Case<float> built() {
 }
 ]=])
 set(includes -I${SOURCE}/core/include -I${SOURCE}/protocol/include -I${SOURCE}/cases/include -I${SOURCE}/oracle/include
-    -I${SOURCE}/mistakes/include -I${SOURCE}/report/include
+    -I${SOURCE}/mistakes/include -I${SOURCE}/run/include -I${SOURCE}/report/include
     -I${SOURCE}/fuzzing/include -isystem ${EIGEN})
 
 function(symbols file out)  # the demangled names nm lists for `file`

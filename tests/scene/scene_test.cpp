@@ -284,8 +284,8 @@ TEST(SceneConsumers, aNamedConsumerWithNothingJudgedSaysWhyAndWhatToChange) {
   check.surfaces = {skipped};
   ConsumerCoverage none = consumer_coverage(scene, check, false);
   ASSERT_EQ(none.unjudged.size(), 3u);
-  EXPECT_NE(none.unjudged[0].find("the scene names consumer reconstruction, and no pass was "
-                                  "rendered to ask it on"),
+  EXPECT_NE(none.unjudged[0].find("the scene names consumer reconstruction, and no answer of it "
+                                  "was judged: no pass was rendered to ask it on"),
             std::string::npos)
       << none.unjudged[0];
 
@@ -298,13 +298,14 @@ TEST(SceneConsumers, aNamedConsumerWithNothingJudgedSaysWhyAndWhatToChange) {
   check.surfaces = {skipped, clip};
   const ConsumerCoverage some = consumer_coverage(scene, check, false);
   ASSERT_EQ(some.unjudged.size(), 2u);
-  EXPECT_NE(some.unjudged[0].find("consumer culling, and none of its answers was judged: all 5 "
-                                  "left out (why: the stored depth's interval reaches w = 0 5)"),
+  EXPECT_NE(some.unjudged[0].find("consumer culling, and no answer of it was judged: all 5 left "
+                                  "out (why, over the run: the stored depth's interval reaches "
+                                  "w = 0 5): ask in a wider precision"),
             std::string::npos)
       << some.unjudged[0];
-  EXPECT_NE(some.unjudged[1].find("consumer pass_view, and it applies to none of the 1 rendered "
-                                  "passes (a clip pass renders with the main view): leave "
-                                  "pass_view out of \"consumers\""),
+  EXPECT_NE(some.unjudged[1].find("consumer pass_view, and no answer of it was judged: it applies "
+                                  "to none of the 1 rendered passes (a clip pass renders with the "
+                                  "main view 1): leave pass_view out of \"consumers\""),
             std::string::npos)
       << some.unjudged[1];
   EXPECT_TRUE(some.partly.empty());

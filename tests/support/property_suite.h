@@ -54,12 +54,12 @@ inline bool runs_only_for(std::initializer_list<std::string_view> names) {
 }
 
 /// Every implementation OBLIQUE_IMPL selects, on the case (testing::for_each_answer); `problem`
-/// is a Problem<T> or a FilteredProblem<T>; `kind` as there. Whether any answer was judged.
+/// is a Problem<T> or a FilteredProblem<T>. Whether any answer was judged.
 template <class T, class AnyProblem>
 bool for_each_answer(const cases::Case<T>& c, const AnyProblem& problem, Checks checks,
-                     bool judge_statuses = false, std::string kind = "") {
+                     bool judge_statuses = false) {
   return testing::for_each_answer(selected_implementations<T>(), c, problem, checks, judge_statuses,
-                                  nullptr, std::move(kind));
+                                  nullptr);
 }
 
 }  // namespace oblique::oracle::suite

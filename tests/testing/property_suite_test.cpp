@@ -39,16 +39,11 @@ void invalid_inputs_get_their_status() {
       [] {
         const Case<T> c = *cases::invalid_case<T>();
         const FilteredProblem<T> problem(c.matrix, c.plane, c.convention);
-        const std::string defect(cases::defect_name(*c.defect));
-        ++tally().generated[defect];
-        RC_TAG(defect);
+        count_generated(c);
         // An ok answer is allowed only in a gray zone, and must then have every property.
         Checks checks;
         checks.properties.assign(std::begin(all_properties), std::end(all_properties));
-        if (for_each_answer(c, problem, checks, /*judge_statuses=*/true, defect)) {
-          ++tally().defects[defect];
-          ++tally().conventions[std::string(convention_name(c.convention))];
-        }
+        if (for_each_answer(c, problem, checks, /*judge_statuses=*/true)) count_judged(c);
       },
       Coverage::invalid);
 }

@@ -227,7 +227,7 @@ TEST(JudgedCoverage, aClaimedFamilyTheAcceptsRefusesFailsSayingWhy) {
   EXPECT_NE(all.find("the contract claims family y_flipped, and no case of it was judged: all "),
             std::string::npos)
       << all;
-  EXPECT_NE(all.find("refused by accepts (make_oblique_gl): widen accepts or leave y_flipped out "
+  EXPECT_NE(all.find("refused by accepts (make_oblique_gl): widen accepts, or leave y_flipped out "
                      "of the contract"),
             std::string::npos)
       << all;
@@ -275,7 +275,7 @@ TEST(JudgedCoverage, aConsumerAcceptsThatRefusesAClaimedFamilyFailsSayingWhy) {
   EXPECT_NE(all.find("the contract claims family y_flipped, and no case of it was judged: all "),
             std::string::npos)
       << all;
-  EXPECT_NE(all.find("refused by accepts (depth_for_upright_cameras): widen accepts or leave "
+  EXPECT_NE(all.find("refused by accepts (depth_for_upright_cameras): widen accepts, or leave "
                      "y_flipped out of the contract"),
             std::string::npos)
       << all;

@@ -38,6 +38,7 @@
 #include "oblique/cases/contract.h"
 #include "oblique/oracle/adapter.h"
 #include "oblique/oracle/consumers.h"
+#include "oblique/run/tally.h"
 #include "oblique/util/eigen_layout.h"
 
 namespace oblique::testing {
@@ -61,7 +62,7 @@ struct Settings {
   /// A kind of case (family, defect, consumer function) the contract claims with more than this
   /// share of its cases left out (not judged: within rounding of no answer, beyond a bound) is
   /// named in a warning line of the run's summary.
-  double left_out_warning = kLeftOutWarning;
+  double left_out_warning = run::kLeftOutWarning;
   /// The warning fails the test instead. Set by OBLIQUE_STRICT=1.
   bool strict = false;
 };

@@ -72,25 +72,6 @@ Contract engine_contract();
 std::optional<Contract> preset_contract(std::string_view name);
 std::vector<std::string> preset_names();
 
-/// A kind of case (family, convention, consumer kind) the contract claims with more than this
-/// share of its drawn cases left out (not judged: within rounding of no answer, beyond a bound)
-/// is named in a warning line of every way in's summary (a failure under their strict flags).
-inline constexpr double kLeftOutWarning = 0.10;
-
-/// Whether `left` of `drawn` cases of a kind left out is more than `share` beyond chance: the
-/// lower end of the Wilson interval (one-sided 99.95%) of the share left out exceeds `share`. A
-/// run of 13 cases with 2 left out is no pattern (the interval reaches down to 2%); 13,899 of
-/// 111,575 is (12.1% at least). The one test of every way in's "judged in part only".
-bool left_out_beyond(long left, long drawn, double share = kLeftOutWarning);
-
-/// The summary's warning line for kinds judged in part only (`partly`: "KIND L of D, ..."), for
-/// the command-line ways in (verify's matrix and consumer runs, check's consumers), saying what
-/// their --strict does.
-std::string partly_judged_warning(const std::string& partly, bool strict);
-
-/// Counts by name as a summary says them: "name N, name N" ("none" when empty).
-std::string counts_text(const std::map<std::string, long>& counts);
-
 /// The contract with each empty list filled (families, places, defects, properties: every one;
 /// conventions, statuses, row3_accuracy: the implementation's own) and, for unit planes, the
 /// `scaled` place dropped (a unit normal undoes the scaling) unless it is the only place.

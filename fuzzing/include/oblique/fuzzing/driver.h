@@ -33,6 +33,7 @@
 #include "oblique/oracle/judge.h"
 #include "oblique/projection.h"
 #include "oblique/protocol/numbers.h"
+#include "oblique/run/tally.h"
 
 namespace oblique::fuzzing {
 
@@ -479,27 +480,22 @@ class CaseJudge {
   std::vector<Judged> judged_;
 };
 
-/// Inputs left out of the judgement in this process, by oracle::not_judged()'s reason, and
-/// those judged; printed to stderr at exit ("oblique: N inputs judged, ...").
-struct Counts {
-  long judged = 0;
-  std::map<std::string, long> left_out;
-};
-
+/// Inputs judged in this process, and those left out by oracle::not_judged()'s reason (the
+/// tally every way in keeps); printed to stderr at exit ("oblique: N inputs judged, ...").
 inline void print_counts();
 
-inline Counts& counts() {
-  static Counts* c = [] {
+inline run::Tally& counts() {
+  static run::Tally* c = [] {
     std::atexit(print_counts);
-    return new Counts;  // never destroyed: print_counts may run after static destructors
+    return new run::Tally;  // never destroyed: print_counts may run after static destructors
   }();
   return *c;
 }
 
 inline void print_counts() {
-  const Counts& c = counts();
-  std::string line = "oblique: " + std::to_string(c.judged) + " inputs judged";
-  for (const auto& [why, n] : c.left_out) line += ", " + std::to_string(n) + " left out: " + why;
+  const run::Tally& c = counts();
+  std::string line = "oblique: " + std::to_string(c.judged()) + " inputs judged";
+  for (const auto& [why, n] : c.reasons()) line += ", " + std::to_string(n) + " left out: " + why;
   std::fprintf(stderr, "%s\n", line.c_str());
 }
 
@@ -515,15 +511,15 @@ inline bool in_contract(FuzzCase& c, const Contract& contract) {
            contract.families.end();
   });
   if (!claimed) {
-    ++counts().left_out["family " + std::string(cases::family_name(families.front())) +
-                        ": not in the contract"];
+    counts().left_out({}, "family " + std::string(cases::family_name(families.front())) +
+                              ": not in the contract");
     return false;
   }
   if (contract.planes == Planes::unit && c.family != kBuilt) {  // the builder scales its own
     Vector4<double> plane = c.input.plane.cast<double>();
     const double norm = plane.head<3>().norm();
     if (!std::isfinite(norm) || norm == 0 || !plane.allFinite()) {
-      ++counts().left_out["a plane without a finite normal (unit planes)"];
+      counts().left_out({}, "a plane without a finite normal (unit planes)");
       return false;
     }
     plane /= norm;
@@ -570,23 +566,23 @@ void check(const FuzzCase& c, CaseJudge<T>& judge, const oracle::Implementation<
   const Matrix4<T>& m = judge.matrix();
   const Vector4<T>& plane = judge.plane();
   if (!impl.accepts(c.input.convention, m)) {
-    ++counts().left_out["refused by accepts (" + impl.name + ")"];
+    counts().left_out({}, "refused by accepts (" + impl.name + ")");
     return;
   }
   if (!defects.empty()) {
     if (const std::optional<cases::Defect> d = defect_of(judge.problem());
         d && std::find(defects.begin(), defects.end(), *d) == defects.end()) {
-      ++counts()
-            .left_out["defect " + std::string(cases::defect_name(*d)) + ": not in the contract"];
+      counts().left_out({},
+                        "defect " + std::string(cases::defect_name(*d)) + ": not in the contract");
       return;
     }
   }
   if (const std::string why = oracle::not_judged(judge.problem(), checks.statuses, refusals);
       !why.empty() && !(unanswerable && judge.problem().exact_status() != Status::ok)) {
-    ++counts().left_out[why];
+    counts().left_out({}, why);
     return;
   }
-  ++counts().judged;
+  counts().judged({});
   const Answer<T> outcome = impl.run(m, plane, c.input.convention);
   const oracle::Judgement judgement = judge.judge(outcome, checks);
   const oracle::Finding* violation = judgement.violation();

@@ -188,7 +188,7 @@ struct ConsumerCoverage {
   /// One line per named consumer of which nothing was judged: why (no pass rendered, none it
   /// applies to, every answer left out and why) and what to change.
   std::vector<std::string> unjudged;
-  /// "NAME L of D, ..." for the consumers with more than kLeftOutWarning of their answers left
+  /// "NAME L of D, ..." for the consumers with more than run::kLeftOutWarning of their answers left
   /// out (a single one is no pattern); empty when none.
   std::string partly;
 };

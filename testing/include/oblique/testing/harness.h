@@ -18,6 +18,7 @@
 #include "oblique/oracle/judge.h"
 #include "oblique/oracle/problem.h"
 #include "oblique/report/counterexample_report.h"
+#include "oblique/run/tally.h"
 #include "oblique/testing.h"
 
 namespace oblique::testing {
@@ -38,15 +39,10 @@ enum class Coverage { valid, places_only, perspective_shape, invalid, none };
 /// but not judged is counted apart, by kind (the case's family; for inputs without an answer,
 /// its defect), so a run can say why a kind it claims was never judged.
 struct Tally {
-  std::map<std::string, int> families, conventions, places, defects;  ///< judged cases
+  /// The cases made, judged, left out (why: oracle::not_judged()) and refused by every function's
+  /// accepts, by family, convention, place and defect (run::kinds_of), and the gate's counts.
+  run::Tally cases;
   std::map<std::string, int> implementations, applied;
-  std::map<std::string, int> generated;         ///< cases made, by kind, judged or not
-  std::map<std::string, int> generated_places;  ///< cases made, by hard place
-  std::map<std::string, int> refused;           ///< by kind: cases every function's accepts refused
-  std::map<std::string, int> left_out;          ///< answers not judged, by oracle::not_judged()
-  std::map<std::string, int> left_out_by_kind;  ///< the same, by kind
-  std::map<std::string, int> unclaimed_by_kind;  ///< of those, inputs the contract does not claim
-  std::vector<std::string> refusing;             ///< the functions whose accepts refused a case
   std::optional<Counterexample> failure;
   /// The last failure of a run judged by other than the matrix properties (a consumer property,
   /// testing/consumers.cpp; the rasterizer, testing/raster.cpp), as the Markdown of its report.
@@ -116,31 +112,28 @@ bool serves_conventions(const Implementation<T>& impl, const Contract& contract)
   return true;
 }
 
-/// Counts a case made (by its family) and tags it for RapidCheck's table; count_judged() says
-/// whether it reached a function and was judged.
+/// Counts a case made (on its kinds: run::kinds_of) and tags it for RapidCheck's table;
+/// count_judged() says whether it reached a function and was judged.
 template <class T>
 void count_generated(const cases::Case<T>& c) {
-  ++tally().generated[std::string(cases::family_name(c.family))];
-  ++tally().generated_places[std::string(cases::place_name(c.place))];
+  tally().cases.made(run::kinds_of(c));
   RC_TAG(std::string(cases::family_name(c.family)), std::string(convention_name(c.convention)),
-         std::string(cases::place_name(c.place)));
+         c.defect ? std::string(cases::defect_name(*c.defect))
+                  : std::string(cases::place_name(c.place)));
 }
 
-/// Counts a case whose answer was judged, by family, convention and place.
+/// Counts a case whose answer was judged, on its kinds (family, convention, place or defect).
 template <class T>
 void count_judged(const cases::Case<T>& c) {
-  Tally& t = tally();
-  ++t.families[std::string(cases::family_name(c.family))];
-  ++t.conventions[std::string(convention_name(c.convention))];
-  ++t.places[std::string(cases::place_name(c.place))];
+  tally().cases.judged(run::kinds_of(c));
 }
 
-/// Counts a case some function left out: refused by its accepts (`refused_by`, the function's
-/// name) or not judged (`why`, oracle::not_judged()'s reason), by `kind`. A case the contract
+/// Counts a case (of `kinds`) some function left out: refused by its accepts (`refused_by`, the
+/// function's name) or not judged (`why`, oracle::not_judged()'s reason). A case the contract
 /// does not claim (`unclaimed`: an input without an answer under a contract that lists no status
 /// for it) is said among the reasons but is no gap in what the contract claims: it does not count
 /// toward a kind judged in part only.
-void count_left_out(const std::string& kind, const std::string& why,
+void count_left_out(const std::vector<run::Kind>& kinds, const std::string& why,
                     const std::string& refused_by = "", bool unclaimed = false);
 
 template <class T>
@@ -211,7 +204,7 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
 /// Runs each implementation on the case and judges each answer (judge(), with `checks` and the
 /// implementation's status contract, or the statuses and refusals of `contract` when given);
 /// fails the case on the first violation. Inputs oracle::not_judged() leaves out for the
-/// contract are skipped and counted (Tally::left_out, by `kind`: empty, the case's family),
+/// contract are skipped and counted (Tally::cases, on the case's kinds),
 /// except that inputs without an answer are judged where invalid inputs are the point
 /// (judge_statuses): there an answer to an input that allows none is the finding. Inputs an
 /// implementation's accepts refuses are counted as refused. `problem` is a Problem<T> or a
@@ -220,8 +213,7 @@ void fail_with(const cases::Case<T>& c, const Implementation<T>& impl, const Fin
 template <class T, class AnyProblem>
 bool for_each_answer(const std::vector<Implementation<T>>& implementations, const cases::Case<T>& c,
                      const AnyProblem& problem, Checks checks, bool judge_statuses = false,
-                     const Contract* contract = nullptr, std::string kind = "") {
-  if (kind.empty()) kind = std::string(cases::family_name(c.family));
+                     const Contract* contract = nullptr) {
   bool judged = false;
   std::string refused_by, left_out_why;
   bool unclaimed = false;
@@ -254,9 +246,9 @@ bool for_each_answer(const std::vector<Implementation<T>>& implementations, cons
       fail_with(c, impl, *violation, &outcome, &checks, contract);
   }
   if (!judged && !left_out_why.empty())
-    count_left_out(kind, left_out_why, "", unclaimed);
+    count_left_out(run::kinds_of(c), left_out_why, "", unclaimed);
   else if (!judged && !refused_by.empty())
-    count_left_out(kind, "", refused_by);
+    count_left_out(run::kinds_of(c), "", refused_by);
   return judged;
 }
 

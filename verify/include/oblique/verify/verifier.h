@@ -66,7 +66,7 @@ struct VerifyOptions {
   /// Threads that judge answers (default: the machine's hardware threads).
   int threads = default_threads();
 
-  /// A claimed family, convention or consumer kind with more than kLeftOutWarning of
+  /// A claimed family, convention or consumer kind with more than run::kLeftOutWarning of
   /// its drawn cases left out fails the run (exit 2) instead of a warning line.
   bool strict = false;
 };
