@@ -148,14 +148,14 @@ bool lu_orders(algebra::Mat<N> a, algebra::Mat<N> sum, std::array<int, 4> row_of
   return true;
 }
 
-/// The 4 x 4 matrix whose every entry is 32 max|m| (tolerance.h, lu_entry_bound()).
+/// The 4 x 4 matrix whose every entry is kLuGrowth max|m| (tolerance.h, lu_entry_bound()).
 template <class N>
 algebra::Mat<N> lu_bound_of(const algebra::Mat<N>& m) {
   N largest{};
   for (const auto& row : m)
     for (const N& x : row) largest = larger(largest, magnitude(x));
   algebra::Mat<N> out;
-  for (auto& row : out) row.fill(number<N>(32) * largest);
+  for (auto& row : out) row.fill(number<N>(oracle::tolerance::kLuGrowth) * largest);
   return out;
 }
 

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +19,7 @@
 #include "oblique/protocol/numbers.h"
 #include "oblique/references/kept_region.h"
 #include "oblique/references/pass_camera.h"
+#include "recent.h"
 
 namespace oblique::oracle {
 
@@ -263,28 +266,53 @@ MatrixAnalysis analyse_matrices(const DepthSample<T>& s, int bits) {
   return out;
 }
 
-/// analyse_matrices() of the last matrices seen on this thread: a run asks many pixels of one
-/// oblique matrix (a shader's batch, a scene's samples), and this is most of a sample's exact
-/// analysis.
+/// What a sample's judges key their kept analyses by: the sample's fields each analysis reads
+/// (`view` only for the world position's) and the arithmetic's bits.
 template <class T>
-const MatrixAnalysis& matrix_analysis_of(const DepthSample<T>& s, int bits) {
-  struct Key {
-    Matrix4<T> projection, original;
-    Convention convention;
-    int bits;
-  };
-  thread_local std::optional<std::pair<Key, MatrixAnalysis>> last;
-  const bool same = last && last->first.bits == bits && last->first.convention == s.convention &&
-                    last->first.projection == s.projection && last->first.original == s.original;
-  if (!same)
-    last.emplace(Key{s.projection, s.original, s.convention, bits}, analyse_matrices(s, bits));
-  return last->second;
+struct SampleKey {
+  Matrix4<T> projection, original, view;
+  Convention convention = Convention::gl;
+  DepthBuffer buffer = DepthBuffer::fixed24;
+  T ndc_x = 0, ndc_y = 0, ndc_error = 0, depth = 0;
+  std::uint32_t stored = 0;
+  int bits = 0;
+
+  enum class Reads { matrices, ray, world };
+  SampleKey() = default;
+  SampleKey(const DepthSample<T>& s, int b, Reads reads)
+      : projection(s.projection), original(s.original), convention(s.convention), bits(b) {
+    view.setIdentity();
+    if (reads == Reads::matrices) return;
+    buffer = s.buffer;
+    ndc_x = s.ndc_x;
+    ndc_y = s.ndc_y;
+    ndc_error = s.ndc_error;
+    depth = s.depth;
+    stored = s.stored;
+    if (reads == Reads::world) view = s.view;
+  }
+  bool operator==(const SampleKey& o) const {
+    return bits == o.bits && convention == o.convention && buffer == o.buffer && ndc_x == o.ndc_x &&
+           ndc_y == o.ndc_y && ndc_error == o.ndc_error && depth == o.depth && stored == o.stored &&
+           projection == o.projection && original == o.original && view == o.view;
+  }
+};
+
+/// analyse_matrices() of the last matrices seen on this thread (Recent): a run asks many pixels
+/// of one oblique matrix (a shader's batch, a scene's samples), and this is most of a sample's
+/// exact analysis.
+template <class T>
+std::shared_ptr<const MatrixAnalysis> matrix_analysis_of(const DepthSample<T>& s, int bits) {
+  thread_local Recent<SampleKey<T>, MatrixAnalysis, 4> recent;
+  return recent.get(SampleKey<T>(s, bits, SampleKey<T>::Reads::matrices),
+                    [&] { return analyse_matrices(s, bits); });
 }
 
 template <class T>
 Segment ray_segment(const DepthSample<T>& s, int bits) {
   Segment out;
-  const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+  const std::shared_ptr<const MatrixAnalysis> analysis = matrix_analysis_of(s, bits);
+  const MatrixAnalysis& a = *analysis;
   if (!a.why.empty()) {
     out.why = a.why;
     return out;
@@ -502,7 +530,8 @@ std::optional<CertifiedSegment> certified_segment(const DepthSample<T>& s, int b
   if constexpr (std::numeric_limits<T>::digits > std::numeric_limits<double>::digits) {
     return std::nullopt;  // inputs a double cannot hold
   } else {
-    const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+    const std::shared_ptr<const MatrixAnalysis> analysis = matrix_analysis_of(s, bits);
+    const MatrixAnalysis& a = *analysis;
     if (!a.why.empty() || !a.enclosed) return std::nullopt;
     const bool gpu = bits < oracle::tolerance::precision_bits<T>();
     if (gpu && (a.det_outside_gpu_range || has_subnormal_input(s))) return std::nullopt;
@@ -684,7 +713,8 @@ std::optional<ConsumerFinding> certified_holds(ConsumerCheck check, const DepthS
                                                const std::string& answered) {
   const bool linear = check == ConsumerCheck::linear_depth;
   if (linear) {
-    const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+    const std::shared_ptr<const MatrixAnalysis> analysis = matrix_analysis_of(s, bits);
+    const MatrixAnalysis& a = *analysis;
     if (!a.why.empty() || !a.axis_is_z || a.axis == 0) return std::nullopt;  // the exact path says
   }
   const std::optional<CertifiedSegment> seg = certified_segment(s, bits);
@@ -811,23 +841,15 @@ T ndc_error_of(PixelInput input, ConsumerArithmetic arithmetic) {
   return std::ldexp(T(oracle::tolerance::kPixelToNdcRoundings), -arithmetic_bits<T>(arithmetic));
 }
 
-/// ray_segment() of the last sample judged on this thread: a round asks view_position and
-/// linear_depth of the same sample, and its exact analysis is most of either judge's time.
+/// ray_segment() of the last samples judged on this thread (Recent): a round asks view_position
+/// and linear_depth of the same sample, and its exact analysis is most of either judge's time.
 template <class T>
-const Segment& ray_segment_of(const DepthSample<T>& s, ConsumerArithmetic arithmetic) {
-  thread_local std::optional<std::pair<DepthSample<T>, Segment>> last;
-  thread_local ConsumerArithmetic last_arithmetic = ConsumerArithmetic::ieee;
-  const bool same = last && last_arithmetic == arithmetic &&
-                    last->first.projection == s.projection && last->first.original == s.original &&
-                    last->first.convention == s.convention && last->first.buffer == s.buffer &&
-                    last->first.ndc_x == s.ndc_x && last->first.ndc_y == s.ndc_y &&
-                    last->first.depth == s.depth && last->first.stored == s.stored &&
-                    last->first.ndc_error == s.ndc_error;
-  if (!same) {
-    last.emplace(s, ray_segment(s, arithmetic_bits<T>(arithmetic)));
-    last_arithmetic = arithmetic;
-  }
-  return last->second;
+std::shared_ptr<const Segment> ray_segment_of(const DepthSample<T>& s,
+                                              ConsumerArithmetic arithmetic) {
+  thread_local Recent<SampleKey<T>, Segment, 4> recent;
+  const int bits = arithmetic_bits<T>(arithmetic);
+  return recent.get(SampleKey<T>(s, bits, SampleKey<T>::Reads::ray),
+                    [&] { return ray_segment(s, bits); });
 }
 
 template <class T>
@@ -840,7 +862,8 @@ ConsumerFinding judge_view_position(const DepthSample<T>& s, const Vector3<T>& a
                                  arithmetic_bits<T>(arithmetic), numbers_text(answer)))
       return *f;
   }
-  const Segment& seg = ray_segment_of(s, arithmetic);
+  const std::shared_ptr<const Segment> segment = ray_segment_of(s, arithmetic);
+  const Segment& seg = *segment;
   if (auto early = before_the_answer(ConsumerCheck::view_position, seg, answer.allFinite(),
                                      !answer.array().isFinite().any(), numbers_text(answer)))
     return *early;
@@ -870,7 +893,7 @@ template <class T>
 WorldSegment world_segment(const DepthSample<T>& s, ConsumerArithmetic arithmetic) {
   const int bits = arithmetic_bits<T>(arithmetic);
   WorldSegment out;
-  out.seg = ray_segment_of(s, arithmetic);
+  out.seg = *ray_segment_of(s, arithmetic);
   if (!out.seg.judged) return out;
   Segment& seg = out.seg;
   auto refuse = [&seg](const std::string& why) {
@@ -889,7 +912,8 @@ WorldSegment world_segment(const DepthSample<T>& s, ConsumerArithmetic arithmeti
     refuse("a singular view");
     return out;
   }
-  const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+  const std::shared_ptr<const MatrixAnalysis> analysis = matrix_analysis_of(s, bits);
+  const MatrixAnalysis& a = *analysis;
   const std::shared_ptr<const std::optional<Mat>> projection_error =
       solve_error_of(s.projection, bits);
   const std::shared_ptr<const std::optional<Mat>> view_error_ptr = solve_error_of(s.view, bits);
@@ -965,22 +989,14 @@ WorldSegment world_segment(const DepthSample<T>& s, ConsumerArithmetic arithmeti
   return out;
 }
 
-/// world_segment() of the last sample judged on this thread (a shader's batch asks many).
+/// world_segment() of the last samples judged on this thread (Recent; a shader's batch asks
+/// many).
 template <class T>
-const WorldSegment& world_segment_of(const DepthSample<T>& s, ConsumerArithmetic arithmetic) {
-  thread_local std::optional<std::pair<DepthSample<T>, WorldSegment>> last;
-  thread_local ConsumerArithmetic last_arithmetic = ConsumerArithmetic::ieee;
-  const bool same = last && last_arithmetic == arithmetic &&
-                    last->first.projection == s.projection && last->first.original == s.original &&
-                    last->first.view == s.view && last->first.convention == s.convention &&
-                    last->first.buffer == s.buffer && last->first.ndc_x == s.ndc_x &&
-                    last->first.ndc_y == s.ndc_y && last->first.depth == s.depth &&
-                    last->first.stored == s.stored && last->first.ndc_error == s.ndc_error;
-  if (!same) {
-    last.emplace(s, world_segment(s, arithmetic));
-    last_arithmetic = arithmetic;
-  }
-  return last->second;
+std::shared_ptr<const WorldSegment> world_segment_of(const DepthSample<T>& s,
+                                                     ConsumerArithmetic arithmetic) {
+  thread_local Recent<SampleKey<T>, WorldSegment, 4> recent;
+  return recent.get(SampleKey<T>(s, arithmetic_bits<T>(arithmetic), SampleKey<T>::Reads::world),
+                    [&] { return world_segment(s, arithmetic); });
 }
 
 /// The certified path of world_position: the answer carried into the pass camera's space by the
@@ -1003,7 +1019,8 @@ std::optional<ConsumerFinding> certified_world_holds(const DepthSample<T>& s,
     if (!view_error->exists || !view_error->ranged) return std::nullopt;
     const std::optional<CertifiedSegment> seg = certified_segment(s, bits);
     if (!seg) return std::nullopt;
-    const MatrixAnalysis& a = matrix_analysis_of(s, bits);
+    const std::shared_ptr<const MatrixAnalysis> analysis = matrix_analysis_of(s, bits);
+    const MatrixAnalysis& a = *analysis;
     // Products and sums of magnitudes, from below.
     auto times = [](double x, double y) { return std::max(0.0, down(x * y)); };
     auto plus = [](double x, double y) { return std::max(0.0, down(x + y)); };
@@ -1127,7 +1144,8 @@ ConsumerFinding judge_world_position(const DepthSample<T>& s, const Vector3<T>& 
   if (method == Arithmetic::filtered && answer.allFinite()) {
     if (auto f = certified_world_holds(s, answer, arithmetic_bits<T>(arithmetic))) return *f;
   }
-  const WorldSegment& world = world_segment_of(s, arithmetic);
+  const std::shared_ptr<const WorldSegment> held = world_segment_of(s, arithmetic);
+  const WorldSegment& world = *held;
   const Segment& seg = world.seg;
   if (auto early = before_the_answer(ConsumerCheck::world_position, seg, answer.allFinite(),
                                      !answer.array().isFinite().any(), numbers_text(answer)))
@@ -1157,7 +1175,9 @@ template <class T>
 ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer, ConsumerArithmetic arithmetic,
                                    Arithmetic method) {
   if (method == Arithmetic::filtered && std::isfinite(answer)) {
-    const MatrixAnalysis& a = matrix_analysis_of(s, arithmetic_bits<T>(arithmetic));
+    const std::shared_ptr<const MatrixAnalysis> analysis =
+        matrix_analysis_of(s, arithmetic_bits<T>(arithmetic));
+    const MatrixAnalysis& a = *analysis;
     if (a.why.empty() && !a.axis_is_z) {
       // No axis to measure along, whatever the pixel (the exact path says the same after the
       // segment's own reasons, which need no pixel's analysis here).
@@ -1172,7 +1192,8 @@ ConsumerFinding judge_linear_depth(const DepthSample<T>& s, T answer, ConsumerAr
                                  arithmetic_bits<T>(arithmetic), protocol::format_number(answer)))
       return *f;
   }
-  const Segment& seg = ray_segment_of(s, arithmetic);
+  const std::shared_ptr<const Segment> segment = ray_segment_of(s, arithmetic);
+  const Segment& seg = *segment;
   if (auto early = before_the_answer(ConsumerCheck::linear_depth, seg, std::isfinite(answer),
                                      !std::isfinite(answer), protocol::format_number(answer)))
     return *early;

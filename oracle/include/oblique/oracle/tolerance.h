@@ -161,13 +161,16 @@ constexpr int kCofactorRoundings = 12;
 constexpr int kPassViewRoundings = 17 + 4;
 constexpr int kCameraPlaneRoundings = kSolveRoundings + 4;
 
-/// n rho max|m| for n = 4 and partial pivoting's growth rho <= 2^(n-1): the bound on every entry
-/// of |L||U| for the LU factors of m (above).
+/// n rho for n = 4 and partial pivoting's growth rho <= 2^(n-1): every entry of |L||U| for the
+/// LU factors of m is at most kLuGrowth max|m| (above).
+constexpr int kLuGrowth = 4 * 8;
+
+/// kLuGrowth max|m|: the bound on every entry of |L||U| for the LU factors of m.
 inline oracle::exact::Rational lu_entry_bound(const oracle::exact::Mat& m) {
   oracle::exact::Rational largest = 0;
   for (const auto& row : m)
     for (const auto& x : row) largest = std::max(largest, oracle::exact::abs(x));
-  return 32 * largest;
+  return kLuGrowth * largest;
 }
 
 /// eta = half the smallest subnormal of T: with gradual underflow a product or quotient that
