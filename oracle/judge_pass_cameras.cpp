@@ -78,8 +78,9 @@ std::vector<ConsumerFinding> judge_camera_plane(const Matrix4<T>& pass_view,
   ConsumerFinding on, side;
   on.check = ConsumerCheck::plane_on_surface;
   side.check = ConsumerCheck::plane_kept_side;
-  const Mat w = oracle::exact::to_rational(pass_view);
-  const std::optional<Mat> inv = oracle::exact::inverse(w);
+  const std::shared_ptr<const Inverse> view = inverse_of(pass_view);  // the exact inverse, kept
+  const Mat& w = view->m;
+  const std::optional<Mat>& inv = view->inv;
   if (!inv || !answer.allFinite()) {
     on.judged = side.judged = !inv ? false : true;
     if (!inv) {
@@ -323,8 +324,9 @@ ConsumerFinding judge_mirror_view(const Matrix4<T>& view, const Vector4<T>& worl
 template <class T>
 ConsumerFinding judge_portal_view(const Matrix4<T>& view, const Matrix4<T>& frame,
                                   const Matrix4<T>& linked, const Matrix4<T>& answer) {
-  const Mat l = oracle::exact::to_rational(linked);
-  const std::optional<Mat> l_inv = oracle::exact::inverse(l);
+  const std::shared_ptr<const Inverse> linked_exactly = inverse_of(linked);
+  const Mat& l = linked_exactly->m;
+  const std::optional<Mat>& l_inv = linked_exactly->inv;
   if (!l_inv) {
     ConsumerFinding f;
     f.check = ConsumerCheck::portal_view;
