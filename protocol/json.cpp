@@ -10,10 +10,6 @@
 
 namespace oblique::protocol {
 
-namespace {
-
-using json = nlohmann::json;
-
 bool is_json_number(std::string_view s) {
   std::size_t i = 0;
   auto digits = [&] {
@@ -38,6 +34,10 @@ bool is_json_number(std::string_view s) {
   }
   return i == s.size();
 }
+
+namespace {
+
+using json = nlohmann::json;
 
 /// Builds a JsonValue tree from nlohmann's SAX events (run on JsonNumbers::masked); refuses nesting
 /// deeper than a request needs and more than kMaxValuesPerLine values. Numbers take their text

@@ -163,8 +163,61 @@ std::string refusal_line(Status status, std::string_view message) {
          ", \"message\": " + json_string(message) + "}";
 }
 
+namespace {
+
+bool is_json_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
+
+/// The ok answer in its common form, {"status": "ok", "projection": [16 JSON numbers]}, read by a
+/// cursor; none for any other line (read_answer_in_full() reads it, and says what is wrong).
+template <class T>
+std::optional<Answer<T>> plain_ok_answer(std::string_view line) {
+  std::size_t i = 0;
+  auto space = [&] {
+    while (i < line.size() && is_json_space(line[i])) ++i;
+  };
+  auto literal = [&](std::string_view word) {
+    space();
+    if (line.substr(i, word.size()) != word) return false;
+    i += word.size();
+    return true;
+  };
+  if (!literal("{") || !literal("\"status\"") || !literal(":") || !literal("\"ok\"") ||
+      !literal(",") || !literal("\"projection\"") || !literal(":") || !literal("["))
+    return std::nullopt;
+  Answer<T> a;
+  a.status = Status::ok;
+  for (int k = 0; k < 16; ++k) {
+    if (k > 0 && !literal(",")) return std::nullopt;
+    space();
+    const std::size_t from = i;
+    while (i < line.size() &&
+           ((line[i] >= '0' && line[i] <= '9') || line[i] == '-' || line[i] == '+' ||
+            line[i] == '.' || line[i] == 'e' || line[i] == 'E'))
+      ++i;
+    const std::string_view token = line.substr(from, i - from);
+    if (!is_json_number(token)) return std::nullopt;
+    const Expected<T> value = read_answer_number<T>(std::string(token));
+    if (!value) return std::nullopt;
+    a.projection(k / 4, k % 4) = *value;
+  }
+  if (!literal("]") || !literal("}")) return std::nullopt;
+  space();
+  if (i != line.size()) return std::nullopt;
+  return a;
+}
+
+}  // namespace
+
 template <class T>
 Expected<Answer<T>> read_answer(std::string_view line) {
+  if (std::optional<Answer<T>> plain = plain_ok_answer<T>(line)) return *std::move(plain);
+  return read_answer_in_full<T>(line);
+}
+
+template <class T>
+Expected<Answer<T>> read_answer_in_full(std::string_view line) {
   using Result = Expected<Answer<T>>;
   const Expected<AnswerText> parsed = parse_answer(normalise_non_finite(line));
   if (!parsed) return Result::failure(parsed.error());
@@ -188,6 +241,7 @@ Expected<Answer<T>> read_answer(std::string_view line) {
                                        std::optional<Convention>, Notation); \
   template std::string ok_answer_line<T>(const Matrix4<T>&);                 \
   template Expected<Answer<T>> read_answer<T>(std::string_view);             \
+  template Expected<Answer<T>> read_answer_in_full<T>(std::string_view);     \
   template Expected<T> read_answer_number<T>(const std::string&);
 OBLIQUE_PROTOCOL_MESSAGES(float)
 OBLIQUE_PROTOCOL_MESSAGES(double)

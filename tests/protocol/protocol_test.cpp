@@ -473,3 +473,102 @@ TEST(MatrixOrder, leavesWhatIsNoMatrixAndSurvivesHostileText) {
 }
 
 }  // namespace oblique::protocol
+
+namespace oblique::protocol {
+namespace {
+
+/// Whether two readings of one line agree: both refused, or the same status, message and
+/// entries, each the same value with the same sign (every NaN alike).
+template <class T>
+bool same_reading(const Expected<Answer<T>>& a, const Expected<Answer<T>>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  if (!a) return a.error() == b.error();
+  if (a->status != b->status || a->message != b->message) return false;
+  for (int i = 0; i < 16; ++i) {
+    const T x = a->projection(i / 4, i % 4), y = b->projection(i / 4, i % 4);
+    if (std::isnan(x) != std::isnan(y)) return false;
+    // (Compared by value and sign: a long double's padding bytes are not its value.)
+    if (!std::isnan(x) && (x != y || std::signbit(x) != std::signbit(y))) return false;
+  }
+  return true;
+}
+
+// read_answer() reads the common ok line with a cursor of its own; on every line, written as
+// programs write them and then spoiled a character at a time, it reads what the JSON tree reads
+// (read_answer_in_full(), the reference), the refusals' words included.
+template <class T>
+void readsAsTheJsonTreeDoes() {
+  std::mt19937_64 rng(20261207);
+  const std::vector<std::string> tokens = {"0",
+                                           "-0",
+                                           "1",
+                                           "-1.5",
+                                           "0.1",
+                                           "1e308",
+                                           "-1e309",
+                                           "1e-400",
+                                           "2.5E+3",
+                                           "3e-2",
+                                           "01",
+                                           "+1",
+                                           ".5",
+                                           "1.",
+                                           "1e",
+                                           "--1",
+                                           "NaN",
+                                           "-inf",
+                                           "Infinity",
+                                           "\"nan\"",
+                                           "\"0x1p3\"",
+                                           "null",
+                                           "1.0e",
+                                           "0.0000001",
+                                           "123456789012345678901234567890",
+                                           "-3.4028235677973366e+38",
+                                           "4.9406564584124654e-324"};
+  const std::vector<std::string> spaces = {"", " ", "  ", "\t", "\r\n", "\n"};
+  auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
+  long fast = 0, checked = 0;
+  for (int round = 0; round < 4000; ++round) {
+    std::string line;
+    const auto sp = [&] { return spaces[pick(spaces.size())]; };
+    if (round % 4 == 0) {
+      // As the core's programs write it: every entry a number of T.
+      Matrix4<T> m;
+      for (int i = 0; i < 16; ++i)
+        m(i / 4, i % 4) = static_cast<T>(std::ldexp(static_cast<double>(rng() % 2000) - 1000.0,
+                                                    static_cast<int>(pick(80)) - 40));
+      line = ok_answer_line<T>(m);
+    } else {
+      line = sp() + "{" + sp() + "\"status\"" + sp() + ":" + sp() + "\"ok\"" + sp() + "," + sp() +
+             "\"projection\"" + sp() + ":" + sp() + "[";
+      for (int i = 0; i < 16; ++i)
+        line += (i ? sp() + "," + sp() : sp()) +
+                (pick(5) == 0 ? tokens[pick(tokens.size())]
+                              : std::to_string(static_cast<double>(rng() % 100000) / 64.0 - 700));
+      line += sp() + "]" + sp() + "}" + sp();
+    }
+    // Spoiled: a character removed, replaced, or a field added.
+    switch (pick(6)) {
+      case 0: line.erase(pick(line.size()), 1); break;
+      case 1: line[pick(line.size())] = "{}[],:\"e-.0x "[pick(13)]; break;
+      case 2: line.insert(line.size() - 1, ", \"message\": \"m\""); break;
+      default: break;
+    }
+    const Expected<Answer<T>> quick = read_answer<T>(line), full = read_answer_in_full<T>(line);
+    EXPECT_TRUE(same_reading<T>(quick, full)) << line;
+    ++checked;
+    fast += full.has_value() && full->status == Status::ok;
+  }
+  EXPECT_EQ(checked, 4000);
+  EXPECT_GT(fast, 1000);  // most lines are ok answers: the comparison is not of refusals alone
+}
+
+TEST(Protocol, answersReadByTheShortcutReadAsTheJsonTreeDoes) {
+  readsAsTheJsonTreeDoes<float>();
+  readsAsTheJsonTreeDoes<double>();
+  readsAsTheJsonTreeDoes<long double>();
+}
+
+}  // namespace
+}  // namespace oblique::protocol

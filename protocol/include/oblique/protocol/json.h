@@ -62,6 +62,9 @@ struct JsonNumbers {
   std::vector<std::string_view> texts;
 };
 
+/// Whether `s` is one JSON number, all of it: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?.
+bool is_json_number(std::string_view s);
+
 /// A failure when the text holds more than `max_numbers` number tokens.
 Expected<JsonNumbers> scan_json_numbers(std::string_view text, std::size_t max_numbers);
 

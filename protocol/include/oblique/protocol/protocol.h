@@ -62,9 +62,16 @@ Expected<AnswerText> parse_answer(std::string_view line);
 
 /// The one reader of another program's answers (oblique verify, oblique check --impl): the line
 /// made strict JSON first (normalise_non_finite()), then parsed; an entry beyond T's range is an
-/// infinity to judge, not a protocol error. Fails, saying why, on a line that is no answer.
+/// infinity to judge, not a protocol error. Fails, saying why, on a line that is no answer. The
+/// common line, {"status": "ok", "projection": [16 JSON numbers]} in that order (any JSON
+/// whitespace), is read without building its JSON tree (plain_ok_answer()); the same answer as
+/// read_answer_in_full() gives, which reads every other line.
 template <class T>
 Expected<Answer<T>> read_answer(std::string_view line);
+
+/// read_answer() through the JSON tree alone: the reference its shortcut is tested against.
+template <class T>
+Expected<Answer<T>> read_answer_in_full(std::string_view line);
 
 /// The token of a JSON value for parse_number(): a number's text, or a string's contents marked
 /// by a leading '"'; empty for any other value.
