@@ -8,7 +8,7 @@
 //   for (const std::string& line : run::unjudged(tally, run::claims_of(contract), rounds, advice))
 //     err << line;                                       // a claimed kind with nothing judged
 //
-// A kind is a place on an axis (family perspective, convention gl, property view_position, ...);
+// A kind is a name on an axis (family perspective, convention gl, property view_position, ...);
 // each case or answer counts on each of its kinds. Each way in tells its user in its own terms
 // what to change (Advice); the counting and the decision are here.
 #pragma once
