@@ -115,7 +115,7 @@ struct ReplayMode {
 using Mode = std::variant<MatrixMode, ConsumerMode, ReplayMode>;
 
 /// How a run ended; the CLI exits with its value.
-enum class Verdict {
+enum class [[nodiscard]] Verdict {
   holds = 0,     ///< no violation within the budget (or the kept regressions hold)
   violated = 1,  ///< a violation, or a crash or hang of the implementation: a report written
   /// usage, protocol or I/O errors: nothing was verified; or the run did not judge what the
