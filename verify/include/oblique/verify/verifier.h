@@ -115,7 +115,7 @@ struct ReplayMode {
 using Mode = std::variant<MatrixMode, ConsumerMode, ReplayMode>;
 
 /// How a run ended; the CLI exits with its value.
-enum class [[nodiscard]] Verdict {
+enum class Verdict {
   holds = 0,     ///< no violation within the budget (or the kept regressions hold)
   violated = 1,  ///< a violation, or a crash or hang of the implementation: a report written
   /// usage, protocol or I/O errors: nothing was verified; or the run did not judge what the
@@ -126,7 +126,7 @@ enum class [[nodiscard]] Verdict {
 };
 
 /// Runs `oblique verify` in `mode`, saying on `out` and `err` what it did.
-Verdict run_verify(const VerifyOptions& options, const Mode& mode, std::ostream& out,
-                   std::ostream& err);
+[[nodiscard]] Verdict run_verify(const VerifyOptions& options, const Mode& mode, std::ostream& out,
+                                 std::ostream& err);
 
 }  // namespace oblique::verify
