@@ -433,32 +433,44 @@ class ConsumerRun {
     std::vector<Pending> pending;
   };
 
-  /// The rounds index, index + 1, ... planned: cases drawn, picks drawn and recorded.
+  /// The rounds index, index + 1, ... planned: cases drawn, picks drawn and recorded. The cases
+  /// are drawn in order on this thread (RapidCheck's generation is not thread-safe); each round's
+  /// picks come from its own engine, seeded by its index, so the rounds are planned on --threads
+  /// threads and are the same whatever the threads.
   std::vector<Planned> plan(const rc::Gen<cases::Case<T>>& cases, rc::Random& random, long index,
                             long count) {
     std::vector<Planned> out(static_cast<std::size_t>(count));
     for (long k = 0; k < count; ++k) {
-      Planned& p = out[static_cast<std::size_t>(k)];
       const long i = index + k;
       // A shader's run asks kRoundsPerCase rounds of each case drawn (other pixels, other
       // picks): the GPU takes thousands at once, and the judges analyse each matrix once.
       const long rounds_per_case = options_.shader.empty() ? 1 : kShaderRoundsPerCase;
       if (i % rounds_per_case == 0 || !last_case_)
         last_case_ = cases(random.split(), static_cast<int>(i / rounds_per_case % 101)).value();
-      p.round.c = *last_case_;
-      std::mt19937_64 engine(options_.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(i));
-      const oracle::Pick pick = [&](int lo, int hi) {
-        const int v = std::uniform_int_distribution<int>(lo, hi - 1)(engine);
-        p.round.picks.push_back(v);
-        return v;
-      };
-      const oracle::Settle left_out = [&p](const oracle::ConsumerFinding& f,
-                                           const std::string& inputs, bool about) {
-        p.pending.push_back(Pending{f, inputs, about});
-      };
-      p.asks = oracle::consumer_asks<T>(p.round.c.matrix, p.round.c.plane, p.round.c.convention,
-                                        asked_, pick, left_out);
+      out[static_cast<std::size_t>(k)].round.c = *last_case_;
     }
+    in_slices(
+        out.size(), options_.threads,
+        [&](std::size_t from, std::size_t to) {
+          for (std::size_t k = from; k < to; ++k) {
+            Planned& p = out[k];
+            const long i = index + static_cast<long>(k);
+            std::mt19937_64 engine(options_.seed * 0x9E3779B97F4A7C15ull +
+                                   static_cast<std::uint64_t>(i));
+            const oracle::Pick pick = [&](int lo, int hi) {
+              const int v = std::uniform_int_distribution<int>(lo, hi - 1)(engine);
+              p.round.picks.push_back(v);
+              return v;
+            };
+            const oracle::Settle left_out = [&p](const oracle::ConsumerFinding& f,
+                                                 const std::string& inputs, bool about) {
+              p.pending.push_back(Pending{f, inputs, about});
+            };
+            p.asks = oracle::consumer_asks<T>(p.round.c.matrix, p.round.c.plane,
+                                              p.round.c.convention, asked_, pick, left_out);
+          }
+        },
+        16);
     return out;
   }
 
