@@ -54,10 +54,8 @@ void append_item(std::string& list, const std::string& item) {
   list += (list.empty() ? "" : ", ") + item;
 }
 
-std::string summary(const std::map<std::string, int>& counts) {
-  std::string out;
-  for (const auto& [name, count] : counts) append_item(out, name + " " + std::to_string(count));
-  return out;
+std::string summary(const std::map<std::string, long>& counts) {
+  return counts.empty() ? std::string() : run::counts_text(counts);
 }
 
 void fail_case(const std::string& message) {
@@ -180,22 +178,19 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   rc::detail::printResultMessage(result, message);
   const Tally& t = tally();
   const run::Tally& cases = t.cases;
-  auto text = [](const std::map<std::string, long>& counts) {
-    return counts.empty() ? std::string() : run::counts_text(counts);
-  };
   std::ostringstream statistics;
   statistics << "ran: " << summary(t.implementations)
-             << "\njudged, by family: " << text(cases.by("family"))
-             << "\njudged, by convention: " << text(cases.by("convention"))
-             << "\njudged, by place: " << text(cases.by("place"));
+             << "\njudged, by family: " << summary(cases.by("family"))
+             << "\njudged, by convention: " << summary(cases.by("convention"))
+             << "\njudged, by place: " << summary(cases.by("place"));
   if (!cases.by("defect").empty())
-    statistics << "\njudged, by defect: " << text(cases.by("defect"));
+    statistics << "\njudged, by defect: " << summary(cases.by("defect"));
   if (!cases.by("family", &run::Counts::made).empty())
-    statistics << "\nmade: " << text(cases.by("family", &run::Counts::made));
+    statistics << "\nmade: " << summary(cases.by("family", &run::Counts::made));
   if (!cases.by("family", &run::Counts::refused).empty())
-    statistics << "\nrefused by accepts: " << text(cases.by("family", &run::Counts::refused));
+    statistics << "\nrefused by accepts: " << summary(cases.by("family", &run::Counts::refused));
   if (!t.applied.empty()) statistics << "\napplied: " << summary(t.applied);
-  if (!cases.reasons().empty()) statistics << "\nleft out: " << text(cases.reasons());
+  if (!cases.reasons().empty()) statistics << "\nleft out: " << summary(cases.reasons());
   const std::string name = property.empty() ? "" : property + ": ";
   rc::detail::SuccessResult success;
   const bool passed = result.match(success);
@@ -286,13 +281,13 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     }
     if (!unjudged_places.empty())
       w << " hard places made but none judged: " << unjudged_places << ";";
-    w << " why: " << text(cases.reasons());
+    w << " why: " << summary(cases.reasons());
     warning = w.str();
   }
   // A pass is one line (and its warnings); the tag table and the statistics with
   // OBLIQUE_STATISTICS=1.
   std::cout << name << "OK, passed " << success.numSuccess << " tests";
-  if (!cases.reasons().empty()) std::cout << " (left out: " << text(cases.reasons()) << ")";
+  if (!cases.reasons().empty()) std::cout << " (left out: " << summary(cases.reasons()) << ")";
   std::cout << "\n";
   if (!warning.empty()) {
     std::cout << "warning: " << id << ": " << warning
@@ -308,8 +303,8 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
                   << (cases.by("family", &run::Counts::refused).empty()
                           ? ""
                           : "; refused by accepts: " +
-                                text(cases.by("family", &run::Counts::refused)))
-                  << (cases.reasons().empty() ? "" : "; left out: " + text(cases.reasons()));
+                                summary(cases.by("family", &run::Counts::refused)))
+                  << (cases.reasons().empty() ? "" : "; left out: " + summary(cases.reasons()));
     return;
   }
   if (settings().strict && !warning.empty())

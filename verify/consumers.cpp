@@ -61,7 +61,7 @@ std::string summary(const std::map<std::string, long>& counts) {
 }
 
 /// A consumer finding's kinds: its property and the family of the round's case.
-std::vector<run::Kind> kinds_of(oracle::ConsumerCheck check, cases::Family family) {
+std::vector<run::Kind> finding_kinds(oracle::ConsumerCheck check, cases::Family family) {
   return {{"property", std::string(oracle::consumer_check_name(check))},
           {"family", std::string(cases::family_name(family))}};
 }
@@ -391,7 +391,7 @@ class ConsumerRun {
              const std::string& answer) {
     const std::string check(oracle::consumer_check_name(f.check));
     asked_checks_.insert(f.check);
-    const std::vector<run::Kind> kinds = kinds_of(f.check, round.c.family);
+    const std::vector<run::Kind> kinds = finding_kinds(f.check, round.c.family);
     if (const std::string_view why = oracle::not_applicable(f.check, round.c.family);
         !f.judged && !why.empty()) {
       // Nothing to judge on this family (corners of an infinite frustum, ...): said once in
@@ -591,17 +591,19 @@ class ConsumerRun {
     }
     // A pass means judged: every property asked and every family the contract claims had an
     // answer judged, where the property applies to a claimed family.
-    std::vector<run::Kind> properties, claims;
+    auto applies = [](oracle::ConsumerCheck c, cases::Family f) {
+      return oracle::not_applicable(c, f).empty();
+    };
+    std::vector<run::Kind> properties;
     for (const oracle::ConsumerCheck c : asked_checks_) {
       if (std::any_of(contract.families.begin(), contract.families.end(),
-                      [c](cases::Family f) { return oracle::not_applicable(c, f).empty(); }))
+                      [&](cases::Family f) { return applies(c, f); }))
         properties.push_back({"property", std::string(oracle::consumer_check_name(c))});
     }
-    claims = properties;
+    std::vector<run::Kind> claims = properties;
     for (const cases::Family f : contract.families) {
-      if (std::any_of(asked_checks_.begin(), asked_checks_.end(), [f](oracle::ConsumerCheck c) {
-            return oracle::not_applicable(c, f).empty();
-          }))
+      if (std::any_of(asked_checks_.begin(), asked_checks_.end(),
+                      [&](oracle::ConsumerCheck c) { return applies(c, f); }))
         claims.push_back({"family", std::string(cases::family_name(f))});
     }
     run::Advice advice;

@@ -42,7 +42,7 @@ struct Tally {
   /// The cases made, judged, left out (why: oracle::not_judged()) and refused by every function's
   /// accepts, by family, convention, place and defect (run::kinds_of), and the gate's counts.
   run::Tally cases;
-  std::map<std::string, int> implementations, applied;
+  std::map<std::string, long> implementations, applied;
   std::optional<Counterexample> failure;
   /// The last failure of a run judged by other than the matrix properties (a consumer property,
   /// testing/consumers.cpp; the rasterizer, testing/raster.cpp), as the Markdown of its report.
@@ -64,8 +64,8 @@ Tally& tally();
 /// Appends `item` to a comma-separated list.
 void append_item(std::string& list, const std::string& item);
 
-/// "name count, name count, ..." of `counts`.
-std::string summary(const std::map<std::string, int>& counts);
+/// "name count, name count, ..." of `counts` ("" when empty).
+std::string summary(const std::map<std::string, long>& counts);
 
 /// Fails the RapidCheck case with `message` alone (RC_FAIL would add our source file's path,
 /// which means nothing to the user reading the failure).
