@@ -54,10 +54,6 @@ void append_item(std::string& list, const std::string& item) {
   list += (list.empty() ? "" : ", ") + item;
 }
 
-std::string summary(const std::map<std::string, long>& counts) {
-  return counts.empty() ? std::string() : run::counts_text(counts);
-}
-
 void fail_case(const std::string& message) {
   throw rc::detail::CaseResult(rc::detail::CaseResult::Type::Failure, message);
 }
@@ -179,18 +175,19 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
   const Tally& t = tally();
   const run::Tally& cases = t.cases;
   std::ostringstream statistics;
-  statistics << "ran: " << summary(t.implementations)
-             << "\njudged, by family: " << summary(cases.by("family"))
-             << "\njudged, by convention: " << summary(cases.by("convention"))
-             << "\njudged, by place: " << summary(cases.by("place"));
+  statistics << "ran: " << run::counts_text(t.implementations)
+             << "\njudged, by family: " << run::counts_text(cases.by("family"))
+             << "\njudged, by convention: " << run::counts_text(cases.by("convention"))
+             << "\njudged, by place: " << run::counts_text(cases.by("place"));
   if (!cases.by("defect").empty())
-    statistics << "\njudged, by defect: " << summary(cases.by("defect"));
+    statistics << "\njudged, by defect: " << run::counts_text(cases.by("defect"));
   if (!cases.by("family", &run::Counts::made).empty())
-    statistics << "\nmade: " << summary(cases.by("family", &run::Counts::made));
+    statistics << "\nmade: " << run::counts_text(cases.by("family", &run::Counts::made));
   if (!cases.by("family", &run::Counts::refused).empty())
-    statistics << "\nrefused by accepts: " << summary(cases.by("family", &run::Counts::refused));
-  if (!t.applied.empty()) statistics << "\napplied: " << summary(t.applied);
-  if (!cases.reasons().empty()) statistics << "\nleft out: " << summary(cases.reasons());
+    statistics << "\nrefused by accepts: "
+               << run::counts_text(cases.by("family", &run::Counts::refused));
+  if (!t.applied.empty()) statistics << "\napplied: " << run::counts_text(t.applied);
+  if (!cases.reasons().empty()) statistics << "\nleft out: " << run::counts_text(cases.reasons());
   const std::string name = property.empty() ? "" : property + ": ";
   rc::detail::SuccessResult success;
   const bool passed = result.match(success);
@@ -281,13 +278,14 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
     }
     if (!unjudged_places.empty())
       w << " hard places made but none judged: " << unjudged_places << ";";
-    w << " why: " << summary(cases.reasons());
+    w << " why: " << run::counts_text(cases.reasons());
     warning = w.str();
   }
   // A pass is one line (and its warnings); the tag table and the statistics with
   // OBLIQUE_STATISTICS=1.
   std::cout << name << "OK, passed " << success.numSuccess << " tests";
-  if (!cases.reasons().empty()) std::cout << " (left out: " << summary(cases.reasons()) << ")";
+  if (!cases.reasons().empty())
+    std::cout << " (left out: " << run::counts_text(cases.reasons()) << ")";
   std::cout << "\n";
   if (!warning.empty()) {
     std::cout << "warning: " << id << ": " << warning
@@ -303,8 +301,9 @@ void run(const std::function<void()>& testable, Coverage coverage, const std::st
                   << (cases.by("family", &run::Counts::refused).empty()
                           ? ""
                           : "; refused by accepts: " +
-                                summary(cases.by("family", &run::Counts::refused)))
-                  << (cases.reasons().empty() ? "" : "; left out: " + summary(cases.reasons()));
+                                run::counts_text(cases.by("family", &run::Counts::refused)))
+                  << (cases.reasons().empty() ? ""
+                                              : "; left out: " + run::counts_text(cases.reasons()));
     return;
   }
   if (settings().strict && !warning.empty())

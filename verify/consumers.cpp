@@ -56,10 +56,6 @@ struct Caught {
   std::optional<Failure> lost;  ///< a crash or a timeout instead of a finding
 };
 
-std::string summary(const std::map<std::string, long>& counts) {
-  return run::counts_text(counts);
-}
-
 /// A consumer finding's kinds: its property and the family of the round's case.
 std::vector<run::Kind> finding_kinds(oracle::ConsumerCheck check, cases::Family family) {
   return {{"property", std::string(oracle::consumer_check_name(check))},
@@ -582,10 +578,10 @@ class ConsumerRun {
     }
     if (tally_.judged() == 0) {
       err_ << "oblique verify: no answer was judged in " << index
-           << " rounds (left out: " << summary(tally_.reasons())
+           << " rounds (left out: " << run::counts_text(tally_.reasons())
            << (tally_.not_applicable_reasons().empty()
                    ? ""
-                   : "; not applicable: " + summary(tally_.not_applicable_reasons()))
+                   : "; not applicable: " + run::counts_text(tally_.not_applicable_reasons()))
            << "): nothing was verified\n";
       return Verdict::error;
     }
@@ -627,11 +623,13 @@ class ConsumerRun {
     out_ << "oblique verify: no violation in " << tally_.judged() << " answers judged, " << index
          << " rounds of " << kind_list() << " (" << protocol::scalar_name<T>() << ", seed "
          << options_.seed << ", " << line.str()
-         << " s)\n  judged: " << summary(tally_.by("property"))
-         << "\n  conventions: " << summary(conventions) << "\n  families: " << summary(families)
-         << "\n  left out: " << summary(tally_.reasons()) << "\n";
+         << " s)\n  judged: " << run::counts_text(tally_.by("property"))
+         << "\n  conventions: " << run::counts_text(conventions)
+         << "\n  families: " << run::counts_text(families)
+         << "\n  left out: " << run::counts_text(tally_.reasons()) << "\n";
     if (!tally_.not_applicable_reasons().empty())
-      out_ << "  not applicable (rounds): " << summary(tally_.not_applicable_reasons()) << "\n";
+      out_ << "  not applicable (rounds): " << run::counts_text(tally_.not_applicable_reasons())
+           << "\n";
     // Judged in part only: a property with more than the warning share of its samples left out.
     if (const std::string partly =
             run::partly_judged(tally_, properties, run::kLeftOutWarning, /*with_axis=*/false);
@@ -652,13 +650,13 @@ class ConsumerRun {
     if (!caught_ && tally_.judged() == 0) {
       // An edited report, or a case the program is never asked about: no verdict at all.
       err_ << "oblique verify: --replay " << report_path
-           << ": the round judged nothing (left out: " << summary(tally_.reasons())
+           << ": the round judged nothing (left out: " << run::counts_text(tally_.reasons())
            << "); nothing is verified\n";
       return Verdict::error;
     }
     if (!caught_) {
-      out_ << "oblique verify: the round holds (" << summary(tally_.by("property"))
-           << " judged; left out: " << summary(tally_.reasons()) << ")\n";
+      out_ << "oblique verify: the round holds (" << run::counts_text(tally_.by("property"))
+           << " judged; left out: " << run::counts_text(tally_.reasons()) << ")\n";
       return Verdict::holds;
     }
     if (caught_->lost) {

@@ -64,9 +64,6 @@ Tally& tally();
 /// Appends `item` to a comma-separated list.
 void append_item(std::string& list, const std::string& item);
 
-/// "name count, name count, ..." of `counts` ("" when empty).
-std::string summary(const std::map<std::string, long>& counts);
-
 /// Fails the RapidCheck case with `message` alone (RC_FAIL would add our source file's path,
 /// which means nothing to the user reading the failure).
 [[noreturn]] void fail_case(const std::string& message);
